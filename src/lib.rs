@@ -6,3 +6,4 @@
 pub mod generate;
 pub mod maze;
 pub mod rng;
+pub mod sim;
