@@ -7,3 +7,4 @@ pub mod generate;
 pub mod maze;
 pub mod rng;
 pub mod sim;
+pub mod legacy;
