@@ -1,3 +1,10 @@
+mod cli;
+
+use clap::Parser;
+
 fn main() {
-    println!("Hello, world!");
+    if let Err(e) = cli::run(cli::Cli::parse()) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
 }

@@ -230,6 +230,8 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             core.messages += 1;
             core.latest_id = msg.header.message_id;
             core.latest_client_time = msg.header.client_time;
+            // at idle fps 0 every client message triggers a pass (CoppeliaSim then loops as fast as it can)
+            core.new_input = true;
             for b in msg.blocks {
                 if b.raw_id() == id::KILL_CONNECTION {
                     continue;
@@ -241,7 +243,6 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
                     continue;
                 }
                 store(&mut core.input, b);
-                core.new_input = true;
             }
             shared.wake.notify_all();
             let header = core.fresh.take().unwrap_or(MessageHeader { message_id: -1, ..core.stale });

@@ -254,13 +254,13 @@ impl Scene {
             for comp in path.split('/') {
                 let (alias, index) = parse_path_component(comp).ok_or_else(missing)?;
                 let found = self
-                    .tree_order()
-                    .into_iter()
-                    .filter(|&h| scope.is_none_or(|s| self.is_descendant(h, s)))
-                    .filter(|h| self.objects[h].alias == alias)
+                    .objects
+                    .values()
+                    .filter(|o| scope.is_none_or(|s| self.is_descendant(o.handle, s)))
+                    .filter(|o| o.alias == alias)
                     .nth(index)
                     .ok_or_else(missing)?;
-                scope = Some(found);
+                scope = Some(found.handle);
             }
             scope.ok_or_else(missing)
         } else {
@@ -268,17 +268,44 @@ impl Scene {
         }
     }
 
-    /// The path of an object (`/Maze/Line[1]`-style: aliases, with the index among objects
-    /// of the same alias when it is not the first).
+    /// The path of an object: its ancestors' aliases then its own, e.g. `/Line[2]` or
+    /// `/Maze/Line[1]`, where `[n]` (omitted for 0) counts the objects of the same alias, in
+    /// handle order, in the whole scene (root objects) or under the parent. [`Scene::resolve`]
+    /// maps it back to the object.
     pub fn path(&self, handle: i32) -> Result<String, SimError> {
         let o = self.get(handle)?;
+        let mut chain = vec![];
+        let mut cur = o.parent;
+        while let Some(p) = cur {
+            chain.push(self.get(p)?.alias.clone());
+            cur = self.get(p)?.parent;
+        }
+        chain.reverse();
+        let scope: Option<i32> = None;
+        let mut scope = scope;
+        let mut out = String::new();
+        for alias in &chain {
+            let first = self
+                .objects
+                .values()
+                .find(|x| scope.is_none_or(|s| self.is_descendant(x.handle, s)) && &x.alias == alias)
+                .map(|x| x.handle);
+            scope = first;
+            out.push('/');
+            out.push_str(alias);
+        }
         let index = self
-            .tree_order()
-            .into_iter()
-            .filter(|h| self.objects[h].alias == o.alias)
-            .position(|h| h == handle)
+            .objects
+            .values()
+            .filter(|x| scope.is_none_or(|s| self.is_descendant(x.handle, s)) && x.alias == o.alias)
+            .position(|x| x.handle == handle)
             .unwrap_or(0);
-        Ok(if index == 0 { format!("/{}", o.alias) } else { format!("/{}[{}]", o.alias, index) })
+        out.push('/');
+        out.push_str(&o.alias);
+        if index > 0 {
+            out.push_str(&format!("[{index}]"));
+        }
+        Ok(out)
     }
 
     /// World frame of an object.
