@@ -3,8 +3,9 @@
 //! The library behind the `vrep-maze` command: [`maze`] holds the model and its analysis,
 //! [`generate`] the algorithms, [`rng`] the only source of randomness.
 
+pub mod draw;
 pub mod generate;
+pub mod legacy;
 pub mod maze;
 pub mod rng;
 pub mod sim;
-pub mod legacy;

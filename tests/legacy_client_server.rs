@@ -4,17 +4,26 @@ use std::io::{Read, Write};
 use std::net::TcpListener;
 use std::time::{Duration, Instant};
 
-use vrep_maze::legacy::command::{Command, GroupData, SimControl, decode_handle_list, read_f32x3, read_i32};
+use vrep_maze::legacy::command::{
+    Command, GroupData, SimControl, decode_handle_list, read_f32x3, read_i32,
+};
 use vrep_maze::legacy::{Client, ClientError, ClientOptions, ServerConfig, spawn};
 use vrep_maze::sim::{Scene, Simulator};
 
 fn server(fps: i32) -> vrep_maze::legacy::ServerHandle {
-    let cfg = ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), ..Default::default() };
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        ..Default::default()
+    };
     spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()
 }
 
 fn opts() -> ClientOptions {
-    ClientOptions { connect_timeout: Duration::from_secs(2), reply_timeout: Duration::from_secs(2), ..Default::default() }
+    ClientOptions {
+        connect_timeout: Duration::from_secs(2),
+        reply_timeout: Duration::from_secs(2),
+        ..Default::default()
+    }
 }
 
 fn handle(c: &mut Client, name: &str) -> i32 {
@@ -33,15 +42,28 @@ fn legacy_handles_copy_names_and_errors() {
     assert!(missing.remote_error);
     assert_eq!(read_i32(&missing.data, 0), Some(-1));
     // two copy-pastes batched into one message (do-not-overwrite)
-    let r = c.call(&[Command::CopyPaste(vec![line]), Command::CopyPaste(vec![line])]).unwrap();
+    let r = c
+        .call(&[
+            Command::CopyPaste(vec![line]),
+            Command::CopyPaste(vec![line]),
+        ])
+        .unwrap();
     let a = decode_handle_list(&r[0].data).unwrap()[0];
     let b = decode_handle_list(&r[1].data).unwrap()[0];
     assert!(b > a && a > line);
-    let names = c.call1(Command::GetObjectGroupData { object_type: 109, data_type: 0 }).unwrap();
+    let names = c
+        .call1(Command::GetObjectGroupData {
+            object_type: 109,
+            data_type: 0,
+        })
+        .unwrap();
     let g = GroupData::decode(&names.data).unwrap();
     assert_eq!(&g.strings[g.strings.len() - 2..], ["Line0", "Line1"]);
     assert!(!c.call1(Command::RemoveObject(a)).unwrap().remote_error);
-    assert!(c.call1(Command::RemoveObject(a)).unwrap().remote_error, "remove twice fails");
+    assert!(
+        c.call1(Command::RemoveObject(a)).unwrap().remote_error,
+        "remove twice fails"
+    );
     assert_eq!(c.round_trips(), 7);
     c.close().unwrap();
     s.shutdown();
@@ -54,20 +76,51 @@ fn legacy_relative_pose_test_vector() {
     let (a, b) = (handle(&mut c, "Start"), handle(&mut c, "End"));
     let r = c
         .call(&[
-            Command::SetPosition { handle: a, relative_to: -1, xyz: [1.0, 2.0, 0.001] },
-            Command::SetOrientation { handle: a, relative_to: -1, euler: [0.0, 0.0, std::f32::consts::FRAC_PI_2] },
-            Command::SetPosition { handle: b, relative_to: a, xyz: [0.5, 0.0, 0.0] },
-            Command::SetOrientation { handle: b, relative_to: a, euler: [0.1, 0.2, 0.3] },
-            Command::GetPosition { handle: b, relative_to: -1 },
-            Command::GetOrientation { handle: b, relative_to: -1 },
-            Command::GetPosition { handle: a, relative_to: b },
+            Command::SetPosition {
+                handle: a,
+                relative_to: -1,
+                xyz: [1.0, 2.0, 0.001],
+            },
+            Command::SetOrientation {
+                handle: a,
+                relative_to: -1,
+                euler: [0.0, 0.0, std::f32::consts::FRAC_PI_2],
+            },
+            Command::SetPosition {
+                handle: b,
+                relative_to: a,
+                xyz: [0.5, 0.0, 0.0],
+            },
+            Command::SetOrientation {
+                handle: b,
+                relative_to: a,
+                euler: [0.1, 0.2, 0.3],
+            },
+            Command::GetPosition {
+                handle: b,
+                relative_to: -1,
+            },
+            Command::GetOrientation {
+                handle: b,
+                relative_to: -1,
+            },
+            Command::GetPosition {
+                handle: a,
+                relative_to: b,
+            },
         ])
         .unwrap();
     assert!(r.iter().all(|r| !r.remote_error));
     let near = |v: [f32; 3], w: [f32; 3]| v.iter().zip(w).all(|(x, y)| (x - y).abs() < 2e-4);
     assert!(near(read_f32x3(&r[4].data, 0).unwrap(), [1.0, 2.5, 0.001]));
-    assert!(near(read_f32x3(&r[5].data, 0).unwrap(), [-0.2010, 0.0980, 1.8907]));
-    assert!(near(read_f32x3(&r[6].data, 0).unwrap(), [-0.4681, 0.1448, -0.0993]));
+    assert!(near(
+        read_f32x3(&r[5].data, 0).unwrap(),
+        [-0.2010, 0.0980, 1.8907]
+    ));
+    assert!(near(
+        read_f32x3(&r[6].data, 0).unwrap(),
+        [-0.4681, 0.1448, -0.0993]
+    ));
     c.close().unwrap();
     s.shutdown();
 }
@@ -78,19 +131,38 @@ fn legacy_idle_fps_paces_blocking_calls_and_state_bit() {
     let mut c = Client::connect(s.local_addr(), opts()).unwrap();
     let t = Instant::now();
     for _ in 0..3 {
-        assert_eq!(read_i32(&c.call1(Command::GetIntParam(26)).unwrap().data, 0), Some(8));
+        assert_eq!(
+            read_i32(&c.call1(Command::GetIntParam(26)).unwrap().data, 0),
+            Some(8)
+        );
     }
-    assert!(t.elapsed() >= Duration::from_millis(200), "3 calls at 8 fps take >= 2 passes: {:?}", t.elapsed());
+    assert!(
+        t.elapsed() >= Duration::from_millis(200),
+        "3 calls at 8 fps take >= 2 passes: {:?}",
+        t.elapsed()
+    );
     assert!(!c.call1(Command::SetIntParam(26, 0)).unwrap().remote_error);
     let t = Instant::now();
     for _ in 0..10 {
         c.call1(Command::GetIntParam(1)).unwrap();
     }
-    assert!(t.elapsed() < Duration::from_millis(900), "fps 0 is fast: {:?}", t.elapsed());
-    assert!(!c.call1(Command::Simulation(SimControl::Start)).unwrap().remote_error);
+    assert!(
+        t.elapsed() < Duration::from_millis(900),
+        "fps 0 is fast: {:?}",
+        t.elapsed()
+    );
+    assert!(
+        !c.call1(Command::Simulation(SimControl::Start))
+            .unwrap()
+            .remote_error
+    );
     c.call1(Command::GetIntParam(1)).unwrap();
     assert_eq!(c.simulation_running(), Some(true));
-    assert!(!c.call1(Command::Simulation(SimControl::Stop)).unwrap().remote_error);
+    assert!(
+        !c.call1(Command::Simulation(SimControl::Stop))
+            .unwrap()
+            .remote_error
+    );
     c.call1(Command::GetIntParam(1)).unwrap();
     assert_eq!(c.simulation_running(), Some(false));
     c.close().unwrap();
@@ -99,9 +171,18 @@ fn legacy_idle_fps_paces_blocking_calls_and_state_bit() {
 
 #[test]
 fn legacy_connection_refused_is_a_clear_error() {
-    let port = TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
-    let o = ClientOptions { connect_timeout: Duration::from_millis(300), ..opts() };
-    let e = Client::connect(format!("127.0.0.1:{port}"), o).err().unwrap();
+    let port = TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    let o = ClientOptions {
+        connect_timeout: Duration::from_millis(300),
+        ..opts()
+    };
+    let e = Client::connect(format!("127.0.0.1:{port}"), o)
+        .err()
+        .unwrap();
     assert!(matches!(e, ClientError::Connect { .. }), "{e}");
     assert!(e.to_string().contains("cannot connect"), "{e}");
 }
@@ -115,7 +196,10 @@ fn legacy_silent_server_times_out() {
         let mut buf = [0u8; 4096];
         while s.read(&mut buf).map(|n| n > 0).unwrap_or(false) {}
     });
-    let o = ClientOptions { reply_timeout: Duration::from_millis(300), ..opts() };
+    let o = ClientOptions {
+        reply_timeout: Duration::from_millis(300),
+        ..opts()
+    };
     let mut c = Client::connect(addr, o).unwrap();
     let e = c.call1(Command::GetIntParam(1)).err().unwrap();
     assert!(matches!(e, ClientError::Timeout(_)), "{e}");
@@ -125,7 +209,14 @@ fn legacy_silent_server_times_out() {
 
 #[test]
 fn legacy_garbage_from_server_is_an_error_not_a_panic() {
-    for garbage in [&b"HTTP/1.1 400 Bad Request\r\n\r\n"[..], &[1, 0, 4, 0, 0, 0, 0, 0, 11, 0][..], &[1, 0, 30, 0, 0, 0, 0, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xff, 0xff, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0][..]] {
+    for garbage in [
+        &b"HTTP/1.1 400 Bad Request\r\n\r\n"[..],
+        &[1, 0, 4, 0, 0, 0, 0, 0, 11, 0][..],
+        &[
+            1, 0, 30, 0, 0, 0, 0, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xff, 0xff,
+            0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+        ][..],
+    ] {
         let l = TcpListener::bind("127.0.0.1:0").unwrap();
         let addr = l.local_addr().unwrap();
         let g = garbage.to_vec();
@@ -138,7 +229,10 @@ fn legacy_garbage_from_server_is_an_error_not_a_panic() {
         });
         let mut c = Client::connect(addr, opts()).unwrap();
         let e = c.call1(Command::GetIntParam(1)).err().unwrap();
-        assert!(matches!(e, ClientError::Wire(_) | ClientError::Closed), "{e}");
+        assert!(
+            matches!(e, ClientError::Wire(_) | ClientError::Closed),
+            "{e}"
+        );
         t.join().unwrap();
     }
 }
@@ -148,8 +242,18 @@ fn legacy_server_serves_one_client_at_a_time() {
     let s = server(0);
     let mut a = Client::connect(s.local_addr(), opts()).unwrap();
     a.call1(Command::GetIntParam(1)).unwrap();
-    let mut b = Client::connect(s.local_addr(), ClientOptions { reply_timeout: Duration::from_millis(300), ..opts() }).unwrap();
-    assert!(matches!(b.call1(Command::GetIntParam(1)), Err(ClientError::Timeout(_))));
+    let mut b = Client::connect(
+        s.local_addr(),
+        ClientOptions {
+            reply_timeout: Duration::from_millis(300),
+            ..opts()
+        },
+    )
+    .unwrap();
+    assert!(matches!(
+        b.call1(Command::GetIntParam(1)),
+        Err(ClientError::Timeout(_))
+    ));
     a.close().unwrap();
     drop(b);
     let mut c = Client::connect(s.local_addr(), opts()).unwrap();

@@ -10,7 +10,9 @@ use vrep_maze::sim::{NamingMode, Scene, Simulator};
 
 /// Serve an in-memory scene over the legacy remote API (no CoppeliaSim needed).
 #[derive(Debug, clap::Args)]
-#[command(after_help = "Example:\n  vrep-maze serve --scene course --dump scene.json &\n  vrep-maze apply maze.json")]
+#[command(
+    after_help = "Example:\n  vrep-maze serve --scene course --dump scene.json &\n  vrep-maze apply maze.json"
+)]
 pub struct ServeArgs {
     /// Address to listen on (loopback by default; the real simulator uses port 19997).
     #[arg(long, default_value = "127.0.0.1:19997")]
@@ -49,7 +51,8 @@ pub fn run(args: ServeArgs) -> anyhow::Result<()> {
         "course" => Scene::course(),
         "empty" => Scene::empty(),
         file => {
-            let text = std::fs::read_to_string(file).with_context(|| format!("cannot read scene file {file}"))?;
+            let text = std::fs::read_to_string(file)
+                .with_context(|| format!("cannot read scene file {file}"))?;
             Scene::from_json(&text).with_context(|| format!("scene file {file}"))?
         }
     };
@@ -57,16 +60,33 @@ pub fn run(args: ServeArgs) -> anyhow::Result<()> {
         Naming::Plain => NamingMode::Plain,
         Naming::Hash => NamingMode::Hash,
     };
-    anyhow::ensure!((0..=1000).contains(&args.idle_fps), "--idle-fps must be in 0..=1000, got {}", args.idle_fps);
-    let config = ServerConfig { listen: args.listen, dump: args.dump, verbose: args.verbose, ..Default::default() };
+    anyhow::ensure!(
+        (0..=1000).contains(&args.idle_fps),
+        "--idle-fps must be in 0..=1000, got {}",
+        args.idle_fps
+    );
+    let config = ServerConfig {
+        listen: args.listen,
+        dump: args.dump,
+        verbose: args.verbose,
+        ..Default::default()
+    };
     let (tx, rx) = std::sync::mpsc::channel();
     ctrlc::set_handler(move || {
         let _ = tx.send(());
     })
     .context("cannot install the Ctrl-C handler")?;
-    let server = spawn(config, Simulator::new(scene, args.idle_fps))
-        .with_context(|| format!("cannot listen on {} (port in use? try --listen 127.0.0.1:0)", args.listen))?;
-    println!("vrep-maze serve: legacy remote API on {} (idle fps {})", server.local_addr(), args.idle_fps);
+    let server = spawn(config, Simulator::new(scene, args.idle_fps)).with_context(|| {
+        format!(
+            "cannot listen on {} (port in use? try --listen 127.0.0.1:0)",
+            args.listen
+        )
+    })?;
+    println!(
+        "vrep-maze serve: legacy remote API on {} (idle fps {})",
+        server.local_addr(),
+        args.idle_fps
+    );
     let _ = rx.recv();
     let sim = server.shutdown();
     eprintln!("vrep-maze serve: stopped with {} objects", sim.scene.len());

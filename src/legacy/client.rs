@@ -11,13 +11,17 @@ use std::net::{Shutdown, SocketAddr, TcpStream, ToSocketAddrs};
 use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
-use super::wire::{Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, write_message};
+use super::wire::{
+    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, write_message,
+};
 
 /// Client errors.
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     /// Nobody accepted the connection before the deadline.
-    #[error("cannot connect to {addr}: {why} (is CoppeliaSim running with the legacy remote API on this port? it refuses connections for a few seconds after a client left, so we retried for {waited:.1} s)")]
+    #[error(
+        "cannot connect to {addr}: {why} (is CoppeliaSim running with the legacy remote API on this port? it refuses connections for a few seconds after a client left, so we retried for {waited:.1} s)"
+    )]
     Connect {
         /// Address tried.
         addr: String,
@@ -27,7 +31,9 @@ pub enum ClientError {
         waited: f64,
     },
     /// The server did not answer in time.
-    #[error("no reply from the simulator within {0:.1} s (simulation paused in a dialog, or not a legacy remote API server?)")]
+    #[error(
+        "no reply from the simulator within {0:.1} s (simulation paused in a dialog, or not a legacy remote API server?)"
+    )]
     Timeout(f64),
     /// The server closed the connection.
     #[error("the simulator closed the connection")]
@@ -95,15 +101,28 @@ pub struct Client {
 
 impl Client {
     /// Connects (IPv4/IPv6, names resolved), retrying until `connect_timeout`.
-    pub fn connect(addr: impl ToSocketAddrs + std::fmt::Display, opts: ClientOptions) -> Result<Client, ClientError> {
+    pub fn connect(
+        addr: impl ToSocketAddrs + std::fmt::Display,
+        opts: ClientOptions,
+    ) -> Result<Client, ClientError> {
         let started = Instant::now();
         let name = addr.to_string();
-        let fail = |why: String| ClientError::Connect { addr: name.clone(), why, waited: started.elapsed().as_secs_f64() };
-        let addrs: Vec<SocketAddr> = addr.to_socket_addrs().map_err(|e| fail(e.to_string()))?.collect();
+        let fail = |why: String| ClientError::Connect {
+            addr: name.clone(),
+            why,
+            waited: started.elapsed().as_secs_f64(),
+        };
+        let addrs: Vec<SocketAddr> = addr
+            .to_socket_addrs()
+            .map_err(|e| fail(e.to_string()))?
+            .collect();
         let mut last = String::from("no address");
         loop {
             for a in &addrs {
-                let left = opts.connect_timeout.saturating_sub(started.elapsed()).max(Duration::from_millis(50));
+                let left = opts
+                    .connect_timeout
+                    .saturating_sub(started.elapsed())
+                    .max(Duration::from_millis(50));
                 match TcpStream::connect_timeout(a, left) {
                     Ok(stream) => {
                         stream.set_nodelay(true).ok();
@@ -157,9 +176,12 @@ impl Client {
             ..Default::default()
         };
         let bytes = Message { header, blocks }.encode();
-        write_message(&mut self.stream, &bytes, self.opts.max_packet_size).map_err(|e| map_io(e, self.opts.reply_timeout))?;
+        write_message(&mut self.stream, &bytes, self.opts.max_packet_size)
+            .map_err(|e| map_io(e, self.opts.reply_timeout))?;
         self.messages += 1;
-        let reply = Message::decode(&read_message(&mut self.stream).map_err(|e| map_io(e, self.opts.reply_timeout))?)?;
+        let reply = Message::decode(
+            &read_message(&mut self.stream).map_err(|e| map_io(e, self.opts.reply_timeout))?,
+        )?;
         if reply.header.message_id != -1 {
             self.header = Some(reply.header);
         }
@@ -172,26 +194,59 @@ impl Client {
     pub fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, ClientError> {
         let deadline = Instant::now() + self.opts.reply_timeout;
         self.round_trips += 1;
-        let blocks: Vec<Block> = commands.iter().map(|c| c.to_block(opmode::BLOCKING)).collect();
-        let wanted: Vec<(u16, Vec<u8>)> = blocks.iter().map(|b| (b.raw_id(), b.id_data.clone())).collect();
-        let mut got: Vec<Option<Reply>> = vec![None; wanted.len()];
-        self.stream.set_read_timeout(Some(self.opts.reply_timeout)).map_err(|e| ClientError::Wire(e.into()))?;
+        let blocks: Vec<Block> = commands
+            .iter()
+            .map(|c| c.to_block(opmode::BLOCKING))
+            .collect();
+        let mut wanted: HashMap<(u16, Vec<u8>), std::collections::VecDeque<usize>> = HashMap::new();
+        for (i, b) in blocks.iter().enumerate() {
+            wanted
+                .entry((b.raw_id(), b.id_data.clone()))
+                .or_default()
+                .push_back(i);
+        }
+        let mut got: Vec<Option<Reply>> = vec![None; blocks.len()];
+        let mut missing = blocks.len();
+        self.stream
+            .set_read_timeout(Some(self.opts.reply_timeout))
+            .map_err(|e| ClientError::Wire(e.into()))?;
         let (my_id, mut reply) = self.exchange(blocks)?;
         loop {
-            let fresh = reply.header.message_id != -1 && reply.header.message_id.wrapping_sub(my_id) >= 0;
+            let fresh =
+                reply.header.message_id != -1 && reply.header.message_id.wrapping_sub(my_id) >= 0;
             for b in reply.blocks {
-                if fresh
-                    && let Some(slot) = wanted
-                        .iter()
-                        .enumerate()
-                        .position(|(i, w)| got[i].is_none() && w.0 == b.raw_id() && w.1 == b.id_data)
+                let key = (b.raw_id(), b.id_data);
+                match wanted
+                    .get_mut(&key)
+                    .filter(|_| fresh)
+                    .and_then(|q| q.pop_front())
                 {
-                    got[slot] = Some(Reply { remote_error: b.status & 1 != 0, data: b.data });
-                } else {
-                    self.inbox.insert((b.raw_id(), b.id_data.clone()), b);
+                    Some(slot) => {
+                        got[slot] = Some(Reply {
+                            remote_error: b.status & 1 != 0,
+                            data: b.data,
+                        });
+                        missing -= 1;
+                    }
+                    None => {
+                        let b = Block {
+                            id_data: key.1.clone(),
+                            ..b
+                        };
+                        self.inbox.insert(key, b);
+                    }
                 }
             }
-            if got.iter().all(Option::is_some) {
+            if missing == 0 {
+                if std::env::var_os("VREP_MAZE_TRACE").is_some() {
+                    eprintln!(
+                        "legacy: call of {} command(s) answered in {:.1} ms (message {my_id}, {} messages so far)",
+                        got.len(),
+                        (Instant::now() + self.opts.reply_timeout - deadline).as_secs_f64()
+                            * 1000.0,
+                        self.messages
+                    );
+                }
                 return Ok(got.into_iter().flatten().collect());
             }
             let now = Instant::now();
@@ -200,7 +255,11 @@ impl Client {
             }
             std::thread::sleep(self.opts.poll_interval.min(deadline - now));
             self.stream
-                .set_read_timeout(Some(deadline.saturating_duration_since(Instant::now()).max(Duration::from_millis(1))))
+                .set_read_timeout(Some(
+                    deadline
+                        .saturating_duration_since(Instant::now())
+                        .max(Duration::from_millis(1)),
+                ))
                 .map_err(|e| ClientError::Wire(e.into()))?;
             reply = self.exchange(vec![])?.1;
         }
@@ -214,8 +273,13 @@ impl Client {
     /// Sends `commands` in oneshot mode in one message without waiting for their results
     /// (they land in the inbox, see [`Client::take_inbox`]).
     pub fn oneshot(&mut self, commands: &[Command]) -> Result<(), ClientError> {
-        self.stream.set_read_timeout(Some(self.opts.reply_timeout)).map_err(|e| ClientError::Wire(e.into()))?;
-        let blocks = commands.iter().map(|c| c.to_block(opmode::ONESHOT)).collect();
+        self.stream
+            .set_read_timeout(Some(self.opts.reply_timeout))
+            .map_err(|e| ClientError::Wire(e.into()))?;
+        let blocks = commands
+            .iter()
+            .map(|c| c.to_block(opmode::ONESHOT))
+            .collect();
         let (_, reply) = self.exchange(blocks)?;
         for b in reply.blocks {
             self.inbox.insert((b.raw_id(), b.id_data.clone()), b);
@@ -227,15 +291,20 @@ impl Client {
     /// (`simx_opmode_buffer` + remove).
     pub fn take_inbox(&mut self, command: &Command) -> Option<Reply> {
         let b = command.to_block(0);
-        self.inbox
-            .remove(&(b.raw_id(), b.id_data))
-            .map(|b| Reply { remote_error: b.status & 1 != 0, data: b.data })
+        self.inbox.remove(&(b.raw_id(), b.id_data)).map(|b| Reply {
+            remote_error: b.status & 1 != 0,
+            data: b.data,
+        })
     }
 
     /// Sends the kill block, reads the final reply (briefly) and closes the socket ourselves.
     pub fn close(mut self) -> Result<(), ClientError> {
-        self.stream.set_read_timeout(Some(Duration::from_millis(500))).ok();
-        let r = self.exchange(vec![Command::KillConnection.to_block(opmode::ONESHOT)]).map(|_| ());
+        self.stream
+            .set_read_timeout(Some(Duration::from_millis(500)))
+            .ok();
+        let r = self
+            .exchange(vec![Command::KillConnection.to_block(opmode::ONESHOT)])
+            .map(|_| ());
         let _ = self.stream.shutdown(Shutdown::Both);
         r
     }
@@ -244,7 +313,9 @@ impl Client {
 fn map_io(e: WireError, timeout: Duration) -> ClientError {
     match e {
         WireError::Io(io) => match io.kind() {
-            std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut => ClientError::Timeout(timeout.as_secs_f64()),
+            std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut => {
+                ClientError::Timeout(timeout.as_secs_f64())
+            }
             std::io::ErrorKind::UnexpectedEof
             | std::io::ErrorKind::ConnectionReset
             | std::io::ErrorKind::ConnectionAborted

@@ -167,12 +167,16 @@ fn f32s(values: &[f32]) -> Vec<u8> {
 
 /// Reads the `n`-th little-endian i32 of `b`.
 pub fn read_i32(b: &[u8], n: usize) -> Option<i32> {
-    b.get(n * 4..n * 4 + 4).map(|s| i32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    b.get(n * 4..n * 4 + 4)
+        .map(|s| i32::from_le_bytes([s[0], s[1], s[2], s[3]]))
 }
 
 /// Reads three f32 from `b` starting at byte `at`.
 pub fn read_f32x3(b: &[u8], at: usize) -> Option<[f32; 3]> {
-    let f = |k: usize| b.get(at + 4 * k..at + 4 * k + 4).map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]));
+    let f = |k: usize| {
+        b.get(at + 4 * k..at + 4 * k + 4)
+            .map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    };
     Some([f(0)?, f(1)?, f(2)?])
 }
 
@@ -210,27 +214,56 @@ impl Command {
                 (b, vec![], 0)
             }
             GetObjects(t) => (i32s(&[*t]), vec![], 0),
-            GetObjectGroupData { object_type, data_type } => (i32s(&[*object_type, *data_type]), vec![], 0),
+            GetObjectGroupData {
+                object_type,
+                data_type,
+            } => (i32s(&[*object_type, *data_type]), vec![], 0),
             GetObjectParent(h) | RemoveObject(h) | GetIntParam(h) => (i32s(&[*h]), vec![], 0),
-            SetObjectParent { handle, parent, keep_in_place } => {
+            SetObjectParent {
+                handle,
+                parent,
+                keep_in_place,
+            } => {
                 let mut d = i32s(&[*parent]);
                 d.push(*keep_in_place as u8);
                 (i32s(&[*handle]), d, 0)
             }
             CopyPaste(hs) => (i32s(&[0]), i32s(hs), 1),
-            SetPosition { handle, relative_to, xyz: v } | SetOrientation { handle, relative_to, euler: v } => {
+            SetPosition {
+                handle,
+                relative_to,
+                xyz: v,
+            }
+            | SetOrientation {
+                handle,
+                relative_to,
+                euler: v,
+            } => {
                 let mut d = i32s(&[*relative_to]);
                 d.extend(f32s(v));
                 (i32s(&[*handle]), d, 0)
             }
-            GetPosition { handle, relative_to } | GetOrientation { handle, relative_to } => {
-                (i32s(&[*handle, *relative_to]), vec![], 0)
+            GetPosition {
+                handle,
+                relative_to,
             }
+            | GetOrientation {
+                handle,
+                relative_to,
+            } => (i32s(&[*handle, *relative_to]), vec![], 0),
             SetIntParam(p, v) => (i32s(&[*p]), i32s(&[*v]), 0),
             Simulation(c) => (i32s(&[*c as i32]), vec![], 0),
             KillConnection => (vec![], i32s(&[0]), 0),
         };
-        Block { cmd: self.raw_id() as u32 | opmode, delay: 0, sim_time: 0, status, id_data, data, split: None }
+        Block {
+            cmd: self.raw_id() as u32 | opmode,
+            delay: 0,
+            sim_time: 0,
+            status,
+            id_data,
+            data,
+            split: None,
+        }
     }
 
     /// Decodes a request block (server side). `None` for commands we do not implement or
@@ -244,26 +277,48 @@ impl Command {
                 Command::GetObjectHandle(String::from_utf8_lossy(s).into_owned())
             }
             id::GET_OBJECTS => Command::GetObjects(idn(0)?),
-            id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData { object_type: idn(0)?, data_type: idn(1)? },
+            id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData {
+                object_type: idn(0)?,
+                data_type: idn(1)?,
+            },
             id::GET_OBJECT_PARENT => Command::GetObjectParent(idn(0)?),
             id::SET_OBJECT_PARENT => Command::SetObjectParent {
                 handle: idn(0)?,
                 parent: dn(0)?,
                 keep_in_place: *b.data.get(4)? != 0,
             },
-            id::COPY_PASTE_OBJECTS => {
-                Command::CopyPaste(b.data.chunks_exact(4).map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect())
-            }
-            id::SET_OBJECT_POSITION => {
-                Command::SetPosition { handle: idn(0)?, relative_to: dn(0)?, xyz: read_f32x3(&b.data, 4)? }
-            }
-            id::SET_OBJECT_ORIENTATION => {
-                Command::SetOrientation { handle: idn(0)?, relative_to: dn(0)?, euler: read_f32x3(&b.data, 4)? }
-            }
-            id::GET_OBJECT_POSITION => Command::GetPosition { handle: idn(0)?, relative_to: idn(1)? },
-            id::GET_OBJECT_ORIENTATION => Command::GetOrientation { handle: idn(0)?, relative_to: idn(1)? },
-            id::GET_OBJECT_POSITION_OLD => Command::GetPosition { handle: idn(0)?, relative_to: dn(0)? },
-            id::GET_OBJECT_ORIENTATION_OLD => Command::GetOrientation { handle: idn(0)?, relative_to: dn(0)? },
+            id::COPY_PASTE_OBJECTS => Command::CopyPaste(
+                b.data
+                    .chunks_exact(4)
+                    .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                    .collect(),
+            ),
+            id::SET_OBJECT_POSITION => Command::SetPosition {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+                xyz: read_f32x3(&b.data, 4)?,
+            },
+            id::SET_OBJECT_ORIENTATION => Command::SetOrientation {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+                euler: read_f32x3(&b.data, 4)?,
+            },
+            id::GET_OBJECT_POSITION => Command::GetPosition {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_ORIENTATION => Command::GetOrientation {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_POSITION_OLD => Command::GetPosition {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+            },
+            id::GET_OBJECT_ORIENTATION_OLD => Command::GetOrientation {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+            },
             id::REMOVE_OBJECT => Command::RemoveObject(idn(0)?),
             id::GET_INTEGER_PARAMETER => Command::GetIntParam(idn(0)?),
             id::SET_INTEGER_PARAMETER => Command::SetIntParam(idn(0)?, dn(0)?),
@@ -313,14 +368,23 @@ impl GroupData {
 
     /// Decodes a reply payload; `None` when sizes do not add up.
     pub fn decode(b: &[u8]) -> Option<GroupData> {
-        let count = |n| read_i32(b, n).and_then(|v| usize::try_from(v).ok()).filter(|&v| v <= b.len());
+        let count = |n| {
+            read_i32(b, n)
+                .and_then(|v| usize::try_from(v).ok())
+                .filter(|&v| v <= b.len())
+        };
         let (nh, ni, nf, ns) = (count(0)?, count(1)?, count(2)?, count(3)?);
-        let ints_at = |from: usize, n: usize| -> Option<Vec<i32>> { (0..n).map(|k| read_i32(b, from + k)).collect() };
+        let ints_at = |from: usize, n: usize| -> Option<Vec<i32>> {
+            (0..n).map(|k| read_i32(b, from + k)).collect()
+        };
         let handles = ints_at(4, nh)?;
         let ints = ints_at(4 + nh, ni)?;
         let fl_at = (4 + nh + ni) * 4;
         let floats = (0..nf)
-            .map(|k| b.get(fl_at + 4 * k..fl_at + 4 * k + 4).map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]])))
+            .map(|k| {
+                b.get(fl_at + 4 * k..fl_at + 4 * k + 4)
+                    .map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+            })
             .collect::<Option<Vec<f32>>>()?;
         let mut rest = b.get(fl_at + 4 * nf..)?;
         let mut strings = Vec::with_capacity(ns);
@@ -329,7 +393,12 @@ impl GroupData {
             strings.push(String::from_utf8_lossy(&rest[..end]).into_owned());
             rest = &rest[end + 1..];
         }
-        Some(GroupData { handles, ints, floats, strings })
+        Some(GroupData {
+            handles,
+            ints,
+            floats,
+            strings,
+        })
     }
 }
 
@@ -359,14 +428,35 @@ mod tests {
         let all = [
             Command::GetObjectHandle("Floor".into()),
             Command::GetObjects(-2),
-            Command::GetObjectGroupData { object_type: 109, data_type: 9 },
+            Command::GetObjectGroupData {
+                object_type: 109,
+                data_type: 9,
+            },
             Command::GetObjectParent(3),
-            Command::SetObjectParent { handle: 3, parent: -1, keep_in_place: true },
+            Command::SetObjectParent {
+                handle: 3,
+                parent: -1,
+                keep_in_place: true,
+            },
             Command::CopyPaste(vec![1, 2, 3]),
-            Command::SetPosition { handle: 1, relative_to: -1, xyz: [0.1, 0.2, 0.3] },
-            Command::GetPosition { handle: 1, relative_to: 5 },
-            Command::SetOrientation { handle: 1, relative_to: 4, euler: [0.0, 1.0, 2.0] },
-            Command::GetOrientation { handle: 1, relative_to: -11 },
+            Command::SetPosition {
+                handle: 1,
+                relative_to: -1,
+                xyz: [0.1, 0.2, 0.3],
+            },
+            Command::GetPosition {
+                handle: 1,
+                relative_to: 5,
+            },
+            Command::SetOrientation {
+                handle: 1,
+                relative_to: 4,
+                euler: [0.0, 1.0, 2.0],
+            },
+            Command::GetOrientation {
+                handle: 1,
+                relative_to: -11,
+            },
             Command::RemoveObject(9),
             Command::GetIntParam(26),
             Command::SetIntParam(26, 0),
@@ -379,15 +469,28 @@ mod tests {
         }
         let cp = Command::CopyPaste(vec![5]).to_block(0);
         assert_eq!(cp.status, 1, "copy-paste is sent with do-not-overwrite");
-        let sp = Command::SetObjectParent { handle: 3, parent: 7, keep_in_place: false }.to_block(0);
+        let sp = Command::SetObjectParent {
+            handle: 3,
+            parent: 7,
+            keep_in_place: false,
+        }
+        .to_block(0);
         assert_eq!(sp.data, [7, 0, 0, 0, 0]);
     }
 
     #[test]
     fn group_data_round_trip() {
-        let g = GroupData { handles: vec![1, 2], ints: vec![-1, 1], floats: vec![0.5; 6], strings: vec!["Floor".into(), "Line0".into()] };
+        let g = GroupData {
+            handles: vec![1, 2],
+            ints: vec![-1, 1],
+            floats: vec![0.5; 6],
+            strings: vec!["Floor".into(), "Line0".into()],
+        };
         assert_eq!(GroupData::decode(&g.encode()), Some(g));
-        assert_eq!(decode_handle_list(&encode_handle_list(&[4, 5])), Some(vec![4, 5]));
+        assert_eq!(
+            decode_handle_list(&encode_handle_list(&[4, 5])),
+            Some(vec![4, 5])
+        );
         assert_eq!(decode_handle_list(&[1, 0, 0, 0]), None);
     }
 

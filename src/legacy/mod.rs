@@ -6,8 +6,10 @@
 
 pub mod client;
 pub mod command;
+pub mod scene;
 pub mod server;
 pub mod wire;
 
 pub use client::{Client, ClientError, ClientOptions, Reply};
+pub use scene::LegacyScene;
 pub use server::{ServerConfig, ServerHandle, spawn};

@@ -72,6 +72,7 @@ struct Shared {
     core: Mutex<Core>,
     wake: Condvar,
     stop: AtomicBool,
+    active: Mutex<Option<TcpStream>>,
     started: Instant,
     config: ServerConfig,
 }
@@ -115,13 +116,25 @@ impl ServerHandle {
     /// Counters.
     pub fn stats(&self) -> ServerStats {
         let c = self.shared.lock();
-        ServerStats { passes: c.passes, messages: c.messages }
+        ServerStats {
+            passes: c.passes,
+            messages: c.messages,
+        }
     }
 
     /// Stops the threads (closing the current session), writes the dump, returns the simulator.
     pub fn shutdown(self) -> Simulator {
         self.shared.stop.store(true, Ordering::SeqCst);
         self.shared.wake.notify_all();
+        if let Some(s) = self
+            .shared
+            .active
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .take()
+        {
+            let _ = s.shutdown(Shutdown::Both);
+        }
         let _ = TcpStream::connect_timeout(&self.addr, Duration::from_millis(200));
         for t in self.threads {
             let _ = t.join();
@@ -143,7 +156,10 @@ fn write_dump(config: &ServerConfig, sim: &Simulator) {
     if let Some(path) = &config.dump {
         let text = serde_json::to_string_pretty(&sim.scene.to_json()).unwrap_or_default();
         if let Err(e) = std::fs::write(path, text) {
-            eprintln!("vrep-maze serve: cannot write scene dump {}: {e}", path.display());
+            eprintln!(
+                "vrep-maze serve: cannot write scene dump {}: {e}",
+                path.display()
+            );
         }
     }
 }
@@ -158,7 +174,10 @@ pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
             input: Vec::new(),
             output: Vec::new(),
             fresh: None,
-            stale: MessageHeader { message_id: -1, ..Default::default() },
+            stale: MessageHeader {
+                message_id: -1,
+                ..Default::default()
+            },
             latest_id: -1,
             latest_client_time: 0,
             new_input: false,
@@ -168,14 +187,23 @@ pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
         }),
         wake: Condvar::new(),
         stop: AtomicBool::new(false),
+        active: Mutex::new(None),
         started: Instant::now(),
         config,
     });
     let s1 = shared.clone();
-    let main_loop = std::thread::Builder::new().name("sim-main-loop".into()).spawn(move || main_loop(&s1))?;
+    let main_loop = std::thread::Builder::new()
+        .name("sim-main-loop".into())
+        .spawn(move || main_loop(&s1))?;
     let s2 = shared.clone();
-    let acceptor = std::thread::Builder::new().name("remote-api".into()).spawn(move || accept_loop(&s2, listener))?;
-    Ok(ServerHandle { addr, shared, threads: vec![main_loop, acceptor] })
+    let acceptor = std::thread::Builder::new()
+        .name("remote-api".into())
+        .spawn(move || accept_loop(&s2, listener))?;
+    Ok(ServerHandle {
+        addr,
+        shared,
+        threads: vec![main_loop, acceptor],
+    })
 }
 
 fn accept_loop(shared: &Shared, listener: TcpListener) {
@@ -189,6 +217,11 @@ fn accept_loop(shared: &Shared, listener: TcpListener) {
             eprintln!("vrep-maze serve: client {peer:?} connected");
         }
         let why = session(shared, stream);
+        shared
+            .active
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .take();
         {
             let mut core = shared.lock();
             core.input.clear();
@@ -205,6 +238,7 @@ fn accept_loop(shared: &Shared, listener: TcpListener) {
 fn session(shared: &Shared, mut stream: TcpStream) -> String {
     let _ = stream.set_read_timeout(Some(shared.config.idle_timeout));
     let _ = stream.set_nodelay(true);
+    *shared.active.lock().unwrap_or_else(|e| e.into_inner()) = stream.try_clone().ok();
     {
         let mut core = shared.lock();
         core.input.clear();
@@ -224,7 +258,10 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             Ok(m) => m,
             Err(e) => return format!("protocol error: {e}"),
         };
-        let kill = msg.blocks.last().is_some_and(|b| b.raw_id() == id::KILL_CONNECTION);
+        let kill = msg
+            .blocks
+            .last()
+            .is_some_and(|b| b.raw_id() == id::KILL_CONNECTION);
         let reply = {
             let mut core = shared.lock();
             core.messages += 1;
@@ -232,21 +269,31 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             core.latest_client_time = msg.header.client_time;
             // at idle fps 0 every client message triggers a pass (CoppeliaSim then loops as fast as it can)
             core.new_input = true;
+            let mut blocks = Vec::with_capacity(msg.blocks.len());
             for b in msg.blocks {
                 if b.raw_id() == id::KILL_CONNECTION {
                     continue;
                 }
                 if b.split.is_some() {
                     if shared.config.verbose {
-                        eprintln!("vrep-maze serve: split command chunks are not supported; ignored");
+                        eprintln!(
+                            "vrep-maze serve: split command chunks are not supported; ignored"
+                        );
                     }
                     continue;
                 }
-                store(&mut core.input, b);
+                blocks.push(b);
             }
+            store(&mut core.input, blocks);
             shared.wake.notify_all();
-            let header = core.fresh.take().unwrap_or(MessageHeader { message_id: -1, ..core.stale });
-            Message { header, blocks: std::mem::take(&mut core.output) }
+            let header = core.fresh.take().unwrap_or(MessageHeader {
+                message_id: -1,
+                ..core.stale
+            });
+            Message {
+                header,
+                blocks: std::mem::take(&mut core.output),
+            }
         };
         if let Err(e) = write_message(&mut stream, &reply.encode(), shared.config.max_packet_size) {
             return format!("{e}");
@@ -258,16 +305,28 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
     }
 }
 
-/// Input-list rule: a new command replaces the stored one of the same identity unless its
-/// do-not-overwrite bit is set.
-fn store(input: &mut Vec<Stored>, block: Block) {
-    if block.status & 1 == 0
-        && let Some(old) = input.iter_mut().find(|s| s.block.identity() == block.identity())
-    {
-        old.block = block;
-        return;
+/// Input-list rule: a new command replaces the stored one of the same identity (in place)
+/// unless its do-not-overwrite bit is set; otherwise it is appended.
+fn store(input: &mut Vec<Stored>, blocks: Vec<Block>) {
+    let mut index: std::collections::HashMap<(u16, Vec<u8>), usize> = input
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ((s.block.raw_id(), s.block.id_data.clone()), i))
+        .collect();
+    for block in blocks {
+        let key = (block.raw_id(), block.id_data.clone());
+        if block.status & 1 == 0 {
+            if let Some(&i) = index.get(&key) {
+                input[i].block = block;
+                continue;
+            }
+            index.insert(key, input.len());
+        }
+        input.push(Stored {
+            block,
+            last_exec: None,
+        });
     }
-    input.push(Stored { block, last_exec: None });
 }
 
 fn main_loop(shared: &Shared) {
@@ -281,14 +340,22 @@ fn main_loop(shared: &Shared) {
         };
         match period {
             None if !core.new_input => {
-                core = shared.wake.wait_timeout(core, Duration::from_millis(50)).unwrap_or_else(|e| e.into_inner()).0;
+                core = shared
+                    .wake
+                    .wait_timeout(core, Duration::from_millis(50))
+                    .unwrap_or_else(|e| e.into_inner())
+                    .0;
                 continue;
             }
             Some(p) => {
                 let now = Instant::now();
                 if now < last_pass + p {
                     let wait = last_pass + p - now;
-                    core = shared.wake.wait_timeout(core, wait).unwrap_or_else(|e| e.into_inner()).0;
+                    core = shared
+                        .wake
+                        .wait_timeout(core, wait)
+                        .unwrap_or_else(|e| e.into_inner())
+                        .0;
                     continue;
                 }
             }
@@ -331,7 +398,14 @@ fn pass(shared: &Shared, core: &mut Core) {
     let mut results = Vec::new();
     input.retain_mut(|s| {
         let mode = s.block.opmode();
-        let mut reply = Block { delay: 0, sim_time: core.sim_time_ms, status: 0, data: vec![], split: None, ..s.block.clone() };
+        let mut reply = Block {
+            delay: 0,
+            sim_time: core.sim_time_ms,
+            status: 0,
+            data: vec![],
+            split: None,
+            ..s.block.clone()
+        };
         if mode == opmode::DISCONTINUE {
             results.push(reply);
             return false;
@@ -380,32 +454,74 @@ fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             Err(_) => (false, i32le(-1)),
         },
         Command::GetObjects(t) => {
-            let hs: Vec<i32> = scene.objects().filter(|o| t == -2 || o.kind.code() == t).map(|o| o.handle).collect();
+            let hs: Vec<i32> = scene
+                .objects()
+                .filter(|o| t == -2 || o.kind.code() == t)
+                .map(|o| o.handle)
+                .collect();
             (true, encode_handle_list(&hs))
         }
-        Command::GetObjectGroupData { object_type, data_type } => match group_data(sim, object_type, data_type) {
+        Command::GetObjectGroupData {
+            object_type,
+            data_type,
+        } => match group_data(sim, object_type, data_type) {
             Some(g) => (true, g.encode()),
             None => (false, vec![]),
         },
-        Command::GetObjectParent(h) => {
-            (true, i32le(scene.get(h).ok().and_then(|o| o.parent).unwrap_or(HANDLE_WORLD)))
-        }
-        Command::SetObjectParent { handle, parent, keep_in_place } => {
+        Command::GetObjectParent(h) => (
+            true,
+            i32le(
+                scene
+                    .get(h)
+                    .ok()
+                    .and_then(|o| o.parent)
+                    .unwrap_or(HANDLE_WORLD),
+            ),
+        ),
+        Command::SetObjectParent {
+            handle,
+            parent,
+            keep_in_place,
+        } => {
             let parent = (parent != HANDLE_WORLD).then_some(parent);
-            (scene.set_parent(handle, parent, keep_in_place).is_ok(), vec![])
+            (
+                scene.set_parent(handle, parent, keep_in_place).is_ok(),
+                vec![],
+            )
         }
-        Command::CopyPaste(hs) => (true, encode_handle_list(&scene.copy_paste(&hs).unwrap_or_default())),
-        Command::SetPosition { handle, relative_to, xyz } => {
-            (scene.set_position(handle, relative_to, widen(xyz)).is_ok(), vec![])
-        }
-        Command::SetOrientation { handle, relative_to, euler } => {
-            (scene.set_orientation(handle, relative_to, widen(euler)).is_ok(), vec![])
-        }
-        Command::GetPosition { handle, relative_to } => match scene.pose(handle, relative_to) {
+        Command::CopyPaste(hs) => (
+            true,
+            encode_handle_list(&scene.copy_paste(&hs).unwrap_or_default()),
+        ),
+        Command::SetPosition {
+            handle,
+            relative_to,
+            xyz,
+        } => (
+            scene.set_position(handle, relative_to, widen(xyz)).is_ok(),
+            vec![],
+        ),
+        Command::SetOrientation {
+            handle,
+            relative_to,
+            euler,
+        } => (
+            scene
+                .set_orientation(handle, relative_to, widen(euler))
+                .is_ok(),
+            vec![],
+        ),
+        Command::GetPosition {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
             Ok((p, _)) => (true, f32x3(p)),
             Err(_) => (false, vec![]),
         },
-        Command::GetOrientation { handle, relative_to } => match scene.pose(handle, relative_to) {
+        Command::GetOrientation {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
             Ok((_, e)) => (true, f32x3(e)),
             Err(_) => (false, vec![]),
         },
@@ -432,10 +548,16 @@ fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<Group
     let scene = &sim.scene;
     let objects: Vec<_> = match object_type {
         109 => scene.objects().collect(),
-        0..=107 => scene.objects().filter(|o| o.kind.code() == object_type).collect(),
+        0..=107 => scene
+            .objects()
+            .filter(|o| o.kind.code() == object_type)
+            .collect(),
         _ => return None,
     };
-    let mut g = GroupData { handles: objects.iter().map(|o| o.handle).collect(), ..Default::default() };
+    let mut g = GroupData {
+        handles: objects.iter().map(|o| o.handle).collect(),
+        ..Default::default()
+    };
     for o in &objects {
         let rel = |abs: bool| if abs { HANDLE_WORLD } else { HANDLE_PARENT };
         let pose = |abs: bool| scene.pose(o.handle, rel(abs)).ok();
@@ -448,7 +570,8 @@ fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<Group
             5 | 6 => push3(&mut g, pose(data_type == 5)?.1),
             7 | 8 => {
                 let q = rotation_from_euler(pose(data_type == 7)?.1);
-                g.floats.extend([q.i, q.j, q.k, q.w].iter().map(|x| *x as f32));
+                g.floats
+                    .extend([q.i, q.j, q.k, q.w].iter().map(|x| *x as f32));
             }
             9 | 10 => {
                 let (p, e) = pose(data_type == 9)?;

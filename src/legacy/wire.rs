@@ -24,7 +24,9 @@ pub enum WireError {
     #[error("connection error: {0}")]
     Io(#[from] std::io::Error),
     /// A packet header that is not a little-endian legacy packet header.
-    #[error("bad packet header (marker {marker:#06x}, length {length}): not a legacy remote API peer?")]
+    #[error(
+        "bad packet header (marker {marker:#06x}, length {length}): not a legacy remote API peer?"
+    )]
     BadPacket {
         /// First 16-bit word (must be 1).
         marker: u16,
@@ -145,7 +147,13 @@ pub fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
             .map(|n| n + 1)
             .ok_or_else(|| "string identification data without NUL terminator".to_string())
     };
-    let need = |n: usize| if rest.len() >= n { Ok(n) } else { Err(format!("needs {n} bytes of identification data")) };
+    let need = |n: usize| {
+        if rest.len() >= n {
+            Ok(n)
+        } else {
+            Err(format!("needs {n} bytes of identification data"))
+        }
+    };
     match raw_id {
         0x0000..=0x0FFF => Ok(0),
         0x1000..=0x1FFF => need(4),
@@ -173,7 +181,9 @@ pub struct Message {
 impl Message {
     /// Encodes header and blocks (CRC 0, version 11).
     pub fn encode(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(MESSAGE_HEADER_SIZE + self.blocks.iter().map(Block::encoded_len).sum::<usize>());
+        let mut out = Vec::with_capacity(
+            MESSAGE_HEADER_SIZE + self.blocks.iter().map(Block::encoded_len).sum::<usize>(),
+        );
         out.extend_from_slice(&0u16.to_le_bytes());
         out.push(VERSION);
         out.extend_from_slice(&self.header.message_id.to_le_bytes());
@@ -208,7 +218,10 @@ impl Message {
             let bad = |why: String| WireError::BadBlock { offset: off, why };
             let rest = &bytes[off..];
             if rest.len() < BLOCK_HEADER_SIZE {
-                return Err(bad(format!("{} trailing bytes, less than a 26-byte command header", rest.len())));
+                return Err(bad(format!(
+                    "{} trailing bytes, less than a 26-byte command header",
+                    rest.len()
+                )));
             }
             let mem = i32_at(rest, 0);
             let full = i32_at(rest, 4);
@@ -222,9 +235,14 @@ impl Message {
             let idn = id_data_len((cmd & 0xFFFF) as u16, body).map_err(bad)?;
             let split = if full as usize != mem || off1 != 0 {
                 if full < mem as i32 || off1 < 0 {
-                    return Err(bad(format!("split chunk with full size {full}, offset {off1}")));
+                    return Err(bad(format!(
+                        "split chunk with full size {full}, offset {off1}"
+                    )));
                 }
-                Some(SplitInfo { full_size: full, offset: off1 })
+                Some(SplitInfo {
+                    full_size: full,
+                    offset: off1,
+                })
             } else {
                 None
             };
@@ -249,7 +267,11 @@ fn i32_at(b: &[u8], at: usize) -> i32 {
 
 /// Splits a message into packets of at most `max_packet` bytes (all but the last full-sized,
 /// as the C client's receive buffer requires) and writes them, one write per packet.
-pub fn write_message(w: &mut impl Write, message: &[u8], max_packet: usize) -> Result<(), WireError> {
+pub fn write_message(
+    w: &mut impl Write,
+    message: &[u8],
+    max_packet: usize,
+) -> Result<(), WireError> {
     let chunk = max_packet.saturating_sub(PACKET_HEADER_SIZE).max(1);
     let count = message.len().div_ceil(chunk).max(1);
     let mut packet = Vec::with_capacity(max_packet);
@@ -311,22 +333,42 @@ mod tests {
     use proptest::prelude::*;
 
     fn hex(s: &str) -> Vec<u8> {
-        s.split_whitespace().map(|b| u8::from_str_radix(b, 16).unwrap()).collect()
+        s.split_whitespace()
+            .map(|b| u8::from_str_radix(b, 16).unwrap())
+            .collect()
     }
 
     fn request(cmd: u32, id: &[u8], data: &[u8]) -> Block {
-        Block { cmd, delay: 0, sim_time: 0, status: 0, id_data: id.to_vec(), data: data.to_vec(), split: None }
+        Block {
+            cmd,
+            delay: 0,
+            sim_time: 0,
+            status: 0,
+            id_data: id.to_vec(),
+            data: data.to_vec(),
+            split: None,
+        }
     }
 
     fn msg(id: i32, time: i32, blocks: Vec<Block>) -> Message {
-        Message { header: MessageHeader { message_id: id, client_time: time, ..Default::default() }, blocks }
+        Message {
+            header: MessageHeader {
+                message_id: id,
+                client_time: time,
+                ..Default::default()
+            },
+            blocks,
+        }
     }
 
     /// Spec section 13: keep-alive.
     #[test]
     fn vector_keep_alive() {
         let bytes = packetize(&msg(0, 1000, vec![]).encode(), MAX_PACKET_SIZE);
-        assert_eq!(bytes, hex("01 00 12 00 00 00 00 00 0b 00 00 00 00 e8 03 00 00 00 00 00 00 00 00 00"));
+        assert_eq!(
+            bytes,
+            hex("01 00 12 00 00 00 00 00 0b 00 00 00 00 e8 03 00 00 00 00 00 00 00 00 00")
+        );
     }
 
     /// Spec section 13: get handle of "Floor" and its reply.
@@ -344,7 +386,16 @@ mod tests {
              06 00 00 00 00 00 01 30 01 00 00 00 00 00 00 00 00 00 46 6c 6f 6f 72 00 10 00 00 00",
         );
         let m = &decode_stream(&reply).unwrap()[0];
-        assert_eq!(m.header, MessageHeader { message_id: 7, client_time: 0x12345, server_time: 5000, scene_id: 3, server_state: 0 });
+        assert_eq!(
+            m.header,
+            MessageHeader {
+                message_id: 7,
+                client_time: 0x12345,
+                server_time: 5000,
+                scene_id: 3,
+                server_state: 0
+            }
+        );
         assert_eq!(m.blocks[0].data, 16i32.to_le_bytes());
         assert_eq!(packetize(&m.encode(), MAX_PACKET_SIZE), reply);
     }
@@ -356,7 +407,11 @@ mod tests {
         for v in [0.1f32, 0.2, 0.3] {
             data.extend_from_slice(&v.to_le_bytes());
         }
-        let set = msg(8, 0x12350, vec![request(0x101B, &16i32.to_le_bytes(), &data)]);
+        let set = msg(
+            8,
+            0x12350,
+            vec![request(0x101B, &16i32.to_le_bytes(), &data)],
+        );
         let want = hex(
             "01 00 40 00 00 00 00 00 0b 08 00 00 00 50 23 01 00 00 00 00 00 00 00 00 2e 00 00 00 2e 00 00 00
              04 00 00 00 00 00 1b 10 00 00 00 00 00 00 00 00 00 00 10 00 00 00 ff ff ff ff cd cc cc 3d cd cc
@@ -371,13 +426,21 @@ mod tests {
             "01 00 34 00 00 00 00 00 0b 09 00 00 00 55 23 01 00 00 00 00 00 00 00 00 22 00 00 00 22 00 00 00
              08 00 00 00 00 00 0e 20 02 00 64 00 00 00 00 00 00 00 10 00 00 00 ff ff ff ff",
         );
-        assert_eq!(packetize(&msg(9, 0x12355, vec![get.clone()]).encode(), MAX_PACKET_SIZE), want);
+        assert_eq!(
+            packetize(
+                &msg(9, 0x12355, vec![get.clone()]).encode(),
+                MAX_PACKET_SIZE
+            ),
+            want
+        );
         assert_eq!(decode_stream(&want).unwrap()[0].blocks[0], get);
     }
 
     #[test]
     fn large_message_splits_into_full_packets() {
-        let blocks = (0..200).map(|i| request(0x101B, &(i as i32).to_le_bytes(), &[0u8; 16])).collect();
+        let blocks = (0..200)
+            .map(|i: i32| request(0x101B, &i.to_le_bytes(), &[0u8; 16]))
+            .collect();
         let m = msg(3, 1, blocks);
         let bytes = packetize(&m.encode(), MAX_PACKET_SIZE);
         let mut rest = &bytes[..];
@@ -393,7 +456,9 @@ mod tests {
 
     #[test]
     fn kill_block_has_int_payload_as_pure_data() {
-        let kill = hex("1e 00 00 00 1e 00 00 00 04 00 00 00 00 00 0a 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00");
+        let kill = hex(
+            "1e 00 00 00 1e 00 00 00 04 00 00 00 00 00 0a 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00",
+        );
         let mut bytes = msg(1, 0, vec![]).encode();
         bytes.extend_from_slice(&kill);
         let m = Message::decode(&bytes).unwrap();
@@ -404,11 +469,20 @@ mod tests {
 
     #[test]
     fn garbage_is_an_error() {
-        assert!(matches!(decode_stream(b"HTTP/1.1 200 OK\r\n"), Err(WireError::BadPacket { .. })));
-        assert!(matches!(Message::decode(&[0; 5]), Err(WireError::ShortMessage(5))));
+        assert!(matches!(
+            decode_stream(b"HTTP/1.1 200 OK\r\n"),
+            Err(WireError::BadPacket { .. })
+        ));
+        assert!(matches!(
+            Message::decode(&[0; 5]),
+            Err(WireError::ShortMessage(5))
+        ));
         let mut m = msg(1, 0, vec![]).encode();
         m.extend_from_slice(&[0xff; 30]);
-        assert!(matches!(Message::decode(&m), Err(WireError::BadBlock { .. })));
+        assert!(matches!(
+            Message::decode(&m),
+            Err(WireError::BadBlock { .. })
+        ));
         let mut m = msg(1, 0, vec![]).encode();
         m[2] = 3;
         assert!(matches!(Message::decode(&m), Err(WireError::BadVersion(3))));

@@ -63,7 +63,12 @@ mod tests {
 
     #[test]
     fn euler_round_trip() {
-        for e in [[0.1, 0.2, 0.3], [-1.0, 0.5, 2.5], [0.0, 0.0, FRAC_PI_2], [3.0, -1.2, -3.0]] {
+        for e in [
+            [0.1, 0.2, 0.3],
+            [-1.0, 0.5, 2.5],
+            [0.0, 0.0, FRAC_PI_2],
+            [3.0, -1.2, -3.0],
+        ] {
             let back = euler_from_rotation(&rotation_from_euler(e));
             assert!(close(back, e, 1e-9), "{e:?} -> {back:?}");
         }
@@ -79,7 +84,10 @@ mod tests {
         assert!(close(p, [1.0, 2.5, 0.001], 1e-9), "{p:?}");
         assert!(close(e, [-0.2010, 0.0980, 1.8907], 1e-4), "{e:?}");
         let (a_in_b, _) = position_euler(&(b.inverse() * a));
-        assert!(close(a_in_b, [-0.4681, 0.1448, -0.0993], 1e-4), "{a_in_b:?}");
+        assert!(
+            close(a_in_b, [-0.4681, 0.1448, -0.0993], 1e-4),
+            "{a_in_b:?}"
+        );
     }
 
     #[test]

@@ -7,7 +7,9 @@
 pub mod frame;
 pub mod scene;
 
-pub use scene::{HANDLE_PARENT, HANDLE_WORLD, NamingMode, NewObject, Object, ObjectType, Scene, SimError};
+pub use scene::{
+    HANDLE_PARENT, HANDLE_WORLD, NamingMode, NewObject, Object, ObjectType, Scene, SimError,
+};
 
 /// `sim_intparam_program_version`.
 pub const INTPARAM_PROGRAM_VERSION: i32 = 1;
@@ -45,7 +47,12 @@ pub struct Simulator {
 impl Simulator {
     /// A stopped simulator over `scene` with the given idle rate.
     pub fn new(scene: Scene, idle_fps: i32) -> Simulator {
-        Simulator { scene, idle_fps, state: SimState::Stopped, saved: None }
+        Simulator {
+            scene,
+            idle_fps,
+            state: SimState::Stopped,
+            saved: None,
+        }
     }
 
     /// Starts (or resumes) the simulation. Returns false if it is already running.

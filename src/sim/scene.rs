@@ -131,7 +131,11 @@ pub struct NewObject {
 impl Scene {
     /// A scene without objects.
     pub fn empty() -> Scene {
-        Scene { objects: BTreeMap::new(), next_handle: 10, naming: NamingMode::Plain }
+        Scene {
+            objects: BTreeMap::new(),
+            next_handle: 10,
+            naming: NamingMode::Plain,
+        }
     }
 
     /// The course scene of `course-scene.md`: `Floor` (10 m x 10 m), dummy `Maze`, green `Line`
@@ -146,14 +150,30 @@ impl Scene {
             size,
             colour,
         };
-        s.add("Floor", shape([0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [128, 128, 128]));
+        s.add(
+            "Floor",
+            shape([0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [128, 128, 128]),
+        );
         s.add(
             "Maze",
-            NewObject { kind: ObjectType::Dummy, size: [0.01; 3], ..shape([0.0; 3], [0.0; 3], [255, 255, 0]) },
+            NewObject {
+                kind: ObjectType::Dummy,
+                size: [0.01; 3],
+                ..shape([0.0; 3], [0.0; 3], [255, 255, 0])
+            },
         );
-        s.add("Line", shape([0.0, -5.5, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]));
-        s.add("Start", shape([-1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]));
-        s.add("End", shape([1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]));
+        s.add(
+            "Line",
+            shape([0.0, -5.5, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]),
+        );
+        s.add(
+            "Start",
+            shape([-1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]),
+        );
+        s.add(
+            "End",
+            shape([1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]),
+        );
         s
     }
 
@@ -165,16 +185,23 @@ impl Scene {
         }
         let scene = match serde_json::from_str::<Wrapper>(text) {
             Ok(w) => w.scene,
-            Err(_) => serde_json::from_str::<Scene>(text).map_err(|e| SimError::BadScene(e.to_string()))?,
+            Err(_) => serde_json::from_str::<Scene>(text)
+                .map_err(|e| SimError::BadScene(e.to_string()))?,
         };
         for o in scene.objects.values() {
             if let Some(p) = o.parent
                 && !scene.objects.contains_key(&p)
             {
-                return Err(SimError::BadScene(format!("object '{}' has unknown parent {p}", o.name)));
+                return Err(SimError::BadScene(format!(
+                    "object '{}' has unknown parent {p}",
+                    o.name
+                )));
             }
             if o.handle >= scene.next_handle {
-                return Err(SimError::BadScene(format!("object '{}': handle >= next_handle", o.name)));
+                return Err(SimError::BadScene(format!(
+                    "object '{}': handle >= next_handle",
+                    o.name
+                )));
             }
         }
         Ok(scene)
@@ -203,7 +230,9 @@ impl Scene {
 
     /// The object with this handle.
     pub fn get(&self, handle: i32) -> Result<&Object, SimError> {
-        self.objects.get(&handle).ok_or(SimError::NoSuchHandle(handle))
+        self.objects
+            .get(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))
     }
 
     /// All objects in handle order.
@@ -264,7 +293,11 @@ impl Scene {
             }
             scope.ok_or_else(missing)
         } else {
-            self.objects.values().find(|o| o.name == name).map(|o| o.handle).ok_or_else(missing)
+            self.objects
+                .values()
+                .find(|o| o.name == name)
+                .map(|o| o.handle)
+                .ok_or_else(missing)
         }
     }
 
@@ -288,7 +321,9 @@ impl Scene {
             let first = self
                 .objects
                 .values()
-                .find(|x| scope.is_none_or(|s| self.is_descendant(x.handle, s)) && &x.alias == alias)
+                .find(|x| {
+                    scope.is_none_or(|s| self.is_descendant(x.handle, s)) && &x.alias == alias
+                })
                 .map(|x| x.handle);
             scope = first;
             out.push('/');
@@ -342,14 +377,22 @@ impl Scene {
             None => Frame::identity(),
         };
         let (p, e) = position_euler(&(parent.inverse() * world));
-        let o = self.objects.get_mut(&handle).ok_or(SimError::NoSuchHandle(handle))?;
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
         o.position = p;
         o.orientation = e;
         Ok(())
     }
 
     /// Sets the position relative to `relative_to`, keeping the orientation.
-    pub fn set_position(&mut self, handle: i32, relative_to: i32, p: [f64; 3]) -> Result<(), SimError> {
+    pub fn set_position(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        p: [f64; 3],
+    ) -> Result<(), SimError> {
         let rel = self.reference(handle, relative_to)?;
         let mut world = self.world(handle)?;
         world.translation.vector = (rel * nalgebra::Point3::from(p)).coords;
@@ -357,7 +400,12 @@ impl Scene {
     }
 
     /// Sets the orientation relative to `relative_to`, keeping the position.
-    pub fn set_orientation(&mut self, handle: i32, relative_to: i32, e: [f64; 3]) -> Result<(), SimError> {
+    pub fn set_orientation(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        e: [f64; 3],
+    ) -> Result<(), SimError> {
         let rel = self.reference(handle, relative_to)?;
         let mut world = self.world(handle)?;
         world.rotation = rel.rotation * super::frame::rotation_from_euler(e);
@@ -366,15 +414,26 @@ impl Scene {
 
     /// Sets the parent (`None` = scene root). With `keep_in_place` the world pose is kept,
     /// otherwise the local pose is kept (and the object moves with its new parent).
-    pub fn set_parent(&mut self, handle: i32, parent: Option<i32>, keep_in_place: bool) -> Result<(), SimError> {
+    pub fn set_parent(
+        &mut self,
+        handle: i32,
+        parent: Option<i32>,
+        keep_in_place: bool,
+    ) -> Result<(), SimError> {
         let world = self.world(handle)?;
         if let Some(p) = parent {
             self.get(p)?;
             if p == handle || self.is_descendant(p, handle) {
-                return Err(SimError::Cycle { child: handle, parent: p });
+                return Err(SimError::Cycle {
+                    child: handle,
+                    parent: p,
+                });
             }
         }
-        self.objects.get_mut(&handle).ok_or(SimError::NoSuchHandle(handle))?.parent = parent;
+        self.objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?
+            .parent = parent;
         if keep_in_place {
             self.set_world(handle, world)?;
         }
@@ -384,7 +443,12 @@ impl Scene {
     /// Removes an object; its children move to its parent, keeping their world pose.
     pub fn remove(&mut self, handle: i32) -> Result<(), SimError> {
         let parent = self.get(handle)?.parent;
-        let children: Vec<i32> = self.objects.values().filter(|o| o.parent == Some(handle)).map(|o| o.handle).collect();
+        let children: Vec<i32> = self
+            .objects
+            .values()
+            .filter(|o| o.parent == Some(handle))
+            .map(|o| o.handle)
+            .collect();
         for c in children {
             self.set_parent(c, parent, true)?;
         }
@@ -403,15 +467,43 @@ impl Scene {
                 unique.push(h);
             }
         }
-        let worlds: Vec<Frame> = unique.iter().map(|&h| self.world(h)).collect::<Result<_, _>>()?;
+        let worlds: Vec<Frame> = unique
+            .iter()
+            .map(|&h| self.world(h))
+            .collect::<Result<_, _>>()?;
         let mut new = Vec::with_capacity(unique.len());
+        let mut taken: std::collections::HashSet<String> =
+            self.objects.values().map(|o| o.name.clone()).collect();
+        let mut next: std::collections::HashMap<(String, &'static str), u64> =
+            std::collections::HashMap::new();
         for (&h, world) in unique.iter().zip(&worlds) {
             let original = self.objects[&h].clone();
-            let name = self.copy_name(&original.name);
+            let (base, sep, start) = self.copy_name_parts(&original.name);
+            let from = next
+                .get(&(base.clone(), sep))
+                .copied()
+                .unwrap_or(0)
+                .max(start);
+            let n = (from..)
+                .find(|n| !taken.contains(&format!("{base}{sep}{n}")))
+                .expect("unbounded range");
+            next.insert((base.clone(), sep), n + 1);
+            let name = format!("{base}{sep}{n}");
+            taken.insert(name.clone());
             let handle = self.next_handle;
             self.next_handle += 1;
             let (position, orientation) = position_euler(world);
-            self.objects.insert(handle, Object { handle, name, parent: None, position, orientation, ..original });
+            self.objects.insert(
+                handle,
+                Object {
+                    handle,
+                    name,
+                    parent: None,
+                    position,
+                    orientation,
+                    ..original
+                },
+            );
             new.push(handle);
         }
         for (i, &h) in unique.iter().enumerate() {
@@ -426,21 +518,33 @@ impl Scene {
 
     /// Name a copy of `name` gets under the current naming mode.
     pub fn copy_name(&self, name: &str) -> String {
-        let taken = |n: &str| self.objects.values().any(|o| o.name == n);
-        let (base, sep, start) = match self.naming {
+        let (base, sep, start) = self.copy_name_parts(name);
+        (start..)
+            .map(|n| format!("{base}{sep}{n}"))
+            .find(|n| !self.objects.values().any(|o| &o.name == n))
+            .expect("unbounded range")
+    }
+
+    /// (base, separator, first number to try) of the names of copies of `name`.
+    fn copy_name_parts(&self, name: &str) -> (String, &'static str, u64) {
+        match self.naming {
             NamingMode::Plain => {
                 let base = name.trim_end_matches(|c: char| c.is_ascii_digit());
-                let start = name[base.len()..].parse::<u64>().map(|n| n + 1).unwrap_or(0);
-                (base, "", start)
+                let start = name[base.len()..]
+                    .parse::<u64>()
+                    .map(|n| n + 1)
+                    .unwrap_or(0);
+                (base.to_string(), "", start)
             }
             NamingMode::Hash => match name.rsplit_once('#') {
-                Some((b, n)) if !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()) => {
-                    (b, "#", n.parse::<u64>().map(|n| n + 1).unwrap_or(0))
-                }
-                _ => (name, "#", 0),
+                Some((b, n)) if !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()) => (
+                    b.to_string(),
+                    "#",
+                    n.parse::<u64>().map(|n| n + 1).unwrap_or(0),
+                ),
+                _ => (name.to_string(), "#", 0),
             },
-        };
-        (start..).map(|n| format!("{base}{sep}{n}")).find(|n| !taken(n)).expect("unbounded range")
+        }
     }
 
     /// JSON dump: the scene plus every object's world pose (for viewers).
@@ -449,7 +553,9 @@ impl Scene {
             .objects
             .values()
             .map(|o| {
-                let (p, e) = self.pose(o.handle, HANDLE_WORLD).unwrap_or(([0.0; 3], [0.0; 3]));
+                let (p, e) = self
+                    .pose(o.handle, HANDLE_WORLD)
+                    .unwrap_or(([0.0; 3], [0.0; 3]));
                 serde_json::json!({
                     "handle": o.handle, "name": o.name, "type": o.kind,
                     "parent": o.parent, "position": p, "orientation": e,
@@ -533,18 +639,25 @@ mod tests {
         let mut s = Scene::course();
         let (a, b) = (s.resolve("Start").unwrap(), s.resolve("End").unwrap());
         s.set_position(a, HANDLE_WORLD, [1.0, 2.0, 0.001]).unwrap();
-        s.set_orientation(a, HANDLE_WORLD, [0.0, 0.0, std::f64::consts::FRAC_PI_2]).unwrap();
+        s.set_orientation(a, HANDLE_WORLD, [0.0, 0.0, std::f64::consts::FRAC_PI_2])
+            .unwrap();
         s.set_position(b, a, [0.5, 0.0, 0.0]).unwrap();
         s.set_orientation(b, a, [0.1, 0.2, 0.3]).unwrap();
         let (p, e) = s.pose(b, HANDLE_WORLD).unwrap();
         let near = |x: [f64; 3], y: [f64; 3]| x.iter().zip(y).all(|(a, b)| (a - b).abs() < 1e-4);
-        assert!(near(p, [1.0, 2.5, 0.001]) && near(e, [-0.2010, 0.0980, 1.8907]), "{p:?} {e:?}");
+        assert!(
+            near(p, [1.0, 2.5, 0.001]) && near(e, [-0.2010, 0.0980, 1.8907]),
+            "{p:?} {e:?}"
+        );
         assert!(near(s.pose(a, b).unwrap().0, [-0.4681, 0.1448, -0.0993]));
         // keep-in-place off keeps the local pose: the world pose changes
         s.set_parent(b, Some(a), false).unwrap();
         assert!(near(s.pose(b, HANDLE_PARENT).unwrap().0, [1.0, 2.5, 0.001]));
         assert!(!near(s.pose(b, HANDLE_WORLD).unwrap().0, [1.0, 2.5, 0.001]));
-        assert!(matches!(s.set_parent(a, Some(b), true), Err(SimError::Cycle { .. })));
+        assert!(matches!(
+            s.set_parent(a, Some(b), true),
+            Err(SimError::Cycle { .. })
+        ));
     }
 
     #[test]

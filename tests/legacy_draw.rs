@@ -1,0 +1,180 @@
+//! apply / clear / verify over the legacy backend against the in-process server.
+
+use std::time::Duration;
+
+use vrep_maze::draw::{self, ApplyOptions, DrawError, Drawing, SceneNames};
+use vrep_maze::generate::{Algorithm, generate};
+use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
+use vrep_maze::maze::Grid;
+use vrep_maze::sim::{NamingMode, Scene, Simulator};
+
+fn drawing(n: u64, seed: u64) -> Drawing {
+    draw::drawing_from_maze(&generate(Grid::new(n, n).unwrap(), Algorithm::Prim, seed))
+}
+
+fn server_with(scene: Scene, fps: i32) -> ServerHandle {
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        ..Default::default()
+    };
+    spawn(cfg, Simulator::new(scene, fps)).unwrap()
+}
+
+fn connect(s: &ServerHandle) -> LegacyScene {
+    LegacyScene::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(3)).unwrap()
+}
+
+fn no_progress(_: draw::Stage) {}
+
+fn line_count(s: &ServerHandle) -> usize {
+    s.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count())
+}
+
+#[test]
+fn legacy_apply_draws_verifies_and_reapplies_without_changes() {
+    let s = server_with(Scene::course(), 0);
+    let d = drawing(9, 42);
+    assert_eq!(d.lines.len(), 160);
+    let mut sc = connect(&s);
+    let r = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!((r.lines, r.pasted, r.reused, r.removed), (160, 159, 0, 0));
+    assert!(
+        r.round_trips <= 15,
+        "9x9 took {} round trips",
+        r.round_trips
+    );
+    assert_eq!(line_count(&s), 160);
+    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(
+        (again.pasted, again.removed, again.edits, again.reused),
+        (0, 0, 0, 159),
+        "{again}"
+    );
+    // idle rate restored
+    assert_eq!(s.with_sim(|sim| sim.idle_fps), 0);
+    sc.close().unwrap();
+    s.shutdown();
+}
+
+#[test]
+fn legacy_apply_replaces_a_bigger_maze_and_clear_removes_it() {
+    let s = server_with(Scene::course(), 8);
+    let mut sc = connect(&s);
+    let big = drawing(5, 1);
+    let small = drawing(3, 2);
+    draw::apply(&mut sc, &big, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(
+        s.with_sim(|sim| sim.idle_fps),
+        8,
+        "user's idle rate restored"
+    );
+    let r = draw::apply(&mut sc, &small, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(
+        (r.pasted, r.removed),
+        (0, big.lines.len() - small.lines.len())
+    );
+    assert_eq!(line_count(&s), small.lines.len());
+    draw::verify(&mut sc, &small, &SceneNames::default()).unwrap();
+    assert!(matches!(
+        draw::verify(&mut sc, &big, &SceneNames::default()),
+        Err(DrawError::Verify(_))
+    ));
+    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    assert_eq!(c.removed.len(), small.lines.len() - 1);
+    assert_eq!(line_count(&s), 1, "only the template is left");
+    assert!(
+        draw::clear(&mut sc, &SceneNames::default(), false)
+            .unwrap()
+            .removed
+            .is_empty(),
+        "idempotent"
+    );
+    s.shutdown();
+}
+
+#[test]
+fn legacy_apply_round_trips_30x30() {
+    let s = server_with(Scene::course(), 0);
+    let mut sc = connect(&s);
+    let d = drawing(30, 7);
+    let r = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(r.lines, 1798);
+    assert!(
+        r.round_trips <= 20,
+        "30x30 took {} round trips",
+        r.round_trips
+    );
+    s.shutdown();
+}
+
+#[test]
+fn legacy_apply_refuses_a_running_simulation_and_missing_objects() {
+    let s = server_with(Scene::course(), 0);
+    s.with_sim(|sim| sim.start());
+    let mut sc = connect(&s);
+    let d = drawing(3, 3);
+    assert!(matches!(
+        draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress),
+        Err(DrawError::SimulationRunning)
+    ));
+    let opts = ApplyOptions {
+        stop_simulation: true,
+        ..Default::default()
+    };
+    let r = draw::apply(&mut sc, &d, &opts, &mut no_progress).unwrap();
+    assert!(r.stopped_simulation);
+    s.shutdown();
+
+    let mut scene = Scene::course();
+    for n in ["Maze", "End"] {
+        let h = scene.resolve(n).unwrap();
+        scene.remove(h).unwrap();
+    }
+    let s = server_with(scene, 0);
+    let mut sc = connect(&s);
+    let e = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(e, DrawError::Missing { .. })
+            && msg.contains("Maze, End")
+            && msg.contains("dummy"),
+        "{msg}"
+    );
+    s.shutdown();
+}
+
+#[test]
+fn legacy_apply_works_with_hash_names_and_repairs_parentless_copies() {
+    let mut scene = Scene::course();
+    scene.naming = NamingMode::Hash;
+    let line = scene.resolve("Line").unwrap();
+    // an interrupted run: copies pasted but never re-parented
+    for _ in 0..3 {
+        scene.copy_paste(&[line]).unwrap();
+    }
+    let s = server_with(scene, 0);
+    let mut sc = connect(&s);
+    let d = drawing(2, 5);
+    let r = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!((r.reused, r.pasted, r.removed), (3, d.lines.len() - 4, 0));
+    let names: Vec<String> =
+        s.with_sim(|sim| sim.scene.objects().map(|o| o.name.clone()).collect());
+    assert!(names.iter().any(|n| n == "Line#3"), "{names:?}");
+    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    s.shutdown();
+}
+
+#[test]
+fn legacy_dry_run_changes_nothing() {
+    let s = server_with(Scene::course(), 0);
+    let mut sc = connect(&s);
+    let opts = ApplyOptions {
+        dry_run: true,
+        ..Default::default()
+    };
+    let r = draw::apply(&mut sc, &drawing(4, 4), &opts, &mut no_progress).unwrap();
+    assert!(r.dry_run && r.pasted > 0);
+    assert_eq!(line_count(&s), 1);
+    s.shutdown();
+}
