@@ -23,13 +23,13 @@ use crate::rng::os_seed;
 pub struct GenerateArgs {
     /// Seed of the random stream; without it one is drawn from the OS and recorded in the
     /// layout (and printed), so the maze can be made again.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub seed: Option<u64>,
     /// Algorithm: dfs (long corridors), prim (many short dead ends), kruskal (even texture).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
     pub algo: Algorithm,
     /// Grid size in cells, WxH (at most 4096x4096 cells in all).
-    #[arg(long, default_value = "9x9", value_parser = parse_size)]
+    #[arg(long, default_value = "9x9", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u64, u64),
     /// Start cell: a cell 'x,y', a corner 'sw|se|nw|ne', or 'farthest-pair' (both ends of the longest path).
     #[arg(long, default_value = "sw", value_parser = parse_endpoint)]
@@ -38,19 +38,19 @@ pub struct GenerateArgs {
     #[arg(long, default_value = "farthest", value_parser = parse_endpoint)]
     pub end: EndpointSpec,
     /// Side of a cell, metres.
-    #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres)]
+    #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres, allow_hyphen_values = true)]
     pub cell_size: f64,
     /// Length of the Line template, metres.
-    #[arg(long, default_value_t = course::LINE_LENGTH, value_parser = parse_metres)]
+    #[arg(long, default_value_t = course::LINE_LENGTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_length: f64,
     /// Width of the Line template, metres.
-    #[arg(long, default_value_t = course::LINE_WIDTH, value_parser = parse_metres)]
+    #[arg(long, default_value_t = course::LINE_WIDTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_width: f64,
     /// Height of the lines above the floor, metres.
-    #[arg(long, default_value_t = course::LINE_Z, value_parser = parse_finite)]
+    #[arg(long, default_value_t = course::LINE_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub line_z: f64,
     /// Height of the Start and End markers, metres.
-    #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite)]
+    #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub marker_z: f64,
     /// Floor position x,y of cell (0,0)'s centre [default: the maze centred on the floor origin].
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
@@ -59,7 +59,7 @@ pub struct GenerateArgs {
     #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub rotation: f64,
     /// Floor size XxY in metres the maze must fit [default: 10x10, grown in 5 m panels to fit].
-    #[arg(long, value_parser = parse_floor)]
+    #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
     pub floor_size: Option<[f64; 2]>,
     /// Write the layout here (atomically) instead of standard output.
     #[arg(short, long)]
@@ -100,17 +100,11 @@ impl GenerateArgs {
 
 /// Runs `generate`.
 pub fn run(args: GenerateArgs) -> Result<ExitCode> {
-    let seed = match args.seed {
-        Some(seed) => seed,
-        None => {
-            let seed = os_seed();
-            eprintln!(
-                "seed {seed} (drawn from the OS; recorded in the layout; pass --seed {seed} to make this maze again)"
-            );
-            seed
-        }
-    };
-    let spec = args.spec(seed)?;
+    let drawn = args.seed.is_none();
+    // Check every option before drawing a seed, so a refused run prints nothing else.
+    let mut spec = args.spec(0)?;
+    spec.seed = args.seed.unwrap_or_else(os_seed);
+    let seed = spec.seed;
     let layout = build_layout(&spec).map_err(|e| anyhow!(e))?;
     if layout.start.cell == layout.end.cell {
         eprintln!(
@@ -119,6 +113,11 @@ pub fn run(args: GenerateArgs) -> Result<ExitCode> {
         );
     }
     write_output(args.output.as_deref(), |w| write_layout(&layout, w))?;
+    if drawn {
+        eprintln!(
+            "seed {seed} (drawn from the OS; recorded in the layout; pass --seed {seed} to make this maze again)"
+        );
+    }
     if let Some(path) = &args.output {
         eprintln!(
             "wrote {}: {}x{} {} seed {}, {} segments, solution {} cells",
