@@ -222,7 +222,7 @@ fn bad_layout_files_are_refused_with_line_and_column() {
     );
     validate_fails(
         &good.replacen("\"columns\": 5", "\"columns\": 6", 1),
-        "passages.rows[0] has 5 characters but grid.columns is 6",
+        "passages[0] has 5 characters but grid.columns is 6",
     );
     validate_fails("", "EOF while parsing");
     bin()

@@ -99,6 +99,7 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
         start: endpoint(geometry, start),
         end: endpoint(geometry, end),
         metrics,
+        passage_encoding: passages::ENCODING.to_string(),
         passages: passages::encode(maze),
         segments,
     })

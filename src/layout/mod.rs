@@ -49,8 +49,11 @@ pub struct Layout {
     pub end: Endpoint,
     /// What the maze is like; `metrics.loops` declares the loops the passages may form.
     pub metrics: Metrics,
-    /// The open passages of every cell.
-    pub passages: Passages,
+    /// Always [`passages::ENCODING`]: says how to read `passages`.
+    pub passage_encoding: String,
+    /// The open passages, one string per row: `passages[0]` is row 0 (the south row);
+    /// character `x` of a row is the open-passage hex digit of cell (x, row).
+    pub passages: Vec<String>,
     /// The line segments to draw, one per copy of `Line` (the template itself is the first).
     pub segments: Vec<Pose>,
 }
@@ -138,15 +141,4 @@ pub struct Pose {
     /// Rotation about z, radians in (-pi, pi].
     #[serde(serialize_with = "json::micrometres")]
     pub yaw: f64,
-}
-
-/// The open passages, one hex digit per cell.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Passages {
-    /// Always [`passages::ENCODING`]: says how to read `rows`.
-    pub encoding: String,
-    /// One string per row, `rows[0]` is row 0 (the south row); character `x` of a row is
-    /// the open-passage digit of cell (x, row).
-    pub rows: Vec<String>,
 }

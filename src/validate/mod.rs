@@ -75,6 +75,9 @@ pub fn validate(layout: &Layout) -> Report {
             };
         }
     };
+    if let Err(e) = passages::check_encoding(&layout.passage_encoding) {
+        problems.add("passage_encoding", e);
+    }
     let maze = match passages::decode(grid, &layout.passages) {
         Ok(maze) => Some(maze),
         Err(e) => {
