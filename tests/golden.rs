@@ -87,6 +87,10 @@ fn golden_layouts_are_reproduced_byte_for_byte() {
 
 #[test]
 fn every_file_in_mazes_is_valid() {
+    if std::env::var_os(BLESS).is_some() {
+        // Blessing rewrites the files concurrently; the next plain run checks them.
+        return;
+    }
     let mut count = 0;
     for entry in fs::read_dir(mazes_dir()).unwrap() {
         let path = entry.unwrap().path();
