@@ -165,6 +165,7 @@ fn bad_generate_options_are_refused_by_name() {
     generate_fails(&["--origin", "1,inf"], "not a finite number");
     generate_fails(&["--floor-size", "5x5"], "--floor-size is 5 m x 5 m");
     generate_fails(&["--seed", "-1"], "--seed");
+    generate_fails(&["--braid", "1.5"], "is not a number from 0 to 1");
 }
 
 #[test]

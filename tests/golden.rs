@@ -37,7 +37,11 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
             )
         })
         .collect();
-    let extra: [(&str, &[&str]); 3] = [
+    let extra: [(&str, &[&str]); 4] = [
+        (
+            "prim-9x9-seed42-braid0.5.json",
+            &["--algo", "prim", "--seed", "42", "--braid", "0.5"],
+        ),
         (
             "prim-20x15-seed7.json",
             &["--algo", "prim", "--size", "20x15", "--seed", "7"],

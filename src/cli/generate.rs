@@ -7,7 +7,9 @@ use anyhow::{Result, anyhow};
 use clap::Args;
 
 use super::output::write_output;
-use super::values::{parse_finite, parse_floor, parse_metres, parse_point, parse_size};
+use super::values::{
+    parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
+};
 use crate::generate::Algorithm;
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
@@ -28,6 +30,10 @@ pub struct GenerateArgs {
     /// Algorithm: dfs (long corridors), prim (many short dead ends), kruskal (even texture).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
     pub algo: Algorithm,
+    /// Braid: share (0 to 1) of dead ends to open into loops, so wall-following fails;
+    /// 0 keeps the maze perfect.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_share)]
+    pub braid: f64,
     /// Grid size in cells, WxH (at most 4096x4096 cells in all).
     #[arg(long, default_value = "9x9", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u64, u64),
@@ -80,6 +86,7 @@ impl GenerateArgs {
             grid,
             algorithm: self.algo,
             seed,
+            braid: self.braid,
             start: self.start,
             end: self.end,
             geometry: Geometry {

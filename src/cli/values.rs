@@ -39,6 +39,19 @@ pub fn parse_finite(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A share from 0 to 1 (braiding).
+pub fn parse_share(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number from 0 to 1"))?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}' is not a number from 0 to 1"))
+    }
+}
+
 /// A point `x,y` of finite numbers.
 pub fn parse_point(s: &str) -> Result<[f64; 2], String> {
     let (x, y) = split_pair(s, ',').ok_or_else(|| format!("'{s}' is not x,y, e.g. -4,-4"))?;
@@ -75,5 +88,9 @@ mod tests {
         assert_eq!(parse_point("-4,-4.5"), Ok([-4.0, -4.5]));
         assert!(parse_point("1,NaN").is_err());
         assert_eq!(parse_floor("10x20"), Ok([10.0, 20.0]));
+        assert_eq!(parse_share("0.25"), Ok(0.25));
+        for bad in ["-0.1", "1.5", "NaN", "half"] {
+            assert!(parse_share(bad).is_err(), "{bad}");
+        }
     }
 }

@@ -9,7 +9,7 @@ use super::geometry::{Geometry, course, round_um};
 use super::{
     Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, VERSION, passages,
 };
-use crate::generate::{Algorithm, generate};
+use crate::generate::{Algorithm, generate_braided};
 use crate::maze::{Cell, Grid, Maze, Metrics};
 
 /// The floor a maze is placed on.
@@ -30,6 +30,8 @@ pub struct GenerateSpec {
     pub algorithm: Algorithm,
     /// The seed.
     pub seed: u64,
+    /// Share of dead ends to braid away (0 keeps the maze perfect).
+    pub braid: f64,
     /// How to pick the start cell.
     pub start: EndpointSpec,
     /// How to pick the end cell.
@@ -47,6 +49,7 @@ impl GenerateSpec {
             grid,
             algorithm,
             seed,
+            braid: 0.0,
             start: EndpointSpec::Corner(super::endpoints::Corner::SouthWest),
             end: EndpointSpec::Farthest,
             geometry: Geometry::course(grid),
@@ -57,7 +60,7 @@ impl GenerateSpec {
 
 /// Generates the maze `spec` describes and lays it out.
 pub fn build_layout(spec: &GenerateSpec) -> Result<Layout, String> {
-    let maze = generate(spec.grid, spec.algorithm, spec.seed);
+    let maze = generate_braided(spec.grid, spec.algorithm, spec.seed, spec.braid);
     layout_maze(&maze, spec)
 }
 
@@ -81,7 +84,7 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
             crate_version: env!("CARGO_PKG_VERSION").to_string(),
             algorithm: spec.algorithm.name().to_string(),
             seed: spec.seed,
-            options: BTreeMap::new(),
+            options: options(spec),
         },
         grid: GridSpec {
             columns: grid.width(),
@@ -103,6 +106,15 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
         passages: passages::encode(maze),
         segments,
     })
+}
+
+/// The generator options a layout records: only those that change the maze.
+fn options(spec: &GenerateSpec) -> BTreeMap<String, String> {
+    let mut options = BTreeMap::new();
+    if spec.braid > 0.0 {
+        options.insert("braid".to_string(), spec.braid.to_string());
+    }
+    options
 }
 
 fn endpoint(geometry: &Geometry, cell: Cell) -> Endpoint {
@@ -154,6 +166,19 @@ mod tests {
         assert_eq!(layout.start.pose.z, 0.002);
         assert_eq!(layout.metrics.loops, 0);
         assert!(layout.segments.iter().all(|s| s.z == 0.001));
+    }
+
+    #[test]
+    fn braided_layouts_declare_their_loops() {
+        let mut spec = GenerateSpec::course(Grid::new(12, 12).unwrap(), Algorithm::Prim, 5);
+        spec.braid = 0.5;
+        let layout = build_layout(&spec).unwrap();
+        assert!(layout.metrics.loops > 0);
+        assert_eq!(
+            layout.generator.options.get("braid").map(String::as_str),
+            Some("0.5")
+        );
+        assert!(crate::validate::validate(&layout).is_ok());
     }
 
     #[test]
