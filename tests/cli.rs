@@ -128,7 +128,7 @@ fn demo_runs_the_whole_job() {
 
 #[test]
 fn every_command_has_an_example_in_its_help() {
-    for command in ["generate", "validate", "render", "demo"] {
+    for command in ["generate", "validate", "render", "demo", "batch"] {
         bin()
             .args([command, "--help"])
             .assert()
@@ -245,4 +245,49 @@ fn validate_accepts_a_fresh_layout() {
         .success()
         .stdout(contains("OK "))
         .stdout(contains("loops 0"));
+}
+
+#[test]
+fn batch_writes_a_dataset_and_skips_what_is_there() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("set");
+    let run = || {
+        bin()
+            .args([
+                "batch",
+                "--algo",
+                "kruskal",
+                "--size",
+                "6x6",
+                "--seeds",
+                "0..=9",
+                "--out-dir",
+            ])
+            .arg(&out)
+            .assert()
+            .success()
+    };
+    run().stderr(contains("10 mazes: 10 written, 0 unchanged"));
+    run().stderr(contains("10 mazes: 0 written, 10 unchanged"));
+    let manifest = fs::read_to_string(out.join("manifest.jsonl")).unwrap();
+    assert_eq!(manifest.lines().count(), 10);
+    let single = bin()
+        .args([
+            "generate", "--algo", "kruskal", "--size", "6x6", "--seed", "3",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(
+        fs::read(out.join("kruskal-6x6-seed3.json")).unwrap(),
+        single
+    );
+    bin()
+        .args(["batch", "--seeds", "5..5", "--out-dir"])
+        .arg(&out)
+        .assert()
+        .failure()
+        .stderr(contains("'5..5' is an empty range"));
 }

@@ -27,6 +27,17 @@ pub struct GenerateArgs {
     /// layout (and printed), so the maze can be made again.
     #[arg(long, allow_hyphen_values = true)]
     pub seed: Option<u64>,
+    /// What maze to make.
+    #[command(flatten)]
+    pub maze: MazeArgs,
+    /// Write the layout here (atomically) instead of standard output.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// The maze options `generate` and `batch` share: everything but the seed.
+#[derive(Debug, Args)]
+pub struct MazeArgs {
     /// Algorithm: dfs (long corridors), prim (many short dead ends), kruskal (even texture).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
     pub algo: Algorithm,
@@ -67,9 +78,6 @@ pub struct GenerateArgs {
     /// Floor size XxY in metres the maze must fit [default: 10x10, grown in 5 m panels to fit].
     #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
     pub floor_size: Option<[f64; 2]>,
-    /// Write the layout here (atomically) instead of standard output.
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
 }
 
 fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
@@ -77,7 +85,7 @@ fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
         .map_err(|e: String| format!("{e}; use {ENDPOINT_HELP}"))
 }
 
-impl GenerateArgs {
+impl MazeArgs {
     /// The generate spec these options describe (`seed` decided by the caller).
     pub fn spec(&self, seed: u64) -> Result<GenerateSpec> {
         let grid = Grid::new(self.size.0, self.size.1).map_err(|e| anyhow!("--size: {e}"))?;
@@ -109,7 +117,7 @@ impl GenerateArgs {
 pub fn run(args: GenerateArgs) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
-    let mut spec = args.spec(0)?;
+    let mut spec = args.maze.spec(0)?;
     spec.seed = args.seed.unwrap_or_else(os_seed);
     let seed = spec.seed;
     let layout = build_layout(&spec).map_err(|e| anyhow!(e))?;

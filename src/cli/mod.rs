@@ -1,5 +1,6 @@
 //! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
+mod batch;
 mod demo;
 mod generate;
 mod output;
@@ -33,6 +34,8 @@ pub enum Command {
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal) or SVG (the floor as the camera sees it).
     Render(render::RenderArgs),
+    /// Generate a dataset: one layout per seed plus a manifest, on all cores.
+    Batch(batch::BatchArgs),
     /// Show the whole job on the course default: generate, validate and draw a maze.
     Demo(demo::DemoArgs),
 }
@@ -54,6 +57,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Generate(args) => generate::run(args),
         Command::Validate(args) => validate::run(args),
         Command::Render(args) => render::run(args),
+        Command::Batch(args) => batch::run(args),
         Command::Demo(args) => demo::run(args),
     }
 }
@@ -61,4 +65,14 @@ fn run(cli: Cli) -> Result<ExitCode> {
 /// The error and its causes on one line.
 fn one_line(error: &anyhow::Error) -> String {
     format!("{error:#}").replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        super::Cli::command().debug_assert();
+    }
 }

@@ -1,11 +1,12 @@
 //! Writing results: to standard output, or to a file replaced atomically so an
 //! interrupted run never leaves half a file (or destroys the old one).
 
-use std::fs;
 use std::io::{self, Write};
 use std::path::Path;
 
 use anyhow::{Context, Result};
+
+use crate::atomic_file::write_atomically;
 
 /// Writes what `write` produces to `path`, or to standard output when `path` is `None`
 /// or `-`. Files are written to a temporary sibling, then renamed over the target.
@@ -31,20 +32,5 @@ fn write_stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<
 }
 
 fn write_file(path: &Path, write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> Result<()> {
-    let name = path
-        .file_name()
-        .with_context(|| format!("{}: not a file name", path.display()))?;
-    let mut temp_name = name.to_os_string();
-    temp_name.push(format!(".tmp-{}", std::process::id()));
-    let temp = path.with_file_name(temp_name);
-    let result = (|| -> io::Result<()> {
-        let mut file = fs::File::create(&temp)?;
-        write(&mut file)?;
-        file.sync_all()?;
-        fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    result.with_context(|| format!("{}: cannot write", path.display()))
+    write_atomically(path, write).with_context(|| format!("{}: cannot write", path.display()))
 }

@@ -52,6 +52,20 @@ pub fn parse_share(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A percentage from 0 to 100.
+pub fn parse_percent(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .trim_end_matches('%')
+        .parse()
+        .map_err(|_| format!("'{s}' is not a percentage from 0 to 100"))?;
+    if (0.0..=100.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("'{s}' is not a percentage from 0 to 100"))
+    }
+}
+
 /// A point `x,y` of finite numbers.
 pub fn parse_point(s: &str) -> Result<[f64; 2], String> {
     let (x, y) = split_pair(s, ',').ok_or_else(|| format!("'{s}' is not x,y, e.g. -4,-4"))?;
