@@ -128,7 +128,7 @@ fn demo_runs_the_whole_job() {
 
 #[test]
 fn every_command_has_an_example_in_its_help() {
-    for command in ["generate", "validate", "render", "demo", "batch"] {
+    for command in ["generate", "validate", "render", "demo", "batch", "completions"] {
         bin()
             .args([command, "--help"])
             .assert()
@@ -290,4 +290,16 @@ fn batch_writes_a_dataset_and_skips_what_is_there() {
         .assert()
         .failure()
         .stderr(contains("'5..5' is an empty range"));
+}
+
+#[test]
+fn completions_cover_every_command() {
+    for shell in ["bash", "zsh", "fish"] {
+        let out = bin().args(["completions", shell]).assert().success().get_output().stdout.clone();
+        let script = String::from_utf8(out).unwrap();
+        for command in ["generate", "validate", "render", "batch", "demo"] {
+            assert!(script.contains(command), "{shell} lacks {command}");
+        }
+    }
+    bin().args(["completions", "tcsh"]).assert().failure();
 }

@@ -1,6 +1,7 @@
 //! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
 mod batch;
+mod completions;
 mod demo;
 mod generate;
 mod output;
@@ -36,6 +37,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Generate a dataset: one layout per seed plus a manifest, on all cores.
     Batch(batch::BatchArgs),
+    /// Print a shell completion script (bash, zsh, fish, ...).
+    Completions(completions::CompletionsArgs),
     /// Show the whole job on the course default: generate, validate and draw a maze.
     Demo(demo::DemoArgs),
 }
@@ -58,6 +61,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Validate(args) => validate::run(args),
         Command::Render(args) => render::run(args),
         Command::Batch(args) => batch::run(args),
+        Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),
     }
 }
