@@ -34,6 +34,9 @@ pub struct ServeArgs {
     /// Log connections and protocol errors on stderr.
     #[arg(long, short)]
     pub verbose: bool,
+    /// Log every received message and command block on stderr (protocol debugging).
+    #[arg(long)]
+    pub trace: bool,
 }
 
 /// Copy naming mode.
@@ -68,7 +71,8 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let config = ServerConfig {
         listen: args.listen,
         dump: args.dump,
-        verbose: args.verbose,
+        verbose: args.verbose || args.trace,
+        trace: args.trace,
         ..Default::default()
     };
     let (tx, rx) = std::sync::mpsc::channel();
