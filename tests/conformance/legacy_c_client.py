@@ -183,12 +183,16 @@ def run(port, dump, server):
     cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
     check("simxStart connects", cid >= 0, cid)
     check("simxGetConnectionId is 1 after the first connection", lib.simxGetConnectionId(cid) == 1)
+    info = I(-7)
+    check("simxGetInMessageInfo returns -1 before the first non-empty reply (spec 8.4)",
+          lib.simxGetInMessageInfo(cid, 17, C.byref(info)) == -1)
 
     # idle rate: default 8 fps paces blocking calls at ~125 ms; 0 makes them fast
     v = I(-1)
     rc = lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
     check("sim_intparam_idle_fps reads 8 by default", rc == OK and v.value == 8, (rc, v.value))
-    slow = [ping(cid)[1] for _ in range(5)]
+    slow = [ping(cid)[1] for _ in range(9)]
+    print(f"     (ping times at idle fps 8: {sorted(slow)} ms, median {statistics.median(slow)})")
     check("at idle fps 8 a blocking call takes about one pass (>= 60 ms median)", statistics.median(slow) >= 60, slow)
     rc = lib.simxSetIntegerParameter(cid, 26, 0, BLOCKING)
     lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
@@ -211,6 +215,28 @@ def run(port, dump, server):
         rc, h = handle(cid, bad)
         # the server replies -1 with the error bit; the C client leaves the output untouched on error
         check(f"unknown name {bad!r} gives return code 8, output not written", rc == REMOTE and h == 12345, (rc, h))
+
+    # always-ok commands and failing group data (spec 12.2, 12.10-12.12, 14.11)
+    p = I(99)
+    rc = lib.simxGetObjectParent(cid, 987654, C.byref(p), BLOCKING)
+    check("simxGetObjectParent of an unknown handle: return code 0, parent -1", rc == OK and p.value == -1, (rc, p.value))
+    rc, new = copy_paste(cid, [987654])
+    check("simxCopyPasteObjects of an unknown handle: return code 0, no copies", rc == OK and new == [], (rc, new))
+    rc, g = group(cid, 0, obj_type=987654)
+    check("group data for a non-collection object type: return code 8", rc == REMOTE, rc)
+    rc, g = group(cid, 99)
+    check("group data of an unknown data type: return code 8", rc == REMOTE, rc)
+    cnt, arr = I(), C.POINTER(I)()
+    rc = lib.simxGetObjects(cid, 4, C.byref(cnt), C.byref(arr), BLOCKING)
+    check("simxGetObjects(dummy type 4) lists Maze only", rc == OK and [arr[i] for i in range(cnt.value)] == [hs["Maze"]],
+          (rc, cnt.value))
+    # oneshot: first call has no value yet; a later call returns the reply that arrived meanwhile (spec 6, 14.13)
+    v = (F * 3)()
+    rc1 = lib.simxGetObjectPosition(cid, hs["Maze"], -1, v, ONESHOT)
+    time.sleep(0.3)
+    rc2 = lib.simxGetObjectPosition(cid, hs["Maze"], -1, v, ONESHOT)
+    check("oneshot get: novalue flag first, then the value", rc1 == NOVALUE and rc2 == OK and near(list(v), [0, 0, 0]),
+          (rc1, rc2, list(v)))
 
     # copy-paste naming
     line, start, maze = hs["Line"], hs["Start"], hs["Maze"]
