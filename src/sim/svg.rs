@@ -7,9 +7,12 @@ use nalgebra::Point3;
 
 use super::scene::{ObjectType, Scene};
 
+/// A shape's footprint: world z (drawing order), colour, corners in the xy plane.
+type Footprint = (f64, [u8; 3], Vec<(f64, f64)>);
+
 /// SVG of the scene seen from above (+x right, +y up), `width` pixels wide.
 pub fn scene_svg(scene: &Scene, width: f64) -> String {
-    let mut shapes: Vec<(f64, [u8; 3], Vec<(f64, f64)>)> = Vec::new();
+    let mut shapes: Vec<Footprint> = Vec::new();
     for o in scene
         .objects()
         .filter(|o| o.kind == ObjectType::Shape && o.size[0] > 0.0 && o.size[1] > 0.0)
