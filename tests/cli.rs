@@ -128,7 +128,14 @@ fn demo_runs_the_whole_job() {
 
 #[test]
 fn every_command_has_an_example_in_its_help() {
-    for command in ["generate", "validate", "render", "demo", "batch", "completions"] {
+    for command in [
+        "generate",
+        "validate",
+        "render",
+        "demo",
+        "batch",
+        "completions",
+    ] {
         bin()
             .args([command, "--help"])
             .assert()
@@ -295,7 +302,13 @@ fn batch_writes_a_dataset_and_skips_what_is_there() {
 #[test]
 fn completions_cover_every_command() {
     for shell in ["bash", "zsh", "fish"] {
-        let out = bin().args(["completions", shell]).assert().success().get_output().stdout.clone();
+        let out = bin()
+            .args(["completions", shell])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
         let script = String::from_utf8(out).unwrap();
         for command in ["generate", "validate", "render", "batch", "demo"] {
             assert!(script.contains(command), "{shell} lacks {command}");

@@ -11,7 +11,9 @@ use super::Cli;
 
 /// Options of `completions`.
 #[derive(Debug, Args)]
-#[command(after_help = "Examples:\n  vrep-maze completions bash > ~/.local/share/bash-completion/completions/vrep-maze\n  vrep-maze completions zsh > ~/.zfunc/_vrep-maze\n  vrep-maze completions fish > ~/.config/fish/completions/vrep-maze.fish")]
+#[command(
+    after_help = "Examples:\n  vrep-maze completions bash > ~/.local/share/bash-completion/completions/vrep-maze\n  vrep-maze completions zsh > ~/.zfunc/_vrep-maze\n  vrep-maze completions fish > ~/.config/fish/completions/vrep-maze.fish"
+)]
 pub struct CompletionsArgs {
     /// The shell: bash, zsh, fish, elvish or powershell.
     pub shell: Shell,
@@ -19,6 +21,11 @@ pub struct CompletionsArgs {
 
 /// Runs `completions`: prints the script for the shell.
 pub fn run(args: CompletionsArgs) -> Result<ExitCode> {
-    clap_complete::generate(args.shell, &mut Cli::command(), "vrep-maze", &mut io::stdout());
+    clap_complete::generate(
+        args.shell,
+        &mut Cli::command(),
+        "vrep-maze",
+        &mut io::stdout(),
+    );
     Ok(ExitCode::SUCCESS)
 }
