@@ -13,12 +13,12 @@ use crate::render::{Format, RenderOptions};
 /// Options of `render`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze render maze.json --solution\n  vrep-maze render maze.json --format svg -o maze.svg"
+    after_help = "Examples:\n  vrep-maze render maze.json --solution\n  vrep-maze render maze.json --format svg -o maze.svg\n  vrep-maze render maze.json --solution -o maze.png"
 )]
 pub struct RenderArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
-    /// ascii (terminal) or svg [default: from the -o extension, else ascii].
+    /// ascii (terminal), svg or png [default: from the -o extension, else ascii].
     #[arg(long, value_parser = clap::value_parser!(Format))]
     pub format: Option<Format>,
     /// Overlay the shortest path from start to end.
