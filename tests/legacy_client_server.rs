@@ -261,3 +261,80 @@ fn legacy_server_serves_one_client_at_a_time() {
     c.close().unwrap();
     s.shutdown();
 }
+
+fn raw_exchange(
+    s: &mut std::net::TcpStream,
+    id: i32,
+    blocks: Vec<vrep_maze::legacy::wire::Block>,
+) -> vrep_maze::legacy::wire::Message {
+    use vrep_maze::legacy::wire::{
+        MAX_PACKET_SIZE, Message, MessageHeader, read_message, write_message,
+    };
+    let m = Message {
+        header: MessageHeader {
+            message_id: id,
+            ..Default::default()
+        },
+        blocks,
+    };
+    write_message(s, &m.encode(), MAX_PACKET_SIZE).unwrap();
+    Message::decode(&read_message(s).unwrap()).unwrap()
+}
+
+#[test]
+fn legacy_server_echoes_unknown_commands_with_the_error_bit_and_survives_garbage() {
+    use vrep_maze::legacy::wire::Block;
+    let s = server(0);
+    // garbage: the server drops that client and serves the next one
+    let mut g = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    g.write_all(b"GET / HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+    let mut buf = [0u8; 16];
+    g.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    assert_eq!(
+        g.read(&mut buf).unwrap_or(0),
+        0,
+        "connection closed without a reply"
+    );
+    let mut raw = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    raw.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    let joint = Block {
+        cmd: 0x1001 | 0x10000,
+        delay: 0,
+        sim_time: 0,
+        status: 0,
+        id_data: 7i32.to_le_bytes().to_vec(),
+        data: vec![1, 2, 3],
+        split: None,
+    };
+    let mut reply = raw_exchange(&mut raw, 0, vec![joint.clone()]);
+    let mut id = 1;
+    while reply.blocks.is_empty() {
+        std::thread::sleep(Duration::from_millis(2));
+        reply = raw_exchange(&mut raw, id, vec![]);
+        id += 1;
+    }
+    assert!(reply.header.message_id >= 0);
+    let b = &reply.blocks[0];
+    assert_eq!(
+        (b.cmd, b.status, &b.id_data, &b.data),
+        (joint.cmd, 1, &joint.id_data, &joint.data)
+    );
+    s.shutdown();
+}
+
+#[test]
+fn legacy_kill_must_be_the_last_block() {
+    let s = server(0);
+    let mut raw = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    raw.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    let kill = Command::KillConnection.to_block(0);
+    let ping = Command::GetIntParam(1).to_block(0x10000);
+    // kill not last: the session goes on
+    raw_exchange(&mut raw, 0, vec![kill.clone(), ping]);
+    raw_exchange(&mut raw, 1, vec![]);
+    // kill last: reply, then the server closes
+    raw_exchange(&mut raw, 2, vec![kill]);
+    let mut buf = [0u8; 8];
+    assert_eq!(raw.read(&mut buf).unwrap_or(0), 0);
+    s.shutdown();
+}
