@@ -338,3 +338,79 @@ fn legacy_kill_must_be_the_last_block() {
     assert_eq!(raw.read(&mut buf).unwrap_or(0), 0);
     s.shutdown();
 }
+
+/// Random bytes, random packets and random command blocks never take the server down.
+#[test]
+fn legacy_server_survives_fuzzed_clients() {
+    use vrep_maze::legacy::wire::{Block, MAX_PACKET_SIZE, Message, MessageHeader, packetize};
+    let s = server(0);
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    };
+    let ids = [
+        0x000A, 0x1007, 0x1012, 0x101A, 0x101B, 0x101C, 0x1021, 0x1022, 0x1028, 0x102A, 0x102E,
+        0x200C, 0x200D, 0x200E, 0x3001, 0x3401, 0x1001,
+    ];
+    for case in 0..60 {
+        let mut conn = std::net::TcpStream::connect(s.local_addr()).unwrap();
+        conn.set_read_timeout(Some(Duration::from_millis(300)))
+            .unwrap();
+        let bytes: Vec<u8> = match case % 3 {
+            0 => (0..(next() % 200)).map(|_| next() as u8).collect(),
+            1 => {
+                let body: Vec<u8> = (0..(18 + next() % 120)).map(|_| next() as u8).collect();
+                let mut b = packetize(&body, MAX_PACKET_SIZE);
+                b[8] = 11; // keep the version byte so the block decoder is reached
+                b
+            }
+            _ => {
+                let blocks = (0..(1 + next() % 5))
+                    .map(|_| {
+                        let raw = ids[(next() % ids.len() as u64) as usize];
+                        let id_len = match raw {
+                            0x1000..=0x1FFF => 4,
+                            0x2000..=0x2FFF => 8,
+                            _ => 0,
+                        };
+                        let mut id_data: Vec<u8> =
+                            (0..id_len).map(|_| (next() % 40) as u8).collect();
+                        if raw >= 0x3000 {
+                            id_data = b"Line\0".to_vec();
+                            if raw == 0x3401 {
+                                id_data = b"\x01\0\0\0a\0b\0".to_vec();
+                            }
+                        }
+                        Block {
+                            cmd: raw as u32 | ((next() % 7) as u32) << 16,
+                            delay: 0,
+                            sim_time: 0,
+                            status: (next() % 2) as u8,
+                            id_data,
+                            data: (0..(next() % 24)).map(|_| next() as u8).collect(),
+                            split: None,
+                        }
+                    })
+                    .collect();
+                packetize(
+                    &Message {
+                        header: MessageHeader::default(),
+                        blocks,
+                    }
+                    .encode(),
+                    MAX_PACKET_SIZE,
+                )
+            }
+        };
+        let _ = conn.write_all(&bytes);
+        let mut buf = [0u8; 4096];
+        let _ = conn.read(&mut buf);
+    }
+    let mut c = Client::connect(s.local_addr(), opts()).unwrap();
+    assert!(!c.call1(Command::GetIntParam(1)).unwrap().remote_error);
+    c.close().unwrap();
+    s.shutdown();
+}
