@@ -236,3 +236,52 @@ fn legacy_idle_rate_is_restored_after_an_error() {
     assert_eq!(s.with_sim(|sim| sim.idle_fps), 8);
     s.shutdown();
 }
+
+#[test]
+fn legacy_apply_in_a_moved_floor_with_templates_under_maze() {
+    let mut scene = Scene::course();
+    let h = |s: &Scene, n: &str| s.resolve(n).unwrap();
+    let (floor, maze) = (h(&scene, "Floor"), h(&scene, "Maze"));
+    scene.set_position(floor, -1, [1.0, 2.0, 0.05]).unwrap();
+    scene.set_orientation(floor, -1, [0.0, 0.0, 0.3]).unwrap();
+    scene.set_position(maze, -1, [-3.0, 0.5, 0.0]).unwrap();
+    scene.set_orientation(maze, -1, [0.0, 0.0, -1.0]).unwrap();
+    for t in ["Line", "Start", "End"] {
+        let th = h(&scene, t);
+        scene.set_parent(th, Some(maze), true).unwrap();
+    }
+    let s = server_with(scene, 0);
+    let mut sc = connect(&s);
+    let d = drawing(4, 9);
+    draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    // every line sits where the layout says, in the Floor frame
+    let ok = s.with_sim(|sim| {
+        let floor = sim.scene.resolve("Floor").unwrap();
+        let lines: Vec<i32> = sim
+            .scene
+            .objects()
+            .filter(|o| o.alias == "Line")
+            .map(|o| o.handle)
+            .collect();
+        d.lines.iter().all(|p| {
+            lines.iter().any(|&l| {
+                let (q, e) = sim.scene.pose(l, floor).unwrap();
+                (q[0] - p.x).abs() < 1e-5
+                    && (q[1] - p.y).abs() < 1e-5
+                    && (q[2] - p.z).abs() < 1e-5
+                    && (e[2] - p.yaw).abs() < 1e-5
+            })
+        })
+    });
+    assert!(ok);
+    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    for t in ["Line", "Start", "End"] {
+        assert!(
+            s.with_sim(|sim| sim.scene.resolve(t).is_ok()),
+            "template {t} kept"
+        );
+    }
+    s.shutdown();
+}
