@@ -8,7 +8,7 @@ use std::time::Duration;
 use vrep_maze::draw::{self, ApplyOptions, Drawing, SceneNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
-use vrep_maze::legacy::wire::{MAX_PACKET_SIZE, read_message, write_message};
+use vrep_maze::legacy::wire::{MAX_PACKET_SIZE, Message, read_message, write_message};
 use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
@@ -18,8 +18,13 @@ fn drawing(n: u64, seed: u64) -> Drawing {
     Drawing::from(&build_layout(&spec).unwrap())
 }
 
-/// Forwards `limit` client messages to the server, then cuts both connections.
-fn cutting_proxy(server: std::net::SocketAddr, limit: usize) -> (u16, std::thread::JoinHandle<()>) {
+/// Forwards `limit` client messages to the server (or up to the first message carrying a
+/// command `cut_after`), then cuts both connections.
+fn cutting_proxy(
+    server: std::net::SocketAddr,
+    limit: usize,
+    cut_after: Option<u16>,
+) -> (u16, std::thread::JoinHandle<()>) {
     let l = TcpListener::bind("127.0.0.1:0").unwrap();
     let port = l.local_addr().unwrap().port();
     let t = std::thread::spawn(move || {
@@ -37,7 +42,14 @@ fn cutting_proxy(server: std::net::SocketAddr, limit: usize) -> (u16, std::threa
         });
         for _ in 0..limit {
             match read_message(&mut client) {
-                Ok(m) => write_message(&mut up, &m, MAX_PACKET_SIZE).unwrap(),
+                Ok(m) => {
+                    write_message(&mut up, &m, MAX_PACKET_SIZE).unwrap();
+                    let decoded = Message::decode(&m).unwrap();
+                    if cut_after.is_some_and(|c| decoded.blocks.iter().any(|b| b.raw_id() == c)) {
+                        std::thread::sleep(Duration::from_millis(400)); // let the server execute it
+                        break;
+                    }
+                }
                 Err(_) => break,
             }
         }
@@ -50,11 +62,15 @@ fn cutting_proxy(server: std::net::SocketAddr, limit: usize) -> (u16, std::threa
 }
 
 fn server() -> ServerHandle {
+    server_at(0)
+}
+
+fn server_at(fps: i32) -> ServerHandle {
     let cfg = ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
         ..Default::default()
     };
-    spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap()
+    spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()
 }
 
 fn connect(port: u16) -> LegacyScene {
@@ -77,7 +93,7 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
             let mut sc = connect(s.local_addr().port());
             draw::apply(&mut sc, &first, &ApplyOptions::default(), &mut |_| {}).unwrap();
             drop(sc);
-            let (port, proxy) = cutting_proxy(s.local_addr(), limit);
+            let (port, proxy) = cutting_proxy(s.local_addr(), limit, None);
             let mut sc = connect(port);
             let r = draw::apply(&mut sc, &second, &ApplyOptions::default(), &mut |_| {});
             drop(sc);
@@ -112,4 +128,38 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
         interrupted >= 10,
         "only {interrupted} runs were interrupted"
     );
+}
+
+#[test]
+fn legacy_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
+    let d = drawing(3, 4);
+    for repair_with_clear in [false, true] {
+        let s = server_at(8);
+        // cut right after the message that raised the idle rate (set-integer-parameter)
+        let (port, proxy) = cutting_proxy(s.local_addr(), usize::MAX, Some(0x1022));
+        let mut sc = connect(port);
+        assert!(draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).is_err());
+        drop(sc);
+        proxy.join().unwrap();
+        assert_eq!(
+            s.with_sim(|sim| sim.idle_fps),
+            0,
+            "the interrupted run left the rate at 0"
+        );
+        let mut sc = connect(s.local_addr().port());
+        if repair_with_clear {
+            let r = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+            assert_eq!(r.restored_idle_fps, Some(8));
+        } else {
+            draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+        }
+        drop(sc);
+        let (fps, signals) = s.with_sim(|sim| (sim.idle_fps, sim.int_signals.len()));
+        assert_eq!(
+            (fps, signals),
+            (8, 0),
+            "user's rate restored and the record deleted"
+        );
+        s.shutdown();
+    }
 }

@@ -34,6 +34,9 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     } else {
         String::new()
     };
+    if let Some(fps) = report.restored_idle_fps {
+        println!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)");
+    }
     if report.removed.is_empty() {
         println!("nothing to remove: no maze lines in the scene");
     } else {

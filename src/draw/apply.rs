@@ -130,10 +130,11 @@ pub fn apply(
         report.elapsed = started.elapsed();
         return Ok(report);
     }
-    let user_fps = survey.idle_fps;
-    let raise = user_fps != 0;
+    // an interrupted earlier run may have left the rate at 0 and recorded the user's value
+    let user_fps = survey.saved_idle_fps.unwrap_or(survey.idle_fps);
+    let raise = user_fps != 0 || survey.saved_idle_fps.is_some();
     if raise {
-        scene.set_idle_fps(0)?;
+        scene.set_idle_fps(0, Some(user_fps))?;
     }
     let result = draw(
         scene,
@@ -146,7 +147,7 @@ pub fn apply(
         progress,
     );
     let restored = if raise {
-        scene.set_idle_fps(user_fps)
+        scene.set_idle_fps(user_fps, None)
     } else {
         Ok(())
     };

@@ -11,9 +11,12 @@ pub struct ClearReport {
     pub removed: Vec<String>,
     /// Round trips.
     pub round_trips: usize,
+    /// Idle rate restored (it had been left at 0 by an interrupted `apply`).
+    pub restored_idle_fps: Option<i32>,
 }
 
-/// Removes the maze lines (idempotent). With `dry_run` only lists them.
+/// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
+/// interrupted `apply`. With `dry_run` only lists them.
 pub fn clear(
     scene: &mut dyn Scene,
     names: &SceneNames,
@@ -36,8 +39,16 @@ pub fn clear(
     if !doomed.is_empty() && !dry_run {
         scene.edit(&doomed.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
     }
+    let restored_idle_fps = match survey.saved_idle_fps {
+        Some(fps) if !dry_run => {
+            scene.set_idle_fps(fps, None)?;
+            Some(fps)
+        }
+        _ => None,
+    };
     Ok(ClearReport {
         removed,
         round_trips: scene.round_trips() - rt0,
+        restored_idle_fps,
     })
 }

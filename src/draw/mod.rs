@@ -98,6 +98,9 @@ impl SceneNames {
     }
 }
 
+/// Name of the integer signal in which `apply` records the user's idle rate while it runs.
+pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
+
 /// Handles of the named objects.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Handles {
@@ -144,6 +147,9 @@ pub struct Survey {
     pub objects: Vec<ObjectInfo>,
     /// Current `sim_intparam_idle_fps`.
     pub idle_fps: i32,
+    /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
+    /// (the simulator keeps it as the integer signal [`SAVED_IDLE_FPS_SIGNAL`]).
+    pub saved_idle_fps: Option<i32>,
     /// Simulation not stopped.
     pub simulation_running: bool,
 }
@@ -197,8 +203,10 @@ pub trait Scene {
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError>;
     /// Applies edits in order.
     fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError>;
-    /// Sets `sim_intparam_idle_fps`.
-    fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError>;
+    /// Sets `sim_intparam_idle_fps` and, in the same request, records `saved` (the user's
+    /// rate, so that a later run can restore it if this one is interrupted) or, with `None`,
+    /// deletes the record.
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError>;
     /// Stops the simulation and waits until it is stopped.
     fn stop_simulation(&mut self) -> Result<(), SceneError>;
     /// Round trips so far.

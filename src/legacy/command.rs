@@ -38,6 +38,12 @@ pub mod id {
     pub const GET_OBJECT_POSITION: u16 = 0x200E;
     /// `simx_cmd_get_object_handle`.
     pub const GET_OBJECT_HANDLE: u16 = 0x3001;
+    /// `simx_cmd_clear_integer_signal`.
+    pub const CLEAR_INTEGER_SIGNAL: u16 = 0x300E;
+    /// `simx_cmd_get_integer_signal`.
+    pub const GET_INTEGER_SIGNAL: u16 = 0x3011;
+    /// `simx_cmd_set_integer_signal`.
+    pub const SET_INTEGER_SIGNAL: u16 = 0x3014;
 }
 
 /// Operation modes (high bits of the `cmd` word).
@@ -153,8 +159,20 @@ pub enum Command {
     SetIntParam(i32, i32),
     /// `simxStart/Pause/StopSimulation`.
     Simulation(SimControl),
+    /// `simxGetIntegerSignal(name)`.
+    GetIntSignal(String),
+    /// `simxSetIntegerSignal(name, value)`.
+    SetIntSignal(String, i32),
+    /// `simxClearIntegerSignal(name)`.
+    ClearIntSignal(String),
     /// The kill block `simxFinish` sends.
     KillConnection,
+}
+
+fn cstr(s: &str) -> Vec<u8> {
+    let mut b: Vec<u8> = s.bytes().filter(|&c| c != 0).collect();
+    b.push(0);
+    b
 }
 
 fn i32s(values: &[i32]) -> Vec<u8> {
@@ -199,6 +217,9 @@ impl Command {
             GetIntParam(_) => id::GET_INTEGER_PARAMETER,
             SetIntParam(..) => id::SET_INTEGER_PARAMETER,
             Simulation(_) => id::START_PAUSE_STOP_SIMULATION,
+            GetIntSignal(_) => id::GET_INTEGER_SIGNAL,
+            SetIntSignal(..) => id::SET_INTEGER_SIGNAL,
+            ClearIntSignal(_) => id::CLEAR_INTEGER_SIGNAL,
             KillConnection => id::KILL_CONNECTION,
         }
     }
@@ -208,11 +229,10 @@ impl Command {
     pub fn to_block(&self, opmode: u32) -> Block {
         use Command::*;
         let (id_data, data, status) = match self {
-            GetObjectHandle(name) => {
-                let mut b = name.as_bytes().to_vec();
-                b.push(0);
-                (b, vec![], 0)
+            GetObjectHandle(name) | GetIntSignal(name) | ClearIntSignal(name) => {
+                (cstr(name), vec![], 0)
             }
+            SetIntSignal(name, v) => (cstr(name), i32s(&[*v]), 0),
             GetObjects(t) => (i32s(&[*t]), vec![], 0),
             GetObjectGroupData {
                 object_type,
@@ -271,11 +291,19 @@ impl Command {
     pub fn from_block(b: &Block) -> Option<Command> {
         let idn = |n| read_i32(&b.id_data, n);
         let dn = |n| read_i32(&b.data, n);
+        let name = |b: &Block| {
+            b.id_data
+                .strip_suffix(&[0])
+                .map(|s| String::from_utf8_lossy(s).into_owned())
+        };
         Some(match b.raw_id() {
             id::GET_OBJECT_HANDLE => {
                 let s = b.id_data.strip_suffix(&[0])?;
                 Command::GetObjectHandle(String::from_utf8_lossy(s).into_owned())
             }
+            id::GET_INTEGER_SIGNAL => Command::GetIntSignal(name(b)?),
+            id::SET_INTEGER_SIGNAL => Command::SetIntSignal(name(b)?, dn(0)?),
+            id::CLEAR_INTEGER_SIGNAL => Command::ClearIntSignal(name(b)?),
             id::GET_OBJECTS => Command::GetObjects(idn(0)?),
             id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData {
                 object_type: idn(0)?,
@@ -461,6 +489,9 @@ mod tests {
             Command::GetIntParam(26),
             Command::SetIntParam(26, 0),
             Command::Simulation(SimControl::Stop),
+            Command::GetIntSignal("s".into()),
+            Command::SetIntSignal("vrep-maze".into(), 8),
+            Command::ClearIntSignal("x".into()),
             Command::KillConnection,
         ];
         for c in all {

@@ -6,7 +6,7 @@ use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
-use crate::draw::{Edit, ObjectInfo, Scene, SceneError, Survey};
+use crate::draw::{Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Scene, SceneError, Survey};
 use crate::sim::INTPARAM_IDLE_FPS;
 
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
@@ -122,6 +122,7 @@ impl Scene for LegacyScene {
             .map(|n| Command::GetObjectHandle(n.to_string()))
             .collect();
         cmds.push(Command::GetIntParam(INTPARAM_IDLE_FPS));
+        cmds.push(Command::GetIntSignal(SAVED_IDLE_FPS_SIGNAL.into()));
         cmds.extend(group_commands());
         let r = self.call(&cmds)?;
         let k = names.len();
@@ -140,12 +141,18 @@ impl Scene for LegacyScene {
         } else {
             read_i32(&r[k].data, 0).unwrap_or(8)
         };
-        let objects = parse_objects(&r[k + 1..])?;
+        let saved_idle_fps = if r[k + 1].remote_error {
+            None
+        } else {
+            read_i32(&r[k + 1].data, 0)
+        };
+        let objects = parse_objects(&r[k + 2..])?;
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
         Ok(Survey {
             handles,
             objects,
             idle_fps,
+            saved_idle_fps,
             simulation_running,
         })
     }
@@ -236,11 +243,14 @@ impl Scene for LegacyScene {
         }
     }
 
-    fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError> {
-        let r = self
-            .client()?
-            .call1(Command::SetIntParam(INTPARAM_IDLE_FPS, fps))?;
-        if r.remote_error {
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
+        let record = match saved {
+            Some(v) => Command::SetIntSignal(SAVED_IDLE_FPS_SIGNAL.into(), v),
+            None => Command::ClearIntSignal(SAVED_IDLE_FPS_SIGNAL.into()),
+        };
+        // record first: if setting the rate fails, the record still tells the next run
+        let r = self.call(&[record, Command::SetIntParam(INTPARAM_IDLE_FPS, fps)])?;
+        if r[1].remote_error {
             Err(SceneError::Remote(format!(
                 "setting the idle rate to {fps} fps"
             )))

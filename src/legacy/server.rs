@@ -606,6 +606,22 @@ fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             };
             (ok, vec![])
         }
+        Command::GetIntSignal(name) => match sim.int_signals.get(&name) {
+            Some(v) => (true, i32le(*v)),
+            None => (false, vec![]),
+        },
+        Command::SetIntSignal(name, v) => {
+            sim.int_signals.insert(name, v);
+            (true, vec![])
+        }
+        Command::ClearIntSignal(name) => {
+            if name.is_empty() {
+                sim.int_signals.clear();
+            } else {
+                sim.int_signals.remove(&name);
+            }
+            (true, vec![])
+        }
         Command::KillConnection => (true, vec![]),
     }
 }

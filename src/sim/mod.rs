@@ -43,6 +43,8 @@ pub struct Simulator {
     pub state: SimState,
     /// Scene as it was when the simulation started (restored on stop).
     saved: Option<Scene>,
+    /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
+    pub int_signals: std::collections::BTreeMap<String, i32>,
 }
 
 impl Simulator {
@@ -53,6 +55,7 @@ impl Simulator {
             idle_fps,
             state: SimState::Stopped,
             saved: None,
+            int_signals: Default::default(),
         }
     }
 

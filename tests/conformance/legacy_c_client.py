@@ -52,6 +52,8 @@ sig = {
     "simxStopSimulation": (I, [I, I]),
     "simxGetInMessageInfo": (I, [I, I, C.POINTER(I)]),
     "simxPauseCommunication": (I, [I, U]),
+    "simxGetIntegerSignal": (I, [I, C.c_char_p, C.POINTER(I), I]),
+    "simxSetIntegerSignal": (I, [I, C.c_char_p, I, I]),
 }
 for name, (res, args) in sig.items():
     f = getattr(lib, name)
@@ -526,14 +528,25 @@ def run_apply(port):
         v = I(-1)
         lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
         check(f"{label}: the idle rate is restored to 8", v.value == 8, v.value)
+        rc = lib.simxGetIntegerSignal(cid, b"vrep-maze.saved_idle_fps", C.byref(v), BLOCKING)
+        check(f"{label}: the saved-idle-rate signal is deleted", rc == REMOTE, rc)
         lib.simxFinish(cid)
+    cid = c_connect(port)
+    ok = (lib.simxSetIntegerSignal(cid, b"vrep-maze.saved_idle_fps", 8, BLOCKING) == OK
+          and lib.simxSetIntegerParameter(cid, 26, 0, BLOCKING) == OK)
+    check("integer signals can be set with the C client", ok)
+    lib.simxFinish(cid)
     r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
-    check("vrep-maze clear succeeds", r.returncode == 0, r.stderr)
+    check("vrep-maze clear succeeds and restores a rate left at 0 by an interrupted apply",
+          r.returncode == 0 and "restored the idle rate to 8 fps" in r.stdout, (r.stdout, r.stderr))
     cid = c_connect(port)
     objs = scene_lines(cid)
     lines = sorted(o[0] for o in objs.values() if re.fullmatch(r"Line#?\d*", o[0]))
     check("after clear only the template Line is left, Start and End stay",
           lines == ["Line"] and handle(cid, "Start")[0] == OK and handle(cid, "End")[0] == OK, lines)
+    v = I(-1)
+    lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
+    check("after clear the idle rate is 8 again", v.value == 8, v.value)
     lib.simxFinish(cid)
 
 
