@@ -30,7 +30,12 @@ impl LegacyScene {
             reply_timeout: timeout,
             ..Default::default()
         };
-        let client = Client::connect(format!("{host}:{port}"), opts)?;
+        let addr = if host.contains(':') && !host.starts_with('[') {
+            format!("[{host}]:{port}")
+        } else {
+            format!("{host}:{port}")
+        };
+        let client = Client::connect(addr, opts)?;
         Ok(LegacyScene {
             client: Some(client),
             timeout,
