@@ -171,6 +171,18 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     let svg = std::fs::read_to_string(svg).unwrap();
     assert_eq!(svg.matches("<polygon").count(), 3 + 160);
     assert_eq!(svg.matches("rgb(0,255,0)").count(), 160);
+    // a dump is a scene file for the next `serve`
+    let s2 = serve(&["--scene", dump.to_str().unwrap(), "--idle-fps", "0"]);
+    cmd()
+        .args(["clear", "--port", &s2.1.to_string()])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+    cmd()
+        .args(["serve", "--scene", "/nonexistent/scene.json"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("cannot read scene file"));
     cmd()
         .args(["render", dump.to_str().unwrap(), "--format", "ascii"])
         .assert()
