@@ -38,6 +38,8 @@ pub mod id {
     pub const GET_OBJECT_POSITION: u16 = 0x200E;
     /// `simx_cmd_get_object_handle`.
     pub const GET_OBJECT_HANDLE: u16 = 0x3001;
+    /// `simx_cmd_get_object_quaternion`.
+    pub const GET_OBJECT_QUATERNION: u16 = 0x2801;
     /// `simx_cmd_clear_integer_signal`.
     pub const CLEAR_INTEGER_SIGNAL: u16 = 0x300E;
     /// `simx_cmd_get_integer_signal`.
@@ -151,6 +153,13 @@ pub enum Command {
         /// Reference frame.
         relative_to: i32,
     },
+    /// `simxGetObjectQuaternion(handle, rel)`: reply x, y, z, w.
+    GetQuaternion {
+        /// Object.
+        handle: i32,
+        /// Reference frame.
+        relative_to: i32,
+    },
     /// `simxRemoveObject(handle)`.
     RemoveObject(i32),
     /// `simxGetIntegerParameter(param)`.
@@ -213,6 +222,7 @@ impl Command {
             GetPosition { .. } => id::GET_OBJECT_POSITION,
             SetOrientation { .. } => id::SET_OBJECT_ORIENTATION,
             GetOrientation { .. } => id::GET_OBJECT_ORIENTATION,
+            GetQuaternion { .. } => id::GET_OBJECT_QUATERNION,
             RemoveObject(_) => id::REMOVE_OBJECT,
             GetIntParam(_) => id::GET_INTEGER_PARAMETER,
             SetIntParam(..) => id::SET_INTEGER_PARAMETER,
@@ -268,6 +278,10 @@ impl Command {
                 relative_to,
             }
             | GetOrientation {
+                handle,
+                relative_to,
+            }
+            | GetQuaternion {
                 handle,
                 relative_to,
             } => (i32s(&[*handle, *relative_to]), vec![], 0),
@@ -336,6 +350,10 @@ impl Command {
                 relative_to: idn(1)?,
             },
             id::GET_OBJECT_ORIENTATION => Command::GetOrientation {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_QUATERNION => Command::GetQuaternion {
                 handle: idn(0)?,
                 relative_to: idn(1)?,
             },
@@ -484,6 +502,10 @@ mod tests {
             Command::GetOrientation {
                 handle: 1,
                 relative_to: -11,
+            },
+            Command::GetQuaternion {
+                handle: 2,
+                relative_to: -1,
             },
             Command::RemoveObject(9),
             Command::GetIntParam(26),

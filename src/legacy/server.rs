@@ -592,6 +592,22 @@ fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             Ok((_, e)) => (true, f32x3(e)),
             Err(_) => (false, vec![]),
         },
+        Command::GetQuaternion {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((_, e)) => {
+                let q = rotation_from_euler(e);
+                (
+                    true,
+                    [q.i, q.j, q.k, q.w]
+                        .iter()
+                        .flat_map(|x| (*x as f32).to_le_bytes())
+                        .collect(),
+                )
+            }
+            Err(_) => (false, vec![]),
+        },
         Command::RemoveObject(h) => (scene.remove(h).is_ok(), vec![]),
         Command::GetIntParam(p) => match sim.int_param(p) {
             Some(v) => (true, i32le(v)),

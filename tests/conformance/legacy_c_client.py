@@ -38,6 +38,7 @@ sig = {
     "simxGetObjectPosition": (I, [I, I, I, C.POINTER(F), I]),
     "simxSetObjectOrientation": (I, [I, I, I, C.POINTER(F), I]),
     "simxGetObjectOrientation": (I, [I, I, I, C.POINTER(F), I]),
+    "simxGetObjectQuaternion": (I, [I, I, I, C.POINTER(F), I]),
     "simxSetObjectParent": (I, [I, I, I, U, I]),
     "simxGetObjectParent": (I, [I, I, C.POINTER(I), I]),
     "simxGetObjects": (I, [I, I, C.POINTER(I), C.POINTER(C.POINTER(I)), I]),
@@ -74,6 +75,22 @@ def check(name, cond, detail=""):
 
 def near(a, b, tol=2e-4):
     return len(a) == len(b) and all(abs(x - y) <= tol for x, y in zip(a, b))
+
+
+def euler_matrix(e):
+    """R = Rx(a) Ry(b) Rz(c), row-major, CoppeliaSim's Euler convention."""
+    a, b, c = e
+    ca, sa, cb, sb, cc, sc = math.cos(a), math.sin(a), math.cos(b), math.sin(b), math.cos(c), math.sin(c)
+    return [cb * cc, -cb * sc, sb,
+            ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb,
+            sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb]
+
+
+def quat_matrix(q):
+    x, y, z, w = q
+    return [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+            2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+            2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]
 
 
 def free_port():
@@ -345,6 +362,19 @@ def run(port, dump, server):
     rc2, e3 = orient(cid, b, -1)
     k = g9["handles"].index(b)
     check("group pose data (9) gives position + Euler", near(g9["floats"][6 * k:6 * k + 6], v3 + e3), g9["floats"][6 * k:6 * k + 6])
+
+    rc, g5 = group(cid, 5)
+    k = g5["handles"].index(b)
+    check("group Euler data (5) agrees with simxGetObjectOrientation", near(g5["floats"][3 * k:3 * k + 3], e3),
+          g5["floats"][3 * k:3 * k + 3])
+    q = (F * 4)()
+    rcq = lib.simxGetObjectQuaternion(cid, b, -1, q, BLOCKING)
+    rc, g7 = group(cid, 7)
+    k = g7["handles"].index(b)
+    qg = g7["floats"][4 * k:4 * k + 4]
+    check("quaternion (x, y, z, w) of simxGetObjectQuaternion = group data 7, same rotation as the Euler angles",
+          rcq == OK and (near(list(q), qg) or near(list(q), [-x for x in qg]))
+          and near(quat_matrix(list(q)), euler_matrix(e3), 1e-4), (list(q), qg))
 
     # batching with simxPauseCommunication: several oneshot commands in one message
     lib.simxPauseCommunication(cid, 1)
