@@ -248,6 +248,9 @@ mod tests {
         maze.carve(2, Direction::East);
         assert_eq!(loop_count(&maze), 1);
         let m = Metrics::measure(&maze, 0, 3).unwrap();
-        assert_eq!((m.solution_cells, m.decision_points, m.junctions), (3, 1, 0));
+        assert_eq!(
+            (m.solution_cells, m.decision_points, m.junctions),
+            (3, 1, 0)
+        );
     }
 }

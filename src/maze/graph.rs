@@ -5,11 +5,11 @@
 //! on `Maze` (petgraph lifts them to `&Maze`), the iterator traits on `&Maze`.
 
 use fixedbitset::FixedBitSet;
+use petgraph::Undirected;
 use petgraph::visit::{
     Data, GraphBase, GraphProp, IntoEdgeReferences, IntoNeighbors, IntoNodeIdentifiers,
     NodeCompactIndexable, NodeCount, NodeIndexable, Visitable,
 };
-use petgraph::Undirected;
 
 use super::grid::Direction;
 use super::model::Maze;
@@ -178,10 +178,7 @@ mod tests {
             order.push(node);
         }
         assert_eq!(order, vec![0, 1, 3]);
-        let edges: Vec<_> = (&maze)
-            .edge_references()
-            .map(|(a, b, _)| (a, b))
-            .collect();
+        let edges: Vec<_> = (&maze).edge_references().map(|(a, b, _)| (a, b)).collect();
         assert_eq!(edges, vec![(0, 1), (1, 3)]);
         assert_eq!((&maze).neighbors(1).collect::<Vec<_>>(), vec![3, 0]);
     }

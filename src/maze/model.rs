@@ -102,7 +102,9 @@ impl Maze {
     /// # Panics
     /// If the cells are not neighbours.
     pub fn carve_between(&mut self, a: usize, b: usize) {
-        let dir = self.direction_between(a, b).expect("cells are not neighbours");
+        let dir = self
+            .direction_between(a, b)
+            .expect("cells are not neighbours");
         self.carve(a, dir);
     }
 
@@ -144,13 +146,16 @@ impl Maze {
     /// Every passage once, as (cell, East or North), row-major: the order the layout's
     /// segments follow.
     pub fn passages(&self) -> impl Iterator<Item = (Cell, Direction)> + '_ {
-        self.open.iter().enumerate().flat_map(move |(index, &mask)| {
-            let cell = self.grid.cell(index);
-            [Direction::East, Direction::North]
-                .into_iter()
-                .filter(move |dir| mask & dir.bit() != 0)
-                .map(move |dir| (cell, dir))
-        })
+        self.open
+            .iter()
+            .enumerate()
+            .flat_map(move |(index, &mask)| {
+                let cell = self.grid.cell(index);
+                [Direction::East, Direction::North]
+                    .into_iter()
+                    .filter(move |dir| mask & dir.bit() != 0)
+                    .map(move |dir| (cell, dir))
+            })
     }
 }
 
