@@ -16,10 +16,11 @@ use crate::rng::MazeRng;
 /// straight corridors, `mix:P` blends newest and random.
 ///
 /// Every selection and retirement is O(1) amortised (no `Vec::remove` shifting):
-/// * newest, oldest, random, mix: the active list in insertion order, with retired
-///   entries left as holes; holes at either end are trimmed at once, and the list is
-///   compacted (order kept) when holes outnumber live cells. A random live cell is found
-///   by redrawing a uniform position until it is not a hole (under two draws expected).
+/// * newest, oldest, mix: the active list in insertion order, with retired entries left
+///   as holes; holes at either end are trimmed at once, and the list is compacted (order
+///   kept) when holes outnumber live cells. A random live cell is found by redrawing a
+///   uniform position until it is not a hole (under two draws expected).
+/// * random: order does not matter, so retired cells are swap-removed (no holes).
 /// * middle: the list split into two deques around its middle, rebalanced on each change.
 ///
 /// Memory: one bit per cell plus at most one `u32` per cell of active list.
@@ -134,6 +135,12 @@ impl ActiveList for HoleyList {
     }
 
     fn retire_selected(&mut self) {
+        if self.mode == GrowingMode::Random {
+            // Order is irrelevant when every pick is uniform: keep the list dense.
+            self.entries.swap_remove(self.selected);
+            self.live -= 1;
+            return;
+        }
         self.entries[self.selected] = HOLE;
         self.live -= 1;
         while self.entries.last() == Some(&HOLE) {

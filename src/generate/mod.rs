@@ -236,14 +236,27 @@ fn neighbours_where(
     index: usize,
     mut wanted: impl FnMut(usize) -> bool,
 ) -> ([(crate::maze::Direction, usize); 4], usize) {
-    let mut found = [(crate::maze::Direction::East, 0); 4];
+    use crate::maze::Direction;
+    // One division for the column, then the same checks as `Grid::step_index`, in
+    // `Direction::ALL` order (callers' random choices index into this order).
+    let width = grid.width() as usize;
+    let x = index % width;
+    let steps = [
+        (Direction::East, x + 1 < width, index + 1),
+        (
+            Direction::North,
+            index + width < grid.cell_count(),
+            index + width,
+        ),
+        (Direction::West, x > 0, index.wrapping_sub(1)),
+        (Direction::South, index >= width, index.wrapping_sub(width)),
+    ];
+    let mut found = [(Direction::East, 0); 4];
     let mut count = 0;
-    for dir in crate::maze::Direction::ALL {
-        if let Some(next) = grid.step_index(index, dir) {
-            if wanted(next) {
-                found[count] = (dir, next);
-                count += 1;
-            }
+    for (dir, inside, next) in steps {
+        if inside && wanted(next) {
+            found[count] = (dir, next);
+            count += 1;
         }
     }
     (found, count)
