@@ -1,3 +1,5 @@
-fn main() {
-    println!("Hello, world!");
+//! The `vrep-maze` binary: all logic lives in the library; see `vrep_maze::cli`.
+
+fn main() -> std::process::ExitCode {
+    vrep_maze::cli::main()
 }

@@ -252,6 +252,21 @@ mod tests {
     }
 
     #[test]
+    fn batched_shuffle_is_plain_fisher_yates() {
+        for len in [0, 1, 2, 31, 32, 33, 100, 1000] {
+            let mut batched: Vec<usize> = (0..len).collect();
+            MazeRng::from_seed(len as u64).shuffle(&mut batched);
+            let mut plain: Vec<usize> = (0..len).collect();
+            let mut rng = MazeRng::from_seed(len as u64);
+            for last in (1..len).rev() {
+                let pick = rng.index(last + 1);
+                plain.swap(last, pick);
+            }
+            assert_eq!(batched, plain, "len {len}");
+        }
+    }
+
+    #[test]
     fn chance_follows_its_ratio() {
         let mut rng = MazeRng::from_seed(9);
         let hits = (0..10_000).filter(|_| rng.chance(1, 4)).count();

@@ -3,6 +3,7 @@
 
 mod aldous_broder;
 mod binary_tree;
+mod braid;
 mod dfs;
 mod eller;
 mod growing_tree;
@@ -22,6 +23,7 @@ use crate::rng::MazeRng;
 
 pub use aldous_broder::AldousBroder;
 pub use binary_tree::BinaryTree;
+pub use braid::braid;
 pub use dfs::Dfs;
 pub use eller::Eller;
 pub use growing_tree::GrowingTree;
@@ -201,6 +203,26 @@ impl Algorithm {
     }
 }
 
+impl Algorithm {
+    /// Like [`from_parts`](Self::from_parts), from `(key, value)` pairs such as a layout's
+    /// `generator.options` map: the `growing` and `bias` keys are read, other keys (for
+    /// instance `braid`, which is not an algorithm option) are left to their owners.
+    pub fn from_name_and_pairs<'a>(
+        name: &str,
+        pairs: impl IntoIterator<Item = (&'a str, &'a str)>,
+    ) -> Result<Self, String> {
+        let mut options = AlgorithmOptions::default();
+        for (key, value) in pairs {
+            match key {
+                "growing" => options.growing = Some(value.to_string()),
+                "bias" => options.bias = Some(value.to_string()),
+                _ => {}
+            }
+        }
+        Self::from_parts(name, &options)
+    }
+}
+
 impl fmt::Display for Algorithm {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -221,9 +243,19 @@ impl FromStr for Algorithm {
 
 /// A perfect maze on `grid`, carved by `algorithm` from the stream of `seed`.
 pub fn generate(grid: Grid, algorithm: Algorithm, seed: u64) -> Maze {
+    generate_braided(grid, algorithm, seed, 0.0)
+}
+
+/// A maze carved by `algorithm` from the stream of `seed`, then braided: `braid_share`
+/// of its dead ends opened (0 keeps it perfect) with the same stream, so seed and share
+/// decide the result.
+pub fn generate_braided(grid: Grid, algorithm: Algorithm, seed: u64, braid_share: f64) -> Maze {
     let mut maze = Maze::closed(grid);
     let mut rng = MazeRng::from_seed(seed);
     algorithm.generator().carve(&mut maze, &mut rng);
+    if braid_share > 0.0 {
+        braid::braid(&mut maze, &mut rng, braid_share);
+    }
     maze
 }
 

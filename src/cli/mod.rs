@@ -1,0 +1,82 @@
+//! The `vrep-maze` command line: a thin layer over the library. One file per command.
+
+mod batch;
+mod completions;
+mod demo;
+mod generate;
+mod output;
+mod render;
+mod validate;
+mod values;
+
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// Seeded, reproducible grid mazes for CoppeliaSim (V-REP): generate, validate, render.
+#[derive(Debug, Parser)]
+#[command(name = "vrep-maze", version, about, long_about = None)]
+#[command(
+    after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze validate maze.json\n  vrep-maze render maze.json --solution"
+)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Generate a maze and write its layout JSON.
+    Generate(generate::GenerateArgs),
+    /// Check a layout file and print its metrics.
+    Validate(validate::ValidateArgs),
+    /// Draw a layout as ASCII (terminal) or SVG (the floor as the camera sees it).
+    Render(render::RenderArgs),
+    /// Generate a dataset: one layout per seed plus a manifest, on all cores.
+    Batch(batch::BatchArgs),
+    /// Print a shell completion script (bash, zsh, fish, ...).
+    Completions(completions::CompletionsArgs),
+    /// Show the whole job on the course default: generate, validate and draw a maze.
+    Demo(demo::DemoArgs),
+}
+
+/// Parses the command line and runs it; errors become one line on standard error.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(error) => {
+            eprintln!("error: {}", one_line(&error));
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
+    match cli.command {
+        Command::Generate(args) => generate::run(args),
+        Command::Validate(args) => validate::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Batch(args) => batch::run(args),
+        Command::Completions(args) => completions::run(args),
+        Command::Demo(args) => demo::run(args),
+    }
+}
+
+/// The error and its causes on one line.
+fn one_line(error: &anyhow::Error) -> String {
+    format!("{error:#}").replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        super::Cli::command().debug_assert();
+    }
+}
