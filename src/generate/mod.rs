@@ -60,24 +60,28 @@ pub enum Algorithm {
     /// Randomized Kruskal (shuffled walls, union-find): an even texture (about 30% dead ends).
     Kruskal,
     /// Aldous-Broder random walk: a uniform spanning tree (about 29% dead ends), slow
-    /// (cover time, about n (ln n)^2 steps).
+    /// (the walk's cover time, about n (ln n)^2 steps; see [`AldousBroder`]).
     AldousBroder,
-    /// Wilson's loop-erased random walks: a uniform spanning tree, much faster than
-    /// Aldous-Broder.
+    /// Wilson's loop-erased random walks: a uniform spanning tree (about 29% dead ends),
+    /// the fast way to get one.
     Wilson,
     /// Hunt-and-kill: random walks restarted from the first unvisited cell; long corridors
-    /// like DFS (about 11% dead ends).
+    /// like DFS (about 9% dead ends).
     HuntAndKill,
-    /// Growing tree: which active cell grows next decides the texture (`--growing`).
+    /// Growing tree: which active cell grows next decides the texture (`--growing`): from
+    /// about 2.5% dead ends (oldest, middle) through 10% (newest, as DFS) to 28% (random).
     GrowingTree(GrowingMode),
-    /// Eller: row by row with set labels, in memory proportional to one row.
+    /// Eller: row by row with set labels, in memory proportional to one row (about 29%
+    /// dead ends).
     Eller,
-    /// Sidewinder: runs east closed by a passage north; the north row is one corridor.
+    /// Sidewinder: runs east closed by a passage north; the north row is one corridor
+    /// (about 28% dead ends).
     Sidewinder,
     /// Binary tree: every cell opens one of two directions (`--bias`); two sides are one
     /// corridor each, exactly 25% dead ends on large grids.
     BinaryTree(Bias),
-    /// Recursive division: chambers split by walls with one gap, with an explicit stack.
+    /// Recursive division: chambers split by walls with one gap, with an explicit stack;
+    /// long straight walls (about 27% dead ends).
     RecursiveDivision,
 }
 
