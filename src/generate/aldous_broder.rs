@@ -10,12 +10,14 @@ use crate::rng::MazeRng;
 /// ends, no directional bias.
 ///
 /// Cost: the walk must visit every cell, so it runs for the grid's cover time, about
-/// `(4/pi) n (ln n)^2` steps on an `n`-cell grid (n log^2 n, not linear). Measured in
-/// release on the 2-core development machine (`cargo bench --bench generate`, see
-/// `NOTES-algos.md`): 0.2 ms at 100x100, 0.4 s at 1000x1000, 2.0 s at 2000x2000. Each
-/// step is cheap (two pooled random bits, a bounds check, a bit test), but use
-/// [`Wilson`](super::Wilson) for uniform mazes at scale: same distribution, far fewer
-/// steps. Memory: one byte per cell (plus a one-cell frame) besides the maze.
+/// `(1/pi) n (ln n)^2` steps on an `n`-cell grid (the 2D torus asymptotics; n log^2 n,
+/// not linear). Counted here (seeds 0-2): 0.34-0.41 n ln^2 n steps at 1000x1000 and
+/// 2000x2000, i.e. 63-77 million and 310-370 million steps, against about 0.55 n ln n
+/// (11-35 million) for Wilson. The times are in `NOTES-algos.md` (`cargo bench --bench
+/// generate`). Each step is cheap (two pooled random bits, a table offset, one byte
+/// test), but use [`Wilson`](super::Wilson) for uniform mazes at scale: same
+/// distribution, far fewer steps. Memory: one byte per cell (plus a one-cell frame)
+/// besides the maze.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct AldousBroder;
 

@@ -5,7 +5,7 @@ use std::collections::VecDeque;
 use fixedbitset::FixedBitSet;
 
 use super::options::{GrowingMode, MixRatio};
-use super::{Generator, neighbours_where};
+use super::{Generator, Lattice, neighbours_where};
 use crate::maze::Maze;
 use crate::rng::MazeRng;
 
@@ -52,13 +52,14 @@ trait ActiveList {
 
 fn grow(maze: &mut Maze, rng: &mut MazeRng, mut active: impl ActiveList) {
     let grid = maze.grid();
+    let lattice = Lattice::new(grid);
     let mut visited = FixedBitSet::with_capacity(grid.cell_count());
     let start = rng.index(grid.cell_count());
     visited.insert(start);
     active.push(start as u32);
     while let Some(cell) = active.select(rng) {
         let here = cell as usize;
-        let (options, count) = neighbours_where(grid, here, |n| !visited.contains(n));
+        let (options, count) = neighbours_where(&lattice, here, |n| !visited.contains(n));
         if count == 0 {
             active.retire_selected();
             continue;
@@ -152,9 +153,11 @@ impl ActiveList for HoleyList {
         if self.live == 0 {
             self.entries.clear();
             self.head = 0;
-        } else if self.entries.len() - self.head >= 2 * self.live + 64 {
-            // More holes than live cells: squeeze them out, keeping the order. Each hole
-            // is removed once, so compaction is O(1) amortised per retirement.
+        } else if self.entries.len() - self.head >= self.live + self.live / 4 + 64 {
+            // Holes are a fifth of the span: squeeze them out, keeping the order. Each
+            // compaction removes at least a quarter as many holes as it moves live
+            // cells, so it is O(1) amortised per retirement, and a random pick needs at
+            // most 1.25 probes on average.
             let head = self.head;
             self.entries.drain(..head);
             self.entries.retain(|&c| c != HOLE);

@@ -2,7 +2,7 @@
 
 use fixedbitset::FixedBitSet;
 
-use super::{Generator, neighbours_where};
+use super::{Generator, Lattice, neighbours_where};
 use crate::maze::Maze;
 use crate::rng::MazeRng;
 
@@ -23,6 +23,7 @@ pub struct HuntAndKill;
 impl Generator for HuntAndKill {
     fn carve(&self, maze: &mut Maze, rng: &mut MazeRng) {
         let grid = maze.grid();
+        let lattice = Lattice::new(grid);
         let cells = grid.cell_count();
         let mut visited = FixedBitSet::with_capacity(cells);
         let mut here = 0;
@@ -32,7 +33,7 @@ impl Generator for HuntAndKill {
         loop {
             // Kill: walk while an unvisited neighbour remains.
             loop {
-                let (options, count) = neighbours_where(grid, here, |n| !visited.contains(n));
+                let (options, count) = neighbours_where(&lattice, here, |n| !visited.contains(n));
                 if count == 0 {
                     break;
                 }
@@ -49,7 +50,7 @@ impl Generator for HuntAndKill {
                 break;
             }
             here = cursor;
-            let (options, count) = neighbours_where(grid, here, |n| visited.contains(n));
+            let (options, count) = neighbours_where(&lattice, here, |n| visited.contains(n));
             let (dir, _) = options[rng.index(count)];
             maze.carve(here, dir);
             visited.insert(here);

@@ -263,25 +263,56 @@ pub fn generate_braided(grid: Grid, algorithm: Algorithm, seed: u64, braid_share
     maze
 }
 
-/// The unvisited neighbours of cell `index` (up to four), in [`Direction::ALL`] order.
-/// Shared by the walkers (DFS, Prim).
+/// A grid's shape as the walkers need it: a cell's column without a division.
+///
+/// `index % width` is a hardware division (tens of cycles) and the walkers ask for it at
+/// every step; Lemire's "fastmod" gets the same remainder from two multiplications with a
+/// constant computed once: `magic = 2^64 / width` rounded up (wrapping to 0 for width 1),
+/// `column = ((magic * index mod 2^64) * width) >> 64`, exact for 32-bit operands.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Lattice {
+    width: usize,
+    cells: usize,
+    magic: u64,
+}
+
+impl Lattice {
+    pub(crate) fn new(grid: Grid) -> Self {
+        Self {
+            width: grid.width() as usize,
+            cells: grid.cell_count(),
+            magic: (u64::MAX / u64::from(grid.width())).wrapping_add(1),
+        }
+    }
+
+    /// `index % width`.
+    #[inline]
+    pub(crate) fn column(&self, index: usize) -> usize {
+        let low = self.magic.wrapping_mul(index as u64);
+        ((u128::from(low) * self.width as u128) >> 64) as usize
+    }
+}
+
+/// The neighbours of cell `index` (up to four) that are `wanted`, in [`Direction::ALL`]
+/// order (callers' random choices index into this order). Shared by the walkers (DFS,
+/// Prim, hunt-and-kill, growing tree).
 ///
 /// [`Direction::ALL`]: crate::maze::Direction::ALL
+#[inline]
 fn neighbours_where(
-    grid: Grid,
+    lattice: &Lattice,
     index: usize,
     mut wanted: impl FnMut(usize) -> bool,
 ) -> ([(crate::maze::Direction, usize); 4], usize) {
     use crate::maze::Direction;
-    // One division for the column, then the same checks as `Grid::step_index`, in
-    // `Direction::ALL` order (callers' random choices index into this order).
-    let width = grid.width() as usize;
-    let x = index % width;
+    // The same checks as `Grid::step_index`, with the column from `Lattice::column`.
+    let width = lattice.width;
+    let x = lattice.column(index);
     let steps = [
         (Direction::East, x + 1 < width, index + 1),
         (
             Direction::North,
-            index + width < grid.cell_count(),
+            index + width < lattice.cells,
             index + width,
         ),
         (Direction::West, x > 0, index.wrapping_sub(1)),
@@ -412,6 +443,25 @@ mod tests {
             ..AlgorithmOptions::default()
         };
         assert!(Algorithm::from_parts("binary-tree", &bad).is_err());
+    }
+
+    #[test]
+    fn lattice_columns_match_division() {
+        for width in [1u64, 2, 3, 7, 100, 1000, 4095, 4096] {
+            let grid = Grid::new(width, (1 << 24) / width).unwrap();
+            let lattice = Lattice::new(grid);
+            let last = grid.cell_count() - 1;
+            let samples = (0..5000)
+                .chain((0..5000).map(|k| last - k))
+                .chain([last / 2]);
+            for index in samples {
+                assert_eq!(
+                    lattice.column(index),
+                    index % width as usize,
+                    "{width} {index}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -19,8 +19,8 @@ const OFF_GRID: u8 = 0xff;
 /// all on an `n`-cell grid, not the cover time).
 ///
 /// Speed: a walk step is the hot loop, so the walk bytes live in a grid padded with a
-/// one-cell frame of off-grid markers: a step is two pooled random bits, a table offset and one
-/// byte test, with no bounds arithmetic and no unpredictable branch. Memory: one byte per
+/// one-cell frame of off-grid markers: a step is two pooled random bits, a table offset
+/// and one byte test, with no bounds arithmetic and no unpredictable branch. Memory: one byte per
 /// cell (plus the frame) besides the maze.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Wilson;
