@@ -36,7 +36,7 @@ impl Generator for Prim {
 /// Marks `cell` as part of the tree and puts its outside neighbours on the frontier.
 fn add_to_tree(cell: usize, state: &mut [u8], frontier: &mut Vec<u32>, lattice: &Lattice) {
     state[cell] = INSIDE;
-    let (outside, count) = neighbours_where(&lattice, cell, |n| state[n] == OUTSIDE);
+    let (outside, count) = neighbours_where(lattice, cell, |n| state[n] == OUTSIDE);
     for &(_, next) in &outside[..count] {
         state[next] = FRONTIER;
         frontier.push(next as u32);
