@@ -42,3 +42,24 @@ proptest! {
         prop_assert_eq!(parsed, Ok(algorithm));
     }
 }
+
+/// No generator recurses: each carves a 256 x 256 maze (65,536 cells) on a thread with a
+/// 128 KiB stack, where one stack frame per cell (what knossos's recursive backtracker
+/// needs) would overflow many times over. 4096 x 4096 runs in the benchmark.
+#[test]
+fn generators_need_no_stack_proportional_to_the_maze() {
+    let grid = Grid::new(256, 256).unwrap();
+    let mut algorithms = Algorithm::ALL.to_vec();
+    for mode in ["oldest", "random", "middle", "mix:0.5"] {
+        algorithms.push(Algorithm::GrowingTree(GrowingMode::parse(mode).unwrap()));
+    }
+    for algorithm in algorithms {
+        let maze = std::thread::Builder::new()
+            .stack_size(128 * 1024)
+            .spawn(move || generate(grid, algorithm, 3))
+            .unwrap()
+            .join()
+            .unwrap_or_else(|_| panic!("{algorithm} {:?} crashed", algorithm.option_pairs()));
+        assert_eq!(maze.passage_count(), grid.cell_count() - 1, "{algorithm}");
+    }
+}
