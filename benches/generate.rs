@@ -73,6 +73,7 @@ static ALLOCATOR: Counting = Counting;
 #[derive(Clone, Copy)]
 struct Sample {
     seconds: f64,
+    fastest: f64,
     peak_bytes: usize,
     cells: usize,
 }
@@ -101,6 +102,7 @@ fn measure(algorithm: Algorithm, side: u64, runs: usize) -> Sample {
     times.sort_by(f64::total_cmp);
     Sample {
         seconds: times[times.len() / 2],
+        fastest: times[0],
         peak_bytes,
         cells: grid.cell_count(),
     }
@@ -160,6 +162,16 @@ fn main() {
         .collect();
     let with_4096 = std::env::var_os("VREP_MAZE_BENCH_SKIP_4096").is_none();
     let baseline = read_baseline();
+    let load = |when: &str| {
+        let text = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+        let first: Vec<&str> = text.split_whitespace().take(3).collect();
+        println!(
+            "load average {when}: {} (cores: {})",
+            first.join(" "),
+            std::thread::available_parallelism().map_or(0, |n| n.get())
+        );
+    };
+    load("before");
 
     let mut algorithms = Algorithm::ALL.to_vec();
     for mode in ["oldest", "random", "middle", "mix:0.5"] {
@@ -168,9 +180,9 @@ fn main() {
     algorithms.retain(|a| filters.is_empty() || filters.iter().any(|f| f == a.name()));
 
     println!(
-        "| algorithm | 100² ms | 1000² ms | 2000² ms | 2000²/1000² | B/cell 2000² | 4096² ms | B/cell 4096² | knossos (largest size run) | knossos / ours |"
+        "| algorithm | 100² ms | 1000² ms | 2000² ms | 2000² fastest ms | 2000²/1000² | B/cell 2000² | 4096² ms | B/cell 4096² | knossos (largest size run) | knossos / ours |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|");
     for algorithm in algorithms {
         let slow = algorithm == Algorithm::AldousBroder;
         let small = measure(algorithm, 100, 11);
@@ -194,10 +206,11 @@ fn main() {
             None => ("-".to_string(), "-".to_string()),
         };
         println!(
-            "| {name} | {} | {} | {} | {:.2}x | {:.2} | {} | {} | {knossos} | {ratio} |",
+            "| {name} | {} | {} | {} | {} | {:.2}x | {:.2} | {} | {} | {knossos} | {ratio} |",
             ms(small.seconds),
             ms(mid.seconds),
             ms(large.seconds),
+            ms(large.fastest),
             large.seconds / mid.seconds,
             large.bytes_per_cell(),
             huge.map_or("-".to_string(), |s| ms(s.seconds)),
@@ -205,6 +218,7 @@ fn main() {
         );
     }
     println!();
+    load("after");
     println!(
         "Median of 11 runs at 100², 5 at 1000² and 2000² (Aldous-Broder: 3 and 1), 1 at 4096²; \
          seeds 0, 1, ...; B/cell = peak heap growth during generation / cells, maze included."
