@@ -13,9 +13,11 @@ use crate::rng::MazeRng;
 /// `(1/pi) n (ln n)^2` steps on an `n`-cell grid (the 2D torus asymptotics; n log^2 n,
 /// not linear). Counted here (seeds 0-2): 0.34-0.41 n ln^2 n steps at 1000x1000 and
 /// 2000x2000, i.e. 63-77 million and 310-370 million steps, against about 0.55 n ln n
-/// (11-35 million) for Wilson. The times are in `NOTES-algos.md` (`cargo bench --bench
-/// generate`). Each step is cheap (two pooled random bits, a table offset, one byte
-/// test), but use [`Wilson`](super::Wilson) for uniform mazes at scale: same
+/// (11-35 million) for Wilson. Each step is cheap (two pooled random bits, a table
+/// offset, one byte test: 2-3 ns), so generation took 0.6 ms at 100x100, 0.1 s at
+/// 1000x1000 and 0.5-0.8 s at 2000x2000 in release on the shared 2-core development
+/// machine (`bench/run.sh`, table in `NOTES-algos.md`); 4096x4096 would take several
+/// seconds. Use [`Wilson`](super::Wilson) for uniform mazes at scale: same
 /// distribution, far fewer steps. Memory: one byte per cell (plus a one-cell frame)
 /// besides the maze.
 #[derive(Debug, Clone, Copy, Default)]
