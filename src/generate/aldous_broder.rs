@@ -18,7 +18,9 @@ use crate::rng::MazeRng;
 /// 1000x1000 and 0.5-0.8 s at 2000x2000 in release on the shared 2-core development
 /// machine (`bench/run.sh`, table in `NOTES-algos.md`); 4096x4096 would take several
 /// seconds. Use [`Wilson`](super::Wilson) for uniform mazes at scale: same
-/// distribution, far fewer steps. Memory: one byte per cell (plus a one-cell frame)
+/// distribution, far fewer steps. The estimate is for roughly square grids: on a long
+/// thin strip a random walk needs about length² steps to cover it (a 1 x 100,000 grid
+/// would take about 10^10 steps), and so do Wilson's walks. Memory: one byte per cell (plus a one-cell frame)
 /// besides the maze.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct AldousBroder;

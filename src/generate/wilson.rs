@@ -16,7 +16,9 @@ const OFF_GRID: u8 = 0xff;
 /// bytes from the walk's start is exactly the loop-erased path. The result is a uniform
 /// spanning tree, like [`AldousBroder`](super::AldousBroder), in far fewer steps
 /// (expected walk length is the mean hitting time of the tree, about `n ln n` steps in
-/// all on an `n`-cell grid, not the cover time).
+/// all on an `n`-cell grid, not the cover time). That is for roughly square grids: on a
+/// long thin strip the walks need about length² steps in all (random walks diffuse),
+/// so a 1 x 100,000 grid is slow with either uniform algorithm.
 ///
 /// Speed: a walk step is the hot loop, so the walk bytes live in a grid padded with a
 /// one-cell frame of off-grid markers: a step is two pooled random bits, a table offset
