@@ -19,6 +19,10 @@ pub const KEY_DOMAIN: &[u8; 24] = b"vrep-maze layout rng v1\0";
 #[derive(Debug, Clone)]
 pub struct MazeRng {
     inner: ChaCha8Rng,
+    /// Unused bits of the last word drawn by [`bits`](Self::bits), lowest first.
+    pool: u32,
+    /// How many bits of `pool` are still unused.
+    pool_left: u32,
 }
 
 impl MazeRng {
@@ -29,6 +33,8 @@ impl MazeRng {
         key[8..].copy_from_slice(KEY_DOMAIN);
         Self {
             inner: ChaCha8Rng::from_seed(key),
+            pool: 0,
+            pool_left: 0,
         }
     }
 
@@ -43,14 +49,44 @@ impl MazeRng {
     /// If `n` is 0: there is no integer to choose.
     pub fn below(&mut self, n: u32) -> u32 {
         assert!(n > 0, "below(0) has no value to return");
-        // Reject the low products that would make some results one draw more likely.
-        let threshold = n.wrapping_neg() % n;
-        loop {
-            let product = u64::from(self.next_u32()) * u64::from(n);
-            if (product as u32) >= threshold {
-                return (product >> 32) as u32;
+        // Reject the low products that would make some results one draw more likely: those
+        // below `threshold = 2^32 mod n`. As `threshold < n`, a low part of at least `n` is
+        // always accepted, so the division is only paid for the rare low parts under `n`
+        // (the same draws are accepted and rejected as with an up-front threshold).
+        let mut product = u64::from(self.next_u32()) * u64::from(n);
+        if (product as u32) < n {
+            let threshold = n.wrapping_neg() % n;
+            while (product as u32) < threshold {
+                product = u64::from(self.next_u32()) * u64::from(n);
             }
         }
+        (product >> 32) as u32
+    }
+
+    /// `k` uniform random bits (`1 <= k <= 16`) as the low bits of the result.
+    ///
+    /// Bits are handed out from a pool, lowest first: when fewer than `k` unused bits
+    /// remain, the rest are dropped and a fresh word is drawn with [`next_u32`](Self::next_u32).
+    /// So a coin flip (`bits(1)`) costs 1/32 of a draw and a choice among four directions
+    /// (`bits(2)`) 1/16. The pool is separate from the other functions: they never see or
+    /// consume pooled bits, but every call still advances one shared, seed-determined stream.
+    #[inline]
+    pub fn bits(&mut self, k: u32) -> u32 {
+        debug_assert!((1..=16).contains(&k), "bits({k}) outside 1..=16");
+        if self.pool_left < k {
+            self.pool = self.next_u32();
+            self.pool_left = 32;
+        }
+        let value = self.pool & ((1 << k) - 1);
+        self.pool >>= k;
+        self.pool_left -= k;
+        value
+    }
+
+    /// A fair coin flip: one pooled bit (see [`bits`](Self::bits)).
+    #[inline]
+    pub fn coin(&mut self) -> bool {
+        self.bits(1) == 1
     }
 
     /// A uniform index into a slice of length `len` (`len` must fit in `u32`).
@@ -64,25 +100,43 @@ impl MazeRng {
         self.below(denominator) < numerator
     }
 
-    /// Shuffles `items` in place: Fisher-Yates from the back, one [`below`](Self::below)
-    /// per step. The draws for a batch of steps are taken first and the swaps done after;
-    /// draws do not depend on the items, so the permutation is exactly that of the plain
-    /// loop, but the swaps' memory accesses overlap (twice as fast on large slices).
+    /// Shuffles `items` in place (Fisher-Yates, from the back, one [`index`](Self::index) per step).
+    ///
+    /// The draws do not depend on the items, so they are taken in batches and the slots
+    /// about to be swapped are prefetched first: on large slices the cache misses then
+    /// overlap instead of stalling one by one. Draws and swaps happen in exactly the
+    /// plain algorithm's order, so the result is the same.
     pub fn shuffle<T>(&mut self, items: &mut [T]) {
-        const BATCH: usize = 32;
+        const BATCH: usize = 64;
         let mut picks = [0usize; BATCH];
-        let mut unshuffled = items.len();
-        while unshuffled > 1 {
-            let count = BATCH.min(unshuffled - 1);
-            for (k, pick) in picks[..count].iter_mut().enumerate() {
-                *pick = self.index(unshuffled - k);
+        let mut last = items.len().saturating_sub(1);
+        while last >= 1 {
+            let count = BATCH.min(last);
+            for (step, pick) in picks[..count].iter_mut().enumerate() {
+                *pick = self.index(last - step + 1);
             }
-            for (k, &pick) in picks[..count].iter().enumerate() {
-                items.swap(unshuffled - 1 - k, pick);
+            for &pick in &picks[..count] {
+                prefetch(&items[pick]);
             }
-            unshuffled -= count;
+            for (step, &pick) in picks[..count].iter().enumerate() {
+                items.swap(last - step, pick);
+            }
+            last -= count;
         }
     }
+}
+
+/// Hints the CPU to start loading `item`'s cache line; no effect on results.
+#[inline(always)]
+pub(crate) fn prefetch<T>(item: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: prefetching is a hint that never faults, on a valid reference besides.
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(item).cast::<i8>());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = item;
 }
 
 /// A fresh seed from the operating system, for runs that give none.
@@ -127,6 +181,23 @@ mod tests {
     }
 
     #[test]
+    fn batched_shuffle_matches_plain_fisher_yates() {
+        for len in [0, 1, 2, 15, 16, 17, 33, 1000] {
+            let mut rng = MazeRng::from_seed(len as u64);
+            let mut reference = MazeRng::from_seed(len as u64);
+            let mut items: Vec<u32> = (0..len).collect();
+            let mut expected = items.clone();
+            rng.shuffle(&mut items);
+            for last in (1..expected.len()).rev() {
+                let pick = reference.index(last + 1);
+                expected.swap(last, pick);
+            }
+            assert_eq!(items, expected, "len {len}");
+            assert_eq!(rng.next_u32(), reference.next_u32());
+        }
+    }
+
+    #[test]
     fn shuffle_is_a_permutation() {
         let mut rng = MazeRng::from_seed(3);
         let mut items: Vec<u32> = (0..100).collect();
@@ -134,6 +205,50 @@ mod tests {
         assert_ne!(items, (0..100).collect::<Vec<_>>());
         items.sort_unstable();
         assert_eq!(items, (0..100).collect::<Vec<_>>());
+    }
+
+    /// `below` as first written (threshold computed up front), the reference the lazy
+    /// version must match draw for draw: mazes from dfs/prim/kruskal are pinned by it.
+    fn reference_below(rng: &mut MazeRng, n: u32) -> u32 {
+        let threshold = n.wrapping_neg() % n;
+        loop {
+            let product = u64::from(rng.next_u32()) * u64::from(n);
+            if (product as u32) >= threshold {
+                return (product >> 32) as u32;
+            }
+        }
+    }
+
+    #[test]
+    fn lazy_below_matches_the_reference_draw_for_draw() {
+        let mut rng = MazeRng::from_seed(42);
+        let mut reference = MazeRng::from_seed(42);
+        for n in [1, 2, 3, 4, 7, 1000, 3_000_000_019, u32::MAX, (1 << 31) + 1] {
+            for _ in 0..2000 {
+                assert_eq!(rng.below(n), reference_below(&mut reference, n), "n = {n}");
+            }
+        }
+        assert_eq!(rng.next_u32(), reference.next_u32());
+    }
+
+    #[test]
+    fn bits_come_from_the_pool_lowest_first() {
+        let mut rng = MazeRng::from_seed(42);
+        let mut again = MazeRng::from_seed(42);
+        let word = again.next_u32();
+        let twos: Vec<u32> = (0..16).map(|_| rng.bits(2)).collect();
+        let expected: Vec<u32> = (0..16).map(|i| (word >> (2 * i)) & 3).collect();
+        assert_eq!(twos, expected);
+        // The 17th pair needs a fresh word; 3 bits leave 2 unused, so 3 more draw again.
+        assert_eq!(rng.bits(3), again.next_u32() & 7);
+        let mut counts = [0u32; 2];
+        for _ in 0..10_000 {
+            counts[usize::from(rng.coin())] += 1;
+        }
+        assert!(
+            counts.iter().all(|&c| (4800..5200).contains(&c)),
+            "{counts:?}"
+        );
     }
 
     #[test]

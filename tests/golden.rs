@@ -37,7 +37,22 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
             )
         })
         .collect();
-    let extra: [(&str, &[&str]); 4] = [
+    let extra: [(&str, &[&str]); 6] = [
+        (
+            "growing-tree-mix0.5-9x9-seed42.json",
+            &[
+                "--algo",
+                "growing-tree",
+                "--growing",
+                "mix:0.5",
+                "--seed",
+                "42",
+            ],
+        ),
+        (
+            "binary-tree-sw-9x9-seed42.json",
+            &["--algo", "binary-tree", "--bias", "sw", "--seed", "42"],
+        ),
         (
             "prim-9x9-seed42-braid0.5.json",
             &["--algo", "prim", "--seed", "42", "--braid", "0.5"],

@@ -161,6 +161,25 @@ fn markers_metrics_and_floor_are_checked() {
         "line.length: must be a positive number of metres, not NaN",
     );
 
+    let mut unknown = base.clone();
+    unknown.generator.algorithm = "mazeomatic".into();
+    assert_problem(&unknown, "generator: unknown algorithm 'mazeomatic'");
+
+    let mut option = base.clone();
+    option.generator.options.insert("bias".into(), "ne".into());
+    assert_problem(
+        &option,
+        "generator: --bias ne applies to --algo binary-tree, not dfs",
+    );
+    option
+        .generator
+        .options
+        .insert("colour".into(), "red".into());
+    assert_problem(
+        &option,
+        "generator.options.colour: is not an option vrep-maze knows",
+    );
+
     let mut huge = base;
     huge.grid.columns = 100_000;
     huge.grid.rows = 100_000;

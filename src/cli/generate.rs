@@ -10,7 +10,7 @@ use super::output::write_output;
 use super::values::{
     parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
 };
-use crate::generate::Algorithm;
+use crate::generate::{Algorithm, Bias, GrowingMode};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
 use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, build_layout, write_layout};
@@ -38,9 +38,18 @@ pub struct GenerateArgs {
 /// The maze options `generate` and `batch` share: everything but the seed.
 #[derive(Debug, Args)]
 pub struct MazeArgs {
-    /// Algorithm: dfs (long corridors), prim (many short dead ends), kruskal (even texture).
+    /// Algorithm: dfs, prim, kruskal, aldous-broder, wilson, hunt-and-kill, growing-tree,
+    /// eller, sidewinder, binary-tree, recursive-division (textures in the README).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
     pub algo: Algorithm,
+    /// Growing tree only: which cell grows next, newest|oldest|random|middle|mix:P
+    /// (newest with probability P, else random) [default: newest].
+    #[arg(long, value_parser = GrowingMode::parse)]
+    pub growing: Option<GrowingMode>,
+    /// Binary tree only: the two directions every cell opens towards, ne|nw|se|sw
+    /// [default: ne].
+    #[arg(long, value_parser = Bias::parse)]
+    pub bias: Option<Bias>,
     /// Braid: share (0 to 1) of dead ends to open into loops, so wall-following fails;
     /// 0 keeps the maze perfect.
     #[arg(long, default_value_t = 0.0, value_parser = parse_share)]
@@ -89,10 +98,14 @@ impl MazeArgs {
     /// The generate spec these options describe (`seed` decided by the caller).
     pub fn spec(&self, seed: u64) -> Result<GenerateSpec> {
         let grid = Grid::new(self.size.0, self.size.1).map_err(|e| anyhow!("--size: {e}"))?;
+        let algorithm = self
+            .algo
+            .with_options(self.growing, self.bias)
+            .map_err(|e| anyhow!(e))?;
         let cell_size = self.cell_size;
         Ok(GenerateSpec {
             grid,
-            algorithm: self.algo,
+            algorithm,
             seed,
             braid: self.braid,
             start: self.start,

@@ -1,6 +1,6 @@
 //! Randomized Prim: grow one tree by attaching a random frontier cell.
 
-use super::{Generator, neighbours_where};
+use super::{Generator, Lattice, neighbours_where};
 use crate::maze::Maze;
 use crate::rng::MazeRng;
 
@@ -18,24 +18,25 @@ pub struct Prim;
 impl Generator for Prim {
     fn carve(&self, maze: &mut Maze, rng: &mut MazeRng) {
         let grid = maze.grid();
+        let lattice = Lattice::new(grid);
         let mut state = vec![OUTSIDE; grid.cell_count()];
         let mut frontier: Vec<u32> = Vec::new();
         let start = rng.index(grid.cell_count());
-        add_to_tree(start, &mut state, &mut frontier, grid);
+        add_to_tree(start, &mut state, &mut frontier, &lattice);
         while !frontier.is_empty() {
             let cell = frontier.swap_remove(rng.index(frontier.len())) as usize;
-            let (inside, count) = neighbours_where(grid, cell, |n| state[n] == INSIDE);
+            let (inside, count) = neighbours_where(&lattice, cell, |n| state[n] == INSIDE);
             let (dir, _) = inside[rng.index(count)];
             maze.carve(cell, dir);
-            add_to_tree(cell, &mut state, &mut frontier, grid);
+            add_to_tree(cell, &mut state, &mut frontier, &lattice);
         }
     }
 }
 
 /// Marks `cell` as part of the tree and puts its outside neighbours on the frontier.
-fn add_to_tree(cell: usize, state: &mut [u8], frontier: &mut Vec<u32>, grid: crate::maze::Grid) {
+fn add_to_tree(cell: usize, state: &mut [u8], frontier: &mut Vec<u32>, lattice: &Lattice) {
     state[cell] = INSIDE;
-    let (outside, count) = neighbours_where(grid, cell, |n| state[n] == OUTSIDE);
+    let (outside, count) = neighbours_where(lattice, cell, |n| state[n] == OUTSIDE);
     for &(_, next) in &outside[..count] {
         state[next] = FRONTIER;
         frontier.push(next as u32);

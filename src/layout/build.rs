@@ -110,7 +110,12 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
 
 /// The generator options a layout records: only those that change the maze.
 fn options(spec: &GenerateSpec) -> BTreeMap<String, String> {
-    let mut options = BTreeMap::new();
+    let mut options: BTreeMap<String, String> = spec
+        .algorithm
+        .option_pairs()
+        .into_iter()
+        .map(|(name, value)| (name.to_string(), value))
+        .collect();
     if spec.braid > 0.0 {
         options.insert("braid".to_string(), spec.braid.to_string());
     }

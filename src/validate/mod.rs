@@ -6,6 +6,7 @@ mod coverage;
 
 use std::fmt;
 
+use crate::generate::Algorithm;
 use crate::layout::build::{extent_needed, fits};
 use crate::layout::geometry::{Geometry, rectangle_corners};
 use crate::layout::{Layout, Pose, passages};
@@ -59,6 +60,7 @@ impl Problems {
 /// Validates `layout` and measures it.
 pub fn validate(layout: &Layout) -> Report {
     let mut problems = Problems::default();
+    check_generator(layout, &mut problems);
     let Some(geometry) = check_numbers(layout, &mut problems) else {
         return Report {
             problems: problems.0,
@@ -113,6 +115,35 @@ pub fn validate(layout: &Layout) -> Report {
     Report {
         problems: problems.0,
         metrics,
+    }
+}
+
+/// The generator section names a known algorithm with options it takes.
+fn check_generator(layout: &Layout, problems: &mut Problems) {
+    let generator = &layout.generator;
+    let pairs = generator
+        .options
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()));
+    if let Err(e) = Algorithm::from_name_and_pairs(&generator.algorithm, pairs) {
+        problems.add("generator", e);
+    }
+    for (key, value) in &generator.options {
+        match key.as_str() {
+            "growing" | "bias" => {}
+            "braid" => {
+                if !value.parse::<f64>().is_ok_and(|v| (0.0..=1.0).contains(&v)) {
+                    problems.add(
+                        "generator.options.braid",
+                        format!("'{value}' is not a share from 0 to 1"),
+                    );
+                }
+            }
+            _ => problems.add(
+                format!("generator.options.{key}"),
+                "is not an option vrep-maze knows",
+            ),
+        }
     }
 }
 
