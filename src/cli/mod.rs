@@ -1,11 +1,14 @@
 //! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
+mod apply;
 mod batch;
+mod clear;
 mod completions;
 mod demo;
 mod generate;
 mod output;
 mod render;
+mod serve;
 mod validate;
 mod values;
 
@@ -41,6 +44,12 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Show the whole job on the course default: generate, validate and draw a maze.
     Demo(demo::DemoArgs),
+    /// Draw a layout into CoppeliaSim over the legacy remote API (port 19997).
+    Apply(apply::ApplyArgs),
+    /// Remove a drawn maze from CoppeliaSim (the templates stay).
+    Clear(clear::ClearArgs),
+    /// Emulate CoppeliaSim's legacy remote API over an in-memory scene (no simulator needed).
+    Serve(serve::ServeArgs),
 }
 
 /// Parses the command line and runs it; errors become one line on standard error.
@@ -63,6 +72,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Batch(args) => batch::run(args),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),
+        Command::Apply(args) => apply::run(args),
+        Command::Clear(args) => clear::run(args),
+        Command::Serve(args) => serve::run(args),
     }
 }
 

@@ -1,0 +1,54 @@
+//! Remove a drawn maze: every child of the maze dummy except the templates, and parentless
+//! copies of the line template left by an interrupted run. Templates stay where they are.
+
+use super::plan::maze_lines;
+use super::{DrawError, Edit, Scene, SceneNames, resolve_handles};
+
+/// What [`clear`] removed.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ClearReport {
+    /// Names of the removed objects.
+    pub removed: Vec<String>,
+    /// Round trips.
+    pub round_trips: usize,
+    /// Idle rate restored (it had been left at 0 by an interrupted `apply`).
+    pub restored_idle_fps: Option<i32>,
+}
+
+/// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
+/// interrupted `apply`. With `dry_run` only lists them.
+pub fn clear(
+    scene: &mut dyn Scene,
+    names: &SceneNames,
+    dry_run: bool,
+) -> Result<ClearReport, DrawError> {
+    let rt0 = scene.round_trips();
+    let survey = scene.survey(&names.all())?;
+    let h = resolve_handles(names, &survey)?;
+    let doomed = maze_lines(&survey.objects, &h, &names.line);
+    let removed = doomed
+        .iter()
+        .filter_map(|d| {
+            survey
+                .objects
+                .iter()
+                .find(|o| o.handle == *d)
+                .map(|o| o.name.clone())
+        })
+        .collect();
+    if !doomed.is_empty() && !dry_run {
+        scene.edit(&doomed.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
+    }
+    let restored_idle_fps = match survey.saved_idle_fps {
+        Some(fps) if !dry_run => {
+            scene.set_idle_fps(fps, None)?;
+            Some(fps)
+        }
+        _ => None,
+    };
+    Ok(ClearReport {
+        removed,
+        round_trips: scene.round_trips() - rt0,
+        restored_idle_fps,
+    })
+}

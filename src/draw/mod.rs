@@ -1,0 +1,275 @@
+//! Backend-neutral drawing of a maze into a CoppeliaSim scene.
+//!
+//! A backend (the legacy remote API in [`crate::legacy::scene`], later ZeroMQ) implements
+//! [`Scene`]: a handful of batched operations, each costing one round trip. [`apply()`] draws a
+//! [`Drawing`] (reusing earlier copies of the `Line` template, pasting only the missing ones,
+//! removing the surplus), [`clear()`] removes a drawn maze and [`verify()`] compares the scene with
+//! a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
+//! paste) so they can be tested without a simulator.
+
+pub mod apply;
+pub mod clear;
+pub mod plan;
+pub mod verify;
+
+pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
+pub use clear::{ClearReport, clear};
+pub use verify::verify;
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::layout::Pose;
+
+/// Position of a pose as an array.
+pub fn position(p: &Pose) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}
+
+/// CoppeliaSim Euler angles of a pose (roll = pitch = 0).
+pub fn euler(p: &Pose) -> [f64; 3] {
+    [0.0, 0.0, p.yaw]
+}
+
+/// What to draw: one pose per copy of `Line` (the template itself is the first), plus where
+/// `Start` and `End` go. All in the Floor frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Drawing {
+    /// Line segments.
+    pub lines: Vec<Pose>,
+    /// Start marker.
+    pub start: Pose,
+    /// End marker.
+    pub end: Pose,
+}
+
+/// Names of the scene objects a drawing needs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SceneNames {
+    /// Reference frame of every coordinate (`Floor`).
+    pub floor: String,
+    /// Dummy every line is a child of (`Maze`).
+    pub parent: String,
+    /// Line template (`Line`).
+    pub line: String,
+    /// Start marker (`Start`).
+    pub start: String,
+    /// End marker (`End`).
+    pub end: String,
+}
+
+impl Default for SceneNames {
+    fn default() -> Self {
+        SceneNames {
+            floor: "Floor".into(),
+            parent: "Maze".into(),
+            line: "Line".into(),
+            start: "Start".into(),
+            end: "End".into(),
+        }
+    }
+}
+
+impl SceneNames {
+    /// Names in the order floor, parent, line, start, end.
+    pub fn all(&self) -> [&str; 5] {
+        [
+            &self.floor,
+            &self.parent,
+            &self.line,
+            &self.start,
+            &self.end,
+        ]
+    }
+
+    /// What a missing object is and how to create it (one line).
+    pub fn how_to_create(&self, name: &str) -> String {
+        let role = if name == self.floor {
+            "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`; the maze needs >= 10 m x 10 m)"
+        } else if name == self.parent {
+            "a dummy that holds the maze lines (Add > Dummy, then rename it)"
+        } else if name == self.line {
+            "the line template: a plane 0.6 m x 0.1 m, pure green, at z = 0.001 (Add > Primitive shape > Plane)"
+        } else if name == self.start {
+            "the start marker: a plane 1 m x 1 m, pure blue, at z = 0.002"
+        } else {
+            "the end marker: a plane 1 m x 1 m, pure red, at z = 0.002"
+        };
+        format!("`{name}`: {role}")
+    }
+}
+
+/// Name of the integer signal in which `apply` records the user's idle rate while it runs.
+pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
+
+/// Handles of the named objects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Handles {
+    /// Floor.
+    pub floor: i32,
+    /// Maze parent.
+    pub parent: i32,
+    /// Line template.
+    pub line: i32,
+    /// Start marker.
+    pub start: i32,
+    /// End marker.
+    pub end: i32,
+}
+
+impl Handles {
+    /// The templates that are never removed.
+    pub fn templates(&self) -> [i32; 3] {
+        [self.line, self.start, self.end]
+    }
+}
+
+/// One scene object as a backend reports it: world pose.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectInfo {
+    /// Handle.
+    pub handle: i32,
+    /// Object name.
+    pub name: String,
+    /// Parent handle.
+    pub parent: Option<i32>,
+    /// World position.
+    pub position: [f64; 3],
+    /// World Euler angles.
+    pub orientation: [f64; 3],
+}
+
+/// Everything [`apply()`] needs to know first, in one round trip.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Survey {
+    /// Handle of each requested name (same order), `None` if missing.
+    pub handles: Vec<Option<i32>>,
+    /// All scene objects.
+    pub objects: Vec<ObjectInfo>,
+    /// Current `sim_intparam_idle_fps`.
+    pub idle_fps: i32,
+    /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
+    /// (the simulator keeps it as the integer signal [`SAVED_IDLE_FPS_SIGNAL`]).
+    pub saved_idle_fps: Option<i32>,
+    /// Simulation not stopped.
+    pub simulation_running: bool,
+}
+
+/// A scene edit; [`Scene::edit`] applies a list of them in order, in one round trip.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Edit {
+    /// Set the parent (`None` = no parent).
+    SetParent {
+        /// Object.
+        handle: i32,
+        /// New parent.
+        parent: Option<i32>,
+        /// Keep the world pose.
+        keep_in_place: bool,
+    },
+    /// Set position and orientation relative to another object.
+    SetPose {
+        /// Object.
+        handle: i32,
+        /// Reference object.
+        relative_to: i32,
+        /// Position.
+        position: [f64; 3],
+        /// Euler angles.
+        orientation: [f64; 3],
+    },
+    /// Remove an object.
+    Remove(i32),
+}
+
+/// A failed backend operation.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// Connection or protocol failure.
+    #[error("{0}")]
+    Transport(String),
+    /// The simulator refused an operation.
+    #[error("the simulator refused: {0}")]
+    Remote(String),
+}
+
+/// The operations drawing needs; each call is one round trip (one batched request).
+pub trait Scene {
+    /// Resolves `names`, lists all objects (name, parent, world pose), reads the idle rate
+    /// and the simulation state.
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError>;
+    /// Lists all objects.
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError>;
+    /// Copy-pastes each group; returns the new handles of each group.
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError>;
+    /// Applies edits in order.
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError>;
+    /// Sets `sim_intparam_idle_fps` and, in the same request, records `saved` (the user's
+    /// rate, so that a later run can restore it if this one is interrupted) or, with `None`,
+    /// deletes the record.
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError>;
+    /// Stops the simulation and waits until it is stopped.
+    fn stop_simulation(&mut self) -> Result<(), SceneError>;
+    /// Round trips so far.
+    fn round_trips(&self) -> usize;
+}
+
+/// Errors of [`apply()`], [`clear()`] and [`verify()`].
+#[derive(Debug, thiserror::Error)]
+pub enum DrawError {
+    /// Named objects are missing.
+    #[error("missing in the scene: {}. Create {} in CoppeliaSim (or pass the names your scene uses with --floor, --parent, --line, --start, --end):\n  {}", .names.join(", "), if .names.len() == 1 { "it" } else { "them" }, .hints.join("\n  "))]
+    Missing {
+        /// The missing names.
+        names: Vec<String>,
+        /// How to create each.
+        hints: Vec<String>,
+    },
+    /// The simulation runs; edits would be lost when it stops.
+    #[error(
+        "the simulation is running: changes made now would be discarded when it stops. Stop it in CoppeliaSim, or pass --stop-simulation"
+    )]
+    SimulationRunning,
+    /// Backend failure.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The scene does not match the drawing after drawing it.
+    #[error("verification failed, {} difference(s):\n  {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("\n  "))]
+    Verify(Vec<String>),
+}
+
+/// Resolves the names of a survey into [`Handles`] or a [`DrawError::Missing`].
+pub fn resolve_handles(names: &SceneNames, survey: &Survey) -> Result<Handles, DrawError> {
+    let all = names.all();
+    let missing: Vec<String> = all
+        .iter()
+        .zip(&survey.handles)
+        .filter(|(_, h)| h.is_none())
+        .map(|(n, _)| n.to_string())
+        .collect();
+    if !missing.is_empty() {
+        let hints = missing.iter().map(|n| names.how_to_create(n)).collect();
+        return Err(DrawError::Missing {
+            names: missing,
+            hints,
+        });
+    }
+    let h: Vec<i32> = survey.handles.iter().map(|h| h.unwrap_or(-1)).collect();
+    Ok(Handles {
+        floor: h[0],
+        parent: h[1],
+        line: h[2],
+        start: h[3],
+        end: h[4],
+    })
+}
+
+impl From<&crate::layout::Layout> for Drawing {
+    /// The layout's segments (template first), start and end poses.
+    fn from(layout: &crate::layout::Layout) -> Drawing {
+        Drawing {
+            lines: layout.segments.clone(),
+            start: layout.start.pose,
+            end: layout.end.pose,
+        }
+    }
+}

@@ -1,0 +1,247 @@
+//! Pure drawing decisions: which objects belong to an earlier maze, and what to paste,
+//! reuse and remove.
+
+use super::{Handles, ObjectInfo, Pose};
+use crate::sim::frame::{Frame, frame, position_euler, wrap_angle};
+
+/// Tolerance on positions (metres) for "already in place" and verification.
+pub const POSITION_TOLERANCE: f64 = 1e-4;
+/// Tolerance on angles (radians).
+pub const ANGLE_TOLERANCE: f64 = 1e-4;
+
+/// True if `name` is a pasted copy of the template named `template`: `Line0`, `Line17`
+/// (plain naming) or `Line#0` (hash naming). A template named `Line5` has copies `Line6`...
+pub fn is_copy_name(name: &str, template: &str) -> bool {
+    if name == template {
+        return false;
+    }
+    let base = template.trim_end_matches(|c: char| c.is_ascii_digit());
+    let hash_base = template.rsplit_once('#').map(|(b, n)| {
+        if n.bytes().all(|c| c.is_ascii_digit()) {
+            b
+        } else {
+            template
+        }
+    });
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|c| c.is_ascii_digit());
+    name.strip_prefix(base).is_some_and(digits)
+        || name
+            .strip_prefix(hash_base.unwrap_or(template))
+            .and_then(|r| r.strip_prefix('#'))
+            .is_some_and(digits)
+}
+
+/// The lines of an earlier maze: every child of the maze parent except the templates, then
+/// every parentless object named like a copy of the line template (left by an interrupted
+/// run between pasting and re-parenting). Children first, each group in handle order.
+pub fn maze_lines(objects: &[ObjectInfo], h: &Handles, template_name: &str) -> Vec<i32> {
+    let templates = h.templates();
+    let eligible = |o: &&ObjectInfo| {
+        !templates.contains(&o.handle) && o.handle != h.parent && o.handle != h.floor
+    };
+    let mut children: Vec<i32> = objects
+        .iter()
+        .filter(eligible)
+        .filter(|o| o.parent == Some(h.parent))
+        .map(|o| o.handle)
+        .collect();
+    let mut strays: Vec<i32> = objects
+        .iter()
+        .filter(eligible)
+        .filter(|o| o.parent.is_none() && is_copy_name(&o.name, template_name))
+        .map(|o| o.handle)
+        .collect();
+    children.sort_unstable();
+    strays.sort_unstable();
+    children.extend(strays);
+    children
+}
+
+/// What to do with existing copies.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Plan {
+    /// Existing copies kept (in segment order after the template).
+    pub reuse: Vec<i32>,
+    /// Existing copies removed.
+    pub remove: Vec<i32>,
+    /// Number of copies to paste.
+    pub paste: usize,
+}
+
+/// Reuses as many existing copies as needed, removes the rest, pastes the missing ones.
+pub fn plan(existing: &[i32], copies_needed: usize) -> Plan {
+    let keep = existing.len().min(copies_needed);
+    Plan {
+        reuse: existing[..keep].to_vec(),
+        remove: existing[keep..].to_vec(),
+        paste: copies_needed - keep,
+    }
+}
+
+/// One pasting round: up to `max_blocks` copy-paste commands, each copying (a prefix of) the
+/// lines available so far, together pasting at most `missing` copies. With `max_blocks` = 1
+/// this is plain doubling; with b blocks the set grows (b+1)-fold per round trip.
+pub fn paste_round(available: &[i32], missing: usize, max_blocks: usize) -> Vec<Vec<i32>> {
+    let mut groups = Vec::new();
+    let mut left = missing;
+    while left > 0 && groups.len() < max_blocks.max(1) && !available.is_empty() {
+        let n = left.min(available.len());
+        groups.push(available[..n].to_vec());
+        left -= n;
+    }
+    groups
+}
+
+/// Frame of an object from its world position and Euler angles.
+pub fn world_frame(o: &ObjectInfo) -> Frame {
+    frame(o.position, o.orientation)
+}
+
+/// Pose of `object` in the frame `floor` as (position, Euler).
+pub fn relative_pose(floor: &Frame, object: &ObjectInfo) -> ([f64; 3], [f64; 3]) {
+    position_euler(&(floor.inverse() * world_frame(object)))
+}
+
+/// Differences between an object's pose in the floor frame and the wanted pose (empty if
+/// within tolerance; a flipped line (yaw + pi) is not accepted: Start/End and lines are
+/// compared exactly up to 2 pi).
+pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Option<String> {
+    let (p, e) = relative_pose(floor, object);
+    let dp = p
+        .iter()
+        .zip(crate::draw::position(want))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let de = [
+        wrap_angle(e[0]),
+        wrap_angle(e[1]),
+        wrap_angle(e[2] - want.yaw),
+    ]
+    .iter()
+    .map(|a| a.abs())
+    .fold(0.0, f64::max);
+    if dp <= POSITION_TOLERANCE && de <= ANGLE_TOLERANCE {
+        None
+    } else {
+        Some(format!(
+            "at ({:.4}, {:.4}, {:.4}) yaw {:.4} (roll {:.4}, pitch {:.4}), expected ({:.4}, {:.4}, {:.4}) yaw {:.4}",
+            p[0], p[1], p[2], e[2], e[0], e[1], want.x, want.y, want.z, want.yaw
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn obj(handle: i32, name: &str, parent: Option<i32>) -> ObjectInfo {
+        ObjectInfo {
+            handle,
+            name: name.into(),
+            parent,
+            position: [0.0; 3],
+            orientation: [0.0; 3],
+        }
+    }
+
+    #[test]
+    fn copy_names() {
+        for yes in ["Line0", "Line12", "Line#0", "Line#33"] {
+            assert!(is_copy_name(yes, "Line"), "{yes}");
+        }
+        for no in [
+            "Line", "Lines0", "Line#", "Line#x", "Start0", "MyLine0", "Line0a",
+        ] {
+            assert!(!is_copy_name(no, "Line"), "{no}");
+        }
+        assert!(is_copy_name("Line6", "Line5"));
+        assert!(is_copy_name("Seg#1", "Seg#0"));
+    }
+
+    #[test]
+    fn maze_lines_are_children_and_parentless_copies() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", Some(2)),
+            obj(4, "Start", None),
+            obj(5, "End", Some(2)),
+            obj(9, "Line7", Some(2)),
+            obj(8, "Renamed", Some(2)),
+            obj(12, "Line#3", None),
+            obj(11, "Line2", None),
+            obj(13, "Line4", Some(1)),
+            obj(14, "Cuboid0", None),
+        ];
+        assert_eq!(maze_lines(&objects, &h, "Line"), vec![8, 9, 11, 12]);
+    }
+
+    #[test]
+    fn plan_reuses_pastes_removes() {
+        assert_eq!(
+            plan(&[7, 8, 9], 2),
+            Plan {
+                reuse: vec![7, 8],
+                remove: vec![9],
+                paste: 0
+            }
+        );
+        assert_eq!(
+            plan(&[7], 4),
+            Plan {
+                reuse: vec![7],
+                remove: vec![],
+                paste: 3
+            }
+        );
+        assert_eq!(paste_round(&[1], 5, 1), vec![vec![1]]);
+        assert_eq!(
+            paste_round(&[1, 2, 3], 5, 4),
+            vec![vec![1, 2, 3], vec![1, 2]]
+        );
+        assert_eq!(paste_round(&[1, 2], 0, 4), Vec::<Vec<i32>>::new());
+        // rounds needed for 1797 copies from one template with 16 blocks per round
+        let (mut have, mut rounds) = (1usize, 0);
+        while have < 1798 {
+            have += paste_round(&vec![0; have], 1798 - have, 16)
+                .iter()
+                .map(Vec::len)
+                .sum::<usize>();
+            rounds += 1;
+        }
+        assert_eq!((have, rounds), (1798, 3));
+    }
+
+    #[test]
+    fn pose_compare_in_a_rotated_floor() {
+        let floor_info = ObjectInfo {
+            position: [1.0, 2.0, 0.0],
+            orientation: [0.0, 0.0, 1.0],
+            ..obj(1, "Floor", None)
+        };
+        let floor = world_frame(&floor_info);
+        let want = Pose {
+            x: 0.25,
+            y: 1.0,
+            z: 0.001,
+            yaw: std::f64::consts::FRAC_PI_2,
+        };
+        let world = floor * frame(crate::draw::position(&want), crate::draw::euler(&want));
+        let (p, e) = position_euler(&world);
+        let o = ObjectInfo {
+            position: p,
+            orientation: e,
+            ..obj(5, "Line0", Some(2))
+        };
+        assert_eq!(pose_differences(&floor, &o, &want), None);
+        let moved = Pose { x: 0.2502, ..want };
+        assert!(pose_differences(&floor, &o, &moved).is_some());
+    }
+}

@@ -1,0 +1,352 @@
+//! Native legacy remote API client (no C library): blocking and oneshot calls, batching any
+//! number of commands into one message, identity-based reply matching.
+//!
+//! Unlike the C client it has no background thread: a blocking call sends one message with
+//! all its command blocks, then keeps the ping-pong going with header-only messages every
+//! `poll_interval` until a reply carries a result for every command (reply header message
+//! ID >= the ID of the carrying message), or the timeout expires.
+
+use std::collections::HashMap;
+use std::net::{Shutdown, SocketAddr, TcpStream, ToSocketAddrs};
+use std::time::{Duration, Instant};
+
+use super::command::{Command, opmode};
+use super::wire::{
+    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, write_message,
+};
+
+/// Client errors.
+#[derive(Debug, thiserror::Error)]
+pub enum ClientError {
+    /// Nobody accepted the connection before the deadline.
+    #[error(
+        "cannot connect to {addr}: {why} (is CoppeliaSim running with the legacy remote API on this port? it refuses connections for a few seconds after a client left, so we retried for {waited:.1} s)"
+    )]
+    Connect {
+        /// Address tried.
+        addr: String,
+        /// Last OS error.
+        why: String,
+        /// How long we retried.
+        waited: f64,
+    },
+    /// The server did not answer in time.
+    #[error(
+        "no reply from the simulator within {0:.1} s (simulation paused in a dialog, or not a legacy remote API server?)"
+    )]
+    Timeout(f64),
+    /// The server closed the connection.
+    #[error("the simulator closed the connection")]
+    Closed,
+    /// Transport error or malformed bytes.
+    #[error("legacy remote API protocol error: {0}")]
+    Wire(#[from] WireError),
+    /// A reply whose payload does not match the command.
+    #[error("malformed reply to command {cmd:#06x}: {why}")]
+    BadReply {
+        /// Raw command ID.
+        cmd: u16,
+        /// What is wrong.
+        why: String,
+    },
+}
+
+/// Connection settings.
+#[derive(Debug, Clone)]
+pub struct ClientOptions {
+    /// How long to keep retrying to connect.
+    pub connect_timeout: Duration,
+    /// Pause between connection attempts.
+    pub retry_interval: Duration,
+    /// Timeout of one blocking call.
+    pub reply_timeout: Duration,
+    /// Pause between keep-alive messages while waiting.
+    pub poll_interval: Duration,
+    /// Largest packet we send.
+    pub max_packet_size: usize,
+}
+
+impl Default for ClientOptions {
+    fn default() -> Self {
+        ClientOptions {
+            connect_timeout: Duration::from_secs(10),
+            retry_interval: Duration::from_millis(100),
+            reply_timeout: Duration::from_secs(5),
+            poll_interval: Duration::from_millis(2),
+            max_packet_size: MAX_PACKET_SIZE,
+        }
+    }
+}
+
+/// The result of one command.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reply {
+    /// The server flagged an error (C client: `simx_return_remote_error_flag`, 8).
+    pub remote_error: bool,
+    /// Pure data of the reply.
+    pub data: Vec<u8>,
+}
+
+/// A connected client.
+pub struct Client {
+    stream: TcpStream,
+    opts: ClientOptions,
+    next_id: i32,
+    clock: Instant,
+    header: Option<MessageHeader>,
+    inbox: HashMap<(u16, Vec<u8>), Block>,
+    round_trips: usize,
+    messages: usize,
+}
+
+impl Client {
+    /// Connects (IPv4/IPv6, names resolved), retrying until `connect_timeout`.
+    pub fn connect(
+        addr: impl ToSocketAddrs + std::fmt::Display,
+        opts: ClientOptions,
+    ) -> Result<Client, ClientError> {
+        let started = Instant::now();
+        let name = addr.to_string();
+        let fail = |why: String| ClientError::Connect {
+            addr: name.clone(),
+            why,
+            waited: started.elapsed().as_secs_f64(),
+        };
+        let addrs: Vec<SocketAddr> = addr
+            .to_socket_addrs()
+            .map_err(|e| fail(e.to_string()))?
+            .collect();
+        let mut last = String::from("no address");
+        loop {
+            for a in &addrs {
+                let left = opts
+                    .connect_timeout
+                    .saturating_sub(started.elapsed())
+                    .max(Duration::from_millis(50));
+                match TcpStream::connect_timeout(a, left) {
+                    Ok(stream) => {
+                        stream.set_nodelay(true).ok();
+                        let mut client = Client {
+                            stream,
+                            opts: opts.clone(),
+                            next_id: 0,
+                            clock: Instant::now(),
+                            header: None,
+                            inbox: HashMap::new(),
+                            round_trips: 0,
+                            messages: 0,
+                        };
+                        // A connection can land in the backlog of a listening socket the server
+                        // is about to close (it re-creates it after each client): check that
+                        // the server answers a header-only message before using it.
+                        let wait = opts
+                            .connect_timeout
+                            .saturating_sub(started.elapsed())
+                            .max(Duration::from_millis(200));
+                        client.stream.set_read_timeout(Some(wait)).ok();
+                        match client.exchange(vec![]) {
+                            Ok(_) => return Ok(client),
+                            Err(ClientError::Timeout(_)) => {
+                                return Err(fail(format!(
+                                    "connected, but no answer within {:.1} s: another client is probably connected (the simulator serves one at a time)",
+                                    wait.as_secs_f64()
+                                )));
+                            }
+                            Err(
+                                e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
+                            ) => {
+                                last = format!(
+                                    "connection dropped at once ({e}): the server was re-creating its socket"
+                                )
+                            }
+                            Err(e) => return Err(e),
+                        }
+                    }
+                    Err(e) => last = e.to_string(),
+                }
+            }
+            if started.elapsed() + opts.retry_interval >= opts.connect_timeout {
+                return Err(fail(last));
+            }
+            std::thread::sleep(opts.retry_interval);
+        }
+    }
+
+    /// Blocking calls done so far (each is one round trip, however many commands it carried).
+    pub fn round_trips(&self) -> usize {
+        self.round_trips
+    }
+
+    /// Messages sent so far (including keep-alives).
+    pub fn messages(&self) -> usize {
+        self.messages
+    }
+
+    /// Header of the latest reply with a message ID other than -1 (like `simxGetInMessageInfo`).
+    pub fn last_header(&self) -> Option<MessageHeader> {
+        self.header
+    }
+
+    /// Whether the latest fresh reply header said the simulation is not stopped.
+    pub fn simulation_running(&self) -> Option<bool> {
+        self.header.map(|h| h.server_state & 1 != 0)
+    }
+
+    fn exchange(&mut self, blocks: Vec<Block>) -> Result<(i32, Message), ClientError> {
+        let id = self.next_id;
+        self.next_id = self.next_id.wrapping_add(1);
+        let header = MessageHeader {
+            message_id: id,
+            client_time: (self.clock.elapsed().as_millis() as i32) & 0x03FF_FFFF,
+            ..Default::default()
+        };
+        let bytes = Message { header, blocks }.encode();
+        write_message(&mut self.stream, &bytes, self.opts.max_packet_size)
+            .map_err(|e| map_io(e, self.opts.reply_timeout))?;
+        self.messages += 1;
+        let reply = Message::decode(
+            &read_message(&mut self.stream).map_err(|e| map_io(e, self.opts.reply_timeout))?,
+        )?;
+        if reply.header.message_id != -1 {
+            self.header = Some(reply.header);
+        }
+        Ok((id, reply))
+    }
+
+    /// Sends `commands` in one message and waits until every result has arrived; results in
+    /// command order. Commands of the same identity (e.g. several copy-pastes) are matched
+    /// in order.
+    pub fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, ClientError> {
+        let deadline = Instant::now() + self.opts.reply_timeout;
+        self.round_trips += 1;
+        let blocks: Vec<Block> = commands
+            .iter()
+            .map(|c| c.to_block(opmode::BLOCKING))
+            .collect();
+        let mut wanted: HashMap<(u16, Vec<u8>), std::collections::VecDeque<usize>> = HashMap::new();
+        for (i, b) in blocks.iter().enumerate() {
+            wanted
+                .entry((b.raw_id(), b.id_data.clone()))
+                .or_default()
+                .push_back(i);
+        }
+        let mut got: Vec<Option<Reply>> = vec![None; blocks.len()];
+        let mut missing = blocks.len();
+        self.stream
+            .set_read_timeout(Some(self.opts.reply_timeout))
+            .map_err(|e| ClientError::Wire(e.into()))?;
+        let (my_id, mut reply) = self.exchange(blocks)?;
+        loop {
+            let fresh =
+                reply.header.message_id != -1 && reply.header.message_id.wrapping_sub(my_id) >= 0;
+            for b in reply.blocks {
+                let key = (b.raw_id(), b.id_data);
+                match wanted
+                    .get_mut(&key)
+                    .filter(|_| fresh)
+                    .and_then(|q| q.pop_front())
+                {
+                    Some(slot) => {
+                        got[slot] = Some(Reply {
+                            remote_error: b.status & 1 != 0,
+                            data: b.data,
+                        });
+                        missing -= 1;
+                    }
+                    None => {
+                        let b = Block {
+                            id_data: key.1.clone(),
+                            ..b
+                        };
+                        self.inbox.insert(key, b);
+                    }
+                }
+            }
+            if missing == 0 {
+                if std::env::var_os("VREP_MAZE_TRACE").is_some() {
+                    eprintln!(
+                        "legacy: call of {} command(s) answered in {:.1} ms (message {my_id}, {} messages so far)",
+                        got.len(),
+                        (Instant::now() + self.opts.reply_timeout - deadline).as_secs_f64()
+                            * 1000.0,
+                        self.messages
+                    );
+                }
+                return Ok(got.into_iter().flatten().collect());
+            }
+            let now = Instant::now();
+            if now >= deadline {
+                return Err(ClientError::Timeout(self.opts.reply_timeout.as_secs_f64()));
+            }
+            std::thread::sleep(self.opts.poll_interval.min(deadline - now));
+            self.stream
+                .set_read_timeout(Some(
+                    deadline
+                        .saturating_duration_since(Instant::now())
+                        .max(Duration::from_millis(1)),
+                ))
+                .map_err(|e| ClientError::Wire(e.into()))?;
+            reply = self.exchange(vec![])?.1;
+        }
+    }
+
+    /// One blocking command.
+    pub fn call1(&mut self, command: Command) -> Result<Reply, ClientError> {
+        Ok(self.call(std::slice::from_ref(&command))?.remove(0))
+    }
+
+    /// Sends `commands` in oneshot mode in one message without waiting for their results
+    /// (they land in the inbox, see [`Client::take_inbox`]).
+    pub fn oneshot(&mut self, commands: &[Command]) -> Result<(), ClientError> {
+        self.stream
+            .set_read_timeout(Some(self.opts.reply_timeout))
+            .map_err(|e| ClientError::Wire(e.into()))?;
+        let blocks = commands
+            .iter()
+            .map(|c| c.to_block(opmode::ONESHOT))
+            .collect();
+        let (_, reply) = self.exchange(blocks)?;
+        for b in reply.blocks {
+            self.inbox.insert((b.raw_id(), b.id_data.clone()), b);
+        }
+        Ok(())
+    }
+
+    /// Removes and returns the latest reply received for the identity of `command`
+    /// (`simx_opmode_buffer` + remove).
+    pub fn take_inbox(&mut self, command: &Command) -> Option<Reply> {
+        let b = command.to_block(0);
+        self.inbox.remove(&(b.raw_id(), b.id_data)).map(|b| Reply {
+            remote_error: b.status & 1 != 0,
+            data: b.data,
+        })
+    }
+
+    /// Sends the kill block, reads the final reply (briefly) and closes the socket ourselves.
+    pub fn close(mut self) -> Result<(), ClientError> {
+        self.stream
+            .set_read_timeout(Some(Duration::from_millis(500)))
+            .ok();
+        let r = self
+            .exchange(vec![Command::KillConnection.to_block(opmode::ONESHOT)])
+            .map(|_| ());
+        let _ = self.stream.shutdown(Shutdown::Both);
+        r
+    }
+}
+
+fn map_io(e: WireError, timeout: Duration) -> ClientError {
+    match e {
+        WireError::Io(io) => match io.kind() {
+            std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut => {
+                ClientError::Timeout(timeout.as_secs_f64())
+            }
+            std::io::ErrorKind::UnexpectedEof
+            | std::io::ErrorKind::ConnectionReset
+            | std::io::ErrorKind::ConnectionAborted
+            | std::io::ErrorKind::BrokenPipe => ClientError::Closed,
+            _ => ClientError::Wire(WireError::Io(io)),
+        },
+        other => ClientError::Wire(other),
+    }
+}

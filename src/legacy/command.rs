@@ -1,0 +1,558 @@
+//! Command IDs, operation modes and the payload encodings of the commands we use.
+
+use super::wire::Block;
+
+/// Raw command IDs (`simx_cmd_*`).
+pub mod id {
+    /// `simx_cmd_kill_connection`.
+    pub const KILL_CONNECTION: u16 = 0x000A;
+    /// `simx_cmd_start_pause_stop_simulation` (ID data 0 start, 1 pause, 2 stop).
+    pub const START_PAUSE_STOP_SIMULATION: u16 = 0x1007;
+    /// `simx_cmd_get_object_parent`.
+    pub const GET_OBJECT_PARENT: u16 = 0x1012;
+    /// `simx_cmd_get_object_orientation` (old 4-byte form).
+    pub const GET_OBJECT_ORIENTATION_OLD: u16 = 0x1018;
+    /// `simx_cmd_get_object_position` (old 4-byte form).
+    pub const GET_OBJECT_POSITION_OLD: u16 = 0x1019;
+    /// `simx_cmd_set_object_orientation`.
+    pub const SET_OBJECT_ORIENTATION: u16 = 0x101A;
+    /// `simx_cmd_set_object_position`.
+    pub const SET_OBJECT_POSITION: u16 = 0x101B;
+    /// `simx_cmd_set_object_parent`.
+    pub const SET_OBJECT_PARENT: u16 = 0x101C;
+    /// `simx_cmd_get_integer_parameter`.
+    pub const GET_INTEGER_PARAMETER: u16 = 0x1021;
+    /// `simx_cmd_set_integer_parameter`.
+    pub const SET_INTEGER_PARAMETER: u16 = 0x1022;
+    /// `simx_cmd_remove_object`.
+    pub const REMOVE_OBJECT: u16 = 0x1028;
+    /// `simx_cmd_get_objects`.
+    pub const GET_OBJECTS: u16 = 0x102A;
+    /// `simx_cmd_copy_paste_objects`.
+    pub const COPY_PASTE_OBJECTS: u16 = 0x102E;
+    /// `simx_cmd_get_object_group_data`.
+    pub const GET_OBJECT_GROUP_DATA: u16 = 0x200C;
+    /// `simx_cmd_get_object_orientation2`.
+    pub const GET_OBJECT_ORIENTATION: u16 = 0x200D;
+    /// `simx_cmd_get_object_position2`.
+    pub const GET_OBJECT_POSITION: u16 = 0x200E;
+    /// `simx_cmd_get_object_handle`.
+    pub const GET_OBJECT_HANDLE: u16 = 0x3001;
+    /// `simx_cmd_get_object_quaternion`.
+    pub const GET_OBJECT_QUATERNION: u16 = 0x2801;
+    /// `simx_cmd_clear_integer_signal`.
+    pub const CLEAR_INTEGER_SIGNAL: u16 = 0x300E;
+    /// `simx_cmd_get_integer_signal`.
+    pub const GET_INTEGER_SIGNAL: u16 = 0x3011;
+    /// `simx_cmd_set_integer_signal`.
+    pub const SET_INTEGER_SIGNAL: u16 = 0x3014;
+}
+
+/// Operation modes (high bits of the `cmd` word).
+pub mod opmode {
+    /// Execute once, don't wait.
+    pub const ONESHOT: u32 = 0x00000;
+    /// Execute once and wait for the reply.
+    pub const BLOCKING: u32 = 0x10000;
+    /// Re-execute every pass.
+    pub const STREAMING: u32 = 0x20000;
+    /// Split transfer, once.
+    pub const ONESHOT_SPLIT: u32 = 0x30000;
+    /// Split transfer, streaming.
+    pub const STREAMING_SPLIT: u32 = 0x40000;
+    /// Stop a stream.
+    pub const DISCONTINUE: u32 = 0x50000;
+}
+
+/// `sim_appobj_object_type`: group data over all scene objects.
+pub const ALL_OBJECTS: i32 = 109;
+
+/// Group data types we use (`simxGetObjectGroupData` dataType).
+pub mod group {
+    /// Object names.
+    pub const NAMES: i32 = 0;
+    /// Object types.
+    pub const TYPES: i32 = 1;
+    /// Parent handles.
+    pub const PARENTS: i32 = 2;
+    /// Absolute positions.
+    pub const POSITIONS: i32 = 3;
+    /// Absolute position + Euler angles.
+    pub const POSES: i32 = 9;
+    /// Aliases.
+    pub const ALIASES: i32 = 20;
+}
+
+/// Simulation control for [`Command::Simulation`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SimControl {
+    /// Start (ID data 0).
+    Start = 0,
+    /// Pause (1).
+    Pause = 1,
+    /// Stop (2).
+    Stop = 2,
+}
+
+/// A typed request of the commands we implement (client builds, server decodes).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Command {
+    /// `simxGetObjectHandle(name)`.
+    GetObjectHandle(String),
+    /// `simxGetObjects(type)` (-2 = all).
+    GetObjects(i32),
+    /// `simxGetObjectGroupData(objectType, dataType)`.
+    GetObjectGroupData {
+        /// 109 = all objects, else an object type.
+        object_type: i32,
+        /// Data type (see [`group`]).
+        data_type: i32,
+    },
+    /// `simxGetObjectParent(handle)`.
+    GetObjectParent(i32),
+    /// `simxSetObjectParent(handle, parent, keepInPlace)`.
+    SetObjectParent {
+        /// Object.
+        handle: i32,
+        /// New parent, -1 = none.
+        parent: i32,
+        /// Keep the world pose.
+        keep_in_place: bool,
+    },
+    /// `simxCopyPasteObjects(handles)` (sent with the do-not-overwrite bit).
+    CopyPaste(Vec<i32>),
+    /// `simxSetObjectPosition(handle, rel, xyz)`.
+    SetPosition {
+        /// Object.
+        handle: i32,
+        /// Reference frame (-1 world, -11 parent, or a handle).
+        relative_to: i32,
+        /// Position.
+        xyz: [f32; 3],
+    },
+    /// `simxGetObjectPosition(handle, rel)`.
+    GetPosition {
+        /// Object.
+        handle: i32,
+        /// Reference frame.
+        relative_to: i32,
+    },
+    /// `simxSetObjectOrientation(handle, rel, euler)`.
+    SetOrientation {
+        /// Object.
+        handle: i32,
+        /// Reference frame.
+        relative_to: i32,
+        /// Euler angles.
+        euler: [f32; 3],
+    },
+    /// `simxGetObjectOrientation(handle, rel)`.
+    GetOrientation {
+        /// Object.
+        handle: i32,
+        /// Reference frame.
+        relative_to: i32,
+    },
+    /// `simxGetObjectQuaternion(handle, rel)`: reply x, y, z, w.
+    GetQuaternion {
+        /// Object.
+        handle: i32,
+        /// Reference frame.
+        relative_to: i32,
+    },
+    /// `simxRemoveObject(handle)`.
+    RemoveObject(i32),
+    /// `simxGetIntegerParameter(param)`.
+    GetIntParam(i32),
+    /// `simxSetIntegerParameter(param, value)`.
+    SetIntParam(i32, i32),
+    /// `simxStart/Pause/StopSimulation`.
+    Simulation(SimControl),
+    /// `simxGetIntegerSignal(name)`.
+    GetIntSignal(String),
+    /// `simxSetIntegerSignal(name, value)`.
+    SetIntSignal(String, i32),
+    /// `simxClearIntegerSignal(name)`.
+    ClearIntSignal(String),
+    /// The kill block `simxFinish` sends.
+    KillConnection,
+}
+
+fn cstr(s: &str) -> Vec<u8> {
+    let mut b: Vec<u8> = s.bytes().filter(|&c| c != 0).collect();
+    b.push(0);
+    b
+}
+
+fn i32s(values: &[i32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+fn f32s(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// Reads the `n`-th little-endian i32 of `b`.
+pub fn read_i32(b: &[u8], n: usize) -> Option<i32> {
+    b.get(n * 4..n * 4 + 4)
+        .map(|s| i32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+}
+
+/// Reads three f32 from `b` starting at byte `at`.
+pub fn read_f32x3(b: &[u8], at: usize) -> Option<[f32; 3]> {
+    let f = |k: usize| {
+        b.get(at + 4 * k..at + 4 * k + 4)
+            .map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    };
+    Some([f(0)?, f(1)?, f(2)?])
+}
+
+impl Command {
+    /// Raw command ID.
+    pub fn raw_id(&self) -> u16 {
+        use Command::*;
+        match self {
+            GetObjectHandle(_) => id::GET_OBJECT_HANDLE,
+            GetObjects(_) => id::GET_OBJECTS,
+            GetObjectGroupData { .. } => id::GET_OBJECT_GROUP_DATA,
+            GetObjectParent(_) => id::GET_OBJECT_PARENT,
+            SetObjectParent { .. } => id::SET_OBJECT_PARENT,
+            CopyPaste(_) => id::COPY_PASTE_OBJECTS,
+            SetPosition { .. } => id::SET_OBJECT_POSITION,
+            GetPosition { .. } => id::GET_OBJECT_POSITION,
+            SetOrientation { .. } => id::SET_OBJECT_ORIENTATION,
+            GetOrientation { .. } => id::GET_OBJECT_ORIENTATION,
+            GetQuaternion { .. } => id::GET_OBJECT_QUATERNION,
+            RemoveObject(_) => id::REMOVE_OBJECT,
+            GetIntParam(_) => id::GET_INTEGER_PARAMETER,
+            SetIntParam(..) => id::SET_INTEGER_PARAMETER,
+            Simulation(_) => id::START_PAUSE_STOP_SIMULATION,
+            GetIntSignal(_) => id::GET_INTEGER_SIGNAL,
+            SetIntSignal(..) => id::SET_INTEGER_SIGNAL,
+            ClearIntSignal(_) => id::CLEAR_INTEGER_SIGNAL,
+            KillConnection => id::KILL_CONNECTION,
+        }
+    }
+
+    /// The request block in operation mode `opmode` (identification data + pure data as the C
+    /// client encodes them).
+    pub fn to_block(&self, opmode: u32) -> Block {
+        use Command::*;
+        let (id_data, data, status) = match self {
+            GetObjectHandle(name) | GetIntSignal(name) | ClearIntSignal(name) => {
+                (cstr(name), vec![], 0)
+            }
+            SetIntSignal(name, v) => (cstr(name), i32s(&[*v]), 0),
+            GetObjects(t) => (i32s(&[*t]), vec![], 0),
+            GetObjectGroupData {
+                object_type,
+                data_type,
+            } => (i32s(&[*object_type, *data_type]), vec![], 0),
+            GetObjectParent(h) | RemoveObject(h) | GetIntParam(h) => (i32s(&[*h]), vec![], 0),
+            SetObjectParent {
+                handle,
+                parent,
+                keep_in_place,
+            } => {
+                let mut d = i32s(&[*parent]);
+                d.push(*keep_in_place as u8);
+                (i32s(&[*handle]), d, 0)
+            }
+            CopyPaste(hs) => (i32s(&[0]), i32s(hs), 1),
+            SetPosition {
+                handle,
+                relative_to,
+                xyz: v,
+            }
+            | SetOrientation {
+                handle,
+                relative_to,
+                euler: v,
+            } => {
+                let mut d = i32s(&[*relative_to]);
+                d.extend(f32s(v));
+                (i32s(&[*handle]), d, 0)
+            }
+            GetPosition {
+                handle,
+                relative_to,
+            }
+            | GetOrientation {
+                handle,
+                relative_to,
+            }
+            | GetQuaternion {
+                handle,
+                relative_to,
+            } => (i32s(&[*handle, *relative_to]), vec![], 0),
+            SetIntParam(p, v) => (i32s(&[*p]), i32s(&[*v]), 0),
+            Simulation(c) => (i32s(&[*c as i32]), vec![], 0),
+            KillConnection => (vec![], i32s(&[0]), 0),
+        };
+        Block {
+            cmd: self.raw_id() as u32 | opmode,
+            delay: 0,
+            sim_time: 0,
+            status,
+            id_data,
+            data,
+            split: None,
+        }
+    }
+
+    /// Decodes a request block (server side). `None` for commands we do not implement or
+    /// malformed payloads.
+    pub fn from_block(b: &Block) -> Option<Command> {
+        let idn = |n| read_i32(&b.id_data, n);
+        let dn = |n| read_i32(&b.data, n);
+        let name = |b: &Block| {
+            b.id_data
+                .strip_suffix(&[0])
+                .map(|s| String::from_utf8_lossy(s).into_owned())
+        };
+        Some(match b.raw_id() {
+            id::GET_OBJECT_HANDLE => {
+                let s = b.id_data.strip_suffix(&[0])?;
+                Command::GetObjectHandle(String::from_utf8_lossy(s).into_owned())
+            }
+            id::GET_INTEGER_SIGNAL => Command::GetIntSignal(name(b)?),
+            id::SET_INTEGER_SIGNAL => Command::SetIntSignal(name(b)?, dn(0)?),
+            id::CLEAR_INTEGER_SIGNAL => Command::ClearIntSignal(name(b)?),
+            id::GET_OBJECTS => Command::GetObjects(idn(0)?),
+            id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData {
+                object_type: idn(0)?,
+                data_type: idn(1)?,
+            },
+            id::GET_OBJECT_PARENT => Command::GetObjectParent(idn(0)?),
+            id::SET_OBJECT_PARENT => Command::SetObjectParent {
+                handle: idn(0)?,
+                parent: dn(0)?,
+                keep_in_place: *b.data.get(4)? != 0,
+            },
+            id::COPY_PASTE_OBJECTS => Command::CopyPaste(
+                b.data
+                    .chunks_exact(4)
+                    .map(|c| i32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+                    .collect(),
+            ),
+            id::SET_OBJECT_POSITION => Command::SetPosition {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+                xyz: read_f32x3(&b.data, 4)?,
+            },
+            id::SET_OBJECT_ORIENTATION => Command::SetOrientation {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+                euler: read_f32x3(&b.data, 4)?,
+            },
+            id::GET_OBJECT_POSITION => Command::GetPosition {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_ORIENTATION => Command::GetOrientation {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_QUATERNION => Command::GetQuaternion {
+                handle: idn(0)?,
+                relative_to: idn(1)?,
+            },
+            id::GET_OBJECT_POSITION_OLD => Command::GetPosition {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+            },
+            id::GET_OBJECT_ORIENTATION_OLD => Command::GetOrientation {
+                handle: idn(0)?,
+                relative_to: dn(0)?,
+            },
+            id::REMOVE_OBJECT => Command::RemoveObject(idn(0)?),
+            id::GET_INTEGER_PARAMETER => Command::GetIntParam(idn(0)?),
+            id::SET_INTEGER_PARAMETER => Command::SetIntParam(idn(0)?, dn(0)?),
+            id::START_PAUSE_STOP_SIMULATION => Command::Simulation(match idn(0)? {
+                0 => SimControl::Start,
+                1 => SimControl::Pause,
+                2 => SimControl::Stop,
+                _ => return None,
+            }),
+            id::KILL_CONNECTION => Command::KillConnection,
+            _ => return None,
+        })
+    }
+}
+
+/// Group data as returned by `simxGetObjectGroupData`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GroupData {
+    /// Object handles.
+    pub handles: Vec<i32>,
+    /// Integer data (per object, in handle order).
+    pub ints: Vec<i32>,
+    /// Float data.
+    pub floats: Vec<f32>,
+    /// String data.
+    pub strings: Vec<String>,
+}
+
+impl GroupData {
+    /// Encodes the reply payload.
+    pub fn encode(&self) -> Vec<u8> {
+        let mut out = i32s(&[
+            self.handles.len() as i32,
+            self.ints.len() as i32,
+            self.floats.len() as i32,
+            self.strings.len() as i32,
+        ]);
+        out.extend(i32s(&self.handles));
+        out.extend(i32s(&self.ints));
+        out.extend(f32s(&self.floats));
+        for s in &self.strings {
+            out.extend_from_slice(s.as_bytes());
+            out.push(0);
+        }
+        out
+    }
+
+    /// Decodes a reply payload; `None` when sizes do not add up.
+    pub fn decode(b: &[u8]) -> Option<GroupData> {
+        let count = |n| {
+            read_i32(b, n)
+                .and_then(|v| usize::try_from(v).ok())
+                .filter(|&v| v <= b.len())
+        };
+        let (nh, ni, nf, ns) = (count(0)?, count(1)?, count(2)?, count(3)?);
+        let ints_at = |from: usize, n: usize| -> Option<Vec<i32>> {
+            (0..n).map(|k| read_i32(b, from + k)).collect()
+        };
+        let handles = ints_at(4, nh)?;
+        let ints = ints_at(4 + nh, ni)?;
+        let fl_at = (4 + nh + ni) * 4;
+        let floats = (0..nf)
+            .map(|k| {
+                b.get(fl_at + 4 * k..fl_at + 4 * k + 4)
+                    .map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+            })
+            .collect::<Option<Vec<f32>>>()?;
+        let mut rest = b.get(fl_at + 4 * nf..)?;
+        let mut strings = Vec::with_capacity(ns);
+        for _ in 0..ns {
+            let end = rest.iter().position(|&c| c == 0)?;
+            strings.push(String::from_utf8_lossy(&rest[..end]).into_owned());
+            rest = &rest[end + 1..];
+        }
+        Some(GroupData {
+            handles,
+            ints,
+            floats,
+            strings,
+        })
+    }
+}
+
+/// Decodes a copy-paste reply (count + handles).
+pub fn decode_handle_list(b: &[u8]) -> Option<Vec<i32>> {
+    let n = usize::try_from(read_i32(b, 0)?).ok()?;
+    if b.len() != 4 + 4 * n {
+        return None;
+    }
+    (1..=n).map(|k| read_i32(b, k)).collect()
+}
+
+/// Encodes a handle list reply.
+pub fn encode_handle_list(handles: &[i32]) -> Vec<u8> {
+    let mut out = i32s(&[handles.len() as i32]);
+    out.extend(i32s(handles));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn commands_round_trip_through_blocks() {
+        let all = [
+            Command::GetObjectHandle("Floor".into()),
+            Command::GetObjects(-2),
+            Command::GetObjectGroupData {
+                object_type: 109,
+                data_type: 9,
+            },
+            Command::GetObjectParent(3),
+            Command::SetObjectParent {
+                handle: 3,
+                parent: -1,
+                keep_in_place: true,
+            },
+            Command::CopyPaste(vec![1, 2, 3]),
+            Command::SetPosition {
+                handle: 1,
+                relative_to: -1,
+                xyz: [0.1, 0.2, 0.3],
+            },
+            Command::GetPosition {
+                handle: 1,
+                relative_to: 5,
+            },
+            Command::SetOrientation {
+                handle: 1,
+                relative_to: 4,
+                euler: [0.0, 1.0, 2.0],
+            },
+            Command::GetOrientation {
+                handle: 1,
+                relative_to: -11,
+            },
+            Command::GetQuaternion {
+                handle: 2,
+                relative_to: -1,
+            },
+            Command::RemoveObject(9),
+            Command::GetIntParam(26),
+            Command::SetIntParam(26, 0),
+            Command::Simulation(SimControl::Stop),
+            Command::GetIntSignal("s".into()),
+            Command::SetIntSignal("vrep-maze".into(), 8),
+            Command::ClearIntSignal("x".into()),
+            Command::KillConnection,
+        ];
+        for c in all {
+            let b = c.to_block(opmode::BLOCKING);
+            assert_eq!(Command::from_block(&b).as_ref(), Some(&c));
+        }
+        let cp = Command::CopyPaste(vec![5]).to_block(0);
+        assert_eq!(cp.status, 1, "copy-paste is sent with do-not-overwrite");
+        let sp = Command::SetObjectParent {
+            handle: 3,
+            parent: 7,
+            keep_in_place: false,
+        }
+        .to_block(0);
+        assert_eq!(sp.data, [7, 0, 0, 0, 0]);
+    }
+
+    #[test]
+    fn group_data_round_trip() {
+        let g = GroupData {
+            handles: vec![1, 2],
+            ints: vec![-1, 1],
+            floats: vec![0.5; 6],
+            strings: vec!["Floor".into(), "Line0".into()],
+        };
+        assert_eq!(GroupData::decode(&g.encode()), Some(g));
+        assert_eq!(
+            decode_handle_list(&encode_handle_list(&[4, 5])),
+            Some(vec![4, 5])
+        );
+        assert_eq!(decode_handle_list(&[1, 0, 0, 0]), None);
+    }
+
+    proptest! {
+        #[test]
+        fn payload_decoders_never_panic(b in proptest::collection::vec(any::<u8>(), 0..200)) {
+            let _ = GroupData::decode(&b);
+            let _ = decode_handle_list(&b);
+            let _ = read_f32x3(&b, 3);
+        }
+    }
+}

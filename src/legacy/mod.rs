@@ -1,0 +1,15 @@
+//! CoppeliaSim's legacy remote API (port 19997): wire format, command set, a native client,
+//! a protocol-faithful server over [`crate::sim`], and the drawing backend.
+//!
+//! Layers: [`wire`] (packets, message header, command blocks) → [`command`] (command IDs and
+//! payloads) → [`client`] / [`server`] → [`scene`] (the [`crate::draw::Scene`] implementation).
+
+pub mod client;
+pub mod command;
+pub mod scene;
+pub mod server;
+pub mod wire;
+
+pub use client::{Client, ClientError, ClientOptions, Reply};
+pub use scene::LegacyScene;
+pub use server::{ServerConfig, ServerHandle, spawn};

@@ -1,0 +1,288 @@
+//! The legacy remote API as a drawing backend: [`crate::draw::Scene`] over [`Client`].
+
+use std::time::{Duration, Instant};
+
+use super::client::{Client, ClientError, ClientOptions, Reply};
+use super::command::{
+    ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
+};
+use crate::draw::{Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Scene, SceneError, Survey};
+use crate::sim::INTPARAM_IDLE_FPS;
+
+/// A connected legacy remote API scene. Dropping it closes the connection cleanly.
+pub struct LegacyScene {
+    client: Option<Client>,
+    timeout: Duration,
+}
+
+impl From<ClientError> for SceneError {
+    fn from(e: ClientError) -> SceneError {
+        SceneError::Transport(e.to_string())
+    }
+}
+
+impl LegacyScene {
+    /// Connects to `host:port`, retrying for up to `timeout`, which is also the timeout of
+    /// each request.
+    pub fn connect(host: &str, port: u16, timeout: Duration) -> Result<LegacyScene, SceneError> {
+        let opts = ClientOptions {
+            connect_timeout: timeout,
+            reply_timeout: timeout,
+            ..Default::default()
+        };
+        let addr = if host.contains(':') && !host.starts_with('[') {
+            format!("[{host}]:{port}")
+        } else {
+            format!("{host}:{port}")
+        };
+        let client = Client::connect(addr, opts)?;
+        Ok(LegacyScene {
+            client: Some(client),
+            timeout,
+        })
+    }
+
+    /// Wraps a connected client.
+    pub fn new(client: Client, timeout: Duration) -> LegacyScene {
+        LegacyScene {
+            client: Some(client),
+            timeout,
+        }
+    }
+
+    fn client(&mut self) -> Result<&mut Client, SceneError> {
+        self.client
+            .as_mut()
+            .ok_or_else(|| SceneError::Transport("connection already closed".into()))
+    }
+
+    /// Sends the kill command and closes the socket.
+    pub fn close(mut self) -> Result<(), SceneError> {
+        match self.client.take() {
+            Some(c) => Ok(c.close()?),
+            None => Ok(()),
+        }
+    }
+
+    fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, SceneError> {
+        Ok(self.client()?.call(commands)?)
+    }
+}
+
+impl Drop for LegacyScene {
+    fn drop(&mut self) {
+        if let Some(c) = self.client.take() {
+            let _ = c.close();
+        }
+    }
+}
+
+fn group_commands() -> [Command; 3] {
+    [group::NAMES, group::PARENTS, group::POSES].map(|data_type| Command::GetObjectGroupData {
+        object_type: ALL_OBJECTS,
+        data_type,
+    })
+}
+
+fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, SceneError> {
+    let bad = |what: &str| SceneError::Transport(format!("malformed group data reply ({what})"));
+    if replies.iter().any(|r| r.remote_error) {
+        return Err(SceneError::Remote(
+            "reading the object list (group data) failed".into(),
+        ));
+    }
+    let decode = |r: &Reply| GroupData::decode(&r.data).ok_or_else(|| bad("sizes"));
+    let (names, parents, poses) = (
+        decode(&replies[0])?,
+        decode(&replies[1])?,
+        decode(&replies[2])?,
+    );
+    let n = names.handles.len();
+    if names.strings.len() != n
+        || parents.ints.len() != n
+        || poses.floats.len() != 6 * n
+        || parents.handles != names.handles
+        || poses.handles != names.handles
+    {
+        return Err(bad("counts"));
+    }
+    Ok((0..n)
+        .map(|i| {
+            let f = |k: usize| poses.floats[6 * i + k] as f64;
+            ObjectInfo {
+                handle: names.handles[i],
+                name: names.strings[i].clone(),
+                parent: (parents.ints[i] >= 0).then_some(parents.ints[i]),
+                position: [f(0), f(1), f(2)],
+                orientation: [f(3), f(4), f(5)],
+            }
+        })
+        .collect())
+}
+
+impl Scene for LegacyScene {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError> {
+        let mut cmds: Vec<Command> = names
+            .iter()
+            .map(|n| Command::GetObjectHandle(n.to_string()))
+            .collect();
+        cmds.push(Command::GetIntParam(INTPARAM_IDLE_FPS));
+        cmds.push(Command::GetIntSignal(SAVED_IDLE_FPS_SIGNAL.into()));
+        cmds.extend(group_commands());
+        let r = self.call(&cmds)?;
+        let k = names.len();
+        let handles = r[..k]
+            .iter()
+            .map(|r| {
+                if r.remote_error {
+                    None
+                } else {
+                    read_i32(&r.data, 0).filter(|&h| h >= 0)
+                }
+            })
+            .collect();
+        let idle_fps = if r[k].remote_error {
+            8
+        } else {
+            read_i32(&r[k].data, 0).unwrap_or(8)
+        };
+        let saved_idle_fps = if r[k + 1].remote_error {
+            None
+        } else {
+            read_i32(&r[k + 1].data, 0)
+        };
+        let objects = parse_objects(&r[k + 2..])?;
+        let simulation_running = self.client()?.simulation_running().unwrap_or(false);
+        Ok(Survey {
+            handles,
+            objects,
+            idle_fps,
+            saved_idle_fps,
+            simulation_running,
+        })
+    }
+
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+        let r = self.call(&group_commands())?;
+        parse_objects(&r)
+    }
+
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError> {
+        let cmds: Vec<Command> = groups
+            .iter()
+            .map(|g| Command::CopyPaste(g.clone()))
+            .collect();
+        let r = self.call(&cmds)?;
+        groups
+            .iter()
+            .zip(r)
+            .map(|(g, r)| match decode_handle_list(&r.data) {
+                Some(new) if !r.remote_error && new.len() == g.len() => Ok(new),
+                _ => Err(SceneError::Remote(format!(
+                    "copy-paste of {} object(s) failed",
+                    g.len()
+                ))),
+            })
+            .collect()
+    }
+
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError> {
+        let mut cmds = Vec::with_capacity(edits.len() * 2);
+        let mut what = Vec::with_capacity(edits.len() * 2);
+        let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
+        for e in edits {
+            match *e {
+                Edit::SetParent {
+                    handle,
+                    parent,
+                    keep_in_place,
+                } => {
+                    cmds.push(Command::SetObjectParent {
+                        handle,
+                        parent: parent.unwrap_or(-1),
+                        keep_in_place,
+                    });
+                    what.push(format!("set the parent of object {handle}"));
+                }
+                Edit::SetPose {
+                    handle,
+                    relative_to,
+                    position,
+                    orientation,
+                } => {
+                    cmds.push(Command::SetPosition {
+                        handle,
+                        relative_to,
+                        xyz: f(position),
+                    });
+                    cmds.push(Command::SetOrientation {
+                        handle,
+                        relative_to,
+                        euler: f(orientation),
+                    });
+                    what.push(format!("set the position of object {handle}"));
+                    what.push(format!("set the orientation of object {handle}"));
+                }
+                Edit::Remove(handle) => {
+                    cmds.push(Command::RemoveObject(handle));
+                    what.push(format!("remove object {handle}"));
+                }
+            }
+        }
+        let r = self.call(&cmds)?;
+        let failed: Vec<&str> = r
+            .iter()
+            .zip(&what)
+            .filter(|(r, _)| r.remote_error)
+            .map(|(_, w)| w.as_str())
+            .collect();
+        if failed.is_empty() {
+            Ok(())
+        } else {
+            Err(SceneError::Remote(format!(
+                "{} of {} edits failed: {}",
+                failed.len(),
+                what.len(),
+                failed.join("; ")
+            )))
+        }
+    }
+
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
+        let record = match saved {
+            Some(v) => Command::SetIntSignal(SAVED_IDLE_FPS_SIGNAL.into(), v),
+            None => Command::ClearIntSignal(SAVED_IDLE_FPS_SIGNAL.into()),
+        };
+        // record first: if setting the rate fails, the record still tells the next run
+        let r = self.call(&[record, Command::SetIntParam(INTPARAM_IDLE_FPS, fps)])?;
+        if r[1].remote_error {
+            Err(SceneError::Remote(format!(
+                "setting the idle rate to {fps} fps"
+            )))
+        } else {
+            Ok(())
+        }
+    }
+
+    fn stop_simulation(&mut self) -> Result<(), SceneError> {
+        let deadline = Instant::now() + self.timeout;
+        self.client()?
+            .call1(Command::Simulation(SimControl::Stop))?;
+        loop {
+            // the state bit of a reply is stamped before the pass executes, so ask again
+            let c = self.client()?;
+            c.call1(Command::GetIntParam(crate::sim::INTPARAM_PROGRAM_VERSION))?;
+            if c.simulation_running() == Some(false) {
+                return Ok(());
+            }
+            if Instant::now() > deadline {
+                return Err(SceneError::Remote("the simulation did not stop".into()));
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+
+    fn round_trips(&self) -> usize {
+        self.client.as_ref().map(Client::round_trips).unwrap_or(0)
+    }
+}

@@ -1,0 +1,139 @@
+//! The in-memory scene model behind every emulated CoppeliaSim server (protocol-neutral).
+//!
+//! [`Scene`] holds the objects; [`Simulator`] adds what a running CoppeliaSim has around the
+//! scene: the simulation state (changes made while running are undone on stop), the idle
+//! main-loop rate (`sim_intparam_idle_fps`) and integer parameters.
+
+pub mod frame;
+pub mod scene;
+pub mod svg;
+
+pub use scene::{
+    HANDLE_PARENT, HANDLE_WORLD, NamingMode, NewObject, Object, ObjectType, Scene, SimError,
+};
+
+/// `sim_intparam_program_version`.
+pub const INTPARAM_PROGRAM_VERSION: i32 = 1;
+/// `sim_intparam_idle_fps`.
+pub const INTPARAM_IDLE_FPS: i32 = 26;
+/// The program version we report (CoppeliaSim 4.5.1).
+pub const PROGRAM_VERSION: i32 = 40501;
+/// CoppeliaSim's default idle rate.
+pub const DEFAULT_IDLE_FPS: i32 = 8;
+
+/// Simulation state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SimState {
+    /// Stopped: edits persist.
+    Stopped,
+    /// Running: edits are undone on stop.
+    Running,
+    /// Paused (counts as "not stopped").
+    Paused,
+}
+
+/// A simulator: scene + simulation state + idle rate.
+#[derive(Debug, Clone)]
+pub struct Simulator {
+    /// The current scene.
+    pub scene: Scene,
+    /// Main-loop passes per second while the simulation is not running (0 = as fast as possible).
+    pub idle_fps: i32,
+    /// Simulation state.
+    pub state: SimState,
+    /// Scene as it was when the simulation started (restored on stop).
+    saved: Option<Scene>,
+    /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
+    pub int_signals: std::collections::BTreeMap<String, i32>,
+}
+
+impl Simulator {
+    /// A stopped simulator over `scene` with the given idle rate.
+    pub fn new(scene: Scene, idle_fps: i32) -> Simulator {
+        Simulator {
+            scene,
+            idle_fps,
+            state: SimState::Stopped,
+            saved: None,
+            int_signals: Default::default(),
+        }
+    }
+
+    /// Starts (or resumes) the simulation. Returns false if it is already running.
+    pub fn start(&mut self) -> bool {
+        match self.state {
+            SimState::Stopped => {
+                self.saved = Some(self.scene.clone());
+                self.state = SimState::Running;
+                true
+            }
+            SimState::Paused => {
+                self.state = SimState::Running;
+                true
+            }
+            SimState::Running => false,
+        }
+    }
+
+    /// Pauses a running simulation. Returns false if it is not running.
+    pub fn pause(&mut self) -> bool {
+        if self.state == SimState::Running {
+            self.state = SimState::Paused;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Stops the simulation, undoing every change made since it started.
+    /// Returns false if it was already stopped.
+    pub fn stop(&mut self) -> bool {
+        if self.state == SimState::Stopped {
+            return false;
+        }
+        if let Some(saved) = self.saved.take() {
+            self.scene = saved;
+        }
+        self.state = SimState::Stopped;
+        true
+    }
+
+    /// `simGetInt32Param` for the parameters we model.
+    pub fn int_param(&self, id: i32) -> Option<i32> {
+        match id {
+            INTPARAM_PROGRAM_VERSION => Some(PROGRAM_VERSION),
+            INTPARAM_IDLE_FPS => Some(self.idle_fps),
+            _ => None,
+        }
+    }
+
+    /// `simSetInt32Param`; only the idle rate is writable (0..=1000).
+    pub fn set_int_param(&mut self, id: i32, value: i32) -> bool {
+        if id == INTPARAM_IDLE_FPS && (0..=1000).contains(&value) {
+            self.idle_fps = value;
+            true
+        } else {
+            false
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn changes_while_running_are_undone() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let line = sim.scene.resolve("Line").unwrap();
+        assert!(sim.start());
+        sim.scene.copy_paste(&[line]).unwrap();
+        assert_eq!(sim.scene.len(), 6);
+        assert!(sim.stop());
+        assert_eq!(sim.scene.len(), 5);
+        assert!(!sim.stop());
+        assert!(sim.set_int_param(INTPARAM_IDLE_FPS, 0));
+        assert_eq!(sim.int_param(INTPARAM_IDLE_FPS), Some(0));
+        assert!(!sim.set_int_param(INTPARAM_PROGRAM_VERSION, 3));
+    }
+}

@@ -1,0 +1,672 @@
+//! The scene: objects with handle, name, alias, type, parent, local pose, size and colour.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::frame::{Frame, frame, position_euler};
+
+/// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.
+pub const HANDLE_WORLD: i32 = -1;
+/// `sim_handle_parent`: relative to the object's parent frame.
+pub const HANDLE_PARENT: i32 = -11;
+
+/// Errors of scene operations (each maps to a remote error on the wire).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// No object has this handle (never existed or removed).
+    #[error("object handle {0} does not exist")]
+    NoSuchHandle(i32),
+    /// No object has this name or path.
+    #[error("object '{0}' does not exist")]
+    NoSuchName(String),
+    /// The parent would create a cycle.
+    #[error("object {child} cannot be made a child of {parent} (cycle)")]
+    Cycle {
+        /// The object being re-parented.
+        child: i32,
+        /// The requested parent.
+        parent: i32,
+    },
+    /// A scene file could not be read.
+    #[error("invalid scene file: {0}")]
+    BadScene(String),
+}
+
+/// Object types we model, with CoppeliaSim's `sim_object_*_type` codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ObjectType {
+    /// A shape (planes, the floor): code 0.
+    Shape,
+    /// A dummy (the `Maze` anchor): code 4.
+    Dummy,
+}
+
+impl ObjectType {
+    /// CoppeliaSim's numeric type code.
+    pub fn code(self) -> i32 {
+        match self {
+            ObjectType::Shape => 0,
+            ObjectType::Dummy => 4,
+        }
+    }
+}
+
+/// How pasted copies are named.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NamingMode {
+    /// What CoppeliaSim 4.5.1 was observed to do: `Line` -> `Line0`, `Line1` -> `Line2`,
+    /// counting up from the original's number suffix (or 0) to the first free name.
+    #[default]
+    Plain,
+    /// The `Line#0`, `Line#1` form found in the CoppeliaSim 4.x core sources.
+    Hash,
+}
+
+/// One scene object. The pose is local (relative to the parent, or the world without parent).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Object {
+    /// Unique handle; handles only increase and are never reused.
+    pub handle: i32,
+    /// Old-style unique name (what `simxGetObjectHandle` and group data type 0 see).
+    pub name: String,
+    /// Alias (path component); copies keep the original's alias.
+    pub alias: String,
+    /// Object type.
+    #[serde(rename = "type")]
+    pub kind: ObjectType,
+    /// Parent handle, `None` at the scene root.
+    pub parent: Option<i32>,
+    /// Position relative to the parent (metres).
+    pub position: [f64; 3],
+    /// Euler angles relative to the parent (radians, CoppeliaSim convention).
+    pub orientation: [f64; 3],
+    /// Bounding size x, y, z (metres).
+    pub size: [f64; 3],
+    /// Colour as RGB bytes.
+    pub colour: [u8; 3],
+}
+
+impl Object {
+    /// The local frame (relative to the parent).
+    pub fn local(&self) -> Frame {
+        frame(self.position, self.orientation)
+    }
+}
+
+/// An in-memory scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Scene {
+    objects: BTreeMap<i32, Object>,
+    next_handle: i32,
+    /// Naming of pasted copies.
+    pub naming: NamingMode,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene::empty()
+    }
+}
+
+/// Arguments of [`Scene::add`] besides the name.
+#[derive(Debug, Clone)]
+pub struct NewObject {
+    /// Object type.
+    pub kind: ObjectType,
+    /// Parent handle.
+    pub parent: Option<i32>,
+    /// Local position.
+    pub position: [f64; 3],
+    /// Local Euler angles.
+    pub orientation: [f64; 3],
+    /// Size.
+    pub size: [f64; 3],
+    /// Colour.
+    pub colour: [u8; 3],
+}
+
+impl Scene {
+    /// A scene without objects.
+    pub fn empty() -> Scene {
+        Scene {
+            objects: BTreeMap::new(),
+            next_handle: 10,
+            naming: NamingMode::Plain,
+        }
+    }
+
+    /// The course scene of `course-scene.md`: `Floor` (10 m x 10 m), dummy `Maze`, green `Line`
+    /// (0.6 x 0.1 at z 0.001), blue `Start` and red `End` (1 x 1 at z 0.002).
+    pub fn course() -> Scene {
+        let mut s = Scene::empty();
+        let shape = |position, size, colour| NewObject {
+            kind: ObjectType::Shape,
+            parent: None,
+            position,
+            orientation: [0.0; 3],
+            size,
+            colour,
+        };
+        s.add(
+            "Floor",
+            shape([0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [128, 128, 128]),
+        );
+        s.add(
+            "Maze",
+            NewObject {
+                kind: ObjectType::Dummy,
+                size: [0.01; 3],
+                ..shape([0.0; 3], [0.0; 3], [255, 255, 0])
+            },
+        );
+        s.add(
+            "Line",
+            shape([0.0, -5.5, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]),
+        );
+        s.add(
+            "Start",
+            shape([-1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]),
+        );
+        s.add(
+            "End",
+            shape([1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]),
+        );
+        s
+    }
+
+    /// Reads a scene from JSON (the format of [`Scene::to_json`] or of a `--dump` file).
+    pub fn from_json(text: &str) -> Result<Scene, SimError> {
+        #[derive(Deserialize)]
+        struct Wrapper {
+            scene: Scene,
+        }
+        let scene = match serde_json::from_str::<Wrapper>(text) {
+            Ok(w) => w.scene,
+            Err(_) => serde_json::from_str::<Scene>(text)
+                .map_err(|e| SimError::BadScene(e.to_string()))?,
+        };
+        for o in scene.objects.values() {
+            if let Some(p) = o.parent
+                && !scene.objects.contains_key(&p)
+            {
+                return Err(SimError::BadScene(format!(
+                    "object '{}' has unknown parent {p}",
+                    o.name
+                )));
+            }
+            if o.handle >= scene.next_handle {
+                return Err(SimError::BadScene(format!(
+                    "object '{}': handle >= next_handle",
+                    o.name
+                )));
+            }
+        }
+        Ok(scene)
+    }
+
+    /// Adds an object with a fresh handle; the alias is the name.
+    pub fn add(&mut self, name: &str, o: NewObject) -> i32 {
+        let handle = self.next_handle;
+        self.next_handle += 1;
+        self.objects.insert(
+            handle,
+            Object {
+                handle,
+                name: name.to_string(),
+                alias: name.to_string(),
+                kind: o.kind,
+                parent: o.parent,
+                position: o.position,
+                orientation: o.orientation,
+                size: o.size,
+                colour: o.colour,
+            },
+        );
+        handle
+    }
+
+    /// The object with this handle.
+    pub fn get(&self, handle: i32) -> Result<&Object, SimError> {
+        self.objects
+            .get(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))
+    }
+
+    /// All objects in handle order.
+    pub fn objects(&self) -> impl Iterator<Item = &Object> {
+        self.objects.values()
+    }
+
+    /// Number of objects.
+    pub fn len(&self) -> usize {
+        self.objects.len()
+    }
+
+    /// True without objects.
+    pub fn is_empty(&self) -> bool {
+        self.objects.is_empty()
+    }
+
+    /// Objects in hierarchy order: depth first from the roots, siblings in handle order.
+    pub fn tree_order(&self) -> Vec<i32> {
+        let mut out = Vec::with_capacity(self.objects.len());
+        fn visit(s: &Scene, parent: Option<i32>, out: &mut Vec<i32>) {
+            for o in s.objects.values().filter(|o| o.parent == parent) {
+                out.push(o.handle);
+                visit(s, Some(o.handle), out);
+            }
+        }
+        visit(self, None, &mut out);
+        out
+    }
+
+    fn is_descendant(&self, handle: i32, ancestor: i32) -> bool {
+        let mut cur = self.objects.get(&handle).and_then(|o| o.parent);
+        while let Some(p) = cur {
+            if p == ancestor {
+                return true;
+            }
+            cur = self.objects.get(&p).and_then(|o| o.parent);
+        }
+        false
+    }
+
+    /// Resolves a name like `simGetObjectHandle`: an exact object name (`Line`, `Line0`, or
+    /// `Line#0` in hash naming), or an alias path `/Line`, `/Line[2]`, `/Maze/Line`.
+    pub fn resolve(&self, name: &str) -> Result<i32, SimError> {
+        let missing = || SimError::NoSuchName(name.to_string());
+        if let Some(path) = name.strip_prefix('/') {
+            let mut scope: Option<i32> = None;
+            for comp in path.split('/') {
+                let (alias, index) = parse_path_component(comp).ok_or_else(missing)?;
+                let found = self
+                    .objects
+                    .values()
+                    .filter(|o| scope.is_none_or(|s| self.is_descendant(o.handle, s)))
+                    .filter(|o| o.alias == alias)
+                    .nth(index)
+                    .ok_or_else(missing)?;
+                scope = Some(found.handle);
+            }
+            scope.ok_or_else(missing)
+        } else {
+            self.objects
+                .values()
+                .find(|o| o.name == name)
+                .map(|o| o.handle)
+                .ok_or_else(missing)
+        }
+    }
+
+    /// The path of an object: its ancestors' aliases then its own, e.g. `/Line[2]` or
+    /// `/Maze/Line[1]`, where `[n]` (omitted for 0) counts the objects of the same alias, in
+    /// handle order, in the whole scene (root objects) or under the parent. [`Scene::resolve`]
+    /// maps it back to the object.
+    pub fn path(&self, handle: i32) -> Result<String, SimError> {
+        let o = self.get(handle)?;
+        let mut chain = vec![];
+        let mut cur = o.parent;
+        while let Some(p) = cur {
+            chain.push(self.get(p)?.alias.clone());
+            cur = self.get(p)?.parent;
+        }
+        chain.reverse();
+        let scope: Option<i32> = None;
+        let mut scope = scope;
+        let mut out = String::new();
+        for alias in &chain {
+            let first = self
+                .objects
+                .values()
+                .find(|x| {
+                    scope.is_none_or(|s| self.is_descendant(x.handle, s)) && &x.alias == alias
+                })
+                .map(|x| x.handle);
+            scope = first;
+            out.push('/');
+            out.push_str(alias);
+        }
+        let index = self
+            .objects
+            .values()
+            .filter(|x| scope.is_none_or(|s| self.is_descendant(x.handle, s)) && x.alias == o.alias)
+            .position(|x| x.handle == handle)
+            .unwrap_or(0);
+        out.push('/');
+        out.push_str(&o.alias);
+        if index > 0 {
+            out.push_str(&format!("[{index}]"));
+        }
+        Ok(out)
+    }
+
+    /// World frame of an object.
+    pub fn world(&self, handle: i32) -> Result<Frame, SimError> {
+        let o = self.get(handle)?;
+        let local = o.local();
+        match o.parent {
+            Some(p) => Ok(self.world(p)? * local),
+            None => Ok(local),
+        }
+    }
+
+    /// The frame `relative_to` designates for `handle`: world (-1), the parent (-11) or an object.
+    fn reference(&self, handle: i32, relative_to: i32) -> Result<Frame, SimError> {
+        match relative_to {
+            HANDLE_WORLD => Ok(Frame::identity()),
+            HANDLE_PARENT => match self.get(handle)?.parent {
+                Some(p) => self.world(p),
+                None => Ok(Frame::identity()),
+            },
+            h => self.world(h),
+        }
+    }
+
+    /// Pose of `handle` relative to `relative_to`, as (position, Euler angles).
+    pub fn pose(&self, handle: i32, relative_to: i32) -> Result<([f64; 3], [f64; 3]), SimError> {
+        let rel = self.reference(handle, relative_to)?;
+        Ok(position_euler(&(rel.inverse() * self.world(handle)?)))
+    }
+
+    fn set_world(&mut self, handle: i32, world: Frame) -> Result<(), SimError> {
+        let parent = match self.get(handle)?.parent {
+            Some(p) => self.world(p)?,
+            None => Frame::identity(),
+        };
+        let (p, e) = position_euler(&(parent.inverse() * world));
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        o.position = p;
+        o.orientation = e;
+        Ok(())
+    }
+
+    /// Sets the position relative to `relative_to`, keeping the orientation.
+    pub fn set_position(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        p: [f64; 3],
+    ) -> Result<(), SimError> {
+        let rel = self.reference(handle, relative_to)?;
+        let mut world = self.world(handle)?;
+        world.translation.vector = (rel * nalgebra::Point3::from(p)).coords;
+        self.set_world(handle, world)
+    }
+
+    /// Sets the orientation relative to `relative_to`, keeping the position.
+    pub fn set_orientation(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        e: [f64; 3],
+    ) -> Result<(), SimError> {
+        let rel = self.reference(handle, relative_to)?;
+        let mut world = self.world(handle)?;
+        world.rotation = rel.rotation * super::frame::rotation_from_euler(e);
+        self.set_world(handle, world)
+    }
+
+    /// Sets the parent (`None` = scene root). With `keep_in_place` the world pose is kept,
+    /// otherwise the local pose is kept (and the object moves with its new parent).
+    pub fn set_parent(
+        &mut self,
+        handle: i32,
+        parent: Option<i32>,
+        keep_in_place: bool,
+    ) -> Result<(), SimError> {
+        let world = self.world(handle)?;
+        if let Some(p) = parent {
+            self.get(p)?;
+            if p == handle || self.is_descendant(p, handle) {
+                return Err(SimError::Cycle {
+                    child: handle,
+                    parent: p,
+                });
+            }
+        }
+        self.objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?
+            .parent = parent;
+        if keep_in_place {
+            self.set_world(handle, world)?;
+        }
+        Ok(())
+    }
+
+    /// Removes an object; its children move to its parent, keeping their world pose.
+    pub fn remove(&mut self, handle: i32) -> Result<(), SimError> {
+        let parent = self.get(handle)?.parent;
+        let children: Vec<i32> = self
+            .objects
+            .values()
+            .filter(|o| o.parent == Some(handle))
+            .map(|o| o.handle)
+            .collect();
+        for c in children {
+            self.set_parent(c, parent, true)?;
+        }
+        self.objects.remove(&handle);
+        Ok(())
+    }
+
+    /// Copies and pastes objects, returning the new handles in order. Copies keep the world
+    /// pose; a copy's parent is the copy of its original's parent when that was copied too,
+    /// else none (pasted copies are parentless, as observed on CoppeliaSim 4.5.1).
+    pub fn copy_paste(&mut self, handles: &[i32]) -> Result<Vec<i32>, SimError> {
+        let mut unique: Vec<i32> = Vec::with_capacity(handles.len());
+        for &h in handles {
+            self.get(h)?;
+            if !unique.contains(&h) {
+                unique.push(h);
+            }
+        }
+        let worlds: Vec<Frame> = unique
+            .iter()
+            .map(|&h| self.world(h))
+            .collect::<Result<_, _>>()?;
+        let mut new = Vec::with_capacity(unique.len());
+        let mut taken: std::collections::HashSet<String> =
+            self.objects.values().map(|o| o.name.clone()).collect();
+        let mut next: std::collections::HashMap<(String, &'static str), u64> =
+            std::collections::HashMap::new();
+        for (&h, world) in unique.iter().zip(&worlds) {
+            let original = self.objects[&h].clone();
+            let (base, sep, start) = self.copy_name_parts(&original.name);
+            let from = next
+                .get(&(base.clone(), sep))
+                .copied()
+                .unwrap_or(0)
+                .max(start);
+            let n = (from..)
+                .find(|n| !taken.contains(&format!("{base}{sep}{n}")))
+                .expect("unbounded range");
+            next.insert((base.clone(), sep), n + 1);
+            let name = format!("{base}{sep}{n}");
+            taken.insert(name.clone());
+            let handle = self.next_handle;
+            self.next_handle += 1;
+            let (position, orientation) = position_euler(world);
+            self.objects.insert(
+                handle,
+                Object {
+                    handle,
+                    name,
+                    parent: None,
+                    position,
+                    orientation,
+                    ..original
+                },
+            );
+            new.push(handle);
+        }
+        for (i, &h) in unique.iter().enumerate() {
+            if let Some(p) = self.objects[&h].parent
+                && let Some(j) = unique.iter().position(|&u| u == p)
+            {
+                self.set_parent(new[i], Some(new[j]), true)?;
+            }
+        }
+        Ok(new)
+    }
+
+    /// Name a copy of `name` gets under the current naming mode.
+    pub fn copy_name(&self, name: &str) -> String {
+        let (base, sep, start) = self.copy_name_parts(name);
+        (start..)
+            .map(|n| format!("{base}{sep}{n}"))
+            .find(|n| !self.objects.values().any(|o| &o.name == n))
+            .expect("unbounded range")
+    }
+
+    /// (base, separator, first number to try) of the names of copies of `name`.
+    fn copy_name_parts(&self, name: &str) -> (String, &'static str, u64) {
+        match self.naming {
+            NamingMode::Plain => {
+                let base = name.trim_end_matches(|c: char| c.is_ascii_digit());
+                let start = name[base.len()..]
+                    .parse::<u64>()
+                    .map(|n| n + 1)
+                    .unwrap_or(0);
+                (base.to_string(), "", start)
+            }
+            NamingMode::Hash => match name.rsplit_once('#') {
+                Some((b, n)) if !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()) => (
+                    b.to_string(),
+                    "#",
+                    n.parse::<u64>().map(|n| n + 1).unwrap_or(0),
+                ),
+                _ => (name.to_string(), "#", 0),
+            },
+        }
+    }
+
+    /// JSON dump: the scene plus every object's world pose (for viewers).
+    pub fn to_json(&self) -> serde_json::Value {
+        let world: Vec<serde_json::Value> = self
+            .objects
+            .values()
+            .map(|o| {
+                let (p, e) = self
+                    .pose(o.handle, HANDLE_WORLD)
+                    .unwrap_or(([0.0; 3], [0.0; 3]));
+                serde_json::json!({
+                    "handle": o.handle, "name": o.name, "type": o.kind,
+                    "parent": o.parent, "position": p, "orientation": e,
+                    "size": o.size, "colour": o.colour,
+                })
+            })
+            .collect();
+        serde_json::json!({ "format": "vrep-maze scene", "version": 1, "scene": self, "world": world })
+    }
+}
+
+fn parse_path_component(comp: &str) -> Option<(&str, usize)> {
+    if comp.is_empty() {
+        return None;
+    }
+    match comp.strip_suffix(']').and_then(|c| c.split_once('[')) {
+        Some((alias, n)) => Some((alias, n.parse().ok()?)),
+        None => Some((comp, 0)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(s: &Scene, hs: &[i32]) -> Vec<String> {
+        hs.iter().map(|h| s.get(*h).unwrap().name.clone()).collect()
+    }
+
+    #[test]
+    fn observed_copy_naming() {
+        let mut s = Scene::course();
+        let line = s.resolve("Line").unwrap();
+        let start = s.resolve("Start").unwrap();
+        let c = s.copy_paste(&[line, line]).unwrap();
+        assert_eq!(names(&s, &c), ["Line0"]);
+        let c1 = s.copy_paste(&[line]).unwrap();
+        assert_eq!(names(&s, &c1), ["Line1"]);
+        s.remove(c[0]).unwrap();
+        let again = s.copy_paste(&[line]).unwrap();
+        assert_eq!(names(&s, &again), ["Line0"]);
+        assert!(again[0] > c1[0], "handles are never reused");
+        let of1 = s.copy_paste(&[c1[0]]).unwrap();
+        assert_eq!(names(&s, &of1), ["Line2"]);
+        let both = s.copy_paste(&[line, start]).unwrap();
+        assert_eq!(names(&s, &both), ["Line3", "Start0"]);
+        assert_eq!(s.get(both[0]).unwrap().alias, "Line");
+        assert_eq!(s.path(c1[0]).unwrap(), "/Line[1]");
+        assert_eq!(s.path(again[0]).unwrap(), "/Line[2]");
+        assert_eq!(s.resolve("/Line[2]").unwrap(), again[0]);
+        assert_eq!(s.resolve("/Line").unwrap(), line);
+        assert!(s.resolve("Line#0").is_err());
+    }
+
+    #[test]
+    fn hash_copy_naming() {
+        let mut s = Scene::course();
+        s.naming = NamingMode::Hash;
+        let line = s.resolve("Line").unwrap();
+        let a = s.copy_paste(&[line]).unwrap();
+        let b = s.copy_paste(&[a[0]]).unwrap();
+        assert_eq!(names(&s, &a), ["Line#0"]);
+        assert_eq!(names(&s, &b), ["Line#1"]);
+        assert_eq!(s.resolve("Line#1").unwrap(), b[0]);
+    }
+
+    #[test]
+    fn copies_are_parentless_and_keep_world_pose() {
+        let mut s = Scene::course();
+        let (maze, line) = (s.resolve("Maze").unwrap(), s.resolve("Line").unwrap());
+        s.set_position(maze, HANDLE_WORLD, [1.0, 1.0, 0.0]).unwrap();
+        s.set_parent(line, Some(maze), true).unwrap();
+        let before = s.pose(line, HANDLE_WORLD).unwrap();
+        let c = s.copy_paste(&[line]).unwrap()[0];
+        assert_eq!(s.get(c).unwrap().parent, None);
+        assert_eq!(s.pose(c, HANDLE_WORLD).unwrap(), before);
+    }
+
+    #[test]
+    fn relative_poses_with_rotation() {
+        let mut s = Scene::course();
+        let (a, b) = (s.resolve("Start").unwrap(), s.resolve("End").unwrap());
+        s.set_position(a, HANDLE_WORLD, [1.0, 2.0, 0.001]).unwrap();
+        s.set_orientation(a, HANDLE_WORLD, [0.0, 0.0, std::f64::consts::FRAC_PI_2])
+            .unwrap();
+        s.set_position(b, a, [0.5, 0.0, 0.0]).unwrap();
+        s.set_orientation(b, a, [0.1, 0.2, 0.3]).unwrap();
+        let (p, e) = s.pose(b, HANDLE_WORLD).unwrap();
+        let near = |x: [f64; 3], y: [f64; 3]| x.iter().zip(y).all(|(a, b)| (a - b).abs() < 1e-4);
+        assert!(
+            near(p, [1.0, 2.5, 0.001]) && near(e, [-0.2010, 0.0980, 1.8907]),
+            "{p:?} {e:?}"
+        );
+        assert!(near(s.pose(a, b).unwrap().0, [-0.4681, 0.1448, -0.0993]));
+        // keep-in-place off keeps the local pose: the world pose changes
+        s.set_parent(b, Some(a), false).unwrap();
+        assert!(near(s.pose(b, HANDLE_PARENT).unwrap().0, [1.0, 2.5, 0.001]));
+        assert!(!near(s.pose(b, HANDLE_WORLD).unwrap().0, [1.0, 2.5, 0.001]));
+        assert!(matches!(
+            s.set_parent(a, Some(b), true),
+            Err(SimError::Cycle { .. })
+        ));
+    }
+
+    #[test]
+    fn remove_twice_fails_and_json_round_trips() {
+        let mut s = Scene::course();
+        let end = s.resolve("End").unwrap();
+        s.remove(end).unwrap();
+        assert_eq!(s.remove(end), Err(SimError::NoSuchHandle(end)));
+        let text = s.to_json().to_string();
+        assert_eq!(Scene::from_json(&text).unwrap(), s);
+    }
+}
