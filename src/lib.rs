@@ -6,6 +6,7 @@
 pub mod draw;
 pub mod generate;
 pub mod legacy;
+pub mod zmq_api;
 pub mod maze;
 pub mod rng;
 pub mod sim;
