@@ -82,6 +82,7 @@ pub const SIM_FUNCTIONS: &[&str] = &[
     "getObjectType",
     "copyPasteObjects",
     "removeObjects",
+    "removeObject",
     "getObjectsInTree",
     "getObjectParent",
     "setObjectParent",
@@ -285,6 +286,11 @@ fn dispatch(
                 let _ = sim.scene.remove(h);
                 extras.special.remove(&h);
             }
+            nothing()
+        }
+        "removeObject" => {
+            let h = a.int(0)?;
+            sim.scene.remove(h).map_err(scene_err)?;
             nothing()
         }
         "getObjectsInTree" => {

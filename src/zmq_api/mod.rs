@@ -9,8 +9,10 @@ pub mod cbor;
 pub mod client;
 pub mod functions;
 pub mod message;
+pub mod scene;
 pub mod server;
 
 pub use client::{Client, ClientOptions, ClientStats, ZmqError};
 pub use message::Protocol;
+pub use scene::ZmqScene;
 pub use server::{ServerConfig, ServerHandle, SimHost, spawn, spawn_shared};
