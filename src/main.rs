@@ -1,10 +1,5 @@
-mod cli;
+//! The `vrep-maze` binary: all logic lives in the library; see `vrep_maze::cli`.
 
-use clap::Parser;
-
-fn main() {
-    if let Err(e) = cli::run(cli::Cli::parse()) {
-        eprintln!("error: {e:#}");
-        std::process::exit(1);
-    }
+fn main() -> std::process::ExitCode {
+    vrep_maze::cli::main()
 }

@@ -3,13 +3,15 @@
 use std::time::Duration;
 
 use vrep_maze::draw::{self, ApplyOptions, DrawError, Drawing, SceneNames};
-use vrep_maze::generate::{Algorithm, generate};
+use vrep_maze::generate::Algorithm;
+use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{NamingMode, Scene, Simulator};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
-    draw::drawing_from_maze(&generate(Grid::new(n, n).unwrap(), Algorithm::Prim, seed))
+    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
+    Drawing::from(&build_layout(&spec).unwrap())
 }
 
 fn server_with(scene: Scene, fps: i32) -> ServerHandle {

@@ -6,14 +6,16 @@ use std::net::{Shutdown, TcpListener, TcpStream};
 use std::time::Duration;
 
 use vrep_maze::draw::{self, ApplyOptions, Drawing, SceneNames};
-use vrep_maze::generate::{Algorithm, generate};
+use vrep_maze::generate::Algorithm;
+use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::wire::{MAX_PACKET_SIZE, read_message, write_message};
 use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
-    draw::drawing_from_maze(&generate(Grid::new(n, n).unwrap(), Algorithm::Dfs, seed))
+    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Dfs, seed);
+    Drawing::from(&build_layout(&spec).unwrap())
 }
 
 /// Forwards `limit` client messages to the server, then cuts both connections.
@@ -48,7 +50,10 @@ fn cutting_proxy(server: std::net::SocketAddr, limit: usize) -> (u16, std::threa
 }
 
 fn server() -> ServerHandle {
-    let cfg = ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), ..Default::default() };
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        ..Default::default()
+    };
     spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap()
 }
 
@@ -85,15 +90,26 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
             let mut sc = connect(s.local_addr().port());
             if repair_with_clear {
                 draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
-                assert_eq!(lines_in_scene(&s), 1, "cut after {limit} messages: clear left lines");
+                assert_eq!(
+                    lines_in_scene(&s),
+                    1,
+                    "cut after {limit} messages: clear left lines"
+                );
             } else {
                 draw::apply(&mut sc, &second, &ApplyOptions::default(), &mut |_| {}).unwrap();
                 draw::verify(&mut sc, &second, &SceneNames::default()).unwrap();
-                assert_eq!(lines_in_scene(&s), second.lines.len(), "cut after {limit} messages");
+                assert_eq!(
+                    lines_in_scene(&s),
+                    second.lines.len(),
+                    "cut after {limit} messages"
+                );
             }
             drop(sc);
             s.shutdown();
         }
     }
-    assert!(interrupted >= 10, "only {interrupted} runs were interrupted");
+    assert!(
+        interrupted >= 10,
+        "only {interrupted} runs were interrupted"
+    );
 }

@@ -1,27 +1,94 @@
-//! Command-line interface (temporary skeleton on branch `legacy`; the lead's `Command` enum
-//! on main replaces it at merge).
+//! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
-pub mod serve;
+mod apply;
+mod batch;
+mod clear;
+mod completions;
+mod demo;
+mod generate;
+mod output;
+mod render;
+mod serve;
+mod validate;
+mod values;
 
-/// vrep-maze: seeded grid mazes for CoppeliaSim.
-#[derive(Debug, clap::Parser)]
-#[command(version)]
+use std::process::ExitCode;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// Seeded, reproducible grid mazes for CoppeliaSim (V-REP): generate, validate, render.
+#[derive(Debug, Parser)]
+#[command(name = "vrep-maze", version, about, long_about = None)]
+#[command(
+    after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze validate maze.json\n  vrep-maze render maze.json --solution"
+)]
 pub struct Cli {
-    /// Subcommand.
+    /// What to do.
     #[command(subcommand)]
     pub command: Command,
 }
 
-/// Subcommands.
-#[derive(Debug, clap::Subcommand)]
+/// The subcommands.
+#[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Emulate CoppeliaSim's legacy remote API over an in-memory scene.
+    /// Generate a maze and write its layout JSON.
+    Generate(generate::GenerateArgs),
+    /// Check a layout file and print its metrics.
+    Validate(validate::ValidateArgs),
+    /// Draw a layout as ASCII (terminal) or SVG (the floor as the camera sees it).
+    Render(render::RenderArgs),
+    /// Generate a dataset: one layout per seed plus a manifest, on all cores.
+    Batch(batch::BatchArgs),
+    /// Print a shell completion script (bash, zsh, fish, ...).
+    Completions(completions::CompletionsArgs),
+    /// Show the whole job on the course default: generate, validate and draw a maze.
+    Demo(demo::DemoArgs),
+    /// Draw a layout into CoppeliaSim over the legacy remote API (port 19997).
+    Apply(apply::ApplyArgs),
+    /// Remove a drawn maze from CoppeliaSim (the templates stay).
+    Clear(clear::ClearArgs),
+    /// Emulate CoppeliaSim's legacy remote API over an in-memory scene (no simulator needed).
     Serve(serve::ServeArgs),
 }
 
-/// Dispatches a parsed command line.
-pub fn run(cli: Cli) -> anyhow::Result<()> {
+/// Parses the command line and runs it; errors become one line on standard error.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(error) => {
+            eprintln!("error: {}", one_line(&error));
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Serve(a) => serve::run(a),
+        Command::Generate(args) => generate::run(args),
+        Command::Validate(args) => validate::run(args),
+        Command::Render(args) => render::run(args),
+        Command::Batch(args) => batch::run(args),
+        Command::Completions(args) => completions::run(args),
+        Command::Demo(args) => demo::run(args),
+        Command::Apply(args) => apply::run(args),
+        Command::Clear(args) => clear::run(args),
+        Command::Serve(args) => serve::run(args),
+    }
+}
+
+/// The error and its causes on one line.
+fn one_line(error: &anyhow::Error) -> String {
+    format!("{error:#}").replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        super::Cli::command().debug_assert();
     }
 }

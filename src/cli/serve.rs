@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 
-use vrep_maze::legacy::{ServerConfig, spawn};
-use vrep_maze::sim::{NamingMode, Scene, Simulator};
+use crate::legacy::{ServerConfig, spawn};
+use crate::sim::{NamingMode, Scene, Simulator};
 
 /// Serve an in-memory scene over the legacy remote API (no CoppeliaSim needed).
 #[derive(Debug, clap::Args)]
@@ -46,7 +46,7 @@ pub enum Naming {
 }
 
 /// Runs the server until Ctrl-C / SIGTERM.
-pub fn run(args: ServeArgs) -> anyhow::Result<()> {
+pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut scene = match args.scene.as_str() {
         "course" => Scene::course(),
         "empty" => Scene::empty(),
@@ -90,5 +90,5 @@ pub fn run(args: ServeArgs) -> anyhow::Result<()> {
     let _ = rx.recv();
     let sim = server.shutdown();
     eprintln!("vrep-maze serve: stopped with {} objects", sim.scene.len());
-    Ok(())
+    Ok(std::process::ExitCode::SUCCESS)
 }

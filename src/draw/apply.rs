@@ -228,8 +228,8 @@ fn draw(
             edits.push(Edit::SetPose {
                 handle,
                 relative_to: h.floor,
-                position: want.position(),
-                orientation: want.euler(),
+                position: crate::draw::position(want),
+                orientation: crate::draw::euler(want),
             });
         };
     for (i, (handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {

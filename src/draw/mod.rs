@@ -18,34 +18,21 @@ pub use verify::verify;
 
 use serde::{Deserialize, Serialize};
 
-/// A pose in the Floor frame: position and rotation about z (roll = pitch = 0).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
-pub struct Pose {
-    /// x in metres.
-    pub x: f64,
-    /// y in metres.
-    pub y: f64,
-    /// z in metres.
-    pub z: f64,
-    /// Rotation about z in radians.
-    pub yaw: f64,
+pub use crate::layout::Pose;
+
+/// Position of a pose as an array.
+pub fn position(p: &Pose) -> [f64; 3] {
+    [p.x, p.y, p.z]
 }
 
-impl Pose {
-    /// Position as an array.
-    pub fn position(&self) -> [f64; 3] {
-        [self.x, self.y, self.z]
-    }
-
-    /// CoppeliaSim Euler angles of this pose.
-    pub fn euler(&self) -> [f64; 3] {
-        [0.0, 0.0, self.yaw]
-    }
+/// CoppeliaSim Euler angles of a pose (roll = pitch = 0).
+pub fn euler(p: &Pose) -> [f64; 3] {
+    [0.0, 0.0, p.yaw]
 }
 
 /// What to draw: one pose per copy of `Line` (the template itself is the first), plus where
 /// `Start` and `End` go. All in the Floor frame.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Drawing {
     /// Line segments.
     pub lines: Vec<Pose>,
@@ -222,7 +209,7 @@ pub trait Scene {
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
     /// Named objects are missing.
-    #[error("missing in the scene: {}. Create {} in CoppeliaSim (or pass its name with --floor/--parent/--line/--start/--end):\n  {}", .names.join(", "), if .names.len() == 1 { "it" } else { "them" }, .hints.join("\n  "))]
+    #[error("missing in the scene: {}. Create {} in CoppeliaSim (or pass the names your scene uses with --floor, --parent, --line, --start, --end):\n  {}", .names.join(", "), if .names.len() == 1 { "it" } else { "them" }, .hints.join("\n  "))]
     Missing {
         /// The missing names.
         names: Vec<String>,
@@ -268,50 +255,13 @@ pub fn resolve_handles(names: &SceneNames, survey: &Survey) -> Result<Handles, D
     })
 }
 
-/// The course geometry for a maze (stand-in until the layout of the core issue is merged):
-/// 1 m cells centred on the Floor origin, two 0.6 m lines per passage centred 0.25 m and
-/// 0.75 m from the first cell centre (z 0.001), `Start` on the first cell and `End` on the
-/// last (z 0.002).
-pub fn drawing_from_maze(maze: &crate::maze::Maze) -> Drawing {
-    use crate::maze::Direction;
-    let g = maze.grid();
-    let (ox, oy) = (
-        (g.width() as f64 - 1.0) / 2.0,
-        (g.height() as f64 - 1.0) / 2.0,
-    );
-    let centre = |x: u32, y: u32| (x as f64 - ox, y as f64 - oy);
-    let mut lines = Vec::new();
-    for (cell, dir) in maze.passages() {
-        let (cx, cy) = centre(cell.x, cell.y);
-        let (dx, dy, yaw) = if dir == Direction::East {
-            (1.0, 0.0, 0.0)
-        } else {
-            (0.0, 1.0, std::f64::consts::FRAC_PI_2)
-        };
-        for t in [0.25, 0.75] {
-            lines.push(Pose {
-                x: cx + t * dx,
-                y: cy + t * dy,
-                z: 0.001,
-                yaw,
-            });
+impl From<&crate::layout::Layout> for Drawing {
+    /// The layout's segments (template first), start and end poses.
+    fn from(layout: &crate::layout::Layout) -> Drawing {
+        Drawing {
+            lines: layout.segments.clone(),
+            start: layout.start.pose,
+            end: layout.end.pose,
         }
-    }
-    let (sx, sy) = centre(0, 0);
-    let (ex, ey) = centre(g.width() - 1, g.height() - 1);
-    Drawing {
-        lines,
-        start: Pose {
-            x: sx,
-            y: sy,
-            z: 0.002,
-            yaw: 0.0,
-        },
-        end: Pose {
-            x: ex,
-            y: ey,
-            z: 0.002,
-            yaw: 0.0,
-        },
     }
 }

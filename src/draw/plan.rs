@@ -118,7 +118,7 @@ pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Opti
     let (p, e) = relative_pose(floor, object);
     let dp = p
         .iter()
-        .zip(want.position())
+        .zip(crate::draw::position(want))
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
     let de = [
@@ -244,7 +244,7 @@ mod tests {
             z: 0.001,
             yaw: std::f64::consts::FRAC_PI_2,
         };
-        let world = floor * frame(want.position(), want.euler());
+        let world = floor * frame(crate::draw::position(&want), crate::draw::euler(&want));
         let (p, e) = position_euler(&world);
         let o = ObjectInfo {
             position: p,

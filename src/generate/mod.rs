@@ -1,6 +1,7 @@
 //! Maze generators: one file per algorithm, all behind the [`Generator`] trait, all
 //! driven only by a [`MazeRng`] so the same seed always gives the same maze.
 
+mod braid;
 mod dfs;
 mod kruskal;
 mod prim;
@@ -11,6 +12,7 @@ use std::str::FromStr;
 use crate::maze::{Grid, Maze};
 use crate::rng::MazeRng;
 
+pub use braid::braid;
 pub use dfs::Dfs;
 pub use kruskal::Kruskal;
 pub use prim::Prim;
@@ -82,9 +84,19 @@ impl FromStr for Algorithm {
 
 /// A perfect maze on `grid`, carved by `algorithm` from the stream of `seed`.
 pub fn generate(grid: Grid, algorithm: Algorithm, seed: u64) -> Maze {
+    generate_braided(grid, algorithm, seed, 0.0)
+}
+
+/// A maze carved by `algorithm` from the stream of `seed`, then braided: `braid_share`
+/// of its dead ends opened (0 keeps it perfect) with the same stream, so seed and share
+/// decide the result.
+pub fn generate_braided(grid: Grid, algorithm: Algorithm, seed: u64, braid_share: f64) -> Maze {
     let mut maze = Maze::closed(grid);
     let mut rng = MazeRng::from_seed(seed);
     algorithm.generator().carve(&mut maze, &mut rng);
+    if braid_share > 0.0 {
+        braid::braid(&mut maze, &mut rng, braid_share);
+    }
     maze
 }
 

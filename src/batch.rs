@@ -1,0 +1,256 @@
+//! Datasets: many layouts at once, one per seed, with a manifest, in parallel.
+//!
+//! Each maze is written to `<algo>-<W>x<H>[-braid<P>]-seed<N>.json`; `manifest.jsonl`
+//! holds one JSON line per maze (seed, file, metrics) in seed order. A file that already
+//! holds exactly the maze is left alone, so re-running a batch only writes what changed;
+//! every file is written atomically, so an interrupted batch leaves no half-written file.
+
+use std::fs;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::atomic_file::write_atomically;
+use crate::layout::json::to_string;
+use crate::layout::{GenerateSpec, build_layout};
+use crate::maze::Metrics;
+
+/// The most seeds one batch takes.
+pub const MAX_SEEDS: usize = 1_000_000;
+
+/// Which mazes a batch keeps.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Filter {
+    /// Keep only mazes whose solution has at least this many cells.
+    pub min_solution: Option<u64>,
+    /// Keep only mazes whose dead ends are at most this percentage of the cells.
+    pub max_dead_end_percent: Option<f64>,
+}
+
+impl Filter {
+    /// `true` if a maze with `metrics` is kept.
+    pub fn accepts(&self, metrics: &Metrics) -> bool {
+        self.min_solution
+            .is_none_or(|min| metrics.solution_cells >= min)
+            && self
+                .max_dead_end_percent
+                .is_none_or(|max| metrics.dead_end_percent() <= max)
+    }
+}
+
+/// One line of `manifest.jsonl`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ManifestEntry {
+    /// The maze's seed.
+    pub seed: u64,
+    /// Its file, relative to the output directory.
+    pub file: String,
+    /// What it is like.
+    pub metrics: Metrics,
+}
+
+/// What a batch did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Outcome {
+    /// Layouts written (new or changed).
+    pub written: usize,
+    /// Layouts already on disk, byte for byte.
+    pub unchanged: usize,
+    /// Seeds whose maze the filter refused.
+    pub filtered: usize,
+    /// The manifest's path.
+    pub manifest: PathBuf,
+}
+
+/// What happened to one seed.
+enum Made {
+    Written(ManifestEntry),
+    Unchanged(ManifestEntry),
+    Filtered,
+}
+
+/// The file name of the maze `spec` describes.
+pub fn file_name(spec: &GenerateSpec) -> String {
+    let braid = if spec.braid > 0.0 {
+        format!("-braid{}", spec.braid)
+    } else {
+        String::new()
+    };
+    format!(
+        "{}-{}x{}{braid}-seed{}.json",
+        spec.algorithm.name(),
+        spec.grid.width(),
+        spec.grid.height(),
+        spec.seed
+    )
+}
+
+/// Makes one layout per seed from `template` (its seed is replaced) into `out_dir`, in
+/// parallel on all cores; `tick` is called once per seed done (for a progress bar).
+pub fn run(
+    template: &GenerateSpec,
+    seeds: &[u64],
+    filter: Filter,
+    out_dir: &Path,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Outcome, String> {
+    fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+    let made: Vec<Made> = seeds
+        .par_iter()
+        .map(|&seed| {
+            let result = make_one(template, seed, filter, out_dir);
+            tick();
+            result
+        })
+        .collect::<Result<_, String>>()?;
+    let mut outcome = Outcome {
+        manifest: out_dir.join("manifest.jsonl"),
+        ..Outcome::default()
+    };
+    let mut entries = Vec::new();
+    for result in made {
+        match result {
+            Made::Written(entry) => {
+                outcome.written += 1;
+                entries.push(entry);
+            }
+            Made::Unchanged(entry) => {
+                outcome.unchanged += 1;
+                entries.push(entry);
+            }
+            Made::Filtered => outcome.filtered += 1,
+        }
+    }
+    write_atomically(&outcome.manifest, |w| write_manifest(&entries, w))
+        .map_err(|e| format!("{}: {e}", outcome.manifest.display()))?;
+    Ok(outcome)
+}
+
+fn make_one(
+    template: &GenerateSpec,
+    seed: u64,
+    filter: Filter,
+    out_dir: &Path,
+) -> Result<Made, String> {
+    let spec = GenerateSpec {
+        seed,
+        ..template.clone()
+    };
+    let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+    if !filter.accepts(&layout.metrics) {
+        return Ok(Made::Filtered);
+    }
+    let file = file_name(&spec);
+    let path = out_dir.join(&file);
+    let text = to_string(&layout);
+    let entry = ManifestEntry {
+        seed,
+        file,
+        metrics: layout.metrics,
+    };
+    if fs::read(&path).is_ok_and(|old| old == text.as_bytes()) {
+        return Ok(Made::Unchanged(entry));
+    }
+    write_atomically(&path, |w| w.write_all(text.as_bytes()))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(Made::Written(entry))
+}
+
+fn write_manifest(entries: &[ManifestEntry], writer: &mut dyn Write) -> io::Result<()> {
+    for entry in entries {
+        serde_json::to_writer(&mut *writer, entry)?;
+        writer.write_all(b"\n")?;
+    }
+    Ok(())
+}
+
+/// Parses a seed list: `N`, `A..B` (B excluded), `A..=B` (B included), or several of
+/// these separated by commas.
+pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
+    let mut seeds = Vec::new();
+    for part in text.split(',') {
+        let part = part.trim();
+        let number = |s: &str| {
+            s.trim()
+                .parse::<u64>()
+                .map_err(|_| format!("'{part}' is not a seed, a range A..B or A..=B"))
+        };
+        let (from, to) = if let Some((a, b)) = part.split_once("..=") {
+            (number(a)?, number(b)?)
+        } else if let Some((a, b)) = part.split_once("..") {
+            let (a, b) = (number(a)?, number(b)?);
+            if b <= a {
+                return Err(format!("'{part}' is an empty range"));
+            }
+            (a, b - 1)
+        } else {
+            let n = number(part)?;
+            (n, n)
+        };
+        if to < from {
+            return Err(format!("'{part}' is an empty range"));
+        }
+        if (to - from) as u128 + seeds.len() as u128 >= MAX_SEEDS as u128 {
+            return Err(format!("more than {MAX_SEEDS} seeds in '{text}'"));
+        }
+        seeds.extend(from..=to);
+    }
+    Ok(seeds)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::Algorithm;
+    use crate::maze::Grid;
+
+    #[test]
+    fn seed_lists_parse() {
+        assert_eq!(parse_seeds("0..3"), Ok(vec![0, 1, 2]));
+        assert_eq!(parse_seeds("0..=3"), Ok(vec![0, 1, 2, 3]));
+        assert_eq!(parse_seeds("7, 9..11"), Ok(vec![7, 9, 10]));
+        for bad in ["", "a", "3..3", "5..=2", "0..=18446744073709551615", "1..x"] {
+            assert!(parse_seeds(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn batches_write_once_and_filter() {
+        let dir = tempfile::TempDir::new().unwrap();
+        let template = GenerateSpec::course(Grid::new(8, 8).unwrap(), Algorithm::Prim, 0);
+        let seeds: Vec<u64> = (0..12).collect();
+        let first = run(&template, &seeds, Filter::default(), dir.path(), &|| {}).unwrap();
+        assert_eq!((first.written, first.unchanged, first.filtered), (12, 0, 0));
+        let manifest = fs::read_to_string(&first.manifest).unwrap();
+        assert_eq!(manifest.lines().count(), 12);
+        assert!(manifest.starts_with("{\"seed\":0,\"file\":\"prim-8x8-seed0.json\",\"metrics\":{"));
+        let again = run(&template, &seeds, Filter::default(), dir.path(), &|| {}).unwrap();
+        assert_eq!((again.written, again.unchanged), (0, 12));
+        assert_eq!(fs::read_to_string(&again.manifest).unwrap(), manifest);
+
+        let mut lengths: Vec<u64> = manifest
+            .lines()
+            .map(|line| {
+                let value: serde_json::Value = serde_json::from_str(line).unwrap();
+                value["metrics"]["solution_cells"].as_u64().unwrap()
+            })
+            .collect();
+        lengths.sort_unstable();
+        let median = lengths[6];
+        let picky = Filter {
+            min_solution: Some(median),
+            max_dead_end_percent: None,
+        };
+        let out = tempfile::TempDir::new().unwrap();
+        let filtered = run(&template, &seeds, picky, out.path(), &|| {}).unwrap();
+        let kept = lengths.iter().filter(|&&l| l >= median).count();
+        assert_eq!((filtered.written, filtered.filtered), (kept, 12 - kept));
+        assert!(filtered.filtered > 0);
+        for line in fs::read_to_string(&filtered.manifest).unwrap().lines() {
+            let value: serde_json::Value = serde_json::from_str(line).unwrap();
+            assert!(value["metrics"]["solution_cells"].as_u64().unwrap() >= median);
+        }
+    }
+}

@@ -1,0 +1,71 @@
+//! `vrep-maze batch`: a dataset of mazes, one per seed, with a manifest.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Result, anyhow};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use super::generate::MazeArgs;
+use crate::batch::{self, Filter, parse_seeds};
+
+/// Options of `batch`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --algo kruskal --braid 0.3 --seeds 0..=99 --min-solution 40 --out-dir hard"
+)]
+pub struct BatchArgs {
+    /// Seeds: N, A..B (B excluded), A..=B (B included), or a comma-separated list of these.
+    #[arg(long, value_parser = |s: &str| parse_seeds(s).map(SeedList))]
+    pub seeds: SeedList,
+    /// What mazes to make (as for `generate`).
+    #[command(flatten)]
+    pub maze: MazeArgs,
+    /// Directory for the layouts and manifest.jsonl (created if missing).
+    #[arg(long)]
+    pub out_dir: PathBuf,
+    /// Keep only mazes whose solution has at least this many cells.
+    #[arg(long)]
+    pub min_solution: Option<u64>,
+    /// Keep only mazes with at most this percentage of dead ends.
+    #[arg(long, value_parser = super::values::parse_percent)]
+    pub max_dead_ends: Option<f64>,
+}
+
+/// The seeds of a batch (one option value, many seeds).
+#[derive(Debug, Clone)]
+pub struct SeedList(pub Vec<u64>);
+
+/// Runs `batch`.
+pub fn run(args: BatchArgs) -> Result<ExitCode> {
+    let template = args.maze.spec(0)?;
+    let seeds = args.seeds.0;
+    let progress =
+        ProgressBar::with_draw_target(Some(seeds.len() as u64), ProgressDrawTarget::stderr());
+    progress.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} mazes, {per_sec}, eta {eta}")
+            .expect("valid template"),
+    );
+    let filter = Filter {
+        min_solution: args.min_solution,
+        max_dead_end_percent: args.max_dead_ends,
+    };
+    let started = Instant::now();
+    let outcome = batch::run(&template, &seeds, filter, &args.out_dir, &|| {
+        progress.inc(1)
+    })
+    .map_err(|e| anyhow!(e))?;
+    progress.finish_and_clear();
+    eprintln!(
+        "{} mazes: {} written, {} unchanged, {} refused by the filter, in {:.2} s; manifest {}",
+        seeds.len(),
+        outcome.written,
+        outcome.unchanged,
+        outcome.filtered,
+        started.elapsed().as_secs_f64(),
+        outcome.manifest.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,47 @@
+//! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
+
+use super::apply::SceneArgs;
+use crate::draw;
+
+/// Remove every maze line (children of the maze dummy other than the templates, and stray
+/// parentless copies of the line template). Idempotent.
+#[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Example:\n  vrep-maze clear\n  vrep-maze clear --port 19997 --parent MyMaze --dry-run"
+)]
+pub struct ClearArgs {
+    /// Connection and object names.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Only list what would be removed.
+    #[arg(long)]
+    pub dry_run: bool,
+}
+
+/// Runs `clear`.
+pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
+    let mut scene = args.scene.connect()?;
+    let report = draw::clear(&mut scene, &args.scene.names(), args.dry_run)?;
+    scene.close().ok();
+    let verb = if args.dry_run {
+        "would remove"
+    } else {
+        "removed"
+    };
+    let shown: Vec<&str> = report.removed.iter().take(12).map(String::as_str).collect();
+    let more = if report.removed.len() > shown.len() {
+        format!(", ... ({} more)", report.removed.len() - shown.len())
+    } else {
+        String::new()
+    };
+    if report.removed.is_empty() {
+        println!("nothing to remove: no maze lines in the scene");
+    } else {
+        println!(
+            "{verb} {} maze line(s): {}{more}",
+            report.removed.len(),
+            shown.join(", ")
+        );
+    }
+    Ok(std::process::ExitCode::SUCCESS)
+}

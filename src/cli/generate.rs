@@ -1,0 +1,149 @@
+//! `vrep-maze generate`: make a maze and write its layout.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Result, anyhow};
+use clap::Args;
+
+use super::output::write_output;
+use super::values::{
+    parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
+};
+use crate::generate::Algorithm;
+use crate::layout::endpoints::ENDPOINT_HELP;
+use crate::layout::geometry::course;
+use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, build_layout, write_layout};
+use crate::maze::Grid;
+use crate::rng::os_seed;
+
+/// Options of `generate`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1"
+)]
+pub struct GenerateArgs {
+    /// Seed of the random stream; without it one is drawn from the OS and recorded in the
+    /// layout (and printed), so the maze can be made again.
+    #[arg(long, allow_hyphen_values = true)]
+    pub seed: Option<u64>,
+    /// What maze to make.
+    #[command(flatten)]
+    pub maze: MazeArgs,
+    /// Write the layout here (atomically) instead of standard output.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// The maze options `generate` and `batch` share: everything but the seed.
+#[derive(Debug, Args)]
+pub struct MazeArgs {
+    /// Algorithm: dfs (long corridors), prim (many short dead ends), kruskal (even texture).
+    #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
+    pub algo: Algorithm,
+    /// Braid: share (0 to 1) of dead ends to open into loops, so wall-following fails;
+    /// 0 keeps the maze perfect.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_share)]
+    pub braid: f64,
+    /// Grid size in cells, WxH (at most 4096x4096 cells in all).
+    #[arg(long, default_value = "9x9", value_parser = parse_size, allow_hyphen_values = true)]
+    pub size: (u64, u64),
+    /// Start cell: a cell 'x,y', a corner 'sw|se|nw|ne', or 'farthest-pair' (both ends of the longest path).
+    #[arg(long, default_value = "sw", value_parser = parse_endpoint)]
+    pub start: EndpointSpec,
+    /// End cell: a cell 'x,y', a corner, or 'farthest' (farthest from the start along the maze).
+    #[arg(long, default_value = "farthest", value_parser = parse_endpoint)]
+    pub end: EndpointSpec,
+    /// Side of a cell, metres.
+    #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub cell_size: f64,
+    /// Length of the Line template, metres.
+    #[arg(long, default_value_t = course::LINE_LENGTH, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub line_length: f64,
+    /// Width of the Line template, metres.
+    #[arg(long, default_value_t = course::LINE_WIDTH, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub line_width: f64,
+    /// Height of the lines above the floor, metres.
+    #[arg(long, default_value_t = course::LINE_Z, value_parser = parse_finite, allow_hyphen_values = true)]
+    pub line_z: f64,
+    /// Height of the Start and End markers, metres.
+    #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
+    pub marker_z: f64,
+    /// Floor position x,y of cell (0,0)'s centre [default: the maze centred on the floor origin].
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
+    pub origin: Option<[f64; 2]>,
+    /// Rotation of the maze about the floor's z axis, degrees counter-clockwise.
+    #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
+    pub rotation: f64,
+    /// Floor size XxY in metres the maze must fit [default: 10x10, grown in 5 m panels to fit].
+    #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
+    pub floor_size: Option<[f64; 2]>,
+}
+
+fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
+    s.parse()
+        .map_err(|e: String| format!("{e}; use {ENDPOINT_HELP}"))
+}
+
+impl MazeArgs {
+    /// The generate spec these options describe (`seed` decided by the caller).
+    pub fn spec(&self, seed: u64) -> Result<GenerateSpec> {
+        let grid = Grid::new(self.size.0, self.size.1).map_err(|e| anyhow!("--size: {e}"))?;
+        let cell_size = self.cell_size;
+        Ok(GenerateSpec {
+            grid,
+            algorithm: self.algo,
+            seed,
+            braid: self.braid,
+            start: self.start,
+            end: self.end,
+            geometry: Geometry {
+                cell_size,
+                origin: self
+                    .origin
+                    .unwrap_or_else(|| Geometry::centred_origin(grid, cell_size)),
+                rotation: self.rotation.to_radians(),
+                line_length: self.line_length,
+                line_width: self.line_width,
+                line_z: self.line_z,
+                marker_z: self.marker_z,
+            },
+            floor: self.floor_size.map_or(FloorSize::Auto, FloorSize::Fixed),
+        })
+    }
+}
+
+/// Runs `generate`.
+pub fn run(args: GenerateArgs) -> Result<ExitCode> {
+    let drawn = args.seed.is_none();
+    // Check every option before drawing a seed, so a refused run prints nothing else.
+    let mut spec = args.maze.spec(0)?;
+    spec.seed = args.seed.unwrap_or_else(os_seed);
+    let seed = spec.seed;
+    let layout = build_layout(&spec).map_err(|e| anyhow!(e))?;
+    if layout.start.cell == layout.end.cell {
+        eprintln!(
+            "note: start and end are the same cell ({},{}); allowed, the robot is already there",
+            layout.start.cell[0], layout.start.cell[1]
+        );
+    }
+    write_output(args.output.as_deref(), |w| write_layout(&layout, w))?;
+    if drawn {
+        eprintln!(
+            "seed {seed} (drawn from the OS; recorded in the layout; pass --seed {seed} to make this maze again)"
+        );
+    }
+    if let Some(path) = &args.output {
+        eprintln!(
+            "wrote {}: {}x{} {} seed {}, {} segments, solution {} cells",
+            path.display(),
+            layout.grid.columns,
+            layout.grid.rows,
+            layout.generator.algorithm,
+            seed,
+            layout.segments.len(),
+            layout.metrics.solution_cells
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,186 @@
+//! `--start` and `--end`: which cells the robot starts from and must reach.
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::maze::analysis::{diameter_ends, farthest_from};
+use crate::maze::{Cell, Grid, Maze};
+
+/// A grid corner, by compass name (north is +y).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Corner {
+    /// Lowest x, lowest y.
+    SouthWest,
+    /// Highest x, lowest y.
+    SouthEast,
+    /// Lowest x, highest y.
+    NorthWest,
+    /// Highest x, highest y.
+    NorthEast,
+}
+
+impl Corner {
+    /// The corner cell of `grid`.
+    pub fn cell(self, grid: Grid) -> Cell {
+        let (max_x, max_y) = (grid.width() - 1, grid.height() - 1);
+        match self {
+            Corner::SouthWest => Cell::new(0, 0),
+            Corner::SouthEast => Cell::new(max_x, 0),
+            Corner::NorthWest => Cell::new(0, max_y),
+            Corner::NorthEast => Cell::new(max_x, max_y),
+        }
+    }
+}
+
+/// How a start or end cell is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EndpointSpec {
+    /// This cell (`x,y`).
+    Cell(Cell),
+    /// This corner (`sw`, `se`, `nw`, `ne`).
+    Corner(Corner),
+    /// End only: the cell farthest from the start along the maze.
+    Farthest,
+    /// Start only: both ends of the maze's diameter (the end spec is then ignored).
+    FarthestPair,
+}
+
+/// The accepted words, for help and error texts.
+pub const ENDPOINT_HELP: &str = "a cell 'x,y' (column,row from 0), a corner 'sw|se|nw|ne', 'farthest' (end only) or 'farthest-pair' (start only)";
+
+impl FromStr for EndpointSpec {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        let word = s.trim().to_ascii_lowercase();
+        let corner = match word.as_str() {
+            "sw" | "south-west" | "southwest" => Some(Corner::SouthWest),
+            "se" | "south-east" | "southeast" => Some(Corner::SouthEast),
+            "nw" | "north-west" | "northwest" => Some(Corner::NorthWest),
+            "ne" | "north-east" | "northeast" => Some(Corner::NorthEast),
+            _ => None,
+        };
+        if let Some(corner) = corner {
+            return Ok(EndpointSpec::Corner(corner));
+        }
+        match word.as_str() {
+            "farthest" => return Ok(EndpointSpec::Farthest),
+            "farthest-pair" => return Ok(EndpointSpec::FarthestPair),
+            _ => {}
+        }
+        let (x, y) = word
+            .split_once(',')
+            .ok_or_else(|| format!("'{s}' is not {ENDPOINT_HELP}"))?;
+        let parse = |v: &str| {
+            v.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("'{s}' is not {ENDPOINT_HELP}"))
+        };
+        Ok(EndpointSpec::Cell(Cell::new(parse(x)?, parse(y)?)))
+    }
+}
+
+impl fmt::Display for EndpointSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EndpointSpec::Cell(c) => write!(f, "{},{}", c.x, c.y),
+            EndpointSpec::Corner(Corner::SouthWest) => f.write_str("sw"),
+            EndpointSpec::Corner(Corner::SouthEast) => f.write_str("se"),
+            EndpointSpec::Corner(Corner::NorthWest) => f.write_str("nw"),
+            EndpointSpec::Corner(Corner::NorthEast) => f.write_str("ne"),
+            EndpointSpec::Farthest => f.write_str("farthest"),
+            EndpointSpec::FarthestPair => f.write_str("farthest-pair"),
+        }
+    }
+}
+
+/// Resolves the start and end specs on `maze` to cells, or says why they don't fit.
+pub fn resolve(
+    maze: &Maze,
+    start: EndpointSpec,
+    end: EndpointSpec,
+) -> Result<(Cell, Cell), String> {
+    let grid = maze.grid();
+    let fixed = |spec: EndpointSpec, which: &str| -> Result<Option<Cell>, String> {
+        match spec {
+            EndpointSpec::Cell(cell) if grid.contains(cell) => Ok(Some(cell)),
+            EndpointSpec::Cell(cell) => Err(format!(
+                "--{which} {},{} is off the {grid} grid (columns 0..{}, rows 0..{})",
+                cell.x,
+                cell.y,
+                grid.width() - 1,
+                grid.height() - 1
+            )),
+            EndpointSpec::Corner(corner) => Ok(Some(corner.cell(grid))),
+            _ => Ok(None),
+        }
+    };
+    let start_cell = match start {
+        EndpointSpec::Farthest => {
+            return Err("--start farthest needs a reference: use --start farthest-pair".into());
+        }
+        EndpointSpec::FarthestPair => {
+            let (a, b, _) = diameter_ends(maze);
+            return Ok((grid.cell(a.min(b)), grid.cell(a.max(b))));
+        }
+        spec => fixed(spec, "start")?.expect("cell or corner"),
+    };
+    let end_cell = match end {
+        EndpointSpec::FarthestPair => {
+            return Err("--end farthest-pair is not a thing: use --start farthest-pair".into());
+        }
+        EndpointSpec::Farthest => grid.cell(farthest_from(maze, grid.index(start_cell)).0),
+        spec => fixed(spec, "end")?.expect("cell or corner"),
+    };
+    Ok((start_cell, end_cell))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{Algorithm, generate};
+    use crate::maze::analysis::distances_from;
+
+    #[test]
+    fn parses_every_form() {
+        assert_eq!("3,4".parse(), Ok(EndpointSpec::Cell(Cell::new(3, 4))));
+        assert_eq!("NE".parse(), Ok(EndpointSpec::Corner(Corner::NorthEast)));
+        assert_eq!("farthest".parse(), Ok(EndpointSpec::Farthest));
+        assert_eq!("farthest-pair".parse(), Ok(EndpointSpec::FarthestPair));
+        for bad in ["", "3", "-1,2", "a,b", "middle"] {
+            assert!(bad.parse::<EndpointSpec>().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn farthest_end_is_farthest() {
+        let maze = generate(Grid::new(9, 9).unwrap(), Algorithm::Dfs, 42);
+        let (s, e) = resolve(
+            &maze,
+            EndpointSpec::Corner(Corner::SouthWest),
+            EndpointSpec::Farthest,
+        )
+        .unwrap();
+        assert_eq!(s, Cell::new(0, 0));
+        let dist = distances_from(&maze, 0);
+        assert_eq!(dist[maze.grid().index(e)], *dist.iter().max().unwrap());
+        let (a, b) = resolve(&maze, EndpointSpec::FarthestPair, EndpointSpec::Farthest).unwrap();
+        let from_a = distances_from(&maze, maze.grid().index(a));
+        let diameter = (0..81)
+            .map(|i| *distances_from(&maze, i).iter().max().unwrap())
+            .max();
+        assert_eq!(Some(from_a[maze.grid().index(b)]), diameter);
+    }
+
+    #[test]
+    fn off_grid_cells_are_named() {
+        let maze = generate(Grid::new(3, 3).unwrap(), Algorithm::Dfs, 1);
+        let err = resolve(
+            &maze,
+            EndpointSpec::Cell(Cell::new(3, 0)),
+            EndpointSpec::Farthest,
+        )
+        .unwrap_err();
+        assert!(err.contains("--start 3,0 is off the 3x3 grid"), "{err}");
+    }
+}

@@ -1,0 +1,144 @@
+//! Layout JSON, version 1: everything needed to draw, check, render and share one maze.
+//!
+//! `generate` writes it, `validate`, `render` and `apply` read it. The README documents
+//! the schema; `schema/layout-v1.schema.json` is generated from these types. All lengths
+//! are metres and all angles radians, in the frame of the scene's `Floor` object.
+
+pub mod build;
+pub mod endpoints;
+pub mod geometry;
+pub mod json;
+pub mod passages;
+
+use std::collections::BTreeMap;
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::maze::Metrics;
+
+pub use build::{FloorSize, GenerateSpec, build_layout};
+pub use endpoints::EndpointSpec;
+pub use geometry::Geometry;
+pub use json::{read_layout, write_layout};
+
+/// The value of the `format` field.
+pub const FORMAT: &str = "vrep-maze/layout";
+/// The layout version this build reads and writes.
+pub const VERSION: u32 = 1;
+
+/// One maze, ready to draw: the root of layout v1.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Layout {
+    /// Always `"vrep-maze/layout"`.
+    pub format: String,
+    /// Layout version: 1.
+    pub version: u32,
+    /// How the maze was made: enough to make it again.
+    pub generator: GeneratorInfo,
+    /// The cell grid and where it lies on the floor.
+    pub grid: GridSpec,
+    /// The floor the maze must fit on.
+    pub floor: FloorSpec,
+    /// The line template (`Line`) every segment is a copy of.
+    pub line: LineSpec,
+    /// Where the robot starts (`Start` marker).
+    pub start: Endpoint,
+    /// Where the robot must arrive (`End` marker).
+    pub end: Endpoint,
+    /// What the maze is like; `metrics.loops` declares the loops the passages may form.
+    pub metrics: Metrics,
+    /// Always [`passages::ENCODING`]: says how to read `passages`.
+    pub passage_encoding: String,
+    /// The open passages, one string per row: `passages[0]` is row 0 (the south row);
+    /// character `x` of a row is the open-passage hex digit of cell (x, row).
+    pub passages: Vec<String>,
+    /// The line segments to draw, one per copy of `Line` (the template itself is the first).
+    pub segments: Vec<Pose>,
+}
+
+/// How a layout was generated.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GeneratorInfo {
+    /// Version of vrep-maze that wrote the layout.
+    pub crate_version: String,
+    /// The `--algo` value.
+    pub algorithm: String,
+    /// The seed (given, or drawn from the OS and recorded here).
+    pub seed: u64,
+    /// Algorithm options (name to value), empty when the algorithm has none.
+    pub options: BTreeMap<String, String>,
+}
+
+/// The grid of cells in the floor frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    /// Cells along the maze's x axis.
+    pub columns: u32,
+    /// Cells along the maze's y axis.
+    pub rows: u32,
+    /// Side of a square cell, metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub cell_size: f64,
+    /// Floor coordinates (x, y) of the centre of cell (0, 0).
+    #[serde(serialize_with = "json::micrometres_pair")]
+    pub origin: [f64; 2],
+    /// Rotation of the maze about the floor's z axis, radians, counter-clockwise.
+    #[serde(serialize_with = "json::micrometres")]
+    pub rotation: f64,
+}
+
+/// The floor, centred on the floor frame's origin.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FloorSpec {
+    /// Extent along x and y, metres.
+    #[serde(serialize_with = "json::micrometres_pair")]
+    pub size: [f64; 2],
+}
+
+/// The line template's size and height.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LineSpec {
+    /// Length along the template's own x axis, metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub length: f64,
+    /// Width along its y axis, metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub width: f64,
+    /// Height of every segment above the floor, metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub z: f64,
+}
+
+/// A marked cell (start or end) and where its marker goes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Endpoint {
+    /// Column and row of the cell.
+    pub cell: [u32; 2],
+    /// The marker's pose: the cell centre, at marker height.
+    pub pose: Pose,
+}
+
+/// A position and a heading in the floor frame (roll and pitch are always 0).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Pose {
+    /// Metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub x: f64,
+    /// Metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub y: f64,
+    /// Metres.
+    #[serde(serialize_with = "json::micrometres")]
+    pub z: f64,
+    /// Rotation about z, radians in (-pi, pi].
+    #[serde(serialize_with = "json::micrometres")]
+    pub yaw: f64,
+}

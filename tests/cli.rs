@@ -1,0 +1,318 @@
+//! The command line, end to end: generate, validate, render, demo, and every bad input
+//! the core issue lists. Bad input must give one clear error line and a non-zero exit.
+
+mod common;
+
+use common::bin;
+use predicates::prelude::*;
+use predicates::str::contains;
+use std::fs;
+use tempfile::TempDir;
+
+fn generate_to(dir: &TempDir, name: &str, args: &[&str]) -> std::path::PathBuf {
+    let path = dir.path().join(name);
+    bin()
+        .arg("generate")
+        .args(args)
+        .arg("-o")
+        .arg(&path)
+        .assert()
+        .success();
+    path
+}
+
+#[test]
+fn generate_prints_a_valid_v1_layout() {
+    let out = bin()
+        .args(["generate", "--seed", "42", "--algo", "prim"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.starts_with("{\n  \"format\": \"vrep-maze/layout\",\n  \"version\": 1,"));
+    bin()
+        .args(["validate", "-"])
+        .write_stdin(text)
+        .assert()
+        .success()
+        .stdout(contains("OK -: 9x9 prim seed 42, 160 segments"))
+        .stdout(contains("dead ends"));
+}
+
+#[test]
+fn the_same_seed_gives_the_same_bytes_across_processes() {
+    let run = || {
+        bin()
+            .args([
+                "generate", "--seed", "1234", "--algo", "kruskal", "--size", "17x11",
+            ])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    let first = run();
+    assert_eq!(first, run());
+    let other = bin()
+        .args([
+            "generate", "--seed", "1235", "--algo", "kruskal", "--size", "17x11",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_ne!(first, other);
+}
+
+#[test]
+fn a_missing_seed_is_drawn_recorded_and_reproducible() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("m.json");
+    let assert = bin().args(["generate", "-o"]).arg(&path).assert().success();
+    let stderr = String::from_utf8(assert.get_output().stderr.clone()).unwrap();
+    let seed: u64 = stderr
+        .split_whitespace()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no seed in {stderr}"));
+    let text = fs::read_to_string(&path).unwrap();
+    assert!(text.contains(&format!("\"seed\": {seed},")));
+    let again = bin()
+        .args(["generate", "--seed", &seed.to_string()])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(String::from_utf8(again).unwrap(), text);
+}
+
+#[test]
+fn render_draws_ascii_and_svg() {
+    let dir = TempDir::new().unwrap();
+    let maze = generate_to(&dir, "m.json", &["--seed", "5", "--size", "4x3"]);
+    bin()
+        .arg("render")
+        .arg(&maze)
+        .arg("--solution")
+        .assert()
+        .success()
+        .stdout(contains("+---+---+---+---+\n"))
+        .stdout(contains(" S "))
+        .stdout(contains(" E "));
+    let svg = dir.path().join("m.svg");
+    bin()
+        .arg("render")
+        .arg(&maze)
+        .arg("-o")
+        .arg(&svg)
+        .assert()
+        .success();
+    let text = fs::read_to_string(svg).unwrap();
+    assert!(text.starts_with("<svg ") && text.contains("#00ff00"));
+}
+
+#[test]
+fn demo_runs_the_whole_job() {
+    bin()
+        .arg("demo")
+        .assert()
+        .success()
+        .stdout(contains("OK 9x9 dfs seed 42, 160 segments"))
+        .stdout(contains(" S "));
+}
+
+#[test]
+fn every_command_has_an_example_in_its_help() {
+    for command in [
+        "generate",
+        "validate",
+        "render",
+        "demo",
+        "batch",
+        "completions",
+    ] {
+        bin()
+            .args([command, "--help"])
+            .assert()
+            .success()
+            .stdout(contains("vrep-maze ").and(contains("Example")));
+    }
+}
+
+/// Runs `generate` with `args` and expects a one-line error containing `needle`.
+fn generate_fails(args: &[&str], needle: &str) {
+    let assert = bin().arg("generate").args(args).assert().failure();
+    let output = assert.get_output();
+    assert!(output.stdout.is_empty(), "nothing on stdout for {args:?}");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+}
+
+#[test]
+fn bad_generate_options_are_refused_by_name() {
+    generate_fails(&["--size", "0x5"], "both sides need at least 1 cell");
+    generate_fails(
+        &["--size", "100000x100000"],
+        "the limit is 16777216 cells (4096x4096)",
+    );
+    generate_fails(&["--size", "-3x3"], "is not WxH");
+    generate_fails(&["--algo", "mazeomatic"], "unknown algorithm 'mazeomatic'");
+    generate_fails(&["--start", "9,0"], "--start 9,0 is off the 9x9 grid");
+    generate_fails(&["--end", "0,9"], "--end 0,9 is off the 9x9 grid");
+    generate_fails(&["--start", "middle"], "is not a cell 'x,y'");
+    generate_fails(&["--cell-size", "-1"], "positive, finite number of metres");
+    generate_fails(&["--cell-size", "NaN"], "positive, finite number of metres");
+    generate_fails(&["--line-width", "0"], "positive, finite number of metres");
+    generate_fails(&["--origin", "1,inf"], "not a finite number");
+    generate_fails(&["--floor-size", "5x5"], "--floor-size is 5 m x 5 m");
+    generate_fails(&["--seed", "-1"], "--seed");
+    generate_fails(&["--braid", "1.5"], "is not a number from 0 to 1");
+}
+
+#[test]
+fn one_by_one_is_allowed_and_says_start_is_end() {
+    bin()
+        .args(["generate", "--size", "1x1", "--seed", "1"])
+        .assert()
+        .success()
+        .stderr(contains("start and end are the same cell (0,0)"))
+        .stdout(contains("\"segments\": []"));
+}
+
+/// Validates `text` (as a file) and expects failure with `needle` on stderr.
+fn validate_fails(text: &str, needle: &str) {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("bad.json");
+    fs::write(&path, text).unwrap();
+    let assert = bin().arg("validate").arg(&path).assert().failure();
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).to_string();
+    assert!(stderr.contains(needle), "expected {needle:?} in: {stderr}");
+    assert!(stderr.contains("bad.json"), "names the file: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+fn good_text() -> String {
+    let out = bin()
+        .args(["generate", "--seed", "42", "--size", "5x5"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    String::from_utf8(out).unwrap()
+}
+
+#[test]
+fn bad_layout_files_are_refused_with_line_and_column() {
+    let good = good_text();
+    validate_fails(
+        "{\"format\": \"vrep-maze/layout\",\n \"version\": 1,,}",
+        "bad.json:2:15: key must be a string",
+    );
+    validate_fails(&good[..good.len() / 2], "EOF while parsing");
+    validate_fails(
+        &good.replacen("\"version\": 1,", "\"version\": 2,", 1),
+        "layout version 2 is not supported (this vrep-maze reads version 1)",
+    );
+    validate_fails(
+        &good.replacen("vrep-maze/layout", "something-else", 1),
+        "not a vrep-maze layout",
+    );
+    validate_fails(
+        &good.replacen("\"cell_size\": 1.0", "\"cell_size\": -1.0", 1),
+        "grid.cell_size: must be a positive number of metres, not -1",
+    );
+    validate_fails(
+        &good.replacen("\"columns\": 5", "\"columns\": 6", 1),
+        "passages[0] has 5 characters but grid.columns is 6",
+    );
+    validate_fails("", "EOF while parsing");
+    bin()
+        .args(["validate", "/nonexistent/m.json"])
+        .assert()
+        .failure()
+        .stderr(contains("/nonexistent/m.json: No such file"));
+}
+
+#[test]
+fn validate_accepts_a_fresh_layout() {
+    let dir = TempDir::new().unwrap();
+    let path = dir.path().join("ok.json");
+    fs::write(&path, good_text()).unwrap();
+    bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(contains("OK "))
+        .stdout(contains("loops 0"));
+}
+
+#[test]
+fn batch_writes_a_dataset_and_skips_what_is_there() {
+    let dir = TempDir::new().unwrap();
+    let out = dir.path().join("set");
+    let run = || {
+        bin()
+            .args([
+                "batch",
+                "--algo",
+                "kruskal",
+                "--size",
+                "6x6",
+                "--seeds",
+                "0..=9",
+                "--out-dir",
+            ])
+            .arg(&out)
+            .assert()
+            .success()
+    };
+    run().stderr(contains("10 mazes: 10 written, 0 unchanged"));
+    run().stderr(contains("10 mazes: 0 written, 10 unchanged"));
+    let manifest = fs::read_to_string(out.join("manifest.jsonl")).unwrap();
+    assert_eq!(manifest.lines().count(), 10);
+    let single = bin()
+        .args([
+            "generate", "--algo", "kruskal", "--size", "6x6", "--seed", "3",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(
+        fs::read(out.join("kruskal-6x6-seed3.json")).unwrap(),
+        single
+    );
+    bin()
+        .args(["batch", "--seeds", "5..5", "--out-dir"])
+        .arg(&out)
+        .assert()
+        .failure()
+        .stderr(contains("'5..5' is an empty range"));
+}
+
+#[test]
+fn completions_cover_every_command() {
+    for shell in ["bash", "zsh", "fish"] {
+        let out = bin()
+            .args(["completions", shell])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let script = String::from_utf8(out).unwrap();
+        for command in ["generate", "validate", "render", "batch", "demo"] {
+            assert!(script.contains(command), "{shell} lacks {command}");
+        }
+    }
+    bin().args(["completions", "tcsh"]).assert().failure();
+}

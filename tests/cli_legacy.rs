@@ -1,0 +1,118 @@
+//! The `serve`, `apply` and `clear` commands end to end (the binary, a real socket).
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+
+use assert_cmd::cargo::CommandCargoExt;
+use predicates::prelude::*;
+
+struct Serve(Child, u16);
+
+impl Drop for Serve {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn serve(extra: &[&str]) -> Serve {
+    let mut child = Command::cargo_bin("vrep-maze")
+        .unwrap()
+        .args(["serve", "--listen", "127.0.0.1:0"])
+        .args(extra)
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let port = line.split("127.0.0.1:").nth(1).and_then(|r| r.split_whitespace().next()).unwrap().parse().unwrap();
+    Serve(child, port)
+}
+
+fn cmd() -> assert_cmd::Command {
+    assert_cmd::Command::cargo_bin("vrep-maze").unwrap()
+}
+
+fn generate(dir: &std::path::Path, seed: &str, algo: &str) -> String {
+    let path = dir.join(format!("{algo}-{seed}.json")).display().to_string();
+    cmd().args(["generate", "--seed", seed, "--algo", algo, "-o", &path]).assert().success();
+    path
+}
+
+#[test]
+fn legacy_cli_apply_replace_clear() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = serve(&["--idle-fps", "8"]);
+    let port = s.1.to_string();
+    let m1 = generate(dir.path(), "42", "prim");
+    let m2 = generate(dir.path(), "7", "dfs");
+    cmd()
+        .args(["apply", &m1, "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed").and(predicate::str::contains("verified")));
+    cmd()
+        .args(["apply", &m2, "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("159 reused, 0 pasted, 0 removed"));
+    cmd()
+        .args(["apply", &m2, "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("0 pasted, 0 removed, 162 already in place"));
+    cmd().args(["clear", "--port", &port]).assert().success().stdout(predicate::str::contains("removed 159 maze line(s): Line0"));
+    cmd().args(["clear", "--port", &port]).assert().success().stdout(predicate::str::contains("nothing to remove"));
+}
+
+#[test]
+fn legacy_cli_errors_are_one_clear_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "1", "kruskal");
+    let s = serve(&["--scene", "empty", "--idle-fps", "0"]);
+    let port = s.1.to_string();
+    cmd()
+        .args(["apply", &m, "--port", &port])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("missing in the scene: Floor, Maze, Line, Start, End").and(predicate::str::contains("panicked").not()));
+    // nothing listens on the port any more
+    drop(s);
+    cmd()
+        .args(["apply", &m, "--port", &port, "--timeout", "0.3"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("cannot connect"));
+    cmd().args(["clear", "--port", &port, "--timeout", "0.3"]).assert().failure().stderr(predicate::str::contains("cannot connect"));
+}
+
+#[test]
+fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let dump = dir.path().join("scene.json");
+    let m = generate(dir.path(), "3", "prim");
+    let s = serve(&["--idle-fps", "0", "--dump", dump.to_str().unwrap()]);
+    let port = s.1.to_string();
+    // start the simulation with our client
+    let mut c = vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default()).unwrap();
+    c.call1(vrep_maze::legacy::command::Command::Simulation(vrep_maze::legacy::command::SimControl::Start)).unwrap();
+    c.close().unwrap();
+    cmd().args(["apply", &m, "--port", &port]).assert().failure().stderr(predicate::str::contains("simulation is running"));
+    cmd()
+        .args(["apply", &m, "--port", &port, "--stop-simulation"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("stopped the simulation first"));
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(3);
+    let mut text = String::new();
+    while std::time::Instant::now() < deadline {
+        text = std::fs::read_to_string(&dump).unwrap_or_default();
+        if text.contains("Line158") {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    assert!(text.contains("\"Line158\""), "the dump has the drawn maze");
+    let scene = vrep_maze::sim::Scene::from_json(&text).unwrap();
+    assert_eq!(scene.len(), 5 + 159);
+}
