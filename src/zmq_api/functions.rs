@@ -34,6 +34,10 @@ pub const SPECIAL_DETECTABLE: i32 = 496;
 /// `sim.objectspecialproperty_renderable` (seen by vision sensors: the robot's camera).
 pub const SPECIAL_RENDERABLE: i32 = 2048;
 
+/// The program version a protocol-2 server reports (CoppeliaSim 4.10.0); a protocol-1
+/// server reports the scene model's 4.5.1.
+pub const PROGRAM_VERSION_V2: i32 = 41000;
+
 /// Per-object properties the protocol-neutral scene does not model.
 #[derive(Debug, Clone, Default)]
 pub struct Extras {
@@ -393,6 +397,9 @@ fn dispatch(
         }
         "getInt32Param" => {
             let p = a.int(0)?;
+            if p == INTPARAM_PROGRAM_VERSION && protocol == Protocol::V2 {
+                return ret(vec![int(PROGRAM_VERSION_V2.into())]);
+            }
             match sim.int_param(p) {
                 Some(v) => ret(vec![int(v.into())]),
                 None => Err(format!("in {func}: invalid parameter {p}.")),

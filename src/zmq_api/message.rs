@@ -31,8 +31,8 @@ pub enum Protocol {
 impl std::fmt::Display for Protocol {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            Protocol::V1 => "1 (CoppeliaSim 4.3-4.5)",
-            Protocol::V2 => "2 (CoppeliaSim 4.6+)",
+            Protocol::V1 => "1",
+            Protocol::V2 => "2",
         })
     }
 }
