@@ -10,12 +10,20 @@ use vrep_maze::zmq_api::message::{Protocol, Request};
 use vrep_maze::zmq_api::{Client, ClientOptions, ServerConfig, ServerHandle, ZmqError, spawn};
 
 fn serve(protocol: Protocol, fps: i32) -> ServerHandle {
-    let cfg = ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), protocol, ..Default::default() };
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        protocol,
+        ..Default::default()
+    };
     spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()
 }
 
 fn opts(port: u16, ms: u64) -> ClientOptions {
-    ClientOptions { port, timeout: Duration::from_millis(ms), ..Default::default() }
+    ClientOptions {
+        port,
+        timeout: Duration::from_millis(ms),
+        ..Default::default()
+    }
 }
 
 fn text(s: &str) -> Value {
@@ -30,30 +38,87 @@ fn exercise(protocol: Protocol) {
     let maze = c.call_int("sim.getObject", vec![text("/Maze")]).unwrap();
     let missing = c.call("sim.getObject", vec![text("/Nope")]).unwrap_err();
     assert!(matches!(missing, ZmqError::Remote { .. }), "{missing}");
-    let none = c.call_int("sim.getObject", vec![text("/Nope"), cbor::map([("noError", Value::Bool(true))])]);
+    let none = c.call_int(
+        "sim.getObject",
+        vec![text("/Nope"), cbor::map([("noError", Value::Bool(true))])],
+    );
     assert_eq!(none.unwrap(), -1);
-    let copies = c.call1("sim.copyPasteObjects", vec![Value::Array(vec![int(line.into())]), int(0)]).unwrap();
-    let copy = cbor::handles(&copies).unwrap()[0];
-    let path = c.call1("sim.getObjectAlias", vec![int(copy.into()), int(1)]).unwrap();
-    assert_eq!(cbor::text(&path), Some("/Line[1]"));
-    assert_eq!(c.call_int("sim.getObject", vec![text("/Line[1]")]).unwrap(), copy);
-    // both argument orders of setObjectPosition
-    c.call("sim.setObjectPosition", vec![int(copy.into()), int(-1), cbor::float_array(&[1.0, 2.0, 0.001])]).unwrap();
-    let p = c.call1("sim.getObjectPosition", vec![int(copy.into()), int(-1)]).unwrap();
-    assert_eq!(cbor::numbers::<3>(&p), Some([1.0, 2.0, 0.001]));
-    c.call("sim.setObjectPosition", vec![int(copy.into()), cbor::float_array(&[0.5, 0.0, 0.0]), int(maze.into())])
+    let copies = c
+        .call1(
+            "sim.copyPasteObjects",
+            vec![Value::Array(vec![int(line.into())]), int(0)],
+        )
         .unwrap();
-    let p = c.call1("sim.getObjectPosition", vec![int(copy.into()), int(maze.into())]).unwrap();
+    let copy = cbor::handles(&copies).unwrap()[0];
+    let path = c
+        .call1("sim.getObjectAlias", vec![int(copy.into()), int(1)])
+        .unwrap();
+    assert_eq!(cbor::text(&path), Some("/Line[1]"));
+    assert_eq!(
+        c.call_int("sim.getObject", vec![text("/Line[1]")]).unwrap(),
+        copy
+    );
+    // both argument orders of setObjectPosition
+    c.call(
+        "sim.setObjectPosition",
+        vec![
+            int(copy.into()),
+            int(-1),
+            cbor::float_array(&[1.0, 2.0, 0.001]),
+        ],
+    )
+    .unwrap();
+    let p = c
+        .call1("sim.getObjectPosition", vec![int(copy.into()), int(-1)])
+        .unwrap();
+    assert_eq!(cbor::numbers::<3>(&p), Some([1.0, 2.0, 0.001]));
+    c.call(
+        "sim.setObjectPosition",
+        vec![
+            int(copy.into()),
+            cbor::float_array(&[0.5, 0.0, 0.0]),
+            int(maze.into()),
+        ],
+    )
+    .unwrap();
+    let p = c
+        .call1(
+            "sim.getObjectPosition",
+            vec![int(copy.into()), int(maze.into())],
+        )
+        .unwrap();
     assert_eq!(cbor::numbers::<3>(&p), Some([0.5, 0.0, 0.0]));
-    c.call("sim.setObjectParent", vec![int(copy.into()), int(maze.into()), Value::Bool(true)]).unwrap();
-    let kids = c.call1("sim.getObjectsInTree", vec![int(maze.into()), int(-2), int(1)]).unwrap();
+    c.call(
+        "sim.setObjectParent",
+        vec![int(copy.into()), int(maze.into()), Value::Bool(true)],
+    )
+    .unwrap();
+    let kids = c
+        .call1(
+            "sim.getObjectsInTree",
+            vec![int(maze.into()), int(-2), int(1)],
+        )
+        .unwrap();
     assert_eq!(cbor::handles(&kids), Some(vec![copy]));
     let err = c.call("sim.x", vec![]).unwrap_err();
     assert_eq!(err.to_string(), "sim.x: No such function: sim.x");
     assert!(err.is_no_such_function());
     // a function with no return value answers an empty map: seen as no values
-    assert_eq!(c.call("sim.removeObjects", vec![Value::Array(vec![int(copy.into())])]).unwrap(), vec![]);
-    assert!(c.call("sim.removeObjects", vec![Value::Array(vec![int(copy.into())])]).is_err());
+    assert_eq!(
+        c.call(
+            "sim.removeObjects",
+            vec![Value::Array(vec![int(copy.into())])]
+        )
+        .unwrap(),
+        vec![]
+    );
+    assert!(
+        c.call(
+            "sim.removeObjects",
+            vec![Value::Array(vec![int(copy.into())])]
+        )
+        .is_err()
+    );
     assert_eq!(c.call_int("sim.getInt32Param", vec![int(26)]).unwrap(), 0);
     let stats = c.stats();
     assert!(stats.round_trips >= stats.calls);
@@ -91,22 +156,37 @@ fn zmq_idle_fps_paces_spaced_calls() {
     std::thread::sleep(Duration::from_millis(80));
     let t = Instant::now();
     c.call("sim.getSimulationState", vec![]).unwrap();
-    assert!(t.elapsed() >= Duration::from_millis(100), "spaced call at 8 fps took {:?}", t.elapsed());
+    assert!(
+        t.elapsed() >= Duration::from_millis(100),
+        "spaced call at 8 fps took {:?}",
+        t.elapsed()
+    );
     let t = Instant::now();
     for _ in 0..20 {
         c.call("sim.getSimulationState", vec![]).unwrap();
     }
-    assert!(t.elapsed() < Duration::from_millis(500), "back-to-back calls took {:?}", t.elapsed());
+    assert!(
+        t.elapsed() < Duration::from_millis(500),
+        "back-to-back calls took {:?}",
+        t.elapsed()
+    );
     s.shutdown();
 }
 
 #[test]
 fn zmq_request_without_uuid_is_an_old_client() {
     let s = serve(Protocol::V2, 0);
-    let reply = raw_exchange(s.local_addr().port(), &Request::v1("sim.getSimulationState", vec![]).encode());
+    let reply = raw_exchange(
+        s.local_addr().port(),
+        &Request::v1("sim.getSimulationState", vec![]).encode(),
+    );
     let v = cbor::decode(&reply).unwrap();
     assert_eq!(cbor::get(&v, "success"), Some(&Value::Bool(false)));
-    assert!(cbor::text(cbor::get(&v, "error").unwrap()).unwrap().contains("does not match"));
+    assert!(
+        cbor::text(cbor::get(&v, "error").unwrap())
+            .unwrap()
+            .contains("does not match")
+    );
     s.shutdown();
 }
 
@@ -122,7 +202,10 @@ fn raw_exchange(port: u16, bytes: &[u8]) -> Vec<u8> {
 
 fn hex(s: &str) -> Vec<u8> {
     let s: String = s.split_whitespace().collect();
-    (0..s.len()).step_by(2).map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap()).collect()
+    (0..s.len())
+        .step_by(2)
+        .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
+        .collect()
 }
 
 /// Protocol 1 (CoppeliaSim 4.5.1) request/reply pairs, byte for byte: `{func, args}` in,
@@ -175,7 +258,15 @@ fn fake_server(script: Vec<Option<Vec<u8>>>) -> (u16, std::thread::JoinHandle<Ve
     sock.set_linger(0).unwrap();
     sock.set_rcvtimeo(5000).unwrap();
     sock.bind("tcp://127.0.0.1:*").unwrap();
-    let port: u16 = sock.get_last_endpoint().unwrap().unwrap().rsplit(':').next().unwrap().parse().unwrap();
+    let port: u16 = sock
+        .get_last_endpoint()
+        .unwrap()
+        .unwrap()
+        .rsplit(':')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     let t = std::thread::spawn(move || {
         let _ctx = ctx;
         let mut seen = vec![];
@@ -187,7 +278,11 @@ fn fake_server(script: Vec<Option<Vec<u8>>>) -> (u16, std::thread::JoinHandle<Ve
                 None => {
                     std::thread::sleep(Duration::from_millis(400));
                     // the client has dropped this socket: the reply goes nowhere
-                    sock.send(cbor::encode(&cbor::map([("ret", Value::Array(vec![int(0)]))])), 0).unwrap();
+                    sock.send(
+                        cbor::encode(&cbor::map([("ret", Value::Array(vec![int(0)]))])),
+                        0,
+                    )
+                    .unwrap();
                 }
             }
         }
@@ -210,12 +305,29 @@ fn zmq_client_runs_the_wait_and_repeat_loop() {
         reply(cbor::map([("ret", Value::Array(vec![int(42)]))])),
     ]);
     let mut c = Client::open(&opts(port, 2000)).unwrap();
-    assert_eq!(c.call_int("sim.getObject", vec![text("/Line")]).unwrap(), 42);
+    assert_eq!(
+        c.call_int("sim.getObject", vec![text("/Line")]).unwrap(),
+        42
+    );
     assert_eq!(c.stats().round_trips, 4);
     let seen = t.join().unwrap();
-    let funcs: Vec<&str> = seen.iter().map(|v| cbor::text(cbor::get(v, "func").unwrap()).unwrap()).collect();
-    assert_eq!(funcs, ["sim.getObject", "_*executed*_", "sim.getObject", "_*executed*_"]);
-    assert_eq!(seen[0], seen[2], "repeat resends the original request unchanged");
+    let funcs: Vec<&str> = seen
+        .iter()
+        .map(|v| cbor::text(cbor::get(v, "func").unwrap()).unwrap())
+        .collect();
+    assert_eq!(
+        funcs,
+        [
+            "sim.getObject",
+            "_*executed*_",
+            "sim.getObject",
+            "_*executed*_"
+        ]
+    );
+    assert_eq!(
+        seen[0], seen[2],
+        "repeat resends the original request unchanged"
+    );
     for v in &seen {
         assert!(cbor::get(v, "uuid").is_some() && cbor::get(v, "argsL").is_some());
     }
@@ -224,7 +336,10 @@ fn zmq_client_runs_the_wait_and_repeat_loop() {
 
 #[test]
 fn zmq_client_times_out_then_recovers_with_a_fresh_socket() {
-    let (port, t) = fake_server(vec![None, reply(cbor::map([("ret", Value::Array(vec![int(7)]))]))]);
+    let (port, t) = fake_server(vec![
+        None,
+        reply(cbor::map([("ret", Value::Array(vec![int(7)]))])),
+    ]);
     let mut c = Client::open(&opts(port, 200)).unwrap();
     let started = Instant::now();
     let e = c.call("sim.getSimulationState", vec![]).unwrap_err();
@@ -262,7 +377,11 @@ fn zmq_client_reports_malformed_replies_without_panicking() {
 
 #[test]
 fn zmq_connect_to_a_closed_port_is_a_clear_error() {
-    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let port = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
     let e = Client::connect(&opts(port, 500)).unwrap_err();
     assert!(matches!(e, ZmqError::Connect { .. }), "{e}");
     assert!(e.to_string().contains(&format!("tcp://127.0.0.1:{port}")));

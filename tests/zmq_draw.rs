@@ -6,7 +6,8 @@ use std::time::Duration;
 
 use ciborium::Value;
 use vrep_maze::draw::{
-    self, ApplyOptions, DrawError, Drawing, Edit, ObjectInfo, Scene as DrawScene, SceneError, SceneNames, Survey,
+    self, ApplyOptions, DrawError, Drawing, Edit, ObjectInfo, Scene as DrawScene, SceneError,
+    SceneNames, Survey,
 };
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
@@ -14,7 +15,9 @@ use vrep_maze::legacy::{self, LegacyScene};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{HANDLE_WORLD, Scene, Simulator};
 use vrep_maze::zmq_api::cbor::{self, int};
-use vrep_maze::zmq_api::{ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqScene, spawn, spawn_shared};
+use vrep_maze::zmq_api::{
+    ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqScene, spawn, spawn_shared,
+};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
     let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
@@ -22,7 +25,11 @@ fn drawing(n: u64, seed: u64) -> Drawing {
 }
 
 fn config(protocol: Protocol) -> ServerConfig {
-    ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), protocol, ..Default::default() }
+    ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        protocol,
+        ..Default::default()
+    }
 }
 
 fn server(scene: Scene, fps: i32, protocol: Protocol) -> ServerHandle {
@@ -30,7 +37,12 @@ fn server(scene: Scene, fps: i32, protocol: Protocol) -> ServerHandle {
 }
 
 fn connect(port: u16) -> ZmqScene {
-    ZmqScene::connect(&ClientOptions { port, timeout: Duration::from_secs(3), ..Default::default() }).unwrap()
+    ZmqScene::connect(&ClientOptions {
+        port,
+        timeout: Duration::from_secs(3),
+        ..Default::default()
+    })
+    .unwrap()
 }
 
 fn no_progress(_: draw::Stage) {}
@@ -47,18 +59,34 @@ fn apply_and_reapply(protocol: Protocol) {
     let r = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!((r.lines, r.pasted, r.reused, r.removed), (160, 159, 0, 0));
     assert_eq!(line_count(&s), 160);
-    assert_eq!(s.with_sim(|sim| sim.idle_fps), 8, "user's idle rate restored");
+    assert_eq!(
+        s.with_sim(|sim| sim.idle_fps),
+        8,
+        "user's idle rate restored"
+    );
     draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
     let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
-    assert_eq!((again.pasted, again.removed, again.edits, again.reused), (0, 0, 0, 159), "{again}");
+    assert_eq!(
+        (again.pasted, again.removed, again.edits, again.reused),
+        (0, 0, 0, 159),
+        "{again}"
+    );
     let small = drawing(3, 2);
     let r = draw::apply(&mut sc, &small, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!((r.pasted, r.removed), (0, 160 - small.lines.len()));
-    assert!(matches!(draw::verify(&mut sc, &d, &SceneNames::default()), Err(DrawError::Verify(_))));
+    assert!(matches!(
+        draw::verify(&mut sc, &d, &SceneNames::default()),
+        Err(DrawError::Verify(_))
+    ));
     let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
     assert_eq!(c.removed.len(), small.lines.len() - 1);
     assert_eq!(line_count(&s), 1, "only the template is left");
-    assert!(draw::clear(&mut sc, &SceneNames::default(), false).unwrap().removed.is_empty());
+    assert!(
+        draw::clear(&mut sc, &SceneNames::default(), false)
+            .unwrap()
+            .removed
+            .is_empty()
+    );
     drop(sc);
     s.shutdown();
 }
@@ -80,7 +108,9 @@ fn zmq_create_missing_in_an_empty_scene() {
     let d = drawing(4, 1);
     let names = SceneNames::default();
     match draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress) {
-        Err(DrawError::Missing { names, .. }) => assert_eq!(names, ["Floor", "Maze", "Line", "Start", "End"]),
+        Err(DrawError::Missing { names, .. }) => {
+            assert_eq!(names, ["Floor", "Maze", "Line", "Start", "End"])
+        }
         other => panic!("{other:?}"),
     }
     let created = sc.create_missing(&names).unwrap();
@@ -88,7 +118,12 @@ fn zmq_create_missing_in_an_empty_scene() {
     assert!(sc.create_missing(&names).unwrap().is_empty(), "idempotent");
     draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     s.with_sim(|sim| {
-        let get = |n: &str| sim.scene.get(sim.scene.resolve(n).unwrap()).unwrap().clone();
+        let get = |n: &str| {
+            sim.scene
+                .get(sim.scene.resolve(n).unwrap())
+                .unwrap()
+                .clone()
+        };
         let (line, start, end, maze) = (get("Line"), get("Start"), get("End"), get("Maze"));
         assert_eq!((line.size, line.colour), ([0.6, 0.1, 0.0], [0, 255, 0]));
         assert_eq!((start.size, start.colour), ([1.0, 1.0, 0.0], [0, 0, 255]));
@@ -103,10 +138,24 @@ fn zmq_create_missing_in_an_empty_scene() {
         ..Default::default()
     })
     .unwrap();
-    let line = c.call_int("sim.getObject", vec![Value::Text("/Line".into())]).unwrap();
-    assert_eq!(c.call_int("sim.getObjectSpecialProperty", vec![int(line.into())]).unwrap(), 2048);
-    assert_eq!(c.call_int("sim.getObjectInt32Param", vec![int(line.into()), int(3004)]).unwrap(), 0);
-    assert_eq!(c.call_int("sim.getObjectInt32Param", vec![int(line.into()), int(3003)]).unwrap(), 1);
+    let line = c
+        .call_int("sim.getObject", vec![Value::Text("/Line".into())])
+        .unwrap();
+    assert_eq!(
+        c.call_int("sim.getObjectSpecialProperty", vec![int(line.into())])
+            .unwrap(),
+        2048
+    );
+    assert_eq!(
+        c.call_int("sim.getObjectInt32Param", vec![int(line.into()), int(3004)])
+            .unwrap(),
+        0
+    );
+    assert_eq!(
+        c.call_int("sim.getObjectInt32Param", vec![int(line.into()), int(3003)])
+            .unwrap(),
+        1
+    );
     let path = std::env::temp_dir().join(format!("vrep-maze-zmq-save-{}.json", std::process::id()));
     sc.save_scene(path.to_str().unwrap()).unwrap();
     let saved = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
@@ -125,7 +174,10 @@ fn zmq_refuses_a_running_simulation_and_stops_it_when_asked() {
         draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress),
         Err(DrawError::SimulationRunning)
     ));
-    let opts = ApplyOptions { stop_simulation: true, ..Default::default() };
+    let opts = ApplyOptions {
+        stop_simulation: true,
+        ..Default::default()
+    };
     let r = draw::apply(&mut sc, &d, &opts, &mut no_progress).unwrap();
     assert!(r.stopped_simulation);
     assert_eq!(line_count(&s), d.lines.len());
@@ -187,7 +239,11 @@ fn snapshot(sim: &Simulator) -> Snapshot {
         .map(|o| {
             let (p, e) = sim.scene.pose(o.handle, HANDLE_WORLD).unwrap();
             let parent = o.parent.map(|p| sim.scene.get(p).unwrap().alias.clone());
-            (o.alias.clone(), parent, [r(p[0]), r(p[1]), r(p[2]), r(e[0]), r(e[1]), r(e[2])])
+            (
+                o.alias.clone(),
+                parent,
+                [r(p[0]), r(p[1]), r(p[2]), r(e[0]), r(e[1]), r(e[2])],
+            )
         })
         .collect();
     out.sort();
@@ -198,11 +254,15 @@ fn snapshot(sim: &Simulator) -> Snapshot {
 fn zmq_and_legacy_draw_the_same_scene() {
     let d = drawing(9, 42);
     let lg = legacy::spawn(
-        legacy::ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), ..Default::default() },
+        legacy::ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            ..Default::default()
+        },
         Simulator::new(Scene::course(), 0),
     )
     .unwrap();
-    let mut l = LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
+    let mut l =
+        LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
     draw::apply(&mut l, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     l.close().unwrap();
     let z = server(Scene::course(), 0, Protocol::V2);
@@ -218,7 +278,10 @@ fn zmq_and_legacy_draw_the_same_scene() {
 #[test]
 fn zmq_and_legacy_share_one_scene_with_api_both() {
     let lg = legacy::spawn(
-        legacy::ServerConfig { listen: "127.0.0.1:0".parse().unwrap(), ..Default::default() },
+        legacy::ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            ..Default::default()
+        },
         Simulator::new(Scene::course(), 0),
     )
     .unwrap();
@@ -229,16 +292,26 @@ fn zmq_and_legacy_share_one_scene_with_api_both() {
     draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     drop(sc);
     // verified through the other API
-    let mut l = LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
+    let mut l =
+        LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
     draw::verify(&mut l, &d, &SceneNames::default()).unwrap();
     let cleared = draw::clear(&mut l, &SceneNames::default(), false).unwrap();
     assert_eq!(cleared.removed.len(), d.lines.len() - 1);
     l.close().unwrap();
-    let mut c =
-        vrep_maze::zmq_api::Client::connect(&ClientOptions { port: z.local_addr().port(), ..Default::default() })
-            .unwrap();
-    let maze = c.call_int("sim.getObject", vec![Value::Text("/Maze".into())]).unwrap();
-    let kids = c.call1("sim.getObjectsInTree", vec![int(maze.into()), int(-2), int(3)]).unwrap();
+    let mut c = vrep_maze::zmq_api::Client::connect(&ClientOptions {
+        port: z.local_addr().port(),
+        ..Default::default()
+    })
+    .unwrap();
+    let maze = c
+        .call_int("sim.getObject", vec![Value::Text("/Maze".into())])
+        .unwrap();
+    let kids = c
+        .call1(
+            "sim.getObjectsInTree",
+            vec![int(maze.into()), int(-2), int(3)],
+        )
+        .unwrap();
     assert_eq!(cbor::handles(&kids), Some(vec![]));
     drop(c);
     z.shutdown();

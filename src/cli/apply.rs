@@ -6,8 +6,8 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use crate::draw::{self, ApplyOptions, Drawing, SceneNames, Stage};
 use super::backend::{Api, Backend};
+use crate::draw::{self, ApplyOptions, Drawing, SceneNames, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
 #[derive(Debug, Clone, clap::Args)]
@@ -118,9 +118,13 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut backend = args.scene.connect()?;
     if args.create_missing && !args.dry_run {
         let Some(z) = backend.zmq() else {
-            anyhow::bail!("--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)");
+            anyhow::bail!(
+                "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+            );
         };
-        let created = z.create_missing(&opts.names).context("creating the missing scene objects")?;
+        let created = z
+            .create_missing(&opts.names)
+            .context("creating the missing scene objects")?;
         if !created.is_empty() {
             println!("created {}", created.join(", "));
         }
@@ -160,9 +164,12 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         && !args.dry_run
     {
         let Some(z) = backend.zmq() else {
-            anyhow::bail!("--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)");
+            anyhow::bail!(
+                "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+            );
         };
-        z.save_scene(path).with_context(|| format!("saving the scene to {path}"))?;
+        z.save_scene(path)
+            .with_context(|| format!("saving the scene to {path}"))?;
         println!("saved the scene to {path} (on the simulator's machine)");
     }
     backend.close();

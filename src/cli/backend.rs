@@ -35,19 +35,31 @@ pub enum Backend {
 
 impl Backend {
     /// Connects as `api` says. `port` overrides the API's default (not allowed with auto).
-    pub fn connect(api: Api, host: &str, port: Option<u16>, timeout: Duration) -> anyhow::Result<Backend> {
+    pub fn connect(
+        api: Api,
+        host: &str,
+        port: Option<u16>,
+        timeout: Duration,
+    ) -> anyhow::Result<Backend> {
         match api {
             Api::Legacy => {
                 let port = port.unwrap_or(LEGACY_PORT);
-                let scene = LegacyScene::connect(host, port, timeout)
-                    .with_context(|| format!("connecting to CoppeliaSim's legacy remote API at {host}:{port}"))?;
+                let scene = LegacyScene::connect(host, port, timeout).with_context(|| {
+                    format!("connecting to CoppeliaSim's legacy remote API at {host}:{port}")
+                })?;
                 Ok(Backend::Legacy(scene))
             }
             Api::Zmq => {
                 let port = port.unwrap_or(ZMQ_PORT);
-                let options = ClientOptions { host: host.to_string(), port, timeout, protocol: None };
-                let scene = ZmqScene::connect(&options)
-                    .with_context(|| format!("connecting to CoppeliaSim's ZeroMQ remote API at {host}:{port}"))?;
+                let options = ClientOptions {
+                    host: host.to_string(),
+                    port,
+                    timeout,
+                    protocol: None,
+                };
+                let scene = ZmqScene::connect(&options).with_context(|| {
+                    format!("connecting to CoppeliaSim's ZeroMQ remote API at {host}:{port}")
+                })?;
                 Ok(Backend::Zmq(scene))
             }
             Api::Auto => {
@@ -55,7 +67,12 @@ impl Backend {
                     port.is_none(),
                     "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
                 );
-                let legacy = Backend::connect(Api::Legacy, host, None, timeout.min(Duration::from_millis(1500)));
+                let legacy = Backend::connect(
+                    Api::Legacy,
+                    host,
+                    None,
+                    timeout.min(Duration::from_millis(1500)),
+                );
                 let legacy_err = match legacy {
                     Ok(b) => return Ok(b),
                     Err(e) => e,
@@ -93,7 +110,11 @@ impl Backend {
             Backend::Legacy(_) => format!("legacy remote API (port {LEGACY_PORT} by default)"),
             Backend::Zmq(s) => {
                 let v = s.version();
-                let protocol = s.client().protocol().map(|p| p.to_string()).unwrap_or_else(|| "?".into());
+                let protocol = s
+                    .client()
+                    .protocol()
+                    .map(|p| p.to_string())
+                    .unwrap_or_else(|| "?".into());
                 format!(
                     "ZeroMQ remote API at {}, protocol {protocol}, CoppeliaSim {}.{}.{}",
                     s.client().endpoint(),

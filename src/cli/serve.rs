@@ -9,8 +9,8 @@ use anyhow::Context;
 use std::sync::Arc;
 
 use crate::legacy::{ServerConfig, spawn};
-use crate::zmq_api::{self, Protocol};
 use crate::sim::{NamingMode, Scene, Simulator};
+use crate::zmq_api::{self, Protocol};
 
 /// Serve an in-memory scene over the legacy and/or ZeroMQ remote API (no CoppeliaSim needed).
 #[derive(Debug, clap::Args)]
@@ -91,7 +91,9 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         "--idle-fps must be in 0..=1000, got {}",
         args.idle_fps
     );
-    let legacy_listen = args.listen.unwrap_or(SocketAddr::from(([127, 0, 0, 1], 19997)));
+    let legacy_listen = args
+        .listen
+        .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 19997)));
     let zmq_listen = match args.api {
         ServeApi::Both => args.zmq_listen,
         _ => args.listen,
@@ -103,8 +105,16 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     );
     let zmq_config = zmq_api::ServerConfig {
         listen: zmq_listen,
-        protocol: if args.protocol == 1 { Protocol::V1 } else { Protocol::V2 },
-        dump: if args.api == ServeApi::Zmq { args.dump.clone() } else { None },
+        protocol: if args.protocol == 1 {
+            Protocol::V1
+        } else {
+            Protocol::V2
+        },
+        dump: if args.api == ServeApi::Zmq {
+            args.dump.clone()
+        } else {
+            None
+        },
         verbose: args.verbose,
         ..Default::default()
     };

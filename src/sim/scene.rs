@@ -573,11 +573,18 @@ impl Scene {
     /// `base` if no object has that name (other than `except`), else `base0`, `base1`, ...:
     /// the names CoppeliaSim gives newly created objects.
     pub fn unique_name(&self, base: &str, except: Option<i32>) -> String {
-        let taken = |n: &str| self.objects.values().any(|o| o.name == n && Some(o.handle) != except);
+        let taken = |n: &str| {
+            self.objects
+                .values()
+                .any(|o| o.name == n && Some(o.handle) != except)
+        };
         if !taken(base) {
             return base.to_string();
         }
-        (0u64..).map(|n| format!("{base}{n}")).find(|n| !taken(n)).unwrap_or_default()
+        (0u64..)
+            .map(|n| format!("{base}{n}"))
+            .find(|n| !taken(n))
+            .unwrap_or_default()
     }
 
     /// Adds an object named `base` (made unique, see [`Scene::unique_name`]); alias `base`.
@@ -594,10 +601,21 @@ impl Scene {
     /// old-style name after it, made unique.
     pub fn set_alias(&mut self, handle: i32, alias: &str) -> Result<(), SimError> {
         self.get(handle)?;
-        let clean: String =
-            alias.chars().map(|c| if c.is_ascii_alphanumeric() || c == '_' { c } else { '_' }).collect();
+        let clean: String = alias
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
         let name = self.unique_name(&clean, Some(handle));
-        let o = self.objects.get_mut(&handle).ok_or(SimError::NoSuchHandle(handle))?;
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
         o.alias = clean;
         o.name = name;
         Ok(())
@@ -605,7 +623,10 @@ impl Scene {
 
     /// Sets an object's colour.
     pub fn set_colour(&mut self, handle: i32, colour: [u8; 3]) -> Result<(), SimError> {
-        self.objects.get_mut(&handle).ok_or(SimError::NoSuchHandle(handle))?.colour = colour;
+        self.objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?
+            .colour = colour;
         Ok(())
     }
 }

@@ -28,7 +28,10 @@ pub fn decode(bytes: &[u8]) -> Result<Value, CborError> {
     let value: Value = ciborium::de::from_reader(&mut reader)
         .map_err(|e| CborError(format!("malformed CBOR ({} bytes): {e}", bytes.len())))?;
     if !reader.is_empty() {
-        return Err(CborError(format!("{} trailing bytes after the CBOR item", reader.len())));
+        return Err(CborError(format!(
+            "{} trailing bytes after the CBOR item",
+            reader.len()
+        )));
     }
     Ok(untag(value))
 }
@@ -38,20 +41,33 @@ pub fn untag(value: Value) -> Value {
     match value {
         Value::Tag(_, inner) => untag(*inner),
         Value::Array(items) => Value::Array(items.into_iter().map(untag).collect()),
-        Value::Map(pairs) => Value::Map(pairs.into_iter().map(|(k, v)| (untag(k), untag(v))).collect()),
+        Value::Map(pairs) => Value::Map(
+            pairs
+                .into_iter()
+                .map(|(k, v)| (untag(k), untag(v)))
+                .collect(),
+        ),
         other => other,
     }
 }
 
 /// A map with text keys, in the given order.
 pub fn map<'a>(pairs: impl IntoIterator<Item = (&'a str, Value)>) -> Value {
-    Value::Map(pairs.into_iter().map(|(k, v)| (Value::Text(k.to_string()), v)).collect())
+    Value::Map(
+        pairs
+            .into_iter()
+            .map(|(k, v)| (Value::Text(k.to_string()), v))
+            .collect(),
+    )
 }
 
 /// The value under a text (or byte-string) key of a map.
 pub fn get<'a>(value: &'a Value, key: &str) -> Option<&'a Value> {
     match value {
-        Value::Map(pairs) => pairs.iter().find(|(k, _)| text(k) == Some(key)).map(|(_, v)| v),
+        Value::Map(pairs) => pairs
+            .iter()
+            .find(|(k, _)| text(k) == Some(key))
+            .map(|(_, v)| v),
         _ => None,
     }
 }
@@ -137,7 +153,10 @@ pub fn int(i: i64) -> Value {
 pub fn describe(value: &Value) -> String {
     let mut s = format!("{value:?}");
     if s.len() > 120 {
-        let cut = (0..=117).rev().find(|i| s.is_char_boundary(*i)).unwrap_or(0);
+        let cut = (0..=117)
+            .rev()
+            .find(|i| s.is_char_boundary(*i))
+            .unwrap_or(0);
         s.truncate(cut);
         s.push_str("...");
     }
@@ -151,7 +170,12 @@ mod tests {
     #[test]
     fn floats_of_every_width_and_ints() {
         // f16 1.5, f32 0.25, f64 -2.0, int 3
-        for (hex, want) in [("f93e00", 1.5), ("fa3e800000", 0.25), ("fbc000000000000000", -2.0), ("03", 3.0)] {
+        for (hex, want) in [
+            ("f93e00", 1.5),
+            ("fa3e800000", 0.25),
+            ("fbc000000000000000", -2.0),
+            ("03", 3.0),
+        ] {
             let v = decode(&hex_bytes(hex)).unwrap();
             assert_eq!(number(&v), Some(want), "{hex}");
         }
@@ -165,17 +189,32 @@ mod tests {
         // tag 4294999999 (simCBOR handle) around 17
         let v = decode(&hex_bytes("db00000000ffff7ebf11")).unwrap();
         assert_eq!(int32(&v), Some(17));
-        assert!(array(&decode(&hex_bytes("a0")).unwrap()).unwrap().is_empty());
+        assert!(
+            array(&decode(&hex_bytes("a0")).unwrap())
+                .unwrap()
+                .is_empty()
+        );
     }
 
     #[test]
     fn malformed_is_an_error_not_a_panic() {
-        for bad in ["", "ff", "a1", "9f01", "0102", "5bffffffffffffffff", "7a0000ffff61"] {
+        for bad in [
+            "",
+            "ff",
+            "a1",
+            "9f01",
+            "0102",
+            "5bffffffffffffffff",
+            "7a0000ffff61",
+        ] {
             assert!(decode(&hex_bytes(bad)).is_err(), "{bad}");
         }
     }
 
     fn hex_bytes(s: &str) -> Vec<u8> {
-        (0..s.len()).step_by(2).map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap()).collect()
+        (0..s.len())
+            .step_by(2)
+            .map(|i| u8::from_str_radix(&s[i..i + 2], 16).unwrap())
+            .collect()
     }
 }

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use ciborium::Value;
 
 use super::cbor::{self, CborError};
-use super::message::{EXECUTED, END, Protocol, Reply, Request, parse_reply};
+use super::message::{END, EXECUTED, Protocol, Reply, Request, parse_reply};
 
 /// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
 const MAX_TURNS: usize = 10_000;
@@ -20,7 +20,9 @@ const MAX_TURNS: usize = 10_000;
 #[derive(Debug, thiserror::Error)]
 pub enum ZmqError {
     /// Nothing accepts TCP connections on the endpoint.
-    #[error("cannot connect to {endpoint}: {why} (is CoppeliaSim running with the ZeroMQ remote API add-on on this port?)")]
+    #[error(
+        "cannot connect to {endpoint}: {why} (is CoppeliaSim running with the ZeroMQ remote API add-on on this port?)"
+    )]
     Connect {
         /// `tcp://host:port`.
         endpoint: String,
@@ -28,7 +30,9 @@ pub enum ZmqError {
         why: String,
     },
     /// No reply in time.
-    #[error("{func}: no reply from {endpoint} within {secs:.1} s (is it a ZeroMQ remote API server? is the simulator busy in a dialog?)")]
+    #[error(
+        "{func}: no reply from {endpoint} within {secs:.1} s (is it a ZeroMQ remote API server? is the simulator busy in a dialog?)"
+    )]
     Timeout {
         /// Function being called.
         func: String,
@@ -85,7 +89,12 @@ pub struct ClientOptions {
 
 impl Default for ClientOptions {
     fn default() -> Self {
-        ClientOptions { host: "127.0.0.1".into(), port: 23000, timeout: Duration::from_secs(5), protocol: None }
+        ClientOptions {
+            host: "127.0.0.1".into(),
+            port: 23000,
+            timeout: Duration::from_secs(5),
+            protocol: None,
+        }
     }
 }
 
@@ -111,7 +120,10 @@ pub struct Client {
 
 impl std::fmt::Debug for Client {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Client").field("endpoint", &self.endpoint).field("protocol", &self.protocol).finish()
+        f.debug_struct("Client")
+            .field("endpoint", &self.endpoint)
+            .field("protocol", &self.protocol)
+            .finish()
     }
 }
 
@@ -121,7 +133,14 @@ pub fn new_uuid() -> String {
     b[6] = (b[6] & 0x0f) | 0x40;
     b[8] = (b[8] & 0x3f) | 0x80;
     let h: String = b.iter().map(|x| format!("{x:02x}")).collect();
-    format!("{}-{}-{}-{}-{}", &h[0..8], &h[8..12], &h[12..16], &h[16..20], &h[20..32])
+    format!(
+        "{}-{}-{}-{}-{}",
+        &h[0..8],
+        &h[8..12],
+        &h[12..16],
+        &h[16..20],
+        &h[20..32]
+    )
 }
 
 impl Client {
@@ -143,17 +162,22 @@ impl Client {
     /// Opens the socket without any call (for tests of the raw call loop).
     pub fn open(options: &ClientOptions) -> Result<Client, ZmqError> {
         let endpoint = format!("tcp://{}:{}", options.host, options.port);
-        let connect_err = |why: String| ZmqError::Connect { endpoint: endpoint.clone(), why };
+        let connect_err = |why: String| ZmqError::Connect {
+            endpoint: endpoint.clone(),
+            why,
+        };
         let addrs: Vec<_> = (options.host.as_str(), options.port)
             .to_socket_addrs()
             .map_err(|e| connect_err(e.to_string()))?
             .collect();
         let mut last = String::from("no address");
-        let reachable = addrs.iter().any(|a| match TcpStream::connect_timeout(a, options.timeout.min(Duration::from_secs(3))) {
-            Ok(_) => true,
-            Err(e) => {
-                last = e.to_string();
-                false
+        let reachable = addrs.iter().any(|a| {
+            match TcpStream::connect_timeout(a, options.timeout.min(Duration::from_secs(3))) {
+                Ok(_) => true,
+                Err(e) => {
+                    last = e.to_string();
+                    false
+                }
             }
         });
         if !reachable {
@@ -197,7 +221,10 @@ impl Client {
     /// One round trip; a timeout replaces the socket.
     fn round_trip(&mut self, func: &str, request: &Request) -> Result<Value, ZmqError> {
         self.stats.round_trips += 1;
-        let transport = |source| ZmqError::Transport { endpoint: self.endpoint.clone(), source };
+        let transport = |source| ZmqError::Transport {
+            endpoint: self.endpoint.clone(),
+            source,
+        };
         let timeout = |c: &Client| ZmqError::Timeout {
             func: func.to_string(),
             endpoint: c.endpoint.clone(),
@@ -219,7 +246,10 @@ impl Client {
             }
             Err(e) => return Err(transport(e)),
         };
-        cbor::decode(&bytes).map_err(|CborError(detail)| ZmqError::Malformed { func: func.to_string(), detail })
+        cbor::decode(&bytes).map_err(|CborError(detail)| ZmqError::Malformed {
+            func: func.to_string(),
+            detail,
+        })
     }
 
     fn reset(&mut self) -> Result<(), ZmqError> {
@@ -233,7 +263,10 @@ impl Client {
         self.stats.calls += 1;
         let original = self.request(func, args);
         let mut next = original.clone();
-        let malformed = |detail: String| ZmqError::Malformed { func: func.to_string(), detail };
+        let malformed = |detail: String| ZmqError::Malformed {
+            func: func.to_string(),
+            detail,
+        };
         for _ in 0..MAX_TURNS {
             let value = self.round_trip(func, &next)?;
             let (reply, protocol) = parse_reply(&value).map_err(|CborError(d)| malformed(d))?;
@@ -242,23 +275,33 @@ impl Client {
             }
             match reply {
                 Reply::Ret(values) => return Ok(values),
-                Reply::Err(message) => return Err(ZmqError::Remote { func: func.to_string(), message }),
+                Reply::Err(message) => {
+                    return Err(ZmqError::Remote {
+                        func: func.to_string(),
+                        message,
+                    });
+                }
                 Reply::Wait => next = self.request(EXECUTED, vec![]),
                 Reply::Repeat => next = original.clone(),
                 // We register no callbacks: answer with no results so the server can go on.
                 Reply::Callback(_) => next = self.request(EXECUTED, vec![]),
             }
         }
-        Err(malformed(format!("more than {MAX_TURNS} wait/repeat turns")))
+        Err(malformed(format!(
+            "more than {MAX_TURNS} wait/repeat turns"
+        )))
     }
 
     /// Calls a function that returns one value.
     pub fn call1(&mut self, func: &str, args: Vec<Value>) -> Result<Value, ZmqError> {
         let values = self.call(func, args)?;
-        values.into_iter().next().ok_or_else(|| ZmqError::Malformed {
-            func: func.to_string(),
-            detail: "no return value".into(),
-        })
+        values
+            .into_iter()
+            .next()
+            .ok_or_else(|| ZmqError::Malformed {
+                func: func.to_string(),
+                detail: "no return value".into(),
+            })
     }
 
     /// Calls a function that returns one integer (a handle, a state, a parameter).
@@ -294,10 +337,19 @@ impl Drop for Client {
     }
 }
 
-fn new_socket(context: &zmq::Context, endpoint: &str, timeout: Duration) -> Result<zmq::Socket, ZmqError> {
-    let transport = |source| ZmqError::Transport { endpoint: endpoint.to_string(), source };
+fn new_socket(
+    context: &zmq::Context,
+    endpoint: &str,
+    timeout: Duration,
+) -> Result<zmq::Socket, ZmqError> {
+    let transport = |source| ZmqError::Transport {
+        endpoint: endpoint.to_string(),
+        source,
+    };
     let socket = context.socket(zmq::REQ).map_err(transport)?;
-    let ms = i32::try_from(timeout.as_millis()).unwrap_or(i32::MAX).max(1);
+    let ms = i32::try_from(timeout.as_millis())
+        .unwrap_or(i32::MAX)
+        .max(1);
     socket.set_linger(0).map_err(transport)?;
     socket.set_rcvtimeo(ms).map_err(transport)?;
     socket.set_sndtimeo(ms).map_err(transport)?;

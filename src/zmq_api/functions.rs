@@ -13,8 +13,8 @@ use super::cbor::{self, float_array, int};
 use super::message::Protocol;
 use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
 use crate::sim::{
-    HANDLE_PARENT, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, NewObject, ObjectType, SimState,
-    Simulator,
+    HANDLE_PARENT, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, NewObject,
+    ObjectType, SimState, Simulator,
 };
 
 /// `sim.handle_all`.
@@ -51,7 +51,9 @@ impl Extras {
     pub fn special(&self, sim: &Simulator, handle: i32) -> Option<i32> {
         let o = sim.scene.get(handle).ok()?;
         Some(*self.special.get(&handle).unwrap_or(&match o.kind {
-            ObjectType::Shape => SPECIAL_COLLIDABLE | SPECIAL_MEASURABLE | SPECIAL_DETECTABLE | SPECIAL_RENDERABLE,
+            ObjectType::Shape => {
+                SPECIAL_COLLIDABLE | SPECIAL_MEASURABLE | SPECIAL_DETECTABLE | SPECIAL_RENDERABLE
+            }
             ObjectType::Dummy => 0,
         }))
     }
@@ -132,20 +134,44 @@ pub const SIM_CONSTANTS: &[(&str, i64)] = &[
     ("simulation_advancing_running", 17),
     ("colorcomponent_ambient_diffuse", 0),
     ("shapeintparam_static", SHAPEINTPARAM_STATIC as i64),
-    ("shapeintparam_respondable", SHAPEINTPARAM_RESPONDABLE as i64),
-    ("objectspecialproperty_collidable", SPECIAL_COLLIDABLE as i64),
-    ("objectspecialproperty_measurable", SPECIAL_MEASURABLE as i64),
-    ("objectspecialproperty_detectable", SPECIAL_DETECTABLE as i64),
-    ("objectspecialproperty_renderable", SPECIAL_RENDERABLE as i64),
+    (
+        "shapeintparam_respondable",
+        SHAPEINTPARAM_RESPONDABLE as i64,
+    ),
+    (
+        "objectspecialproperty_collidable",
+        SPECIAL_COLLIDABLE as i64,
+    ),
+    (
+        "objectspecialproperty_measurable",
+        SPECIAL_MEASURABLE as i64,
+    ),
+    (
+        "objectspecialproperty_detectable",
+        SPECIAL_DETECTABLE as i64,
+    ),
+    (
+        "objectspecialproperty_renderable",
+        SPECIAL_RENDERABLE as i64,
+    ),
 ];
 
 /// The `zmqRemoteApi.info('sim')` map: `{fname: {func: {}}, cname: {const: v}}`.
 pub fn sim_info() -> Value {
     let mut pairs: Vec<(Value, Value)> = SIM_FUNCTIONS
         .iter()
-        .map(|f| (Value::Text(f.to_string()), cbor::map([("func", Value::Map(vec![]))])))
+        .map(|f| {
+            (
+                Value::Text(f.to_string()),
+                cbor::map([("func", Value::Map(vec![]))]),
+            )
+        })
         .collect();
-    pairs.extend(SIM_CONSTANTS.iter().map(|(c, v)| (Value::Text(c.to_string()), cbor::map([("const", int(*v))]))));
+    pairs.extend(
+        SIM_CONSTANTS
+            .iter()
+            .map(|(c, v)| (Value::Text(c.to_string()), cbor::map([("const", int(*v))]))),
+    );
     Value::Map(pairs)
 }
 
@@ -157,7 +183,11 @@ struct Args<'a> {
 
 impl Args<'_> {
     fn bad(&self, i: usize, what: &str) -> String {
-        format!("in {}: argument {} is not correct (expected {what}).", self.func, i + 1)
+        format!(
+            "in {}: argument {} is not correct (expected {what}).",
+            self.func,
+            i + 1
+        )
     }
 
     fn get(&self, i: usize) -> Option<&Value> {
@@ -165,23 +195,35 @@ impl Args<'_> {
     }
 
     fn int(&self, i: usize) -> Result<i32, String> {
-        self.get(i).and_then(cbor::int32).ok_or_else(|| self.bad(i, "an integer"))
+        self.get(i)
+            .and_then(cbor::int32)
+            .ok_or_else(|| self.bad(i, "an integer"))
     }
 
     fn int_or(&self, i: usize, default: i32) -> Result<i32, String> {
-        if self.get(i).is_none() { Ok(default) } else { self.int(i) }
+        if self.get(i).is_none() {
+            Ok(default)
+        } else {
+            self.int(i)
+        }
     }
 
     fn text(&self, i: usize) -> Result<&str, String> {
-        self.get(i).and_then(cbor::text).ok_or_else(|| self.bad(i, "a string"))
+        self.get(i)
+            .and_then(cbor::text)
+            .ok_or_else(|| self.bad(i, "a string"))
     }
 
     fn vec3(&self, i: usize) -> Result<[f64; 3], String> {
-        self.get(i).and_then(cbor::numbers::<3>).ok_or_else(|| self.bad(i, "a table of 3 numbers"))
+        self.get(i)
+            .and_then(cbor::numbers::<3>)
+            .ok_or_else(|| self.bad(i, "a table of 3 numbers"))
     }
 
     fn handles(&self, i: usize) -> Result<Vec<i32>, String> {
-        self.get(i).and_then(cbor::handles).ok_or_else(|| self.bad(i, "a table of handles"))
+        self.get(i)
+            .and_then(cbor::handles)
+            .ok_or_else(|| self.bad(i, "a table of handles"))
     }
 
     fn is_table(&self, i: usize) -> bool {
@@ -196,7 +238,13 @@ fn no_object(func: &str) -> String {
 }
 
 /// Calls one function. `func` is the full dotted name (`sim.getObject`).
-pub fn call(sim: &mut Simulator, extras: &mut Extras, protocol: Protocol, func: &str, args: &[Value]) -> Outcome {
+pub fn call(
+    sim: &mut Simulator,
+    extras: &mut Extras,
+    protocol: Protocol,
+    func: &str,
+    args: &[Value],
+) -> Outcome {
     match dispatch(sim, extras, protocol, func, args) {
         Ok(o) => o,
         Err(e) => Outcome::Err(e),
@@ -229,18 +277,27 @@ fn dispatch(
         }
         return match a.text(0)? {
             "sim" | "sim-1" => ret(vec![]),
-            other => Err(format!("in zmqRemoteApi.require: module '{other}' not found")),
+            other => Err(format!(
+                "in zmqRemoteApi.require: module '{other}' not found"
+            )),
         };
     }
-    let Some(name) = func.strip_prefix("sim.") else { return nofunc() };
+    let Some(name) = func.strip_prefix("sim.") else {
+        return nofunc();
+    };
     let nothing = || ret(vec![]);
     let scene_err = |_| no_object(func);
     match name {
         "getObject" => {
             let path = a.text(0)?;
             let opts = a.get(1);
-            let no_error = opts.and_then(|o| cbor::get(o, "noError")).and_then(cbor::boolean).unwrap_or(false);
-            let index = opts.and_then(|o| cbor::get(o, "index")).and_then(cbor::integer);
+            let no_error = opts
+                .and_then(|o| cbor::get(o, "noError"))
+                .and_then(cbor::boolean)
+                .unwrap_or(false);
+            let index = opts
+                .and_then(|o| cbor::get(o, "index"))
+                .and_then(cbor::integer);
             let full = match index {
                 Some(i) if i > 0 => format!("{path}[{i}]"),
                 _ => path.to_string(),
@@ -259,7 +316,9 @@ fn dispatch(
                 -1 => o.alias.clone(),
                 0 => {
                     let path = sim.scene.path(h).map_err(scene_err)?;
-                    let idx = path.rsplit_once('[').map(|(_, n)| n.trim_end_matches(']').to_string());
+                    let idx = path
+                        .rsplit_once('[')
+                        .map(|(_, n)| n.trim_end_matches(']').to_string());
                     format!("{}[{}]", o.alias, idx.unwrap_or_else(|| "0".into()))
                 }
                 _ => sim.scene.path(h).map_err(scene_err)?,
@@ -273,12 +332,20 @@ fn dispatch(
         }
         "getObjectType" => {
             let h = a.int(0)?;
-            ret(vec![int(sim.scene.get(h).map_err(scene_err)?.kind.code().into())])
+            ret(vec![int(sim
+                .scene
+                .get(h)
+                .map_err(scene_err)?
+                .kind
+                .code()
+                .into())])
         }
         "copyPasteObjects" => {
             let hs = a.handles(0)?;
             let new = sim.scene.copy_paste(&hs).map_err(scene_err)?;
-            ret(vec![Value::Array(new.into_iter().map(|h| int(h.into())).collect())])
+            ret(vec![Value::Array(
+                new.into_iter().map(|h| int(h.into())).collect(),
+            )])
         }
         "removeObjects" => {
             let hs = a.handles(0)?;
@@ -329,26 +396,40 @@ fn dispatch(
             let hs: Vec<Value> = order
                 .into_iter()
                 .filter(|&h| in_tree(h))
-                .filter(|&h| kind == HANDLE_ALL || scene.get(h).is_ok_and(|o| o.kind.code() == kind))
+                .filter(|&h| {
+                    kind == HANDLE_ALL || scene.get(h).is_ok_and(|o| o.kind.code() == kind)
+                })
                 .map(|h| int(h.into()))
                 .collect();
             ret(vec![Value::Array(hs)])
         }
         "getObjectParent" => {
             let h = a.int(0)?;
-            ret(vec![int(sim.scene.get(h).map_err(scene_err)?.parent.unwrap_or(HANDLE_WORLD).into())])
+            ret(vec![int(sim
+                .scene
+                .get(h)
+                .map_err(scene_err)?
+                .parent
+                .unwrap_or(HANDLE_WORLD)
+                .into())])
         }
         "setObjectParent" => {
             let (h, p) = (a.int(0)?, a.int(1)?);
             let keep = a.get(2).and_then(cbor::boolean).unwrap_or(true);
             let parent = (p != HANDLE_WORLD).then_some(p);
-            sim.scene.set_parent(h, parent, keep).map_err(|e| format!("in {func}: {e}"))?;
+            sim.scene
+                .set_parent(h, parent, keep)
+                .map_err(|e| format!("in {func}: {e}"))?;
             nothing()
         }
         "setObjectPosition" | "setObjectOrientation" => {
             let h = a.int(0)?;
             // 4.5: (h, rel, v); 4.6+: (h, v, rel = world)
-            let (rel, v) = if a.is_table(1) { (a.int_or(2, HANDLE_WORLD)?, a.vec3(1)?) } else { (a.int(1)?, a.vec3(2)?) };
+            let (rel, v) = if a.is_table(1) {
+                (a.int_or(2, HANDLE_WORLD)?, a.vec3(1)?)
+            } else {
+                (a.int(1)?, a.vec3(2)?)
+            };
             let r = if name == "setObjectPosition" {
                 sim.scene.set_position(h, rel, v)
             } else {
@@ -360,15 +441,30 @@ fn dispatch(
         "getObjectPosition" | "getObjectOrientation" => {
             let (h, rel) = (a.int(0)?, a.int_or(1, HANDLE_WORLD)?);
             let (p, e) = sim.scene.pose(h, rel).map_err(scene_err)?;
-            ret(vec![float_array(if name == "getObjectPosition" { &p } else { &e })])
+            ret(vec![float_array(if name == "getObjectPosition" {
+                &p
+            } else {
+                &e
+            })])
         }
         "setObjectPose" => {
             let h = a.int(0)?;
-            let (rel, pose) = if a.is_table(1) { (a.int_or(2, HANDLE_WORLD)?, 1) } else { (a.int(1)?, 2) };
-            let p = a.get(pose).and_then(cbor::numbers::<7>).ok_or_else(|| a.bad(pose, "a table of 7 numbers"))?;
+            let (rel, pose) = if a.is_table(1) {
+                (a.int_or(2, HANDLE_WORLD)?, 1)
+            } else {
+                (a.int(1)?, 2)
+            };
+            let p = a
+                .get(pose)
+                .and_then(cbor::numbers::<7>)
+                .ok_or_else(|| a.bad(pose, "a table of 7 numbers"))?;
             let q = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
-            sim.scene.set_orientation(h, rel, euler_from_rotation(&q)).map_err(scene_err)?;
-            sim.scene.set_position(h, rel, [p[0], p[1], p[2]]).map_err(scene_err)?;
+            sim.scene
+                .set_orientation(h, rel, euler_from_rotation(&q))
+                .map_err(scene_err)?;
+            sim.scene
+                .set_position(h, rel, [p[0], p[1], p[2]])
+                .map_err(scene_err)?;
             nothing()
         }
         "getObjectPose" => {
@@ -407,7 +503,11 @@ fn dispatch(
         }
         "setInt32Param" => {
             let (p, v) = (a.int(0)?, a.int(1)?);
-            if sim.set_int_param(p, v) { nothing() } else { Err(format!("in {func}: invalid parameter {p} or value {v}.")) }
+            if sim.set_int_param(p, v) {
+                nothing()
+            } else {
+                Err(format!("in {func}: invalid parameter {p} or value {v}."))
+            }
         }
         "createPrimitiveShape" => {
             let kind = a.int(0)?;
@@ -420,13 +520,22 @@ fn dispatch(
                 5 => "Cylinder",
                 _ => return Err(format!("in {func}: invalid primitive type {kind}.")),
             };
-            let size = if kind == 1 { [size[0], size[1], 0.0] } else { size };
-            let h = sim.scene.create(base, new_object(ObjectType::Shape, size, [204, 204, 204]));
+            let size = if kind == 1 {
+                [size[0], size[1], 0.0]
+            } else {
+                size
+            };
+            let h = sim
+                .scene
+                .create(base, new_object(ObjectType::Shape, size, [204, 204, 204]));
             ret(vec![int(h.into())])
         }
         "createDummy" => {
             let size = a.get(0).and_then(cbor::number).unwrap_or(0.01);
-            let h = sim.scene.create("Dummy", new_object(ObjectType::Dummy, [size; 3], [255, 255, 0]));
+            let h = sim.scene.create(
+                "Dummy",
+                new_object(ObjectType::Dummy, [size; 3], [255, 255, 0]),
+            );
             ret(vec![int(h.into())])
         }
         "setShapeColor" => {
@@ -439,7 +548,9 @@ fn dispatch(
             }
             if component == 0 {
                 let byte = |c: f64| (c.clamp(0.0, 1.0) * 255.0).round() as u8;
-                sim.scene.set_colour(h, [byte(rgb[0]), byte(rgb[1]), byte(rgb[2])]).map_err(scene_err)?;
+                sim.scene
+                    .set_colour(h, [byte(rgb[0]), byte(rgb[1]), byte(rgb[2])])
+                    .map_err(scene_err)?;
             }
             nothing()
         }
@@ -457,11 +568,16 @@ fn dispatch(
         }
         "getObjectSpecialProperty" => {
             let h = a.int(0)?;
-            ret(vec![int(extras.special(sim, h).ok_or_else(|| no_object(func))?.into())])
+            ret(vec![int(extras
+                .special(sim, h)
+                .ok_or_else(|| no_object(func))?
+                .into())])
         }
         "setObjectInt32Param" | "getObjectInt32Param" => {
             let (h, p) = (a.int(0)?, a.int(1)?);
-            if sim.scene.get(h).map_err(scene_err)?.kind != ObjectType::Shape || extras.shape_param(h, p).is_none() {
+            if sim.scene.get(h).map_err(scene_err)?.kind != ObjectType::Shape
+                || extras.shape_param(h, p).is_none()
+            {
                 return Err(format!("in {func}: invalid parameter {p} for object {h}."));
             }
             if name == "getObjectInt32Param" {
@@ -476,7 +592,8 @@ fn dispatch(
                 None => ret(vec![Value::Bytes(text.into_bytes())]),
                 Some(_) => {
                     let path = a.text(0)?;
-                    std::fs::write(path, text).map_err(|e| format!("in {func}: cannot write {path}: {e}"))?;
+                    std::fs::write(path, text)
+                        .map_err(|e| format!("in {func}: cannot write {path}: {e}"))?;
                     nothing()
                 }
             }
@@ -486,5 +603,12 @@ fn dispatch(
 }
 
 fn new_object(kind: ObjectType, size: [f64; 3], colour: [u8; 3]) -> NewObject {
-    NewObject { kind, parent: None, position: [0.0; 3], orientation: [0.0; 3], size, colour }
+    NewObject {
+        kind,
+        parent: None,
+        position: [0.0; 3],
+        orientation: [0.0; 3],
+        size,
+        colour,
+    }
 }

@@ -17,7 +17,8 @@ pub const REPEAT: &str = "_*repeat*_";
 /// `func` of a client saying goodbye.
 pub const END: &str = "_*end*_";
 /// The protocol-2 server's answer to a request without `uuid` (an older client).
-pub const VERSION_MISMATCH: &str = "The client ZeroMQ remote API version does not match CoppeliaSim's version";
+pub const VERSION_MISMATCH: &str =
+    "The client ZeroMQ remote API version does not match CoppeliaSim's version";
 
 /// A protocol generation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -69,12 +70,22 @@ impl Request {
 
     /// A protocol-1 request: just `func` and `args`.
     pub fn v1(func: &str, args: Vec<Value>) -> Request {
-        Request { func: func.to_string(), args, uuid: None, ver: None, lang: None, args_len: None }
+        Request {
+            func: func.to_string(),
+            args,
+            uuid: None,
+            ver: None,
+            lang: None,
+            args_len: None,
+        }
     }
 
     /// The CBOR map.
     pub fn to_value(&self) -> Value {
-        let mut pairs = vec![("func", Value::Text(self.func.clone())), ("args", Value::Array(self.args.clone()))];
+        let mut pairs = vec![
+            ("func", Value::Text(self.func.clone())),
+            ("args", Value::Array(self.args.clone())),
+        ];
         if let Some(u) = &self.uuid {
             pairs.push(("uuid", Value::Text(u.clone())));
         }
@@ -99,7 +110,10 @@ impl Request {
     /// empty map; `argsL` longer than `args` pads with nils.
     pub fn from_value(value: &Value) -> Result<Request, CborError> {
         if !matches!(value, Value::Map(_)) {
-            return Err(CborError(format!("request is not a map: {}", cbor::describe(value))));
+            return Err(CborError(format!(
+                "request is not a map: {}",
+                cbor::describe(value)
+            )));
         }
         let func = cbor::get(value, "func")
             .and_then(cbor::text)
@@ -111,7 +125,9 @@ impl Request {
                 .ok_or_else(|| CborError(format!("'args' is not an array: {}", cbor::describe(a))))?
                 .to_vec(),
         };
-        let args_len = cbor::get(value, "argsL").and_then(cbor::integer).and_then(|n| usize::try_from(n).ok());
+        let args_len = cbor::get(value, "argsL")
+            .and_then(cbor::integer)
+            .and_then(|n| usize::try_from(n).ok());
         if let Some(n) = args_len
             && n > args.len()
             && n <= 4096
@@ -121,9 +137,13 @@ impl Request {
         Ok(Request {
             func,
             args,
-            uuid: cbor::get(value, "uuid").and_then(cbor::text).map(str::to_string),
+            uuid: cbor::get(value, "uuid")
+                .and_then(cbor::text)
+                .map(str::to_string),
             ver: cbor::get(value, "ver").and_then(cbor::integer),
-            lang: cbor::get(value, "lang").and_then(cbor::text).map(str::to_string),
+            lang: cbor::get(value, "lang")
+                .and_then(cbor::text)
+                .map(str::to_string),
             args_len,
         })
     }
@@ -165,7 +185,12 @@ fn ret_values(ret: &Value) -> Result<Vec<Value>, CborError> {
         for (k, v) in pairs {
             match cbor::integer(k) {
                 Some(i) if (1..=4096).contains(&i) => indexed.push((i as usize, v.clone())),
-                _ => return Err(CborError(format!("'ret' is a map with key {}", cbor::describe(k)))),
+                _ => {
+                    return Err(CborError(format!(
+                        "'ret' is a map with key {}",
+                        cbor::describe(k)
+                    )));
+                }
             }
         }
         let n = indexed.iter().map(|(i, _)| *i).max().unwrap_or(0);
@@ -175,7 +200,10 @@ fn ret_values(ret: &Value) -> Result<Vec<Value>, CborError> {
         }
         return Ok(out);
     }
-    Err(CborError(format!("'ret' is neither an array nor a map: {}", cbor::describe(ret))))
+    Err(CborError(format!(
+        "'ret' is neither an array nor a map: {}",
+        cbor::describe(ret)
+    )))
 }
 
 fn error_text(v: Option<&Value>) -> String {
@@ -191,14 +219,25 @@ fn error_text(v: Option<&Value>) -> String {
 /// Parses a reply map; also returns the protocol generation the reply's shape reveals.
 pub fn parse_reply(value: &Value) -> Result<(Reply, Protocol), CborError> {
     if !matches!(value, Value::Map(_)) {
-        return Err(CborError(format!("reply is not a map: {}", cbor::describe(value))));
+        return Err(CborError(format!(
+            "reply is not a map: {}",
+            cbor::describe(value)
+        )));
     }
     if let Some(success) = cbor::get(value, "success") {
-        let ok = cbor::boolean(success).ok_or_else(|| CborError("'success' is not a boolean".into()))?;
+        let ok =
+            cbor::boolean(success).ok_or_else(|| CborError("'success' is not a boolean".into()))?;
         let reply = if ok {
-            Reply::Ret(cbor::get(value, "ret").map(ret_values).transpose()?.unwrap_or_default())
+            Reply::Ret(
+                cbor::get(value, "ret")
+                    .map(ret_values)
+                    .transpose()?
+                    .unwrap_or_default(),
+            )
         } else {
-            Reply::Err(error_text(cbor::get(value, "error").or_else(|| cbor::get(value, "err"))))
+            Reply::Err(error_text(
+                cbor::get(value, "error").or_else(|| cbor::get(value, "err")),
+            ))
         };
         return Ok((reply, Protocol::V1));
     }
@@ -209,7 +248,8 @@ pub fn parse_reply(value: &Value) -> Result<(Reply, Protocol), CborError> {
         return Ok((Reply::Ret(ret_values(ret)?), Protocol::V2));
     }
     if let Some(func) = cbor::get(value, "func") {
-        let f = cbor::text(func).ok_or_else(|| CborError("'func' of a reply is not a string".into()))?;
+        let f = cbor::text(func)
+            .ok_or_else(|| CborError("'func' of a reply is not a string".into()))?;
         let reply = match f {
             WAIT => Reply::Wait,
             REPEAT => Reply::Repeat,
@@ -217,12 +257,19 @@ pub fn parse_reply(value: &Value) -> Result<(Reply, Protocol), CborError> {
         };
         return Ok((reply, Protocol::V2));
     }
-    Err(CborError(format!("reply has none of ret, err, success, func: {}", cbor::describe(value))))
+    Err(CborError(format!(
+        "reply has none of ret, err, success, func: {}",
+        cbor::describe(value)
+    )))
 }
 
 /// A success reply in the given protocol. Lua's empty table is encoded as an empty map.
 pub fn ret_reply(protocol: Protocol, values: Vec<Value>) -> Value {
-    let ret = if values.is_empty() { Value::Map(vec![]) } else { Value::Array(values) };
+    let ret = if values.is_empty() {
+        Value::Map(vec![])
+    } else {
+        Value::Array(values)
+    };
     match protocol {
         Protocol::V1 => cbor::map([("success", Value::Bool(true)), ("ret", ret)]),
         Protocol::V2 => cbor::map([("ret", ret)]),
@@ -240,7 +287,10 @@ pub fn err_reply(protocol: Protocol, message: &str) -> Value {
 
 /// A server-initiated `{func, args: []}` (wait or repeat).
 pub fn func_reply(func: &str) -> Value {
-    cbor::map([("func", Value::Text(func.into())), ("args", Value::Array(vec![]))])
+    cbor::map([
+        ("func", Value::Text(func.into())),
+        ("args", Value::Array(vec![])),
+    ])
 }
 
 #[cfg(test)]
@@ -271,20 +321,32 @@ mod tests {
         want.extend(b"argsL");
         want.push(0x01);
         assert_eq!(r.encode(), want);
-        assert_eq!(Request::from_value(&cbor::decode(&want).unwrap()).unwrap(), r);
+        assert_eq!(
+            Request::from_value(&cbor::decode(&want).unwrap()).unwrap(),
+            r
+        );
     }
 
     #[test]
     fn replies_of_both_generations() {
         let v2 = |v: Value| parse_reply(&v).unwrap();
-        assert_eq!(v2(cbor::map([("ret", Value::Map(vec![]))])), (Reply::Ret(vec![]), Protocol::V2));
-        assert_eq!(v2(cbor::map([("ret", Value::Array(vec![cbor::int(7)]))])).0, Reply::Ret(vec![cbor::int(7)]));
+        assert_eq!(
+            v2(cbor::map([("ret", Value::Map(vec![]))])),
+            (Reply::Ret(vec![]), Protocol::V2)
+        );
+        assert_eq!(
+            v2(cbor::map([("ret", Value::Array(vec![cbor::int(7)]))])).0,
+            Reply::Ret(vec![cbor::int(7)])
+        );
         assert_eq!(
             v2(cbor::map([("err", Value::Text("a_=NL=_b_=TB=_c".into()))])).0,
             Reply::Err("a\nb\tc".into())
         );
         assert_eq!(
-            v2(cbor::map([("success", Value::Bool(false)), ("error", Value::Bytes(b"No such function: sim.x".to_vec()))])),
+            v2(cbor::map([
+                ("success", Value::Bool(false)),
+                ("error", Value::Bytes(b"No such function: sim.x".to_vec()))
+            ])),
             (Reply::Err("No such function: sim.x".into()), Protocol::V1)
         );
         assert_eq!(v2(func_reply(WAIT)).0, Reply::Wait);
@@ -298,7 +360,14 @@ mod tests {
 
     #[test]
     fn args_len_pads_trailing_nils() {
-        let v = cbor::map([("func", Value::Text("f".into())), ("args", Value::Array(vec![])), ("argsL", cbor::int(2))]);
-        assert_eq!(Request::from_value(&v).unwrap().args, vec![Value::Null, Value::Null]);
+        let v = cbor::map([
+            ("func", Value::Text("f".into())),
+            ("args", Value::Array(vec![])),
+            ("argsL", cbor::int(2)),
+        ]);
+        assert_eq!(
+            Request::from_value(&v).unwrap().args,
+            vec![Value::Null, Value::Null]
+        );
     }
 }

@@ -13,7 +13,9 @@ use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
-use super::functions::{HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE};
+use super::functions::{
+    HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
+};
 use crate::draw::{Edit, ObjectInfo, Scene, SceneError, SceneNames, Survey};
 use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
 use crate::sim::{HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
@@ -47,7 +49,11 @@ pub struct ZmqScene {
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
 /// root unless they already are paths (`/Maze/Line`, `./x`, `:x`).
 pub fn object_path(name: &str) -> String {
-    if name.starts_with(['/', '.', ':']) { name.to_string() } else { format!("/{name}") }
+    if name.starts_with(['/', '.', ':']) {
+        name.to_string()
+    } else {
+        format!("/{name}")
+    }
 }
 
 fn alias_of(name: &str) -> &str {
@@ -55,10 +61,16 @@ fn alias_of(name: &str) -> &str {
     last.split('[').next().unwrap_or(last)
 }
 
+/// A plane to create: size x, y; RGB colour (0..1); height above the floor.
+type PlaneSpec = ([f64; 2], [f64; 3], f64);
+
 /// A name `create_missing` can give a new object: its alias must be `[A-Za-z0-9_]+`.
 fn check_alias(name: &str) -> Result<(), SceneError> {
     let alias = alias_of(name);
-    if alias.is_empty() || !alias.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') || name.contains('[') {
+    if alias.is_empty()
+        || !alias.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        || name.contains('[')
+    {
         return Err(SceneError::Remote(format!(
             "cannot create `{name}`: a created object's name must be letters, digits and _ only"
         )));
@@ -76,8 +88,16 @@ impl ZmqScene {
 
     /// Wraps a connected client.
     pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqScene, SceneError> {
-        let version = client.call_int("sim.getInt32Param", vec![int(INTPARAM_PROGRAM_VERSION.into())])?;
-        Ok(ZmqScene { client, version, known: Known::default(), timeout })
+        let version = client.call_int(
+            "sim.getInt32Param",
+            vec![int(INTPARAM_PROGRAM_VERSION.into())],
+        )?;
+        Ok(ZmqScene {
+            client,
+            version,
+            known: Known::default(),
+            timeout,
+        })
     }
 
     /// The client (for counters and the protocol generation).
@@ -96,34 +116,67 @@ impl ZmqScene {
 
     fn handle_of(&mut self, path: &str) -> Result<Option<i32>, SceneError> {
         let opts = cbor::map([("noError", Value::Bool(true))]);
-        let h = self.client.call_int("sim.getObject", vec![Value::Text(path.into()), opts])?;
+        let h = self
+            .client
+            .call_int("sim.getObject", vec![Value::Text(path.into()), opts])?;
         Ok((h >= 0).then_some(h))
     }
 
     fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, SceneError> {
-        let v = self.client.call1("sim.getObjectsInTree", vec![int(base.into()), int(HANDLE_ALL.into()), int(options.into())])?;
-        cbor::handles(&v).ok_or_else(|| SceneError::Transport(format!("sim.getObjectsInTree: not a handle list: {}", cbor::describe(&v))))
+        let v = self.client.call1(
+            "sim.getObjectsInTree",
+            vec![
+                int(base.into()),
+                int(HANDLE_ALL.into()),
+                int(options.into()),
+            ],
+        )?;
+        cbor::handles(&v).ok_or_else(|| {
+            SceneError::Transport(format!(
+                "sim.getObjectsInTree: not a handle list: {}",
+                cbor::describe(&v)
+            ))
+        })
     }
 
     fn world_pose(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), SceneError> {
-        let v = self.client.call1("sim.getObjectPose", vec![int(handle.into()), int(HANDLE_WORLD.into())])?;
+        let v = self.client.call1(
+            "sim.getObjectPose",
+            vec![int(handle.into()), int(HANDLE_WORLD.into())],
+        )?;
         let p = cbor::numbers::<7>(&v).ok_or_else(|| {
-            SceneError::Transport(format!("sim.getObjectPose of object {handle}: not 7 numbers: {}", cbor::describe(&v)))
+            SceneError::Transport(format!(
+                "sim.getObjectPose of object {handle}: not 7 numbers: {}",
+                cbor::describe(&v)
+            ))
         })?;
         let q = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
         Ok(([p[0], p[1], p[2]], euler_from_rotation(&q)))
     }
 
-    fn info(&mut self, handle: i32, name: String, parent: Option<Option<i32>>) -> Result<ObjectInfo, SceneError> {
+    fn info(
+        &mut self,
+        handle: i32,
+        name: String,
+        parent: Option<Option<i32>>,
+    ) -> Result<ObjectInfo, SceneError> {
         let parent = match parent {
             Some(p) => p,
             None => {
-                let p = self.client.call_int("sim.getObjectParent", vec![int(handle.into())])?;
+                let p = self
+                    .client
+                    .call_int("sim.getObjectParent", vec![int(handle.into())])?;
                 (p >= 0).then_some(p)
             }
         };
         let (position, orientation) = self.world_pose(handle)?;
-        Ok(ObjectInfo { handle, name, parent, position, orientation })
+        Ok(ObjectInfo {
+            handle,
+            name,
+            parent,
+            position,
+            orientation,
+        })
     }
 
     /// The named objects, the maze dummy's children and root copies of the line template.
@@ -146,21 +199,37 @@ impl ZmqScene {
             if named.contains(&h) {
                 continue;
             }
-            let alias = self.client.call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
+            let alias = self
+                .client
+                .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
             if cbor::text(&alias) == Some(known.line_alias.as_str()) {
-                let path = self.client.call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
-                let name = cbor::text(&path).map(str::to_string).unwrap_or_else(|| format!("object {h}"));
+                let path = self
+                    .client
+                    .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
+                let name = cbor::text(&path)
+                    .map(str::to_string)
+                    .unwrap_or_else(|| format!("object {h}"));
                 out.push(self.info(h, name, Some(None))?);
             }
         }
         Ok(out)
     }
 
-    fn set_pose(&mut self, handle: i32, relative_to: i32, position: [f64; 3], euler: [f64; 3]) -> Result<(), SceneError> {
+    fn set_pose(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        position: [f64; 3],
+        euler: [f64; 3],
+    ) -> Result<(), SceneError> {
         let q = rotation_from_euler(euler);
         let pose = float_array(&[position[0], position[1], position[2], q.i, q.j, q.k, q.w]);
         let (h, rel) = (int(handle.into()), int(relative_to.into()));
-        let args = if self.version >= 40600 { vec![h, pose, rel] } else { vec![h, rel, pose] };
+        let args = if self.version >= 40600 {
+            vec![h, pose, rel]
+        } else {
+            vec![h, rel, pose]
+        };
         self.call("sim.setObjectPose", args)?;
         Ok(())
     }
@@ -190,11 +259,18 @@ impl ZmqScene {
         if floor.is_none() {
             check_alias(&names.floor)?;
             // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
-            let h = self.create_plane(&names.floor, [10.0, 10.0], [0.5, 0.5, 0.5], 0.0, HANDLE_WORLD, true)?;
+            let h = self.create_plane(
+                &names.floor,
+                [10.0, 10.0],
+                [0.5, 0.5, 0.5],
+                0.0,
+                HANDLE_WORLD,
+                true,
+            )?;
             floor = Some(h);
             created.push(names.floor.clone());
         }
-        let specs: [(&str, Option<([f64; 2], [f64; 3], f64)>); 4] = [
+        let specs: [(&str, Option<PlaneSpec>); 4] = [
             (&names.parent, None),
             (&names.line, Some(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001))),
             (&names.start, Some(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002))),
@@ -208,18 +284,31 @@ impl ZmqScene {
             let alias = alias_of(name);
             let h = match shape {
                 None => {
-                    let h = self.client.call_int("sim.createDummy", vec![Value::Float(0.05)])?;
-                    self.call("sim.setObjectAlias", vec![int(h.into()), Value::Text(alias.into())])?;
+                    let h = self
+                        .client
+                        .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
+                    self.call(
+                        "sim.setObjectAlias",
+                        vec![int(h.into()), Value::Text(alias.into())],
+                    )?;
                     h
                 }
                 Some((size, colour, z)) => {
                     self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
                 }
             };
-            let parent_path = name.rsplit_once('/').map(|(p, _)| p).filter(|p| !p.is_empty());
+            let parent_path = name
+                .rsplit_once('/')
+                .map(|(p, _)| p)
+                .filter(|p| !p.is_empty());
             if let Some(p) = parent_path {
-                let ph = self.handle_of(p)?.ok_or_else(|| SceneError::Remote(format!("cannot create `{name}`: `{p}` does not exist")))?;
-                self.call("sim.setObjectParent", vec![int(h.into()), int(ph.into()), Value::Bool(true)])?;
+                let ph = self.handle_of(p)?.ok_or_else(|| {
+                    SceneError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
+                })?;
+                self.call(
+                    "sim.setObjectParent",
+                    vec![int(h.into()), int(ph.into()), Value::Bool(true)],
+                )?;
             }
             created.push(name.to_string());
         }
@@ -237,16 +326,38 @@ impl ZmqScene {
         relative_to: i32,
         floor: bool,
     ) -> Result<i32, SceneError> {
-        let h = self.client.call_int("sim.createPrimitiveShape", vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)])?;
+        let h = self.client.call_int(
+            "sim.createPrimitiveShape",
+            vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)],
+        )?;
         let hv = || int(h.into());
-        self.call("sim.setShapeColor", vec![hv(), Value::Null, int(0), float_array(&colour)])?;
+        self.call(
+            "sim.setShapeColor",
+            vec![hv(), Value::Null, int(0), float_array(&colour)],
+        )?;
         if !floor {
-            self.call("sim.setObjectSpecialProperty", vec![hv(), int(SPECIAL_RENDERABLE.into())])?;
+            self.call(
+                "sim.setObjectSpecialProperty",
+                vec![hv(), int(SPECIAL_RENDERABLE.into())],
+            )?;
         }
-        self.call("sim.setObjectInt32Param", vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)])?;
-        self.call("sim.setObjectInt32Param", vec![hv(), int(SHAPEINTPARAM_RESPONDABLE.into()), int(floor.into())])?;
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
+        )?;
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![
+                hv(),
+                int(SHAPEINTPARAM_RESPONDABLE.into()),
+                int(floor.into()),
+            ],
+        )?;
         self.set_pose(h, relative_to, [0.0, 0.0, z], [0.0; 3])?;
-        self.call("sim.setObjectAlias", vec![hv(), Value::Text(alias_of(name).into())])?;
+        self.call(
+            "sim.setObjectAlias",
+            vec![hv(), Value::Text(alias_of(name).into())],
+        )?;
         Ok(h)
     }
 
@@ -265,14 +376,32 @@ impl Scene for ZmqScene {
         }
         // SceneNames order: floor, parent, line, start, end
         self.known = Known {
-            named: names.iter().zip(&handles).filter_map(|(n, h)| h.map(|h| (n.to_string(), h))).collect(),
+            named: names
+                .iter()
+                .zip(&handles)
+                .filter_map(|(n, h)| h.map(|h| (n.to_string(), h)))
+                .collect(),
             parent: handles.get(1).copied().flatten(),
-            line_alias: names.get(2).map(|n| alias_of(n).to_string()).unwrap_or_default(),
+            line_alias: names
+                .get(2)
+                .map(|n| alias_of(n).to_string())
+                .unwrap_or_default(),
         };
-        let idle_fps = self.client.call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
+        let idle_fps = self
+            .client
+            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let objects = if handles.iter().all(Option::is_some) { self.collect()? } else { vec![] };
-        Ok(Survey { handles, objects, idle_fps, simulation_running: state != 0 })
+        let objects = if handles.iter().all(Option::is_some) {
+            self.collect()?
+        } else {
+            vec![]
+        };
+        Ok(Survey {
+            handles,
+            objects,
+            idle_fps,
+            simulation_running: state != 0,
+        })
     }
 
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
@@ -283,10 +412,18 @@ impl Scene for ZmqScene {
         let mut out = Vec::with_capacity(groups.len());
         for g in groups {
             let list = Value::Array(g.iter().map(|h| int((*h).into())).collect());
-            let v = self.client.call1("sim.copyPasteObjects", vec![list, int(0)])?;
+            let v = self
+                .client
+                .call1("sim.copyPasteObjects", vec![list, int(0)])?;
             match cbor::handles(&v) {
                 Some(new) if new.len() == g.len() => out.push(new),
-                _ => return Err(SceneError::Remote(format!("copy-paste of {} object(s) returned {}", g.len(), cbor::describe(&v)))),
+                _ => {
+                    return Err(SceneError::Remote(format!(
+                        "copy-paste of {} object(s) returned {}",
+                        g.len(),
+                        cbor::describe(&v)
+                    )));
+                }
             }
         }
         Ok(out)
@@ -296,17 +433,35 @@ impl Scene for ZmqScene {
         let mut i = 0;
         while i < edits.len() {
             match edits[i] {
-                Edit::SetParent { handle, parent, keep_in_place } => {
+                Edit::SetParent {
+                    handle,
+                    parent,
+                    keep_in_place,
+                } => {
                     let p = int(parent.unwrap_or(HANDLE_WORLD).into());
-                    self.call("sim.setObjectParent", vec![int(handle.into()), p, Value::Bool(keep_in_place)])?;
+                    self.call(
+                        "sim.setObjectParent",
+                        vec![int(handle.into()), p, Value::Bool(keep_in_place)],
+                    )?;
                 }
-                Edit::SetPose { handle, relative_to, position, orientation } => {
+                Edit::SetPose {
+                    handle,
+                    relative_to,
+                    position,
+                    orientation,
+                } => {
                     self.set_pose(handle, relative_to, position, orientation)?;
                 }
                 Edit::Remove(_) => {
                     let run: Vec<i32> = edits[i..]
                         .iter()
-                        .map_while(|e| if let Edit::Remove(h) = e { Some(*h) } else { None })
+                        .map_while(|e| {
+                            if let Edit::Remove(h) = e {
+                                Some(*h)
+                            } else {
+                                None
+                            }
+                        })
                         .collect();
                     i += run.len();
                     self.remove(&run)?;
@@ -319,7 +474,10 @@ impl Scene for ZmqScene {
     }
 
     fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError> {
-        self.call("sim.setInt32Param", vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())])?;
+        self.call(
+            "sim.setInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+        )?;
         Ok(())
     }
 

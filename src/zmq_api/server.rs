@@ -104,9 +104,13 @@ impl ServerHandle {
             let _ = t.join();
         }
         if let Some(path) = &self.dump {
-            let text = self.with_sim(|s| serde_json::to_string_pretty(&s.scene.to_json()).unwrap_or_default());
+            let text = self
+                .with_sim(|s| serde_json::to_string_pretty(&s.scene.to_json()).unwrap_or_default());
             if let Err(e) = std::fs::write(path, text) {
-                eprintln!("vrep-maze serve: cannot write scene dump {}: {e}", path.display());
+                eprintln!(
+                    "vrep-maze serve: cannot write scene dump {}: {e}",
+                    path.display()
+                );
             }
         }
     }
@@ -126,25 +130,55 @@ pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Re
     socket.set_rcvtimeo(50).map_err(io)?;
     socket.set_sndtimeo(1000).map_err(io)?;
     let ip = config.listen.ip();
-    let ip = if ip.is_ipv6() { format!("[{ip}]") } else { ip.to_string() };
-    let port = if config.listen.port() == 0 { "*".to_string() } else { config.listen.port().to_string() };
-    socket.bind(&format!("tcp://{ip}:{port}")).map_err(|e| match e {
-        zmq::Error::EADDRINUSE => std::io::Error::new(std::io::ErrorKind::AddrInUse, "address in use"),
-        e => io(e),
-    })?;
+    let ip = if ip.is_ipv6() {
+        format!("[{ip}]")
+    } else {
+        ip.to_string()
+    };
+    let port = if config.listen.port() == 0 {
+        "*".to_string()
+    } else {
+        config.listen.port().to_string()
+    };
+    socket
+        .bind(&format!("tcp://{ip}:{port}"))
+        .map_err(|e| match e {
+            zmq::Error::EADDRINUSE => {
+                std::io::Error::new(std::io::ErrorKind::AddrInUse, "address in use")
+            }
+            e => io(e),
+        })?;
     let last = socket.get_last_endpoint().map_err(io)?.unwrap_or_default();
-    let bound_port = last.rsplit(':').next().and_then(|p| p.parse().ok()).unwrap_or(config.listen.port());
+    let bound_port = last
+        .rsplit(':')
+        .next()
+        .and_then(|p| p.parse().ok())
+        .unwrap_or(config.listen.port());
     let addr = SocketAddr::new(config.listen.ip(), bound_port);
     let stop = Arc::new(AtomicBool::new(false));
     let requests = Arc::new(AtomicU64::new(0));
     let dump = config.dump.clone();
-    let mut state = State { config, host: host.clone(), extras: Extras::default(), pending: HashMap::new() };
+    let mut state = State {
+        config,
+        host: host.clone(),
+        extras: Extras::default(),
+        pending: HashMap::new(),
+    };
     let (s, r) = (stop.clone(), requests.clone());
-    let thread = std::thread::Builder::new().name("zmq-remote-api".into()).spawn(move || {
-        let _context = context;
-        serve(&socket, &mut state, &s, &r);
-    })?;
-    Ok(ServerHandle { addr, stop, requests, thread: Some(thread), host, dump })
+    let thread = std::thread::Builder::new()
+        .name("zmq-remote-api".into())
+        .spawn(move || {
+            let _context = context;
+            serve(&socket, &mut state, &s, &r);
+        })?;
+    Ok(ServerHandle {
+        addr,
+        stop,
+        requests,
+        thread: Some(thread),
+        host,
+        dump,
+    })
 }
 
 struct State {
@@ -192,22 +226,35 @@ fn handle(state: &mut State, bytes: &[u8]) -> Value {
         return outcome_reply(state, Protocol::V1, &req, None);
     }
     let Some(uuid) = req.uuid.clone() else {
-        return cbor::map([("success", Value::Bool(false)), ("error", Value::Text(VERSION_MISMATCH.into()))]);
+        return cbor::map([
+            ("success", Value::Bool(false)),
+            ("error", Value::Text(VERSION_MISMATCH.into())),
+        ]);
     };
     match req.func.as_str() {
         END => {
             state.pending.remove(&uuid);
             Value::Map(vec![])
         }
-        EXECUTED => message::ret_reply(Protocol::V2, state.pending.remove(&uuid).unwrap_or_default()),
+        EXECUTED => message::ret_reply(
+            Protocol::V2,
+            state.pending.remove(&uuid).unwrap_or_default(),
+        ),
         _ => outcome_reply(state, Protocol::V2, &req, Some(uuid)),
     }
 }
 
-fn outcome_reply(state: &mut State, protocol: Protocol, req: &Request, uuid: Option<String>) -> Value {
+fn outcome_reply(
+    state: &mut State,
+    protocol: Protocol,
+    req: &Request,
+    uuid: Option<String>,
+) -> Value {
     let mut outcome = Outcome::Ret(vec![]);
     let extras = &mut state.extras;
-    state.host.with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
+    state
+        .host
+        .with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
     match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
         Outcome::Err(e) => {
