@@ -24,8 +24,16 @@ fn serve(extra: &[&str]) -> Serve {
         .spawn()
         .unwrap();
     let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
-    let port = line.split("127.0.0.1:").nth(1).and_then(|r| r.split_whitespace().next()).unwrap().parse().unwrap();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let port = line
+        .split("127.0.0.1:")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
     Serve(child, port)
 }
 
@@ -34,8 +42,14 @@ fn cmd() -> assert_cmd::Command {
 }
 
 fn generate(dir: &std::path::Path, seed: &str, algo: &str) -> String {
-    let path = dir.join(format!("{algo}-{seed}.json")).display().to_string();
-    cmd().args(["generate", "--seed", seed, "--algo", algo, "-o", &path]).assert().success();
+    let path = dir
+        .join(format!("{algo}-{seed}.json"))
+        .display()
+        .to_string();
+    cmd()
+        .args(["generate", "--seed", seed, "--algo", algo, "-o", &path])
+        .assert()
+        .success();
     path
 }
 
@@ -50,7 +64,10 @@ fn legacy_cli_apply_replace_clear() {
         .args(["apply", &m1, "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed").and(predicate::str::contains("verified")));
+        .stdout(
+            predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed")
+                .and(predicate::str::contains("verified")),
+        );
     cmd()
         .args(["apply", &m2, "--port", &port])
         .assert()
@@ -60,9 +77,19 @@ fn legacy_cli_apply_replace_clear() {
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("0 pasted, 0 removed, 162 already in place"));
-    cmd().args(["clear", "--port", &port]).assert().success().stdout(predicate::str::contains("removed 159 maze line(s): Line0"));
-    cmd().args(["clear", "--port", &port]).assert().success().stdout(predicate::str::contains("nothing to remove"));
+        .stdout(predicate::str::contains(
+            "0 pasted, 0 removed, 162 already in place",
+        ));
+    cmd()
+        .args(["clear", "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("removed 159 maze line(s): Line0"));
+    cmd()
+        .args(["clear", "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("nothing to remove"));
 }
 
 #[test]
@@ -75,7 +102,10 @@ fn legacy_cli_errors_are_one_clear_line() {
         .args(["apply", &m, "--port", &port])
         .assert()
         .failure()
-        .stderr(predicate::str::contains("missing in the scene: Floor, Maze, Line, Start, End").and(predicate::str::contains("panicked").not()));
+        .stderr(
+            predicate::str::contains("missing in the scene: Floor, Maze, Line, Start, End")
+                .and(predicate::str::contains("panicked").not()),
+        );
     // nothing listens on the port any more
     drop(s);
     cmd()
@@ -83,7 +113,11 @@ fn legacy_cli_errors_are_one_clear_line() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot connect"));
-    cmd().args(["clear", "--port", &port, "--timeout", "0.3"]).assert().failure().stderr(predicate::str::contains("cannot connect"));
+    cmd()
+        .args(["clear", "--port", &port, "--timeout", "0.3"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("cannot connect"));
 }
 
 #[test]
@@ -94,10 +128,18 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     let s = serve(&["--idle-fps", "0", "--dump", dump.to_str().unwrap()]);
     let port = s.1.to_string();
     // start the simulation with our client
-    let mut c = vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default()).unwrap();
-    c.call1(vrep_maze::legacy::command::Command::Simulation(vrep_maze::legacy::command::SimControl::Start)).unwrap();
+    let mut c = vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default())
+        .unwrap();
+    c.call1(vrep_maze::legacy::command::Command::Simulation(
+        vrep_maze::legacy::command::SimControl::Start,
+    ))
+    .unwrap();
     c.close().unwrap();
-    cmd().args(["apply", &m, "--port", &port]).assert().failure().stderr(predicate::str::contains("simulation is running"));
+    cmd()
+        .args(["apply", &m, "--port", &port])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("simulation is running"));
     cmd()
         .args(["apply", &m, "--port", &port, "--stop-simulation"])
         .assert()

@@ -180,3 +180,35 @@ fn legacy_dry_run_changes_nothing() {
     assert_eq!(line_count(&s), 1);
     s.shutdown();
 }
+
+#[test]
+fn legacy_one_cell_maze_hides_the_template_under_start() {
+    let s = server_with(Scene::course(), 0);
+    let mut sc = connect(&s);
+    draw::apply(
+        &mut sc,
+        &drawing(3, 1),
+        &ApplyOptions::default(),
+        &mut no_progress,
+    )
+    .unwrap();
+    let one = drawing(1, 1);
+    assert!(one.lines.is_empty());
+    let r = draw::apply(&mut sc, &one, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(r.removed, 15);
+    assert_eq!(line_count(&s), 1);
+    let (line, start) = s.with_sim(|sim| {
+        let l = sim.scene.resolve("Line").unwrap();
+        let st = sim.scene.resolve("Start").unwrap();
+        (
+            sim.scene.pose(l, -1).unwrap().0,
+            sim.scene.pose(st, -1).unwrap().0,
+        )
+    });
+    assert!(
+        (line[0] - start[0]).abs() < 1e-6
+            && (line[1] - start[1]).abs() < 1e-6
+            && line[2] < start[2]
+    );
+    s.shutdown();
+}

@@ -49,6 +49,9 @@ pub struct ServeArgs {
     /// Log connections and protocol errors on stderr.
     #[arg(long, short)]
     pub verbose: bool,
+    /// Log every received message and command block on stderr (protocol debugging).
+    #[arg(long)]
+    pub trace: bool,
 }
 
 /// Remote APIs `serve` can speak.
@@ -121,7 +124,8 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let config = ServerConfig {
         listen: legacy_listen,
         dump: args.dump,
-        verbose: args.verbose,
+        verbose: args.verbose || args.trace,
+        trace: args.trace,
         ..Default::default()
     };
     let (tx, rx) = std::sync::mpsc::channel();

@@ -80,7 +80,7 @@ impl std::fmt::Display for ApplyReport {
         let verb = if self.dry_run { "would draw" } else { "drew" };
         write!(
             f,
-            "{verb} {} lines: {} reused, {} pasted, {} removed, {} already in place; {} round trips, {:.2} s",
+            "{verb} {} lines: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
             self.lines,
             self.reused,
             self.pasted,
@@ -234,6 +234,15 @@ fn draw(
         };
     for (i, (handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
         place(&mut edits, *handle, want, (i > 0).then_some(h.parent));
+    }
+    if drawing.lines.is_empty() {
+        // no segment (a 1-cell maze): hide the template under Start rather than leave it lying
+        let hidden = super::Pose {
+            z: (drawing.start.z - 0.001).max(0.0),
+            yaw: drawing.start.yaw,
+            ..drawing.start
+        };
+        place(&mut edits, h.line, &hidden, None);
     }
     place(&mut edits, h.start, &drawing.start, None);
     place(&mut edits, h.end, &drawing.end, None);

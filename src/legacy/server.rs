@@ -34,6 +34,8 @@ pub struct ServerConfig {
     pub dump: Option<PathBuf>,
     /// Print one line per connection and protocol error on stderr.
     pub verbose: bool,
+    /// Print every received message (header and blocks) on stderr.
+    pub trace: bool,
 }
 
 impl Default for ServerConfig {
@@ -45,6 +47,7 @@ impl Default for ServerConfig {
             step: Duration::from_millis(50),
             dump: None,
             verbose: false,
+            trace: false,
         }
     }
 }
@@ -258,6 +261,9 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             Ok(m) => m,
             Err(e) => return format!("protocol error: {e}"),
         };
+        if shared.config.trace {
+            trace(&msg, bytes.len());
+        }
         let kill = msg
             .blocks
             .last()
@@ -303,6 +309,30 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             return "kill command".into();
         }
     }
+}
+
+/// One line per message and per block, for protocol debugging and conformance tests.
+fn trace(msg: &Message, len: usize) {
+    let h = &msg.header;
+    let mut out = format!(
+        "trace: message id={} client_time={} bytes={len} blocks={}",
+        h.message_id,
+        h.client_time,
+        msg.blocks.len()
+    );
+    for b in &msg.blocks {
+        out.push_str(&format!(
+            "\ntrace:   block cmd={:#06x} opmode={:#07x} delay={} status={} id_bytes={} data_bytes={} size={}",
+            b.raw_id(),
+            b.opmode(),
+            b.delay,
+            b.status,
+            b.id_data.len(),
+            b.data.len(),
+            b.encoded_len()
+        ));
+    }
+    eprintln!("{out}");
 }
 
 /// Input-list rule: a new command replaces the stored one of the same identity (in place)

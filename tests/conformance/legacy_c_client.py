@@ -12,6 +12,7 @@ any failure.
 import ctypes as C
 import json
 import math
+import re
 import os
 import signal
 import socket
@@ -81,13 +82,23 @@ def free_port():
     return p
 
 
-def start_server(port, dump):
-    p = subprocess.Popen([BIN, "serve", "--listen", f"127.0.0.1:{port}", "--idle-fps", "8", "--dump", dump],
-                         stdout=subprocess.PIPE, text=True)
+def start_server(port, dump, trace=None):
+    extra = ["--trace"] if trace else []
+    p = subprocess.Popen([BIN, "serve", "--listen", f"127.0.0.1:{port}", "--idle-fps", "8", "--dump", dump] + extra,
+                         stdout=subprocess.PIPE, stderr=trace, text=True)
     line = p.stdout.readline()
     if "legacy remote API on" not in line:
         raise SystemExit(f"serve did not start: {line!r}")
     return p
+
+
+def stop(server):
+    if server.poll() is None:
+        server.send_signal(signal.SIGTERM)
+        try:
+            server.wait(5)
+        except subprocess.TimeoutExpired:
+            server.kill()
 
 
 def handle(cid, name):
@@ -150,16 +161,20 @@ def ping(cid):
 def main():
     port = free_port()
     dump = os.path.join(tempfile.mkdtemp(), "scene.json")
-    server = start_server(port, dump)
+    trace_path = os.path.join(tempfile.mkdtemp(), "trace.log")
+    with open(trace_path, "w") as trace:
+        server = start_server(port, dump, trace)
+        try:
+            run(port, dump, server)
+        finally:
+            stop(server)
+    check_wire(trace_path)
+    port = free_port()
+    server = start_server(port, os.path.join(tempfile.mkdtemp(), "scene2.json"))
     try:
-        run(port, dump, server)
+        run_apply(port)
     finally:
-        if server.poll() is None:
-            server.send_signal(signal.SIGTERM)
-            try:
-                server.wait(5)
-            except subprocess.TimeoutExpired:
-                server.kill()
+        stop(server)
     print(f"legacy conformance: {passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
 
@@ -168,12 +183,16 @@ def run(port, dump, server):
     cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
     check("simxStart connects", cid >= 0, cid)
     check("simxGetConnectionId is 1 after the first connection", lib.simxGetConnectionId(cid) == 1)
+    info = I(-7)
+    check("simxGetInMessageInfo returns -1 before the first non-empty reply (spec 8.4)",
+          lib.simxGetInMessageInfo(cid, 17, C.byref(info)) == -1)
 
     # idle rate: default 8 fps paces blocking calls at ~125 ms; 0 makes them fast
     v = I(-1)
     rc = lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
     check("sim_intparam_idle_fps reads 8 by default", rc == OK and v.value == 8, (rc, v.value))
-    slow = [ping(cid)[1] for _ in range(5)]
+    slow = [ping(cid)[1] for _ in range(9)]
+    print(f"     (ping times at idle fps 8: {sorted(slow)} ms, median {statistics.median(slow)})")
     check("at idle fps 8 a blocking call takes about one pass (>= 60 ms median)", statistics.median(slow) >= 60, slow)
     rc = lib.simxSetIntegerParameter(cid, 26, 0, BLOCKING)
     lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
@@ -196,6 +215,28 @@ def run(port, dump, server):
         rc, h = handle(cid, bad)
         # the server replies -1 with the error bit; the C client leaves the output untouched on error
         check(f"unknown name {bad!r} gives return code 8, output not written", rc == REMOTE and h == 12345, (rc, h))
+
+    # always-ok commands and failing group data (spec 12.2, 12.10-12.12, 14.11)
+    p = I(99)
+    rc = lib.simxGetObjectParent(cid, 987654, C.byref(p), BLOCKING)
+    check("simxGetObjectParent of an unknown handle: return code 0, parent -1", rc == OK and p.value == -1, (rc, p.value))
+    rc, new = copy_paste(cid, [987654])
+    check("simxCopyPasteObjects of an unknown handle: return code 0, no copies", rc == OK and new == [], (rc, new))
+    rc, g = group(cid, 0, obj_type=987654)
+    check("group data for a non-collection object type: return code 8", rc == REMOTE, rc)
+    rc, g = group(cid, 99)
+    check("group data of an unknown data type: return code 8", rc == REMOTE, rc)
+    cnt, arr = I(), C.POINTER(I)()
+    rc = lib.simxGetObjects(cid, 4, C.byref(cnt), C.byref(arr), BLOCKING)
+    check("simxGetObjects(dummy type 4) lists Maze only", rc == OK and [arr[i] for i in range(cnt.value)] == [hs["Maze"]],
+          (rc, cnt.value))
+    # oneshot: first call has no value yet; a later call returns the reply that arrived meanwhile (spec 6, 14.13)
+    v = (F * 3)()
+    rc1 = lib.simxGetObjectPosition(cid, hs["Maze"], -1, v, ONESHOT)
+    time.sleep(0.3)
+    rc2 = lib.simxGetObjectPosition(cid, hs["Maze"], -1, v, ONESHOT)
+    check("oneshot get: novalue flag first, then the value", rc1 == NOVALUE and rc2 == OK and near(list(v), [0, 0, 0]),
+          (rc1, rc2, list(v)))
 
     # copy-paste naming
     line, start, maze = hs["Line"], hs["Start"], hs["Maze"]
@@ -349,6 +390,136 @@ def run(port, dump, server):
     lib.simxFinish(cid2)
     server.send_signal(signal.SIGTERM)
     check("serve exits cleanly on SIGTERM", server.wait(5) == 0)
+
+
+def check_wire(trace_path):
+    """What the C client put on the wire (as `serve --trace` decoded it) against the spec."""
+    sessions, blocks = [[]], []
+    with open(trace_path) as f:
+        for line in f:
+            m = re.match(r"trace: message id=(-?\d+) client_time=(-?\d+) bytes=(\d+) blocks=(\d+)", line)
+            if m:
+                sessions[-1].append(tuple(int(x) for x in m.groups()))
+                blocks.append([])
+                continue
+            m = re.match(r"trace:   block cmd=(\w+) opmode=(\w+) delay=(\d+) status=(\d+) id_bytes=(\d+) "
+                         r"data_bytes=(\d+) size=(\d+)", line)
+            if m:
+                blocks[-1].append(tuple(int(x, 0) for x in m.groups()))
+            elif "left:" in line:
+                sessions.append([])
+    first = sessions[0]
+    check("wire: message IDs start at 0 and count up by 1 (spec 4)",
+          bool(first) and [m[0] for m in first] == list(range(len(first))), [m[0] for m in first[:5]])
+    check("wire: client time is a 26-bit millisecond clock (spec 4)",
+          all(0 <= m[1] < 1 << 26 for m in first) and first[-1][1] - first[0][1] > 1000, (first[0][1], first[-1][1]))
+    check("wire: header-only keep-alive messages are 18 bytes",
+          all(m[2] == 18 for m in first if m[3] == 0) and any(m[3] == 0 for m in first))
+    allb = [b for bl in blocks for b in bl]
+
+    def having(cmd, mode=None):
+        return [b for b in allb if b[0] == cmd and (mode is None or b[1] == mode)]
+
+    cp = having(0x102E)
+    check("wire: copy-paste = ID int 0, data n handles, do-not-overwrite bit (spec 12.2)",
+          bool(cp) and all(b[3] == 1 and b[4] == 4 and b[5] % 4 == 0 and b[5] > 0 for b in cp), cp[:3])
+    sp = having(0x101C)
+    check("wire: set parent = ID handle, data parent + keep-in-place byte (spec 12.13)",
+          bool(sp) and all(b[4] == 4 and b[5] == 5 for b in sp), sp[:3])
+    pos_set = having(0x101B) + having(0x101A)
+    check("wire: set position/orientation = ID handle, data rel + 3 floats (spec 12.5, 12.7)",
+          bool(pos_set) and all(b[4] == 4 and b[5] == 16 for b in pos_set), pos_set[:3])
+    gets = having(0x200E) + having(0x200D)
+    check("wire: get position/orientation use the 8-byte form 0x200E/0x200D (spec 12.6, 12.8)",
+          bool(gets) and all(b[4] == 8 and b[5] == 0 for b in gets) and not having(0x1019) and not having(0x1018),
+          gets[:3])
+    check("wire: group data = ID object type + data type (spec 12.11)",
+          bool(having(0x200C)) and all(b[4] == 8 for b in having(0x200C)))
+    check("wire: streaming and discontinue travel as opmodes 0x20000 / 0x50000 (spec 6)",
+          bool(having(0x200E, 0x20000)) and bool(having(0x200E, 0x50000)))
+    check("wire: blocking calls carry opmode 0x10000", bool(having(0x3001, 0x10000)))
+    ping = having(0x1021)
+    check("wire: simxGetPingTime sends get-integer-parameter (spec 12.9)", bool(ping) and all(b[4] == 4 for b in ping))
+    sim = having(0x1007)
+    check("wire: start/stop simulation = 0x1007 with an int ID (spec 12.17)", len(sim) >= 3 and all(b[4] == 4 for b in sim))
+    last = [bl for bl in blocks if bl][-1][-1]
+    check("wire: simxFinish sends a 30-byte kill block 0x000A, oneshot, 4-byte int payload (spec 12.14)",
+          last[0] == 0x000A and last[1] == 0 and last[5] == 4 and last[6] == 30, last)
+
+
+def wrap(a):
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def scene_lines(cid):
+    """(line objects by handle: name, parent, x, y, z, roll, pitch, yaw) read with the C client."""
+    rc0, gn = group(cid, 0)
+    rc2, gp = group(cid, 2)
+    rc9, g9 = group(cid, 9)
+    objs = {}
+    for k, h in enumerate(gn["handles"]):
+        f = g9["floats"][6 * k:6 * k + 6]
+        objs[h] = (gn["strings"][k], gp["ints"][k], *f)
+    return objs
+
+
+def check_drawn(cid, layout, label):
+    hs = {n: handle(cid, n)[1] for n in ["Floor", "Maze", "Line", "Start", "End"]}
+    objs = scene_lines(cid)
+    floor = objs[hs["Floor"]]
+    check(f"{label}: Floor at the world origin (layout frame = world)", near(floor[2:], [0] * 6), floor)
+    children = {h: o for h, o in objs.items() if o[1] == hs["Maze"]}
+    segs = layout["segments"]
+    check(f"{label}: Maze has one child per segment but the template ({len(segs) - 1})",
+          len(children) == len(segs) - 1, len(children))
+    check(f"{label}: the children are Line copies named Line<N>",
+          all(re.fullmatch(r"Line\d+", o[0]) for o in children.values()))
+    strays = [o[0] for h, o in objs.items() if o[1] == -1 and re.fullmatch(r"Line#?\d+", o[0])]
+    check(f"{label}: no parentless Line copies", not strays, strays)
+    pool = [hs["Line"]] + list(children)
+    missing = 0
+    for sgm in segs:
+        hit = next((h for h in pool if near(objs[h][2:5], [sgm["x"], sgm["y"], sgm["z"]], 1e-4)
+                    and abs(wrap(objs[h][7] - sgm["yaw"])) < 1e-4 and abs(objs[h][5]) < 1e-4
+                    and abs(objs[h][6]) < 1e-4), None)
+        if hit is None:
+            missing += 1
+        else:
+            pool.remove(hit)
+    check(f"{label}: every segment has a line in place (1e-4 m, 1e-4 rad), none left over",
+          missing == 0 and not pool, (missing, pool))
+    for name in ["start", "end"]:
+        o, want = objs[hs[name.capitalize()]], layout[name]["pose"]
+        check(f"{label}: {name.capitalize()} in place", near(o[2:5], [want["x"], want["y"], want["z"]], 1e-4), o)
+
+
+def run_apply(port):
+    """Our Rust client draws (vrep-maze apply / clear); the C client checks the result."""
+    tmp = tempfile.mkdtemp()
+    layouts = []
+    for seed, algo in [("42", "prim"), ("7", "dfs")]:
+        path = os.path.join(tmp, f"{algo}{seed}.json")
+        subprocess.run([BIN, "generate", "--seed", seed, "--algo", algo, "-o", path], check=True,
+                       stdout=subprocess.DEVNULL)
+        with open(path) as f:
+            layouts.append((path, json.load(f)))
+    for label, (path, layout) in zip(["apply", "re-apply of another maze"], layouts):
+        r = subprocess.run([BIN, "apply", path, "--port", str(port)], capture_output=True, text=True)
+        check(f"{label}: vrep-maze apply succeeds", r.returncode == 0, r.stderr)
+        cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
+        check_drawn(cid, layout, label)
+        v = I(-1)
+        lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
+        check(f"{label}: the idle rate is restored to 8", v.value == 8, v.value)
+        lib.simxFinish(cid)
+    r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
+    check("vrep-maze clear succeeds", r.returncode == 0, r.stderr)
+    cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
+    objs = scene_lines(cid)
+    lines = sorted(o[0] for o in objs.values() if re.fullmatch(r"Line#?\d*", o[0]))
+    check("after clear only the template Line is left, Start and End stay",
+          lines == ["Line"] and handle(cid, "Start")[0] == OK and handle(cid, "End")[0] == OK, lines)
+    lib.simxFinish(cid)
 
 
 if __name__ == "__main__":
