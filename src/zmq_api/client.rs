@@ -261,8 +261,7 @@ impl Client {
     /// `_*wait*_` / `_*repeat*_` loop of protocol 2.
     pub fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, ZmqError> {
         self.stats.calls += 1;
-        let original = self.request(func, args);
-        let mut next = original.clone();
+        let mut next = self.request(func, args);
         let malformed = |detail: String| ZmqError::Malformed {
             func: func.to_string(),
             detail,
@@ -282,7 +281,9 @@ impl Client {
                     });
                 }
                 Reply::Wait => next = self.request(EXECUTED, vec![]),
-                Reply::Repeat => next = original.clone(),
+                // resend the last message (the official client does so: after a wait it
+                // resends `_*executed*_`, never the original call, which would run twice)
+                Reply::Repeat => {}
                 // We register no callbacks: answer with no results so the server can go on.
                 Reply::Callback(_) => next = self.request(EXECUTED, vec![]),
             }

@@ -371,3 +371,29 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod fuzz {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Any bytes: decoding and reply parsing return a result, never panic.
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..256)) {
+            if let Ok(v) = cbor::decode(&bytes) {
+                let _ = parse_reply(&v);
+                let _ = Request::from_value(&v);
+            }
+        }
+
+        /// Valid maps with a random `ret`/`err`/`success` payload: parsed or rejected, never a panic.
+        #[test]
+        fn arbitrary_reply_maps_never_panic(key in "(ret|err|success|func|error)", n in any::<i64>(), s in ".{0,20}") {
+            for payload in [Value::Integer(n.into()), Value::Text(s.clone()), Value::Array(vec![Value::Text(s.clone())]),
+                            Value::Map(vec![(Value::Integer(n.into()), Value::Null)]), Value::Bool(n % 2 == 0)] {
+                let _ = parse_reply(&cbor::map([(key.as_str(), payload)]));
+            }
+        }
+    }
+}
