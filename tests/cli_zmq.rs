@@ -1,0 +1,243 @@
+//! `serve --api zmq|both`, `apply --api zmq|auto --create-missing --save-scene` and `clear`
+//! end to end through the binary.
+
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+
+use assert_cmd::cargo::CommandCargoExt;
+use predicates::prelude::*;
+
+struct Serve(Child, Vec<u16>);
+
+impl Drop for Serve {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// Starts `serve` with `args`; returns the ports it printed (one line per API).
+fn serve(args: &[&str], lines: usize) -> Serve {
+    let mut child = Command::cargo_bin("vrep-maze")
+        .unwrap()
+        .arg("serve")
+        .args(args)
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut out = BufReader::new(child.stdout.take().unwrap());
+    let mut ports = vec![];
+    for _ in 0..lines {
+        let mut line = String::new();
+        out.read_line(&mut line).unwrap();
+        let port = line
+            .split("127.0.0.1:")
+            .nth(1)
+            .and_then(|r| r.split_whitespace().next())
+            .unwrap_or_else(|| panic!("no address in {line:?}"))
+            .parse()
+            .unwrap();
+        ports.push(port);
+    }
+    Serve(child, ports)
+}
+
+fn cmd() -> assert_cmd::Command {
+    assert_cmd::Command::cargo_bin("vrep-maze").unwrap()
+}
+
+fn generate(dir: &std::path::Path, seed: &str) -> String {
+    let path = dir.join(format!("m{seed}.json")).display().to_string();
+    cmd()
+        .args(["generate", "--seed", seed, "--algo", "prim", "-o", &path])
+        .assert()
+        .success();
+    path
+}
+
+#[test]
+fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = serve(
+        &[
+            "--api",
+            "zmq",
+            "--listen",
+            "127.0.0.1:0",
+            "--scene",
+            "empty",
+        ],
+        1,
+    );
+    let port = s.1[0].to_string();
+    let m = generate(dir.path(), "42");
+    cmd()
+        .args(["apply", &m, "--api", "zmq", "--port", &port])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "missing in the scene: Floor, Maze, Line, Start, End",
+        ));
+    let saved = dir.path().join("saved.json").display().to_string();
+    cmd()
+        .args([
+            "apply",
+            &m,
+            "--api",
+            "zmq",
+            "--port",
+            &port,
+            "--create-missing",
+        ])
+        .args(["--save-scene", &saved])
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("using the ZeroMQ remote API")
+                .and(predicate::str::contains("protocol 2"))
+                .and(predicate::str::contains(
+                    "created Floor, Maze, Line, Start, End",
+                ))
+                .and(predicate::str::contains(
+                    "drew 160 lines: 0 reused, 159 pasted",
+                ))
+                .and(predicate::str::contains("verified"))
+                .and(predicate::str::contains("saved the scene")),
+        );
+    assert!(
+        std::fs::read_to_string(&saved)
+            .unwrap()
+            .contains("vrep-maze scene")
+    );
+    cmd()
+        .args([
+            "apply",
+            &m,
+            "--api",
+            "zmq",
+            "--port",
+            &port,
+            "--create-missing",
+        ])
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("159 reused, 0 pasted, 0 removed")
+                .and(predicate::str::contains("created").not()),
+        );
+    cmd()
+        .args(["clear", "--api", "zmq", "--port", &port])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+}
+
+#[test]
+fn zmq_cli_protocol_1_server() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = serve(
+        &[
+            "--api",
+            "zmq",
+            "--listen",
+            "127.0.0.1:0",
+            "--protocol",
+            "1",
+            "--idle-fps",
+            "0",
+        ],
+        1,
+    );
+    let m = generate(dir.path(), "5");
+    cmd()
+        .args(["apply", &m, "--api", "zmq", "--port", &s.1[0].to_string()])
+        .assert()
+        .success()
+        .stdout(
+            predicate::str::contains("protocol 1, CoppeliaSim 4.5.1")
+                .and(predicate::str::contains("verified")),
+        );
+}
+
+#[test]
+fn zmq_cli_both_apis_share_one_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = serve(
+        &[
+            "--api",
+            "both",
+            "--listen",
+            "127.0.0.1:0",
+            "--zmq-listen",
+            "127.0.0.1:0",
+            "--idle-fps",
+            "0",
+        ],
+        2,
+    );
+    let (legacy, zmq) = (s.1[0].to_string(), s.1[1].to_string());
+    let m = generate(dir.path(), "42");
+    cmd()
+        .args(["apply", &m, "--port", &legacy])
+        .assert()
+        .success();
+    cmd()
+        .args(["clear", "--api", "zmq", "--port", &zmq])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+    cmd()
+        .args(["clear", "--port", &legacy])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("nothing to remove"));
+}
+
+#[test]
+fn zmq_cli_errors_are_one_clear_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "3");
+    cmd()
+        .args(["apply", &m, "--create-missing"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "need the ZeroMQ remote API (--api zmq)",
+        ));
+    cmd()
+        .args(["apply", &m, "--api", "auto", "--port", "1"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "--port needs --api legacy or --api zmq",
+        ));
+    let free = std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port();
+    cmd()
+        .args([
+            "clear",
+            "--api",
+            "zmq",
+            "--port",
+            &free.to_string(),
+            "--timeout",
+            "1",
+        ])
+        .assert()
+        .failure()
+        .stderr(
+            predicate::str::contains(format!("cannot connect to tcp://127.0.0.1:{free}"))
+                .and(predicate::str::contains("ZeroMQ remote API add-on"))
+                .and(predicate::function(|s: &str| {
+                    s.trim_end().lines().count() == 1
+                })),
+        );
+    cmd()
+        .args(["serve", "--api", "zmq", "--zmq-listen", "127.0.0.1:0"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("--zmq-listen is for --api both"));
+}
