@@ -157,4 +157,23 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     assert!(text.contains("\"Line158\""), "the dump has the drawn maze");
     let scene = vrep_maze::sim::Scene::from_json(&text).unwrap();
     assert_eq!(scene.len(), 5 + 159);
+    // `render` draws a scene dump as SVG: Floor, Start, End and 160 lines (the dummy has no footprint)
+    let svg = dir.path().join("scene.svg");
+    cmd()
+        .args([
+            "render",
+            dump.to_str().unwrap(),
+            "-o",
+            svg.to_str().unwrap(),
+        ])
+        .assert()
+        .success();
+    let svg = std::fs::read_to_string(svg).unwrap();
+    assert_eq!(svg.matches("<polygon").count(), 3 + 160);
+    assert_eq!(svg.matches("rgb(0,255,0)").count(), 160);
+    cmd()
+        .args(["render", dump.to_str().unwrap(), "--format", "ascii"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("renders as SVG only"));
 }

@@ -261,3 +261,156 @@ fn legacy_server_serves_one_client_at_a_time() {
     c.close().unwrap();
     s.shutdown();
 }
+
+fn raw_exchange(
+    s: &mut std::net::TcpStream,
+    id: i32,
+    blocks: Vec<vrep_maze::legacy::wire::Block>,
+) -> vrep_maze::legacy::wire::Message {
+    use vrep_maze::legacy::wire::{
+        MAX_PACKET_SIZE, Message, MessageHeader, read_message, write_message,
+    };
+    let m = Message {
+        header: MessageHeader {
+            message_id: id,
+            ..Default::default()
+        },
+        blocks,
+    };
+    write_message(s, &m.encode(), MAX_PACKET_SIZE).unwrap();
+    Message::decode(&read_message(s).unwrap()).unwrap()
+}
+
+#[test]
+fn legacy_server_echoes_unknown_commands_with_the_error_bit_and_survives_garbage() {
+    use vrep_maze::legacy::wire::Block;
+    let s = server(0);
+    // garbage: the server drops that client and serves the next one
+    let mut g = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    g.write_all(b"GET / HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+    let mut buf = [0u8; 16];
+    g.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    assert_eq!(
+        g.read(&mut buf).unwrap_or(0),
+        0,
+        "connection closed without a reply"
+    );
+    let mut raw = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    raw.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    let joint = Block {
+        cmd: 0x1001 | 0x10000,
+        delay: 0,
+        sim_time: 0,
+        status: 0,
+        id_data: 7i32.to_le_bytes().to_vec(),
+        data: vec![1, 2, 3],
+        split: None,
+    };
+    let mut reply = raw_exchange(&mut raw, 0, vec![joint.clone()]);
+    let mut id = 1;
+    while reply.blocks.is_empty() {
+        std::thread::sleep(Duration::from_millis(2));
+        reply = raw_exchange(&mut raw, id, vec![]);
+        id += 1;
+    }
+    assert!(reply.header.message_id >= 0);
+    let b = &reply.blocks[0];
+    assert_eq!(
+        (b.cmd, b.status, &b.id_data, &b.data),
+        (joint.cmd, 1, &joint.id_data, &joint.data)
+    );
+    s.shutdown();
+}
+
+#[test]
+fn legacy_kill_must_be_the_last_block() {
+    let s = server(0);
+    let mut raw = std::net::TcpStream::connect(s.local_addr()).unwrap();
+    raw.set_read_timeout(Some(Duration::from_secs(2))).unwrap();
+    let kill = Command::KillConnection.to_block(0);
+    let ping = Command::GetIntParam(1).to_block(0x10000);
+    // kill not last: the session goes on
+    raw_exchange(&mut raw, 0, vec![kill.clone(), ping]);
+    raw_exchange(&mut raw, 1, vec![]);
+    // kill last: reply, then the server closes
+    raw_exchange(&mut raw, 2, vec![kill]);
+    let mut buf = [0u8; 8];
+    assert_eq!(raw.read(&mut buf).unwrap_or(0), 0);
+    s.shutdown();
+}
+
+/// Random bytes, random packets and random command blocks never take the server down.
+#[test]
+fn legacy_server_survives_fuzzed_clients() {
+    use vrep_maze::legacy::wire::{Block, MAX_PACKET_SIZE, Message, MessageHeader, packetize};
+    let s = server(0);
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x
+    };
+    let ids = [
+        0x000A, 0x1007, 0x1012, 0x101A, 0x101B, 0x101C, 0x1021, 0x1022, 0x1028, 0x102A, 0x102E,
+        0x200C, 0x200D, 0x200E, 0x3001, 0x3401, 0x1001,
+    ];
+    for case in 0..60 {
+        let mut conn = std::net::TcpStream::connect(s.local_addr()).unwrap();
+        conn.set_read_timeout(Some(Duration::from_millis(300)))
+            .unwrap();
+        let bytes: Vec<u8> = match case % 3 {
+            0 => (0..(next() % 200)).map(|_| next() as u8).collect(),
+            1 => {
+                let body: Vec<u8> = (0..(18 + next() % 120)).map(|_| next() as u8).collect();
+                let mut b = packetize(&body, MAX_PACKET_SIZE);
+                b[8] = 11; // keep the version byte so the block decoder is reached
+                b
+            }
+            _ => {
+                let blocks = (0..(1 + next() % 5))
+                    .map(|_| {
+                        let raw = ids[(next() % ids.len() as u64) as usize];
+                        let id_len = match raw {
+                            0x1000..=0x1FFF => 4,
+                            0x2000..=0x2FFF => 8,
+                            _ => 0,
+                        };
+                        let mut id_data: Vec<u8> =
+                            (0..id_len).map(|_| (next() % 40) as u8).collect();
+                        if raw >= 0x3000 {
+                            id_data = b"Line\0".to_vec();
+                            if raw == 0x3401 {
+                                id_data = b"\x01\0\0\0a\0b\0".to_vec();
+                            }
+                        }
+                        Block {
+                            cmd: raw as u32 | ((next() % 7) as u32) << 16,
+                            delay: 0,
+                            sim_time: 0,
+                            status: (next() % 2) as u8,
+                            id_data,
+                            data: (0..(next() % 24)).map(|_| next() as u8).collect(),
+                            split: None,
+                        }
+                    })
+                    .collect();
+                packetize(
+                    &Message {
+                        header: MessageHeader::default(),
+                        blocks,
+                    }
+                    .encode(),
+                    MAX_PACKET_SIZE,
+                )
+            }
+        };
+        let _ = conn.write_all(&bytes);
+        let mut buf = [0u8; 4096];
+        let _ = conn.read(&mut buf);
+    }
+    let mut c = Client::connect(s.local_addr(), opts()).unwrap();
+    assert!(!c.call1(Command::GetIntParam(1)).unwrap().remote_error);
+    c.close().unwrap();
+    s.shutdown();
+}

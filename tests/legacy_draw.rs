@@ -212,3 +212,27 @@ fn legacy_one_cell_maze_hides_the_template_under_start() {
     );
     s.shutdown();
 }
+
+#[test]
+fn legacy_idle_rate_is_restored_after_an_error() {
+    // Maze hangs under a parentless Line copy: re-parenting that copy to Maze is a cycle
+    let mut scene = Scene::course();
+    let (line, maze) = (
+        scene.resolve("Line").unwrap(),
+        scene.resolve("Maze").unwrap(),
+    );
+    let copy = scene.copy_paste(&[line]).unwrap()[0];
+    scene.set_parent(maze, Some(copy), true).unwrap();
+    let s = server_with(scene, 8);
+    let mut sc = connect(&s);
+    let e = draw::apply(
+        &mut sc,
+        &drawing(3, 1),
+        &ApplyOptions::default(),
+        &mut no_progress,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("set the parent of object"), "{e}");
+    assert_eq!(s.with_sim(|sim| sim.idle_fps), 8);
+    s.shutdown();
+}

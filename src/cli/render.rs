@@ -13,12 +13,12 @@ use crate::render::{Format, RenderOptions};
 /// Options of `render`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze render maze.json --solution\n  vrep-maze render maze.json --format svg -o maze.svg"
+    after_help = "Examples:\n  vrep-maze render maze.json --solution\n  vrep-maze render maze.json --format svg -o maze.svg\n  vrep-maze render maze.json --solution -o maze.png"
 )]
 pub struct RenderArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
-    /// ascii (terminal) or svg [default: from the -o extension, else ascii].
+    /// ascii (terminal), svg or png [default: from the -o extension, else ascii].
     #[arg(long, value_parser = clap::value_parser!(Format))]
     pub format: Option<Format>,
     /// Overlay the shortest path from start to end.
@@ -31,6 +31,11 @@ pub struct RenderArgs {
 
 /// Runs `render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode> {
+    if let Some(scene) = scene_dump(&args)? {
+        let svg = crate::sim::svg::scene_svg(&scene, 800.0);
+        write_output(args.output.as_deref(), |w| w.write_all(svg.as_bytes()))?;
+        return Ok(ExitCode::SUCCESS);
+    }
     let layout = read_layout(&args.file)?;
     let format = args
         .format
@@ -45,4 +50,25 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
         .with_context(|| format!("{}", args.file.display()))?;
     write_output(args.output.as_deref(), |w| w.write_all(&bytes))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
+fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
+    if args.file.as_os_str() == "-" {
+        return Ok(None);
+    }
+    let Ok(text) = std::fs::read_to_string(&args.file) else {
+        return Ok(None);
+    };
+    if !text.contains("\"vrep-maze scene\"") {
+        return Ok(None);
+    }
+    anyhow::ensure!(
+        args.format.is_none_or(|f| f == Format::Svg),
+        "{}: a scene dump renders as SVG only (use --format svg or -o FILE.svg)",
+        args.file.display()
+    );
+    let scene =
+        crate::sim::Scene::from_json(&text).with_context(|| format!("{}", args.file.display()))?;
+    Ok(Some(scene))
 }

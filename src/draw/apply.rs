@@ -173,12 +173,7 @@ fn draw(
     lines.extend(&p.reuse);
     let mut pasted = 0;
     while pasted < p.paste {
-        let available = if drawing.lines.is_empty() {
-            vec![]
-        } else {
-            lines.clone()
-        };
-        let groups = paste_round(&available, p.paste - pasted, opts.paste_blocks_per_round);
+        let groups = paste_round(&lines, p.paste - pasted, opts.paste_blocks_per_round);
         if groups.is_empty() {
             break;
         }

@@ -1,9 +1,9 @@
 //! Backend-neutral drawing of a maze into a CoppeliaSim scene.
 //!
 //! A backend (the legacy remote API in [`crate::legacy::scene`], later ZeroMQ) implements
-//! [`Scene`]: a handful of batched operations, each costing one round trip. [`apply`] draws a
+//! [`Scene`]: a handful of batched operations, each costing one round trip. [`apply()`] draws a
 //! [`Drawing`] (reusing earlier copies of the `Line` template, pasting only the missing ones,
-//! removing the surplus), [`clear`] removes a drawn maze and [`verify`] compares the scene with
+//! removing the surplus), [`clear()`] removes a drawn maze and [`verify()`] compares the scene with
 //! a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
 //! paste) so they can be tested without a simulator.
 
@@ -135,7 +135,7 @@ pub struct ObjectInfo {
     pub orientation: [f64; 3],
 }
 
-/// Everything [`apply`] needs to know first, in one round trip.
+/// Everything [`apply()`] needs to know first, in one round trip.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Survey {
     /// Handle of each requested name (same order), `None` if missing.
@@ -205,7 +205,7 @@ pub trait Scene {
     fn round_trips(&self) -> usize;
 }
 
-/// Errors of [`apply`], [`clear`] and [`verify`].
+/// Errors of [`apply()`], [`clear()`] and [`verify()`].
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
     /// Named objects are missing.

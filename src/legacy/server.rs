@@ -412,7 +412,7 @@ fn pass(shared: &Shared, core: &mut Core) {
     }
     core.passes += 1;
     if core.sim.state == SimState::Running {
-        core.sim_time_ms += shared.config.step.as_millis() as i32;
+        core.sim_time_ms = core.sim_time_ms.wrapping_add(shared.config.step.as_millis() as i32);
     }
     let header = MessageHeader {
         message_id: core.latest_id,

@@ -1,6 +1,7 @@
 //! Pictures of a layout: one file per output format, all behind [`Renderer`].
 
 mod ascii;
+mod png;
 mod svg;
 
 use std::fmt;
@@ -13,6 +14,7 @@ use crate::maze::analysis::shortest_path;
 use crate::maze::{Cell, Grid, Maze};
 
 pub use ascii::Ascii;
+pub use png::Png;
 pub use svg::Svg;
 
 /// What to draw besides the maze.
@@ -35,17 +37,20 @@ pub enum Format {
     Ascii,
     /// The floor as the robot's camera sees it: green lines, blue start, red end.
     Svg,
+    /// The SVG picture as pixels.
+    Png,
 }
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 2] = [Format::Ascii, Format::Svg];
+    pub const ALL: [Format; 3] = [Format::Ascii, Format::Svg, Format::Png];
 
     /// Its name on the command line.
     pub const fn name(self) -> &'static str {
         match self {
             Format::Ascii => "ascii",
             Format::Svg => "svg",
+            Format::Png => "png",
         }
     }
 
@@ -54,6 +59,7 @@ impl Format {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
             "svg" => Some(Format::Svg),
+            "png" => Some(Format::Png),
             "txt" => Some(Format::Ascii),
             _ => None,
         }
@@ -64,6 +70,7 @@ impl Format {
         match self {
             Format::Ascii => Box::new(Ascii),
             Format::Svg => Box::new(Svg),
+            Format::Png => Box::new(Png),
         }
     }
 }
@@ -81,7 +88,7 @@ impl FromStr for Format {
         Self::ALL
             .into_iter()
             .find(|f| f.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| format!("unknown format '{s}' (known: ascii, svg)"))
+            .ok_or_else(|| format!("unknown format '{s}' (known: ascii, svg, png)"))
     }
 }
 

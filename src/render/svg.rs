@@ -119,9 +119,91 @@ impl Renderer for Svg {
                 num(w / 2.0)
             );
         }
+        scale_bar(&mut out, fx, fy);
         out.push_str("</g>\n</svg>\n");
         Ok(out.into_bytes())
     }
+}
+
+/// A scale bar in the south-west corner of the floor: a white bar of a round number of
+/// metres (about a fifth of the floor), labelled with stroked seven-segment digits so the
+/// label survives rasterizing without fonts.
+fn scale_bar(out: &mut String, fx: f64, fy: f64) {
+    let length = [
+        1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0,
+    ]
+    .into_iter()
+    .take_while(|&l| l <= fx / 5.0)
+    .last()
+    .unwrap_or(1.0);
+    let unit = length / 10.0;
+    let (x0, y0) = (-fx / 2.0 + unit, -fy / 2.0 + unit);
+    let _ = writeln!(
+        out,
+        r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#000000" stroke-width="{}"/>"##,
+        num(x0),
+        num(y0),
+        num(length),
+        num(unit),
+        num(unit / 5.0)
+    );
+    let label = format!("{}m", length as u64);
+    let glyph_height = unit * 2.0;
+    let mut x = x0 + length + unit;
+    let mut path = String::new();
+    for ch in label.chars() {
+        for (ax, ay, bx, by) in glyph_strokes(ch) {
+            let _ = write!(
+                path,
+                "M{},{}L{},{}",
+                num(x + ax * glyph_height / 2.0),
+                num(y0 + ay * glyph_height),
+                num(x + bx * glyph_height / 2.0),
+                num(y0 + by * glyph_height)
+            );
+        }
+        x += glyph_height * 0.75;
+    }
+    let _ = writeln!(
+        out,
+        r##"<path d="{path}" fill="none" stroke="#000000" stroke-width="{}" stroke-linecap="round"/>"##,
+        num(unit / 3.0)
+    );
+}
+
+/// The strokes of a seven-segment glyph in a 1 x 1 box (y up): digits and `m`.
+fn glyph_strokes(ch: char) -> Vec<(f64, f64, f64, f64)> {
+    // Segments a (top), b, c (right, top to bottom), d (bottom), e, f (left), g (middle).
+    const SEGMENTS: [(f64, f64, f64, f64); 7] = [
+        (0.0, 1.0, 1.0, 1.0),
+        (1.0, 1.0, 1.0, 0.5),
+        (1.0, 0.5, 1.0, 0.0),
+        (0.0, 0.0, 1.0, 0.0),
+        (0.0, 0.0, 0.0, 0.5),
+        (0.0, 0.5, 0.0, 1.0),
+        (0.0, 0.5, 1.0, 0.5),
+    ];
+    let mask: u8 = match ch {
+        '0' => 0b011_1111,
+        '1' => 0b000_0110,
+        '2' => 0b101_1011,
+        '5' => 0b110_1101,
+        'm' => {
+            return vec![
+                (0.0, 0.0, 0.0, 0.5),
+                (0.0, 0.5, 1.0, 0.5),
+                (0.5, 0.0, 0.5, 0.5),
+                (1.0, 0.0, 1.0, 0.5),
+            ];
+        }
+        _ => 0,
+    };
+    SEGMENTS
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| mask & (1 << i) != 0)
+        .map(|(_, &s)| s)
+        .collect()
 }
 
 /// Thin lines every metre, thicker ones every 5 m floor panel.
@@ -197,6 +279,9 @@ mod tests {
             layout.metrics.solution_cells
         );
         assert_eq!(num(0.30000000000000004), "0.3");
+        assert!(svg.contains("fill=\"#ffffff\""), "a scale bar");
+        assert_eq!(glyph_strokes('1').len(), 2);
+        assert_eq!(glyph_strokes('0').len(), 6);
         assert_eq!(num(-0.00001), "0");
     }
 }

@@ -6,6 +6,7 @@
 
 pub mod frame;
 pub mod scene;
+pub mod svg;
 
 pub use scene::{
     HANDLE_PARENT, HANDLE_WORLD, NamingMode, NewObject, Object, ObjectType, Scene, SimError,
