@@ -612,3 +612,165 @@ fn new_object(kind: ObjectType, size: [f64; 3], colour: [u8; 3]) -> NewObject {
         colour,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::{DEFAULT_IDLE_FPS, Scene};
+
+    fn run(sim: &mut Simulator, func: &str, args: Vec<Value>) -> Outcome {
+        call(sim, &mut Extras::default(), Protocol::V2, func, &args)
+    }
+
+    fn ret1(o: Outcome) -> Value {
+        match o {
+            Outcome::Ret(mut v) if v.len() == 1 => v.remove(0),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn created_objects_are_named_like_coppeliasim_and_aliases_rename_them() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let size = float_array(&[1.0, 1.0, 0.0]);
+        let a = cbor::int32(&ret1(run(
+            &mut sim,
+            "sim.createPrimitiveShape",
+            vec![int(1), size.clone(), int(0)],
+        )))
+        .unwrap();
+        let b = cbor::int32(&ret1(run(
+            &mut sim,
+            "sim.createPrimitiveShape",
+            vec![int(1), size, int(0)],
+        )))
+        .unwrap();
+        assert_eq!(
+            (
+                sim.scene.get(a).unwrap().name.as_str(),
+                sim.scene.get(b).unwrap().name.as_str()
+            ),
+            ("Plane", "Plane0")
+        );
+        run(
+            &mut sim,
+            "sim.setObjectAlias",
+            vec![int(b.into()), Value::Text("Green line!".into())],
+        );
+        let o = sim.scene.get(b).unwrap();
+        assert_eq!(
+            (o.alias.as_str(), o.name.as_str()),
+            ("Green_line_", "Green_line_")
+        );
+        // the old-style name follows the alias, so the legacy API finds it too
+        assert_eq!(sim.scene.resolve("Green_line_").unwrap(), b);
+        let alias0 = ret1(run(
+            &mut sim,
+            "sim.getObjectAlias",
+            vec![int(b.into()), int(0)],
+        ));
+        assert_eq!(cbor::text(&alias0), Some("Green_line_[0]"));
+    }
+
+    #[test]
+    fn objects_in_tree_options_and_pose_argument_orders() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let line = sim.scene.resolve("Line").unwrap();
+        sim.scene.set_parent(line, Some(maze), true).unwrap();
+        let tree = |sim: &mut Simulator, base: i32, opt: i32| {
+            cbor::handles(&ret1(run(
+                sim,
+                "sim.getObjectsInTree",
+                vec![int(base.into()), int(-2), int(opt.into())],
+            )))
+            .unwrap()
+        };
+        assert_eq!(tree(&mut sim, maze, 0), vec![maze, line]);
+        assert_eq!(tree(&mut sim, maze, 1), vec![line]);
+        assert_eq!(tree(&mut sim, maze, 3), vec![line]);
+        let roots = tree(&mut sim, HANDLE_SCENE, 2);
+        assert!(!roots.contains(&line) && roots.contains(&maze));
+        assert_eq!(tree(&mut sim, HANDLE_SCENE, 0).len(), 5);
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let pose = float_array(&[1.0, 2.0, 0.001, 0.0, 0.0, s, s]);
+        for args in [
+            vec![int(line.into()), pose.clone(), int(-1)],
+            vec![int(line.into()), int(-1), pose.clone()],
+        ] {
+            sim.scene.set_position(line, -1, [0.0; 3]).unwrap();
+            assert_eq!(
+                run(&mut sim, "sim.setObjectPose", args),
+                Outcome::Ret(vec![])
+            );
+            let (p, e) = sim.scene.pose(line, -1).unwrap();
+            assert!(
+                (p[1] - 2.0).abs() < 1e-12 && (e[2] - std::f64::consts::FRAC_PI_2).abs() < 1e-12
+            );
+        }
+        match run(
+            &mut sim,
+            "sim.setObjectPose",
+            vec![int(line.into()), int(-1)],
+        ) {
+            Outcome::Err(e) => assert!(e.contains("argument 3"), "{e}"),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            run(&mut sim, "sim.nope", vec![]),
+            Outcome::Err("No such function: sim.nope".into())
+        );
+        assert_eq!(
+            run(&mut sim, "os.execute", vec![]),
+            Outcome::Err("No such function: os.execute".into())
+        );
+    }
+
+    #[test]
+    fn protocol_1_has_no_require_and_reports_4_5_1() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let mut x = Extras::default();
+        let req = call(
+            &mut sim,
+            &mut x,
+            Protocol::V1,
+            "zmqRemoteApi.require",
+            &[Value::Text("sim".into())],
+        );
+        assert_eq!(
+            req,
+            Outcome::Err("No such function: zmqRemoteApi.require".into())
+        );
+        let v1 = call(
+            &mut sim,
+            &mut x,
+            Protocol::V1,
+            "sim.getInt32Param",
+            &[int(1)],
+        );
+        let v2 = call(
+            &mut sim,
+            &mut x,
+            Protocol::V2,
+            "sim.getInt32Param",
+            &[int(1)],
+        );
+        assert_eq!(
+            (v1, v2),
+            (
+                Outcome::Ret(vec![int(40501)]),
+                Outcome::Ret(vec![int(41000)])
+            )
+        );
+        assert!(matches!(
+            call(
+                &mut sim,
+                &mut x,
+                Protocol::V1,
+                "zmqRemoteApi.info",
+                &[Value::Text("sim".into())]
+            ),
+            Outcome::Ret(_)
+        ));
+    }
+}
