@@ -241,3 +241,45 @@ fn zmq_cli_errors_are_one_clear_line() {
         .failure()
         .stderr(predicate::str::contains("--zmq-listen is for --api both"));
 }
+
+#[test]
+fn zmq_cli_serve_dumps_the_scene_on_sigterm() {
+    let dir = tempfile::tempdir().unwrap();
+    let dump = dir.path().join("scene.json");
+    let mut s = serve(
+        &[
+            "--api",
+            "zmq",
+            "--listen",
+            "127.0.0.1:0",
+            "--idle-fps",
+            "0",
+            "--dump",
+            dump.to_str().unwrap(),
+        ],
+        1,
+    );
+    let m = generate(dir.path(), "11");
+    cmd()
+        .args(["apply", &m, "--api", "zmq", "--port", &s.1[0].to_string()])
+        .assert()
+        .success();
+    let pid = s.0.id().to_string();
+    assert!(
+        Command::new("kill")
+            .args(["-TERM", &pid])
+            .status()
+            .unwrap()
+            .success()
+    );
+    assert!(s.0.wait().unwrap().success());
+    let text = std::fs::read_to_string(&dump).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let lines = v["scene"]["objects"]
+        .as_object()
+        .unwrap()
+        .values()
+        .filter(|o| o["alias"] == "Line")
+        .count();
+    assert_eq!(lines, 160);
+}

@@ -40,7 +40,8 @@ pub struct ServeArgs {
     /// 8; 0 = as fast as possible). Clients can change it (`sim_intparam_idle_fps`).
     #[arg(long, default_value_t = 8)]
     pub idle_fps: i32,
-    /// Write the scene as JSON to this file after each client disconnects and on exit.
+    /// Write the scene as JSON to this file after each legacy client disconnects and on exit
+    /// (ZeroMQ: on exit).
     #[arg(long)]
     pub dump: Option<PathBuf>,
     /// Name pasted copies `Line0` (plain, as CoppeliaSim 4.5.1 does) or `Line#0` (hash).
