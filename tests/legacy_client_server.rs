@@ -187,12 +187,35 @@ fn legacy_connection_refused_is_a_clear_error() {
     assert!(e.to_string().contains("cannot connect"), "{e}");
 }
 
-#[test]
-fn legacy_silent_server_times_out() {
+/// A fake server: answers the client's first message (the connection check) with a valid
+/// header-only reply, then runs `then` on the socket.
+fn fake_server(
+    then: impl FnOnce(std::net::TcpStream) + Send + 'static,
+) -> (std::net::SocketAddr, std::thread::JoinHandle<()>) {
+    use vrep_maze::legacy::wire::{
+        MAX_PACKET_SIZE, Message, MessageHeader, read_message, write_message,
+    };
     let l = TcpListener::bind("127.0.0.1:0").unwrap();
     let addr = l.local_addr().unwrap();
     let t = std::thread::spawn(move || {
         let (mut s, _) = l.accept().unwrap();
+        let _ = read_message(&mut s);
+        let hello = Message {
+            header: MessageHeader {
+                message_id: -1,
+                ..Default::default()
+            },
+            blocks: vec![],
+        };
+        write_message(&mut s, &hello.encode(), MAX_PACKET_SIZE).unwrap();
+        then(s);
+    });
+    (addr, t)
+}
+
+#[test]
+fn legacy_silent_server_times_out() {
+    let (addr, t) = fake_server(|mut s| {
         let mut buf = [0u8; 4096];
         while s.read(&mut buf).map(|n| n > 0).unwrap_or(false) {}
     });
@@ -208,29 +231,64 @@ fn legacy_silent_server_times_out() {
 }
 
 #[test]
+fn legacy_server_that_never_answers_fails_connect_clearly() {
+    let l = TcpListener::bind("127.0.0.1:0").unwrap();
+    let o = ClientOptions {
+        connect_timeout: Duration::from_millis(300),
+        ..opts()
+    };
+    let e = Client::connect(l.local_addr().unwrap(), o).err().unwrap();
+    assert!(e.to_string().contains("no answer"), "{e}");
+}
+
+#[test]
 fn legacy_garbage_from_server_is_an_error_not_a_panic() {
-    for garbage in [
-        &b"HTTP/1.1 400 Bad Request\r\n\r\n"[..],
-        &[1, 0, 4, 0, 0, 0, 0, 0, 11, 0][..],
+    let garbage: [&[u8]; 3] = [
+        b"HTTP/1.1 400 Bad Request\r\n\r\n",
+        &[1, 0, 4, 0, 0, 0, 0, 0, 11, 0],
         &[
             1, 0, 30, 0, 0, 0, 0, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xff, 0xff,
             0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-        ][..],
-    ] {
-        let l = TcpListener::bind("127.0.0.1:0").unwrap();
-        let addr = l.local_addr().unwrap();
-        let g = garbage.to_vec();
-        let t = std::thread::spawn(move || {
-            let (mut s, _) = l.accept().unwrap();
+        ],
+    ];
+    for g in garbage {
+        // garbage as the answer to a call
+        let bytes = g.to_vec();
+        let (addr, t) = fake_server(move |mut s| {
             let mut buf = [0u8; 64];
             let _ = s.read(&mut buf);
-            let _ = s.write_all(&g);
+            let _ = s.write_all(&bytes);
             std::thread::sleep(Duration::from_millis(100));
         });
         let mut c = Client::connect(addr, opts()).unwrap();
         let e = c.call1(Command::GetIntParam(1)).err().unwrap();
         assert!(
             matches!(e, ClientError::Wire(_) | ClientError::Closed),
+            "{e}"
+        );
+        t.join().unwrap();
+        // garbage as the answer to the connection check
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let bytes = g.to_vec();
+        let t = std::thread::spawn(move || {
+            let (mut s, _) = l.accept().unwrap();
+            let mut buf = [0u8; 64];
+            let _ = s.read(&mut buf);
+            let _ = s.write_all(&bytes);
+            std::thread::sleep(Duration::from_millis(100));
+        });
+        let e = Client::connect(
+            addr,
+            ClientOptions {
+                connect_timeout: Duration::from_millis(500),
+                ..opts()
+            },
+        )
+        .err()
+        .unwrap();
+        assert!(
+            e.to_string().contains("protocol") || e.to_string().contains("dropped"),
             "{e}"
         );
         t.join().unwrap();
@@ -242,20 +300,13 @@ fn legacy_server_serves_one_client_at_a_time() {
     let s = server(0);
     let mut a = Client::connect(s.local_addr(), opts()).unwrap();
     a.call1(Command::GetIntParam(1)).unwrap();
-    let mut b = Client::connect(
-        s.local_addr(),
-        ClientOptions {
-            reply_timeout: Duration::from_millis(300),
-            ..opts()
-        },
-    )
-    .unwrap();
-    assert!(matches!(
-        b.call1(Command::GetIntParam(1)),
-        Err(ClientError::Timeout(_))
-    ));
+    let busy = ClientOptions {
+        connect_timeout: Duration::from_millis(400),
+        ..opts()
+    };
+    let e = Client::connect(s.local_addr(), busy).err().unwrap();
+    assert!(e.to_string().contains("another client"), "{e}");
     a.close().unwrap();
-    drop(b);
     let mut c = Client::connect(s.local_addr(), opts()).unwrap();
     c.call1(Command::GetIntParam(1)).unwrap();
     c.close().unwrap();
@@ -412,5 +463,32 @@ fn legacy_server_survives_fuzzed_clients() {
     let mut c = Client::connect(s.local_addr(), opts()).unwrap();
     assert!(!c.call1(Command::GetIntParam(1)).unwrap().remote_error);
     c.close().unwrap();
+    s.shutdown();
+}
+
+#[test]
+fn legacy_client_retries_while_the_server_recreates_its_socket() {
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        rebind_delay: Duration::from_millis(600),
+        ..Default::default()
+    };
+    let s = spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap();
+    let a = Client::connect(s.local_addr(), opts()).unwrap();
+    a.close().unwrap();
+    std::thread::sleep(Duration::from_millis(150));
+    assert!(
+        std::net::TcpStream::connect(s.local_addr()).is_err(),
+        "refused while re-creating the socket"
+    );
+    let t = Instant::now();
+    let mut b = Client::connect(s.local_addr(), opts()).unwrap();
+    assert!(
+        t.elapsed() >= Duration::from_millis(200),
+        "{:?}",
+        t.elapsed()
+    );
+    b.call1(Command::GetIntParam(1)).unwrap();
+    b.close().unwrap();
     s.shutdown();
 }

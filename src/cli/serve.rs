@@ -53,6 +53,10 @@ pub struct ServeArgs {
     /// Log every received message and command block on stderr (protocol debugging).
     #[arg(long)]
     pub trace: bool,
+    /// After a client leaves, refuse connections for this many milliseconds while the
+    /// listening socket is re-created, as CoppeliaSim does (500 ms or more). 0 = never refuse.
+    #[arg(long, default_value_t = 500)]
+    pub rebind_delay_ms: u64,
 }
 
 /// Remote APIs `serve` can speak.
@@ -127,6 +131,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         dump: args.dump,
         verbose: args.verbose || args.trace,
         trace: args.trace,
+        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms),
         ..Default::default()
     };
     let (tx, rx) = std::sync::mpsc::channel();

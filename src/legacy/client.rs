@@ -126,16 +126,41 @@ impl Client {
                 match TcpStream::connect_timeout(a, left) {
                     Ok(stream) => {
                         stream.set_nodelay(true).ok();
-                        return Ok(Client {
+                        let mut client = Client {
                             stream,
-                            opts,
+                            opts: opts.clone(),
                             next_id: 0,
                             clock: Instant::now(),
                             header: None,
                             inbox: HashMap::new(),
                             round_trips: 0,
                             messages: 0,
-                        });
+                        };
+                        // A connection can land in the backlog of a listening socket the server
+                        // is about to close (it re-creates it after each client): check that
+                        // the server answers a header-only message before using it.
+                        let wait = opts
+                            .connect_timeout
+                            .saturating_sub(started.elapsed())
+                            .max(Duration::from_millis(200));
+                        client.stream.set_read_timeout(Some(wait)).ok();
+                        match client.exchange(vec![]) {
+                            Ok(_) => return Ok(client),
+                            Err(ClientError::Timeout(_)) => {
+                                return Err(fail(format!(
+                                    "connected, but no answer within {:.1} s: another client is probably connected (the simulator serves one at a time)",
+                                    wait.as_secs_f64()
+                                )));
+                            }
+                            Err(
+                                e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
+                            ) => {
+                                last = format!(
+                                    "connection dropped at once ({e}): the server was re-creating its socket"
+                                )
+                            }
+                            Err(e) => return Err(e),
+                        }
                     }
                     Err(e) => last = e.to_string(),
                 }

@@ -36,6 +36,9 @@ pub struct ServerConfig {
     pub verbose: bool,
     /// Print every received message (header and blocks) on stderr.
     pub trace: bool,
+    /// After a client leaves, the listening socket is closed and re-created this much later
+    /// (CoppeliaSim: 500 ms and more; connections are refused meanwhile). Zero keeps it open.
+    pub rebind_delay: Duration,
 }
 
 impl Default for ServerConfig {
@@ -48,6 +51,7 @@ impl Default for ServerConfig {
             dump: None,
             verbose: false,
             trace: false,
+            rebind_delay: Duration::ZERO,
         }
     }
 }
@@ -138,7 +142,6 @@ impl ServerHandle {
         {
             let _ = s.shutdown(Shutdown::Both);
         }
-        let _ = TcpStream::connect_timeout(&self.addr, Duration::from_millis(200));
         for t in self.threads {
             let _ = t.join();
         }
@@ -201,7 +204,7 @@ pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
     let s2 = shared.clone();
     let acceptor = std::thread::Builder::new()
         .name("remote-api".into())
-        .spawn(move || accept_loop(&s2, listener))?;
+        .spawn(move || accept_loop(&s2, listener, addr))?;
     Ok(ServerHandle {
         addr,
         shared,
@@ -209,12 +212,38 @@ pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
     })
 }
 
-fn accept_loop(shared: &Shared, listener: TcpListener) {
-    for stream in listener.incoming() {
-        if shared.stop.load(Ordering::SeqCst) {
-            break;
-        }
-        let Ok(stream) = stream else { continue };
+/// Accepts one client at a time. Like CoppeliaSim, after a client leaves the listening
+/// socket is closed and re-created `rebind_delay` later (connections are refused meanwhile).
+fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAddr) {
+    let mut listener = Some(listener);
+    while !shared.stop.load(Ordering::SeqCst) {
+        let l = match listener.take() {
+            Some(l) => l,
+            None => match TcpListener::bind(addr) {
+                Ok(l) => l,
+                Err(e) => {
+                    if shared.config.verbose {
+                        eprintln!("vrep-maze serve: cannot listen on {addr} again: {e}; retrying");
+                    }
+                    std::thread::sleep(Duration::from_millis(200));
+                    continue;
+                }
+            },
+        };
+        let _ = l.set_nonblocking(true);
+        let stream = loop {
+            if shared.stop.load(Ordering::SeqCst) {
+                return;
+            }
+            match l.accept() {
+                Ok((s, _)) => break s,
+                Err(e) if e.kind() == io::ErrorKind::WouldBlock => {
+                    std::thread::sleep(Duration::from_millis(10))
+                }
+                Err(_) => std::thread::sleep(Duration::from_millis(10)),
+            }
+        };
+        let _ = stream.set_nonblocking(false);
         let peer = stream.peer_addr().ok();
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} connected");
@@ -234,6 +263,12 @@ fn accept_loop(shared: &Shared, listener: TcpListener) {
         }
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} left: {why}");
+        }
+        if shared.config.rebind_delay.is_zero() {
+            listener = Some(l);
+        } else {
+            drop(l);
+            std::thread::sleep(shared.config.rebind_delay);
         }
     }
 }
@@ -412,7 +447,9 @@ fn pass(shared: &Shared, core: &mut Core) {
     }
     core.passes += 1;
     if core.sim.state == SimState::Running {
-        core.sim_time_ms = core.sim_time_ms.wrapping_add(shared.config.step.as_millis() as i32);
+        core.sim_time_ms = core
+            .sim_time_ms
+            .wrapping_add(shared.config.step.as_millis() as i32);
     }
     let header = MessageHeader {
         message_id: core.latest_id,

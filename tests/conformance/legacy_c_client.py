@@ -101,6 +101,21 @@ def stop(server):
             server.kill()
 
 
+def c_connect(port):
+    """simxStart, then check the server answers: right after a client left, the server may
+    drop a fresh connection while it re-creates its listening socket; retry then."""
+    deadline = time.time() + 10
+    while True:
+        cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
+        if cid >= 0 and ping(cid)[0] == OK:
+            return cid
+        if cid >= 0:
+            lib.simxFinish(cid)
+        if time.time() > deadline:
+            return -1
+        time.sleep(0.2)
+
+
 def handle(cid, name):
     h = I(12345)
     rc = lib.simxGetObjectHandle(cid, name.encode(), C.byref(h), BLOCKING)
@@ -506,7 +521,7 @@ def run_apply(port):
     for label, (path, layout) in zip(["apply", "re-apply of another maze"], layouts):
         r = subprocess.run([BIN, "apply", path, "--port", str(port)], capture_output=True, text=True)
         check(f"{label}: vrep-maze apply succeeds", r.returncode == 0, r.stderr)
-        cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
+        cid = c_connect(port)
         check_drawn(cid, layout, label)
         v = I(-1)
         lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
@@ -514,7 +529,7 @@ def run_apply(port):
         lib.simxFinish(cid)
     r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
     check("vrep-maze clear succeeds", r.returncode == 0, r.stderr)
-    cid = lib.simxStart(b"127.0.0.1", port, 1, 1, 5000, 5)
+    cid = c_connect(port)
     objs = scene_lines(cid)
     lines = sorted(o[0] for o in objs.values() if re.fullmatch(r"Line#?\d*", o[0]))
     check("after clear only the template Line is left, Start and End stay",
