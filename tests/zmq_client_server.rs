@@ -413,3 +413,24 @@ fn zmq_server_answers_malformed_requests_and_keeps_serving() {
     assert!(e.to_string().contains("argument 1"), "{e}");
     s.shutdown();
 }
+
+#[test]
+fn zmq_over_ipv6_loopback() {
+    let cfg = ServerConfig {
+        listen: "[::1]:0".parse().unwrap(),
+        ..Default::default()
+    };
+    let Ok(s) = spawn(cfg, Simulator::new(Scene::course(), 0)) else {
+        eprintln!("no IPv6 loopback here; skipped");
+        return;
+    };
+    let options = ClientOptions {
+        host: "::1".into(),
+        ..opts(s.local_addr().port(), 3000)
+    };
+    let mut c = Client::connect(&options).unwrap();
+    assert!(c.endpoint().starts_with("tcp://[::1]:"));
+    assert_eq!(c.call_int("sim.getSimulationState", vec![]).unwrap(), 0);
+    drop(c);
+    s.shutdown();
+}

@@ -161,12 +161,18 @@ impl Client {
 
     /// Opens the socket without any call (for tests of the raw call loop).
     pub fn open(options: &ClientOptions) -> Result<Client, ZmqError> {
-        let endpoint = format!("tcp://{}:{}", options.host, options.port);
+        let ipv6 = options.host.contains(':');
+        let host = options.host.trim_matches(['[', ']']);
+        let endpoint = if ipv6 {
+            format!("tcp://[{host}]:{}", options.port)
+        } else {
+            format!("tcp://{host}:{}", options.port)
+        };
         let connect_err = |why: String| ZmqError::Connect {
             endpoint: endpoint.clone(),
             why,
         };
-        let addrs: Vec<_> = (options.host.as_str(), options.port)
+        let addrs: Vec<_> = (host, options.port)
             .to_socket_addrs()
             .map_err(|e| connect_err(e.to_string()))?
             .collect();
@@ -184,7 +190,7 @@ impl Client {
             return Err(connect_err(last));
         }
         let context = zmq::Context::new();
-        let socket = new_socket(&context, &endpoint, options.timeout)?;
+        let socket = new_socket(&context, &endpoint, options.timeout, ipv6)?;
         Ok(Client {
             context,
             socket,
@@ -253,7 +259,8 @@ impl Client {
     }
 
     fn reset(&mut self) -> Result<(), ZmqError> {
-        self.socket = new_socket(&self.context, &self.endpoint, self.timeout)?;
+        let ipv6 = self.endpoint.starts_with("tcp://[");
+        self.socket = new_socket(&self.context, &self.endpoint, self.timeout, ipv6)?;
         Ok(())
     }
 
@@ -342,6 +349,7 @@ fn new_socket(
     context: &zmq::Context,
     endpoint: &str,
     timeout: Duration,
+    ipv6: bool,
 ) -> Result<zmq::Socket, ZmqError> {
     let transport = |source| ZmqError::Transport {
         endpoint: endpoint.to_string(),
@@ -352,6 +360,7 @@ fn new_socket(
         .unwrap_or(i32::MAX)
         .max(1);
     socket.set_linger(0).map_err(transport)?;
+    socket.set_ipv6(ipv6).map_err(transport)?;
     socket.set_rcvtimeo(ms).map_err(transport)?;
     socket.set_sndtimeo(ms).map_err(transport)?;
     socket.connect(endpoint).map_err(transport)?;

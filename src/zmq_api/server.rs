@@ -130,6 +130,7 @@ pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Re
     socket.set_rcvtimeo(50).map_err(io)?;
     socket.set_sndtimeo(1000).map_err(io)?;
     let ip = config.listen.ip();
+    socket.set_ipv6(ip.is_ipv6()).map_err(io)?;
     let ip = if ip.is_ipv6() {
         format!("[{ip}]")
     } else {
