@@ -317,3 +317,25 @@ fn zmq_and_legacy_share_one_scene_with_api_both() {
     z.shutdown();
     Arc::try_unwrap(lg).ok().unwrap().shutdown();
 }
+
+#[test]
+fn zmq_template_inside_the_maze_dummy_is_kept_and_reused() {
+    let mut scene = Scene::course();
+    let (maze, line) = (
+        scene.resolve("Maze").unwrap(),
+        scene.resolve("Line").unwrap(),
+    );
+    scene.set_parent(line, Some(maze), true).unwrap();
+    let s = server(scene, 0, Protocol::V2);
+    let mut sc = connect(s.local_addr().port());
+    let d = drawing(3, 4);
+    let r = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!(r.pasted, d.lines.len() - 1);
+    let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert_eq!((again.pasted, again.edits), (0, 0), "{again}");
+    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    assert_eq!(line_count(&s), 1);
+    drop(sc);
+    s.shutdown();
+}

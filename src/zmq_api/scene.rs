@@ -16,6 +16,7 @@ use super::client::{Client, ClientOptions, ZmqError};
 use super::functions::{
     HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
 };
+use crate::draw::plan::is_copy_name;
 use crate::draw::{Edit, ObjectInfo, Scene, SceneError, SceneNames, Survey};
 use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
 use crate::sim::{HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
@@ -186,31 +187,46 @@ impl ZmqScene {
         for (name, h) in &known.named {
             out.push(self.info(*h, name.clone(), None)?);
         }
-        let named: Vec<i32> = known.named.iter().map(|(_, h)| *h).collect();
+        let mut seen: Vec<i32> = known.named.iter().map(|(_, h)| *h).collect();
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself
             for h in self.handles_in(parent, 3)? {
-                if !named.contains(&h) {
+                if !seen.contains(&h) {
+                    seen.push(h);
                     out.push(self.info(h, format!("object {h}"), Some(Some(parent)))?);
                 }
             }
         }
+        // root objects carrying the template's alias: copies left parentless by an
+        // interrupted run. They are copies whatever their path looks like, so a path that is
+        // not `/Line[n]` (the template elsewhere than at the root) gets that form.
+        let mut strays = 0;
         for h in self.handles_in(HANDLE_SCENE, 2)? {
-            if named.contains(&h) {
+            if seen.contains(&h) {
                 continue;
             }
             let alias = self
                 .client
                 .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
-            if cbor::text(&alias) == Some(known.line_alias.as_str()) {
-                let path = self
-                    .client
-                    .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
-                let name = cbor::text(&path)
-                    .map(str::to_string)
-                    .unwrap_or_else(|| format!("object {h}"));
-                out.push(self.info(h, name, Some(None))?);
+            if cbor::text(&alias) != Some(known.line_alias.as_str()) {
+                continue;
             }
+            let parent = self
+                .client
+                .call_int("sim.getObjectParent", vec![int(h.into())])?;
+            if parent >= 0 {
+                continue; // not a root object after all
+            }
+            strays += 1;
+            let path = self
+                .client
+                .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
+            let name = match cbor::text(&path) {
+                Some(p) if is_copy_name(p, &known.line_alias) => p.to_string(),
+                _ => format!("/{}[{strays}]", known.line_alias),
+            };
+            seen.push(h);
+            out.push(self.info(h, name, Some(None))?);
         }
         Ok(out)
     }
