@@ -6,7 +6,7 @@
 //! with `success`, after which requests shrink to `{func, args}`.
 
 use std::net::{TcpStream, ToSocketAddrs};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use ciborium::Value;
 
@@ -365,11 +365,4 @@ fn new_socket(
     socket.set_sndtimeo(ms).map_err(transport)?;
     socket.connect(endpoint).map_err(transport)?;
     Ok(socket)
-}
-
-/// Measures how long `f` takes (for summaries).
-pub fn timed<R>(f: impl FnOnce() -> R) -> (R, Duration) {
-    let t = Instant::now();
-    let r = f();
-    (r, t.elapsed())
 }
