@@ -230,5 +230,24 @@ try:
 finally:
     stop(proc)
 
+# --api both: our legacy `apply` draws, the official ZeroMQ client sees the same scene
+lport, zport = free_port(), free_port()
+proc = subprocess.Popen(
+    [BIN, "serve", "--api", "both", "--listen", f"127.0.0.1:{lport}", "--zmq-listen", f"127.0.0.1:{zport}", "--idle-fps", "0"],
+    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+try:
+    lines = [proc.stdout.readline(), proc.stdout.readline()]
+    check("serve --api both prints both servers", "legacy" in lines[0] and "ZeroMQ" in lines[1], lines)
+    layout = os.path.join(tmp, "m7.json")
+    subprocess.run([BIN, "generate", "--seed", "7", "--algo", "kruskal", "-o", layout], check=True, capture_output=True)
+    r = subprocess.run([BIN, "apply", "--port", str(lport), layout], capture_output=True, text=True)
+    check("vrep-maze apply over legacy into the shared scene", r.returncode == 0, r.stdout + r.stderr)
+    sim = RemoteAPIClient("127.0.0.1", zport).require("sim")
+    maze = sim.getObject("/Maze")
+    segs = json.load(open(layout))["segments"]
+    check("the official ZeroMQ client sees the lines drawn over legacy", len(sim.getObjectsInTree(maze, sim.handle_all, 3)) == len(segs) - 1)
+finally:
+    stop(proc)
+
 print(f"zmq conformance: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)
