@@ -115,12 +115,18 @@ impl ZmqScene {
         Ok(self.client.call(func, args)?)
     }
 
+    /// The handle of a path, `None` if there is no such object: -1 with `noError`, or an
+    /// error from a simulator that does not know the `noError` option.
     fn handle_of(&mut self, path: &str) -> Result<Option<i32>, SceneError> {
         let opts = cbor::map([("noError", Value::Bool(true))]);
-        let h = self
+        match self
             .client
-            .call_int("sim.getObject", vec![Value::Text(path.into()), opts])?;
-        Ok((h >= 0).then_some(h))
+            .call_int("sim.getObject", vec![Value::Text(path.into()), opts])
+        {
+            Ok(h) => Ok((h >= 0).then_some(h)),
+            Err(ZmqError::Remote { .. }) => Ok(None),
+            Err(e) => Err(e.into()),
+        }
     }
 
     fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, SceneError> {
