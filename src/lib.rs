@@ -17,3 +17,4 @@ pub mod render;
 pub mod rng;
 pub mod sim;
 pub mod validate;
+pub mod zmq_api;

@@ -1,4 +1,4 @@
-//! `vrep-maze apply`: draw a layout into CoppeliaSim over the legacy remote API.
+//! `vrep-maze apply`: draw a layout into CoppeliaSim over the legacy or the ZeroMQ remote API.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -6,8 +6,8 @@ use std::time::Duration;
 
 use anyhow::Context;
 
+use super::backend::{Api, Backend};
 use crate::draw::{self, ApplyOptions, Drawing, SceneNames, Stage};
-use crate::legacy::LegacyScene;
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
 #[derive(Debug, Clone, clap::Args)]
@@ -15,9 +15,13 @@ pub struct SceneArgs {
     /// Host running CoppeliaSim (dotted IPv4 or a name).
     #[arg(long, default_value = "127.0.0.1")]
     pub host: String,
-    /// Port of the legacy remote API server (CoppeliaSim's always-on one is 19997).
-    #[arg(long, default_value_t = 19997)]
-    pub port: u16,
+    /// Remote API: `legacy` (CoppeliaSim up to 4.10), `zmq` (4.3 and later, the only one from
+    /// 4.11), or `auto` (try legacy on 19997, then ZeroMQ on 23000; prints which was used).
+    #[arg(long, value_enum, default_value = "legacy")]
+    pub api: Api,
+    /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq].
+    #[arg(long)]
+    pub port: Option<u16>,
     /// The floor: every layout coordinate is relative to it.
     #[arg(long, default_value = "Floor")]
     pub floor: String,
@@ -50,18 +54,27 @@ impl SceneArgs {
         }
     }
 
-    /// Connects to the simulator.
-    pub fn connect(&self) -> anyhow::Result<LegacyScene> {
+    /// Connects to the simulator over the chosen API; with `auto` (and over ZeroMQ) says
+    /// which API and version answered.
+    pub fn connect(&self) -> anyhow::Result<Backend> {
         anyhow::ensure!(
             self.timeout > 0.0 && self.timeout.is_finite(),
             "--timeout must be a positive number of seconds"
         );
-        LegacyScene::connect(&self.host, self.port, Duration::from_secs_f64(self.timeout))
-            .with_context(|| format!("connecting to CoppeliaSim at {}:{}", self.host, self.port))
+        let backend = Backend::connect(
+            self.api,
+            &self.host,
+            self.port,
+            Duration::from_secs_f64(self.timeout),
+        )?;
+        if self.api != Api::Legacy {
+            println!("using the {}", backend.describe());
+        }
+        Ok(backend)
     }
 }
 
-/// Draw a layout into a running CoppeliaSim (legacy remote API, simulation stopped).
+/// Draw a layout into a running CoppeliaSim (legacy or ZeroMQ remote API, simulation stopped).
 #[derive(Debug, clap::Args)]
 #[command(
     after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o m.json\n  vrep-maze apply m.json\n  vrep-maze apply m.json --port 19997 --line GreenLine --stop-simulation"
@@ -78,6 +91,13 @@ pub struct ApplyArgs {
     /// Only show what would change.
     #[arg(long)]
     pub dry_run: bool,
+    /// ZeroMQ only: create missing scene objects first (Floor, the Maze dummy, the Line,
+    /// Start and End planes), so a brand-new scene needs no manual set-up.
+    #[arg(long)]
+    pub create_missing: bool,
+    /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
+    #[arg(long, value_name = "PATH")]
+    pub save_scene: Option<String>,
 }
 
 /// Runs `apply`.
@@ -90,7 +110,26 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         dry_run: args.dry_run,
         ..Default::default()
     };
-    let mut scene = args.scene.connect()?;
+    let zmq_only = args.create_missing || args.save_scene.is_some();
+    anyhow::ensure!(
+        !zmq_only || args.scene.api != super::backend::Api::Legacy,
+        "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
+    );
+    let mut backend = args.scene.connect()?;
+    if args.create_missing && !args.dry_run {
+        let Some(z) = backend.zmq() else {
+            anyhow::bail!(
+                "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+            );
+        };
+        let created = z
+            .create_missing(&opts.names)
+            .context("creating the missing scene objects")?;
+        if !created.is_empty() {
+            println!("created {}", created.join(", "));
+        }
+    }
+    let scene = backend.scene();
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(drawing.lines.len() as u64);
         b.set_style(
@@ -116,12 +155,24 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
             }
         }
     };
-    let result = draw::apply(&mut scene, &drawing, &opts, &mut progress);
+    let result = draw::apply(scene, &drawing, &opts, &mut progress);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
     let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
-    scene.close().ok();
+    if let Some(path) = &args.save_scene
+        && !args.dry_run
+    {
+        let Some(z) = backend.zmq() else {
+            anyhow::bail!(
+                "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+            );
+        };
+        z.save_scene(path)
+            .with_context(|| format!("saving the scene to {path}"))?;
+        println!("saved the scene to {path} (on the simulator's machine)");
+    }
+    backend.close();
     if report.stopped_simulation {
         println!("stopped the simulation first");
     }

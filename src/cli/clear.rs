@@ -20,9 +20,9 @@ pub struct ClearArgs {
 
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
-    let mut scene = args.scene.connect()?;
-    let report = draw::clear(&mut scene, &args.scene.names(), args.dry_run)?;
-    scene.close().ok();
+    let mut backend = args.scene.connect()?;
+    let report = draw::clear(backend.scene(), &args.scene.names(), args.dry_run)?;
+    backend.close();
     let verb = if args.dry_run {
         "would remove"
     } else {

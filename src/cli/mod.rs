@@ -1,6 +1,7 @@
 //! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
 mod apply;
+mod backend;
 mod batch;
 mod clear;
 mod completions;
@@ -44,11 +45,11 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Show the whole job on the course default: generate, validate and draw a maze.
     Demo(demo::DemoArgs),
-    /// Draw a layout into CoppeliaSim over the legacy remote API (port 19997).
+    /// Draw a layout into CoppeliaSim over the legacy (19997) or ZeroMQ (23000) remote API.
     Apply(apply::ApplyArgs),
     /// Remove a drawn maze from CoppeliaSim (the templates stay).
     Clear(clear::ClearArgs),
-    /// Emulate CoppeliaSim's legacy remote API over an in-memory scene (no simulator needed).
+    /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
 

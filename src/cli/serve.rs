@@ -1,22 +1,37 @@
-//! `vrep-maze serve`: an emulated CoppeliaSim speaking the legacy remote API.
+//! `vrep-maze serve`: an emulated CoppeliaSim speaking the legacy remote API, the ZeroMQ
+//! remote API, or both over one shared scene.
 
 use std::net::SocketAddr;
 use std::path::PathBuf;
 
 use anyhow::Context;
 
+use std::sync::Arc;
+
 use crate::legacy::{ServerConfig, spawn};
 use crate::sim::{NamingMode, Scene, Simulator};
+use crate::zmq_api::{self, Protocol};
 
-/// Serve an in-memory scene over the legacy remote API (no CoppeliaSim needed).
+/// Serve an in-memory scene over the legacy and/or ZeroMQ remote API (no CoppeliaSim needed).
 #[derive(Debug, clap::Args)]
 #[command(
-    after_help = "Example:\n  vrep-maze serve --scene course --dump scene.json &\n  vrep-maze apply maze.json"
+    after_help = "Examples:\n  vrep-maze serve --scene course --dump scene.json &\n  vrep-maze apply maze.json\n  vrep-maze serve --api zmq --scene empty &\n  vrep-maze apply --api zmq --create-missing maze.json"
 )]
 pub struct ServeArgs {
-    /// Address to listen on (loopback by default; the real simulator uses port 19997).
-    #[arg(long, default_value = "127.0.0.1:19997")]
-    pub listen: SocketAddr,
+    /// Which remote API to serve: `legacy` (port 19997), `zmq` (port 23000), or `both` from
+    /// one shared scene.
+    #[arg(long, value_enum, default_value = "legacy")]
+    pub api: ServeApi,
+    /// Address to listen on [default: 127.0.0.1:19997 for legacy and both, 127.0.0.1:23000
+    /// for zmq]. Loopback by default.
+    #[arg(long)]
+    pub listen: Option<SocketAddr>,
+    /// With `--api both`: the ZeroMQ address [default: 127.0.0.1:23000].
+    #[arg(long)]
+    pub zmq_listen: Option<SocketAddr>,
+    /// ZeroMQ protocol generation: 1 (CoppeliaSim 4.3 to 4.5) or 2 (4.6 and later).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
+    pub protocol: u8,
     /// Scene to start from: `course` (Floor, Maze, Line, Start, End), `empty`, or a JSON scene
     /// file (a `--dump` output).
     #[arg(long, default_value = "course")]
@@ -25,7 +40,8 @@ pub struct ServeArgs {
     /// 8; 0 = as fast as possible). Clients can change it (`sim_intparam_idle_fps`).
     #[arg(long, default_value_t = 8)]
     pub idle_fps: i32,
-    /// Write the scene as JSON to this file after each client disconnects and on exit.
+    /// Write the scene as JSON to this file after each legacy client disconnects and on exit
+    /// (ZeroMQ: on exit).
     #[arg(long)]
     pub dump: Option<PathBuf>,
     /// Name pasted copies `Line0` (plain, as CoppeliaSim 4.5.1 does) or `Line#0` (hash).
@@ -41,6 +57,17 @@ pub struct ServeArgs {
     /// listening socket is re-created, as CoppeliaSim does (500 ms or more). 0 = never refuse.
     #[arg(long, default_value_t = 500)]
     pub rebind_delay_ms: u64,
+}
+
+/// Remote APIs `serve` can speak.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ServeApi {
+    /// The legacy remote API.
+    Legacy,
+    /// The ZeroMQ remote API.
+    Zmq,
+    /// Both, over one shared scene.
+    Both,
 }
 
 /// Copy naming mode.
@@ -72,8 +99,35 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         "--idle-fps must be in 0..=1000, got {}",
         args.idle_fps
     );
+    let legacy_listen = args
+        .listen
+        .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 19997)));
+    let zmq_listen = match args.api {
+        ServeApi::Both => args.zmq_listen,
+        _ => args.listen,
+    }
+    .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 23000)));
+    anyhow::ensure!(
+        args.zmq_listen.is_none() || args.api == ServeApi::Both,
+        "--zmq-listen is for --api both; use --listen with --api zmq"
+    );
+    let zmq_config = zmq_api::ServerConfig {
+        listen: zmq_listen,
+        protocol: if args.protocol == 1 {
+            Protocol::V1
+        } else {
+            Protocol::V2
+        },
+        dump: if args.api == ServeApi::Zmq {
+            args.dump.clone()
+        } else {
+            None
+        },
+        verbose: args.verbose,
+        ..Default::default()
+    };
     let config = ServerConfig {
-        listen: args.listen,
+        listen: legacy_listen,
         dump: args.dump,
         verbose: args.verbose || args.trace,
         trace: args.trace,
@@ -85,19 +139,52 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         let _ = tx.send(());
     })
     .context("cannot install the Ctrl-C handler")?;
-    let server = spawn(config, Simulator::new(scene, args.idle_fps)).with_context(|| {
-        format!(
-            "cannot listen on {} (port in use? try --listen 127.0.0.1:0)",
-            args.listen
-        )
-    })?;
-    println!(
-        "vrep-maze serve: legacy remote API on {} (idle fps {})",
-        server.local_addr(),
-        args.idle_fps
-    );
-    let _ = rx.recv();
-    let sim = server.shutdown();
-    eprintln!("vrep-maze serve: stopped with {} objects", sim.scene.len());
+    let sim = Simulator::new(scene, args.idle_fps);
+    let in_use = |addr: SocketAddr| {
+        format!("cannot listen on {addr} (port in use? try --listen 127.0.0.1:0)")
+    };
+    let zmq_line = |s: &zmq_api::ServerHandle| {
+        println!(
+            "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
+            args.protocol,
+            s.local_addr(),
+            args.idle_fps
+        );
+    };
+    match args.api {
+        ServeApi::Zmq => {
+            let server = zmq_api::spawn(zmq_config, sim).with_context(|| in_use(zmq_listen))?;
+            zmq_line(&server);
+            let _ = rx.recv();
+            let n = server.with_sim(|s| s.scene.len());
+            server.shutdown();
+            eprintln!("vrep-maze serve: stopped with {n} objects");
+        }
+        ServeApi::Legacy | ServeApi::Both => {
+            let server = spawn(config, sim).with_context(|| in_use(legacy_listen))?;
+            println!(
+                "vrep-maze serve: legacy remote API on {} (idle fps {})",
+                server.local_addr(),
+                args.idle_fps
+            );
+            let server = Arc::new(server);
+            let zmq = if args.api == ServeApi::Both {
+                let z = zmq_api::spawn_shared(zmq_config, server.clone())
+                    .with_context(|| in_use(zmq_listen))?;
+                zmq_line(&z);
+                Some(z)
+            } else {
+                None
+            };
+            let _ = rx.recv();
+            if let Some(z) = zmq {
+                z.shutdown();
+            }
+            let server = Arc::try_unwrap(server)
+                .map_err(|_| anyhow::anyhow!("the legacy server is still shared at shutdown"))?;
+            let sim = server.shutdown();
+            eprintln!("vrep-maze serve: stopped with {} objects", sim.scene.len());
+        }
+    }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -24,7 +24,16 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
         }
     });
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|c| c.is_ascii_digit());
-    name.strip_prefix(base).is_some_and(digits)
+    // ZeroMQ backend: copies keep the template's alias, so a root copy's path is `/Line[n]`
+    let alias = template.rsplit('/').next().unwrap_or(template);
+    let path_copy = name
+        .strip_prefix('/')
+        .and_then(|r| r.strip_prefix(alias))
+        .and_then(|r| r.strip_prefix('['))
+        .and_then(|r| r.strip_suffix(']'))
+        .is_some_and(digits);
+    path_copy
+        || name.strip_prefix(base).is_some_and(digits)
         || name
             .strip_prefix(hash_base.unwrap_or(template))
             .and_then(|r| r.strip_prefix('#'))
@@ -155,6 +164,8 @@ mod tests {
             assert!(!is_copy_name(no, "Line"), "{no}");
         }
         assert!(is_copy_name("Line6", "Line5"));
+        assert!(is_copy_name("/Line[1]", "Line") && is_copy_name("/Line[12]", "/Line"));
+        assert!(!is_copy_name("/Line", "Line") && !is_copy_name("/Line[x]", "Line"));
         assert!(is_copy_name("Seg#1", "Seg#0"));
     }
 

@@ -567,6 +567,70 @@ impl Scene {
     }
 }
 
+/// Object creation and renaming, which only the ZeroMQ remote API can do (`createPrimitiveShape`,
+/// `createDummy`, `setObjectAlias`, `setShapeColor`).
+impl Scene {
+    /// `base` if no object has that name (other than `except`), else `base0`, `base1`, ...:
+    /// the names CoppeliaSim gives newly created objects.
+    pub fn unique_name(&self, base: &str, except: Option<i32>) -> String {
+        let taken = |n: &str| {
+            self.objects
+                .values()
+                .any(|o| o.name == n && Some(o.handle) != except)
+        };
+        if !taken(base) {
+            return base.to_string();
+        }
+        (0u64..)
+            .map(|n| format!("{base}{n}"))
+            .find(|n| !taken(n))
+            .unwrap_or_default()
+    }
+
+    /// Adds an object named `base` (made unique, see [`Scene::unique_name`]); alias `base`.
+    pub fn create(&mut self, base: &str, o: NewObject) -> i32 {
+        let name = self.unique_name(base, None);
+        let handle = self.add(&name, o);
+        if let Some(obj) = self.objects.get_mut(&handle) {
+            obj.alias = base.to_string();
+        }
+        handle
+    }
+
+    /// Sets the alias (characters outside `[A-Za-z0-9_]` become `_`) and renames the
+    /// old-style name after it, made unique.
+    pub fn set_alias(&mut self, handle: i32, alias: &str) -> Result<(), SimError> {
+        self.get(handle)?;
+        let clean: String = alias
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let name = self.unique_name(&clean, Some(handle));
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        o.alias = clean;
+        o.name = name;
+        Ok(())
+    }
+
+    /// Sets an object's colour.
+    pub fn set_colour(&mut self, handle: i32, colour: [u8; 3]) -> Result<(), SimError> {
+        self.objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?
+            .colour = colour;
+        Ok(())
+    }
+}
+
 fn parse_path_component(comp: &str) -> Option<(&str, usize)> {
     if comp.is_empty() {
         return None;

@@ -1,0 +1,368 @@
+//! A ZeroMQ remote API client speaking both protocol generations.
+//!
+//! REQ socket with send/receive timeouts and LINGER 0; after a timeout the socket is replaced
+//! (a REQ socket that missed its reply is stuck). Every call is sent as a protocol-2 request;
+//! the first reply tells the generation: a protocol-1 server (CoppeliaSim 4.3 to 4.5) answers
+//! with `success`, after which requests shrink to `{func, args}`.
+
+use std::net::{TcpStream, ToSocketAddrs};
+use std::time::Duration;
+
+use ciborium::Value;
+
+use super::cbor::{self, CborError};
+use super::message::{END, EXECUTED, Protocol, Reply, Request, parse_reply};
+
+/// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
+const MAX_TURNS: usize = 10_000;
+
+/// Client errors; each displays as one line naming the function or endpoint.
+#[derive(Debug, thiserror::Error)]
+pub enum ZmqError {
+    /// Nothing accepts TCP connections on the endpoint.
+    #[error(
+        "cannot connect to {endpoint}: {why} (is CoppeliaSim running with the ZeroMQ remote API add-on on this port?)"
+    )]
+    Connect {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// OS error.
+        why: String,
+    },
+    /// No reply in time.
+    #[error(
+        "{func}: no reply from {endpoint} within {secs:.1} s (is it a ZeroMQ remote API server? is the simulator busy in a dialog?)"
+    )]
+    Timeout {
+        /// Function being called.
+        func: String,
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// Timeout in seconds.
+        secs: f64,
+    },
+    /// The server reported an error.
+    #[error("{func}: {message}")]
+    Remote {
+        /// Function being called.
+        func: String,
+        /// Server's message (newlines restored).
+        message: String,
+    },
+    /// The reply could not be understood.
+    #[error("{func}: malformed reply: {detail}")]
+    Malformed {
+        /// Function being called.
+        func: String,
+        /// What is wrong.
+        detail: String,
+    },
+    /// The ZeroMQ library failed.
+    #[error("ZeroMQ error on {endpoint}: {source}")]
+    Transport {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// Library error.
+        source: zmq::Error,
+    },
+}
+
+impl ZmqError {
+    /// True for a remote error whose message says the function does not exist.
+    pub fn is_no_such_function(&self) -> bool {
+        matches!(self, ZmqError::Remote { message, .. } if message.contains("No such function"))
+    }
+}
+
+/// Connection settings.
+#[derive(Debug, Clone)]
+pub struct ClientOptions {
+    /// Host name or address.
+    pub host: String,
+    /// Port (CoppeliaSim's default is 23000).
+    pub port: u16,
+    /// Send and receive timeout of one round trip.
+    pub timeout: Duration,
+    /// Force a protocol generation instead of detecting it from the first reply.
+    pub protocol: Option<Protocol>,
+}
+
+impl Default for ClientOptions {
+    fn default() -> Self {
+        ClientOptions {
+            host: "127.0.0.1".into(),
+            port: 23000,
+            timeout: Duration::from_secs(5),
+            protocol: None,
+        }
+    }
+}
+
+/// Counters.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ClientStats {
+    /// Remote function calls made.
+    pub calls: u64,
+    /// Request/reply round trips (calls plus wait/repeat turns).
+    pub round_trips: u64,
+}
+
+/// A connected client.
+pub struct Client {
+    context: zmq::Context,
+    socket: zmq::Socket,
+    endpoint: String,
+    timeout: Duration,
+    uuid: String,
+    protocol: Option<Protocol>,
+    stats: ClientStats,
+}
+
+impl std::fmt::Debug for Client {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Client")
+            .field("endpoint", &self.endpoint)
+            .field("protocol", &self.protocol)
+            .finish()
+    }
+}
+
+/// A random (version 4) UUID in the usual 8-4-4-4-12 form.
+pub fn new_uuid() -> String {
+    let mut b: [u8; 16] = rand::random();
+    b[6] = (b[6] & 0x0f) | 0x40;
+    b[8] = (b[8] & 0x3f) | 0x80;
+    let h: String = b.iter().map(|x| format!("{x:02x}")).collect();
+    format!(
+        "{}-{}-{}-{}-{}",
+        &h[0..8],
+        &h[8..12],
+        &h[12..16],
+        &h[16..20],
+        &h[20..32]
+    )
+}
+
+impl Client {
+    /// Connects: checks that the port accepts TCP connections, opens the REQ socket, then
+    /// calls `zmqRemoteApi.require('sim')`, which also reveals the protocol generation (a
+    /// protocol-1 server has no `require`, and `sim` is global there).
+    pub fn connect(options: &ClientOptions) -> Result<Client, ZmqError> {
+        let mut client = Client::open(options)?;
+        if options.protocol != Some(Protocol::V1) {
+            match client.call("zmqRemoteApi.require", vec![Value::Text("sim".into())]) {
+                Ok(_) => {}
+                Err(e) if e.is_no_such_function() || client.protocol == Some(Protocol::V1) => {}
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(client)
+    }
+
+    /// Opens the socket without any call (for tests of the raw call loop).
+    pub fn open(options: &ClientOptions) -> Result<Client, ZmqError> {
+        let ipv6 = options.host.contains(':');
+        let host = options.host.trim_matches(['[', ']']);
+        let endpoint = if ipv6 {
+            format!("tcp://[{host}]:{}", options.port)
+        } else {
+            format!("tcp://{host}:{}", options.port)
+        };
+        let connect_err = |why: String| ZmqError::Connect {
+            endpoint: endpoint.clone(),
+            why,
+        };
+        let addrs: Vec<_> = (host, options.port)
+            .to_socket_addrs()
+            .map_err(|e| connect_err(e.to_string()))?
+            .collect();
+        let mut last = String::from("no address");
+        let reachable = addrs.iter().any(|a| {
+            match TcpStream::connect_timeout(a, options.timeout.min(Duration::from_secs(3))) {
+                Ok(_) => true,
+                Err(e) => {
+                    last = e.to_string();
+                    false
+                }
+            }
+        });
+        if !reachable {
+            return Err(connect_err(last));
+        }
+        let context = zmq::Context::new();
+        let socket = new_socket(&context, &endpoint, options.timeout, ipv6)?;
+        Ok(Client {
+            context,
+            socket,
+            endpoint,
+            timeout: options.timeout,
+            uuid: new_uuid(),
+            protocol: options.protocol,
+            stats: ClientStats::default(),
+        })
+    }
+
+    /// The protocol generation (known after the first reply).
+    pub fn protocol(&self) -> Option<Protocol> {
+        self.protocol
+    }
+
+    /// `tcp://host:port`.
+    pub fn endpoint(&self) -> &str {
+        &self.endpoint
+    }
+
+    /// Counters so far.
+    pub fn stats(&self) -> ClientStats {
+        self.stats
+    }
+
+    fn request(&self, func: &str, args: Vec<Value>) -> Request {
+        match self.protocol {
+            Some(Protocol::V1) => Request::v1(func, args),
+            _ => Request::v2(func, args, &self.uuid),
+        }
+    }
+
+    /// One round trip; a timeout replaces the socket.
+    fn round_trip(&mut self, func: &str, request: &Request) -> Result<Value, ZmqError> {
+        self.stats.round_trips += 1;
+        let transport = |source| ZmqError::Transport {
+            endpoint: self.endpoint.clone(),
+            source,
+        };
+        let timeout = |c: &Client| ZmqError::Timeout {
+            func: func.to_string(),
+            endpoint: c.endpoint.clone(),
+            secs: c.timeout.as_secs_f64(),
+        };
+        match self.socket.send(request.encode(), 0) {
+            Ok(()) => {}
+            Err(zmq::Error::EAGAIN) => {
+                self.reset()?;
+                return Err(timeout(self));
+            }
+            Err(e) => return Err(transport(e)),
+        }
+        let bytes = match self.socket.recv_bytes(0) {
+            Ok(b) => b,
+            Err(zmq::Error::EAGAIN) => {
+                self.reset()?;
+                return Err(timeout(self));
+            }
+            Err(e) => return Err(transport(e)),
+        };
+        cbor::decode(&bytes).map_err(|CborError(detail)| ZmqError::Malformed {
+            func: func.to_string(),
+            detail,
+        })
+    }
+
+    fn reset(&mut self) -> Result<(), ZmqError> {
+        let ipv6 = self.endpoint.starts_with("tcp://[");
+        self.socket = new_socket(&self.context, &self.endpoint, self.timeout, ipv6)?;
+        Ok(())
+    }
+
+    /// Calls a remote function and returns its return values (empty for none), running the
+    /// `_*wait*_` / `_*repeat*_` loop of protocol 2.
+    pub fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, ZmqError> {
+        self.stats.calls += 1;
+        let mut next = self.request(func, args);
+        let malformed = |detail: String| ZmqError::Malformed {
+            func: func.to_string(),
+            detail,
+        };
+        for _ in 0..MAX_TURNS {
+            let value = self.round_trip(func, &next)?;
+            let (reply, protocol) = parse_reply(&value).map_err(|CborError(d)| malformed(d))?;
+            if self.protocol.is_none() {
+                self.protocol = Some(protocol);
+            }
+            match reply {
+                Reply::Ret(values) => return Ok(values),
+                Reply::Err(message) => {
+                    return Err(ZmqError::Remote {
+                        func: func.to_string(),
+                        message,
+                    });
+                }
+                Reply::Wait => next = self.request(EXECUTED, vec![]),
+                // resend the last message (the official client does so: after a wait it
+                // resends `_*executed*_`, never the original call, which would run twice)
+                Reply::Repeat => {}
+                // We register no callbacks: answer with no results so the server can go on.
+                Reply::Callback(_) => next = self.request(EXECUTED, vec![]),
+            }
+        }
+        Err(malformed(format!(
+            "more than {MAX_TURNS} wait/repeat turns"
+        )))
+    }
+
+    /// Calls a function that returns one value.
+    pub fn call1(&mut self, func: &str, args: Vec<Value>) -> Result<Value, ZmqError> {
+        let values = self.call(func, args)?;
+        values
+            .into_iter()
+            .next()
+            .ok_or_else(|| ZmqError::Malformed {
+                func: func.to_string(),
+                detail: "no return value".into(),
+            })
+    }
+
+    /// Calls a function that returns one integer (a handle, a state, a parameter).
+    pub fn call_int(&mut self, func: &str, args: Vec<Value>) -> Result<i32, ZmqError> {
+        let v = self.call1(func, args)?;
+        cbor::int32(&v).ok_or_else(|| ZmqError::Malformed {
+            func: func.to_string(),
+            detail: format!("expected an integer, got {}", cbor::describe(&v)),
+        })
+    }
+
+    /// Says goodbye (protocol 2 `_*end*_`), waiting briefly for the reply.
+    pub fn close(mut self) {
+        self.end();
+    }
+
+    fn end(&mut self) {
+        if self.protocol == Some(Protocol::V2) {
+            let _ = self.socket.set_rcvtimeo(200);
+            let _ = self.socket.set_sndtimeo(200);
+            let req = self.request(END, vec![]);
+            if self.socket.send(req.encode(), 0).is_ok() {
+                let _ = self.socket.recv_bytes(0);
+            }
+            self.protocol = None;
+        }
+    }
+}
+
+impl Drop for Client {
+    fn drop(&mut self) {
+        self.end();
+    }
+}
+
+fn new_socket(
+    context: &zmq::Context,
+    endpoint: &str,
+    timeout: Duration,
+    ipv6: bool,
+) -> Result<zmq::Socket, ZmqError> {
+    let transport = |source| ZmqError::Transport {
+        endpoint: endpoint.to_string(),
+        source,
+    };
+    let socket = context.socket(zmq::REQ).map_err(transport)?;
+    let ms = i32::try_from(timeout.as_millis())
+        .unwrap_or(i32::MAX)
+        .max(1);
+    socket.set_linger(0).map_err(transport)?;
+    socket.set_ipv6(ipv6).map_err(transport)?;
+    socket.set_rcvtimeo(ms).map_err(transport)?;
+    socket.set_sndtimeo(ms).map_err(transport)?;
+    socket.connect(endpoint).map_err(transport)?;
+    Ok(socket)
+}

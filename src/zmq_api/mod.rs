@@ -1,0 +1,18 @@
+//! CoppeliaSim's ZeroMQ remote API (port 23000, CoppeliaSim 4.3 and later): CBOR codec,
+//! request/reply maps of both protocol generations, a client, an emulated server over
+//! [`crate::sim`], and the drawing backend.
+//!
+//! Layers: [`cbor`] (values) → [`message`] (request and reply maps) → [`client`] /
+//! [`server`] + [`functions`] → [`scene`] (the [`crate::draw::Scene`] implementation).
+
+pub mod cbor;
+pub mod client;
+pub mod functions;
+pub mod message;
+pub mod scene;
+pub mod server;
+
+pub use client::{Client, ClientOptions, ClientStats, ZmqError};
+pub use message::Protocol;
+pub use scene::ZmqScene;
+pub use server::{ServerConfig, ServerHandle, SimHost, spawn, spawn_shared};

@@ -1,0 +1,521 @@
+//! The ZeroMQ remote API as a drawing backend: [`crate::draw::Scene`] over [`Client`].
+//!
+//! Objects are found by path (`/Maze`, `/Line`); the earlier maze is the object tree under
+//! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry the line template's
+//! alias (copies pasted by an interrupted run, reported by their path `/Line[n]`). Each pose is
+//! one `sim.setObjectPose` call; removals go in one `sim.removeObjects` call. The ZeroMQ API
+//! has no batching, so "one round trip" operations of the trait cost one call per object.
+
+use std::time::{Duration, Instant};
+
+use ciborium::Value;
+use nalgebra::{Quaternion, UnitQuaternion};
+
+use super::cbor::{self, float_array, int};
+use super::client::{Client, ClientOptions, ZmqError};
+use super::functions::{
+    HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
+};
+use crate::draw::plan::is_copy_name;
+use crate::draw::{Edit, ObjectInfo, Scene, SceneError, SceneNames, Survey};
+use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
+use crate::sim::{HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
+
+impl From<ZmqError> for SceneError {
+    fn from(e: ZmqError) -> SceneError {
+        match e {
+            ZmqError::Remote { .. } => SceneError::Remote(e.to_string()),
+            other => SceneError::Transport(other.to_string()),
+        }
+    }
+}
+
+/// What the last survey resolved, so [`Scene::objects`] can list the same objects.
+#[derive(Debug, Clone, Default)]
+struct Known {
+    named: Vec<(String, i32)>,
+    parent: Option<i32>,
+    line_alias: String,
+}
+
+/// A connected ZeroMQ remote API scene.
+#[derive(Debug)]
+pub struct ZmqScene {
+    client: Client,
+    version: i32,
+    known: Known,
+    timeout: Duration,
+}
+
+/// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
+/// root unless they already are paths (`/Maze/Line`, `./x`, `:x`).
+pub fn object_path(name: &str) -> String {
+    if name.starts_with(['/', '.', ':']) {
+        name.to_string()
+    } else {
+        format!("/{name}")
+    }
+}
+
+fn alias_of(name: &str) -> &str {
+    let last = name.rsplit('/').next().unwrap_or(name);
+    last.split('[').next().unwrap_or(last)
+}
+
+/// A plane to create: size x, y; RGB colour (0..1); height above the floor.
+type PlaneSpec = ([f64; 2], [f64; 3], f64);
+
+/// A name `create_missing` can give a new object: its alias must be `[A-Za-z0-9_]+`.
+fn check_alias(name: &str) -> Result<(), SceneError> {
+    let alias = alias_of(name);
+    if alias.is_empty()
+        || !alias.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        || name.contains('[')
+    {
+        return Err(SceneError::Remote(format!(
+            "cannot create `{name}`: a created object's name must be letters, digits and _ only"
+        )));
+    }
+    Ok(())
+}
+
+impl ZmqScene {
+    /// Connects (see [`Client::connect`]) and reads the program version, which decides the
+    /// argument order of pose setters.
+    pub fn connect(options: &ClientOptions) -> Result<ZmqScene, SceneError> {
+        let client = Client::connect(options)?;
+        ZmqScene::new(client, options.timeout)
+    }
+
+    /// Wraps a connected client.
+    pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqScene, SceneError> {
+        let version = client.call_int(
+            "sim.getInt32Param",
+            vec![int(INTPARAM_PROGRAM_VERSION.into())],
+        )?;
+        Ok(ZmqScene {
+            client,
+            version,
+            known: Known::default(),
+            timeout,
+        })
+    }
+
+    /// The client (for counters and the protocol generation).
+    pub fn client(&self) -> &Client {
+        &self.client
+    }
+
+    /// CoppeliaSim's program version, e.g. 40501 for 4.5.1.
+    pub fn version(&self) -> i32 {
+        self.version
+    }
+
+    fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, SceneError> {
+        Ok(self.client.call(func, args)?)
+    }
+
+    /// The handle of a path, `None` if there is no such object: -1 with `noError`, or an
+    /// error from a simulator that does not know the `noError` option.
+    fn handle_of(&mut self, path: &str) -> Result<Option<i32>, SceneError> {
+        let opts = cbor::map([("noError", Value::Bool(true))]);
+        match self
+            .client
+            .call_int("sim.getObject", vec![Value::Text(path.into()), opts])
+        {
+            Ok(h) => Ok((h >= 0).then_some(h)),
+            Err(ZmqError::Remote { .. }) => Ok(None),
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, SceneError> {
+        let v = self.client.call1(
+            "sim.getObjectsInTree",
+            vec![
+                int(base.into()),
+                int(HANDLE_ALL.into()),
+                int(options.into()),
+            ],
+        )?;
+        cbor::handles(&v).ok_or_else(|| {
+            SceneError::Transport(format!(
+                "sim.getObjectsInTree: not a handle list: {}",
+                cbor::describe(&v)
+            ))
+        })
+    }
+
+    fn world_pose(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), SceneError> {
+        let v = self.client.call1(
+            "sim.getObjectPose",
+            vec![int(handle.into()), int(HANDLE_WORLD.into())],
+        )?;
+        let p = cbor::numbers::<7>(&v).ok_or_else(|| {
+            SceneError::Transport(format!(
+                "sim.getObjectPose of object {handle}: not 7 numbers: {}",
+                cbor::describe(&v)
+            ))
+        })?;
+        let q = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
+        Ok(([p[0], p[1], p[2]], euler_from_rotation(&q)))
+    }
+
+    fn info(
+        &mut self,
+        handle: i32,
+        name: String,
+        parent: Option<Option<i32>>,
+    ) -> Result<ObjectInfo, SceneError> {
+        let parent = match parent {
+            Some(p) => p,
+            None => {
+                let p = self
+                    .client
+                    .call_int("sim.getObjectParent", vec![int(handle.into())])?;
+                (p >= 0).then_some(p)
+            }
+        };
+        let (position, orientation) = self.world_pose(handle)?;
+        Ok(ObjectInfo {
+            handle,
+            name,
+            parent,
+            position,
+            orientation,
+        })
+    }
+
+    /// The named objects, the maze dummy's children and root copies of the line template.
+    fn collect(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+        let known = self.known.clone();
+        let mut out = Vec::new();
+        for (name, h) in &known.named {
+            out.push(self.info(*h, name.clone(), None)?);
+        }
+        let mut seen: Vec<i32> = known.named.iter().map(|(_, h)| *h).collect();
+        if let Some(parent) = known.parent {
+            // options 3: first-level children only, without the dummy itself
+            for h in self.handles_in(parent, 3)? {
+                if !seen.contains(&h) {
+                    seen.push(h);
+                    out.push(self.info(h, format!("object {h}"), Some(Some(parent)))?);
+                }
+            }
+        }
+        // root objects carrying the template's alias: copies left parentless by an
+        // interrupted run. They are copies whatever their path looks like, so a path that is
+        // not `/Line[n]` (the template elsewhere than at the root) gets that form.
+        let mut strays = 0;
+        for h in self.handles_in(HANDLE_SCENE, 2)? {
+            if seen.contains(&h) {
+                continue;
+            }
+            let alias = self
+                .client
+                .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
+            if cbor::text(&alias) != Some(known.line_alias.as_str()) {
+                continue;
+            }
+            let parent = self
+                .client
+                .call_int("sim.getObjectParent", vec![int(h.into())])?;
+            if parent >= 0 {
+                continue; // not a root object after all
+            }
+            strays += 1;
+            let path = self
+                .client
+                .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
+            let name = match cbor::text(&path) {
+                Some(p) if is_copy_name(p, &known.line_alias) => p.to_string(),
+                _ => format!("/{}[{strays}]", known.line_alias),
+            };
+            seen.push(h);
+            out.push(self.info(h, name, Some(None))?);
+        }
+        Ok(out)
+    }
+
+    fn set_pose(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        position: [f64; 3],
+        euler: [f64; 3],
+    ) -> Result<(), SceneError> {
+        let q = rotation_from_euler(euler);
+        let pose = float_array(&[position[0], position[1], position[2], q.i, q.j, q.k, q.w]);
+        let (h, rel) = (int(handle.into()), int(relative_to.into()));
+        let args = if self.version >= 40600 {
+            vec![h, pose, rel]
+        } else {
+            vec![h, rel, pose]
+        };
+        self.call("sim.setObjectPose", args)?;
+        Ok(())
+    }
+
+    fn remove(&mut self, handles: &[i32]) -> Result<(), SceneError> {
+        let list = Value::Array(handles.iter().map(|h| int((*h).into())).collect());
+        match self.client.call("sim.removeObjects", vec![list]) {
+            Ok(_) => Ok(()),
+            // before 4.5: one sim.removeObject per object
+            Err(e) if e.is_no_such_function() => {
+                for h in handles {
+                    self.call("sim.removeObject", vec![int((*h).into())])?;
+                }
+                Ok(())
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// Creates the missing course objects: the maze dummy, and the line, start and end
+    /// planes (course sizes, pure colours, static, not respondable, not collidable, not
+    /// measurable, not detectable by proximity sensors, but seen by cameras). Returns the names created.
+    /// The floor is never created.
+    pub fn create_missing(&mut self, names: &SceneNames) -> Result<Vec<String>, SceneError> {
+        let mut created = Vec::new();
+        let mut floor = self.handle_of(&object_path(&names.floor))?;
+        if floor.is_none() {
+            check_alias(&names.floor)?;
+            // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
+            let h = self.create_plane(
+                &names.floor,
+                [10.0, 10.0],
+                [0.5, 0.5, 0.5],
+                0.0,
+                HANDLE_WORLD,
+                true,
+            )?;
+            floor = Some(h);
+            created.push(names.floor.clone());
+        }
+        let specs: [(&str, Option<PlaneSpec>); 4] = [
+            (&names.parent, None),
+            (&names.line, Some(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001))),
+            (&names.start, Some(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002))),
+            (&names.end, Some(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002))),
+        ];
+        for (name, shape) in specs {
+            if self.handle_of(&object_path(name))?.is_some() {
+                continue;
+            }
+            check_alias(name)?;
+            let alias = alias_of(name);
+            let h = match shape {
+                None => {
+                    let h = self
+                        .client
+                        .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
+                    self.call(
+                        "sim.setObjectAlias",
+                        vec![int(h.into()), Value::Text(alias.into())],
+                    )?;
+                    h
+                }
+                Some((size, colour, z)) => {
+                    self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
+                }
+            };
+            let parent_path = name
+                .rsplit_once('/')
+                .map(|(p, _)| p)
+                .filter(|p| !p.is_empty());
+            if let Some(p) = parent_path {
+                let ph = self.handle_of(p)?.ok_or_else(|| {
+                    SceneError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
+                })?;
+                self.call(
+                    "sim.setObjectParent",
+                    vec![int(h.into()), int(ph.into()), Value::Bool(true)],
+                )?;
+            }
+            created.push(name.to_string());
+        }
+        Ok(created)
+    }
+
+    /// A static plane named `name`, coloured, at height `z` in the frame `relative_to`.
+    /// Only a floor is respondable and detectable; markers are seen by cameras only.
+    fn create_plane(
+        &mut self,
+        name: &str,
+        size: [f64; 2],
+        colour: [f64; 3],
+        z: f64,
+        relative_to: i32,
+        floor: bool,
+    ) -> Result<i32, SceneError> {
+        let h = self.client.call_int(
+            "sim.createPrimitiveShape",
+            vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)],
+        )?;
+        let hv = || int(h.into());
+        self.call(
+            "sim.setShapeColor",
+            vec![hv(), Value::Null, int(0), float_array(&colour)],
+        )?;
+        if !floor {
+            self.call(
+                "sim.setObjectSpecialProperty",
+                vec![hv(), int(SPECIAL_RENDERABLE.into())],
+            )?;
+        }
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
+        )?;
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![
+                hv(),
+                int(SHAPEINTPARAM_RESPONDABLE.into()),
+                int(floor.into()),
+            ],
+        )?;
+        self.set_pose(h, relative_to, [0.0, 0.0, z], [0.0; 3])?;
+        self.call(
+            "sim.setObjectAlias",
+            vec![hv(), Value::Text(alias_of(name).into())],
+        )?;
+        Ok(h)
+    }
+
+    /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
+    pub fn save_scene(&mut self, path: &str) -> Result<(), SceneError> {
+        self.call("sim.saveScene", vec![Value::Text(path.into())])?;
+        Ok(())
+    }
+}
+
+impl Scene for ZmqScene {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError> {
+        let mut handles = Vec::with_capacity(names.len());
+        for n in names {
+            handles.push(self.handle_of(&object_path(n))?);
+        }
+        // SceneNames order: floor, parent, line, start, end
+        self.known = Known {
+            named: names
+                .iter()
+                .zip(&handles)
+                .filter_map(|(n, h)| h.map(|h| (n.to_string(), h)))
+                .collect(),
+            parent: handles.get(1).copied().flatten(),
+            line_alias: names
+                .get(2)
+                .map(|n| alias_of(n).to_string())
+                .unwrap_or_default(),
+        };
+        let idle_fps = self
+            .client
+            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
+        let state = self.client.call_int("sim.getSimulationState", vec![])?;
+        let objects = if handles.iter().all(Option::is_some) {
+            self.collect()?
+        } else {
+            vec![]
+        };
+        Ok(Survey {
+            handles,
+            objects,
+            idle_fps,
+            simulation_running: state != 0,
+        })
+    }
+
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+        self.collect()
+    }
+
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError> {
+        let mut out = Vec::with_capacity(groups.len());
+        for g in groups {
+            let list = Value::Array(g.iter().map(|h| int((*h).into())).collect());
+            let v = self
+                .client
+                .call1("sim.copyPasteObjects", vec![list, int(0)])?;
+            match cbor::handles(&v) {
+                Some(new) if new.len() == g.len() => out.push(new),
+                _ => {
+                    return Err(SceneError::Remote(format!(
+                        "copy-paste of {} object(s) returned {}",
+                        g.len(),
+                        cbor::describe(&v)
+                    )));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError> {
+        let mut i = 0;
+        while i < edits.len() {
+            match edits[i] {
+                Edit::SetParent {
+                    handle,
+                    parent,
+                    keep_in_place,
+                } => {
+                    let p = int(parent.unwrap_or(HANDLE_WORLD).into());
+                    self.call(
+                        "sim.setObjectParent",
+                        vec![int(handle.into()), p, Value::Bool(keep_in_place)],
+                    )?;
+                }
+                Edit::SetPose {
+                    handle,
+                    relative_to,
+                    position,
+                    orientation,
+                } => {
+                    self.set_pose(handle, relative_to, position, orientation)?;
+                }
+                Edit::Remove(_) => {
+                    let run: Vec<i32> = edits[i..]
+                        .iter()
+                        .map_while(|e| {
+                            if let Edit::Remove(h) = e {
+                                Some(*h)
+                            } else {
+                                None
+                            }
+                        })
+                        .collect();
+                    i += run.len();
+                    self.remove(&run)?;
+                    continue;
+                }
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
+    fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError> {
+        self.call(
+            "sim.setInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+        )?;
+        Ok(())
+    }
+
+    fn stop_simulation(&mut self) -> Result<(), SceneError> {
+        let deadline = Instant::now() + self.timeout;
+        self.call("sim.stopSimulation", vec![])?;
+        while self.client.call_int("sim.getSimulationState", vec![])? != 0 {
+            if Instant::now() > deadline {
+                return Err(SceneError::Remote("the simulation did not stop".into()));
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Ok(())
+    }
+
+    fn round_trips(&self) -> usize {
+        self.client.stats().round_trips as usize
+    }
+}

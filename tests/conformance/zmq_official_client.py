@@ -1,0 +1,253 @@
+#!/usr/bin/env python3
+"""Conformance of `vrep-maze serve --api zmq --protocol 2` with the official ZeroMQ remote API
+client (PyPI coppeliasim-zmqremoteapi-client, with pyzmq and cbor2). Usage:
+
+    zmq_official_client.py PATH/TO/vrep-maze
+
+Prints one line per check and finally `zmq conformance: N passed, M failed`; exits 1 on any
+failure.
+"""
+import json
+import math
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import cbor2
+import zmq
+from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+BIN = sys.argv[1]
+passed = failed = 0
+
+
+def check(name, ok, detail=""):
+    global passed, failed
+    if ok:
+        passed += 1
+        print(f"ok   {name}")
+    else:
+        failed += 1
+        print(f"FAIL {name} {detail}")
+
+
+def raises(f, needle):
+    try:
+        f()
+    except Exception as e:  # the client raises a bare Exception with the server's text
+        return needle in str(e), str(e)
+    return False, "no exception"
+
+
+def close(a, b, tol=1e-4):
+    return len(a) == len(b) and all(abs(x - y) <= tol for x, y in zip(a, b))
+
+
+def free_port():
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+def start_server(*extra):
+    port = free_port()
+    proc = subprocess.Popen(
+        [BIN, "serve", "--api", "zmq", "--listen", f"127.0.0.1:{port}", *extra],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = proc.stdout.readline()
+    if "ZeroMQ remote API" not in line:
+        print("server did not start:", line, proc.stderr.read())
+        sys.exit(1)
+    return proc, port
+
+
+def stop(proc):
+    proc.terminate()
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+
+
+tmp = tempfile.mkdtemp(prefix="zmq-conformance-")
+proc, port = start_server("--protocol", "2", "--idle-fps", "0", "--scene", "course")
+try:
+    client = RemoteAPIClient("127.0.0.1", port)
+    sim = client.require("sim")
+    check("require('sim') builds the sim object from zmqRemoteApi.info", hasattr(sim, "getObject"))
+    check("constants from info", (sim.handle_world, sim.handle_all, sim.intparam_idle_fps) == (-1, -2, 26))
+    version = sim.getInt32Param(sim.intparam_program_version)
+    check("program version is a 4.6+ one (protocol 2)", isinstance(version, int) and version >= 40600, version)
+    check("simulation stopped", sim.getSimulationState() == sim.simulation_stopped)
+
+    line = sim.getObject("/Line")
+    maze = sim.getObject("/Maze")
+    start, end, floor = sim.getObject("/Start"), sim.getObject("/End"), sim.getObject("/Floor")
+    check("getObject finds the course objects", all(isinstance(h, int) and h >= 0 for h in (line, maze, start, end, floor)))
+    ok, msg = raises(lambda: sim.getObject("/Nope"), "does not exist")
+    check("getObject of a missing path is an error", ok, msg)
+    check("getObject with noError gives -1", sim.getObject("/Nope", {"noError": True}) == -1)
+
+    copies = sim.copyPasteObjects([line], 0)
+    check("copyPasteObjects returns a list of new handles", isinstance(copies, list) and len(copies) == 1 and copies[0] > line, copies)
+    copy = copies[0]
+    check("a copy keeps the alias", sim.getObjectAlias(copy) == "Line")
+    check("getObjectAlias(copy, 1) is /Line[1]", sim.getObjectAlias(copy, 1) == "/Line[1]", sim.getObjectAlias(copy, 1))
+    check("getObject('/Line[1]') finds the copy", sim.getObject("/Line[1]") == copy)
+    check("a pasted copy has no parent", sim.getObjectParent(copy) == -1)
+    more = sim.copyPasteObjects([line, copy], 0)
+    check("pasting two objects at once", len(more) == 2 and sim.getObjectAlias(more[1], 1) == "/Line[3]", more)
+
+    sim.setObjectPosition(copy, [1.0, 2.0, 0.001], sim.handle_world)
+    check("setObjectPosition, 4.6+ order (h, pos, rel)", close(sim.getObjectPosition(copy, sim.handle_world), [1, 2, 0.001]))
+    sim.setObjectPosition(copy, sim.handle_world, [3.0, 4.0, 0.001])
+    check("setObjectPosition, 4.5 order (h, rel, pos)", close(sim.getObjectPosition(copy, sim.handle_world), [3, 4, 0.001]))
+    sim.setObjectPosition(copy, [0.5, 0.25, 0.0])
+    check("setObjectPosition relative to the world by default", close(sim.getObjectPosition(copy, -1), [0.5, 0.25, 0.0]))
+
+    # the relative-frame test vector measured on a real CoppeliaSim 4.5.1
+    sim.setObjectPosition(start, [1.0, 2.0, 0.001], -1)
+    sim.setObjectOrientation(start, [0.0, 0.0, math.pi / 2], -1)
+    sim.setObjectPosition(end, [0.5, 0.0, 0.0], start)
+    sim.setObjectOrientation(end, start, [0.1, 0.2, 0.3])
+    check("position relative to a rotated object", close(sim.getObjectPosition(end, -1), [1.0, 2.5, 0.001]))
+    check("Euler angles relative to a rotated object", close(sim.getObjectOrientation(end, -1), [-0.2010, 0.0980, 1.8907]), sim.getObjectOrientation(end, -1))
+    check("position of A relative to B", close(sim.getObjectPosition(start, end), [-0.4681, 0.1448, -0.0993]))
+    s2 = math.sqrt(0.5)
+    sim.setObjectPose(copy, [1.0, -1.0, 0.001, 0.0, 0.0, s2, s2], floor)
+    pose = sim.getObjectPose(copy, floor)
+    check("setObjectPose / getObjectPose (quaternion x, y, z, w)", close(pose[:3], [1, -1, 0.001]) and close([abs(x) for x in pose[3:]], [0, 0, s2, s2]), pose)
+    check("getObjectOrientation of that pose has yaw pi/2", close(sim.getObjectOrientation(copy, floor), [0, 0, math.pi / 2]))
+
+    before = sim.getObjectPosition(copy, -1)
+    sim.setObjectPosition(maze, [0.0, 0.0, 1.0], -1)
+    sim.setObjectParent(copy, maze, True)
+    check("setObjectParent keep-in-place keeps the world position", close(sim.getObjectPosition(copy, -1), before))
+    check("getObjectParent", sim.getObjectParent(copy) == maze)
+    check("getObjectsInTree(maze, handle_all, 1) lists the children", sim.getObjectsInTree(maze, sim.handle_all, 1) == [copy])
+    check("getObjectsInTree(maze, handle_all, 0) includes the base", sim.getObjectsInTree(maze, sim.handle_all, 0) == [maze, copy])
+    check("getObject('/Maze/Line') finds the child", sim.getObject("/Maze/Line") == copy)
+    sim.setObjectParent(copy, -1, False)
+    check("setObjectParent keep-in-place off keeps the local position", close(sim.getObjectPosition(copy, -1), [before[0], before[1], before[2] - 1.0]))
+
+    check("a function without return values returns None", sim.setInt32Param(sim.intparam_idle_fps, 5) is None)
+    check("setInt32Param / getInt32Param idle fps", sim.getInt32Param(sim.intparam_idle_fps) == 5)
+    sim.setInt32Param(sim.intparam_idle_fps, 0)
+
+    plane = sim.createPrimitiveShape(sim.primitiveshape_plane, [0.6, 0.1, 0.0], 0)
+    sim.setObjectAlias(plane, "Fresh-Line")
+    check("createPrimitiveShape + setObjectAlias (bad characters become _)", sim.getObject("/Fresh_Line") == plane)
+    sim.setShapeColor(plane, None, sim.colorcomponent_ambient_diffuse, [0.0, 1.0, 0.0])
+    res, rgb = sim.getShapeColor(plane, None, 0)
+    check("setShapeColor pure green", close(rgb, [0, 1, 0]), rgb)
+    sim.setObjectSpecialProperty(plane, sim.objectspecialproperty_renderable)
+    sim.setObjectInt32Param(plane, sim.shapeintparam_respondable, 0)
+    check("special property and respondable flag", sim.getObjectSpecialProperty(plane) == 2048 and sim.getObjectInt32Param(plane, sim.shapeintparam_respondable) == 0)
+    dummy = sim.createDummy(0.05)
+    check("createDummy", isinstance(dummy, int) and dummy > plane)
+
+    sim.removeObjects([copy, plane])
+    check("removeObjects", sim.getObject("/Fresh_Line", {"noError": True}) == -1 and sim.getObject("/Line[3]", {"noError": True}) == -1)
+    ok, msg = raises(lambda: sim.removeObjects([copy]), "does not exist")
+    check("removing a removed handle is an error", ok, msg)
+    ok, msg = raises(lambda: client.call("sim.noSuchThing", [1]), "No such function: sim.noSuchThing")
+    check("unknown function: 'No such function: sim.noSuchThing'", ok, msg)
+    ok, msg = raises(lambda: sim.getObjectPosition("x", -1), "argument")
+    check("a bad argument is an error, not a crash", ok, msg)
+
+    path = os.path.join(tmp, "saved.json")
+    sim.saveScene(path)
+    check("saveScene writes the file", os.path.exists(path) and json.load(open(path))["format"] == "vrep-maze scene")
+
+    sim.startSimulation()
+    check("simulation running", sim.getSimulationState() == sim.simulation_advancing_running)
+    sim.stopSimulation()  # answered with _*wait*_ first: the client's wait loop must run
+    check("stopSimulation through the wait loop", sim.getSimulationState() == sim.simulation_stopped)
+
+    other = RemoteAPIClient("127.0.0.1", port)
+    sim2 = other.require("sim")
+    check("a second client (another uuid) is served", sim2.getObject("/Line") == line)
+
+    # raw protocol facts the client hides
+    ctx = zmq.Context()
+    raw = ctx.socket(zmq.REQ)
+    raw.setsockopt(zmq.RCVTIMEO, 3000)
+    raw.setsockopt(zmq.LINGER, 0)
+    raw.connect(f"tcp://127.0.0.1:{port}")
+    raw.send(cbor2.dumps({"func": "sim.setInt32Param", "args": [26, 0], "uuid": "raw-1", "ver": 2, "argsL": 2}))
+    check("an empty return is encoded as an empty map (Lua's {})", raw.recv() == cbor2.dumps({"ret": {}}))
+    raw.send(cbor2.dumps({"func": "sim.getObject", "args": ["/Line"]}))
+    reply = cbor2.loads(raw.recv())
+    check("a request without uuid is an old client", reply.get("success") is False and "does not match" in reply.get("error", ""), reply)
+    raw.send(cbor2.dumps({"func": "sim.x\n", "args": [], "uuid": "raw-1"}))
+    reply = cbor2.loads(raw.recv())
+    check("newlines in errors are sent as _=NL=_", reply.get("err") == "No such function: sim.x_=NL=_", reply)
+    raw.send(cbor2.dumps({"func": "_*end*_", "args": [], "uuid": "raw-1"}))
+    check("_*end*_ is answered with an empty map", cbor2.loads(raw.recv()) == {})
+    raw.close()
+
+    # our `apply` over ZeroMQ, read back with the official client
+    layout = os.path.join(tmp, "m.json")
+    subprocess.run([BIN, "generate", "--seed", "42", "--algo", "prim", "-o", layout], check=True, capture_output=True)
+    r = subprocess.run([BIN, "apply", "--api", "zmq", "--port", str(port), layout], capture_output=True, text=True)
+    check("vrep-maze apply --api zmq", r.returncode == 0 and "verified" in r.stdout, r.stdout + r.stderr)
+    segs = json.load(open(layout))["segments"]
+    kids = sim.getObjectsInTree(maze, sim.handle_all, 3)
+    check("the maze has one child per segment but the template", len(kids) == len(segs) - 1, (len(kids), len(segs)))
+    want = sorted((round(s["x"], 3), round(s["y"], 3), round(s["yaw"] % math.pi, 3)) for s in segs)
+    got = []
+    for h in kids + [line]:
+        p = sim.getObjectPosition(h, floor)
+        e = sim.getObjectOrientation(h, floor)
+        got.append((round(p[0], 3), round(p[1], 3), round(e[2] % math.pi, 3)))
+    check("every segment has a line in place (read with the official client)", sorted(got) == want)
+finally:
+    stop(proc)
+
+# protocol 1: the official 2.x client fails on require('sim'), as on a real 4.5.1
+proc, port = start_server("--protocol", "1", "--idle-fps", "0")
+try:
+    client = RemoteAPIClient("127.0.0.1", port)
+    try:
+        client.require("sim")
+        check("protocol 1: official 2.x client fails on require with KeyError 'ret'", False, "no error")
+    except KeyError as e:
+        check("protocol 1: official 2.x client fails on require with KeyError 'ret'", str(e) == "'ret'", e)
+    ctx = zmq.Context()
+    raw = ctx.socket(zmq.REQ)
+    raw.setsockopt(zmq.RCVTIMEO, 3000)
+    raw.connect(f"tcp://127.0.0.1:{port}")
+    raw.send(cbor2.dumps({"func": "sim.getObject", "args": ["/Line"]}))
+    reply = cbor2.loads(raw.recv())
+    check("protocol 1: {func, args} -> {success, ret}", reply.get("success") is True and isinstance(reply.get("ret"), list), reply)
+    raw.close(linger=0)
+finally:
+    stop(proc)
+
+# --api both: our legacy `apply` draws, the official ZeroMQ client sees the same scene
+lport, zport = free_port(), free_port()
+proc = subprocess.Popen(
+    [BIN, "serve", "--api", "both", "--listen", f"127.0.0.1:{lport}", "--zmq-listen", f"127.0.0.1:{zport}", "--idle-fps", "0"],
+    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+try:
+    lines = [proc.stdout.readline(), proc.stdout.readline()]
+    check("serve --api both prints both servers", "legacy" in lines[0] and "ZeroMQ" in lines[1], lines)
+    layout = os.path.join(tmp, "m7.json")
+    subprocess.run([BIN, "generate", "--seed", "7", "--algo", "kruskal", "-o", layout], check=True, capture_output=True)
+    r = subprocess.run([BIN, "apply", "--port", str(lport), layout], capture_output=True, text=True)
+    check("vrep-maze apply over legacy into the shared scene", r.returncode == 0, r.stdout + r.stderr)
+    sim = RemoteAPIClient("127.0.0.1", zport).require("sim")
+    maze = sim.getObject("/Maze")
+    segs = json.load(open(layout))["segments"]
+    check("the official ZeroMQ client sees the lines drawn over legacy", len(sim.getObjectsInTree(maze, sim.handle_all, 3)) == len(segs) - 1)
+finally:
+    stop(proc)
+
+print(f"zmq conformance: {passed} passed, {failed} failed")
+sys.exit(1 if failed else 0)
