@@ -200,8 +200,8 @@ impl DrawScene for FailingEdits {
     fn edit(&mut self, _: &[Edit]) -> Result<(), SceneError> {
         Err(SceneError::Remote("injected failure".into()))
     }
-    fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError> {
-        self.0.set_idle_fps(fps)
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
+        self.0.set_idle_fps(fps, saved)
     }
     fn stop_simulation(&mut self) -> Result<(), SceneError> {
         self.0.stop_simulation()

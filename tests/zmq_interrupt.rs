@@ -117,3 +117,52 @@ fn zmq_apply_cut_at_any_call_is_repaired() {
         s.shutdown();
     }
 }
+
+#[test]
+fn zmq_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
+    let d = Drawing::from(
+        &build_layout(&GenerateSpec::course(
+            Grid::new(4, 4).unwrap(),
+            Algorithm::Prim,
+            3,
+        ))
+        .unwrap(),
+    );
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        protocol: Protocol::V2,
+        ..Default::default()
+    };
+    for repair_with_clear in [false, true] {
+        let s = spawn(cfg.clone(), Simulator::new(Scene::course(), 8)).unwrap();
+        let stop = Arc::new(AtomicBool::new(false));
+        // 30 calls: past raising the idle rate, long before restoring it.
+        let proxy = cutting_proxy(s.local_addr().port(), 30, stop.clone());
+        let cut = connect(proxy, 300).and_then(|mut sc| {
+            draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {})
+                .map_err(|e| draw::SceneError::Transport(e.to_string()))
+        });
+        assert!(cut.is_err());
+        stop.store(true, Ordering::SeqCst);
+        assert_eq!(
+            s.with_sim(|sim| sim.idle_fps),
+            0,
+            "the cut run left the rate at 0"
+        );
+        let mut sc = connect(s.local_addr().port(), 3000).unwrap();
+        if repair_with_clear {
+            let report = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+            assert_eq!(report.restored_idle_fps, Some(8));
+        } else {
+            draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+        }
+        drop(sc);
+        let (fps, signals) = s.with_sim(|sim| (sim.idle_fps, sim.int_signals.len()));
+        assert_eq!(
+            (fps, signals),
+            (8, 0),
+            "user's rate restored and the record deleted"
+        );
+        s.shutdown();
+    }
+}

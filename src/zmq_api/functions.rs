@@ -103,6 +103,9 @@ pub const SIM_FUNCTIONS: &[&str] = &[
     "stopSimulation",
     "getInt32Param",
     "setInt32Param",
+    "getInt32Signal",
+    "setInt32Signal",
+    "clearInt32Signal",
     "createPrimitiveShape",
     "createDummy",
     "setShapeColor",
@@ -490,6 +493,19 @@ fn dispatch(
             } else {
                 nothing()
             }
+        }
+        "getInt32Signal" => {
+            let value = sim.int_signals.get(a.text(0)?).copied();
+            ret(vec![value.map_or(Value::Null, |v| int(v.into()))])
+        }
+        "setInt32Signal" => {
+            let (name, value) = (a.text(0)?, a.int(1)?);
+            sim.int_signals.insert(name.to_string(), value);
+            nothing()
+        }
+        "clearInt32Signal" => {
+            sim.int_signals.remove(a.text(0)?);
+            nothing()
         }
         "getInt32Param" => {
             let p = a.int(0)?;

@@ -17,7 +17,7 @@ use super::functions::{
     HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan::is_copy_name;
-use crate::draw::{Edit, ObjectInfo, Scene, SceneError, SceneNames, Survey};
+use crate::draw::{Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Scene, SceneError, SceneNames, Survey};
 use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
 use crate::sim::{HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
@@ -383,6 +383,18 @@ impl ZmqScene {
         Ok(h)
     }
 
+    /// The user's idle rate recorded by an interrupted `apply` (integer signal
+    /// [`SAVED_IDLE_FPS_SIGNAL`]); `None` when there is no record (`sim.getInt32Signal`
+    /// returns nil) or the simulator has no integer signals.
+    fn saved_idle_fps(&mut self) -> Result<Option<i32>, SceneError> {
+        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
+        match self.call("sim.getInt32Signal", vec![name]) {
+            Ok(values) => Ok(values.first().and_then(cbor::int32)),
+            Err(SceneError::Remote(_)) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
     /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
     pub fn save_scene(&mut self, path: &str) -> Result<(), SceneError> {
         self.call("sim.saveScene", vec![Value::Text(path.into())])?;
@@ -413,6 +425,7 @@ impl Scene for ZmqScene {
             .client
             .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
+        let saved_idle_fps = self.saved_idle_fps()?;
         let objects = if handles.iter().all(Option::is_some) {
             self.collect()?
         } else {
@@ -422,6 +435,7 @@ impl Scene for ZmqScene {
             handles,
             objects,
             idle_fps,
+            saved_idle_fps,
             simulation_running: state != 0,
         })
     }
@@ -495,12 +509,21 @@ impl Scene for ZmqScene {
         Ok(())
     }
 
-    fn set_idle_fps(&mut self, fps: i32) -> Result<(), SceneError> {
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
         self.call(
             "sim.setInt32Param",
             vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
         )?;
-        Ok(())
+        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
+        let record = match saved {
+            Some(v) => self.call("sim.setInt32Signal", vec![name, int(v.into())]),
+            None => self.call("sim.clearInt32Signal", vec![name]),
+        };
+        match record {
+            // A simulator without integer signals only loses the crash record.
+            Ok(_) | Err(SceneError::Remote(_)) => Ok(()),
+            Err(e) => Err(e),
+        }
     }
 
     fn stop_simulation(&mut self) -> Result<(), SceneError> {

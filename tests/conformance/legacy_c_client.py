@@ -6,7 +6,7 @@ The C client is the one bundled in the PyPI wheel dqrobotics-interface-coppelias
 
     legacy_c_client.py PATH/TO/vrep-maze PATH/TO/_core.so
 
-Prints one line per check and finally `legacy conformance: N passed, M failed`; exits 1 on
+Prints one line per check and finally `legacy-conformance: N passed, M failed`; exits 1 on
 any failure.
 """
 import ctypes as C
@@ -209,7 +209,7 @@ def main():
         run_apply(port)
     finally:
         stop(server)
-    print(f"legacy conformance: {passed} passed, {failed} failed")
+    print(f"legacy-conformance: {passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
 
 

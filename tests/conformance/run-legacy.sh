@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Conformance of `vrep-maze serve` with the official legacy remote API C client (from the
 # PyPI wheel dqrobotics-interface-coppeliasim-vrep, loaded with ctypes).
-# Prints `legacy conformance: N passed, M failed` last; exits non-zero on failure.
+# Prints `legacy-conformance: N passed, M failed` last; exits non-zero on failure.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"

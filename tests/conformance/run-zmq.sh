@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Conformance of `vrep-maze serve --api zmq` with the official ZeroMQ remote API client
 # (PyPI coppeliasim-zmqremoteapi-client, pyzmq, cbor2) in the project's .venv.
-# Prints `zmq conformance: N passed, M failed` last; exits non-zero on failure.
+# Prints `zmq-conformance: N passed, M failed` last; exits non-zero on failure.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"

@@ -4,7 +4,7 @@ client (PyPI coppeliasim-zmqremoteapi-client, with pyzmq and cbor2). Usage:
 
     zmq_official_client.py PATH/TO/vrep-maze
 
-Prints one line per check and finally `zmq conformance: N passed, M failed`; exits 1 on any
+Prints one line per check and finally `zmq-conformance: N passed, M failed`; exits 1 on any
 failure.
 """
 import json
@@ -249,5 +249,5 @@ try:
 finally:
     stop(proc)
 
-print(f"zmq conformance: {passed} passed, {failed} failed")
+print(f"zmq-conformance: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)
