@@ -1,17 +1,29 @@
-//! `vrep-maze demo`: the whole job on the course default, with nothing to set up.
+//! `vrep-maze demo`: the whole job on the course default, with nothing to set up: generate
+//! the course maze, validate it, draw it into an emulated CoppeliaSim over the legacy remote
+//! API, and show the result.
 
 use std::process::ExitCode;
 
-use anyhow::{Result, anyhow, bail};
+use std::net::SocketAddr;
+use std::time::Duration;
+
+use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 
 use super::validate::{describe, print_metrics};
+use crate::draw::{self, ApplyOptions, Drawing, SceneNames};
 use crate::generate::Algorithm;
 use crate::layout::geometry::course;
 use crate::layout::{GenerateSpec, build_layout};
+use crate::legacy::scene::LegacyScene;
+use crate::legacy::server::{ServerConfig, spawn};
 use crate::maze::Grid;
 use crate::render::{Format, RenderOptions};
+use crate::sim::{Scene as SimScene, Simulator};
 use crate::validate::validate;
+
+/// CoppeliaSim's idle rate while the simulation is stopped.
+const DEFAULT_IDLE_FPS: i32 = 8;
 
 /// Options of `demo`.
 #[derive(Debug, Args)]
@@ -25,7 +37,9 @@ pub struct DemoArgs {
     pub algo: Algorithm,
 }
 
-/// Runs `demo`: generate the 9x9 course maze, validate it, draw it with its solution.
+/// Runs `demo`: generate the 9x9 course maze, validate it, show it with its solution, then
+/// draw it into the course scene of an in-process `serve` over the legacy remote API (at
+/// CoppeliaSim's default idle rate) and verify it there.
 pub fn run(args: DemoArgs) -> Result<ExitCode> {
     let grid = Grid::new(course::SIZE.into(), course::SIZE.into())?;
     let layout =
@@ -49,5 +63,37 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
         "(S start, E end, . solution; `vrep-maze generate --seed {} --algo {} -o maze.json` writes this layout)",
         args.seed, args.algo
     );
+    draw_into_emulator(&layout)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// Starts the legacy emulator on a free loopback port, applies `layout` through our client,
+/// verifies it, and reports what the emulated scene holds.
+fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
+    let config = ServerConfig {
+        listen: SocketAddr::from(([127, 0, 0, 1], 0)),
+        ..ServerConfig::default()
+    };
+    let server = spawn(config, Simulator::new(SimScene::course(), DEFAULT_IDLE_FPS))
+        .context("starting the emulated simulator")?;
+    let port = server.local_addr().port();
+    let drawing = Drawing::from(layout);
+    let result = (|| -> Result<String> {
+        let mut scene = LegacyScene::connect("127.0.0.1", port, Duration::from_secs(10))?;
+        let report = draw::apply(&mut scene, &drawing, &ApplyOptions::default(), &mut |_| {})?;
+        draw::verify(&mut scene, &drawing, &SceneNames::default())?;
+        Ok(report.to_string())
+    })();
+    let lines = server.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count());
+    server.shutdown();
+    let report = result?;
+    println!(
+        "\nDrawn into an emulated CoppeliaSim (`vrep-maze serve`, legacy remote API, idle fps {DEFAULT_IDLE_FPS}):"
+    );
+    println!("  {report}");
+    println!(
+        "  verified: the scene holds {lines} green lines, Start and End where the layout says"
+    );
+    println!("(with CoppeliaSim running: `vrep-maze apply maze.json`, see the README)");
+    Ok(())
 }
