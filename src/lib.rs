@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! vrep-maze: seeded, reproducible grid mazes for CoppeliaSim (formerly V-REP).
 //!
 //! The library behind the `vrep-maze` command: [`maze`] holds the model and its analysis,
