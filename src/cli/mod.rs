@@ -22,7 +22,7 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "vrep-maze", version, about, long_about = None)]
 #[command(
-    after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze validate maze.json\n  vrep-maze render maze.json --solution"
+    after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze validate maze.json\n  vrep-maze render maze.json --solution\n  vrep-maze apply maze.json          # into a running CoppeliaSim (stopped simulation)\n  vrep-maze demo                     # all of it on the course default, no simulator needed"
 )]
 pub struct Cli {
     /// What to do.
@@ -37,13 +37,13 @@ pub enum Command {
     Generate(generate::GenerateArgs),
     /// Check a layout file and print its metrics.
     Validate(validate::ValidateArgs),
-    /// Draw a layout as ASCII (terminal) or SVG (the floor as the camera sees it).
+    /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
     /// Generate a dataset: one layout per seed plus a manifest, on all cores.
     Batch(batch::BatchArgs),
     /// Print a shell completion script (bash, zsh, fish, ...).
     Completions(completions::CompletionsArgs),
-    /// Show the whole job on the course default: generate, validate and draw a maze.
+    /// The whole job on the course default: generate, validate, show, and draw into an emulated simulator.
     Demo(demo::DemoArgs),
     /// Draw a layout into CoppeliaSim over the legacy (19997) or ZeroMQ (23000) remote API.
     Apply(apply::ApplyArgs),
