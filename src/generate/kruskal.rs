@@ -1,13 +1,15 @@
 //! Randomized Kruskal: knock down walls in random order unless that would make a loop.
 
+use fixedbitset::FixedBitSet;
+
 use super::Generator;
 use crate::maze::{Direction, Maze};
 use crate::rng::{MazeRng, prefetch};
 
 /// Shuffles every inner wall, then opens each wall whose two cells are not yet joined,
 /// tracked with a union-find (union by rank, path halving). Memory: one `u32` per wall
-/// (about two per cell) plus the union-find's four bytes per cell: 13 bytes per cell
-/// with the maze.
+/// (about two per cell), the union-find's four bytes per cell and a bit per wall: about
+/// 13.25 bytes per cell with the maze.
 ///
 /// Speed: at 2000 x 2000 the walls and the union-find are far larger than the caches,
 /// so the shuffle (in [`MazeRng::shuffle`]) and the wall loop prefetch the cells they
@@ -51,6 +53,10 @@ impl Generator for Kruskal {
             }
         };
         let mut sets = UnionFind::new(cells);
+        // Opened walls are marked in a bitset (a quarter of the maze's size, so it stays
+        // in cache) and carved afterwards in one row-major pass: sequential writes
+        // instead of two random ones per opened wall.
+        let mut opened = FixedBitSet::with_capacity(2 * cells);
         let mut remaining = cells - 1;
         for (i, &wall) in walls.iter().enumerate() {
             if remaining == 0 {
@@ -71,11 +77,15 @@ impl Generator for Kruskal {
                 sets.prefetch_grandparent(a);
                 sets.prefetch_grandparent(b);
             }
-            let (a, b, dir) = ends(wall);
+            let (a, b, _) = ends(wall);
             if sets.union(a, b) {
-                maze.carve(a, dir);
+                opened.insert(wall as usize);
                 remaining -= 1;
             }
+        }
+        for wall in opened.ones() {
+            let (a, _, dir) = ends(wall as u32);
+            maze.carve(a, dir);
         }
     }
 }
