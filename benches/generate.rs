@@ -135,13 +135,13 @@ fn read_baseline() -> BTreeMap<String, Vec<(u64, f64)>> {
         .filter(|l| !l.starts_with('#') && !l.is_empty())
     {
         let fields: Vec<&str> = line.split('\t').collect();
-        if let [name, side, seconds] = fields[..] {
-            if let (Ok(side), Ok(seconds)) = (side.parse(), seconds.parse()) {
-                baseline
-                    .entry(name.to_string())
-                    .or_default()
-                    .push((side, seconds));
-            }
+        if let [name, side, seconds] = fields[..]
+            && let (Ok(side), Ok(seconds)) = (side.parse(), seconds.parse())
+        {
+            baseline
+                .entry(name.to_string())
+                .or_default()
+                .push((side, seconds));
         }
     }
     baseline

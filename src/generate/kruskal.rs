@@ -46,7 +46,7 @@ impl Generator for Kruskal {
         rng.shuffle(&mut walls);
         let ends = |wall: u32| {
             let index = (wall / 2) as usize;
-            if wall % 2 == 0 {
+            if wall.is_multiple_of(2) {
                 (index, index + 1, Direction::East)
             } else {
                 (index, index + width, Direction::North)

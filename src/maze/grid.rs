@@ -178,7 +178,7 @@ impl Grid {
         match dir {
             Direction::East if (index % w) + 1 < w => Some(index + 1),
             Direction::North if index + w < self.cell_count() => Some(index + w),
-            Direction::West if index % w > 0 => Some(index - 1),
+            Direction::West if !index.is_multiple_of(w) => Some(index - 1),
             Direction::South if index >= w => Some(index - w),
             _ => None,
         }
