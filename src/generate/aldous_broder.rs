@@ -1,6 +1,7 @@
 //! Aldous-Broder: a random walk that opens the wall into every cell it enters first.
 
 use super::Generator;
+use super::padded::PaddedGrid;
 use crate::maze::{Direction, Maze};
 use crate::rng::MazeRng;
 
@@ -36,34 +37,25 @@ impl Generator for AldousBroder {
     fn carve(&self, maze: &mut Maze, rng: &mut MazeRng) {
         let grid = maze.grid();
         let width = grid.width() as usize;
-        let height = grid.height() as usize;
-        let stride = width + 2;
-        // Cell (x, y) is at (y + 1) * stride + x + 1 of a grid padded with an OFF_GRID
-        // frame, so a step needs no bounds arithmetic (as in Wilson).
-        let mut state = vec![OFF_GRID; stride * (height + 2)];
-        for y in 0..height {
-            let row = (y + 1) * stride + 1;
-            state[row..row + width].fill(FRESH);
-        }
-        // One step in each of Direction::ALL, in the padded grid and in the maze.
-        let offsets = [1isize, stride as isize, -1, -(stride as isize)];
+        let mut walk = PaddedGrid::new(grid, FRESH, OFF_GRID);
+        // One step in each of Direction::ALL in the maze (the padded steps are `offsets`).
         let cell_offsets = [1isize, width as isize, -1, -(width as isize)];
         let start = rng.index(grid.cell_count());
-        let mut here = (start / width + 1) * stride + start % width + 1;
+        let mut here = walk.position(start);
         let mut cell = start;
-        state[here] = SEEN;
+        walk.bytes[here] = SEEN;
         let mut remaining = grid.cell_count() - 1;
         while remaining > 0 {
             // A uniform direction; steps off the grid are redrawn, which leaves the
             // choice uniform among the neighbours that exist.
             let pick = rng.bits(2) as usize;
-            let next = here.wrapping_add_signed(offsets[pick]);
-            let seen = state[next];
+            let next = here.wrapping_add_signed(walk.offsets[pick]);
+            let seen = walk.bytes[next];
             if seen == OFF_GRID {
                 continue;
             }
             if seen == FRESH {
-                state[next] = SEEN;
+                walk.bytes[next] = SEEN;
                 maze.carve(cell, Direction::ALL[pick]);
                 remaining -= 1;
             }

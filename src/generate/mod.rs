@@ -10,6 +10,7 @@ mod growing_tree;
 mod hunt_and_kill;
 mod kruskal;
 mod options;
+mod padded;
 mod prim;
 mod recursive_division;
 mod sidewinder;

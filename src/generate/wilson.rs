@@ -1,6 +1,7 @@
 //! Wilson's algorithm: loop-erased random walks grafted onto a growing tree.
 
 use super::Generator;
+use super::padded::PaddedGrid;
 use crate::maze::{Direction, Maze};
 use crate::rng::MazeRng;
 
@@ -32,22 +33,15 @@ impl Generator for Wilson {
         let grid = maze.grid();
         let width = grid.width() as usize;
         let height = grid.height() as usize;
-        let stride = width + 2;
-        // Walk bytes for the padded grid: cell (x, y) is at (y + 1) * stride + x + 1.
-        // Values: OFF_GRID, IN_TREE, or the index in Direction::ALL last left by.
-        let mut walk = vec![OFF_GRID; stride * (height + 2)];
-        for y in 0..height {
-            let row = (y + 1) * stride + 1;
-            walk[row..row + width].fill(0);
-        }
-        // Offsets of one step in each of Direction::ALL (east, north, west, south).
-        let offsets = [1isize, stride as isize, -1, -(stride as isize)];
-        let padded = |cell: usize| (cell / width + 1) * stride + cell % width + 1;
-        walk[padded(rng.index(grid.cell_count()))] = IN_TREE;
+        // Walk bytes: OFF_GRID, IN_TREE, or the index in Direction::ALL last left by.
+        let mut padded = PaddedGrid::new(grid, 0, OFF_GRID);
+        let offsets = padded.offsets;
+        let root = padded.position(rng.index(grid.cell_count()));
+        padded.bytes[root] = IN_TREE;
         for y in 0..height {
             for x in 0..width {
-                let start = (y + 1) * stride + x + 1;
-                if walk[start] == IN_TREE {
+                let start = padded.position(y * width + x);
+                if padded.bytes[start] == IN_TREE {
                     continue;
                 }
                 // Walk until the tree is hit, recording each cell's last exit.
@@ -55,11 +49,11 @@ impl Generator for Wilson {
                 loop {
                     let pick = rng.bits(2) as u8;
                     let next = here.wrapping_add_signed(offsets[pick as usize]);
-                    let seen = walk[next];
+                    let seen = padded.bytes[next];
                     if seen == OFF_GRID {
                         continue;
                     }
-                    walk[here] = pick;
+                    padded.bytes[here] = pick;
                     here = next;
                     if seen == IN_TREE {
                         break;
@@ -68,9 +62,9 @@ impl Generator for Wilson {
                 // Add the loop-erased path: follow the last exits from the start.
                 let mut here = start;
                 let mut cell = y * width + x;
-                while walk[here] != IN_TREE {
-                    let pick = walk[here];
-                    walk[here] = IN_TREE;
+                while padded.bytes[here] != IN_TREE {
+                    let pick = padded.bytes[here];
+                    padded.bytes[here] = IN_TREE;
                     let dir = Direction::ALL[pick as usize];
                     maze.carve(cell, dir);
                     here = here.wrapping_add_signed(offsets[pick as usize]);
