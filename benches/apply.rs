@@ -9,11 +9,11 @@
 
 use std::time::{Duration, Instant};
 
-use vrep_maze::draw::{self, ApplyOptions, Drawing};
+use vrep_maze::draw::{self, ApplyOptions, Backend, Drawing};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::command::{Command, decode_handle_list, read_i32};
-use vrep_maze::legacy::{Client, ClientOptions, LegacyScene, ServerConfig, ServerHandle, spawn};
+use vrep_maze::legacy::{Client, ClientOptions, LegacyBackend, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
 
@@ -37,7 +37,8 @@ fn ours(d: &Drawing, fps: i32) -> (usize, Duration) {
     let s = server(fps);
     let t = Instant::now();
     let mut sc =
-        LegacyScene::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(30)).unwrap();
+        LegacyBackend::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(30))
+            .unwrap();
     let r = draw::apply(&mut sc, d, &ApplyOptions::default(), &mut |_| {}).unwrap();
     sc.close().unwrap();
     let wall = t.elapsed();

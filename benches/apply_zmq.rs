@@ -10,13 +10,13 @@
 
 use std::time::{Duration, Instant};
 
-use vrep_maze::draw::{self, ApplyOptions, Drawing};
+use vrep_maze::draw::{self, ApplyOptions, Backend, Drawing};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
-use vrep_maze::legacy::{self, LegacyScene};
+use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
-use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqScene};
+use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
 struct Run {
     calls: u64,
@@ -34,7 +34,8 @@ fn legacy_run(d: &Drawing, fps: i32) -> Run {
     let s = legacy::spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap();
     let t = Instant::now();
     let mut sc =
-        LegacyScene::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(60)).unwrap();
+        LegacyBackend::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(60))
+            .unwrap();
     let r = draw::apply(&mut sc, d, &ApplyOptions::default(), &mut |_| {}).unwrap();
     let wall = t.elapsed();
     let t = Instant::now();
@@ -64,7 +65,7 @@ fn zmq_run(d: &Drawing, fps: i32, protocol: Protocol) -> Run {
         timeout: Duration::from_secs(60),
         ..Default::default()
     };
-    let mut sc = ZmqScene::connect(&opts).unwrap();
+    let mut sc = ZmqBackend::connect(&opts).unwrap();
     let c0 = sc.client().stats().calls;
     let r = draw::apply(&mut sc, d, &ApplyOptions::default(), &mut |_| {}).unwrap();
     let calls = sc.client().stats().calls - c0;

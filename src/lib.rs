@@ -9,6 +9,7 @@
 pub mod atomic_file;
 pub mod batch;
 pub mod cli;
+pub mod coppelia;
 pub mod draw;
 pub mod generate;
 pub mod layout;

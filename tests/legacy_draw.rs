@@ -2,10 +2,10 @@
 
 use std::time::Duration;
 
-use vrep_maze::draw::{self, ApplyOptions, DrawError, Drawing, SceneNames};
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
-use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
+use vrep_maze::legacy::{LegacyBackend, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{NamingMode, Scene, Simulator};
 
@@ -22,8 +22,8 @@ fn server_with(scene: Scene, fps: i32) -> ServerHandle {
     spawn(cfg, Simulator::new(scene, fps)).unwrap()
 }
 
-fn connect(s: &ServerHandle) -> LegacyScene {
-    LegacyScene::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(3)).unwrap()
+fn connect(s: &ServerHandle) -> LegacyBackend {
+    LegacyBackend::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(3)).unwrap()
 }
 
 fn no_progress(_: draw::Stage) {}
@@ -46,7 +46,7 @@ fn legacy_apply_draws_verifies_and_reapplies_without_changes() {
         r.round_trips
     );
     assert_eq!(line_count(&s), 160);
-    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    draw::verify(&mut sc, &d, &ObjectNames::default()).unwrap();
     let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!(
         (again.pasted, again.removed, again.edits, again.reused),
@@ -77,16 +77,16 @@ fn legacy_apply_replaces_a_bigger_maze_and_clear_removes_it() {
         (0, big.lines.len() - small.lines.len())
     );
     assert_eq!(line_count(&s), small.lines.len());
-    draw::verify(&mut sc, &small, &SceneNames::default()).unwrap();
+    draw::verify(&mut sc, &small, &ObjectNames::default()).unwrap();
     assert!(matches!(
-        draw::verify(&mut sc, &big, &SceneNames::default()),
+        draw::verify(&mut sc, &big, &ObjectNames::default()),
         Err(DrawError::Verify(_))
     ));
-    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
     assert_eq!(c.removed.len(), small.lines.len() - 1);
     assert_eq!(line_count(&s), 1, "only the template is left");
     assert!(
-        draw::clear(&mut sc, &SceneNames::default(), false)
+        draw::clear(&mut sc, &ObjectNames::default(), false)
             .unwrap()
             .removed
             .is_empty(),
@@ -163,7 +163,7 @@ fn legacy_apply_works_with_hash_names_and_repairs_parentless_copies() {
     let names: Vec<String> =
         s.with_sim(|sim| sim.scene.objects().map(|o| o.name.clone()).collect());
     assert!(names.iter().any(|n| n == "Line#3"), "{names:?}");
-    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    draw::verify(&mut sc, &d, &ObjectNames::default()).unwrap();
     s.shutdown();
 }
 
@@ -254,7 +254,7 @@ fn legacy_apply_in_a_moved_floor_with_templates_under_maze() {
     let mut sc = connect(&s);
     let d = drawing(4, 9);
     draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
-    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    draw::verify(&mut sc, &d, &ObjectNames::default()).unwrap();
     // every line sits where the layout says, in the Floor frame
     let ok = s.with_sim(|sim| {
         let floor = sim.scene.resolve("Floor").unwrap();
@@ -275,7 +275,7 @@ fn legacy_apply_in_a_moved_floor_with_templates_under_maze() {
         })
     });
     assert!(ok);
-    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
     assert_eq!(c.removed.len(), d.lines.len() - 1);
     for t in ["Line", "Start", "End"] {
         assert!(

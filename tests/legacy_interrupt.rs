@@ -5,11 +5,11 @@ use std::io::{Read, Write};
 use std::net::{Shutdown, TcpListener, TcpStream};
 use std::time::Duration;
 
-use vrep_maze::draw::{self, ApplyOptions, Drawing, SceneNames};
+use vrep_maze::draw::{self, ApplyOptions, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::wire::{MAX_PACKET_SIZE, Message, read_message, write_message};
-use vrep_maze::legacy::{LegacyScene, ServerConfig, ServerHandle, spawn};
+use vrep_maze::legacy::{LegacyBackend, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
 
@@ -73,8 +73,8 @@ fn server_at(fps: i32) -> ServerHandle {
     spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()
 }
 
-fn connect(port: u16) -> LegacyScene {
-    LegacyScene::connect("127.0.0.1", port, Duration::from_secs(2)).unwrap()
+fn connect(port: u16) -> LegacyBackend {
+    LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(2)).unwrap()
 }
 
 fn lines_in_scene(s: &ServerHandle) -> usize {
@@ -105,7 +105,7 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
             interrupted += 1;
             let mut sc = connect(s.local_addr().port());
             if repair_with_clear {
-                draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+                draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
                 assert_eq!(
                     lines_in_scene(&s),
                     1,
@@ -113,7 +113,7 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
                 );
             } else {
                 draw::apply(&mut sc, &second, &ApplyOptions::default(), &mut |_| {}).unwrap();
-                draw::verify(&mut sc, &second, &SceneNames::default()).unwrap();
+                draw::verify(&mut sc, &second, &ObjectNames::default()).unwrap();
                 assert_eq!(
                     lines_in_scene(&s),
                     second.lines.len(),
@@ -148,7 +148,7 @@ fn legacy_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
         );
         let mut sc = connect(s.local_addr().port());
         if repair_with_clear {
-            let r = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+            let r = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
             assert_eq!(r.restored_idle_fps, Some(8));
         } else {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();

@@ -5,18 +5,19 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use ciborium::Value;
+use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{
-    self, ApplyOptions, DrawError, Drawing, Edit, ObjectInfo, Scene as DrawScene, SceneError,
-    SceneNames, Survey,
+    self, ApplyOptions, Authoring, Backend, BackendError, DrawError, Drawing, Edit, ObjectInfo,
+    ObjectNames, Survey,
 };
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
-use vrep_maze::legacy::{self, LegacyScene};
+use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::{HANDLE_WORLD, Scene, Simulator};
+use vrep_maze::sim::{Scene, Simulator};
 use vrep_maze::zmq_api::cbor::{self, int};
 use vrep_maze::zmq_api::{
-    ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqScene, spawn, spawn_shared,
+    ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqBackend, spawn, spawn_shared,
 };
 
 fn drawing(n: u64, seed: u64) -> Drawing {
@@ -36,8 +37,8 @@ fn server(scene: Scene, fps: i32, protocol: Protocol) -> ServerHandle {
     spawn(config(protocol), Simulator::new(scene, fps)).unwrap()
 }
 
-fn connect(port: u16) -> ZmqScene {
-    ZmqScene::connect(&ClientOptions {
+fn connect(port: u16) -> ZmqBackend {
+    ZmqBackend::connect(&ClientOptions {
         port,
         timeout: Duration::from_secs(3),
         ..Default::default()
@@ -64,7 +65,7 @@ fn apply_and_reapply(protocol: Protocol) {
         8,
         "user's idle rate restored"
     );
-    draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+    draw::verify(&mut sc, &d, &ObjectNames::default()).unwrap();
     let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!(
         (again.pasted, again.removed, again.edits, again.reused),
@@ -75,14 +76,14 @@ fn apply_and_reapply(protocol: Protocol) {
     let r = draw::apply(&mut sc, &small, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!((r.pasted, r.removed), (0, 160 - small.lines.len()));
     assert!(matches!(
-        draw::verify(&mut sc, &d, &SceneNames::default()),
+        draw::verify(&mut sc, &d, &ObjectNames::default()),
         Err(DrawError::Verify(_))
     ));
-    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
     assert_eq!(c.removed.len(), small.lines.len() - 1);
     assert_eq!(line_count(&s), 1, "only the template is left");
     assert!(
-        draw::clear(&mut sc, &SceneNames::default(), false)
+        draw::clear(&mut sc, &ObjectNames::default(), false)
             .unwrap()
             .removed
             .is_empty()
@@ -106,7 +107,7 @@ fn zmq_create_missing_in_an_empty_scene() {
     let s = server(Scene::empty(), 0, Protocol::V2);
     let mut sc = connect(s.local_addr().port());
     let d = drawing(4, 1);
-    let names = SceneNames::default();
+    let names = ObjectNames::default();
     match draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress) {
         Err(DrawError::Missing { names, .. }) => {
             assert_eq!(names, ["Floor", "Maze", "Line", "Start", "End"])
@@ -185,29 +186,32 @@ fn zmq_refuses_a_running_simulation_and_stops_it_when_asked() {
 }
 
 /// Fails every edit: the idle rate must still be restored.
-struct FailingEdits(ZmqScene);
+struct FailingEdits(ZmqBackend);
 
-impl DrawScene for FailingEdits {
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError> {
+impl Backend for FailingEdits {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
         self.0.survey(names)
     }
-    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         self.0.objects()
     }
-    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError> {
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         self.0.copy_paste(groups)
     }
-    fn edit(&mut self, _: &[Edit]) -> Result<(), SceneError> {
-        Err(SceneError::Remote("injected failure".into()))
+    fn edit(&mut self, _: &[Edit]) -> Result<(), BackendError> {
+        Err(BackendError::Remote("injected failure".into()))
     }
-    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
         self.0.set_idle_fps(fps, saved)
     }
-    fn stop_simulation(&mut self) -> Result<(), SceneError> {
+    fn stop_simulation(&mut self) -> Result<(), BackendError> {
         self.0.stop_simulation()
     }
     fn round_trips(&self) -> usize {
         self.0.round_trips()
+    }
+    fn describe(&self) -> String {
+        format!("{} failing every edit", self.0.describe())
     }
 }
 
@@ -261,8 +265,8 @@ fn zmq_and_legacy_draw_the_same_scene() {
         Simulator::new(Scene::course(), 0),
     )
     .unwrap();
-    let mut l =
-        LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
+    let mut l = LegacyBackend::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3))
+        .unwrap();
     draw::apply(&mut l, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     l.close().unwrap();
     let z = server(Scene::course(), 0, Protocol::V2);
@@ -292,10 +296,10 @@ fn zmq_and_legacy_share_one_scene_with_api_both() {
     draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     drop(sc);
     // verified through the other API
-    let mut l =
-        LegacyScene::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3)).unwrap();
-    draw::verify(&mut l, &d, &SceneNames::default()).unwrap();
-    let cleared = draw::clear(&mut l, &SceneNames::default(), false).unwrap();
+    let mut l = LegacyBackend::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3))
+        .unwrap();
+    draw::verify(&mut l, &d, &ObjectNames::default()).unwrap();
+    let cleared = draw::clear(&mut l, &ObjectNames::default(), false).unwrap();
     assert_eq!(cleared.removed.len(), d.lines.len() - 1);
     l.close().unwrap();
     let mut c = vrep_maze::zmq_api::Client::connect(&ClientOptions {
@@ -333,7 +337,7 @@ fn zmq_template_inside_the_maze_dummy_is_kept_and_reused() {
     assert_eq!(r.pasted, d.lines.len() - 1);
     let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!((again.pasted, again.edits), (0, 0), "{again}");
-    let c = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
     assert_eq!(c.removed.len(), d.lines.len() - 1);
     assert_eq!(line_count(&s), 1);
     drop(sc);

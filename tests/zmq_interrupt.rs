@@ -5,12 +5,12 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use vrep_maze::draw::{self, ApplyOptions, Drawing, SceneNames};
+use vrep_maze::draw::{self, ApplyOptions, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Scene, Simulator};
-use vrep_maze::zmq_api::{ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqScene, spawn};
+use vrep_maze::zmq_api::{ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqBackend, spawn};
 
 /// Forwards `limit` requests to `target`, then goes silent. Returns its port.
 fn cutting_proxy(target: u16, limit: usize, stop: Arc<AtomicBool>) -> u16 {
@@ -53,8 +53,8 @@ fn cutting_proxy(target: u16, limit: usize, stop: Arc<AtomicBool>) -> u16 {
     port
 }
 
-fn connect(port: u16, ms: u64) -> Result<ZmqScene, draw::SceneError> {
-    ZmqScene::connect(&ClientOptions {
+fn connect(port: u16, ms: u64) -> Result<ZmqBackend, draw::BackendError> {
+    ZmqBackend::connect(&ClientOptions {
         port,
         timeout: Duration::from_millis(ms),
         ..Default::default()
@@ -96,13 +96,13 @@ fn zmq_apply_cut_at_any_call_is_repaired() {
         let proxy = cutting_proxy(s.local_addr().port(), limit, stop.clone());
         let cut = connect(proxy, 300).and_then(|mut sc| {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {})
-                .map_err(|e| draw::SceneError::Transport(e.to_string()))
+                .map_err(|e| draw::BackendError::Transport(e.to_string()))
         });
         assert!(cut.is_err(), "cut after {limit} calls should fail");
         stop.store(true, Ordering::SeqCst);
         let mut sc = connect(s.local_addr().port(), 3000).unwrap();
         if i % 3 == 2 {
-            draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+            draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
             assert_eq!(
                 lines(&s),
                 1,
@@ -111,7 +111,7 @@ fn zmq_apply_cut_at_any_call_is_repaired() {
         } else {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
             assert_eq!(lines(&s), d.lines.len(), "apply after a cut at {limit}");
-            draw::verify(&mut sc, &d, &SceneNames::default()).unwrap();
+            draw::verify(&mut sc, &d, &ObjectNames::default()).unwrap();
         }
         drop(sc);
         s.shutdown();
@@ -140,7 +140,7 @@ fn zmq_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
         let proxy = cutting_proxy(s.local_addr().port(), 30, stop.clone());
         let cut = connect(proxy, 300).and_then(|mut sc| {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {})
-                .map_err(|e| draw::SceneError::Transport(e.to_string()))
+                .map_err(|e| draw::BackendError::Transport(e.to_string()))
         });
         assert!(cut.is_err());
         stop.store(true, Ordering::SeqCst);
@@ -151,7 +151,7 @@ fn zmq_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
         );
         let mut sc = connect(s.local_addr().port(), 3000).unwrap();
         if repair_with_clear {
-            let report = draw::clear(&mut sc, &SceneNames::default(), false).unwrap();
+            let report = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
             assert_eq!(report.restored_idle_fps, Some(8));
         } else {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();

@@ -6,12 +6,12 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use super::backend::{Api, Backend};
-use crate::draw::{self, ApplyOptions, Drawing, SceneNames, Stage};
+use super::connect::{Api, connect};
+use crate::draw::{self, ApplyOptions, Backend, Drawing, ObjectNames, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
 #[derive(Debug, Clone, clap::Args)]
-pub struct SceneArgs {
+pub struct ConnectArgs {
     /// Host running CoppeliaSim (dotted IPv4 or a name).
     #[arg(long, default_value = "127.0.0.1")]
     pub host: String,
@@ -42,10 +42,10 @@ pub struct SceneArgs {
     pub timeout: f64,
 }
 
-impl SceneArgs {
+impl ConnectArgs {
     /// The object names.
-    pub fn names(&self) -> SceneNames {
-        SceneNames {
+    pub fn names(&self) -> ObjectNames {
+        ObjectNames {
             floor: self.floor.clone(),
             parent: self.parent.clone(),
             line: self.line.clone(),
@@ -56,12 +56,12 @@ impl SceneArgs {
 
     /// Connects to the simulator over the chosen API; with `auto` (and over ZeroMQ) says
     /// which API and version answered.
-    pub fn connect(&self) -> anyhow::Result<Backend> {
+    pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
         anyhow::ensure!(
             self.timeout > 0.0 && self.timeout.is_finite(),
             "--timeout must be a positive number of seconds"
         );
-        let backend = Backend::connect(
+        let backend = connect(
             self.api,
             &self.host,
             self.port,
@@ -84,7 +84,7 @@ pub struct ApplyArgs {
     pub layout: PathBuf,
     /// Connection and object names.
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub scene: ConnectArgs,
     /// Stop a running simulation first (changes made while it runs would be lost).
     #[arg(long)]
     pub stop_simulation: bool,
@@ -112,24 +112,23 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     };
     let zmq_only = args.create_missing || args.save_scene.is_some();
     anyhow::ensure!(
-        !zmq_only || args.scene.api != super::backend::Api::Legacy,
+        !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
     );
     let mut backend = args.scene.connect()?;
     if args.create_missing && !args.dry_run {
-        let Some(z) = backend.zmq() else {
+        let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = z
+        let created = authoring
             .create_missing(&opts.names)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
             println!("created {}", created.join(", "));
         }
     }
-    let scene = backend.scene();
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(drawing.lines.len() as u64);
         b.set_style(
@@ -155,7 +154,7 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
             }
         }
     };
-    let result = draw::apply(scene, &drawing, &opts, &mut progress);
+    let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -163,16 +162,17 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Some(path) = &args.save_scene
         && !args.dry_run
     {
-        let Some(z) = backend.zmq() else {
+        let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
                 "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        z.save_scene(path)
+        authoring
+            .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
         println!("saved the scene to {path} (on the simulator's machine)");
     }
-    backend.close();
+    let _ = backend.close();
     if report.stopped_simulation {
         println!("stopped the simulation first");
     }

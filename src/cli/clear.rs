@@ -1,6 +1,6 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
-use super::apply::SceneArgs;
+use super::apply::ConnectArgs;
 use crate::draw;
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
@@ -12,7 +12,7 @@ use crate::draw;
 pub struct ClearArgs {
     /// Connection and object names.
     #[command(flatten)]
-    pub scene: SceneArgs,
+    pub scene: ConnectArgs,
     /// Only list what would be removed.
     #[arg(long)]
     pub dry_run: bool,
@@ -21,8 +21,8 @@ pub struct ClearArgs {
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut backend = args.scene.connect()?;
-    let report = draw::clear(backend.scene(), &args.scene.names(), args.dry_run)?;
-    backend.close();
+    let report = draw::clear(backend.as_mut(), &args.scene.names(), args.dry_run)?;
+    let _ = backend.close();
     let verb = if args.dry_run {
         "would remove"
     } else {

@@ -11,19 +11,17 @@ use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 
 use super::validate::{describe, print_metrics};
-use crate::draw::{self, ApplyOptions, Drawing, SceneNames};
+use crate::coppelia::DEFAULT_IDLE_FPS;
+use crate::draw::{self, ApplyOptions, Drawing, ObjectNames};
 use crate::generate::Algorithm;
 use crate::layout::geometry::course;
 use crate::layout::{GenerateSpec, build_layout};
-use crate::legacy::scene::LegacyScene;
+use crate::legacy::LegacyBackend;
 use crate::legacy::server::{ServerConfig, spawn};
 use crate::maze::Grid;
 use crate::render::{Format, RenderOptions};
 use crate::sim::{Scene as SimScene, Simulator};
 use crate::validate::validate;
-
-/// CoppeliaSim's idle rate while the simulation is stopped.
-const DEFAULT_IDLE_FPS: i32 = 8;
 
 /// Options of `demo`.
 #[derive(Debug, Args)]
@@ -79,9 +77,9 @@ fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
     let port = server.local_addr().port();
     let drawing = Drawing::from(layout);
     let result = (|| -> Result<String> {
-        let mut scene = LegacyScene::connect("127.0.0.1", port, Duration::from_secs(10))?;
+        let mut scene = LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(10))?;
         let report = draw::apply(&mut scene, &drawing, &ApplyOptions::default(), &mut |_| {})?;
-        draw::verify(&mut scene, &drawing, &SceneNames::default())?;
+        draw::verify(&mut scene, &drawing, &ObjectNames::default())?;
         Ok(report.to_string())
     })();
     let lines = server.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count());

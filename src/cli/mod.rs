@@ -1,10 +1,10 @@
 //! The `vrep-maze` command line: a thin layer over the library. One file per command.
 
 mod apply;
-mod backend;
 mod batch;
 mod clear;
 mod completions;
+mod connect;
 mod demo;
 mod generate;
 mod output;
@@ -80,7 +80,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
 }
 
 /// The error and its causes on one line.
-fn one_line(error: &anyhow::Error) -> String {
+pub(crate) fn one_line(error: &anyhow::Error) -> String {
     format!("{error:#}").replace('\n', " ")
 }
 

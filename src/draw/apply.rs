@@ -5,14 +5,14 @@ use std::time::{Duration, Instant};
 
 use super::plan::{self, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    DrawError, Drawing, Edit, Handles, ObjectInfo, Scene, SceneNames, resolve_handles, verify,
+    Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, ObjectNames, resolve_handles, verify,
 };
 
 /// Options of [`apply`].
 #[derive(Debug, Clone)]
 pub struct ApplyOptions {
-    /// Scene object names.
-    pub names: SceneNames,
+    /// Backend object names.
+    pub names: ObjectNames,
     /// Stop a running simulation instead of refusing.
     pub stop_simulation: bool,
     /// Only survey and plan; change nothing.
@@ -24,7 +24,7 @@ pub struct ApplyOptions {
 impl Default for ApplyOptions {
     fn default() -> Self {
         ApplyOptions {
-            names: SceneNames::default(),
+            names: ObjectNames::default(),
             stop_simulation: false,
             dry_run: false,
             paste_blocks_per_round: 16,
@@ -35,7 +35,7 @@ impl Default for ApplyOptions {
 /// Progress of [`apply`], for a progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stage {
-    /// Scene read.
+    /// Backend read.
     Surveyed,
     /// Copies pasted so far / to paste.
     Pasting {
@@ -95,7 +95,7 @@ impl std::fmt::Display for ApplyReport {
 /// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) while
 /// drawing and restored afterwards, also on error.
 pub fn apply(
-    scene: &mut dyn Scene,
+    scene: &mut dyn Backend,
     drawing: &Drawing,
     opts: &ApplyOptions,
     progress: &mut dyn FnMut(Stage),
@@ -160,7 +160,7 @@ pub fn apply(
 
 #[allow(clippy::too_many_arguments)]
 fn draw(
-    scene: &mut dyn Scene,
+    scene: &mut dyn Backend,
     drawing: &Drawing,
     opts: &ApplyOptions,
     h: &Handles,
@@ -188,7 +188,7 @@ fn draw(
         });
     }
     if pasted < p.paste {
-        return Err(super::SceneError::Remote(format!(
+        return Err(super::BackendError::Remote(format!(
             "copy-paste produced {pasted} of {} copies",
             p.paste
         ))

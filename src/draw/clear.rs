@@ -2,7 +2,7 @@
 //! copies of the line template left by an interrupted run. Templates stay where they are.
 
 use super::plan::maze_lines;
-use super::{DrawError, Edit, Scene, SceneNames, resolve_handles};
+use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
 
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -18,8 +18,8 @@ pub struct ClearReport {
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
 /// interrupted `apply`. With `dry_run` only lists them.
 pub fn clear(
-    scene: &mut dyn Scene,
-    names: &SceneNames,
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
     dry_run: bool,
 ) -> Result<ClearReport, DrawError> {
     let rt0 = scene.round_trips();

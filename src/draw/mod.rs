@@ -1,7 +1,7 @@
 //! Backend-neutral drawing of a maze into a CoppeliaSim scene.
 //!
-//! A backend (the legacy remote API in [`crate::legacy::scene`], later ZeroMQ) implements
-//! [`Scene`]: a handful of batched operations, each costing one round trip. [`apply()`] draws a
+//! A backend ([`crate::legacy::LegacyBackend`], [`crate::zmq_api::ZmqBackend`]) implements
+//! [`Backend`]: a handful of scene operations, batched where the protocol allows. [`apply()`] draws a
 //! [`Drawing`] (reusing earlier copies of the `Line` template, pasting only the missing ones,
 //! removing the surplus), [`clear()`] removes a drawn maze and [`verify()`] compares the scene with
 //! a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
@@ -44,7 +44,7 @@ pub struct Drawing {
 
 /// Names of the scene objects a drawing needs.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SceneNames {
+pub struct ObjectNames {
     /// Reference frame of every coordinate (`Floor`).
     pub floor: String,
     /// Dummy every line is a child of (`Maze`).
@@ -57,9 +57,9 @@ pub struct SceneNames {
     pub end: String,
 }
 
-impl Default for SceneNames {
+impl Default for ObjectNames {
     fn default() -> Self {
-        SceneNames {
+        ObjectNames {
             floor: "Floor".into(),
             parent: "Maze".into(),
             line: "Line".into(),
@@ -69,7 +69,7 @@ impl Default for SceneNames {
     }
 }
 
-impl SceneNames {
+impl ObjectNames {
     /// Names in the order floor, parent, line, start, end.
     pub fn all(&self) -> [&str; 5] {
         [
@@ -154,7 +154,7 @@ pub struct Survey {
     pub simulation_running: bool,
 }
 
-/// A scene edit; [`Scene::edit`] applies a list of them in order, in one round trip.
+/// A scene edit; [`Backend::edit`] applies a list of them in order, in one round trip.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Edit {
     /// Set the parent (`None` = no parent).
@@ -183,7 +183,7 @@ pub enum Edit {
 
 /// A failed backend operation.
 #[derive(Debug, thiserror::Error)]
-pub enum SceneError {
+pub enum BackendError {
     /// Connection or protocol failure.
     #[error("{0}")]
     Transport(String),
@@ -192,25 +192,52 @@ pub enum SceneError {
     Remote(String),
 }
 
-/// The operations drawing needs; each call is one round trip (one batched request).
-pub trait Scene {
+/// A connection to a simulator that can draw: the operations [`apply()`], [`clear()`] and
+/// [`verify()`] need.
+///
+/// Contract: each operation uses as few messages as its protocol allows (the legacy API sends
+/// each call as one batched request; the ZeroMQ API has no batching and sends one call per
+/// object where it must); [`Backend::round_trips`] reports the cost so far. Errors leave the
+/// scene in a state that a later [`apply()`] or [`clear()`] repairs.
+pub trait Backend {
     /// Resolves `names`, lists all objects (name, parent, world pose), reads the idle rate
     /// and the simulation state.
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError>;
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError>;
     /// Lists all objects.
-    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError>;
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError>;
     /// Copy-pastes each group; returns the new handles of each group.
-    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError>;
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError>;
     /// Applies edits in order.
-    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError>;
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError>;
     /// Sets `sim_intparam_idle_fps` and, in the same request, records `saved` (the user's
     /// rate, so that a later run can restore it if this one is interrupted) or, with `None`,
     /// deletes the record.
-    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError>;
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError>;
     /// Stops the simulation and waits until it is stopped.
-    fn stop_simulation(&mut self) -> Result<(), SceneError>;
-    /// Round trips so far.
+    fn stop_simulation(&mut self) -> Result<(), BackendError>;
+    /// Messages exchanged with the simulator so far (requests with their replies).
     fn round_trips(&self) -> usize;
+    /// One line naming the API, where it answered and, if known, the simulator's version.
+    fn describe(&self) -> String;
+    /// Ends the connection the way the official client does, so the simulator is ready for
+    /// the next client at once. Dropping a backend closes it too, ignoring errors.
+    fn close(&mut self) -> Result<(), BackendError> {
+        Ok(())
+    }
+    /// What this backend can do beyond drawing, if anything (the ZeroMQ API can create
+    /// objects and save the scene; the legacy API cannot).
+    fn authoring(&mut self) -> Option<&mut dyn Authoring> {
+        None
+    }
+}
+
+/// Scene authoring that only some APIs offer: see [`Backend::authoring`].
+pub trait Authoring {
+    /// Creates the objects of `names` that the scene lacks (the course's sizes and colours);
+    /// returns the names it created.
+    fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError>;
+    /// Saves the scene to `path` on the simulator's machine.
+    fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
 }
 
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
@@ -231,14 +258,14 @@ pub enum DrawError {
     SimulationRunning,
     /// Backend failure.
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Backend(#[from] BackendError),
     /// The scene does not match the drawing after drawing it.
     #[error("verification failed, {} difference(s):\n  {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("\n  "))]
     Verify(Vec<String>),
 }
 
 /// Resolves the names of a survey into [`Handles`] or a [`DrawError::Missing`].
-pub fn resolve_handles(names: &SceneNames, survey: &Survey) -> Result<Handles, DrawError> {
+pub fn resolve_handles(names: &ObjectNames, survey: &Survey) -> Result<Handles, DrawError> {
     let all = names.all();
     let missing: Vec<String> = all
         .iter()

@@ -2,7 +2,7 @@
 //! reuse and remove.
 
 use super::{Handles, ObjectInfo, Pose};
-use crate::sim::frame::{Frame, frame, position_euler, wrap_angle};
+use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
 pub const POSITION_TOLERANCE: f64 = 1e-4;

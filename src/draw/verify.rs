@@ -2,7 +2,7 @@
 //! copies parented to the maze dummy, and no other maze lines.
 
 use super::plan::{maze_lines, pose_differences, world_frame};
-use super::{DrawError, Drawing, Handles, ObjectInfo, Scene, SceneNames, resolve_handles};
+use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, resolve_handles};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
 /// `drawing.lines[i]` (`lines[0]` is the template). Empty when the scene matches.
@@ -84,9 +84,9 @@ pub fn check(
 /// segment), copies must be children of the maze dummy, no other maze line may exist, and
 /// `Start`/`End` must be in place. One round trip.
 pub fn verify(
-    scene: &mut dyn Scene,
+    scene: &mut dyn Backend,
     drawing: &Drawing,
-    names: &SceneNames,
+    names: &ObjectNames,
 ) -> Result<(), DrawError> {
     let survey = scene.survey(&names.all())?;
     let h = resolve_handles(names, &survey)?;

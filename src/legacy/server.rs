@@ -16,8 +16,9 @@ use std::time::{Duration, Instant};
 
 use super::command::{Command, GroupData, SimControl, encode_handle_list, id, opmode};
 use super::wire::{Block, MAX_PACKET_SIZE, Message, MessageHeader, read_message, write_message};
-use crate::sim::frame::rotation_from_euler;
-use crate::sim::{HANDLE_PARENT, HANDLE_WORLD, SimState, Simulator};
+use crate::coppelia::frame::rotation_from_euler;
+use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
+use crate::sim::{Clock, SimState, Simulator};
 
 /// Server settings.
 #[derive(Debug, Clone)]
@@ -28,8 +29,8 @@ pub struct ServerConfig {
     pub max_packet_size: usize,
     /// A client silent for this long is dropped (CoppeliaSim: 10 s).
     pub idle_timeout: Duration,
-    /// Duration of one simulation step while running.
-    pub step: Duration,
+    /// When the emulated main loop passes (the simulation step while running).
+    pub clock: Clock,
     /// Write the scene as JSON here after every session and on shutdown.
     pub dump: Option<PathBuf>,
     /// Print one line per connection and protocol error on stderr.
@@ -47,7 +48,7 @@ impl Default for ServerConfig {
             listen: SocketAddr::from(([127, 0, 0, 1], 19997)),
             max_packet_size: MAX_PACKET_SIZE,
             idle_timeout: Duration::from_secs(10),
-            step: Duration::from_millis(50),
+            clock: Clock::default(),
             dump: None,
             verbose: false,
             trace: false,
@@ -394,37 +395,30 @@ fn store(input: &mut Vec<Stored>, blocks: Vec<Block>) {
     }
 }
 
+/// How often a waiting main loop checks whether the server is stopping.
+const STOP_POLL: Duration = Duration::from_millis(50);
+
 fn main_loop(shared: &Shared) {
     let mut last_pass = Instant::now();
     let mut core = shared.lock();
     while !shared.stop.load(Ordering::SeqCst) {
-        let period = match core.sim.state {
-            SimState::Running => Some(shared.config.step),
-            _ if core.sim.idle_fps <= 0 => None,
-            _ => Some(Duration::from_secs_f64(1.0 / core.sim.idle_fps as f64)),
+        let next = shared
+            .config
+            .clock
+            .next_pass(core.sim.state, core.sim.idle_fps, last_pass);
+        // with no pass due (idle fps 0), wait for input; wake regularly to see `stop`
+        let wait = match next {
+            None if core.new_input => None,
+            None => Some(STOP_POLL),
+            Some(at) => at.checked_duration_since(Instant::now()),
         };
-        match period {
-            None if !core.new_input => {
-                core = shared
-                    .wake
-                    .wait_timeout(core, Duration::from_millis(50))
-                    .unwrap_or_else(|e| e.into_inner())
-                    .0;
-                continue;
-            }
-            Some(p) => {
-                let now = Instant::now();
-                if now < last_pass + p {
-                    let wait = last_pass + p - now;
-                    core = shared
-                        .wake
-                        .wait_timeout(core, wait)
-                        .unwrap_or_else(|e| e.into_inner())
-                        .0;
-                    continue;
-                }
-            }
-            None => {}
+        if let Some(wait) = wait.filter(|w| !w.is_zero()) {
+            core = shared
+                .wake
+                .wait_timeout(core, wait.min(STOP_POLL))
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+            continue;
         }
         last_pass = Instant::now();
         core.new_input = false;
@@ -449,7 +443,7 @@ fn pass(shared: &Shared, core: &mut Core) {
     if core.sim.state == SimState::Running {
         core.sim_time_ms = core
             .sim_time_ms
-            .wrapping_add(shared.config.step.as_millis() as i32);
+            .wrapping_add(shared.config.clock.step.as_millis() as i32);
     }
     let header = MessageHeader {
         message_id: core.latest_id,

@@ -4,22 +4,17 @@
 //! scene: the simulation state (changes made while running are undone on stop), the idle
 //! main-loop rate (`sim_intparam_idle_fps`) and integer parameters.
 
-pub mod frame;
+pub mod clock;
 pub mod scene;
 pub mod svg;
 
-pub use scene::{
-    HANDLE_PARENT, HANDLE_WORLD, NamingMode, NewObject, Object, ObjectType, Scene, SimError,
-};
+use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
-/// `sim_intparam_program_version`.
-pub const INTPARAM_PROGRAM_VERSION: i32 = 1;
-/// `sim_intparam_idle_fps`.
-pub const INTPARAM_IDLE_FPS: i32 = 26;
+pub use clock::Clock;
+pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
+
 /// The program version we report (CoppeliaSim 4.5.1).
 pub const PROGRAM_VERSION: i32 = 40501;
-/// CoppeliaSim's default idle rate.
-pub const DEFAULT_IDLE_FPS: i32 = 8;
 
 /// Simulation state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -121,6 +116,7 @@ impl Simulator {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::coppelia::DEFAULT_IDLE_FPS;
 
     #[test]
     fn changes_while_running_are_undone() {

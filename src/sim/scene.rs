@@ -4,12 +4,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::frame::{Frame, frame, position_euler};
-
-/// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.
-pub const HANDLE_WORLD: i32 = -1;
-/// `sim_handle_parent`: relative to the object's parent frame.
-pub const HANDLE_PARENT: i32 = -11;
+use crate::coppelia::frame::{Frame, frame, position_euler};
+use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
 
 /// Errors of scene operations (each maps to a remote error on the wire).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -408,7 +404,7 @@ impl Scene {
     ) -> Result<(), SimError> {
         let rel = self.reference(handle, relative_to)?;
         let mut world = self.world(handle)?;
-        world.rotation = rel.rotation * super::frame::rotation_from_euler(e);
+        world.rotation = rel.rotation * crate::coppelia::frame::rotation_from_euler(e);
         self.set_world(handle, world)
     }
 

@@ -11,28 +11,13 @@ use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
 use super::message::Protocol;
-use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
-use crate::sim::{
-    HANDLE_PARENT, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, NewObject,
-    ObjectType, SimState, Simulator,
+use crate::coppelia::frame::{euler_from_rotation, rotation_from_euler};
+use crate::coppelia::{
+    HANDLE_ALL, HANDLE_PARENT, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
+    INTPARAM_PROGRAM_VERSION, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_COLLIDABLE,
+    SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
-
-/// `sim.handle_all`.
-pub const HANDLE_ALL: i32 = -2;
-/// `sim.handle_scene`.
-pub const HANDLE_SCENE: i32 = -12;
-/// `sim.shapeintparam_static`.
-pub const SHAPEINTPARAM_STATIC: i32 = 3003;
-/// `sim.shapeintparam_respondable`.
-pub const SHAPEINTPARAM_RESPONDABLE: i32 = 3004;
-/// `sim.objectspecialproperty_collidable`.
-pub const SPECIAL_COLLIDABLE: i32 = 1;
-/// `sim.objectspecialproperty_measurable`.
-pub const SPECIAL_MEASURABLE: i32 = 2;
-/// `sim.objectspecialproperty_detectable` (all proximity-sensor kinds).
-pub const SPECIAL_DETECTABLE: i32 = 496;
-/// `sim.objectspecialproperty_renderable` (seen by vision sensors: the robot's camera).
-pub const SPECIAL_RENDERABLE: i32 = 2048;
+use crate::sim::{NewObject, ObjectType, SimState, Simulator};
 
 /// The program version a protocol-2 server reports (CoppeliaSim 4.10.0); a protocol-1
 /// server reports the scene model's 4.5.1.
@@ -632,7 +617,8 @@ fn new_object(kind: ObjectType, size: [f64; 3], colour: [u8; 3]) -> NewObject {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::{DEFAULT_IDLE_FPS, Scene};
+    use crate::coppelia::DEFAULT_IDLE_FPS;
+    use crate::sim::Scene;
 
     fn run(sim: &mut Simulator, func: &str, args: Vec<Value>) -> Outcome {
         call(sim, &mut Extras::default(), Protocol::V2, func, &args)

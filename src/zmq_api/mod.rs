@@ -3,16 +3,16 @@
 //! [`crate::sim`], and the drawing backend.
 //!
 //! Layers: [`cbor`] (values) → [`message`] (request and reply maps) → [`client`] /
-//! [`server`] + [`functions`] → [`scene`] (the [`crate::draw::Scene`] implementation).
+//! [`server`] + [`functions`] → [`backend`] (the [`crate::draw::Backend`] implementation).
 
+pub mod backend;
 pub mod cbor;
 pub mod client;
 pub mod functions;
 pub mod message;
-pub mod scene;
 pub mod server;
 
+pub use backend::ZmqBackend;
 pub use client::{Client, ClientOptions, ClientStats, ZmqError};
 pub use message::Protocol;
-pub use scene::ZmqScene;
 pub use server::{ServerConfig, ServerHandle, SimHost, spawn, spawn_shared};

@@ -1,8 +1,8 @@
 //! An emulated ZeroMQ remote API server (the CoppeliaSim add-on) over a shared [`Simulator`].
 //!
-//! One REP socket, one thread. While the simulation is stopped, the add-on serves requests
-//! from its idle loop: a request arriving within 50 ms of the previous reply is served at
-//! once, a later one waits for the next idle pass (1 / `idle_fps`; none at idle fps 0).
+//! One REP socket, one thread. The add-on serves requests from CoppeliaSim's main loop, timed
+//! by [`Clock::serve_at`]: a request arriving within the busy window of the previous reply is
+//! served at once, a later one waits for the next pass (1 / `idle_fps`; none at idle fps 0).
 
 use std::collections::HashMap;
 use std::net::SocketAddr;
@@ -10,14 +10,14 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use ciborium::Value;
 
 use super::cbor;
 use super::functions::{self, Extras, Outcome};
 use super::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
-use crate::sim::Simulator;
+use crate::sim::{Clock, SimState, Simulator};
 
 /// Where the simulator lives: its own mutex, or shared with the legacy server (`--api both`).
 pub trait SimHost: Send + Sync {
@@ -44,8 +44,8 @@ pub struct ServerConfig {
     pub listen: SocketAddr,
     /// Protocol generation to speak.
     pub protocol: Protocol,
-    /// How long the add-on keeps polling after a message before going back to idle passes.
-    pub busy_window: Duration,
+    /// When the emulated main loop serves a request.
+    pub clock: Clock,
     /// Write the scene as JSON here on shutdown.
     pub dump: Option<PathBuf>,
     /// Log requests that fail on stderr.
@@ -57,7 +57,7 @@ impl Default for ServerConfig {
         ServerConfig {
             listen: SocketAddr::from(([127, 0, 0, 1], 23000)),
             protocol: Protocol::V2,
-            busy_window: Duration::from_millis(50),
+            clock: Clock::default(),
             dump: None,
             verbose: false,
         }
@@ -198,11 +198,18 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
             Err(zmq::Error::EAGAIN) => continue,
             Err(_) => break,
         };
+        let arrived = Instant::now();
         requests.fetch_add(1, Ordering::SeqCst);
-        let mut fps = 0;
-        state.host.with_sim(&mut |s| fps = s.idle_fps);
-        if fps > 0 && last_reply.is_none_or(|t| t.elapsed() > state.config.busy_window) {
-            std::thread::sleep(Duration::from_secs_f64(1.0 / f64::from(fps)));
+        let (mut sim_state, mut fps) = (SimState::Stopped, 0);
+        state
+            .host
+            .with_sim(&mut |s| (sim_state, fps) = (s.state, s.idle_fps));
+        let at = state
+            .config
+            .clock
+            .serve_at(sim_state, fps, arrived, last_reply);
+        if let Some(wait) = at.checked_duration_since(Instant::now()) {
+            std::thread::sleep(wait);
         }
         let reply = handle(state, &bytes);
         // a REP socket must answer before it can receive again; a failed send drops the client

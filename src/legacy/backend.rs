@@ -1,4 +1,4 @@
-//! The legacy remote API as a drawing backend: [`crate::draw::Scene`] over [`Client`].
+//! The legacy remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
 
 use std::time::{Duration, Instant};
 
@@ -6,25 +6,31 @@ use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
-use crate::draw::{Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Scene, SceneError, Survey};
-use crate::sim::INTPARAM_IDLE_FPS;
+use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
+use crate::draw::{Backend, BackendError, Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey};
 
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
-pub struct LegacyScene {
+pub struct LegacyBackend {
     client: Option<Client>,
     timeout: Duration,
+    /// `host:port` as the user gave it, for [`Backend::describe`].
+    addr: String,
 }
 
-impl From<ClientError> for SceneError {
-    fn from(e: ClientError) -> SceneError {
-        SceneError::Transport(e.to_string())
+impl From<ClientError> for BackendError {
+    fn from(e: ClientError) -> BackendError {
+        BackendError::Transport(e.to_string())
     }
 }
 
-impl LegacyScene {
+impl LegacyBackend {
     /// Connects to `host:port`, retrying for up to `timeout`, which is also the timeout of
     /// each request.
-    pub fn connect(host: &str, port: u16, timeout: Duration) -> Result<LegacyScene, SceneError> {
+    pub fn connect(
+        host: &str,
+        port: u16,
+        timeout: Duration,
+    ) -> Result<LegacyBackend, BackendError> {
         let opts = ClientOptions {
             connect_timeout: timeout,
             reply_timeout: timeout,
@@ -35,41 +41,35 @@ impl LegacyScene {
         } else {
             format!("{host}:{port}")
         };
-        let client = Client::connect(addr, opts)?;
-        Ok(LegacyScene {
+        let client = Client::connect(&addr, opts)?;
+        Ok(LegacyBackend {
             client: Some(client),
             timeout,
+            addr,
         })
     }
 
     /// Wraps a connected client.
-    pub fn new(client: Client, timeout: Duration) -> LegacyScene {
-        LegacyScene {
+    pub fn new(client: Client, timeout: Duration) -> LegacyBackend {
+        LegacyBackend {
             client: Some(client),
             timeout,
+            addr: "a connected client".into(),
         }
     }
 
-    fn client(&mut self) -> Result<&mut Client, SceneError> {
+    fn client(&mut self) -> Result<&mut Client, BackendError> {
         self.client
             .as_mut()
-            .ok_or_else(|| SceneError::Transport("connection already closed".into()))
+            .ok_or_else(|| BackendError::Transport("connection already closed".into()))
     }
 
-    /// Sends the kill command and closes the socket.
-    pub fn close(mut self) -> Result<(), SceneError> {
-        match self.client.take() {
-            Some(c) => Ok(c.close()?),
-            None => Ok(()),
-        }
-    }
-
-    fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, SceneError> {
+    fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, BackendError> {
         Ok(self.client()?.call(commands)?)
     }
 }
 
-impl Drop for LegacyScene {
+impl Drop for LegacyBackend {
     fn drop(&mut self) {
         if let Some(c) = self.client.take() {
             let _ = c.close();
@@ -84,10 +84,10 @@ fn group_commands() -> [Command; 3] {
     })
 }
 
-fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, SceneError> {
-    let bad = |what: &str| SceneError::Transport(format!("malformed group data reply ({what})"));
+fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, BackendError> {
+    let bad = |what: &str| BackendError::Transport(format!("malformed group data reply ({what})"));
     if replies.iter().any(|r| r.remote_error) {
-        return Err(SceneError::Remote(
+        return Err(BackendError::Remote(
             "reading the object list (group data) failed".into(),
         ));
     }
@@ -120,8 +120,8 @@ fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, SceneError> {
         .collect())
 }
 
-impl Scene for LegacyScene {
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError> {
+impl Backend for LegacyBackend {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
         let mut cmds: Vec<Command> = names
             .iter()
             .map(|n| Command::GetObjectHandle(n.to_string()))
@@ -162,12 +162,12 @@ impl Scene for LegacyScene {
         })
     }
 
-    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         let r = self.call(&group_commands())?;
         parse_objects(&r)
     }
 
-    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError> {
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         let cmds: Vec<Command> = groups
             .iter()
             .map(|g| Command::CopyPaste(g.clone()))
@@ -178,7 +178,7 @@ impl Scene for LegacyScene {
             .zip(r)
             .map(|(g, r)| match decode_handle_list(&r.data) {
                 Some(new) if !r.remote_error && new.len() == g.len() => Ok(new),
-                _ => Err(SceneError::Remote(format!(
+                _ => Err(BackendError::Remote(format!(
                     "copy-paste of {} object(s) failed",
                     g.len()
                 ))),
@@ -186,7 +186,7 @@ impl Scene for LegacyScene {
             .collect()
     }
 
-    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError> {
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
         let mut cmds = Vec::with_capacity(edits.len() * 2);
         let mut what = Vec::with_capacity(edits.len() * 2);
         let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
@@ -239,7 +239,7 @@ impl Scene for LegacyScene {
         if failed.is_empty() {
             Ok(())
         } else {
-            Err(SceneError::Remote(format!(
+            Err(BackendError::Remote(format!(
                 "{} of {} edits failed: {}",
                 failed.len(),
                 what.len(),
@@ -248,7 +248,7 @@ impl Scene for LegacyScene {
         }
     }
 
-    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
         let record = match saved {
             Some(v) => Command::SetIntSignal(SAVED_IDLE_FPS_SIGNAL.into(), v),
             None => Command::ClearIntSignal(SAVED_IDLE_FPS_SIGNAL.into()),
@@ -256,7 +256,7 @@ impl Scene for LegacyScene {
         // record first: if setting the rate fails, the record still tells the next run
         let r = self.call(&[record, Command::SetIntParam(INTPARAM_IDLE_FPS, fps)])?;
         if r[1].remote_error {
-            Err(SceneError::Remote(format!(
+            Err(BackendError::Remote(format!(
                 "setting the idle rate to {fps} fps"
             )))
         } else {
@@ -264,19 +264,19 @@ impl Scene for LegacyScene {
         }
     }
 
-    fn stop_simulation(&mut self) -> Result<(), SceneError> {
+    fn stop_simulation(&mut self) -> Result<(), BackendError> {
         let deadline = Instant::now() + self.timeout;
         self.client()?
             .call1(Command::Simulation(SimControl::Stop))?;
         loop {
             // the state bit of a reply is stamped before the pass executes, so ask again
             let c = self.client()?;
-            c.call1(Command::GetIntParam(crate::sim::INTPARAM_PROGRAM_VERSION))?;
+            c.call1(Command::GetIntParam(INTPARAM_PROGRAM_VERSION))?;
             if c.simulation_running() == Some(false) {
                 return Ok(());
             }
             if Instant::now() > deadline {
-                return Err(SceneError::Remote("the simulation did not stop".into()));
+                return Err(BackendError::Remote("the simulation did not stop".into()));
             }
             std::thread::sleep(Duration::from_millis(50));
         }
@@ -284,5 +284,17 @@ impl Scene for LegacyScene {
 
     fn round_trips(&self) -> usize {
         self.client.as_ref().map(Client::round_trips).unwrap_or(0)
+    }
+
+    fn describe(&self) -> String {
+        format!("legacy remote API at {}", self.addr)
+    }
+
+    /// Sends the kill command (as `simxFinish` does) and closes the socket.
+    fn close(&mut self) -> Result<(), BackendError> {
+        match self.client.take() {
+            Some(c) => Ok(c.close()?),
+            None => Ok(()),
+        }
     }
 }

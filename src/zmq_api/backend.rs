@@ -1,4 +1,4 @@
-//! The ZeroMQ remote API as a drawing backend: [`crate::draw::Scene`] over [`Client`].
+//! The ZeroMQ remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
 //!
 //! Objects are found by path (`/Maze`, `/Line`); the earlier maze is the object tree under
 //! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry the line template's
@@ -13,24 +13,26 @@ use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
-use super::functions::{
-    HANDLE_ALL, HANDLE_SCENE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
+use crate::coppelia::frame::{euler_from_rotation, rotation_from_euler};
+use crate::coppelia::{
+    HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION,
+    SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan::is_copy_name;
-use crate::draw::{Edit, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Scene, SceneError, SceneNames, Survey};
-use crate::sim::frame::{euler_from_rotation, rotation_from_euler};
-use crate::sim::{HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
+use crate::draw::{
+    Authoring, Backend, BackendError, Edit, ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
+};
 
-impl From<ZmqError> for SceneError {
-    fn from(e: ZmqError) -> SceneError {
+impl From<ZmqError> for BackendError {
+    fn from(e: ZmqError) -> BackendError {
         match e {
-            ZmqError::Remote { .. } => SceneError::Remote(e.to_string()),
-            other => SceneError::Transport(other.to_string()),
+            ZmqError::Remote { .. } => BackendError::Remote(e.to_string()),
+            other => BackendError::Transport(other.to_string()),
         }
     }
 }
 
-/// What the last survey resolved, so [`Scene::objects`] can list the same objects.
+/// What the last survey resolved, so [`Backend::objects`] can list the same objects.
 #[derive(Debug, Clone, Default)]
 struct Known {
     named: Vec<(String, i32)>,
@@ -40,7 +42,7 @@ struct Known {
 
 /// A connected ZeroMQ remote API scene.
 #[derive(Debug)]
-pub struct ZmqScene {
+pub struct ZmqBackend {
     client: Client,
     version: i32,
     known: Known,
@@ -66,34 +68,34 @@ fn alias_of(name: &str) -> &str {
 type PlaneSpec = ([f64; 2], [f64; 3], f64);
 
 /// A name `create_missing` can give a new object: its alias must be `[A-Za-z0-9_]+`.
-fn check_alias(name: &str) -> Result<(), SceneError> {
+fn check_alias(name: &str) -> Result<(), BackendError> {
     let alias = alias_of(name);
     if alias.is_empty()
         || !alias.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
         || name.contains('[')
     {
-        return Err(SceneError::Remote(format!(
+        return Err(BackendError::Remote(format!(
             "cannot create `{name}`: a created object's name must be letters, digits and _ only"
         )));
     }
     Ok(())
 }
 
-impl ZmqScene {
+impl ZmqBackend {
     /// Connects (see [`Client::connect`]) and reads the program version, which decides the
     /// argument order of pose setters.
-    pub fn connect(options: &ClientOptions) -> Result<ZmqScene, SceneError> {
+    pub fn connect(options: &ClientOptions) -> Result<ZmqBackend, BackendError> {
         let client = Client::connect(options)?;
-        ZmqScene::new(client, options.timeout)
+        ZmqBackend::new(client, options.timeout)
     }
 
     /// Wraps a connected client.
-    pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqScene, SceneError> {
+    pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqBackend, BackendError> {
         let version = client.call_int(
             "sim.getInt32Param",
             vec![int(INTPARAM_PROGRAM_VERSION.into())],
         )?;
-        Ok(ZmqScene {
+        Ok(ZmqBackend {
             client,
             version,
             known: Known::default(),
@@ -111,13 +113,13 @@ impl ZmqScene {
         self.version
     }
 
-    fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, SceneError> {
+    fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, BackendError> {
         Ok(self.client.call(func, args)?)
     }
 
     /// The handle of a path, `None` if there is no such object: -1 with `noError`, or an
     /// error from a simulator that does not know the `noError` option.
-    fn handle_of(&mut self, path: &str) -> Result<Option<i32>, SceneError> {
+    fn handle_of(&mut self, path: &str) -> Result<Option<i32>, BackendError> {
         let opts = cbor::map([("noError", Value::Bool(true))]);
         match self
             .client
@@ -129,7 +131,7 @@ impl ZmqScene {
         }
     }
 
-    fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, SceneError> {
+    fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, BackendError> {
         let v = self.client.call1(
             "sim.getObjectsInTree",
             vec![
@@ -139,20 +141,20 @@ impl ZmqScene {
             ],
         )?;
         cbor::handles(&v).ok_or_else(|| {
-            SceneError::Transport(format!(
+            BackendError::Transport(format!(
                 "sim.getObjectsInTree: not a handle list: {}",
                 cbor::describe(&v)
             ))
         })
     }
 
-    fn world_pose(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), SceneError> {
+    fn world_pose(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), BackendError> {
         let v = self.client.call1(
             "sim.getObjectPose",
             vec![int(handle.into()), int(HANDLE_WORLD.into())],
         )?;
         let p = cbor::numbers::<7>(&v).ok_or_else(|| {
-            SceneError::Transport(format!(
+            BackendError::Transport(format!(
                 "sim.getObjectPose of object {handle}: not 7 numbers: {}",
                 cbor::describe(&v)
             ))
@@ -166,7 +168,7 @@ impl ZmqScene {
         handle: i32,
         name: String,
         parent: Option<Option<i32>>,
-    ) -> Result<ObjectInfo, SceneError> {
+    ) -> Result<ObjectInfo, BackendError> {
         let parent = match parent {
             Some(p) => p,
             None => {
@@ -187,7 +189,7 @@ impl ZmqScene {
     }
 
     /// The named objects, the maze dummy's children and root copies of the line template.
-    fn collect(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
+    fn collect(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
         for (name, h) in &known.named {
@@ -243,7 +245,7 @@ impl ZmqScene {
         relative_to: i32,
         position: [f64; 3],
         euler: [f64; 3],
-    ) -> Result<(), SceneError> {
+    ) -> Result<(), BackendError> {
         let q = rotation_from_euler(euler);
         let pose = float_array(&[position[0], position[1], position[2], q.i, q.j, q.k, q.w]);
         let (h, rel) = (int(handle.into()), int(relative_to.into()));
@@ -256,7 +258,7 @@ impl ZmqScene {
         Ok(())
     }
 
-    fn remove(&mut self, handles: &[i32]) -> Result<(), SceneError> {
+    fn remove(&mut self, handles: &[i32]) -> Result<(), BackendError> {
         let list = Value::Array(handles.iter().map(|h| int((*h).into())).collect());
         match self.client.call("sim.removeObjects", vec![list]) {
             Ok(_) => Ok(()),
@@ -271,11 +273,230 @@ impl ZmqScene {
         }
     }
 
+    fn create_plane(
+        &mut self,
+        name: &str,
+        size: [f64; 2],
+        colour: [f64; 3],
+        z: f64,
+        relative_to: i32,
+        floor: bool,
+    ) -> Result<i32, BackendError> {
+        let h = self.client.call_int(
+            "sim.createPrimitiveShape",
+            vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)],
+        )?;
+        let hv = || int(h.into());
+        self.call(
+            "sim.setShapeColor",
+            vec![hv(), Value::Null, int(0), float_array(&colour)],
+        )?;
+        if !floor {
+            self.call(
+                "sim.setObjectSpecialProperty",
+                vec![hv(), int(SPECIAL_RENDERABLE.into())],
+            )?;
+        }
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
+        )?;
+        self.call(
+            "sim.setObjectInt32Param",
+            vec![
+                hv(),
+                int(SHAPEINTPARAM_RESPONDABLE.into()),
+                int(floor.into()),
+            ],
+        )?;
+        self.set_pose(h, relative_to, [0.0, 0.0, z], [0.0; 3])?;
+        self.call(
+            "sim.setObjectAlias",
+            vec![hv(), Value::Text(alias_of(name).into())],
+        )?;
+        Ok(h)
+    }
+
+    /// The user's idle rate recorded by an interrupted `apply` (integer signal
+    /// [`SAVED_IDLE_FPS_SIGNAL`]); `None` when there is no record (`sim.getInt32Signal`
+    /// returns nil) or the simulator has no integer signals.
+    fn saved_idle_fps(&mut self) -> Result<Option<i32>, BackendError> {
+        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
+        match self.call("sim.getInt32Signal", vec![name]) {
+            Ok(values) => Ok(values.first().and_then(cbor::int32)),
+            Err(BackendError::Remote(_)) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+}
+
+impl Backend for ZmqBackend {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
+        let mut handles = Vec::with_capacity(names.len());
+        for n in names {
+            handles.push(self.handle_of(&object_path(n))?);
+        }
+        // ObjectNames order: floor, parent, line, start, end
+        self.known = Known {
+            named: names
+                .iter()
+                .zip(&handles)
+                .filter_map(|(n, h)| h.map(|h| (n.to_string(), h)))
+                .collect(),
+            parent: handles.get(1).copied().flatten(),
+            line_alias: names
+                .get(2)
+                .map(|n| alias_of(n).to_string())
+                .unwrap_or_default(),
+        };
+        let idle_fps = self
+            .client
+            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
+        let state = self.client.call_int("sim.getSimulationState", vec![])?;
+        let saved_idle_fps = self.saved_idle_fps()?;
+        let objects = if handles.iter().all(Option::is_some) {
+            self.collect()?
+        } else {
+            vec![]
+        };
+        Ok(Survey {
+            handles,
+            objects,
+            idle_fps,
+            saved_idle_fps,
+            simulation_running: state != 0,
+        })
+    }
+
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        self.collect()
+    }
+
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
+        let mut out = Vec::with_capacity(groups.len());
+        for g in groups {
+            let list = Value::Array(g.iter().map(|h| int((*h).into())).collect());
+            let v = self
+                .client
+                .call1("sim.copyPasteObjects", vec![list, int(0)])?;
+            match cbor::handles(&v) {
+                Some(new) if new.len() == g.len() => out.push(new),
+                _ => {
+                    return Err(BackendError::Remote(format!(
+                        "copy-paste of {} object(s) returned {}",
+                        g.len(),
+                        cbor::describe(&v)
+                    )));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
+        let mut i = 0;
+        while i < edits.len() {
+            match edits[i] {
+                Edit::SetParent {
+                    handle,
+                    parent,
+                    keep_in_place,
+                } => {
+                    let p = int(parent.unwrap_or(HANDLE_WORLD).into());
+                    self.call(
+                        "sim.setObjectParent",
+                        vec![int(handle.into()), p, Value::Bool(keep_in_place)],
+                    )?;
+                }
+                Edit::SetPose {
+                    handle,
+                    relative_to,
+                    position,
+                    orientation,
+                } => {
+                    self.set_pose(handle, relative_to, position, orientation)?;
+                }
+                Edit::Remove(_) => {
+                    let run: Vec<i32> = edits[i..]
+                        .iter()
+                        .map_while(|e| {
+                            if let Edit::Remove(h) = e {
+                                Some(*h)
+                            } else {
+                                None
+                            }
+                        })
+                        .collect();
+                    i += run.len();
+                    self.remove(&run)?;
+                    continue;
+                }
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
+        self.call(
+            "sim.setInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+        )?;
+        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
+        let record = match saved {
+            Some(v) => self.call("sim.setInt32Signal", vec![name, int(v.into())]),
+            None => self.call("sim.clearInt32Signal", vec![name]),
+        };
+        match record {
+            // A simulator without integer signals only loses the crash record.
+            Ok(_) | Err(BackendError::Remote(_)) => Ok(()),
+            Err(e) => Err(e),
+        }
+    }
+
+    fn stop_simulation(&mut self) -> Result<(), BackendError> {
+        let deadline = Instant::now() + self.timeout;
+        self.call("sim.stopSimulation", vec![])?;
+        while self.client.call_int("sim.getSimulationState", vec![])? != 0 {
+            if Instant::now() > deadline {
+                return Err(BackendError::Remote("the simulation did not stop".into()));
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        Ok(())
+    }
+
+    fn round_trips(&self) -> usize {
+        self.client.stats().round_trips as usize
+    }
+
+    fn describe(&self) -> String {
+        let v = self.version;
+        let protocol = self
+            .client
+            .protocol()
+            .map(|p| p.to_string())
+            .unwrap_or_else(|| "?".into());
+        format!(
+            "ZeroMQ remote API at {}, protocol {protocol}, CoppeliaSim {}.{}.{}",
+            self.client.endpoint(),
+            v / 10000,
+            v / 100 % 100,
+            v % 100
+        )
+    }
+
+    fn authoring(&mut self) -> Option<&mut dyn Authoring> {
+        Some(self)
+    }
+}
+
+impl Authoring for ZmqBackend {
     /// Creates the missing course objects: the maze dummy, and the line, start and end
     /// planes (course sizes, pure colours, static, not respondable, not collidable, not
-    /// measurable, not detectable by proximity sensors, but seen by cameras). Returns the names created.
-    /// The floor is never created.
-    pub fn create_missing(&mut self, names: &SceneNames) -> Result<Vec<String>, SceneError> {
+    /// measurable, not detectable by proximity sensors, but seen by cameras), and a floor
+    /// plane when the scene has none. Returns the names created.
+    fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError> {
         let mut created = Vec::new();
         let mut floor = self.handle_of(&object_path(&names.floor))?;
         if floor.is_none() {
@@ -325,7 +546,7 @@ impl ZmqScene {
                 .filter(|p| !p.is_empty());
             if let Some(p) = parent_path {
                 let ph = self.handle_of(p)?.ok_or_else(|| {
-                    SceneError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
+                    BackendError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
                 })?;
                 self.call(
                     "sim.setObjectParent",
@@ -339,206 +560,10 @@ impl ZmqScene {
 
     /// A static plane named `name`, coloured, at height `z` in the frame `relative_to`.
     /// Only a floor is respondable and detectable; markers are seen by cameras only.
-    fn create_plane(
-        &mut self,
-        name: &str,
-        size: [f64; 2],
-        colour: [f64; 3],
-        z: f64,
-        relative_to: i32,
-        floor: bool,
-    ) -> Result<i32, SceneError> {
-        let h = self.client.call_int(
-            "sim.createPrimitiveShape",
-            vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)],
-        )?;
-        let hv = || int(h.into());
-        self.call(
-            "sim.setShapeColor",
-            vec![hv(), Value::Null, int(0), float_array(&colour)],
-        )?;
-        if !floor {
-            self.call(
-                "sim.setObjectSpecialProperty",
-                vec![hv(), int(SPECIAL_RENDERABLE.into())],
-            )?;
-        }
-        self.call(
-            "sim.setObjectInt32Param",
-            vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
-        )?;
-        self.call(
-            "sim.setObjectInt32Param",
-            vec![
-                hv(),
-                int(SHAPEINTPARAM_RESPONDABLE.into()),
-                int(floor.into()),
-            ],
-        )?;
-        self.set_pose(h, relative_to, [0.0, 0.0, z], [0.0; 3])?;
-        self.call(
-            "sim.setObjectAlias",
-            vec![hv(), Value::Text(alias_of(name).into())],
-        )?;
-        Ok(h)
-    }
-
-    /// The user's idle rate recorded by an interrupted `apply` (integer signal
-    /// [`SAVED_IDLE_FPS_SIGNAL`]); `None` when there is no record (`sim.getInt32Signal`
-    /// returns nil) or the simulator has no integer signals.
-    fn saved_idle_fps(&mut self) -> Result<Option<i32>, SceneError> {
-        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
-        match self.call("sim.getInt32Signal", vec![name]) {
-            Ok(values) => Ok(values.first().and_then(cbor::int32)),
-            Err(SceneError::Remote(_)) => Ok(None),
-            Err(e) => Err(e),
-        }
-    }
 
     /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
-    pub fn save_scene(&mut self, path: &str) -> Result<(), SceneError> {
+    fn save_scene(&mut self, path: &str) -> Result<(), BackendError> {
         self.call("sim.saveScene", vec![Value::Text(path.into())])?;
         Ok(())
-    }
-}
-
-impl Scene for ZmqScene {
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, SceneError> {
-        let mut handles = Vec::with_capacity(names.len());
-        for n in names {
-            handles.push(self.handle_of(&object_path(n))?);
-        }
-        // SceneNames order: floor, parent, line, start, end
-        self.known = Known {
-            named: names
-                .iter()
-                .zip(&handles)
-                .filter_map(|(n, h)| h.map(|h| (n.to_string(), h)))
-                .collect(),
-            parent: handles.get(1).copied().flatten(),
-            line_alias: names
-                .get(2)
-                .map(|n| alias_of(n).to_string())
-                .unwrap_or_default(),
-        };
-        let idle_fps = self
-            .client
-            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
-        let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let saved_idle_fps = self.saved_idle_fps()?;
-        let objects = if handles.iter().all(Option::is_some) {
-            self.collect()?
-        } else {
-            vec![]
-        };
-        Ok(Survey {
-            handles,
-            objects,
-            idle_fps,
-            saved_idle_fps,
-            simulation_running: state != 0,
-        })
-    }
-
-    fn objects(&mut self) -> Result<Vec<ObjectInfo>, SceneError> {
-        self.collect()
-    }
-
-    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, SceneError> {
-        let mut out = Vec::with_capacity(groups.len());
-        for g in groups {
-            let list = Value::Array(g.iter().map(|h| int((*h).into())).collect());
-            let v = self
-                .client
-                .call1("sim.copyPasteObjects", vec![list, int(0)])?;
-            match cbor::handles(&v) {
-                Some(new) if new.len() == g.len() => out.push(new),
-                _ => {
-                    return Err(SceneError::Remote(format!(
-                        "copy-paste of {} object(s) returned {}",
-                        g.len(),
-                        cbor::describe(&v)
-                    )));
-                }
-            }
-        }
-        Ok(out)
-    }
-
-    fn edit(&mut self, edits: &[Edit]) -> Result<(), SceneError> {
-        let mut i = 0;
-        while i < edits.len() {
-            match edits[i] {
-                Edit::SetParent {
-                    handle,
-                    parent,
-                    keep_in_place,
-                } => {
-                    let p = int(parent.unwrap_or(HANDLE_WORLD).into());
-                    self.call(
-                        "sim.setObjectParent",
-                        vec![int(handle.into()), p, Value::Bool(keep_in_place)],
-                    )?;
-                }
-                Edit::SetPose {
-                    handle,
-                    relative_to,
-                    position,
-                    orientation,
-                } => {
-                    self.set_pose(handle, relative_to, position, orientation)?;
-                }
-                Edit::Remove(_) => {
-                    let run: Vec<i32> = edits[i..]
-                        .iter()
-                        .map_while(|e| {
-                            if let Edit::Remove(h) = e {
-                                Some(*h)
-                            } else {
-                                None
-                            }
-                        })
-                        .collect();
-                    i += run.len();
-                    self.remove(&run)?;
-                    continue;
-                }
-            }
-            i += 1;
-        }
-        Ok(())
-    }
-
-    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), SceneError> {
-        self.call(
-            "sim.setInt32Param",
-            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
-        )?;
-        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
-        let record = match saved {
-            Some(v) => self.call("sim.setInt32Signal", vec![name, int(v.into())]),
-            None => self.call("sim.clearInt32Signal", vec![name]),
-        };
-        match record {
-            // A simulator without integer signals only loses the crash record.
-            Ok(_) | Err(SceneError::Remote(_)) => Ok(()),
-            Err(e) => Err(e),
-        }
-    }
-
-    fn stop_simulation(&mut self) -> Result<(), SceneError> {
-        let deadline = Instant::now() + self.timeout;
-        self.call("sim.stopSimulation", vec![])?;
-        while self.client.call_int("sim.getSimulationState", vec![])? != 0 {
-            if Instant::now() > deadline {
-                return Err(SceneError::Remote("the simulation did not stop".into()));
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
-        Ok(())
-    }
-
-    fn round_trips(&self) -> usize {
-        self.client.stats().round_trips as usize
     }
 }

@@ -1,0 +1,39 @@
+//! CoppeliaSim's own numbers and conventions, shared by our clients and our emulator.
+//!
+//! Neither side imports the other: the clients ([`crate::legacy::client`],
+//! [`crate::zmq_api::client`] and their drawing backends) and the emulator ([`crate::sim`] and
+//! the two servers) both take CoppeliaSim's constants from here, and its Euler convention from
+//! [`frame`]. Values are those of CoppeliaSim's `simConst` tables (the same in the legacy
+//! remote API's `sim_*` names and the ZeroMQ API's `sim.*` names).
+
+pub mod frame;
+
+/// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.
+pub const HANDLE_WORLD: i32 = -1;
+/// `sim_handle_all`: every object (e.g. the object type filter of `simxGetObjects`).
+pub const HANDLE_ALL: i32 = -2;
+/// `sim_handle_parent`: relative to the object's parent frame.
+pub const HANDLE_PARENT: i32 = -11;
+/// `sim.handle_scene`: the whole scene, the root of `sim.getObjectsInTree`.
+pub const HANDLE_SCENE: i32 = -12;
+
+/// `sim_intparam_program_version`: e.g. 40501 for CoppeliaSim 4.5.1.
+pub const INTPARAM_PROGRAM_VERSION: i32 = 1;
+/// `sim_intparam_idle_fps`: main-loop passes per second while the simulation is stopped.
+pub const INTPARAM_IDLE_FPS: i32 = 26;
+/// CoppeliaSim's default idle rate (`sim_intparam_idle_fps` of a fresh instance).
+pub const DEFAULT_IDLE_FPS: i32 = 8;
+
+/// `sim.shapeintparam_static`: 1 = the shape is not dynamic.
+pub const SHAPEINTPARAM_STATIC: i32 = 3003;
+/// `sim.shapeintparam_respondable`: 1 = the shape collides in the physics engine.
+pub const SHAPEINTPARAM_RESPONDABLE: i32 = 3004;
+
+/// `sim.objectspecialproperty_collidable`.
+pub const SPECIAL_COLLIDABLE: i32 = 1;
+/// `sim.objectspecialproperty_measurable`.
+pub const SPECIAL_MEASURABLE: i32 = 2;
+/// `sim.objectspecialproperty_detectable` (all proximity-sensor kinds).
+pub const SPECIAL_DETECTABLE: i32 = 496;
+/// `sim.objectspecialproperty_renderable` (seen by vision sensors: the robot's camera).
+pub const SPECIAL_RENDERABLE: i32 = 2048;
