@@ -273,6 +273,8 @@ impl ZmqBackend {
         }
     }
 
+    /// A static plane named `name`, coloured, at height `z` in the frame `relative_to`.
+    /// Only a floor is respondable and detectable; markers are seen by cameras only.
     fn create_plane(
         &mut self,
         name: &str,
@@ -557,9 +559,6 @@ impl Authoring for ZmqBackend {
         }
         Ok(created)
     }
-
-    /// A static plane named `name`, coloured, at height `z` in the frame `relative_to`.
-    /// Only a floor is respondable and detectable; markers are seen by cameras only.
 
     /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError> {
