@@ -60,6 +60,9 @@ pub fn main() -> ExitCode {
         Ok(code) => code,
         Err(error) => {
             eprintln!("error: {}", one_line(&error));
+            for hint in hints(&error) {
+                eprintln!("  hint: {hint}");
+            }
             ExitCode::FAILURE
         }
     }
@@ -79,14 +82,89 @@ fn run(cli: Cli) -> Result<ExitCode> {
     }
 }
 
-/// The error and its causes on one line.
+/// Longest text of one cause in an error line; longer ones (e.g. an echoed 100 KB argument)
+/// are cut, saying how long they were.
+const MAX_CAUSE_CHARS: usize = 400;
+
+/// The error and its causes on one line, each cause once: a cause whose text the line
+/// already holds (an inner error that its context also printed) is not repeated.
 pub(crate) fn one_line(error: &anyhow::Error) -> String {
-    format!("{error:#}").replace('\n', " ")
+    let mut line = String::new();
+    for cause in error.chain() {
+        let text = shorten(&cause.to_string().replace('\n', " "));
+        if line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
+}
+
+/// `text`, or its start and a note of its length when it is longer than [`MAX_CAUSE_CHARS`].
+fn shorten(text: &str) -> String {
+    let chars = text.chars().count();
+    if chars <= MAX_CAUSE_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(MAX_CAUSE_CHARS).collect();
+    format!("{head}... ({chars} characters in all)")
+}
+
+/// The remedies the error's causes know of, one per line, printed after the error line.
+fn hints(error: &anyhow::Error) -> Vec<String> {
+    error
+        .chain()
+        .filter_map(|cause| cause.downcast_ref::<crate::draw::DrawError>())
+        .flat_map(|e| e.hints())
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use clap::CommandFactory;
+
+    use super::*;
+    use crate::draw::DrawError;
+
+    #[test]
+    fn a_cause_that_its_context_already_printed_is_not_repeated() {
+        let os = std::io::Error::new(std::io::ErrorKind::NotFound, "No such file (os error 2)");
+        let error = anyhow::Error::new(os).context("m.json: No such file (os error 2)");
+        let line = one_line(&error);
+        assert_eq!(line.matches("No such file").count(), 1, "{line}");
+        let error = anyhow::anyhow!("inner").context("outer");
+        assert_eq!(one_line(&error), "outer: inner");
+    }
+
+    #[test]
+    fn a_huge_cause_is_cut_and_says_its_length() {
+        let error = anyhow::anyhow!("{}", "x".repeat(100_000)).context("no object `...`");
+        let line = one_line(&error);
+        assert!(line.len() < 1000, "{} bytes", line.len());
+        assert!(line.contains("100000 characters in all"), "{line}");
+    }
+
+    #[test]
+    fn remedies_are_hints_on_their_own_lines_not_in_the_error_line() {
+        let error = anyhow::Error::new(DrawError::Missing {
+            names: vec!["Floor".into(), "Line".into()],
+            hints: vec!["`Floor`: the floor".into(), "`Line`: the template".into()],
+        })
+        .context("drawing m.json");
+        assert_eq!(
+            one_line(&error),
+            "drawing m.json: missing in the scene: Floor, Line"
+        );
+        let hints = hints(&error);
+        assert_eq!(hints.len(), 3, "{hints:?}");
+        assert!(hints[0].contains("--floor"), "{hints:?}");
+        assert!(hints.iter().all(|h| !h.contains('\n')), "{hints:?}");
+        let running = anyhow::Error::new(DrawError::SimulationRunning);
+        assert!(super::hints(&running)[0].contains("--stop-simulation"));
+    }
 
     #[test]
     fn the_command_line_definition_is_consistent() {

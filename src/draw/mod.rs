@@ -243,25 +243,46 @@ pub trait Authoring {
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
-    /// Named objects are missing.
-    #[error("missing in the scene: {}. Create {} in CoppeliaSim (or pass the names your scene uses with --floor, --parent, --line, --start, --end):\n  {}", .names.join(", "), if .names.len() == 1 { "it" } else { "them" }, .hints.join("\n  "))]
+    /// Named objects are missing; [`DrawError::hints`] says how to create each.
+    #[error("missing in the scene: {}", .names.join(", "))]
     Missing {
         /// The missing names.
         names: Vec<String>,
-        /// How to create each.
+        /// How to create each, one line per name.
         hints: Vec<String>,
     },
     /// The simulation runs; edits would be lost when it stops.
-    #[error(
-        "the simulation is running: changes made now would be discarded when it stops. Stop it in CoppeliaSim, or pass --stop-simulation"
-    )]
+    #[error("the simulation is running: changes made now would be discarded when it stops")]
     SimulationRunning,
     /// Backend failure.
     #[error(transparent)]
     Backend(#[from] BackendError),
-    /// The scene does not match the drawing after drawing it.
-    #[error("verification failed, {} difference(s):\n  {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("\n  "))]
+    /// The scene does not match the drawing after drawing it (the first ten differences).
+    #[error("verification failed, {} difference(s): {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("; "))]
     Verify(Vec<String>),
+}
+
+impl DrawError {
+    /// What the user can do about the error, one remedy per line (not part of `Display`).
+    pub fn hints(&self) -> Vec<String> {
+        match self {
+            DrawError::Missing { names, hints } => {
+                let them = if names.len() == 1 { "it" } else { "them" };
+                let mut lines = vec![format!(
+                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --start, --end"
+                )];
+                lines.extend(hints.iter().cloned());
+                lines
+            }
+            DrawError::SimulationRunning => {
+                vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
+            }
+            DrawError::Verify(_) => {
+                vec!["run the same command again: it repairs what differs".into()]
+            }
+            DrawError::Backend(_) => vec![],
+        }
+    }
 }
 
 /// Resolves the names of a survey into [`Handles`] or a [`DrawError::Missing`].

@@ -38,9 +38,9 @@ pub enum ClientError {
     /// The server closed the connection.
     #[error("the simulator closed the connection")]
     Closed,
-    /// Transport error or malformed bytes.
+    /// Transport error or malformed bytes (printed in the message, so not a `source`).
     #[error("legacy remote API protocol error: {0}")]
-    Wire(#[from] WireError),
+    Wire(WireError),
     /// A reply whose payload does not match the command.
     #[error("malformed reply to command {cmd:#06x}: {why}")]
     BadReply {
@@ -49,6 +49,12 @@ pub enum ClientError {
         /// What is wrong.
         why: String,
     },
+}
+
+impl From<WireError> for ClientError {
+    fn from(e: WireError) -> ClientError {
+        ClientError::Wire(e)
+    }
 }
 
 /// Connection settings.

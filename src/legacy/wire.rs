@@ -17,12 +17,19 @@ pub const VERSION: u8 = 11;
 /// Largest message we accept (a guard against garbage lengths).
 pub const MAX_MESSAGE_SIZE: usize = 64 << 20;
 
+impl From<std::io::Error> for WireError {
+    fn from(e: std::io::Error) -> WireError {
+        WireError::Io(e)
+    }
+}
+
 /// Malformed bytes or a failed transport.
 #[derive(Debug, thiserror::Error)]
 pub enum WireError {
-    /// Socket error (includes timeouts as `WouldBlock`/`TimedOut`).
+    /// Socket error (includes timeouts as `WouldBlock`/`TimedOut`; printed in the message, so
+    /// not a `source`).
     #[error("connection error: {0}")]
-    Io(#[from] std::io::Error),
+    Io(std::io::Error),
     /// A packet header that is not a little-endian legacy packet header.
     #[error(
         "bad packet header (marker {marker:#06x}, length {length}): not a legacy remote API peer?"

@@ -41,8 +41,9 @@ pub enum ZmqError {
         /// Timeout in seconds.
         secs: f64,
     },
-    /// The server reported an error.
-    #[error("{func}: {message}")]
+    /// The server reported an error. CoppeliaSim's messages often start `in sim.f: `; the
+    /// function is then not named twice.
+    #[error("{}", remote_text(.func, .message))]
     Remote {
         /// Function being called.
         func: String,
@@ -58,13 +59,22 @@ pub enum ZmqError {
         detail: String,
     },
     /// The ZeroMQ library failed.
-    #[error("ZeroMQ error on {endpoint}: {source}")]
+    #[error("ZeroMQ error on {endpoint}: {error}")]
     Transport {
         /// `tcp://host:port`.
         endpoint: String,
-        /// Library error.
-        source: zmq::Error,
+        /// Library error (printed in the message, so not a `source`).
+        error: zmq::Error,
     },
+}
+
+/// `func: message`, unless the message already names the function (`in func: ...`).
+fn remote_text(func: &str, message: &str) -> String {
+    if message.starts_with(&format!("in {func}")) {
+        message.to_string()
+    } else {
+        format!("{func}: {message}")
+    }
 }
 
 impl ZmqError {
@@ -229,7 +239,7 @@ impl Client {
         self.stats.round_trips += 1;
         let transport = |source| ZmqError::Transport {
             endpoint: self.endpoint.clone(),
-            source,
+            error: source,
         };
         let timeout = |c: &Client| ZmqError::Timeout {
             func: func.to_string(),
@@ -353,7 +363,7 @@ fn new_socket(
 ) -> Result<zmq::Socket, ZmqError> {
     let transport = |source| ZmqError::Transport {
         endpoint: endpoint.to_string(),
-        source,
+        error: source,
     };
     let socket = context.socket(zmq::REQ).map_err(transport)?;
     let ms = i32::try_from(timeout.as_millis())
