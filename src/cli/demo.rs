@@ -30,7 +30,7 @@ pub struct DemoArgs {
     /// Seed of the course maze.
     #[arg(long, default_value_t = 42)]
     pub seed: u64,
-    /// Algorithm.
+    /// Algorithm of the course maze (any of `generate --algo`).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
     pub algo: Algorithm,
 }

@@ -11,7 +11,7 @@ use super::{
 /// Options of [`apply`].
 #[derive(Debug, Clone)]
 pub struct ApplyOptions {
-    /// Backend object names.
+    /// Names of the scene objects the drawing uses.
     pub names: ObjectNames,
     /// Stop a running simulation instead of refusing.
     pub stop_simulation: bool,
@@ -35,13 +35,13 @@ impl Default for ApplyOptions {
 /// Progress of [`apply`], for a progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stage {
-    /// Backend read.
+    /// The scene has been read (names resolved, objects listed).
     Surveyed,
     /// Copies pasted so far / to paste.
     Pasting {
-        /// Done.
+        /// Copies pasted so far.
         done: usize,
-        /// Total.
+        /// Copies this apply pastes in all.
         total: usize,
     },
     /// Setting parents and poses.

@@ -101,18 +101,18 @@ impl ObjectNames {
 /// Name of the integer signal in which `apply` records the user's idle rate while it runs.
 pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
 
-/// Handles of the named objects.
+/// Handles of the objects [`ObjectNames`] names, resolved in one scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Handles {
-    /// Floor.
+    /// The floor: every pose is relative to it.
     pub floor: i32,
-    /// Maze parent.
+    /// The dummy every maze line is a child of.
     pub parent: i32,
-    /// Line template.
+    /// The line template (also the first line of the maze).
     pub line: i32,
-    /// Start marker.
+    /// The start marker.
     pub start: i32,
-    /// End marker.
+    /// The end marker.
     pub end: i32,
 }
 
@@ -126,7 +126,7 @@ impl Handles {
 /// One scene object as a backend reports it: world pose.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectInfo {
-    /// Handle.
+    /// The object's handle in this scene.
     pub handle: i32,
     /// Object name.
     pub name: String,

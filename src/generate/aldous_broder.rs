@@ -17,7 +17,7 @@ use crate::rng::MazeRng;
 /// (11-35 million) for Wilson. Each step is cheap (two pooled random bits, a table
 /// offset, one byte test: 2-3 ns), so generation took 0.6 ms at 100x100, 0.1 s at
 /// 1000x1000 and 0.5-0.8 s at 2000x2000 in release on the shared 2-core development
-/// machine (`bench/run.sh`, table in `docs/notes/algorithms.md`); 4096x4096 would take several
+/// machine (`bench/run.sh`, table in `docs/history/algorithms.md`); 4096x4096 would take several
 /// seconds. Use [`Wilson`](super::Wilson) for uniform mazes at scale: same
 /// distribution, far fewer steps. The estimate is for roughly square grids: on a long
 /// thin strip a random walk needs about length² steps to cover it (a 1 x 100,000 grid

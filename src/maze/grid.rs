@@ -126,12 +126,12 @@ impl Grid {
         })
     }
 
-    /// Columns.
+    /// Number of columns (cells along x).
     pub const fn width(&self) -> u32 {
         self.width
     }
 
-    /// Rows.
+    /// Number of rows (cells along y; row 0 is the south row).
     pub const fn height(&self) -> u32 {
         self.height
     }

@@ -118,9 +118,9 @@ pub struct NewObject {
     pub position: [f64; 3],
     /// Local Euler angles.
     pub orientation: [f64; 3],
-    /// Size.
+    /// Bounding-box size in metres (x, y, z); a plane has z = 0.
     pub size: [f64; 3],
-    /// Colour.
+    /// Ambient-diffuse colour as 8-bit RGB.
     pub colour: [u8; 3],
 }
 
@@ -134,7 +134,8 @@ impl Scene {
         }
     }
 
-    /// The course scene of `course-scene.md`: `Floor` (10 m x 10 m), dummy `Maze`, green `Line`
+    /// The course scene of `../shared/spec/course-scene.md` (the spec folder beside this
+    /// repository): `Floor` (10 m x 10 m), dummy `Maze`, green `Line`
     /// (0.6 x 0.1 at z 0.001), blue `Start` and red `End` (1 x 1 at z 0.002).
     pub fn course() -> Scene {
         let mut s = Scene::empty();

@@ -108,7 +108,7 @@ impl Default for ClientOptions {
     }
 }
 
-/// Counters.
+/// What a client has exchanged so far, for reports and benchmarks.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ClientStats {
     /// Remote function calls made.
