@@ -1,10 +1,19 @@
 #![warn(missing_docs)]
 //! vrep-maze: seeded, reproducible grid mazes for CoppeliaSim (formerly V-REP).
 //!
-//! The library behind the `vrep-maze` command: [`maze`] holds the model and its analysis,
-//! [`generate`] the algorithms, [`rng`] the only source of randomness. [`sim`] is an
-//! in-memory CoppeliaSim scene, [`legacy`] the legacy remote API (client and server) and
-//! [`draw`] draws a layout into a scene through any backend.
+//! The library behind the `vrep-maze` command; `ARCHITECTURE.md` maps it. From the bottom up:
+//!
+//! - Pure maze logic: [`maze`] (the compact grid maze and its analysis), [`rng`] (the only
+//!   source of randomness), [`generate`] (one file per algorithm), [`layout`] (the JSON layout:
+//!   geometry, segments, reading and writing), [`validate`] (every check a layout must pass),
+//!   [`render`] (ASCII, SVG, PNG), [`batch`] (many seeds at once) and [`atomic_file`] (files
+//!   written whole or not at all).
+//! - [`coppelia`]: CoppeliaSim's constants and Euler convention, shared by clients and emulator.
+//! - [`draw`]: the [`draw::Backend`] port and the backend-neutral `apply`, `clear`, `verify`.
+//! - The protocols, each a codec, a client, a drawing backend and an emulated server:
+//!   [`legacy`] (port 19997) and [`zmq_api`] (ZeroMQ, port 23000).
+//! - [`sim`]: the emulated simulator's scene, state and clock, under both servers.
+//! - [`cli`]: the command line, the only user of clap, anyhow and indicatif.
 
 pub mod atomic_file;
 pub mod batch;
