@@ -111,25 +111,24 @@ pub fn relative_pose(floor: &Frame, object: &ObjectInfo) -> ([f64; 3], [f64; 3])
     position_euler(&(floor.inverse() * world_frame(object)))
 }
 
-/// Differences between an object's pose in the floor frame and the wanted pose (empty if
+/// Differences between an object's pose in the floor frame and the wanted pose (`None` if
 /// within tolerance; a flipped line (yaw + pi) is not accepted: Start/End and lines are
-/// compared exactly up to 2 pi).
+/// compared exactly up to 2 pi). A non-finite number anywhere (object, floor or wanted pose)
+/// is always a difference: every comparison with NaN fails.
 pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Option<String> {
     let (p, e) = relative_pose(floor, object);
-    let dp = p
+    let position_ok = p
         .iter()
         .zip(crate::draw::position(want))
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    let de = [
+        .all(|(a, b)| (a - b).abs() <= POSITION_TOLERANCE);
+    let angles_ok = [
         wrap_angle(e[0]),
         wrap_angle(e[1]),
         wrap_angle(e[2] - want.yaw),
     ]
     .iter()
-    .map(|a| a.abs())
-    .fold(0.0, f64::max);
-    if dp <= POSITION_TOLERANCE && de <= ANGLE_TOLERANCE {
+    .all(|a| a.abs() <= ANGLE_TOLERANCE);
+    if position_ok && angles_ok {
         None
     } else {
         Some(format!(
@@ -254,5 +253,53 @@ mod tests {
         assert_eq!(pose_differences(&floor, &o, &want), None);
         let moved = Pose { x: 0.2502, ..want };
         assert!(pose_differences(&floor, &o, &moved).is_some());
+    }
+
+    #[test]
+    fn a_non_finite_pose_is_never_in_place() {
+        let floor = world_frame(&obj(1, "Floor", None));
+        let want = Pose {
+            x: 0.25,
+            y: 0.0,
+            z: 0.001,
+            yaw: 0.0,
+        };
+        let placed = ObjectInfo {
+            position: [0.25, 0.0, 0.001],
+            ..obj(5, "Line0", Some(2))
+        };
+        assert_eq!(pose_differences(&floor, &placed, &want), None);
+        for (i, bad) in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY]
+            .into_iter()
+            .enumerate()
+        {
+            for k in 0..3 {
+                let mut o = placed.clone();
+                o.position[k] = bad;
+                assert!(
+                    pose_differences(&floor, &o, &want).is_some(),
+                    "position[{k}] #{i}"
+                );
+                let mut o = placed.clone();
+                o.orientation[k] = bad;
+                assert!(
+                    pose_differences(&floor, &o, &want).is_some(),
+                    "orientation[{k}] #{i}"
+                );
+            }
+            let wanted = Pose { yaw: bad, ..want };
+            assert!(
+                pose_differences(&floor, &placed, &wanted).is_some(),
+                "wanted yaw #{i}"
+            );
+            let nan_floor = world_frame(&ObjectInfo {
+                position: [bad, 0.0, 0.0],
+                ..obj(1, "Floor", None)
+            });
+            assert!(
+                pose_differences(&nan_floor, &placed, &want).is_some(),
+                "floor #{i}"
+            );
+        }
     }
 }
