@@ -105,7 +105,7 @@ fn legacy_interrupted_apply_is_repaired_by_apply_and_by_clear() {
             interrupted += 1;
             let mut sc = connect(s.local_addr().port());
             if repair_with_clear {
-                draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+                draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
                 assert_eq!(
                     lines_in_scene(&s),
                     1,
@@ -148,7 +148,7 @@ fn legacy_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
         );
         let mut sc = connect(s.local_addr().port());
         if repair_with_clear {
-            let r = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+            let r = draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
             assert_eq!(r.restored_idle_fps, Some(8));
         } else {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();

@@ -79,11 +79,11 @@ fn apply_and_reapply(protocol: Protocol) {
         draw::verify(&mut sc, &d, &ObjectNames::default()),
         Err(DrawError::Verify(_))
     ));
-    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
     assert_eq!(c.removed.len(), small.lines.len() - 1);
     assert_eq!(line_count(&s), 1, "only the template is left");
     assert!(
-        draw::clear(&mut sc, &ObjectNames::default(), false)
+        draw::clear(&mut sc, &draw::ClearOptions::default())
             .unwrap()
             .removed
             .is_empty()
@@ -299,7 +299,7 @@ fn zmq_and_legacy_share_one_scene_with_api_both() {
     let mut l = LegacyBackend::connect("127.0.0.1", lg.local_addr().port(), Duration::from_secs(3))
         .unwrap();
     draw::verify(&mut l, &d, &ObjectNames::default()).unwrap();
-    let cleared = draw::clear(&mut l, &ObjectNames::default(), false).unwrap();
+    let cleared = draw::clear(&mut l, &draw::ClearOptions::default()).unwrap();
     assert_eq!(cleared.removed.len(), d.lines.len() - 1);
     l.close().unwrap();
     let mut c = vrep_maze::zmq_api::Client::connect(&ClientOptions {
@@ -337,7 +337,7 @@ fn zmq_template_inside_the_maze_dummy_is_kept_and_reused() {
     assert_eq!(r.pasted, d.lines.len() - 1);
     let again = draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     assert_eq!((again.pasted, again.edits), (0, 0), "{again}");
-    let c = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+    let c = draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
     assert_eq!(c.removed.len(), d.lines.len() - 1);
     assert_eq!(line_count(&s), 1);
     drop(sc);

@@ -102,7 +102,7 @@ fn zmq_apply_cut_at_any_call_is_repaired() {
         stop.store(true, Ordering::SeqCst);
         let mut sc = connect(s.local_addr().port(), 3000).unwrap();
         if i % 3 == 2 {
-            draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+            draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
             assert_eq!(
                 lines(&s),
                 1,
@@ -151,7 +151,7 @@ fn zmq_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
         );
         let mut sc = connect(s.local_addr().port(), 3000).unwrap();
         if repair_with_clear {
-            let report = draw::clear(&mut sc, &ObjectNames::default(), false).unwrap();
+            let report = draw::clear(&mut sc, &draw::ClearOptions::default()).unwrap();
             assert_eq!(report.restored_idle_fps, Some(8));
         } else {
             draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();

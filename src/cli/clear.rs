@@ -1,7 +1,7 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
 use super::apply::ConnectArgs;
-use crate::draw;
+use crate::draw::{self, ClearOptions};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
 /// parentless copies of the line template). Idempotent.
@@ -13,6 +13,9 @@ pub struct ClearArgs {
     /// Connection and object names.
     #[command(flatten)]
     pub scene: ConnectArgs,
+    /// Stop a running simulation first (CoppeliaSim undoes removals made while it runs).
+    #[arg(long)]
+    pub stop_simulation: bool,
     /// Only list what would be removed.
     #[arg(long)]
     pub dry_run: bool,
@@ -21,8 +24,16 @@ pub struct ClearArgs {
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut backend = args.scene.connect()?;
-    let report = draw::clear(backend.as_mut(), &args.scene.names(), args.dry_run)?;
+    let opts = ClearOptions {
+        names: args.scene.names(),
+        stop_simulation: args.stop_simulation,
+        dry_run: args.dry_run,
+    };
+    let report = draw::clear(backend.as_mut(), &opts)?;
     let _ = backend.close();
+    if report.stopped_simulation {
+        println!("stopped the simulation first");
+    }
     let verb = if args.dry_run {
         "would remove"
     } else {

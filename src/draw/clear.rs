@@ -9,22 +9,43 @@ use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
 pub struct ClearReport {
     /// Names of the removed objects.
     pub removed: Vec<String>,
-    /// Round trips.
+    /// Messages exchanged with the simulator.
     pub round_trips: usize,
     /// Idle rate restored (it had been left at 0 by an interrupted `apply`).
     pub restored_idle_fps: Option<i32>,
+    /// The simulation was running and [`ClearOptions::stop_simulation`] stopped it first.
+    pub stopped_simulation: bool,
+}
+
+/// How [`clear`] runs.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct ClearOptions {
+    /// Names of the scene objects.
+    pub names: ObjectNames,
+    /// Stop a running simulation first; without it a running simulation is refused, since
+    /// CoppeliaSim undoes every removal when the simulation stops.
+    pub stop_simulation: bool,
+    /// Only list what would be removed.
+    pub dry_run: bool,
 }
 
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
-/// interrupted `apply`. With `dry_run` only lists them.
-pub fn clear(
-    scene: &mut dyn Backend,
-    names: &ObjectNames,
-    dry_run: bool,
-) -> Result<ClearReport, DrawError> {
+/// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
+pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
+    let (names, dry_run) = (&opts.names, opts.dry_run);
     let rt0 = scene.round_trips();
     let survey = scene.survey(&names.all())?;
     let h = resolve_handles(names, &survey)?;
+    let mut stopped_simulation = false;
+    if survey.simulation_running {
+        if !opts.stop_simulation {
+            return Err(DrawError::SimulationRunning);
+        }
+        if !dry_run {
+            scene.stop_simulation()?;
+            stopped_simulation = true;
+        }
+    }
     let doomed = maze_lines(&survey.objects, &h, &names.line);
     let removed = doomed
         .iter()
@@ -50,5 +71,6 @@ pub fn clear(
         removed,
         round_trips: scene.round_trips() - rt0,
         restored_idle_fps,
+        stopped_simulation,
     })
 }

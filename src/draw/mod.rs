@@ -13,7 +13,7 @@ pub mod plan;
 pub mod verify;
 
 pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
-pub use clear::{ClearReport, clear};
+pub use clear::{ClearOptions, ClearReport, clear};
 pub use verify::verify;
 
 use serde::{Deserialize, Serialize};
