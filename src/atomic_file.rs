@@ -1,12 +1,41 @@
 //! Writing files so that an interrupted run never leaves half a file: write a temporary
-//! sibling, flush it to disk, then rename it over the target.
+//! sibling, flush it to disk, then rename it over the target. Only a regular file (or a new
+//! one) is replaced so; a device, FIFO, socket or symbolic link (`/dev/null`, `/dev/stdout`,
+//! a named pipe, a link into another folder) is written through, never replaced.
 
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 
-/// Writes what `write` produces to `path` atomically.
+/// Writes what `write` produces to `path`: atomically if `path` is a regular file or does
+/// not exist, straight into it otherwise (see the module docs).
 pub fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> io::Result<()> {
+    match fs::symlink_metadata(path) {
+        Ok(meta) if !meta.file_type().is_file() => write_through(path, write),
+        _ => write_replacing(path, write),
+    }
+}
+
+/// Writes into whatever `path` is (following a link), truncating it if it is a regular file.
+fn write_through(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> io::Result<()> {
+    let regular = fs::metadata(path).is_ok_and(|m| m.is_file());
+    let file = fs::OpenOptions::new()
+        .write(true)
+        .truncate(regular)
+        .open(path)?;
+    let mut out = io::BufWriter::new(file);
+    write(&mut out)?;
+    out.flush()
+}
+
+/// Writes a temporary sibling, flushes it to disk and renames it over `path`.
+fn write_replacing(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> io::Result<()> {
@@ -70,5 +99,48 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.json")]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_and_special_files_are_written_through_never_replaced() {
+        let dir = tempfile::TempDir::new().unwrap();
+        let target = dir.path().join("target.json");
+        fs::write(&target, b"old contents, longer than the new").unwrap();
+        let link = dir.path().join("link.json");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_atomically(&link, |w| w.write_all(b"new")).unwrap();
+        assert!(
+            fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(fs::read(&target).unwrap(), b"new");
+
+        let null = Path::new("/dev/null");
+        write_atomically(null, |w| w.write_all(b"gone")).unwrap();
+        assert!(
+            !fs::metadata(null).unwrap().is_file(),
+            "/dev/null is still a device"
+        );
+
+        let fifo = dir.path().join("fifo");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            let reader = {
+                let fifo = fifo.clone();
+                std::thread::spawn(move || fs::read(fifo).unwrap())
+            };
+            write_atomically(&fifo, |w| w.write_all(b"through the pipe")).unwrap();
+            assert_eq!(reader.join().unwrap(), b"through the pipe");
+            assert!(!fs::metadata(&fifo).unwrap().is_file(), "still a FIFO");
+        }
+        let names: Vec<_> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains(".tmp-"))
+            .collect();
+        assert!(names.is_empty(), "{names:?}");
     }
 }

@@ -1,6 +1,7 @@
 //! `vrep-maze render`: draw a layout.
 
-use std::path::PathBuf;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
@@ -31,16 +32,24 @@ pub struct RenderArgs {
 
 /// Runs `render`.
 pub fn run(args: RenderArgs) -> Result<ExitCode> {
+    let output = args.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(scene) = scene_dump(&args)? {
+        let format = choose_format(args.format, output, Format::Svg)?;
+        anyhow::ensure!(
+            format == Format::Svg,
+            "{}: a scene dump renders as SVG only (use --format svg or -o FILE.svg)",
+            args.file.display()
+        );
         let svg = crate::sim::svg::scene_svg(&scene, 800.0);
-        write_output(args.output.as_deref(), |w| w.write_all(svg.as_bytes()))?;
+        write_output(output, |w| w.write_all(svg.as_bytes()))?;
         return Ok(ExitCode::SUCCESS);
     }
+    let format = choose_format(args.format, output, Format::Ascii)?;
+    anyhow::ensure!(
+        format != Format::Png || output.is_some() || !std::io::stdout().is_terminal(),
+        "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
+    );
     let layout = read_layout(&args.file)?;
-    let format = args
-        .format
-        .or_else(|| args.output.as_deref().and_then(Format::from_extension))
-        .unwrap_or(Format::Ascii);
     let options = RenderOptions {
         solution: args.solution,
     };
@@ -48,10 +57,39 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
         .renderer()
         .render(&layout, &options)
         .with_context(|| format!("{}", args.file.display()))?;
-    write_output(args.output.as_deref(), |w| w.write_all(&bytes))?;
+    write_output(output, |w| w.write_all(&bytes))?;
     Ok(ExitCode::SUCCESS)
 }
 
+/// The format to write: `--format` if given, else the one the output's extension names, else
+/// `default`. An extension that names no format we write, or another format than `--format`,
+/// is refused, so a `.png` never holds SVG text and a `.jpg` never holds ASCII.
+fn choose_format(
+    explicit: Option<Format>,
+    output: Option<&Path>,
+    default: Format,
+) -> Result<Format> {
+    let by_extension = match output.and_then(|p| p.extension().map(|e| (p, e))) {
+        None => None,
+        Some((path, ext)) => Some(Format::from_extension(path).ok_or_else(|| {
+            anyhow::anyhow!(
+                "{}: render writes .svg, .png and .txt (ascii) files, not .{}",
+                path.display(),
+                ext.to_string_lossy()
+            )
+        })?),
+    };
+    match (explicit, by_extension) {
+        (Some(f), Some(e)) if f != e => anyhow::bail!(
+            "--format {f} does not match the output file's extension (.{})",
+            output
+                .and_then(|p| p.extension())
+                .map(|e| e.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        ),
+        (f, e) => Ok(f.or(e).unwrap_or(default)),
+    }
+}
 /// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
 fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     if args.file.as_os_str() == "-" {
@@ -63,12 +101,33 @@ fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     if !text.contains("\"vrep-maze scene\"") {
         return Ok(None);
     }
-    anyhow::ensure!(
-        args.format.is_none_or(|f| f == Format::Svg),
-        "{}: a scene dump renders as SVG only (use --format svg or -o FILE.svg)",
-        args.file.display()
-    );
     let scene =
         crate::sim::Scene::from_json(&text).with_context(|| format!("{}", args.file.display()))?;
     Ok(Some(scene))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_extension_decides_and_unknown_or_conflicting_ones_are_refused() {
+        let f = |explicit, out: Option<&str>| {
+            choose_format(explicit, out.map(Path::new), Format::Ascii)
+        };
+        assert_eq!(f(None, None).unwrap(), Format::Ascii);
+        assert_eq!(f(None, Some("m.png")).unwrap(), Format::Png);
+        assert_eq!(f(None, Some("M.SVG")).unwrap(), Format::Svg);
+        assert_eq!(f(None, Some("maze")).unwrap(), Format::Ascii);
+        assert_eq!(f(Some(Format::Svg), Some("maze")).unwrap(), Format::Svg);
+        assert_eq!(f(Some(Format::Png), Some("m.png")).unwrap(), Format::Png);
+        let jpg = f(None, Some("m.jpg")).unwrap_err().to_string();
+        assert!(jpg.contains("not .jpg"), "{jpg}");
+        let clash = f(Some(Format::Svg), Some("m.png")).unwrap_err().to_string();
+        assert!(
+            clash.contains("--format svg") && clash.contains(".png"),
+            "{clash}"
+        );
+        assert!(f(Some(Format::Ascii), Some("m.jpg")).is_err());
+    }
 }
