@@ -55,6 +55,7 @@ pub enum Command {
 
 /// Parses the command line and runs it; errors become one line on standard error.
 pub fn main() -> ExitCode {
+    end_quietly_on_broken_pipe();
     let cli = Cli::parse();
     match run(cli) {
         Ok(code) => code,
@@ -66,6 +67,26 @@ pub fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run
+/// quietly with success, as `rg | head` does. Rust's print macros (and clap_complete) panic
+/// on a closed pipe; this panic hook recognises that one panic and exits 0 instead of
+/// printing a backtrace. Every other panic goes to the default hook.
+fn end_quietly_on_broken_pipe() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.contains("Broken pipe") || message.contains("BrokenPipe") {
+            std::process::exit(0);
+        }
+        default(info);
+    }));
 }
 
 fn run(cli: Cli) -> Result<ExitCode> {
