@@ -73,6 +73,45 @@ fn temporary_sibling(path: &Path) -> io::Result<PathBuf> {
     Ok(path.with_file_name(temp))
 }
 
+/// Removes the temporary files that [`write_atomically`] left in `dir` when its process was
+/// killed before it could rename them (a process still running keeps its own). Returns how
+/// many it removed.
+pub fn remove_stale_temporaries(dir: &Path) -> io::Result<usize> {
+    let mut removed = 0;
+    for entry in fs::read_dir(dir)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let Some(pid) = temporary_owner(&name.to_string_lossy()) else {
+            continue;
+        };
+        if pid != std::process::id() && !process_running(pid, &entry.path()) {
+            fs::remove_file(entry.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
+/// The process that made a temporary sibling named `.name.tmp-<pid>-<thread>`, if `name` is one.
+fn temporary_owner(name: &str) -> Option<u32> {
+    let (_, tail) = name.strip_prefix('.')?.rsplit_once(".tmp-")?;
+    let (pid, thread) = tail.split_once('-')?;
+    thread.starts_with("ThreadId").then_some(())?;
+    pid.parse().ok()
+}
+
+/// Whether process `pid` still runs: `/proc` tells where there is one; elsewhere a temporary
+/// younger than an hour is taken to belong to a running process.
+fn process_running(pid: u32, temporary: &Path) -> bool {
+    let proc = Path::new("/proc");
+    if proc.is_dir() {
+        return proc.join(pid.to_string()).exists();
+    }
+    fs::metadata(temporary)
+        .and_then(|m| m.modified())
+        .is_ok_and(|t| t.elapsed().is_ok_and(|age| age.as_secs() < 3600))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -142,5 +181,23 @@ mod tests {
             .filter(|n| n.contains(".tmp-"))
             .collect();
         assert!(names.is_empty(), "{names:?}");
+    }
+
+    #[test]
+    fn stale_temporaries_of_dead_processes_are_removed_and_others_kept() {
+        let dir = tempfile::TempDir::new().unwrap();
+        let ours = temporary_sibling(&dir.path().join("a.json")).unwrap();
+        let ours_name = ours.file_name().unwrap().to_string_lossy().into_owned();
+        assert_eq!(temporary_owner(&ours_name), Some(std::process::id()));
+        // a pid far above any Linux pid_max: no such process
+        let dead = dir.path().join(".b.json.tmp-4294967290-ThreadId1");
+        let keep = dir.path().join("b.json");
+        let unrelated = dir.path().join(".c.json.tmp-notes");
+        for p in [&ours, &dead, &keep, &unrelated] {
+            fs::write(p, b"x").unwrap();
+        }
+        assert_eq!(remove_stale_temporaries(dir.path()).unwrap(), 1);
+        assert!(!dead.exists());
+        assert!(ours.exists() && keep.exists() && unrelated.exists());
     }
 }

@@ -8,11 +8,12 @@
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::atomic_file::write_atomically;
+use crate::atomic_file::{remove_stale_temporaries, write_atomically};
 use crate::layout::json::to_string;
 use crate::layout::{GenerateSpec, build_layout};
 use crate::maze::Metrics;
@@ -60,6 +61,10 @@ pub struct Outcome {
     pub unchanged: usize,
     /// Seeds whose maze the filter refused.
     pub filtered: usize,
+    /// Seeds not made because the batch was stopped (see [`run`]'s `stop`).
+    pub skipped: usize,
+    /// Temporary files of an earlier, killed run that were removed first.
+    pub stale_removed: usize,
     /// The manifest's path.
     pub manifest: PathBuf,
 }
@@ -69,6 +74,7 @@ enum Made {
     Written(ManifestEntry),
     Unchanged(ManifestEntry),
     Filtered,
+    Skipped,
 }
 
 /// The file name of the maze `spec` describes.
@@ -88,18 +94,26 @@ pub fn file_name(spec: &GenerateSpec) -> String {
 }
 
 /// Makes one layout per seed from `template` (its seed is replaced) into `out_dir`, in
-/// parallel on all cores; `tick` is called once per seed done (for a progress bar).
+/// parallel on all cores; `tick` is called once per seed done (for a progress bar). Once
+/// `stop` is set, mazes in flight are finished and no new one is started; the manifest then
+/// lists every maze made, in seed order, and [`Outcome::skipped`] counts the rest.
 pub fn run(
     template: &GenerateSpec,
     seeds: &[u64],
     filter: Filter,
     out_dir: &Path,
     tick: &(dyn Fn() + Sync),
+    stop: &AtomicBool,
 ) -> Result<Outcome, String> {
     fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+    let stale_removed =
+        remove_stale_temporaries(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let made: Vec<Made> = seeds
         .par_iter()
         .map(|&seed| {
+            if stop.load(Ordering::SeqCst) {
+                return Ok(Made::Skipped);
+            }
             let result = make_one(template, seed, filter, out_dir);
             tick();
             result
@@ -107,6 +121,7 @@ pub fn run(
         .collect::<Result<_, String>>()?;
     let mut outcome = Outcome {
         manifest: out_dir.join("manifest.jsonl"),
+        stale_removed,
         ..Outcome::default()
     };
     let mut entries = Vec::new();
@@ -121,6 +136,7 @@ pub fn run(
                 entries.push(entry);
             }
             Made::Filtered => outcome.filtered += 1,
+            Made::Skipped => outcome.skipped += 1,
         }
     }
     write_atomically(&outcome.manifest, |w| write_manifest(&entries, w))
@@ -216,17 +232,85 @@ mod tests {
         }
     }
 
+    /// A stop flag that is never set.
+    fn go() -> AtomicBool {
+        AtomicBool::new(false)
+    }
+
+    #[test]
+    fn a_stopped_batch_makes_nothing_new_and_lists_what_it_made() {
+        let dir = tempfile::TempDir::new().unwrap();
+        let template = GenerateSpec::course(Grid::new(6, 6).unwrap(), Algorithm::Dfs, 0);
+        let seeds: Vec<u64> = (0..40).collect();
+        let stop = AtomicBool::new(false);
+        let made = std::sync::atomic::AtomicUsize::new(0);
+        // stop after the fifth maze: those in flight finish, no new one starts
+        let tick = || {
+            if made.fetch_add(1, Ordering::SeqCst) + 1 == 5 {
+                stop.store(true, Ordering::SeqCst);
+            }
+        };
+        let outcome = run(
+            &template,
+            &seeds,
+            Filter::default(),
+            dir.path(),
+            &tick,
+            &stop,
+        )
+        .unwrap();
+        assert!(outcome.skipped > 0, "{outcome:?}");
+        assert_eq!(outcome.written + outcome.skipped, 40, "{outcome:?}");
+        let manifest = fs::read_to_string(&outcome.manifest).unwrap();
+        assert_eq!(manifest.lines().count(), outcome.written);
+        let files = fs::read_dir(dir.path()).unwrap().count();
+        assert_eq!(
+            files,
+            outcome.written + 1,
+            "layouts + manifest, no temporaries"
+        );
+        let rerun = run(
+            &template,
+            &seeds,
+            Filter::default(),
+            dir.path(),
+            &|| {},
+            &go(),
+        )
+        .unwrap();
+        assert_eq!(
+            (rerun.written, rerun.unchanged),
+            (40 - outcome.written, outcome.written)
+        );
+    }
+
     #[test]
     fn batches_write_once_and_filter() {
         let dir = tempfile::TempDir::new().unwrap();
         let template = GenerateSpec::course(Grid::new(8, 8).unwrap(), Algorithm::Prim, 0);
         let seeds: Vec<u64> = (0..12).collect();
-        let first = run(&template, &seeds, Filter::default(), dir.path(), &|| {}).unwrap();
+        let first = run(
+            &template,
+            &seeds,
+            Filter::default(),
+            dir.path(),
+            &|| {},
+            &go(),
+        )
+        .unwrap();
         assert_eq!((first.written, first.unchanged, first.filtered), (12, 0, 0));
         let manifest = fs::read_to_string(&first.manifest).unwrap();
         assert_eq!(manifest.lines().count(), 12);
         assert!(manifest.starts_with("{\"seed\":0,\"file\":\"prim-8x8-seed0.json\",\"metrics\":{"));
-        let again = run(&template, &seeds, Filter::default(), dir.path(), &|| {}).unwrap();
+        let again = run(
+            &template,
+            &seeds,
+            Filter::default(),
+            dir.path(),
+            &|| {},
+            &go(),
+        )
+        .unwrap();
         assert_eq!((again.written, again.unchanged), (0, 12));
         assert_eq!(fs::read_to_string(&again.manifest).unwrap(), manifest);
 
@@ -244,7 +328,7 @@ mod tests {
             max_dead_end_percent: None,
         };
         let out = tempfile::TempDir::new().unwrap();
-        let filtered = run(&template, &seeds, picky, out.path(), &|| {}).unwrap();
+        let filtered = run(&template, &seeds, picky, out.path(), &|| {}, &go()).unwrap();
         let kept = lengths.iter().filter(|&&l| l >= median).count();
         assert_eq!((filtered.written, filtered.filtered), (kept, 12 - kept));
         assert!(filtered.filtered > 0);

@@ -9,12 +9,13 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::generate::MazeArgs;
+use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use crate::batch::{self, Filter, parse_seeds};
 
 /// Options of `batch`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --algo kruskal --braid 0.3 --seeds 0..=99 --min-solution 40 --out-dir hard"
+    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --algo kruskal --braid 0.3 --size 15x15 --seeds 0..=99 --min-solution 40 --out-dir hard"
 )]
 pub struct BatchArgs {
     /// Seeds: N, A..B (B excluded), A..=B (B included), or a comma-separated list of these.
@@ -38,14 +39,16 @@ pub struct BatchArgs {
 #[derive(Debug, Clone)]
 pub struct SeedList(pub Vec<u64>);
 
-/// Runs `batch`.
+/// Runs `batch`. Ctrl-C (or SIGTERM, SIGHUP) finishes the mazes in flight, writes the
+/// manifest of every maze made, says how to resume and exits 130.
 pub fn run(args: BatchArgs) -> Result<ExitCode> {
     let template = args.maze.spec(0)?;
     let seeds = args.seeds.0;
+    let interrupt = Interrupt::install()?;
     let progress =
         ProgressBar::with_draw_target(Some(seeds.len() as u64), ProgressDrawTarget::stderr());
     progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} mazes, {per_sec}, eta {eta}")
+        ProgressStyle::with_template("{bar:40} {pos}/{len} mazes, {per_sec:.1}, eta {eta}")
             .expect("valid template"),
     );
     let filter = Filter {
@@ -53,19 +56,43 @@ pub fn run(args: BatchArgs) -> Result<ExitCode> {
         max_dead_end_percent: args.max_dead_ends,
     };
     let started = Instant::now();
-    let outcome = batch::run(&template, &seeds, filter, &args.out_dir, &|| {
-        progress.inc(1)
-    })
+    let outcome = batch::run(
+        &template,
+        &seeds,
+        filter,
+        &args.out_dir,
+        &|| progress.inc(1),
+        interrupt.flag(),
+    )
     .map_err(|e| anyhow!(e))?;
     progress.finish_and_clear();
+    if outcome.stale_removed > 0 {
+        eprintln!(
+            "removed {} temporary file(s) left by an earlier, killed run",
+            outcome.stale_removed
+        );
+    }
     eprintln!(
         "{} mazes: {} written, {} unchanged, {} refused by the filter, in {:.2} s; manifest {}",
-        seeds.len(),
+        seeds.len() - outcome.skipped,
         outcome.written,
         outcome.unchanged,
         outcome.filtered,
         started.elapsed().as_secs_f64(),
         outcome.manifest.display()
+    );
+    if interrupt.requested() {
+        eprintln!(
+            "interrupted: {} of {} seeds not made; run the same command again to finish (mazes already written are kept)",
+            outcome.skipped,
+            seeds.len()
+        );
+        return Ok(ExitCode::from(INTERRUPTED_EXIT_CODE));
+    }
+    anyhow::ensure!(
+        outcome.filtered < seeds.len(),
+        "the filter refused all {} mazes: loosen --min-solution or --max-dead-ends, or use a larger --size",
+        seeds.len()
     );
     Ok(ExitCode::SUCCESS)
 }

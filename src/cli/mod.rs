@@ -7,6 +7,7 @@ mod completions;
 mod connect;
 mod demo;
 mod generate;
+mod interrupt;
 mod output;
 mod render;
 mod serve;
