@@ -6,6 +6,8 @@ use std::time::Duration;
 
 use anyhow::Context;
 
+use super::ensure_usage;
+
 use super::connect::{Api, connect};
 use crate::draw::{self, ApplyOptions, Backend, Drawing, ObjectNames, Stage};
 
@@ -37,9 +39,10 @@ pub struct ConnectArgs {
     /// The end marker (a 1 m x 1 m red plane).
     #[arg(long, default_value = "End")]
     pub end: String,
-    /// Seconds to keep retrying to connect, and to wait for each reply.
-    #[arg(long, default_value_t = 10.0)]
-    pub timeout: f64,
+    /// Seconds to keep retrying to connect, and to wait for each reply (more than 0, at most
+    /// a day).
+    #[arg(long, default_value = "10", value_parser = parse_timeout, allow_negative_numbers = true)]
+    pub timeout: Duration,
 }
 
 impl ConnectArgs {
@@ -57,20 +60,34 @@ impl ConnectArgs {
     /// Connects to the simulator over the chosen API; with `auto` (and over ZeroMQ) says
     /// which API and version answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
-        anyhow::ensure!(
-            self.timeout > 0.0 && self.timeout.is_finite(),
-            "--timeout must be a positive number of seconds"
-        );
         let backend = connect(
             self.api,
             &self.host,
             self.port,
-            Duration::from_secs_f64(self.timeout),
+            self.timeout,
         )?;
         if self.api != Api::Legacy {
             println!("using the {}", backend.describe());
         }
         Ok(backend)
+    }
+}
+
+/// The longest `--timeout`: a day.
+const MAX_TIMEOUT_SECONDS: f64 = 86_400.0;
+
+/// `--timeout`: seconds, more than 0 and at most [`MAX_TIMEOUT_SECONDS`].
+fn parse_timeout(text: &str) -> Result<Duration, String> {
+    let seconds: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{text}' is not a number of seconds"))?;
+    if seconds > 0.0 && seconds <= MAX_TIMEOUT_SECONDS {
+        Ok(Duration::from_secs_f64(seconds))
+    } else {
+        Err(format!(
+            "{text} is out of range: more than 0 and at most {MAX_TIMEOUT_SECONDS} seconds"
+        ))
     }
 }
 
@@ -111,7 +128,7 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         ..Default::default()
     };
     let zmq_only = args.create_missing || args.save_scene.is_some();
-    anyhow::ensure!(
+    ensure_usage!(
         !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
     );

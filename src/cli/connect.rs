@@ -5,6 +5,8 @@ use std::time::Duration;
 
 use anyhow::Context;
 
+use super::ensure_usage;
+
 use super::one_line;
 use crate::draw::Backend;
 use crate::legacy::LegacyBackend;
@@ -55,7 +57,7 @@ pub fn connect(
             Ok(Box::new(backend))
         }
         Api::Auto => {
-            anyhow::ensure!(
+            ensure_usage!(
                 port.is_none(),
                 "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
             );

@@ -54,7 +54,28 @@ pub enum Command {
     Serve(serve::ServeArgs),
 }
 
-/// Parses the command line and runs it; errors become one line on standard error.
+/// Exit code of a command line that asks for something impossible (clap uses it too).
+const USAGE_EXIT_CODE: u8 = 2;
+
+/// A command line that asks for something impossible (a value out of range, options that
+/// conflict): reported like clap's own usage errors, with exit code 2. Any other failure
+/// exits with 1.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub(crate) struct UsageError(pub String);
+
+/// Fails with a [`UsageError`] unless `condition` holds.
+macro_rules! ensure_usage {
+    ($condition:expr, $($message:tt)+) => {
+        if !$condition {
+            return Err(anyhow::Error::new($crate::cli::UsageError(format!($($message)+))));
+        }
+    };
+}
+pub(crate) use ensure_usage;
+
+/// Parses the command line and runs it; errors become one line on standard error (then
+/// one line per hint), with exit code 2 for usage errors and 1 for other failures.
 pub fn main() -> ExitCode {
     end_quietly_on_broken_pipe();
     let cli = Cli::parse();
@@ -65,7 +86,11 @@ pub fn main() -> ExitCode {
             for hint in hints(&error) {
                 eprintln!("  hint: {hint}");
             }
-            ExitCode::FAILURE
+            if error.chain().any(|cause| cause.is::<UsageError>()) {
+                ExitCode::from(USAGE_EXIT_CODE)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }

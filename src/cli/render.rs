@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use super::output::write_output;
+use super::{UsageError, ensure_usage};
 use crate::layout::read_layout;
 use crate::render::{Format, RenderOptions};
 
@@ -35,7 +36,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
     let output = args.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(scene) = scene_dump(&args)? {
         let format = choose_format(args.format, output, Format::Svg)?;
-        anyhow::ensure!(
+        ensure_usage!(
             format == Format::Svg,
             "{}: a scene dump renders as SVG only (use --format svg or -o FILE.svg)",
             args.file.display()
@@ -45,7 +46,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     let format = choose_format(args.format, output, Format::Ascii)?;
-    anyhow::ensure!(
+    ensure_usage!(
         format != Format::Png || output.is_some() || !std::io::stdout().is_terminal(),
         "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
     );
@@ -72,24 +73,28 @@ fn choose_format(
     let by_extension = match output.and_then(|p| p.extension().map(|e| (p, e))) {
         None => None,
         Some((path, ext)) => Some(Format::from_extension(path).ok_or_else(|| {
-            anyhow::anyhow!(
+            usage(format!(
                 "{}: render writes .svg, .png and .txt (ascii) files, not .{}",
                 path.display(),
                 ext.to_string_lossy()
-            )
+            ))
         })?),
     };
     match (explicit, by_extension) {
-        (Some(f), Some(e)) if f != e => anyhow::bail!(
+        (Some(f), Some(e)) if f != e => Err(usage(format!(
             "--format {f} does not match the output file's extension (.{})",
             output
                 .and_then(|p| p.extension())
                 .map(|e| e.to_string_lossy().into_owned())
                 .unwrap_or_default()
-        ),
+        ))),
         (f, e) => Ok(f.or(e).unwrap_or(default)),
     }
 }
+fn usage(message: String) -> anyhow::Error {
+    anyhow::Error::new(UsageError(message))
+}
+
 /// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
 fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     if args.file.as_os_str() == "-" {

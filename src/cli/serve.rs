@@ -6,6 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 
+use super::ensure_usage;
+
 use std::sync::Arc;
 
 use crate::legacy::{ServerConfig, spawn};
@@ -38,7 +40,7 @@ pub struct ServeArgs {
     pub scene: String,
     /// Main-loop passes per second while the simulation is stopped (CoppeliaSim's default is
     /// 8; 0 = as fast as possible). Clients can change it (`sim_intparam_idle_fps`).
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
     pub idle_fps: i32,
     /// Write the scene as JSON to this file after each legacy client disconnects and on exit
     /// (ZeroMQ: on exit).
@@ -94,7 +96,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         Naming::Plain => NamingMode::Plain,
         Naming::Hash => NamingMode::Hash,
     };
-    anyhow::ensure!(
+    ensure_usage!(
         (0..=1000).contains(&args.idle_fps),
         "--idle-fps must be in 0..=1000, got {}",
         args.idle_fps
@@ -107,7 +109,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         _ => args.listen,
     }
     .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 23000)));
-    anyhow::ensure!(
+    ensure_usage!(
         args.zmq_listen.is_none() || args.api == ServeApi::Both,
         "--zmq-listen is for --api both; use --listen with --api zmq"
     );
