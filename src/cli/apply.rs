@@ -60,12 +60,7 @@ impl ConnectArgs {
     /// Connects to the simulator over the chosen API; with `auto` (and over ZeroMQ) says
     /// which API and version answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
-        let backend = connect(
-            self.api,
-            &self.host,
-            self.port,
-            self.timeout,
-        )?;
+        let backend = connect(self.api, &self.host, self.port, self.timeout)?;
         if self.api != Api::Legacy {
             println!("using the {}", backend.describe());
         }

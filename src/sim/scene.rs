@@ -63,6 +63,7 @@ pub enum NamingMode {
 
 /// One scene object. The pose is local (relative to the parent, or the world without parent).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Object {
     /// Unique handle; handles only increase and are never reused.
     pub handle: i32,
@@ -94,6 +95,7 @@ impl Object {
 
 /// An in-memory scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Scene {
     objects: BTreeMap<i32, Object>,
     next_handle: i32,
@@ -174,34 +176,89 @@ impl Scene {
         s
     }
 
-    /// Reads a scene from JSON (the format of [`Scene::to_json`] or of a `--dump` file).
+    /// Reads a scene from JSON (the format of [`Scene::to_json`] or of a `--dump` file) and
+    /// checks it: unknown fields, handles that disagree with their keys or reach the next free
+    /// handle, unknown parents, parent cycles (an object its own ancestor), duplicate names,
+    /// and non-finite or negative numbers are refused, naming the object and field.
     pub fn from_json(text: &str) -> Result<Scene, SimError> {
+        /// A `--dump` file: the scene plus what viewers read (`world` poses).
         #[derive(Deserialize)]
-        struct Wrapper {
+        #[serde(deny_unknown_fields)]
+        struct Dump {
+            #[allow(dead_code)]
+            format: Option<String>,
+            #[allow(dead_code)]
+            version: Option<u32>,
             scene: Scene,
+            #[allow(dead_code)]
+            world: Option<serde_json::Value>,
         }
-        let scene = match serde_json::from_str::<Wrapper>(text) {
-            Ok(w) => w.scene,
-            Err(_) => serde_json::from_str::<Scene>(text)
-                .map_err(|e| SimError::BadScene(e.to_string()))?,
-        };
-        for o in scene.objects.values() {
-            if let Some(p) = o.parent
-                && !scene.objects.contains_key(&p)
-            {
-                return Err(SimError::BadScene(format!(
-                    "object '{}' has unknown parent {p}",
-                    o.name
-                )));
-            }
-            if o.handle >= scene.next_handle {
-                return Err(SimError::BadScene(format!(
-                    "object '{}': handle >= next_handle",
-                    o.name
-                )));
-            }
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| SimError::BadScene(e.to_string()))?;
+        let wrapped = value.get("scene").is_some();
+        let scene = if wrapped {
+            serde_json::from_value::<Dump>(value).map(|d| d.scene)
+        } else {
+            serde_json::from_value::<Scene>(value)
         }
+        .map_err(|e| {
+            let hint = if e.to_string().contains("null") {
+                " (a number that is not finite is written as null)"
+            } else {
+                ""
+            };
+            SimError::BadScene(format!("{e}{hint}"))
+        })?;
+        scene.check()?;
         Ok(scene)
+    }
+
+    /// The consistency [`Scene::from_json`] requires (see there).
+    fn check(&self) -> Result<(), SimError> {
+        let bad = |o: &Object, what: String| {
+            SimError::BadScene(format!("object '{}' (handle {}): {what}", o.name, o.handle))
+        };
+        let mut names = std::collections::HashSet::new();
+        for (&key, o) in &self.objects {
+            if key != o.handle {
+                return Err(bad(o, format!("is stored under handle {key}")));
+            }
+            if o.handle >= self.next_handle {
+                return Err(bad(
+                    o,
+                    format!("handle is not below next_handle {}", self.next_handle),
+                ));
+            }
+            if !names.insert(o.name.as_str()) {
+                return Err(bad(o, "its name is used by another object".into()));
+            }
+            for (field, values) in [
+                ("position", o.position),
+                ("orientation", o.orientation),
+                ("size", o.size),
+            ] {
+                if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+                    return Err(bad(o, format!("{field}[{i}] is not a finite number")));
+                }
+            }
+            if let Some(i) = o.size.iter().position(|v| *v < 0.0) {
+                return Err(bad(o, format!("size[{i}] is negative")));
+            }
+            // walk up: more steps than objects means a cycle
+            let mut parent = o.parent;
+            let mut steps = 0;
+            while let Some(p) = parent {
+                let Some(up) = self.objects.get(&p) else {
+                    return Err(bad(o, format!("has unknown parent {p}")));
+                };
+                steps += 1;
+                if p == o.handle || steps > self.objects.len() {
+                    return Err(bad(o, "is its own ancestor (a parent cycle)".into()));
+                }
+                parent = up.parent;
+            }
+        }
+        Ok(())
     }
 
     /// Adds an object with a fresh handle; the alias is the name.
@@ -729,5 +786,75 @@ mod tests {
         assert_eq!(s.remove(end), Err(SimError::NoSuchHandle(end)));
         let text = s.to_json().to_string();
         assert_eq!(Scene::from_json(&text).unwrap(), s);
+    }
+
+    #[test]
+    fn broken_scene_files_are_refused_naming_object_and_field() {
+        let good = Scene::course().to_json();
+        assert!(Scene::from_json(&good.to_string()).is_ok());
+        let maze = Scene::course().resolve("Maze").unwrap().to_string();
+        let line = Scene::course().resolve("Line").unwrap().to_string();
+        let edit = |f: &dyn Fn(&mut serde_json::Value)| {
+            let mut v = good.clone();
+            f(&mut v);
+            Scene::from_json(&v.to_string()).unwrap_err().to_string()
+        };
+        let objects = |v: &mut serde_json::Value| v["scene"]["objects"].clone();
+        let cases: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>)> = vec![
+            (
+                "its own ancestor",
+                Box::new(|v| {
+                    v["scene"]["objects"][&maze]["parent"] =
+                        serde_json::json!(maze.parse::<i32>().unwrap());
+                }),
+            ),
+            (
+                "its own ancestor",
+                Box::new(|v| {
+                    // Maze -> Line -> Maze
+                    v["scene"]["objects"][&maze]["parent"] =
+                        serde_json::json!(line.parse::<i32>().unwrap());
+                    v["scene"]["objects"][&line]["parent"] =
+                        serde_json::json!(maze.parse::<i32>().unwrap());
+                }),
+            ),
+            (
+                "is stored under handle",
+                Box::new(|v| {
+                    let mut o = objects(v);
+                    o[&line]["handle"] = serde_json::json!(999);
+                    v["scene"]["objects"] = o;
+                }),
+            ),
+            (
+                "not finite",
+                Box::new(|v| {
+                    v["scene"]["objects"][&line]["position"][0] = serde_json::Value::Null;
+                }),
+            ),
+            (
+                "unknown field",
+                Box::new(|v| {
+                    v["scene"]["objects"][&line]["colour_name"] = serde_json::json!("green");
+                }),
+            ),
+            (
+                "used by another object",
+                Box::new(|v| {
+                    v["scene"]["objects"][&line]["name"] = serde_json::json!("Maze");
+                }),
+            ),
+            (
+                "negative",
+                Box::new(|v| {
+                    v["scene"]["objects"][&line]["size"][1] = serde_json::json!(-1.0);
+                }),
+            ),
+        ];
+        for (needle, change) in cases {
+            let message = edit(&*change);
+            assert!(message.contains(needle), "{needle}: {message}");
+            assert!(message.len() < 300, "{message}");
+        }
     }
 }
