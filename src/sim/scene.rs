@@ -800,7 +800,8 @@ mod tests {
             Scene::from_json(&v.to_string()).unwrap_err().to_string()
         };
         let objects = |v: &mut serde_json::Value| v["scene"]["objects"].clone();
-        let cases: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>)> = vec![
+        type Change<'a> = Box<dyn Fn(&mut serde_json::Value) + 'a>;
+        let cases: Vec<(&str, Change)> = vec![
             (
                 "its own ancestor",
                 Box::new(|v| {
