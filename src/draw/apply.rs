@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use super::lease::Claim;
 use super::plan::{self, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
     Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, ObjectNames, resolve_handles, verify,
@@ -93,7 +94,8 @@ impl std::fmt::Display for ApplyReport {
 }
 
 /// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) while
-/// drawing and restored afterwards, also on error.
+/// drawing and restored afterwards, also on error. The run claims the scene first
+/// ([`super::lease`]) and fails with [`DrawError::Concurrent`] if another run takes it over.
 pub fn apply(
     scene: &mut dyn Backend,
     drawing: &Drawing,
@@ -102,6 +104,29 @@ pub fn apply(
 ) -> Result<ApplyReport, DrawError> {
     let started = Instant::now();
     let rt0 = scene.round_trips();
+    if opts.dry_run {
+        return apply_claimed(scene, drawing, opts, progress, &Claim::none(), started, rt0);
+    }
+    let claim = Claim::take(scene)?;
+    let result = apply_claimed(scene, drawing, opts, progress, &claim, started, rt0);
+    let released = claim.release(scene);
+    let mut report = result?;
+    released?;
+    report.round_trips = scene.round_trips() - rt0;
+    Ok(report)
+}
+
+/// [`apply`] under `claim`.
+#[allow(clippy::too_many_arguments)]
+fn apply_claimed(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+    claim: &Claim,
+    started: Instant,
+    rt0: usize,
+) -> Result<ApplyReport, DrawError> {
     let survey = scene.survey(&opts.names.all())?;
     let h = resolve_handles(&opts.names, &survey)?;
     progress(Stage::Surveyed);
@@ -145,6 +170,7 @@ pub fn apply(
         p,
         &mut report,
         progress,
+        claim,
     );
     let restored = if raise {
         scene.set_idle_fps(user_fps, None)
@@ -168,12 +194,14 @@ fn draw(
     p: plan::Plan,
     report: &mut ApplyReport,
     progress: &mut dyn FnMut(Stage),
+    claim: &Claim,
 ) -> Result<(), DrawError> {
     // lines in segment order: template first, then reused copies, then pasted ones
     let mut lines = vec![h.line];
     lines.extend(&p.reuse);
     let mut pasted = 0;
     while pasted < p.paste {
+        claim.check(scene, "while pasting the lines")?;
         let groups = paste_round(&lines, p.paste - pasted, opts.paste_blocks_per_round);
         if groups.is_empty() {
             break;
@@ -244,11 +272,14 @@ fn draw(
     place(&mut edits, h.end, &drawing.end, None);
     edits.extend(p.remove.iter().map(|&r| Edit::Remove(r)));
     report.edits = edits.len();
-    if !edits.is_empty() {
-        scene.edit(&edits)?;
+    for chunk in edits.chunks(claim.edits_per_check()) {
+        claim.check(scene, "while placing the lines")?;
+        scene.edit(chunk)?;
     }
     progress(Stage::Verifying);
+    claim.check(scene, "before verifying")?;
     let after = scene.objects()?;
+    claim.check(scene, "while verifying")?;
     let problems = verify::check(
         &after,
         h,

@@ -1,6 +1,7 @@
 //! Remove a drawn maze: every child of the maze dummy except the templates, and parentless
 //! copies of the line template left by an interrupted run. Templates stay where they are.
 
+use super::lease::Claim;
 use super::plan::maze_lines;
 use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
 
@@ -32,8 +33,27 @@ pub struct ClearOptions {
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
 /// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
 pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
-    let (names, dry_run) = (&opts.names, opts.dry_run);
     let rt0 = scene.round_trips();
+    let claim = if opts.dry_run {
+        Claim::none()
+    } else {
+        Claim::take(scene)?
+    };
+    let result = clear_claimed(scene, opts, &claim);
+    let released = claim.release(scene);
+    let mut report = result?;
+    released?;
+    report.round_trips = scene.round_trips() - rt0;
+    Ok(report)
+}
+
+/// [`clear`] under `claim`.
+fn clear_claimed(
+    scene: &mut dyn Backend,
+    opts: &ClearOptions,
+    claim: &Claim,
+) -> Result<ClearReport, DrawError> {
+    let (names, dry_run) = (&opts.names, opts.dry_run);
     let survey = scene.survey(&names.all())?;
     let h = resolve_handles(names, &survey)?;
     let mut stopped_simulation = false;
@@ -57,6 +77,7 @@ pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport
                 .map(|o| o.name.clone())
         })
         .collect();
+    claim.check(scene, "before removing the lines")?;
     if !doomed.is_empty() && !dry_run {
         scene.edit(&doomed.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
     }
@@ -69,7 +90,7 @@ pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport
     };
     Ok(ClearReport {
         removed,
-        round_trips: scene.round_trips() - rt0,
+        round_trips: 0,
         restored_idle_fps,
         stopped_simulation,
     })

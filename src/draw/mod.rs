@@ -9,11 +9,13 @@
 
 pub mod apply;
 pub mod clear;
+pub mod lease;
 pub mod plan;
 pub mod verify;
 
 pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
 pub use clear::{ClearOptions, ClearReport, clear};
+pub use lease::{LEASE_SIGNAL, Lease};
 pub use verify::verify;
 
 use serde::{Deserialize, Serialize};
@@ -224,6 +226,12 @@ pub trait Backend {
     fn close(&mut self) -> Result<(), BackendError> {
         Ok(())
     }
+    /// The scene-side record that tells concurrent runs apart ([`lease`]). APIs that serve
+    /// several clients at once (ZeroMQ) have one; the legacy server serves one client at a
+    /// time, so it needs none.
+    fn lease(&mut self) -> Option<&mut dyn Lease> {
+        None
+    }
     /// What this backend can do beyond drawing, if anything (the ZeroMQ API can create
     /// objects and save the scene; the legacy API cannot).
     fn authoring(&mut self) -> Option<&mut dyn Authoring> {
@@ -254,6 +262,14 @@ pub enum DrawError {
     /// The simulation runs; edits would be lost when it stops.
     #[error("the simulation is running: changes made now would be discarded when it stops")]
     SimulationRunning,
+    /// Another `apply` or `clear` claimed the scene while this one ran ([`lease`]).
+    #[error(
+        "another apply or clear started on this scene {phase}; it may now hold parts of both mazes"
+    )]
+    Concurrent {
+        /// When this run noticed, e.g. "before placing the lines".
+        phase: &'static str,
+    },
     /// Backend failure.
     #[error(transparent)]
     Backend(#[from] BackendError),
@@ -280,6 +296,10 @@ impl DrawError {
             DrawError::Verify(_) => {
                 vec!["run the same command again: it repairs what differs".into()]
             }
+            DrawError::Concurrent { .. } => vec![
+                "run one apply or clear at a time on a scene; running one again alone repairs it"
+                    .into(),
+            ],
             DrawError::Backend(_) => vec![],
         }
     }

@@ -20,7 +20,8 @@ use crate::coppelia::{
 };
 use crate::draw::plan::is_copy_name;
 use crate::draw::{
-    Authoring, Backend, BackendError, Edit, ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
+    Authoring, Backend, BackendError, Edit, LEASE_SIGNAL, Lease, ObjectInfo, ObjectNames,
+    SAVED_IDLE_FPS_SIGNAL, Survey,
 };
 
 impl From<ZmqError> for BackendError {
@@ -490,6 +491,32 @@ impl Backend for ZmqBackend {
 
     fn authoring(&mut self) -> Option<&mut dyn Authoring> {
         Some(self)
+    }
+
+    fn lease(&mut self) -> Option<&mut dyn Lease> {
+        Some(self)
+    }
+}
+
+/// The lease is the integer signal [`LEASE_SIGNAL`] (a simulator without integer signals
+/// answers with a remote error, and the run goes on unguarded).
+impl Lease for ZmqBackend {
+    fn claim(&mut self, token: i32) -> Result<(), BackendError> {
+        let name = Value::Text(LEASE_SIGNAL.into());
+        self.call("sim.setInt32Signal", vec![name, int(token.into())])?;
+        Ok(())
+    }
+
+    fn holder(&mut self) -> Result<Option<i32>, BackendError> {
+        let name = Value::Text(LEASE_SIGNAL.into());
+        let values = self.call("sim.getInt32Signal", vec![name])?;
+        Ok(values.first().and_then(cbor::int32))
+    }
+
+    fn release(&mut self) -> Result<(), BackendError> {
+        let name = Value::Text(LEASE_SIGNAL.into());
+        self.call("sim.clearInt32Signal", vec![name])?;
+        Ok(())
     }
 }
 
