@@ -4,6 +4,8 @@
 //! by [`Clock::serve_at`]: a request arriving within the busy window of the previous reply is
 //! served at once, a later one waits for the next pass (1 / `idle_fps`; none at idle fps 0).
 
+mod functions;
+
 use std::collections::HashMap;
 use std::net::SocketAddr;
 use std::path::PathBuf;
@@ -14,10 +16,10 @@ use std::time::Instant;
 
 use ciborium::Value;
 
-use super::cbor;
-use super::functions::{self, Extras, Outcome};
-use super::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
 use crate::sim::{Clock, SimState, Simulator};
+use crate::zmq_api::cbor;
+use crate::zmq_api::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
+use functions::{Extras, Outcome};
 
 /// Where the simulator lives: its own mutex, or shared with the legacy server (`--api both`).
 pub trait SimHost: Send + Sync {

@@ -9,8 +9,6 @@ use std::collections::HashMap;
 use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
-use super::cbor::{self, float_array, int};
-use super::message::Protocol;
 use crate::coppelia::frame::{euler_from_rotation, rotation_from_euler};
 use crate::coppelia::{
     HANDLE_ALL, HANDLE_PARENT, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
@@ -18,6 +16,8 @@ use crate::coppelia::{
     SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
 use crate::sim::{NewObject, ObjectType, SimState, Simulator};
+use crate::zmq_api::cbor::{self, float_array, int};
+use crate::zmq_api::message::Protocol;
 
 /// The program version a protocol-2 server reports (CoppeliaSim 4.10.0); a protocol-1
 /// server reports the scene model's 4.5.1.
