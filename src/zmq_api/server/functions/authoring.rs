@@ -164,9 +164,14 @@ pub(super) fn save_scene(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, Str
 #[cfg(test)]
 mod tests {
     use super::super::testing::{ret1, run};
+    use super::super::{Extras, call};
     use super::*;
-    use crate::coppelia::DEFAULT_IDLE_FPS;
+    use crate::coppelia::{
+        DEFAULT_IDLE_FPS, SHAPEINTPARAM_RESPONDABLE, SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE,
+        SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
+    };
     use crate::sim::{Scene, Simulator};
+    use crate::zmq_api::message::Protocol;
 
     #[test]
     fn created_objects_are_named_like_coppeliasim_and_aliases_rename_them() {
@@ -209,5 +214,53 @@ mod tests {
             vec![int(b.into()), int(0)],
         ));
         assert_eq!(cbor::text(&alias0), Some("Green_line_[0]"));
+    }
+
+    #[test]
+    fn special_properties_and_shape_params_default_then_stick() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let mut x = Extras::default();
+        let mut go =
+            |func: &str, args: Vec<Value>| call(&mut sim, &mut x, Protocol::V2, func, &args);
+        let cube = vec![int(3), float_array(&[0.1; 3]), int(0)];
+        let shape = ret1(go("sim.createPrimitiveShape", cube));
+        let dummy = ret1(go("sim.createDummy", vec![]));
+        let all = SPECIAL_COLLIDABLE | SPECIAL_MEASURABLE | SPECIAL_DETECTABLE | SPECIAL_RENDERABLE;
+        for (h, bits) in [(&shape, all), (&dummy, 0)] {
+            assert_eq!(
+                go("sim.getObjectSpecialProperty", vec![h.clone()]),
+                Outcome::Ret(vec![int(bits.into())])
+            );
+        }
+        let renderable = int(SPECIAL_RENDERABLE.into());
+        go(
+            "sim.setObjectSpecialProperty",
+            vec![dummy.clone(), renderable.clone()],
+        );
+        assert_eq!(
+            go("sim.getObjectSpecialProperty", vec![dummy.clone()]),
+            Outcome::Ret(vec![renderable])
+        );
+        let respondable = int(SHAPEINTPARAM_RESPONDABLE.into());
+        let get = vec![shape.clone(), respondable.clone()];
+        assert_eq!(
+            go("sim.getObjectInt32Param", get.clone()),
+            Outcome::Ret(vec![int(1)])
+        );
+        go(
+            "sim.setObjectInt32Param",
+            vec![shape.clone(), respondable.clone(), int(0)],
+        );
+        assert_eq!(
+            go("sim.getObjectInt32Param", get),
+            Outcome::Ret(vec![int(0)])
+        );
+        let d = cbor::int32(&dummy).unwrap();
+        assert_eq!(
+            go("sim.getObjectInt32Param", vec![dummy, respondable]),
+            Outcome::Err(format!(
+                "in sim.getObjectInt32Param: invalid parameter {SHAPEINTPARAM_RESPONDABLE} for object {d}."
+            ))
+        );
     }
 }

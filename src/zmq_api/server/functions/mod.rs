@@ -238,10 +238,79 @@ mod testing {
 
 #[cfg(test)]
 mod tests {
+    use std::collections::HashSet;
+
     use super::testing::run;
     use super::*;
     use crate::coppelia::DEFAULT_IDLE_FPS;
     use crate::sim::Scene;
+
+    /// Identifiers following `prefix` in `text` and followed by `end`.
+    fn names_between(text: &str, prefix: &str, end: char) -> HashSet<String> {
+        text.match_indices(prefix)
+            .filter(|(i, _)| {
+                // `sim.` must start a name, not end one (`xsim.`)
+                !text[..*i]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_')
+            })
+            .filter_map(|(i, _)| {
+                let rest = &text[i + prefix.len()..];
+                let len = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                rest[len..]
+                    .starts_with(end)
+                    .then(|| rest[..len].to_string())
+            })
+            .filter(|n| !n.is_empty())
+            .collect()
+    }
+
+    #[test]
+    fn every_function_our_client_and_the_official_one_call_is_registered() {
+        let ours = names_between(include_str!("../../backend.rs"), "\"sim.", '"');
+        let script = include_str!("../../../../tests/conformance/zmq_official_client.py");
+        let official = names_between(script, "sim.", '(');
+        assert!(
+            ours.len() >= 20 && official.len() >= 20,
+            "{ours:?} {official:?}"
+        );
+        let registered: HashSet<&str> = sim_functions().collect();
+        let missing: Vec<&String> = ours
+            .iter()
+            .chain(&official)
+            .filter(|n| !registered.contains(n.as_str()))
+            .collect();
+        assert!(missing.is_empty(), "not in the registry: {missing:?}");
+        // constants the official client reads (`sim.handle_world`) are advertised too
+        let constants: HashSet<&str> = SIM_CONSTANTS.iter().map(|(c, _)| *c).collect();
+        let used = names_between(script, "sim.", ' ')
+            .into_iter()
+            .chain(names_between(script, "sim.", ','))
+            .chain(names_between(script, "sim.", ')'))
+            .filter(|n| n.contains('_'));
+        let unknown: Vec<String> = used.filter(|c| !constants.contains(c.as_str())).collect();
+        assert!(unknown.is_empty(), "not in SIM_CONSTANTS: {unknown:?}");
+    }
+
+    #[test]
+    fn registry_and_advertised_names_are_unique() {
+        let mut seen = HashSet::new();
+        for (name, _) in REGISTRY {
+            assert!(seen.insert(*name), "{name} registered twice");
+        }
+        let advertised: Vec<&str> = sim_functions().collect();
+        assert_eq!(advertised.len(), REGISTRY.len() - 2, "{advertised:?}");
+        let mut names = HashSet::new();
+        for (c, _) in SIM_CONSTANTS {
+            assert!(names.insert(*c), "{c} listed twice");
+        }
+        for f in advertised {
+            assert!(names.insert(f), "{f} is both a function and a constant");
+        }
+    }
 
     #[test]
     fn unknown_functions_are_no_such_function() {

@@ -117,4 +117,27 @@ mod tests {
             )
         );
     }
+
+    #[test]
+    fn stopping_a_running_simulation_waits_over_protocol_2_only() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let mut x = Extras::default();
+        for (protocol, stop) in [
+            (Protocol::V2, Outcome::WaitThen(vec![])),
+            (Protocol::V1, Outcome::Ret(vec![])),
+        ] {
+            call(&mut sim, &mut x, protocol, "sim.startSimulation", &[]);
+            let state = call(&mut sim, &mut x, protocol, "sim.getSimulationState", &[]);
+            assert_eq!(state, Outcome::Ret(vec![int(17)]));
+            assert_eq!(
+                call(&mut sim, &mut x, protocol, "sim.stopSimulation", &[]),
+                stop
+            );
+            // stopping a stopped simulation answers at once
+            assert_eq!(
+                call(&mut sim, &mut x, protocol, "sim.stopSimulation", &[]),
+                Outcome::Ret(vec![])
+            );
+        }
+    }
 }
