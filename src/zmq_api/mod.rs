@@ -2,13 +2,13 @@
 //! request/reply maps of both protocol generations, a client, an emulated server over
 //! [`crate::sim`], and the drawing backend.
 //!
-//! Layers: [`cbor`] (values) → [`message`] (request and reply maps) → [`client`] /
-//! [`server`] + [`functions`] → [`backend`] (the [`crate::draw::Backend`] implementation).
+//! Layers: [`cbor`] (values) → [`message`] (request and reply maps) → [`client`] (then
+//! [`backend`], the [`crate::draw::Backend`] implementation) / [`server`] (the emulator, with
+//! its `sim.*` function registry). The client side never imports from the server side.
 
 pub mod backend;
 pub mod cbor;
 pub mod client;
-pub mod functions;
 pub mod message;
 pub mod server;
 

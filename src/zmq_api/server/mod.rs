@@ -3,6 +3,11 @@
 //! One REP socket, one thread. The add-on serves requests from CoppeliaSim's main loop, timed
 //! by [`Clock::serve_at`]: a request arriving within the busy window of the previous reply is
 //! served at once, a later one waits for the next pass (1 / `idle_fps`; none at idle fps 0).
+//! This module is the transport (socket, request and reply maps of either protocol generation,
+//! protocol-2 results held back behind `_*wait*_`); the functions themselves are in the
+//! `functions` registry.
+
+mod functions;
 
 use std::collections::HashMap;
 use std::net::SocketAddr;
@@ -14,14 +19,14 @@ use std::time::Instant;
 
 use ciborium::Value;
 
-use super::cbor;
-use super::functions::{self, Extras, Outcome};
-use super::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
 use crate::sim::{Clock, SimState, Simulator};
+use crate::zmq_api::cbor;
+use crate::zmq_api::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
+use functions::{Extras, Outcome};
 
 /// Where the simulator lives: its own mutex, or shared with the legacy server (`--api both`).
 pub trait SimHost: Send + Sync {
-    /// Runs `f` on the simulator.
+    /// Runs `f` on the simulator, holding whatever lock guards it.
     fn with_sim(&self, f: &mut dyn FnMut(&mut Simulator));
 }
 
@@ -37,7 +42,7 @@ impl SimHost for crate::legacy::ServerHandle {
     }
 }
 
-/// Server settings.
+/// How to run the emulated server: address, protocol generation, pacing, scene dump, logging.
 #[derive(Debug, Clone)]
 pub struct ServerConfig {
     /// Address to bind (port 0 = any free port).
@@ -64,7 +69,7 @@ impl Default for ServerConfig {
     }
 }
 
-/// A running server.
+/// A running server: its address and request count, its simulator, and how to stop it.
 pub struct ServerHandle {
     addr: SocketAddr,
     stop: Arc<AtomicBool>,
@@ -75,7 +80,7 @@ pub struct ServerHandle {
 }
 
 impl ServerHandle {
-    /// The bound address.
+    /// The address bound (with the port chosen when [`ServerConfig::listen`] had port 0).
     pub fn local_addr(&self) -> SocketAddr {
         self.addr
     }
@@ -85,7 +90,7 @@ impl ServerHandle {
         self.requests.load(Ordering::SeqCst)
     }
 
-    /// Runs `f` on the simulator.
+    /// Runs `f` on the simulator, between requests (it holds the simulator's lock).
     pub fn with_sim<R>(&self, f: impl FnOnce(&mut Simulator) -> R) -> R {
         let mut f = Some(f);
         let mut out = None;
@@ -97,7 +102,7 @@ impl ServerHandle {
         out.expect("SimHost::with_sim runs its closure")
     }
 
-    /// Stops the thread and writes the dump.
+    /// Stops the server thread, then writes the scene dump if [`ServerConfig::dump`] asks.
     pub fn shutdown(mut self) {
         self.stop.store(true, Ordering::SeqCst);
         if let Some(t) = self.thread.take() {
@@ -116,12 +121,13 @@ impl ServerHandle {
     }
 }
 
-/// Binds and starts the server over its own simulator.
+/// Binds and starts the server over a simulator of its own.
 pub fn spawn(config: ServerConfig, sim: Simulator) -> std::io::Result<ServerHandle> {
     spawn_shared(config, Arc::new(Mutex::new(sim)))
 }
 
-/// Binds and starts the server over a shared simulator.
+/// Binds and starts the server over a simulator it shares (e.g. with the legacy server);
+/// an address in use is [`std::io::ErrorKind::AddrInUse`].
 pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Result<ServerHandle> {
     let io = |e: zmq::Error| std::io::Error::other(format!("ZeroMQ: {e}"));
     let context = zmq::Context::new();
@@ -182,14 +188,17 @@ pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Re
     })
 }
 
+/// What the server thread keeps between requests.
 struct State {
     config: ServerConfig,
     host: Arc<dyn SimHost>,
+    /// Object properties the scene does not model (special properties, shape parameters).
     extras: Extras,
     /// Protocol 2: results waiting for the client's `_*executed*_`, per uuid.
     pending: HashMap<String, Vec<Value>>,
 }
 
+/// Receives, paces and answers requests until `stop` is set.
 fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &AtomicU64) {
     let mut last_reply: Option<Instant> = None;
     while !stop.load(Ordering::SeqCst) {
@@ -252,6 +261,8 @@ fn handle(state: &mut State, bytes: &[u8]) -> Value {
     }
 }
 
+/// Calls the requested function and turns its outcome into the reply of `protocol`
+/// (protocol 2: a deferred result is parked under the request's uuid, answered `_*wait*_`).
 fn outcome_reply(
     state: &mut State,
     protocol: Protocol,

@@ -1,0 +1,179 @@
+//! The object tree: finding objects by path, their aliases, types and parents, copying and
+//! removing them.
+
+use ciborium::Value;
+
+use super::{Args, Ctx, Outcome, nothing, ret};
+use crate::coppelia::{HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD};
+use crate::zmq_api::cbor::{self, int};
+
+/// `sim.getObject(path, {noError, index})`: the handle at a path; with `noError`, -1 instead of
+/// an error when nothing is there.
+pub(super) fn get_object(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let path = a.text(0)?;
+    let opts = a.get(1);
+    let no_error = opts
+        .and_then(|o| cbor::get(o, "noError"))
+        .and_then(cbor::boolean)
+        .unwrap_or(false);
+    let index = opts
+        .and_then(|o| cbor::get(o, "index"))
+        .and_then(cbor::integer);
+    let full = match index {
+        Some(i) if i > 0 => format!("{path}[{i}]"),
+        _ => path.to_string(),
+    };
+    match ctx.sim.scene.resolve(&full) {
+        Ok(h) => ret(vec![int(h.into())]),
+        Err(_) if no_error => ret(vec![int(-1)]),
+        Err(_) => Err(format!("in {}: object does not exist: {full}", a.func)),
+    }
+}
+
+/// `sim.getObjectAlias(h, options = -1)`: the bare alias (-1), the alias with its index
+/// (`Line[0]`, 0), or the full path (`/Maze/Line[1]`, anything else).
+pub(super) fn get_object_alias(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let h = a.int(0)?;
+    let opt = a.int_or(1, -1)?;
+    let scene = &ctx.sim.scene;
+    let o = scene.get(h).map_err(|_| a.no_object())?;
+    let s = match opt {
+        -1 => o.alias.clone(),
+        0 => {
+            let path = scene.path(h).map_err(|_| a.no_object())?;
+            let idx = path
+                .rsplit_once('[')
+                .map(|(_, n)| n.trim_end_matches(']').to_string());
+            format!("{}[{}]", o.alias, idx.unwrap_or_else(|| "0".into()))
+        }
+        _ => scene.path(h).map_err(|_| a.no_object())?,
+    };
+    ret(vec![Value::Text(s)])
+}
+
+/// `sim.getObjectType(h)`: `sim.object_shape_type` or `sim.object_dummy_type`.
+pub(super) fn get_object_type(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let h = a.int(0)?;
+    let o = ctx.sim.scene.get(h).map_err(|_| a.no_object())?;
+    ret(vec![int(o.kind.code().into())])
+}
+
+/// `sim.copyPasteObjects(handles, options)`: the handles of the copies.
+pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let hs = a.handles(0)?;
+    let new = ctx.sim.scene.copy_paste(&hs).map_err(|_| a.no_object())?;
+    ret(vec![Value::Array(
+        new.into_iter().map(|h| int(h.into())).collect(),
+    )])
+}
+
+/// `sim.removeObjects(handles)`: all or nothing; an unknown handle removes none.
+pub(super) fn remove_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let hs = a.handles(0)?;
+    if let Some(bad) = hs.iter().find(|h| ctx.sim.scene.get(**h).is_err()) {
+        return Err(a.no_object_in_list(*bad));
+    }
+    for h in hs {
+        // a handle listed twice is already gone: like CoppeliaSim, ignore it
+        let _ = ctx.sim.scene.remove(h);
+        ctx.extras.special.remove(&h);
+    }
+    nothing()
+}
+
+/// `sim.removeObject(h)`, the pre-4.6 single-object form.
+pub(super) fn remove_object(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let h = a.int(0)?;
+    ctx.sim.scene.remove(h).map_err(|_| a.no_object())?;
+    nothing()
+}
+
+/// `sim.getObjectsInTree(base, type = sim.handle_all, options = 0)`: the objects under `base`
+/// (or the whole scene), in tree order. Options bit 0 leaves out the base, bit 1 keeps only
+/// its direct children (the roots, for the scene).
+pub(super) fn get_objects_in_tree(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let base = a.int(0)?;
+    let kind = a.int_or(1, HANDLE_ALL)?;
+    let options = a.int_or(2, 0)?;
+    let scene = &ctx.sim.scene;
+    let order = scene.tree_order();
+    let in_tree = |h: i32| -> bool {
+        if base == HANDLE_SCENE {
+            return options & 2 == 0 || scene.get(h).is_ok_and(|o| o.parent.is_none());
+        }
+        if h == base {
+            return options & 1 == 0;
+        }
+        let parent = scene.get(h).ok().and_then(|o| o.parent);
+        if options & 2 != 0 {
+            return parent == Some(base);
+        }
+        let mut cur = parent;
+        while let Some(p) = cur {
+            if p == base {
+                return true;
+            }
+            cur = scene.get(p).ok().and_then(|o| o.parent);
+        }
+        false
+    };
+    if base != HANDLE_SCENE {
+        scene.get(base).map_err(|_| a.no_object())?;
+    }
+    let hs: Vec<Value> = order
+        .into_iter()
+        .filter(|&h| in_tree(h))
+        .filter(|&h| kind == HANDLE_ALL || scene.get(h).is_ok_and(|o| o.kind.code() == kind))
+        .map(|h| int(h.into()))
+        .collect();
+    ret(vec![Value::Array(hs)])
+}
+
+/// `sim.getObjectParent(h)`: the parent's handle, `sim.handle_world` for a root.
+pub(super) fn get_object_parent(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let h = a.int(0)?;
+    let o = ctx.sim.scene.get(h).map_err(|_| a.no_object())?;
+    ret(vec![int(o.parent.unwrap_or(HANDLE_WORLD).into())])
+}
+
+/// `sim.setObjectParent(h, parent, keepInPlace = true)`; `sim.handle_world` makes `h` a root.
+pub(super) fn set_object_parent(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let (h, p) = (a.int(0)?, a.int(1)?);
+    let keep = a.get(2).and_then(cbor::boolean).unwrap_or(true);
+    let parent = (p != HANDLE_WORLD).then_some(p);
+    ctx.sim
+        .scene
+        .set_parent(h, parent, keep)
+        .map_err(|e| format!("in {}: {e}", a.func))?;
+    nothing()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::testing::{ret1, run};
+    use super::*;
+    use crate::coppelia::DEFAULT_IDLE_FPS;
+    use crate::sim::{Scene, Simulator};
+
+    #[test]
+    fn objects_in_tree_options() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let line = sim.scene.resolve("Line").unwrap();
+        sim.scene.set_parent(line, Some(maze), true).unwrap();
+        let tree = |sim: &mut Simulator, base: i32, opt: i32| {
+            cbor::handles(&ret1(run(
+                sim,
+                "sim.getObjectsInTree",
+                vec![int(base.into()), int(-2), int(opt.into())],
+            )))
+            .unwrap()
+        };
+        assert_eq!(tree(&mut sim, maze, 0), vec![maze, line]);
+        assert_eq!(tree(&mut sim, maze, 1), vec![line]);
+        assert_eq!(tree(&mut sim, maze, 3), vec![line]);
+        let roots = tree(&mut sim, HANDLE_SCENE, 2);
+        assert!(!roots.contains(&line) && roots.contains(&maze));
+        assert_eq!(tree(&mut sim, HANDLE_SCENE, 0).len(), 5);
+    }
+}
