@@ -37,3 +37,29 @@ pub const SPECIAL_MEASURABLE: i32 = 2;
 pub const SPECIAL_DETECTABLE: i32 = 496;
 /// `sim.objectspecialproperty_renderable` (seen by vision sensors: the robot's camera).
 pub const SPECIAL_RENDERABLE: i32 = 2048;
+
+/// `sim_object_shape_type`: the object type of shapes (planes, the floor).
+pub const OBJECT_SHAPE_TYPE: i32 = 0;
+/// `sim_object_dummy_type`: the object type of dummies (the `Maze` parent).
+pub const OBJECT_DUMMY_TYPE: i32 = 4;
+
+/// `sim.primitiveshape_plane` (`sim.createPrimitiveShape`).
+pub const PRIMITIVESHAPE_PLANE: i32 = 1;
+/// `sim.primitiveshape_disc`.
+pub const PRIMITIVESHAPE_DISC: i32 = 2;
+/// `sim.primitiveshape_cuboid`.
+pub const PRIMITIVESHAPE_CUBOID: i32 = 3;
+/// `sim.primitiveshape_spheroid`.
+pub const PRIMITIVESHAPE_SPHEROID: i32 = 4;
+/// `sim.primitiveshape_cylinder`.
+pub const PRIMITIVESHAPE_CYLINDER: i32 = 5;
+
+/// `sim.simulation_stopped` (`sim.getSimulationState`).
+pub const SIMULATION_STOPPED: i32 = 0;
+/// `sim.simulation_paused`.
+pub const SIMULATION_PAUSED: i32 = 8;
+/// `sim.simulation_advancing_running`: the state of a running simulation.
+pub const SIMULATION_ADVANCING_RUNNING: i32 = 17;
+
+/// `sim.colorcomponent_ambient_diffuse` (`sim.setShapeColor`).
+pub const COLORCOMPONENT_AMBIENT_DIFFUSE: i32 = 0;

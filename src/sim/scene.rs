@@ -43,8 +43,8 @@ impl ObjectType {
     /// CoppeliaSim's numeric type code.
     pub fn code(self) -> i32 {
         match self {
-            ObjectType::Shape => 0,
-            ObjectType::Dummy => 4,
+            ObjectType::Shape => crate::coppelia::OBJECT_SHAPE_TYPE,
+            ObjectType::Dummy => crate::coppelia::OBJECT_DUMMY_TYPE,
         }
     }
 }

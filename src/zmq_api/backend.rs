@@ -15,8 +15,9 @@ use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
 use crate::coppelia::frame::{euler_from_rotation, rotation_from_euler};
 use crate::coppelia::{
-    HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION,
-    SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_RENDERABLE,
+    COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
+    INTPARAM_PROGRAM_VERSION, PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE,
+    SHAPEINTPARAM_STATIC, SIMULATION_STOPPED, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan::is_copy_name;
 use crate::draw::{
@@ -287,12 +288,21 @@ impl ZmqBackend {
     ) -> Result<i32, BackendError> {
         let h = self.client.call_int(
             "sim.createPrimitiveShape",
-            vec![int(1), float_array(&[size[0], size[1], 0.0]), int(0)],
+            vec![
+                int(PRIMITIVESHAPE_PLANE.into()),
+                float_array(&[size[0], size[1], 0.0]),
+                int(0),
+            ],
         )?;
         let hv = || int(h.into());
         self.call(
             "sim.setShapeColor",
-            vec![hv(), Value::Null, int(0), float_array(&colour)],
+            vec![
+                hv(),
+                Value::Null,
+                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                float_array(&colour),
+            ],
         )?;
         if !floor {
             self.call(
@@ -460,7 +470,7 @@ impl Backend for ZmqBackend {
     fn stop_simulation(&mut self) -> Result<(), BackendError> {
         let deadline = Instant::now() + self.timeout;
         self.call("sim.stopSimulation", vec![])?;
-        while self.client.call_int("sim.getSimulationState", vec![])? != 0 {
+        while self.client.call_int("sim.getSimulationState", vec![])? != SIMULATION_STOPPED {
             if Instant::now() > deadline {
                 return Err(BackendError::Remote("the simulation did not stop".into()));
             }

@@ -4,6 +4,10 @@
 use ciborium::Value;
 
 use super::{Args, Ctx, Outcome, nothing, ret};
+use crate::coppelia::{
+    PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_CYLINDER, PRIMITIVESHAPE_DISC, PRIMITIVESHAPE_PLANE,
+    PRIMITIVESHAPE_SPHEROID,
+};
 use crate::sim::{NewObject, ObjectType};
 use crate::zmq_api::cbor::{self, float_array, int};
 
@@ -25,14 +29,14 @@ pub(super) fn create_primitive_shape(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<
     let kind = a.int(0)?;
     let size = a.vec3(1)?;
     let base = match kind {
-        1 => "Plane",
-        2 => "Disc",
-        3 => "Cuboid",
-        4 => "Sphere",
-        5 => "Cylinder",
+        PRIMITIVESHAPE_PLANE => "Plane",
+        PRIMITIVESHAPE_DISC => "Disc",
+        PRIMITIVESHAPE_CUBOID => "Cuboid",
+        PRIMITIVESHAPE_SPHEROID => "Sphere",
+        PRIMITIVESHAPE_CYLINDER => "Cylinder",
         _ => return Err(format!("in {}: invalid primitive type {kind}.", a.func)),
     };
-    let size = if kind == 1 {
+    let size = if kind == PRIMITIVESHAPE_PLANE {
         [size[0], size[1], 0.0]
     } else {
         size

@@ -4,7 +4,9 @@
 use ciborium::Value;
 
 use super::{Args, Ctx, Outcome, nothing, ret};
-use crate::coppelia::INTPARAM_PROGRAM_VERSION;
+use crate::coppelia::{
+    INTPARAM_PROGRAM_VERSION, SIMULATION_ADVANCING_RUNNING, SIMULATION_PAUSED, SIMULATION_STOPPED,
+};
 use crate::sim::SimState;
 use crate::zmq_api::cbor::int;
 use crate::zmq_api::message::Protocol;
@@ -16,10 +18,11 @@ const PROGRAM_VERSION_V2: i32 = 41000;
 /// `sim.getSimulationState()`: `sim.simulation_stopped`, `_paused` or `_advancing_running`.
 pub(super) fn get_simulation_state(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Outcome, String> {
     ret(vec![int(match ctx.sim.state {
-        SimState::Stopped => 0,
-        SimState::Paused => 8,
-        SimState::Running => 17,
-    })])
+        SimState::Stopped => SIMULATION_STOPPED,
+        SimState::Paused => SIMULATION_PAUSED,
+        SimState::Running => SIMULATION_ADVANCING_RUNNING,
+    }
+    .into())])
 }
 
 /// `sim.startSimulation()`: scene edits from now on are undone on stop.
