@@ -1,0 +1,193 @@
+//! What each command does to the simulator: [`execute`] one stored command in a pass, and
+//! the group data of `simxGetObjectGroupData`.
+
+use crate::coppelia::frame::rotation_from_euler;
+use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
+use crate::legacy::command::{Command, GroupData, SimControl, encode_handle_list};
+use crate::legacy::wire::Block;
+use crate::sim::Simulator;
+
+fn f32x3(v: [f64; 3]) -> Vec<u8> {
+    v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
+}
+
+fn widen(v: [f32; 3]) -> [f64; 3] {
+    [v[0] as f64, v[1] as f64, v[2] as f64]
+}
+
+/// Executes one command; returns (success, reply pure data).
+pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
+    let Some(cmd) = Command::from_block(block) else {
+        return (false, block.data.clone());
+    };
+    let i32le = |v: i32| v.to_le_bytes().to_vec();
+    let scene = &mut sim.scene;
+    match cmd {
+        Command::GetObjectHandle(name) => match scene.resolve(&name) {
+            Ok(h) => (true, i32le(h)),
+            Err(_) => (false, i32le(-1)),
+        },
+        Command::GetObjects(t) => {
+            let hs: Vec<i32> = scene
+                .objects()
+                .filter(|o| t == -2 || o.kind.code() == t)
+                .map(|o| o.handle)
+                .collect();
+            (true, encode_handle_list(&hs))
+        }
+        Command::GetObjectGroupData {
+            object_type,
+            data_type,
+        } => match group_data(sim, object_type, data_type) {
+            Some(g) => (true, g.encode()),
+            None => (false, vec![]),
+        },
+        Command::GetObjectParent(h) => (
+            true,
+            i32le(
+                scene
+                    .get(h)
+                    .ok()
+                    .and_then(|o| o.parent)
+                    .unwrap_or(HANDLE_WORLD),
+            ),
+        ),
+        Command::SetObjectParent {
+            handle,
+            parent,
+            keep_in_place,
+        } => {
+            let parent = (parent != HANDLE_WORLD).then_some(parent);
+            (
+                scene.set_parent(handle, parent, keep_in_place).is_ok(),
+                vec![],
+            )
+        }
+        Command::CopyPaste(hs) => (
+            true,
+            encode_handle_list(&scene.copy_paste(&hs).unwrap_or_default()),
+        ),
+        Command::SetPosition {
+            handle,
+            relative_to,
+            xyz,
+        } => (
+            scene.set_position(handle, relative_to, widen(xyz)).is_ok(),
+            vec![],
+        ),
+        Command::SetOrientation {
+            handle,
+            relative_to,
+            euler,
+        } => (
+            scene
+                .set_orientation(handle, relative_to, widen(euler))
+                .is_ok(),
+            vec![],
+        ),
+        Command::GetPosition {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((p, _)) => (true, f32x3(p)),
+            Err(_) => (false, vec![]),
+        },
+        Command::GetOrientation {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((_, e)) => (true, f32x3(e)),
+            Err(_) => (false, vec![]),
+        },
+        Command::GetQuaternion {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((_, e)) => {
+                let q = rotation_from_euler(e);
+                (
+                    true,
+                    [q.i, q.j, q.k, q.w]
+                        .iter()
+                        .flat_map(|x| (*x as f32).to_le_bytes())
+                        .collect(),
+                )
+            }
+            Err(_) => (false, vec![]),
+        },
+        Command::RemoveObject(h) => (scene.remove(h).is_ok(), vec![]),
+        Command::GetIntParam(p) => match sim.int_param(p) {
+            Some(v) => (true, i32le(v)),
+            None => (false, vec![]),
+        },
+        Command::SetIntParam(p, v) => (sim.set_int_param(p, v), vec![]),
+        Command::Simulation(c) => {
+            let ok = match c {
+                SimControl::Start => sim.start(),
+                SimControl::Pause => sim.pause(),
+                SimControl::Stop => sim.stop(),
+            };
+            (ok, vec![])
+        }
+        Command::GetIntSignal(name) => match sim.int_signals.get(&name) {
+            Some(v) => (true, i32le(*v)),
+            None => (false, vec![]),
+        },
+        Command::SetIntSignal(name, v) => {
+            sim.int_signals.insert(name, v);
+            (true, vec![])
+        }
+        Command::ClearIntSignal(name) => {
+            if name.is_empty() {
+                sim.int_signals.clear();
+            } else {
+                sim.int_signals.remove(&name);
+            }
+            (true, vec![])
+        }
+        Command::KillConnection => (true, vec![]),
+    }
+}
+
+/// `simxGetObjectGroupData` over the scene; `None` = failure (unknown object or data type).
+fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<GroupData> {
+    let scene = &sim.scene;
+    let objects: Vec<_> = match object_type {
+        109 => scene.objects().collect(),
+        0..=107 => scene
+            .objects()
+            .filter(|o| o.kind.code() == object_type)
+            .collect(),
+        _ => return None,
+    };
+    let mut g = GroupData {
+        handles: objects.iter().map(|o| o.handle).collect(),
+        ..Default::default()
+    };
+    for o in &objects {
+        let rel = |abs: bool| if abs { HANDLE_WORLD } else { HANDLE_PARENT };
+        let pose = |abs: bool| scene.pose(o.handle, rel(abs)).ok();
+        let push3 = |g: &mut GroupData, v: [f64; 3]| g.floats.extend(v.iter().map(|x| *x as f32));
+        match data_type {
+            0 => g.strings.push(o.name.clone()),
+            1 => g.ints.push(o.kind.code()),
+            2 => g.ints.push(o.parent.unwrap_or(HANDLE_WORLD)),
+            3 | 4 => push3(&mut g, pose(data_type == 3)?.0),
+            5 | 6 => push3(&mut g, pose(data_type == 5)?.1),
+            7 | 8 => {
+                let q = rotation_from_euler(pose(data_type == 7)?.1);
+                g.floats
+                    .extend([q.i, q.j, q.k, q.w].iter().map(|x| *x as f32));
+            }
+            9 | 10 => {
+                let (p, e) = pose(data_type == 9)?;
+                push3(&mut g, p);
+                push3(&mut g, e);
+            }
+            20 => g.strings.push(o.alias.clone()),
+            21 => g.strings.push(scene.path(o.handle).ok()?),
+            _ => return None,
+        }
+    }
+    Some(g)
+}

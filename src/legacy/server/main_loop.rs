@@ -1,0 +1,229 @@
+//! The emulated main loop: when a pass happens, and what a pass does with the input list.
+//!
+//! Timing comes from the one clock, [`Clock::next_pass`](crate::sim::Clock::next_pass): idle
+//! fps while the simulation is stopped or paused (at 0, a pass as soon as a message arrives),
+//! one pass per simulation step while it runs. Received commands wait in the input list
+//! ([`store`]); a pass stamps the reply header and executes them in order: oneshot and
+//! blocking commands once, streaming ones every pass (at most once per their period) until
+//! discontinued. Their results wait in the output buffer for the next reply.
+
+use std::collections::HashMap;
+use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
+
+use super::Shared;
+use super::execute::execute;
+use crate::legacy::command::opmode;
+use crate::legacy::wire::{Block, Message, MessageHeader};
+use crate::sim::{SimState, Simulator};
+
+/// Reply header `scene_id`: the low 16 bits of CoppeliaSim's `sim_intparam_scene_unique_id`;
+/// the emulated scene never changes identity, so any fixed value does.
+const SCENE_ID: u16 = 0x5A17;
+
+/// How often a waiting main loop checks whether the server is stopping.
+const STOP_POLL: Duration = Duration::from_millis(50);
+
+/// A command in the input list.
+struct Stored {
+    block: Block,
+    /// When a pass last executed it (streaming commands wait out their period).
+    last_exec: Option<Instant>,
+}
+
+/// The simulator and the main loop's state, shared with the session under one mutex.
+pub(super) struct Core {
+    pub(super) sim: Simulator,
+    /// Commands waiting for a pass, in arrival order (streaming ones stay).
+    input: Vec<Stored>,
+    /// Results of the latest pass, sent with the next reply.
+    output: Vec<Block>,
+    /// Header stamped by a pass and not sent yet.
+    fresh: Option<MessageHeader>,
+    /// Header of the latest pass: its fields are repeated (under message ID -1) by replies
+    /// that follow no pass.
+    stale: MessageHeader,
+    /// ID and client time of the latest client message, for the next pass's header.
+    latest_id: i32,
+    latest_client_time: i32,
+    /// A message arrived since the latest pass (at idle fps 0 it triggers one).
+    new_input: bool,
+    /// Simulation time of reply blocks, in ms (0 while stopped).
+    sim_time_ms: i32,
+    /// Passes that executed the input list.
+    pub(super) passes: u64,
+    /// Client messages received.
+    pub(super) messages: u64,
+}
+
+impl Core {
+    pub(super) fn new(sim: Simulator) -> Core {
+        Core {
+            sim,
+            input: Vec::new(),
+            output: Vec::new(),
+            fresh: None,
+            stale: MessageHeader {
+                message_id: -1,
+                ..Default::default()
+            },
+            latest_id: -1,
+            latest_client_time: 0,
+            new_input: false,
+            sim_time_ms: 0,
+            passes: 0,
+            messages: 0,
+        }
+    }
+
+    /// Forgets the stored commands and unsent results (a client came or left).
+    pub(super) fn end_session(&mut self) {
+        self.input.clear();
+        self.output.clear();
+        self.fresh = None;
+    }
+
+    /// A client message arrived with these commands (the session has removed the kill block
+    /// and split chunks): remember its ID and time for the next pass's header, store the
+    /// commands, and return the reply: the results of the latest pass under its header, or
+    /// no results under message ID -1 (other fields stale) if no pass happened since the
+    /// previous reply.
+    pub(super) fn receive(&mut self, header: &MessageHeader, blocks: Vec<Block>) -> Message {
+        self.messages += 1;
+        self.latest_id = header.message_id;
+        self.latest_client_time = header.client_time;
+        // at idle fps 0 every client message triggers a pass (CoppeliaSim then loops as fast as it can)
+        self.new_input = true;
+        store(&mut self.input, blocks);
+        let header = self.fresh.take().unwrap_or(MessageHeader {
+            message_id: -1,
+            ..self.stale
+        });
+        Message {
+            header,
+            blocks: std::mem::take(&mut self.output),
+        }
+    }
+
+    /// One main-loop pass: stamp the output header, execute the stored commands in order.
+    /// `step` is the simulation step, `started` the start of the server clock. Does nothing
+    /// while the results of the previous pass have not been sent.
+    fn pass(&mut self, step: Duration, started: Instant) {
+        if !self.output.is_empty() {
+            return;
+        }
+        self.passes += 1;
+        if self.sim.state == SimState::Running {
+            self.sim_time_ms = self.sim_time_ms.wrapping_add(step.as_millis() as i32);
+        }
+        let header = MessageHeader {
+            message_id: self.latest_id,
+            client_time: self.latest_client_time,
+            // CoppeliaSim: int(simGetSystemTime() * 1000.1)
+            server_time: (started.elapsed().as_secs_f64() * 1000.1) as i32,
+            scene_id: SCENE_ID,
+            server_state: state_bits(self.sim.state),
+        };
+        self.fresh = Some(header);
+        self.stale = header;
+        let now = Instant::now();
+        let sim_time = self.sim_time_ms;
+        let sim = &mut self.sim;
+        let mut results = Vec::new();
+        self.input.retain_mut(|s| {
+            let mode = s.block.opmode();
+            let mut reply = Block {
+                delay: 0,
+                sim_time,
+                status: 0,
+                data: vec![],
+                split: None,
+                ..s.block.clone()
+            };
+            if mode == opmode::DISCONTINUE {
+                results.push(reply);
+                return false;
+            }
+            let streaming = mode == opmode::STREAMING || mode == opmode::STREAMING_SPLIT;
+            if streaming
+                && let Some(t) = s.last_exec
+                && now.duration_since(t) < Duration::from_millis(s.block.delay as u64)
+            {
+                return true;
+            }
+            s.last_exec = Some(now);
+            let (ok, data) = execute(sim, &s.block);
+            reply.status = u8::from(!ok);
+            reply.data = data;
+            results.push(reply);
+            streaming
+        });
+        if self.sim.state == SimState::Stopped {
+            self.sim_time_ms = 0;
+        }
+        self.output = results;
+    }
+}
+
+/// The server-state byte of reply headers.
+fn state_bits(state: SimState) -> u8 {
+    match state {
+        SimState::Stopped => 0,
+        SimState::Running => 1,
+        SimState::Paused => 3,
+    }
+}
+
+/// Input-list rule: a new command replaces the stored one of the same identity (in place)
+/// unless its do-not-overwrite bit is set; otherwise it is appended.
+fn store(input: &mut Vec<Stored>, blocks: Vec<Block>) {
+    let mut index: HashMap<(u16, Vec<u8>), usize> = input
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ((s.block.raw_id(), s.block.id_data.clone()), i))
+        .collect();
+    for block in blocks {
+        let key = (block.raw_id(), block.id_data.clone());
+        if block.status & 1 == 0 {
+            if let Some(&i) = index.get(&key) {
+                input[i].block = block;
+                continue;
+            }
+            index.insert(key, input.len());
+        }
+        input.push(Stored {
+            block,
+            last_exec: None,
+        });
+    }
+}
+
+/// The main-loop thread: waits for the next pass the clock allows (or for input at idle
+/// fps 0), then passes; ends when the server stops.
+pub(super) fn run(shared: &Shared) {
+    let mut last_pass = Instant::now();
+    let mut core = shared.lock();
+    while !shared.stop.load(Ordering::SeqCst) {
+        let next = shared
+            .config
+            .clock
+            .next_pass(core.sim.state, core.sim.idle_fps, last_pass);
+        // with no pass due (idle fps 0), wait for input; wake regularly to see `stop`
+        let wait = match next {
+            None if core.new_input => None,
+            None => Some(STOP_POLL),
+            Some(at) => at.checked_duration_since(Instant::now()),
+        };
+        if let Some(wait) = wait.filter(|w| !w.is_zero()) {
+            core = shared
+                .wake
+                .wait_timeout(core, wait.min(STOP_POLL))
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+            continue;
+        }
+        last_pass = Instant::now();
+        core.new_input = false;
+        core.pass(shared.config.clock.step, shared.started);
+    }
+}
