@@ -12,7 +12,8 @@ use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
 use super::wire::{
-    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, write_message,
+    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, server_state, status,
+    write_message,
 };
 
 /// Client errors.
@@ -189,7 +190,8 @@ impl Client {
 
     /// Whether the latest fresh reply header said the simulation is not stopped.
     pub fn simulation_running(&self) -> Option<bool> {
-        self.header.map(|h| h.server_state & 1 != 0)
+        self.header
+            .map(|h| h.server_state & server_state::NOT_STOPPED != 0)
     }
 
     fn exchange(&mut self, blocks: Vec<Block>) -> Result<(i32, Message), ClientError> {
@@ -248,7 +250,7 @@ impl Client {
                 {
                     Some(slot) => {
                         got[slot] = Some(Reply {
-                            remote_error: b.status & 1 != 0,
+                            remote_error: b.status & status::REMOTE_ERROR != 0,
                             data: b.data,
                         });
                         missing -= 1;
@@ -317,7 +319,7 @@ impl Client {
     pub fn take_inbox(&mut self, command: &Command) -> Option<Reply> {
         let b = command.to_block(0);
         self.inbox.remove(&(b.raw_id(), b.id_data)).map(|b| Reply {
-            remote_error: b.status & 1 != 0,
+            remote_error: b.status & status::REMOTE_ERROR != 0,
             data: b.data,
         })
     }

@@ -1,6 +1,6 @@
 //! Command IDs, operation modes and the payload encodings of the commands we use.
 
-use super::wire::Block;
+use super::wire::{Block, status};
 
 /// Raw command IDs (`simx_cmd_*`).
 pub mod id {
@@ -64,23 +64,44 @@ pub mod opmode {
     pub const DISCONTINUE: u32 = 0x50000;
 }
 
-/// `sim_appobj_object_type`: group data over all scene objects.
+/// `sim_appobj_object_type`: as the object type of `simxGetObjectGroupData`, all objects.
 pub const ALL_OBJECTS: i32 = 109;
+/// Smallest object type code (`sim_object_*_type`: 0 shape, 4 dummy, ...) that
+/// `simxGetObjectGroupData` accepts as a filter.
+pub const FIRST_OBJECT_TYPE: i32 = 0;
+/// Largest such code; CoppeliaSim reads other values than these and [`ALL_OBJECTS`] as a
+/// collection handle (we have no collections).
+pub const LAST_OBJECT_TYPE: i32 = 107;
 
-/// Group data types we use (`simxGetObjectGroupData` dataType).
+/// `simxGetObjectGroupData` data types: what the reply carries for each object. "Absolute"
+/// is in the world frame, "relative" in the parent's frame.
 pub mod group {
-    /// Object names.
+    /// Object names (one string each).
     pub const NAMES: i32 = 0;
-    /// Object types.
+    /// Object type codes (one int each).
     pub const TYPES: i32 = 1;
-    /// Parent handles.
+    /// Parent handles, -1 for none (one int each).
     pub const PARENTS: i32 = 2;
-    /// Absolute positions.
-    pub const POSITIONS: i32 = 3;
-    /// Absolute position + Euler angles.
-    pub const POSES: i32 = 9;
-    /// Aliases.
+    /// Absolute positions (3 floats each).
+    pub const ABSOLUTE_POSITIONS: i32 = 3;
+    /// Relative positions (3 floats each).
+    pub const RELATIVE_POSITIONS: i32 = 4;
+    /// Absolute Euler angles (3 floats each).
+    pub const ABSOLUTE_ORIENTATIONS: i32 = 5;
+    /// Relative Euler angles (3 floats each).
+    pub const RELATIVE_ORIENTATIONS: i32 = 6;
+    /// Absolute quaternions x, y, z, w (4 floats each).
+    pub const ABSOLUTE_QUATERNIONS: i32 = 7;
+    /// Relative quaternions x, y, z, w (4 floats each).
+    pub const RELATIVE_QUATERNIONS: i32 = 8;
+    /// Absolute position then Euler angles (6 floats each).
+    pub const ABSOLUTE_POSES: i32 = 9;
+    /// Relative position then Euler angles (6 floats each).
+    pub const RELATIVE_POSES: i32 = 10;
+    /// Aliases (one string each).
     pub const ALIASES: i32 = 20;
+    /// Full object paths such as `/Maze/Line[1]` (one string each).
+    pub const FULL_PATHS: i32 = 21;
 }
 
 /// Simulation control for [`Command::Simulation`].
@@ -258,7 +279,7 @@ impl Command {
                 d.push(*keep_in_place as u8);
                 (i32s(&[*handle]), d, 0)
             }
-            CopyPaste(hs) => (i32s(&[0]), i32s(hs), 1),
+            CopyPaste(hs) => (i32s(&[0]), i32s(hs), status::DO_NOT_OVERWRITE),
             SetPosition {
                 handle,
                 relative_to,
@@ -473,10 +494,10 @@ mod tests {
     fn commands_round_trip_through_blocks() {
         let all = [
             Command::GetObjectHandle("Floor".into()),
-            Command::GetObjects(-2),
+            Command::GetObjects(crate::coppelia::HANDLE_ALL),
             Command::GetObjectGroupData {
-                object_type: 109,
-                data_type: 9,
+                object_type: ALL_OBJECTS,
+                data_type: group::ABSOLUTE_POSES,
             },
             Command::GetObjectParent(3),
             Command::SetObjectParent {

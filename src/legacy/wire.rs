@@ -17,6 +17,25 @@ pub const VERSION: u8 = 11;
 /// Largest message we accept (a guard against garbage lengths).
 pub const MAX_MESSAGE_SIZE: usize = 64 << 20;
 
+/// Bits of a command block's `status` byte (spec §5.1, offset 24).
+pub mod status {
+    /// Request: keep this command beside stored ones of the same identity instead of
+    /// replacing them (copy-paste uses it so that several copies in one message all happen).
+    pub const DO_NOT_OVERWRITE: u8 = 0x01;
+    /// Reply: the command failed on the server side.
+    pub const REMOTE_ERROR: u8 = 0x01;
+}
+
+/// Bits of the server-state byte of a reply header (spec §4).
+pub mod server_state {
+    /// The simulation is not stopped (running or paused).
+    pub const NOT_STOPPED: u8 = 0x01;
+    /// The simulation is paused.
+    pub const PAUSED: u8 = 0x02;
+    /// Real-time simulation mode is on (never set by our server).
+    pub const REAL_TIME: u8 = 0x04;
+}
+
 /// Malformed bytes or a failed transport.
 #[derive(Debug, thiserror::Error)]
 pub enum WireError {
@@ -64,7 +83,7 @@ pub struct MessageHeader {
     pub server_time: i32,
     /// Low 16 bits of the scene's unique ID (server replies only).
     pub scene_id: u16,
-    /// Server state bits: 0x01 simulation not stopped, 0x02 paused, 0x04 real-time.
+    /// Server state bits (see [`server_state`]): simulation not stopped, paused, real-time.
     pub server_state: u8,
 }
 
@@ -77,7 +96,7 @@ pub struct Block {
     pub delay: u16,
     /// Simulation time in ms (replies).
     pub sim_time: i32,
-    /// Request: bit 0 = do not overwrite. Reply: bit 0 = remote error.
+    /// Request: [`status::DO_NOT_OVERWRITE`]. Reply: [`status::REMOTE_ERROR`].
     pub status: u8,
     /// Identification data (part of the identity).
     pub id_data: Vec<u8>,

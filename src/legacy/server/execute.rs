@@ -2,8 +2,11 @@
 //! the group data of `simxGetObjectGroupData`.
 
 use crate::coppelia::frame::rotation_from_euler;
-use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
-use crate::legacy::command::{Command, GroupData, SimControl, encode_handle_list};
+use crate::coppelia::{HANDLE_ALL, HANDLE_PARENT, HANDLE_WORLD};
+use crate::legacy::command::{
+    ALL_OBJECTS, Command, FIRST_OBJECT_TYPE, GroupData, LAST_OBJECT_TYPE, SimControl,
+    encode_handle_list, group,
+};
 use crate::legacy::wire::Block;
 use crate::sim::Simulator;
 
@@ -30,7 +33,7 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
         Command::GetObjects(t) => {
             let hs: Vec<i32> = scene
                 .objects()
-                .filter(|o| t == -2 || o.kind.code() == t)
+                .filter(|o| t == HANDLE_ALL || o.kind.code() == t)
                 .map(|o| o.handle)
                 .collect();
             (true, encode_handle_list(&hs))
@@ -153,8 +156,8 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
 fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<GroupData> {
     let scene = &sim.scene;
     let objects: Vec<_> = match object_type {
-        109 => scene.objects().collect(),
-        0..=107 => scene
+        ALL_OBJECTS => scene.objects().collect(),
+        FIRST_OBJECT_TYPE..=LAST_OBJECT_TYPE => scene
             .objects()
             .filter(|o| o.kind.code() == object_type)
             .collect(),
@@ -169,23 +172,27 @@ fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<Group
         let pose = |abs: bool| scene.pose(o.handle, rel(abs)).ok();
         let push3 = |g: &mut GroupData, v: [f64; 3]| g.floats.extend(v.iter().map(|x| *x as f32));
         match data_type {
-            0 => g.strings.push(o.name.clone()),
-            1 => g.ints.push(o.kind.code()),
-            2 => g.ints.push(o.parent.unwrap_or(HANDLE_WORLD)),
-            3 | 4 => push3(&mut g, pose(data_type == 3)?.0),
-            5 | 6 => push3(&mut g, pose(data_type == 5)?.1),
-            7 | 8 => {
-                let q = rotation_from_euler(pose(data_type == 7)?.1);
+            group::NAMES => g.strings.push(o.name.clone()),
+            group::TYPES => g.ints.push(o.kind.code()),
+            group::PARENTS => g.ints.push(o.parent.unwrap_or(HANDLE_WORLD)),
+            group::ABSOLUTE_POSITIONS | group::RELATIVE_POSITIONS => {
+                push3(&mut g, pose(data_type == group::ABSOLUTE_POSITIONS)?.0)
+            }
+            group::ABSOLUTE_ORIENTATIONS | group::RELATIVE_ORIENTATIONS => {
+                push3(&mut g, pose(data_type == group::ABSOLUTE_ORIENTATIONS)?.1)
+            }
+            group::ABSOLUTE_QUATERNIONS | group::RELATIVE_QUATERNIONS => {
+                let q = rotation_from_euler(pose(data_type == group::ABSOLUTE_QUATERNIONS)?.1);
                 g.floats
                     .extend([q.i, q.j, q.k, q.w].iter().map(|x| *x as f32));
             }
-            9 | 10 => {
-                let (p, e) = pose(data_type == 9)?;
+            group::ABSOLUTE_POSES | group::RELATIVE_POSES => {
+                let (p, e) = pose(data_type == group::ABSOLUTE_POSES)?;
                 push3(&mut g, p);
                 push3(&mut g, e);
             }
-            20 => g.strings.push(o.alias.clone()),
-            21 => g.strings.push(scene.path(o.handle).ok()?),
+            group::ALIASES => g.strings.push(o.alias.clone()),
+            group::FULL_PATHS => g.strings.push(scene.path(o.handle).ok()?),
             _ => return None,
         }
     }

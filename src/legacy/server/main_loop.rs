@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use super::Shared;
 use super::execute::execute;
 use crate::legacy::command::opmode;
-use crate::legacy::wire::{Block, Message, MessageHeader};
+use crate::legacy::wire::{Block, Message, MessageHeader, server_state, status};
 use crate::sim::{SimState, Simulator};
 
 /// Reply header `scene_id`: the low 16 bits of CoppeliaSim's `sim_intparam_scene_unique_id`;
@@ -153,7 +153,7 @@ impl Core {
             }
             s.last_exec = Some(now);
             let (ok, data) = execute(sim, &s.block);
-            reply.status = u8::from(!ok);
+            reply.status = if ok { 0 } else { status::REMOTE_ERROR };
             reply.data = data;
             results.push(reply);
             streaming
@@ -169,8 +169,8 @@ impl Core {
 fn state_bits(state: SimState) -> u8 {
     match state {
         SimState::Stopped => 0,
-        SimState::Running => 1,
-        SimState::Paused => 3,
+        SimState::Running => server_state::NOT_STOPPED,
+        SimState::Paused => server_state::NOT_STOPPED | server_state::PAUSED,
     }
 }
 
@@ -184,7 +184,7 @@ fn store(input: &mut Vec<Stored>, blocks: Vec<Block>) {
         .collect();
     for block in blocks {
         let key = (block.raw_id(), block.id_data.clone());
-        if block.status & 1 == 0 {
+        if block.status & status::DO_NOT_OVERWRITE == 0 {
             if let Some(&i) = index.get(&key) {
                 input[i].block = block;
                 continue;
