@@ -16,7 +16,7 @@ use super::wire::{
     write_message,
 };
 
-/// Client errors.
+/// Why connecting or a call failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     /// Nobody accepted the connection before the deadline.
@@ -227,10 +227,7 @@ impl Client {
             .collect();
         let mut wanted: HashMap<(u16, Vec<u8>), std::collections::VecDeque<usize>> = HashMap::new();
         for (i, b) in blocks.iter().enumerate() {
-            wanted
-                .entry((b.raw_id(), b.id_data.clone()))
-                .or_default()
-                .push_back(i);
+            wanted.entry(b.identity()).or_default().push_back(i);
         }
         let mut got: Vec<Option<Reply>> = vec![None; blocks.len()];
         let mut missing = blocks.len();
@@ -309,7 +306,7 @@ impl Client {
             .collect();
         let (_, reply) = self.exchange(blocks)?;
         for b in reply.blocks {
-            self.inbox.insert((b.raw_id(), b.id_data.clone()), b);
+            self.inbox.insert(b.identity(), b);
         }
         Ok(())
     }

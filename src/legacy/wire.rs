@@ -6,16 +6,16 @@ use std::io::{Read, Write};
 
 /// Default maximum packet size (header included).
 pub const MAX_PACKET_SIZE: usize = 1300;
-/// Packet header size.
-pub const PACKET_HEADER_SIZE: usize = 6;
+/// Packet header size: marker 1, payload length, packets left after this one (3 × u16).
+const PACKET_HEADER_SIZE: usize = 6;
 /// Message header size (`SIMX_HEADER_SIZE`).
-pub const MESSAGE_HEADER_SIZE: usize = 18;
+const MESSAGE_HEADER_SIZE: usize = 18;
 /// Command header size (`SIMX_SUBHEADER_SIZE`).
-pub const BLOCK_HEADER_SIZE: usize = 26;
+const BLOCK_HEADER_SIZE: usize = 26;
 /// Protocol version (`SIMX_VERSION`).
-pub const VERSION: u8 = 11;
+const VERSION: u8 = 11;
 /// Largest message we accept (a guard against garbage lengths).
-pub const MAX_MESSAGE_SIZE: usize = 64 << 20;
+const MAX_MESSAGE_SIZE: usize = 64 << 20;
 
 /// Bits of a command block's `status` byte (spec §5.1, offset 24).
 pub mod status {
@@ -66,7 +66,7 @@ pub enum WireError {
         /// What is wrong.
         why: String,
     },
-    /// A message larger than [`MAX_MESSAGE_SIZE`].
+    /// A message larger than 64 MiB (a guard against garbage lengths).
     #[error("message too large ({0} bytes)")]
     TooLarge(usize),
 }
@@ -126,9 +126,11 @@ impl Block {
         self.cmd & 0xFFFF_0000
     }
 
-    /// The identity used to match replies and replace stored commands.
-    pub fn identity(&self) -> (u16, &[u8]) {
-        (self.raw_id(), &self.id_data)
+    /// The identity of a command: raw ID and identification data. The server's input list
+    /// keeps one command per identity (unless told not to overwrite), and a client matches
+    /// replies to requests by it.
+    pub fn identity(&self) -> (u16, Vec<u8>) {
+        (self.raw_id(), self.id_data.clone())
     }
 
     /// Encoded size in bytes.
@@ -137,7 +139,7 @@ impl Block {
     }
 
     /// Appends the encoded block.
-    pub fn encode_into(&self, out: &mut Vec<u8>) {
+    fn encode_into(&self, out: &mut Vec<u8>) {
         let mem = self.encoded_len() as i32;
         let (full, off1) = match self.split {
             Some(s) => (s.full_size, s.offset),
@@ -159,7 +161,7 @@ impl Block {
 
 /// Length of the identification data of a command, from its raw ID's class (as both the C
 /// client and the server compute it; `pdata_offset0` is not trusted).
-pub fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
+fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
     let cstr = |from: usize| -> Result<usize, String> {
         rest.get(from..)
             .and_then(|r| r.iter().position(|&b| b == 0))
@@ -191,7 +193,7 @@ pub fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
 /// A whole message.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Message {
-    /// Header.
+    /// The 18-byte header (IDs, times, server state).
     pub header: MessageHeader,
     /// Command blocks in order.
     pub blocks: Vec<Block>,
@@ -337,19 +339,19 @@ pub fn read_message(r: &mut impl Read) -> Result<Vec<u8>, WireError> {
     }
 }
 
-/// Decodes a byte stream of packets into messages (for tests and fuzzing).
-pub fn decode_stream(mut bytes: &[u8]) -> Result<Vec<Message>, WireError> {
-    let mut out = Vec::new();
-    while !bytes.is_empty() {
-        out.push(Message::decode(&read_message(&mut bytes)?)?);
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// Decodes a byte stream of packets into messages.
+    fn decode_stream(mut bytes: &[u8]) -> Result<Vec<Message>, WireError> {
+        let mut out = Vec::new();
+        while !bytes.is_empty() {
+            out.push(Message::decode(&read_message(&mut bytes)?)?);
+        }
+        Ok(out)
+    }
 
     fn hex(s: &str) -> Vec<u8> {
         s.split_whitespace()

@@ -33,6 +33,7 @@ struct Stored {
 
 /// The simulator and the main loop's state, shared with the session under one mutex.
 pub(super) struct Core {
+    /// The emulated CoppeliaSim.
     pub(super) sim: Simulator,
     /// Commands waiting for a pass, in arrival order (streaming ones stay).
     input: Vec<Stored>,
@@ -180,10 +181,10 @@ fn store(input: &mut Vec<Stored>, blocks: Vec<Block>) {
     let mut index: HashMap<(u16, Vec<u8>), usize> = input
         .iter()
         .enumerate()
-        .map(|(i, s)| ((s.block.raw_id(), s.block.id_data.clone()), i))
+        .map(|(i, s)| (s.block.identity(), i))
         .collect();
     for block in blocks {
-        let key = (block.raw_id(), block.id_data.clone());
+        let key = block.identity();
         if block.status & status::DO_NOT_OVERWRITE == 0 {
             if let Some(&i) = index.get(&key) {
                 input[i].block = block;
