@@ -198,3 +198,136 @@ fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<Group
     }
     Some(g)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::legacy::command::{decode_handle_list, opmode, read_i32};
+    use crate::sim::Scene;
+
+    /// The course scene with `Maze` moved and turned a quarter about z, and `Line` made its
+    /// child in place, so that `Line`'s absolute and relative data differ.
+    fn sim() -> (Simulator, i32, i32) {
+        let mut sim = Simulator::new(Scene::course(), 0);
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let line = sim.scene.resolve("Line").unwrap();
+        let s = &mut sim.scene;
+        s.set_position(maze, HANDLE_WORLD, [1.0, 2.0, 0.0]).unwrap();
+        s.set_orientation(maze, HANDLE_WORLD, [0.0, 0.0, std::f64::consts::FRAC_PI_2])
+            .unwrap();
+        s.set_parent(line, Some(maze), true).unwrap();
+        (sim, maze, line)
+    }
+
+    /// Executes `cmd` as a blocking command: `Some(reply data)` on success.
+    fn run(sim: &mut Simulator, cmd: Command) -> Option<Vec<u8>> {
+        let (ok, data) = execute(sim, &cmd.to_block(opmode::BLOCKING));
+        ok.then_some(data)
+    }
+
+    fn group_of(sim: &mut Simulator, object_type: i32, data_type: i32) -> Option<GroupData> {
+        let data = run(
+            sim,
+            Command::GetObjectGroupData {
+                object_type,
+                data_type,
+            },
+        )?;
+        Some(GroupData::decode(&data).expect("well-formed group data"))
+    }
+
+    fn floats(v: &[f64]) -> Vec<f32> {
+        v.iter().map(|x| *x as f32).collect()
+    }
+
+    #[test]
+    fn group_data_types_carry_what_their_names_say() {
+        let (mut sim, maze, line) = sim();
+        let handles: Vec<i32> = sim.scene.objects().map(|o| o.handle).collect();
+        let mut all = |data_type| group_of(&mut sim, ALL_OBJECTS, data_type).unwrap();
+        let names = all(group::NAMES);
+        assert_eq!(names.handles, handles);
+        assert_eq!(names.strings, ["Floor", "Maze", "Line", "Start", "End"]);
+        assert_eq!(all(group::TYPES).ints, [0, 4, 0, 0, 0]);
+        assert_eq!(all(group::PARENTS).ints, [-1, -1, maze, -1, -1]);
+        assert_eq!(all(group::ALIASES).strings, names.strings);
+        assert_eq!(
+            all(group::FULL_PATHS).strings,
+            ["/Floor", "/Maze", "/Maze/Line", "/Start", "/End"]
+        );
+
+        let per_object = |g: GroupData, n: usize| {
+            assert!(g.ints.is_empty() && g.strings.is_empty());
+            assert_eq!(g.floats.len(), n * handles.len());
+            g.floats[n * 2..n * 3].to_vec() // Line's values
+        };
+        let (abs_p, abs_e) = sim.scene.pose(line, HANDLE_WORLD).unwrap();
+        let (rel_p, rel_e) = sim.scene.pose(line, HANDLE_PARENT).unwrap();
+        assert_ne!(floats(&abs_p), floats(&rel_p));
+        assert_ne!(floats(&abs_e), floats(&rel_e));
+        let quaternion = |e| {
+            let q = rotation_from_euler(e);
+            floats(&[q.i, q.j, q.k, q.w])
+        };
+        let mut all = |data_type| group_of(&mut sim, ALL_OBJECTS, data_type).unwrap();
+        let cases = [
+            (group::ABSOLUTE_POSITIONS, 3, floats(&abs_p)),
+            (group::RELATIVE_POSITIONS, 3, floats(&rel_p)),
+            (group::ABSOLUTE_ORIENTATIONS, 3, floats(&abs_e)),
+            (group::RELATIVE_ORIENTATIONS, 3, floats(&rel_e)),
+            (group::ABSOLUTE_QUATERNIONS, 4, quaternion(abs_e)),
+            (group::RELATIVE_QUATERNIONS, 4, quaternion(rel_e)),
+            (group::ABSOLUTE_POSES, 6, floats(&[abs_p, abs_e].concat())),
+            (group::RELATIVE_POSES, 6, floats(&[rel_p, rel_e].concat())),
+        ];
+        for (data_type, n, want) in cases {
+            assert_eq!(per_object(all(data_type), n), want, "data type {data_type}");
+        }
+    }
+
+    #[test]
+    fn group_data_filters_by_object_type_and_rejects_the_rest() {
+        let (mut sim, maze, _) = sim();
+        let dummy = sim.scene.get(maze).unwrap().kind.code();
+        assert_eq!(
+            group_of(&mut sim, dummy, group::NAMES).unwrap().strings,
+            ["Maze"]
+        );
+        let none = group_of(&mut sim, LAST_OBJECT_TYPE, group::NAMES).unwrap();
+        assert_eq!(none, GroupData::default(), "a valid type without objects");
+        for object_type in [FIRST_OBJECT_TYPE - 1, LAST_OBJECT_TYPE + 1, HANDLE_ALL] {
+            assert_eq!(group_of(&mut sim, object_type, group::NAMES), None);
+        }
+        for data_type in [-1, 11, 19, 22] {
+            assert_eq!(group_of(&mut sim, ALL_OBJECTS, data_type), None);
+        }
+    }
+
+    #[test]
+    fn get_objects_takes_handle_all_or_a_type() {
+        let (mut sim, maze, _) = sim();
+        let all: Vec<i32> = sim.scene.objects().map(|o| o.handle).collect();
+        let list = |sim: &mut Simulator, t| {
+            decode_handle_list(&run(sim, Command::GetObjects(t)).unwrap()).unwrap()
+        };
+        assert_eq!(list(&mut sim, HANDLE_ALL), all);
+        let dummy = sim.scene.get(maze).unwrap().kind.code();
+        assert_eq!(list(&mut sim, dummy), [maze]);
+    }
+
+    #[test]
+    fn unknown_or_malformed_commands_fail_and_echo_their_data() {
+        let (mut sim, _, _) = sim();
+        let mut block = Command::GetIntParam(0).to_block(opmode::BLOCKING);
+        block.cmd = 0x2FFF | opmode::BLOCKING;
+        block.data = vec![1, 2, 3];
+        assert_eq!(execute(&mut sim, &block), (false, vec![1, 2, 3]));
+        let floor = run(&mut sim, Command::GetObjectHandle("Floor".into())).unwrap();
+        assert_eq!(read_i32(&floor, 0), sim.scene.resolve("Floor").ok());
+        let missing = Command::GetObjectHandle("Nope".into()).to_block(opmode::BLOCKING);
+        assert_eq!(
+            execute(&mut sim, &missing),
+            (false, (-1i32).to_le_bytes().to_vec())
+        );
+    }
+}

@@ -228,3 +228,197 @@ pub(super) fn run(shared: &Shared) {
         core.pass(shared.config.clock.step, shared.started);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coppelia::HANDLE_WORLD;
+    use crate::legacy::command::{Command, id, read_i32};
+    use crate::sim::Scene;
+
+    const STEP: Duration = Duration::from_millis(50);
+
+    fn core() -> Core {
+        Core::new(Simulator::new(Scene::course(), 0))
+    }
+
+    fn header(message_id: i32) -> MessageHeader {
+        MessageHeader {
+            message_id,
+            client_time: 1000 + message_id,
+            ..Default::default()
+        }
+    }
+
+    fn set_x(handle: i32, x: f32) -> Block {
+        Command::SetPosition {
+            handle,
+            relative_to: HANDLE_WORLD,
+            xyz: [x, 0.0, 0.0],
+        }
+        .to_block(opmode::ONESHOT)
+    }
+
+    fn stored(input: &[Stored]) -> Vec<Option<Command>> {
+        input
+            .iter()
+            .map(|s| Command::from_block(&s.block))
+            .collect()
+    }
+
+    #[test]
+    fn store_replaces_the_same_identity_in_place_unless_told_not_to() {
+        let mut input = vec![];
+        let floor = Command::GetObjectHandle("Floor".into()).to_block(opmode::BLOCKING);
+        store(
+            &mut input,
+            vec![set_x(1, 1.0), set_x(2, 2.0), floor.clone()],
+        );
+        // same identity (command and handle) replaces in place, even within one message
+        store(&mut input, vec![set_x(1, 3.0), set_x(1, 4.0)]);
+        let paste = Command::CopyPaste(vec![1]).to_block(opmode::BLOCKING);
+        assert_eq!(
+            paste.status & status::DO_NOT_OVERWRITE,
+            status::DO_NOT_OVERWRITE
+        );
+        store(&mut input, vec![paste.clone(), paste]);
+        let want = [
+            set_x(1, 4.0),
+            set_x(2, 2.0),
+            floor,
+            Command::CopyPaste(vec![1]).to_block(opmode::BLOCKING),
+            Command::CopyPaste(vec![1]).to_block(opmode::BLOCKING),
+        ];
+        assert_eq!(
+            stored(&input),
+            want.iter().map(Command::from_block).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn replies_carry_the_latest_pass_results_under_its_header_or_id_minus_one() {
+        let mut core = core();
+        let floor = Command::GetObjectHandle("Floor".into());
+        let r = core.receive(&header(0), vec![floor.to_block(opmode::BLOCKING)]);
+        assert_eq!(
+            (r.header.message_id, r.blocks.len()),
+            (-1, 0),
+            "no pass yet"
+        );
+
+        core.pass(STEP, Instant::now());
+        let r = core.receive(&header(1), vec![]);
+        assert_eq!(r.header.message_id, 0, "the latest message before the pass");
+        assert_eq!(r.header.client_time, 1000);
+        assert_eq!(r.header.scene_id, SCENE_ID);
+        assert_eq!(r.header.server_state, 0);
+        assert_eq!(r.blocks.len(), 1);
+        let b = &r.blocks[0];
+        assert_eq!(
+            (b.raw_id(), b.opmode()),
+            (id::GET_OBJECT_HANDLE, opmode::BLOCKING)
+        );
+        assert_eq!((b.status, b.delay, b.sim_time), (0, 0, 0));
+        assert_eq!(read_i32(&b.data, 0), core.sim.scene.resolve("Floor").ok());
+        assert!(core.input.is_empty(), "a blocking command runs once");
+
+        let r = core.receive(&header(2), vec![]);
+        assert_eq!((r.header.message_id, r.blocks.len()), (-1, 0));
+        assert_eq!(
+            r.header.client_time, 1000,
+            "stale fields of the latest pass"
+        );
+        assert_eq!((core.passes, core.messages), (1, 3));
+    }
+
+    #[test]
+    fn a_pass_waits_until_the_previous_results_were_sent() {
+        let mut core = core();
+        let get = Command::GetPosition {
+            handle: core.sim.scene.resolve("Maze").unwrap(),
+            relative_to: HANDLE_WORLD,
+        };
+        core.receive(&header(0), vec![get.to_block(opmode::STREAMING)]);
+        core.pass(STEP, Instant::now());
+        core.pass(STEP, Instant::now());
+        assert_eq!(core.passes, 1, "the second pass found unsent results");
+        let r = core.receive(&header(1), vec![]);
+        assert_eq!(r.blocks.len(), 1);
+        core.pass(STEP, Instant::now());
+        assert_eq!(core.passes, 2);
+        let missing = Command::GetObjectHandle("Nope".into()).to_block(opmode::BLOCKING);
+        let r = core.receive(&header(2), vec![missing.clone(), missing]);
+        assert_eq!(r.blocks.len(), 1, "the stream's result");
+        core.pass(STEP, Instant::now());
+        let r = core.receive(&header(3), vec![]);
+        let failed: Vec<u8> = r
+            .blocks
+            .iter()
+            .filter(|b| b.raw_id() == id::GET_OBJECT_HANDLE)
+            .map(|b| b.status)
+            .collect();
+        assert_eq!(
+            failed,
+            [status::REMOTE_ERROR],
+            "two identical requests are one"
+        );
+    }
+
+    #[test]
+    fn streaming_repeats_at_its_period_until_discontinued() {
+        let mut core = core();
+        let get = |name: &str| Command::GetPosition {
+            handle: core.sim.scene.resolve(name).unwrap(),
+            relative_to: HANDLE_WORLD,
+        };
+        let (maze, floor) = (get("Maze"), get("Floor"));
+        let cycle = |core: &mut Core, blocks| {
+            core.receive(&header(0), blocks);
+            core.pass(STEP, Instant::now());
+            core.receive(&header(1), vec![]).blocks
+        };
+        assert_eq!(
+            cycle(&mut core, vec![maze.to_block(opmode::STREAMING)]).len(),
+            1
+        );
+        assert_eq!(cycle(&mut core, vec![]).len(), 1, "every pass");
+        let stop = cycle(&mut core, vec![maze.to_block(opmode::DISCONTINUE)]);
+        assert_eq!(stop.len(), 1);
+        assert_eq!(stop[0].opmode(), opmode::DISCONTINUE);
+        assert!(stop[0].data.is_empty() && stop[0].status == 0);
+        assert_eq!(cycle(&mut core, vec![]).len(), 0);
+        assert!(core.input.is_empty());
+
+        let mut slow = floor.to_block(opmode::STREAMING);
+        slow.delay = u16::MAX;
+        assert_eq!(cycle(&mut core, vec![slow]).len(), 1, "runs at once");
+        assert_eq!(
+            cycle(&mut core, vec![]).len(),
+            0,
+            "then waits out its period"
+        );
+        assert_eq!(core.input.len(), 1);
+    }
+
+    #[test]
+    fn running_passes_advance_sim_time_and_set_the_state_bits() {
+        let mut core = core();
+        let get = Command::GetIntParam(crate::coppelia::INTPARAM_IDLE_FPS);
+        core.sim.start();
+        for n in 1..=2 {
+            core.receive(&header(n), vec![get.to_block(opmode::BLOCKING)]);
+            core.pass(STEP, Instant::now());
+            let r = core.receive(&header(n), vec![]);
+            assert_eq!(r.header.server_state, server_state::NOT_STOPPED);
+            assert_eq!(r.blocks[0].sim_time, 50 * n);
+        }
+        core.sim.pause();
+        core.pass(STEP, Instant::now());
+        let r = core.receive(&header(3), vec![]);
+        assert_eq!(
+            r.header.server_state,
+            server_state::NOT_STOPPED | server_state::PAUSED
+        );
+        assert_eq!(state_bits(SimState::Stopped), 0);
+    }
+}
