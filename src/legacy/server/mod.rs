@@ -1,16 +1,17 @@
 //! A protocol-faithful legacy remote API server over the in-memory [`Simulator`].
 //!
 //! One client at a time. Received commands are stored and executed once per emulated
-//! main-loop pass (at `idle_fps` passes per second while the simulation is stopped, 0 = as
-//! soon as a message arrives; one pass per 50 ms simulation step while it runs); every client
-//! message gets exactly one reply carrying the results produced since the previous reply,
-//! with the message ID of the latest client message seen before that pass (-1 if no pass).
+//! main-loop pass (at `idle_fps` passes per second while the simulation is stopped or paused,
+//! 0 = as soon as a message arrives; one pass per simulation step, 50 ms by default, while it
+//! runs); every client message gets exactly one reply carrying the results produced since the
+//! previous reply, with the message ID of the latest client message seen before that pass
+//! (-1 if no pass).
 //!
 //! Where things are done:
-//! * [`transport`]: the listening socket and one client session at a time (its own thread);
-//! * [`main_loop`]: when a pass happens, and the input-list and streaming rules of a pass (the
-//!   main-loop thread; it shares the simulator with the session under one mutex);
-//! * [`execute`]: what each command does to the simulator;
+//! * `transport.rs`: the listening socket and one client session at a time (its own thread);
+//! * `main_loop.rs`: when a pass happens, and the input-list and streaming rules of a pass
+//!   (the main-loop thread; it shares the simulator with the session under one mutex);
+//! * `execute.rs`: what each command does to the simulator;
 //! * here: settings, [`spawn`], the [`ServerHandle`] and the scene dump.
 
 mod execute;
