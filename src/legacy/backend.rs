@@ -78,9 +78,11 @@ impl Drop for LegacyBackend {
 }
 
 fn group_commands() -> [Command; 3] {
-    [group::NAMES, group::PARENTS, group::POSES].map(|data_type| Command::GetObjectGroupData {
-        object_type: ALL_OBJECTS,
-        data_type,
+    [group::NAMES, group::PARENTS, group::ABSOLUTE_POSES].map(|data_type| {
+        Command::GetObjectGroupData {
+            object_type: ALL_OBJECTS,
+            data_type,
+        }
     })
 }
 

@@ -12,10 +12,11 @@ use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
 use super::wire::{
-    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, write_message,
+    Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, server_state, status,
+    write_message,
 };
 
-/// Client errors.
+/// Why connecting or a call failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     /// Nobody accepted the connection before the deadline.
@@ -195,7 +196,8 @@ impl Client {
 
     /// Whether the latest fresh reply header said the simulation is not stopped.
     pub fn simulation_running(&self) -> Option<bool> {
-        self.header.map(|h| h.server_state & 1 != 0)
+        self.header
+            .map(|h| h.server_state & server_state::NOT_STOPPED != 0)
     }
 
     fn exchange(&mut self, blocks: Vec<Block>) -> Result<(i32, Message), ClientError> {
@@ -231,10 +233,7 @@ impl Client {
             .collect();
         let mut wanted: HashMap<(u16, Vec<u8>), std::collections::VecDeque<usize>> = HashMap::new();
         for (i, b) in blocks.iter().enumerate() {
-            wanted
-                .entry((b.raw_id(), b.id_data.clone()))
-                .or_default()
-                .push_back(i);
+            wanted.entry(b.identity()).or_default().push_back(i);
         }
         let mut got: Vec<Option<Reply>> = vec![None; blocks.len()];
         let mut missing = blocks.len();
@@ -254,7 +253,7 @@ impl Client {
                 {
                     Some(slot) => {
                         got[slot] = Some(Reply {
-                            remote_error: b.status & 1 != 0,
+                            remote_error: b.status & status::REMOTE_ERROR != 0,
                             data: b.data,
                         });
                         missing -= 1;
@@ -313,7 +312,7 @@ impl Client {
             .collect();
         let (_, reply) = self.exchange(blocks)?;
         for b in reply.blocks {
-            self.inbox.insert((b.raw_id(), b.id_data.clone()), b);
+            self.inbox.insert(b.identity(), b);
         }
         Ok(())
     }
@@ -323,7 +322,7 @@ impl Client {
     pub fn take_inbox(&mut self, command: &Command) -> Option<Reply> {
         let b = command.to_block(0);
         self.inbox.remove(&(b.raw_id(), b.id_data)).map(|b| Reply {
-            remote_error: b.status & 1 != 0,
+            remote_error: b.status & status::REMOTE_ERROR != 0,
             data: b.data,
         })
     }

@@ -1,6 +1,7 @@
-//! Command IDs, operation modes and the payload encodings of the commands we use.
+//! Command IDs, operation modes, group-data constants, and the typed [`Command`]s we use with
+//! their payload encodings (the client encodes them, the server decodes them).
 
-use super::wire::Block;
+use super::wire::{Block, status};
 
 /// Raw command IDs (`simx_cmd_*`).
 pub mod id {
@@ -54,43 +55,64 @@ pub mod opmode {
     pub const ONESHOT: u32 = 0x00000;
     /// Execute once and wait for the reply.
     pub const BLOCKING: u32 = 0x10000;
-    /// Re-execute every pass.
+    /// Keep the command and re-execute it every pass, at most once per `delay` ms.
     pub const STREAMING: u32 = 0x20000;
     /// Split transfer, once.
     pub const ONESHOT_SPLIT: u32 = 0x30000;
     /// Split transfer, streaming.
     pub const STREAMING_SPLIT: u32 = 0x40000;
-    /// Stop a stream.
+    /// End the stream of the same identity (echoed once, not executed).
     pub const DISCONTINUE: u32 = 0x50000;
 }
 
-/// `sim_appobj_object_type`: group data over all scene objects.
+/// `sim_appobj_object_type`: as the object type of `simxGetObjectGroupData`, all objects.
 pub const ALL_OBJECTS: i32 = 109;
+/// Smallest object type code (`sim_object_*_type`: 0 shape, 4 dummy, ...) that
+/// `simxGetObjectGroupData` accepts as a filter.
+pub const FIRST_OBJECT_TYPE: i32 = 0;
+/// Largest such code; CoppeliaSim reads other values than these and [`ALL_OBJECTS`] as a
+/// collection handle (we have no collections).
+pub const LAST_OBJECT_TYPE: i32 = 107;
 
-/// Group data types we use (`simxGetObjectGroupData` dataType).
+/// `simxGetObjectGroupData` data types: what the reply carries for each object. "Absolute"
+/// is in the world frame, "relative" in the parent's frame.
 pub mod group {
-    /// Object names.
+    /// Object names (one string each).
     pub const NAMES: i32 = 0;
-    /// Object types.
+    /// Object type codes (one int each).
     pub const TYPES: i32 = 1;
-    /// Parent handles.
+    /// Parent handles, -1 for none (one int each).
     pub const PARENTS: i32 = 2;
-    /// Absolute positions.
-    pub const POSITIONS: i32 = 3;
-    /// Absolute position + Euler angles.
-    pub const POSES: i32 = 9;
-    /// Aliases.
+    /// Absolute positions (3 floats each).
+    pub const ABSOLUTE_POSITIONS: i32 = 3;
+    /// Relative positions (3 floats each).
+    pub const RELATIVE_POSITIONS: i32 = 4;
+    /// Absolute Euler angles (3 floats each).
+    pub const ABSOLUTE_ORIENTATIONS: i32 = 5;
+    /// Relative Euler angles (3 floats each).
+    pub const RELATIVE_ORIENTATIONS: i32 = 6;
+    /// Absolute quaternions x, y, z, w (4 floats each).
+    pub const ABSOLUTE_QUATERNIONS: i32 = 7;
+    /// Relative quaternions x, y, z, w (4 floats each).
+    pub const RELATIVE_QUATERNIONS: i32 = 8;
+    /// Absolute position then Euler angles (6 floats each).
+    pub const ABSOLUTE_POSES: i32 = 9;
+    /// Relative position then Euler angles (6 floats each).
+    pub const RELATIVE_POSES: i32 = 10;
+    /// Aliases (one string each).
     pub const ALIASES: i32 = 20;
+    /// Full object paths such as `/Maze/Line[1]` (one string each).
+    pub const FULL_PATHS: i32 = 21;
 }
 
-/// Simulation control for [`Command::Simulation`].
+/// Simulation control for [`Command::Simulation`]; the value is the identification data.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SimControl {
-    /// Start (ID data 0).
+    /// `simxStartSimulation` (0).
     Start = 0,
-    /// Pause (1).
+    /// `simxPauseSimulation` (1).
     Pause = 1,
-    /// Stop (2).
+    /// `simxStopSimulation` (2).
     Stop = 2,
 }
 
@@ -99,65 +121,69 @@ pub enum SimControl {
 pub enum Command {
     /// `simxGetObjectHandle(name)`.
     GetObjectHandle(String),
-    /// `simxGetObjects(type)` (-2 = all).
+    /// `simxGetObjects(type)`: handles of the objects of a type code, or of all objects with
+    /// [`crate::coppelia::HANDLE_ALL`].
     GetObjects(i32),
     /// `simxGetObjectGroupData(objectType, dataType)`.
     GetObjectGroupData {
-        /// 109 = all objects, else an object type.
+        /// [`ALL_OBJECTS`], or an object type code from [`FIRST_OBJECT_TYPE`] to
+        /// [`LAST_OBJECT_TYPE`].
         object_type: i32,
-        /// Data type (see [`group`]).
+        /// What to return for each object (see [`group`]).
         data_type: i32,
     },
     /// `simxGetObjectParent(handle)`.
     GetObjectParent(i32),
     /// `simxSetObjectParent(handle, parent, keepInPlace)`.
     SetObjectParent {
-        /// Object.
+        /// The object to move in the tree.
         handle: i32,
-        /// New parent, -1 = none.
+        /// Its new parent, [`crate::coppelia::HANDLE_WORLD`] (-1) for none.
         parent: i32,
-        /// Keep the world pose.
+        /// Keep the object's world pose (else keep its pose relative to the parent).
         keep_in_place: bool,
     },
     /// `simxCopyPasteObjects(handles)` (sent with the do-not-overwrite bit).
     CopyPaste(Vec<i32>),
     /// `simxSetObjectPosition(handle, rel, xyz)`.
     SetPosition {
-        /// Object.
+        /// The object to move.
         handle: i32,
-        /// Reference frame (-1 world, -11 parent, or a handle).
+        /// Frame of `xyz`: [`crate::coppelia::HANDLE_WORLD`], [`crate::coppelia::HANDLE_PARENT`]
+        /// or an object handle.
         relative_to: i32,
-        /// Position.
+        /// The new position in metres.
         xyz: [f32; 3],
     },
-    /// `simxGetObjectPosition(handle, rel)`.
+    /// `simxGetObjectPosition(handle, rel)`: reply x, y, z.
     GetPosition {
-        /// Object.
+        /// The object asked about.
         handle: i32,
-        /// Reference frame.
+        /// Frame of the reply (as for [`Command::SetPosition`]).
         relative_to: i32,
     },
     /// `simxSetObjectOrientation(handle, rel, euler)`.
     SetOrientation {
-        /// Object.
+        /// The object to turn.
         handle: i32,
-        /// Reference frame.
+        /// Frame of `euler` (as for [`Command::SetPosition`]).
         relative_to: i32,
-        /// Euler angles.
+        /// The new orientation as CoppeliaSim Euler angles in radians
+        /// ([`crate::coppelia::frame`]).
         euler: [f32; 3],
     },
-    /// `simxGetObjectOrientation(handle, rel)`.
+    /// `simxGetObjectOrientation(handle, rel)`: reply Euler angles.
     GetOrientation {
-        /// Object.
+        /// The object asked about.
         handle: i32,
-        /// Reference frame.
+        /// Frame of the reply (as for [`Command::SetPosition`]).
         relative_to: i32,
     },
     /// `simxGetObjectQuaternion(handle, rel)`: reply x, y, z, w.
     GetQuaternion {
-        /// Object.
+        /// The object asked about.
         handle: i32,
-        /// Reference frame.
+        /// Frame of the reply (as for [`Command::SetPosition`]).
         relative_to: i32,
     },
     /// `simxRemoveObject(handle)`.
@@ -258,7 +284,7 @@ impl Command {
                 d.push(*keep_in_place as u8);
                 (i32s(&[*handle]), d, 0)
             }
-            CopyPaste(hs) => (i32s(&[0]), i32s(hs), 1),
+            CopyPaste(hs) => (i32s(&[0]), i32s(hs), status::DO_NOT_OVERWRITE),
             SetPosition {
                 handle,
                 relative_to,
@@ -380,16 +406,18 @@ impl Command {
     }
 }
 
-/// Group data as returned by `simxGetObjectGroupData`.
+/// Group data as returned by `simxGetObjectGroupData`: the objects' handles, then what the
+/// data type asked for, object after object in handle order (see [`group`] for how many
+/// values each object contributes to which list).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct GroupData {
     /// Object handles.
     pub handles: Vec<i32>,
-    /// Integer data (per object, in handle order).
+    /// Integer values (types, parents).
     pub ints: Vec<i32>,
-    /// Float data.
+    /// Float values (positions, angles, quaternions).
     pub floats: Vec<f32>,
-    /// String data.
+    /// String values (names, aliases, paths).
     pub strings: Vec<String>,
 }
 
@@ -448,7 +476,7 @@ impl GroupData {
     }
 }
 
-/// Decodes a copy-paste reply (count + handles).
+/// Decodes a handle-list reply (count + handles: copy-paste, `simxGetObjects`).
 pub fn decode_handle_list(b: &[u8]) -> Option<Vec<i32>> {
     let n = usize::try_from(read_i32(b, 0)?).ok()?;
     if b.len() != 4 + 4 * n {
@@ -457,8 +485,8 @@ pub fn decode_handle_list(b: &[u8]) -> Option<Vec<i32>> {
     (1..=n).map(|k| read_i32(b, k)).collect()
 }
 
-/// Encodes a handle list reply.
-pub fn encode_handle_list(handles: &[i32]) -> Vec<u8> {
+/// Encodes a handle-list reply (the server side of [`decode_handle_list`]).
+pub(crate) fn encode_handle_list(handles: &[i32]) -> Vec<u8> {
     let mut out = i32s(&[handles.len() as i32]);
     out.extend(i32s(handles));
     out
@@ -473,10 +501,10 @@ mod tests {
     fn commands_round_trip_through_blocks() {
         let all = [
             Command::GetObjectHandle("Floor".into()),
-            Command::GetObjects(-2),
+            Command::GetObjects(crate::coppelia::HANDLE_ALL),
             Command::GetObjectGroupData {
-                object_type: 109,
-                data_type: 9,
+                object_type: ALL_OBJECTS,
+                data_type: group::ABSOLUTE_POSES,
             },
             Command::GetObjectParent(3),
             Command::SetObjectParent {

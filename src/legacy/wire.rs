@@ -6,16 +6,35 @@ use std::io::{Read, Write};
 
 /// Default maximum packet size (header included).
 pub const MAX_PACKET_SIZE: usize = 1300;
-/// Packet header size.
-pub const PACKET_HEADER_SIZE: usize = 6;
+/// Packet header size: marker 1, payload length, packets left after this one (3 × u16).
+const PACKET_HEADER_SIZE: usize = 6;
 /// Message header size (`SIMX_HEADER_SIZE`).
-pub const MESSAGE_HEADER_SIZE: usize = 18;
+const MESSAGE_HEADER_SIZE: usize = 18;
 /// Command header size (`SIMX_SUBHEADER_SIZE`).
-pub const BLOCK_HEADER_SIZE: usize = 26;
+const BLOCK_HEADER_SIZE: usize = 26;
 /// Protocol version (`SIMX_VERSION`).
-pub const VERSION: u8 = 11;
+const VERSION: u8 = 11;
 /// Largest message we accept (a guard against garbage lengths).
-pub const MAX_MESSAGE_SIZE: usize = 64 << 20;
+const MAX_MESSAGE_SIZE: usize = 64 << 20;
+
+/// Bits of a command block's `status` byte (spec §5.1, offset 24).
+pub mod status {
+    /// Request: keep this command beside stored ones of the same identity instead of
+    /// replacing them (copy-paste uses it so that several copies in one message all happen).
+    pub const DO_NOT_OVERWRITE: u8 = 0x01;
+    /// Reply: the command failed on the server side.
+    pub const REMOTE_ERROR: u8 = 0x01;
+}
+
+/// Bits of the server-state byte of a reply header (spec §4).
+pub mod server_state {
+    /// The simulation is not stopped (running or paused).
+    pub const NOT_STOPPED: u8 = 0x01;
+    /// The simulation is paused.
+    pub const PAUSED: u8 = 0x02;
+    /// Real-time simulation mode is on (never set by our server).
+    pub const REAL_TIME: u8 = 0x04;
+}
 
 impl From<std::io::Error> for WireError {
     fn from(e: std::io::Error) -> WireError {
@@ -54,7 +73,7 @@ pub enum WireError {
         /// What is wrong.
         why: String,
     },
-    /// A message larger than [`MAX_MESSAGE_SIZE`].
+    /// A message larger than 64 MiB (a guard against garbage lengths).
     #[error("message too large ({0} bytes)")]
     TooLarge(usize),
 }
@@ -71,7 +90,7 @@ pub struct MessageHeader {
     pub server_time: i32,
     /// Low 16 bits of the scene's unique ID (server replies only).
     pub scene_id: u16,
-    /// Server state bits: 0x01 simulation not stopped, 0x02 paused, 0x04 real-time.
+    /// Server state bits (see [`server_state`]): simulation not stopped, paused, real-time.
     pub server_state: u8,
 }
 
@@ -84,7 +103,7 @@ pub struct Block {
     pub delay: u16,
     /// Simulation time in ms (replies).
     pub sim_time: i32,
-    /// Request: bit 0 = do not overwrite. Reply: bit 0 = remote error.
+    /// Request: [`status::DO_NOT_OVERWRITE`]. Reply: [`status::REMOTE_ERROR`].
     pub status: u8,
     /// Identification data (part of the identity).
     pub id_data: Vec<u8>,
@@ -114,9 +133,11 @@ impl Block {
         self.cmd & 0xFFFF_0000
     }
 
-    /// The identity used to match replies and replace stored commands.
-    pub fn identity(&self) -> (u16, &[u8]) {
-        (self.raw_id(), &self.id_data)
+    /// The identity of a command: raw ID and identification data. The server's input list
+    /// keeps one command per identity (unless told not to overwrite), and a client matches
+    /// replies to requests by it.
+    pub fn identity(&self) -> (u16, Vec<u8>) {
+        (self.raw_id(), self.id_data.clone())
     }
 
     /// Encoded size in bytes.
@@ -125,7 +146,7 @@ impl Block {
     }
 
     /// Appends the encoded block.
-    pub fn encode_into(&self, out: &mut Vec<u8>) {
+    fn encode_into(&self, out: &mut Vec<u8>) {
         let mem = self.encoded_len() as i32;
         let (full, off1) = match self.split {
             Some(s) => (s.full_size, s.offset),
@@ -147,7 +168,7 @@ impl Block {
 
 /// Length of the identification data of a command, from its raw ID's class (as both the C
 /// client and the server compute it; `pdata_offset0` is not trusted).
-pub fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
+fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
     let cstr = |from: usize| -> Result<usize, String> {
         rest.get(from..)
             .and_then(|r| r.iter().position(|&b| b == 0))
@@ -179,7 +200,7 @@ pub fn id_data_len(raw_id: u16, rest: &[u8]) -> Result<usize, String> {
 /// A whole message.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Message {
-    /// Header.
+    /// The 18-byte header (IDs, times, server state).
     pub header: MessageHeader,
     /// Command blocks in order.
     pub blocks: Vec<Block>,
@@ -325,19 +346,19 @@ pub fn read_message(r: &mut impl Read) -> Result<Vec<u8>, WireError> {
     }
 }
 
-/// Decodes a byte stream of packets into messages (for tests and fuzzing).
-pub fn decode_stream(mut bytes: &[u8]) -> Result<Vec<Message>, WireError> {
-    let mut out = Vec::new();
-    while !bytes.is_empty() {
-        out.push(Message::decode(&read_message(&mut bytes)?)?);
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// Decodes a byte stream of packets into messages.
+    fn decode_stream(mut bytes: &[u8]) -> Result<Vec<Message>, WireError> {
+        let mut out = Vec::new();
+        while !bytes.is_empty() {
+            out.push(Message::decode(&read_message(&mut bytes)?)?);
+        }
+        Ok(out)
+    }
 
     fn hex(s: &str) -> Vec<u8> {
         s.split_whitespace()

@@ -1,0 +1,333 @@
+//! What each command does to the simulator: [`execute`] one stored command in a pass, and
+//! the group data of `simxGetObjectGroupData`.
+
+use crate::coppelia::frame::rotation_from_euler;
+use crate::coppelia::{HANDLE_ALL, HANDLE_PARENT, HANDLE_WORLD};
+use crate::legacy::command::{
+    ALL_OBJECTS, Command, FIRST_OBJECT_TYPE, GroupData, LAST_OBJECT_TYPE, SimControl,
+    encode_handle_list, group,
+};
+use crate::legacy::wire::Block;
+use crate::sim::Simulator;
+
+fn f32x3(v: [f64; 3]) -> Vec<u8> {
+    v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
+}
+
+fn widen(v: [f32; 3]) -> [f64; 3] {
+    [v[0] as f64, v[1] as f64, v[2] as f64]
+}
+
+/// Executes one command; returns (success, reply pure data).
+pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
+    let Some(cmd) = Command::from_block(block) else {
+        return (false, block.data.clone());
+    };
+    let i32le = |v: i32| v.to_le_bytes().to_vec();
+    let scene = &mut sim.scene;
+    match cmd {
+        Command::GetObjectHandle(name) => match scene.resolve(&name) {
+            Ok(h) => (true, i32le(h)),
+            Err(_) => (false, i32le(-1)),
+        },
+        Command::GetObjects(t) => {
+            let hs: Vec<i32> = scene
+                .objects()
+                .filter(|o| t == HANDLE_ALL || o.kind.code() == t)
+                .map(|o| o.handle)
+                .collect();
+            (true, encode_handle_list(&hs))
+        }
+        Command::GetObjectGroupData {
+            object_type,
+            data_type,
+        } => match group_data(sim, object_type, data_type) {
+            Some(g) => (true, g.encode()),
+            None => (false, vec![]),
+        },
+        Command::GetObjectParent(h) => (
+            true,
+            i32le(
+                scene
+                    .get(h)
+                    .ok()
+                    .and_then(|o| o.parent)
+                    .unwrap_or(HANDLE_WORLD),
+            ),
+        ),
+        Command::SetObjectParent {
+            handle,
+            parent,
+            keep_in_place,
+        } => {
+            let parent = (parent != HANDLE_WORLD).then_some(parent);
+            (
+                scene.set_parent(handle, parent, keep_in_place).is_ok(),
+                vec![],
+            )
+        }
+        Command::CopyPaste(hs) => (
+            true,
+            encode_handle_list(&scene.copy_paste(&hs).unwrap_or_default()),
+        ),
+        Command::SetPosition {
+            handle,
+            relative_to,
+            xyz,
+        } => (
+            scene.set_position(handle, relative_to, widen(xyz)).is_ok(),
+            vec![],
+        ),
+        Command::SetOrientation {
+            handle,
+            relative_to,
+            euler,
+        } => (
+            scene
+                .set_orientation(handle, relative_to, widen(euler))
+                .is_ok(),
+            vec![],
+        ),
+        Command::GetPosition {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((p, _)) => (true, f32x3(p)),
+            Err(_) => (false, vec![]),
+        },
+        Command::GetOrientation {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((_, e)) => (true, f32x3(e)),
+            Err(_) => (false, vec![]),
+        },
+        Command::GetQuaternion {
+            handle,
+            relative_to,
+        } => match scene.pose(handle, relative_to) {
+            Ok((_, e)) => {
+                let q = rotation_from_euler(e);
+                (
+                    true,
+                    [q.i, q.j, q.k, q.w]
+                        .iter()
+                        .flat_map(|x| (*x as f32).to_le_bytes())
+                        .collect(),
+                )
+            }
+            Err(_) => (false, vec![]),
+        },
+        Command::RemoveObject(h) => (scene.remove(h).is_ok(), vec![]),
+        Command::GetIntParam(p) => match sim.int_param(p) {
+            Some(v) => (true, i32le(v)),
+            None => (false, vec![]),
+        },
+        Command::SetIntParam(p, v) => (sim.set_int_param(p, v), vec![]),
+        Command::Simulation(c) => {
+            let ok = match c {
+                SimControl::Start => sim.start(),
+                SimControl::Pause => sim.pause(),
+                SimControl::Stop => sim.stop(),
+            };
+            (ok, vec![])
+        }
+        Command::GetIntSignal(name) => match sim.int_signals.get(&name) {
+            Some(v) => (true, i32le(*v)),
+            None => (false, vec![]),
+        },
+        Command::SetIntSignal(name, v) => {
+            sim.int_signals.insert(name, v);
+            (true, vec![])
+        }
+        Command::ClearIntSignal(name) => {
+            if name.is_empty() {
+                sim.int_signals.clear();
+            } else {
+                sim.int_signals.remove(&name);
+            }
+            (true, vec![])
+        }
+        Command::KillConnection => (true, vec![]),
+    }
+}
+
+/// `simxGetObjectGroupData` over the scene; `None` = failure (unknown object or data type).
+fn group_data(sim: &Simulator, object_type: i32, data_type: i32) -> Option<GroupData> {
+    let scene = &sim.scene;
+    let objects: Vec<_> = match object_type {
+        ALL_OBJECTS => scene.objects().collect(),
+        FIRST_OBJECT_TYPE..=LAST_OBJECT_TYPE => scene
+            .objects()
+            .filter(|o| o.kind.code() == object_type)
+            .collect(),
+        _ => return None,
+    };
+    let mut g = GroupData {
+        handles: objects.iter().map(|o| o.handle).collect(),
+        ..Default::default()
+    };
+    for o in &objects {
+        let rel = |abs: bool| if abs { HANDLE_WORLD } else { HANDLE_PARENT };
+        let pose = |abs: bool| scene.pose(o.handle, rel(abs)).ok();
+        let push3 = |g: &mut GroupData, v: [f64; 3]| g.floats.extend(v.iter().map(|x| *x as f32));
+        match data_type {
+            group::NAMES => g.strings.push(o.name.clone()),
+            group::TYPES => g.ints.push(o.kind.code()),
+            group::PARENTS => g.ints.push(o.parent.unwrap_or(HANDLE_WORLD)),
+            group::ABSOLUTE_POSITIONS | group::RELATIVE_POSITIONS => {
+                push3(&mut g, pose(data_type == group::ABSOLUTE_POSITIONS)?.0)
+            }
+            group::ABSOLUTE_ORIENTATIONS | group::RELATIVE_ORIENTATIONS => {
+                push3(&mut g, pose(data_type == group::ABSOLUTE_ORIENTATIONS)?.1)
+            }
+            group::ABSOLUTE_QUATERNIONS | group::RELATIVE_QUATERNIONS => {
+                let q = rotation_from_euler(pose(data_type == group::ABSOLUTE_QUATERNIONS)?.1);
+                g.floats
+                    .extend([q.i, q.j, q.k, q.w].iter().map(|x| *x as f32));
+            }
+            group::ABSOLUTE_POSES | group::RELATIVE_POSES => {
+                let (p, e) = pose(data_type == group::ABSOLUTE_POSES)?;
+                push3(&mut g, p);
+                push3(&mut g, e);
+            }
+            group::ALIASES => g.strings.push(o.alias.clone()),
+            group::FULL_PATHS => g.strings.push(scene.path(o.handle).ok()?),
+            _ => return None,
+        }
+    }
+    Some(g)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::legacy::command::{decode_handle_list, opmode, read_i32};
+    use crate::sim::Scene;
+
+    /// The course scene with `Maze` moved and turned a quarter about z, and `Line` made its
+    /// child in place, so that `Line`'s absolute and relative data differ.
+    fn sim() -> (Simulator, i32, i32) {
+        let mut sim = Simulator::new(Scene::course(), 0);
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let line = sim.scene.resolve("Line").unwrap();
+        let s = &mut sim.scene;
+        s.set_position(maze, HANDLE_WORLD, [1.0, 2.0, 0.0]).unwrap();
+        s.set_orientation(maze, HANDLE_WORLD, [0.0, 0.0, std::f64::consts::FRAC_PI_2])
+            .unwrap();
+        s.set_parent(line, Some(maze), true).unwrap();
+        (sim, maze, line)
+    }
+
+    /// Executes `cmd` as a blocking command: `Some(reply data)` on success.
+    fn run(sim: &mut Simulator, cmd: Command) -> Option<Vec<u8>> {
+        let (ok, data) = execute(sim, &cmd.to_block(opmode::BLOCKING));
+        ok.then_some(data)
+    }
+
+    fn group_of(sim: &mut Simulator, object_type: i32, data_type: i32) -> Option<GroupData> {
+        let data = run(
+            sim,
+            Command::GetObjectGroupData {
+                object_type,
+                data_type,
+            },
+        )?;
+        Some(GroupData::decode(&data).expect("well-formed group data"))
+    }
+
+    fn floats(v: &[f64]) -> Vec<f32> {
+        v.iter().map(|x| *x as f32).collect()
+    }
+
+    #[test]
+    fn group_data_types_carry_what_their_names_say() {
+        let (mut sim, maze, line) = sim();
+        let handles: Vec<i32> = sim.scene.objects().map(|o| o.handle).collect();
+        let mut all = |data_type| group_of(&mut sim, ALL_OBJECTS, data_type).unwrap();
+        let names = all(group::NAMES);
+        assert_eq!(names.handles, handles);
+        assert_eq!(names.strings, ["Floor", "Maze", "Line", "Start", "End"]);
+        assert_eq!(all(group::TYPES).ints, [0, 4, 0, 0, 0]);
+        assert_eq!(all(group::PARENTS).ints, [-1, -1, maze, -1, -1]);
+        assert_eq!(all(group::ALIASES).strings, names.strings);
+        assert_eq!(
+            all(group::FULL_PATHS).strings,
+            ["/Floor", "/Maze", "/Maze/Line", "/Start", "/End"]
+        );
+
+        let per_object = |g: GroupData, n: usize| {
+            assert!(g.ints.is_empty() && g.strings.is_empty());
+            assert_eq!(g.floats.len(), n * handles.len());
+            g.floats[n * 2..n * 3].to_vec() // Line's values
+        };
+        let (abs_p, abs_e) = sim.scene.pose(line, HANDLE_WORLD).unwrap();
+        let (rel_p, rel_e) = sim.scene.pose(line, HANDLE_PARENT).unwrap();
+        assert_ne!(floats(&abs_p), floats(&rel_p));
+        assert_ne!(floats(&abs_e), floats(&rel_e));
+        let quaternion = |e| {
+            let q = rotation_from_euler(e);
+            floats(&[q.i, q.j, q.k, q.w])
+        };
+        let mut all = |data_type| group_of(&mut sim, ALL_OBJECTS, data_type).unwrap();
+        let cases = [
+            (group::ABSOLUTE_POSITIONS, 3, floats(&abs_p)),
+            (group::RELATIVE_POSITIONS, 3, floats(&rel_p)),
+            (group::ABSOLUTE_ORIENTATIONS, 3, floats(&abs_e)),
+            (group::RELATIVE_ORIENTATIONS, 3, floats(&rel_e)),
+            (group::ABSOLUTE_QUATERNIONS, 4, quaternion(abs_e)),
+            (group::RELATIVE_QUATERNIONS, 4, quaternion(rel_e)),
+            (group::ABSOLUTE_POSES, 6, floats(&[abs_p, abs_e].concat())),
+            (group::RELATIVE_POSES, 6, floats(&[rel_p, rel_e].concat())),
+        ];
+        for (data_type, n, want) in cases {
+            assert_eq!(per_object(all(data_type), n), want, "data type {data_type}");
+        }
+    }
+
+    #[test]
+    fn group_data_filters_by_object_type_and_rejects_the_rest() {
+        let (mut sim, maze, _) = sim();
+        let dummy = sim.scene.get(maze).unwrap().kind.code();
+        assert_eq!(
+            group_of(&mut sim, dummy, group::NAMES).unwrap().strings,
+            ["Maze"]
+        );
+        let none = group_of(&mut sim, LAST_OBJECT_TYPE, group::NAMES).unwrap();
+        assert_eq!(none, GroupData::default(), "a valid type without objects");
+        for object_type in [FIRST_OBJECT_TYPE - 1, LAST_OBJECT_TYPE + 1, HANDLE_ALL] {
+            assert_eq!(group_of(&mut sim, object_type, group::NAMES), None);
+        }
+        for data_type in [-1, 11, 19, 22] {
+            assert_eq!(group_of(&mut sim, ALL_OBJECTS, data_type), None);
+        }
+    }
+
+    #[test]
+    fn get_objects_takes_handle_all_or_a_type() {
+        let (mut sim, maze, _) = sim();
+        let all: Vec<i32> = sim.scene.objects().map(|o| o.handle).collect();
+        let list = |sim: &mut Simulator, t| {
+            decode_handle_list(&run(sim, Command::GetObjects(t)).unwrap()).unwrap()
+        };
+        assert_eq!(list(&mut sim, HANDLE_ALL), all);
+        let dummy = sim.scene.get(maze).unwrap().kind.code();
+        assert_eq!(list(&mut sim, dummy), [maze]);
+    }
+
+    #[test]
+    fn unknown_or_malformed_commands_fail_and_echo_their_data() {
+        let (mut sim, _, _) = sim();
+        let mut block = Command::GetIntParam(0).to_block(opmode::BLOCKING);
+        block.cmd = 0x2FFF | opmode::BLOCKING;
+        block.data = vec![1, 2, 3];
+        assert_eq!(execute(&mut sim, &block), (false, vec![1, 2, 3]));
+        let floor = run(&mut sim, Command::GetObjectHandle("Floor".into())).unwrap();
+        assert_eq!(read_i32(&floor, 0), sim.scene.resolve("Floor").ok());
+        let missing = Command::GetObjectHandle("Nope".into()).to_block(opmode::BLOCKING);
+        assert_eq!(
+            execute(&mut sim, &missing),
+            (false, (-1i32).to_le_bytes().to_vec())
+        );
+    }
+}

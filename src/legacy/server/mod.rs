@@ -1,0 +1,197 @@
+//! A protocol-faithful legacy remote API server over the in-memory [`Simulator`].
+//!
+//! One client at a time. Received commands are stored and executed once per emulated
+//! main-loop pass (at `idle_fps` passes per second while the simulation is stopped or paused,
+//! 0 = as soon as a message arrives; one pass per simulation step, 50 ms by default, while it
+//! runs); every client message gets exactly one reply carrying the results produced since the
+//! previous reply, with the message ID of the latest client message seen before that pass
+//! (-1 if no pass).
+//!
+//! Where things are done:
+//! * `transport.rs`: the listening socket and one client session at a time (its own thread);
+//! * `main_loop.rs`: when a pass happens, and the input-list and streaming rules of a pass
+//!   (the main-loop thread; it shares the simulator with the session under one mutex);
+//! * `execute.rs`: what each command does to the simulator;
+//! * here: settings, [`spawn`], the [`ServerHandle`] and the scene dump.
+
+mod execute;
+mod main_loop;
+mod transport;
+
+use std::io;
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use super::wire::MAX_PACKET_SIZE;
+use crate::sim::{Clock, Simulator};
+use main_loop::Core;
+
+/// Server settings.
+#[derive(Debug, Clone)]
+pub struct ServerConfig {
+    /// Address to listen on (loopback by default).
+    pub listen: SocketAddr,
+    /// Largest packet the server sends (1300 like CoppeliaSim's default).
+    pub max_packet_size: usize,
+    /// A client silent for this long is dropped (CoppeliaSim: 10 s).
+    pub idle_timeout: Duration,
+    /// When the emulated main loop passes (the simulation step while running).
+    pub clock: Clock,
+    /// Write the scene as JSON here after every session and on shutdown.
+    pub dump: Option<PathBuf>,
+    /// Print one line per connection and protocol error on stderr.
+    pub verbose: bool,
+    /// Print every received message (header and blocks) on stderr.
+    pub trace: bool,
+    /// After a client leaves, the listening socket is closed and re-created this much later
+    /// (CoppeliaSim: 500 ms and more; connections are refused meanwhile). Zero keeps it open.
+    pub rebind_delay: Duration,
+}
+
+impl Default for ServerConfig {
+    fn default() -> Self {
+        ServerConfig {
+            listen: SocketAddr::from(([127, 0, 0, 1], 19997)),
+            max_packet_size: MAX_PACKET_SIZE,
+            idle_timeout: Duration::from_secs(10),
+            clock: Clock::default(),
+            dump: None,
+            verbose: false,
+            trace: false,
+            rebind_delay: Duration::ZERO,
+        }
+    }
+}
+
+/// What the session thread, the main-loop thread and the [`ServerHandle`] share.
+struct Shared {
+    /// The simulator with the input list and output buffer of the main loop.
+    core: Mutex<Core>,
+    /// Signalled when a message arrives or the simulator changes (a pass may be due).
+    wake: Condvar,
+    /// Set by [`ServerHandle::shutdown`]; both threads end when they see it.
+    stop: AtomicBool,
+    /// The connected client's socket, so that shutdown can close it under a blocked read.
+    active: Mutex<Option<TcpStream>>,
+    /// Start of the server clock (the server time of reply headers).
+    started: Instant,
+    config: ServerConfig,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Core> {
+        self.core.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// A running server; dropping it does not stop it, call [`ServerHandle::shutdown`].
+pub struct ServerHandle {
+    addr: SocketAddr,
+    shared: Arc<Shared>,
+    threads: Vec<JoinHandle<()>>,
+}
+
+/// How much work the server has done, for tests and benchmarks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ServerStats {
+    /// Main-loop passes executed.
+    pub passes: u64,
+    /// Client messages received.
+    pub messages: u64,
+}
+
+impl ServerHandle {
+    /// The bound address (useful with port 0).
+    pub fn local_addr(&self) -> SocketAddr {
+        self.addr
+    }
+
+    /// Runs `f` on the simulator (between passes).
+    pub fn with_sim<R>(&self, f: impl FnOnce(&mut Simulator) -> R) -> R {
+        let mut core = self.shared.lock();
+        let r = f(&mut core.sim);
+        self.shared.wake.notify_all();
+        r
+    }
+
+    /// Main-loop passes and client messages so far.
+    pub fn stats(&self) -> ServerStats {
+        let c = self.shared.lock();
+        ServerStats {
+            passes: c.passes,
+            messages: c.messages,
+        }
+    }
+
+    /// Stops the threads (closing the current session), writes the dump, returns the simulator.
+    pub fn shutdown(self) -> Simulator {
+        self.shared.stop.store(true, Ordering::SeqCst);
+        self.shared.wake.notify_all();
+        if let Some(s) = self
+            .shared
+            .active
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .take()
+        {
+            let _ = s.shutdown(Shutdown::Both);
+        }
+        for t in self.threads {
+            let _ = t.join();
+        }
+        let sim = self.shared.lock().sim.clone();
+        write_dump(&self.shared.config, &sim);
+        sim
+    }
+
+    /// Blocks until the server stops (never, unless another thread shuts it down).
+    pub fn wait(self) {
+        for t in self.threads {
+            let _ = t.join();
+        }
+    }
+}
+
+/// Writes the scene as JSON to `config.dump`, if set (a failure is reported, not fatal).
+fn write_dump(config: &ServerConfig, sim: &Simulator) {
+    if let Some(path) = &config.dump {
+        let text = serde_json::to_string_pretty(&sim.scene.to_json()).unwrap_or_default();
+        if let Err(e) = std::fs::write(path, text) {
+            eprintln!(
+                "vrep-maze serve: cannot write scene dump {}: {e}",
+                path.display()
+            );
+        }
+    }
+}
+
+/// Binds and starts the server threads (accept/session thread and main-loop thread).
+pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
+    let listener = TcpListener::bind(config.listen)?;
+    let addr = listener.local_addr()?;
+    let shared = Arc::new(Shared {
+        core: Mutex::new(Core::new(sim)),
+        wake: Condvar::new(),
+        stop: AtomicBool::new(false),
+        active: Mutex::new(None),
+        started: Instant::now(),
+        config,
+    });
+    let s1 = shared.clone();
+    let main_loop = std::thread::Builder::new()
+        .name("sim-main-loop".into())
+        .spawn(move || main_loop::run(&s1))?;
+    let s2 = shared.clone();
+    let acceptor = std::thread::Builder::new()
+        .name("remote-api".into())
+        .spawn(move || transport::accept_loop(&s2, listener, addr))?;
+    Ok(ServerHandle {
+        addr,
+        shared,
+        threads: vec![main_loop, acceptor],
+    })
+}
