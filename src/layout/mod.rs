@@ -8,6 +8,7 @@ pub mod build;
 pub mod endpoints;
 pub mod geometry;
 pub mod json;
+pub mod limits;
 pub mod passages;
 
 use std::collections::BTreeMap;
