@@ -68,7 +68,8 @@ fn number(ordinary: std::ops::Range<f64>) -> impl Strategy<Value = f64> {
             1.5,
             999.0,
             1000.0,
-            1000.001,
+            10000.0,
+            10000.001,
             1e308,
             -1e308,
             f64::MIN_POSITIVE,
@@ -292,12 +293,12 @@ fn the_library_refuses_before_allocating() {
         "{err}"
     );
     let mut far = course();
-    far.geometry.cell_size = 100.0;
-    far.geometry.line_length = 60.0;
-    far.geometry.line_width = 10.0;
+    far.geometry.cell_size = 300.0;
+    far.geometry.line_length = 180.0;
+    far.geometry.line_width = 30.0;
     let err = build_layout(&far).unwrap_err();
     assert!(
-        err.contains("more than the largest floor, 1000 m x 1000 m"),
+        err.contains("more than the largest floor, 10000 m x 10000 m"),
         "{err}"
     );
 }
@@ -400,7 +401,7 @@ fn every_rotation_validates() {
 fn huge_values_are_refused_not_written_as_null() {
     refused(
         &["--origin", "1e308,0"],
-        "--origin x 1e308 is out of range -500..500 m",
+        "--origin x 1e308 is out of range -5000..5000 m",
     );
     refused(
         &["--floor-size", "1e308x10"],
@@ -420,14 +421,28 @@ fn huge_values_are_refused_not_written_as_null() {
         &["--marker-z", "0.0005"],
         "--marker-z 0.0005 m is not above --line-z 0.001 m",
     );
-    refused(&["--size", "5000x1"], "more than the largest floor");
+    refused(&["--size", "16000x1"], "more than the largest floor");
+    refused(
+        &[
+            "--size",
+            "16000x1",
+            "--cell-size",
+            "0.5",
+            "--origin",
+            "-5001,0",
+        ],
+        "--origin x -5001 is out of range -5000..5000 m",
+    );
+    // The largest grid at the course's cell size still fits the largest floor.
+    let mut largest = GenerateSpec::course(Grid::new(4096, 4096).unwrap(), Algorithm::Dfs, 1);
+    assert!(largest.check().is_ok(), "{:?}", largest.check());
 }
 
 #[test]
 fn former_panics_are_clean_refusals() {
     refused(
         &["--cell-size", "1e308"],
-        "--cell-size 1e308 is out of range 0.001..1000 m",
+        "--cell-size 1e308 is out of range 0.001..10000 m",
     );
     refused(
         &["--line-width", "1e308"],
@@ -555,12 +570,12 @@ fn validate_rejects_the_physically_absurd() {
         (
             "huge floor",
             |v| v["floor"]["size"] = json!([1e308, 10.0]),
-            &["floor.size[0]: 1e308 is out of range 0.001..1000 m"],
+            &["floor.size[0]: 1e308 is out of range 0.001..10000 m"],
         ),
         (
             "huge origin",
             |v| v["grid"]["origin"] = json!([0.0, -1e308]),
-            &["grid.origin[1]: -1e308 is out of range -500..500 m"],
+            &["grid.origin[1]: -1e308 is out of range -5000..5000 m"],
         ),
         (
             "huge rotation",

@@ -63,13 +63,13 @@ pub struct MazeArgs {
     /// End cell: a cell 'x,y', a corner, or 'farthest' (farthest from the start along the maze).
     #[arg(long, default_value = "farthest", value_parser = parse_endpoint)]
     pub end: EndpointSpec,
-    /// Side of a cell, metres: 0.001..1000, and at least line length - line width.
+    /// Side of a cell, metres: 0.001..10000, and at least line length - line width.
     #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres, allow_hyphen_values = true)]
     pub cell_size: f64,
-    /// Length of the Line template, metres: 0.001..1000, and at most 64 copies a passage.
+    /// Length of the Line template, metres: 0.001..10000, and at most 64 copies a passage.
     #[arg(long, default_value_t = course::LINE_LENGTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_length: f64,
-    /// Width of the Line template, metres: 0.001..1000, and less than the cell size.
+    /// Width of the Line template, metres: 0.001..10000, and less than the cell size.
     #[arg(long, default_value_t = course::LINE_WIDTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_width: f64,
     /// Height of the lines above the floor, metres: 0.000001..0.05.
@@ -78,13 +78,13 @@ pub struct MazeArgs {
     /// Height of the Start and End markers, metres: 0.000001..0.05, above the lines.
     #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub marker_z: f64,
-    /// Floor position x,y of cell (0,0)'s centre, each -500..500 [default: the maze centred on the floor origin].
+    /// Floor position x,y of cell (0,0)'s centre, each -5000..5000 [default: the maze centred on the floor origin].
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
     pub origin: Option<[f64; 2]>,
     /// Rotation of the maze about the floor's z axis, degrees counter-clockwise: any finite angle.
     #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub rotation: f64,
-    /// Floor size XxY in metres the maze must fit, each side 0.001..1000 [default: 10x10, grown in 5 m panels to fit].
+    /// Floor size XxY in metres the maze must fit, each side 0.001..10000 [default: 10x10, grown in 5 m panels to fit].
     #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
     pub floor_size: Option<[f64; 2]>,
 }

@@ -4,14 +4,14 @@
 //!
 //! | quantity | option | layout field | range |
 //! |---|---|---|---|
-//! | cell side | `--cell-size` | `grid.cell_size` | 0.001..1000 m, and at least line length - line width |
-//! | line length | `--line-length` | `line.length` | 0.001..1000 m, and at least (cell + width) / 64 |
-//! | line width | `--line-width` | `line.width` | 0.001..1000 m, and less than the cell side |
+//! | cell side | `--cell-size` | `grid.cell_size` | 0.001..10000 m, and at least line length - line width |
+//! | line length | `--line-length` | `line.length` | 0.001..10000 m, and at least (cell + width) / 64 |
+//! | line width | `--line-width` | `line.width` | 0.001..10000 m, and less than the cell side |
 //! | line height | `--line-z` | `line.z` | 1e-6..0.05 m |
 //! | marker height | `--marker-z` | `start.pose.z`, `end.pose.z` | 1e-6..0.05 m, and above the lines |
 //! | rotation | `--rotation` | `grid.rotation` | any finite angle (stored folded into one turn either way) |
-//! | origin | `--origin` | `grid.origin` | -500..500 m on each axis |
-//! | floor | `--floor-size` | `floor.size` | 0.001..1000 m on each axis |
+//! | origin | `--origin` | `grid.origin` | -5000..5000 m on each axis |
+//! | floor | `--floor-size` | `floor.size` | 0.001..10000 m on each axis |
 //! | braid | `--braid` | `generator.options.braid` | 0..1 |
 //!
 //! Lower bounds are whole micrometres, so a value in range stays in range after the
@@ -22,10 +22,11 @@ use std::fmt;
 use super::geometry::Geometry;
 use crate::maze::Grid;
 
-/// The largest floor side, metres: one kilometre, far beyond any simulated course (the
-/// course floor is 10 m) yet small enough that every coordinate keeps sub-micrometre
+/// The largest floor side, metres: 10 km, the smallest round size that still holds the
+/// largest grid (4096x4096) at the course's 1 m cells (a 4100 m floor), far beyond any
+/// simulated course (10 m), and small enough that every coordinate keeps picometre
 /// precision in an `f64`.
-pub const MAX_FLOOR: f64 = 1000.0;
+pub const MAX_FLOOR: f64 = 10_000.0;
 /// The smallest cell side, line length, line width and floor side, metres: 1 mm, a
 /// hundred times the tolerance segment checks work to.
 pub const MIN_LENGTH: f64 = 0.001;
@@ -137,7 +138,7 @@ pub enum Naming {
 pub struct Violation {
     /// The option or field, e.g. `--cell-size` or `grid.cell_size`.
     pub name: String,
-    /// What is wrong, starting with the value, e.g. `0.4 is out of range 0.001..1000 m`.
+    /// What is wrong, starting with the value, e.g. `0.4 is out of range 0.001..10000 m`.
     pub message: String,
 }
 
@@ -412,7 +413,7 @@ mod tests {
         g.cell_size = 1e308;
         assert_eq!(
             check_template(&g, Naming::Options)[0].to_string(),
-            "--cell-size 1e308 is out of range 0.001..1000 m"
+            "--cell-size 1e308 is out of range 0.001..10000 m"
         );
         g.cell_size = 0.4;
         let v = &check_template(&g, Naming::Options)[0];
@@ -470,11 +471,11 @@ mod tests {
         g.origin = [1e308, 0.0];
         assert_eq!(
             check_placement(&g, Naming::Options)[0].to_string(),
-            "--origin x 1e308 is out of range -500..500 m"
+            "--origin x 1e308 is out of range -5000..5000 m"
         );
         assert_eq!(
             check_floor([1e308, 10.0], Naming::Layout)[0].to_string(),
-            "floor.size[0] 1e308 is out of range 0.001..1000 m"
+            "floor.size[0] 1e308 is out of range 0.001..10000 m"
         );
         assert!(
             check_floor([-1.0, 10.0], Naming::Layout)[0]
