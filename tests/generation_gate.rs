@@ -8,6 +8,7 @@
 use std::f64::consts::TAU;
 use std::fs;
 use std::path::Path;
+use std::sync::OnceLock;
 
 use assert_cmd::Command;
 use proptest::prelude::*;
@@ -27,8 +28,18 @@ fn bin() -> Command {
     Command::cargo_bin("vrep-maze").expect("binary built")
 }
 
+/// The checked-in layout schema, which carries the same ranges.
+fn schema() -> &'static jsonschema::Validator {
+    static SCHEMA: OnceLock<jsonschema::Validator> = OnceLock::new();
+    SCHEMA.get_or_init(|| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("schema/layout-v1.schema.json");
+        let schema: Value = serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap();
+        jsonschema::validator_for(&schema).expect("a valid JSON Schema")
+    })
+}
+
 /// Builds `spec`: a refusal must be one line; a layout must validate, also after a
-/// trip through its JSON text, which holds no `null`.
+/// trip through its JSON text, which holds no `null` and satisfies the schema.
 fn gate(spec: &GenerateSpec) -> Result<(), String> {
     match build_layout(spec) {
         Err(message) => {
@@ -43,6 +54,9 @@ fn gate(spec: &GenerateSpec) -> Result<(), String> {
             assert!(report.is_ok(), "{spec:?}: {:?}", report.problems);
             let text = to_string(&layout);
             assert!(!text.contains("null"), "{spec:?}: {text}");
+            let json: Value = serde_json::from_str(&text).unwrap();
+            let errors: Vec<String> = schema().iter_errors(&json).map(|e| e.to_string()).collect();
+            assert!(errors.is_empty(), "{spec:?}: the schema says {errors:?}");
             let read = parse_layout(&text, "gate.json").expect("written layouts parse");
             let report = validate(&read);
             assert!(report.is_ok(), "{spec:?} after JSON: {:?}", report.problems);
