@@ -448,7 +448,7 @@ fn huge_values_are_refused_not_written_as_null() {
         "--origin x -5001 is out of range -5000..5000 m",
     );
     // The largest grid at the course's cell size still fits the largest floor.
-    let mut largest = GenerateSpec::course(Grid::new(4096, 4096).unwrap(), Algorithm::Dfs, 1);
+    let largest = GenerateSpec::course(Grid::new(4096, 4096).unwrap(), Algorithm::Dfs, 1);
     assert!(largest.check().is_ok(), "{:?}", largest.check());
 }
 
