@@ -6,9 +6,9 @@ mod coverage;
 
 use std::fmt;
 
-use crate::generate::Algorithm;
 use nalgebra::Point2;
 
+use crate::generate::Algorithm;
 use crate::layout::build::{extent_needed, fits_within};
 use crate::layout::geometry::{Geometry, rectangle_corners};
 use crate::layout::limits::{self, Naming, show};
