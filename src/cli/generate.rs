@@ -52,39 +52,39 @@ pub struct MazeArgs {
     pub bias: Option<Bias>,
     /// Braid: share (0 to 1) of dead ends to open into loops, so wall-following fails;
     /// 0 keeps the maze perfect.
-    #[arg(long, default_value_t = 0.0, value_parser = parse_share)]
+    #[arg(long, default_value_t = 0.0, value_parser = parse_share, allow_hyphen_values = true)]
     pub braid: f64,
     /// Grid size in cells, WxH (at most 4096x4096 cells in all).
     #[arg(long, default_value = "9x9", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u64, u64),
-    /// Start cell: a cell 'x,y', a corner 'sw|se|nw|ne', or 'farthest-pair' (both ends of the longest path).
+    /// Start cell: a cell 'x,y', a corner 'sw|se|nw|ne', or 'farthest-pair' (both ends of the longest path; then no --end).
     #[arg(long, default_value = "sw", value_parser = parse_endpoint)]
     pub start: EndpointSpec,
     /// End cell: a cell 'x,y', a corner, or 'farthest' (farthest from the start along the maze).
     #[arg(long, default_value = "farthest", value_parser = parse_endpoint)]
     pub end: EndpointSpec,
-    /// Side of a cell, metres.
+    /// Side of a cell, metres: 0.001..10000, and at least line length - line width.
     #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres, allow_hyphen_values = true)]
     pub cell_size: f64,
-    /// Length of the Line template, metres.
+    /// Length of the Line template, metres: 0.001..10000, and at most 64 copies a passage.
     #[arg(long, default_value_t = course::LINE_LENGTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_length: f64,
-    /// Width of the Line template, metres.
+    /// Width of the Line template, metres: 0.001..10000, and less than the cell size.
     #[arg(long, default_value_t = course::LINE_WIDTH, value_parser = parse_metres, allow_hyphen_values = true)]
     pub line_width: f64,
-    /// Height of the lines above the floor, metres.
+    /// Height of the lines above the floor, metres: 0.000001..0.05.
     #[arg(long, default_value_t = course::LINE_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub line_z: f64,
-    /// Height of the Start and End markers, metres.
+    /// Height of the Start and End markers, metres: 0.000001..0.05, above the lines.
     #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub marker_z: f64,
-    /// Floor position x,y of cell (0,0)'s centre [default: the maze centred on the floor origin].
+    /// Floor position x,y of cell (0,0)'s centre, each -5000..5000 [default: the maze centred on the floor origin].
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
     pub origin: Option<[f64; 2]>,
-    /// Rotation of the maze about the floor's z axis, degrees counter-clockwise.
+    /// Rotation of the maze about the floor's z axis, degrees counter-clockwise: any finite angle.
     #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub rotation: f64,
-    /// Floor size XxY in metres the maze must fit [default: 10x10, grown in 5 m panels to fit].
+    /// Floor size XxY in metres the maze must fit, each side 0.001..10000 [default: 10x10, grown in 5 m panels to fit].
     #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
     pub floor_size: Option<[f64; 2]>,
 }
@@ -95,7 +95,8 @@ fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
 }
 
 impl MazeArgs {
-    /// The generate spec these options describe (`seed` decided by the caller).
+    /// The generate spec these options describe (`seed` decided by the caller), every
+    /// value checked against the layout limits before anything is allocated.
     pub fn spec(&self, seed: u64) -> Result<GenerateSpec> {
         let grid = Grid::new(self.size.0, self.size.1).map_err(|e| anyhow!("--size: {e}"))?;
         let algorithm = self
@@ -103,7 +104,14 @@ impl MazeArgs {
             .with_options(self.growing, self.bias)
             .map_err(|e| anyhow!(e))?;
         let cell_size = self.cell_size;
-        Ok(GenerateSpec {
+        // Any finite angle: whole turns beyond one are dropped (exactly, in degrees), so
+        // every angle a user could mean within a turn is kept as given.
+        let rotation = if self.rotation.abs() > 360.0 {
+            self.rotation % 360.0
+        } else {
+            self.rotation
+        };
+        let spec = GenerateSpec {
             grid,
             algorithm,
             seed,
@@ -115,25 +123,44 @@ impl MazeArgs {
                 origin: self
                     .origin
                     .unwrap_or_else(|| Geometry::centred_origin(grid, cell_size)),
-                rotation: self.rotation.to_radians(),
+                rotation: rotation.to_radians(),
                 line_length: self.line_length,
                 line_width: self.line_width,
                 line_z: self.line_z,
                 marker_z: self.marker_z,
             },
             floor: self.floor_size.map_or(FloorSize::Auto, FloorSize::Fixed),
-        })
+        };
+        spec.check().map_err(|e| anyhow!(e))?;
+        Ok(spec)
     }
+}
+
+/// The exit code of a refused option: clap's own code for usage errors, so scripts can
+/// tell "you asked for something impossible" (2) from "something failed" (1).
+pub const USAGE_ERROR: u8 = 2;
+
+/// Reports a refused option in one line and gives the usage exit code.
+fn refuse(error: &anyhow::Error) -> ExitCode {
+    eprintln!("error: {}", super::one_line(error));
+    ExitCode::from(USAGE_ERROR)
 }
 
 /// Runs `generate`.
 pub fn run(args: GenerateArgs) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
-    let mut spec = args.maze.spec(0)?;
+    let mut spec = match args.maze.spec(0) {
+        Ok(spec) => spec,
+        Err(e) => return Ok(refuse(&e)),
+    };
     spec.seed = args.seed.unwrap_or_else(os_seed);
     let seed = spec.seed;
-    let layout = build_layout(&spec).map_err(|e| anyhow!(e))?;
+    // Options are checked; what is left to refuse depends on them too (start and end).
+    let layout = match build_layout(&spec) {
+        Ok(layout) => layout,
+        Err(e) => return Ok(refuse(&anyhow!(e))),
+    };
     if layout.start.cell == layout.end.cell {
         eprintln!(
             "note: start and end are the same cell ({},{}); allowed, the robot is already there",

@@ -21,6 +21,10 @@ pub struct ValidateArgs {
     pub files: Vec<PathBuf>,
 }
 
+/// The most problems printed per file: the first ones say what is wrong, a broken
+/// layout can have millions.
+pub const MAX_PRINTED: usize = 20;
+
 /// Runs `validate`: exit 0 only if every file is valid.
 pub fn run(args: ValidateArgs) -> Result<ExitCode> {
     let mut all_ok = true;
@@ -42,8 +46,14 @@ pub fn run(args: ValidateArgs) -> Result<ExitCode> {
             }
         } else {
             all_ok = false;
-            for problem in &report.problems {
+            for problem in report.problems.iter().take(MAX_PRINTED) {
                 eprintln!("error: {name}: {problem}");
+            }
+            if report.problems.len() > MAX_PRINTED {
+                eprintln!(
+                    "error: {name}: ... and {} more problem(s)",
+                    report.problems.len() - MAX_PRINTED
+                );
             }
             eprintln!("INVALID {name}: {} problem(s)", report.problems.len());
         }

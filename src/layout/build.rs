@@ -4,8 +4,9 @@ use std::collections::BTreeMap;
 
 use nalgebra::Point2;
 
-use super::endpoints::{EndpointSpec, resolve};
+use super::endpoints::{self, EndpointSpec, resolve};
 use super::geometry::{Geometry, course, round_um};
+use super::limits::{self, Naming};
 use super::{
     Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, VERSION, passages,
 };
@@ -58,16 +59,89 @@ impl GenerateSpec {
     }
 }
 
-/// Generates the maze `spec` describes and lays it out.
+impl GenerateSpec {
+    /// Checks every number and option against [`limits`] before anything is allocated:
+    /// the braid share, the line template against the cell, the rotation, the size of the
+    /// maze against the largest floor, the origin, the floor, the start and end, the
+    /// number of segments, and that the maze fits the floor. The error is one line naming
+    /// the option, the value and the range.
+    pub fn check(&self) -> Result<(), String> {
+        self.check_on(self.grid).map(|_| ())
+    }
+
+    /// [`GenerateSpec::check`] on `grid`; the geometry as the layout will store it.
+    fn check_on(&self, grid: Grid) -> Result<Geometry, String> {
+        if let Some(v) = limits::check_braid(self.braid) {
+            return Err(v.to_string());
+        }
+        first(limits::check_template(&self.geometry, Naming::Options))?;
+        let placement = limits::check_placement(&self.geometry, Naming::Options);
+        first(placement.iter().filter(|v| v.name == "--rotation").cloned())?;
+        let geometry = self.geometry.rounded();
+        check_span(grid, &geometry)?;
+        first(placement)?;
+        if let FloorSize::Fixed(size) = self.floor {
+            first(limits::check_floor(size, Naming::Options))?;
+        }
+        endpoints::check(grid, self.start, self.end)?;
+        let per_passage = geometry.segments_per_passage();
+        let bound = limits::segments_bound(grid, self.braid > 0.0, per_passage);
+        if bound > limits::MAX_SEGMENTS {
+            return Err(format!(
+                "a {grid} maze with {per_passage} line copies a passage could need {bound} segments, more than the {} a layout may hold: use a smaller --size or a longer --line-length",
+                limits::MAX_SEGMENTS
+            ));
+        }
+        floor_for(grid, &geometry, self.floor)?;
+        Ok(geometry)
+    }
+}
+
+/// The first violation, as an error.
+fn first(violations: impl IntoIterator<Item = limits::Violation>) -> Result<(), String> {
+    match violations.into_iter().next() {
+        Some(v) => Err(v.to_string()),
+        None => Ok(()),
+    }
+}
+
+/// The maze itself (cells times cell size, turned by the rotation) fits the largest
+/// floor; checked before the origin, which by default centres the maze.
+fn check_span(grid: Grid, geometry: &Geometry) -> Result<(), String> {
+    let (w, h) = (
+        f64::from(grid.width()) * geometry.cell_size,
+        f64::from(grid.height()) * geometry.cell_size,
+    );
+    let (cos, sin) = (geometry.rotation.cos().abs(), geometry.rotation.sin().abs());
+    let span = [cos * w + sin * h, sin * w + cos * h];
+    let tolerance = limits::floor_tolerance(geometry, grid);
+    if span.iter().any(|&s| s > limits::MAX_FLOOR + tolerance) {
+        return Err(format!(
+            "the {grid} maze with --cell-size {} spans {:.3} m x {:.3} m on the floor: more than the largest floor, {} m x {} m",
+            limits::show(geometry.cell_size),
+            span[0],
+            span[1],
+            limits::MAX_FLOOR,
+            limits::MAX_FLOOR
+        ));
+    }
+    Ok(())
+}
+
+/// Generates the maze `spec` describes and lays it out; every option is checked first
+/// ([`GenerateSpec::check`]), so a refused spec allocates nothing.
 pub fn build_layout(spec: &GenerateSpec) -> Result<Layout, String> {
+    spec.check()?;
     let maze = generate_braided(spec.grid, spec.algorithm, spec.seed, spec.braid);
     layout_maze(&maze, spec)
 }
 
-/// Lays out an already generated `maze` as `spec` says.
+/// Lays out an already generated `maze` as `spec` says. Everything is computed from the
+/// geometry as the layout stores it (micrometres, microradians), so `validate` finds
+/// what was drawn.
 pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
-    let geometry = &spec.geometry;
     let grid = maze.grid();
+    let geometry = &spec.check_on(grid)?;
     let (start, end) = resolve(maze, spec.start, spec.end)?;
     let metrics = Metrics::measure(maze, grid.index(start), grid.index(end))
         .ok_or_else(|| format!("end {end} cannot be reached from start {start}"))?;
@@ -89,15 +163,15 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
         grid: GridSpec {
             columns: grid.width(),
             rows: grid.height(),
-            cell_size: round_um(geometry.cell_size),
-            origin: geometry.origin.map(round_um),
-            rotation: round_um(geometry.rotation),
+            cell_size: geometry.cell_size,
+            origin: geometry.origin,
+            rotation: geometry.rotation,
         },
         floor: FloorSpec { size: floor },
         line: LineSpec {
-            length: round_um(geometry.line_length),
-            width: round_um(geometry.line_width),
-            z: round_um(geometry.line_z),
+            length: geometry.line_length,
+            width: geometry.line_width,
+            z: geometry.line_z,
         },
         start: endpoint(geometry, start),
         end: endpoint(geometry, end),
@@ -129,19 +203,37 @@ fn endpoint(geometry: &Geometry, cell: Cell) -> Endpoint {
     }
 }
 
-/// The floor size for `grid`: checked when fixed, grown in panels when automatic.
+/// The floor size for `grid`: checked when fixed, grown in panels when automatic, never
+/// beyond the largest floor. The tolerance covers the writer's rounding
+/// ([`limits::floor_tolerance`]), so rounding never makes a maze miss its floor.
 fn floor_for(grid: Grid, geometry: &Geometry, floor: FloorSize) -> Result<[f64; 2], String> {
     let need = extent_needed(&geometry.grid_corners(grid));
+    let tolerance = limits::floor_tolerance(geometry, grid);
     match floor {
-        FloorSize::Fixed(size) if fits(need, size) => Ok(size.map(round_um)),
+        FloorSize::Fixed(size) if fits_within(need, size, tolerance) => Ok(size.map(round_um)),
         FloorSize::Fixed(size) => Err(format!(
             "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin) but --floor-size is {} m x {} m",
-            need[0], need[1], size[0], size[1]
+            need[0],
+            need[1],
+            limits::show(size[0]),
+            limits::show(size[1])
         )),
-        FloorSize::Auto => Ok(need.map(|n| {
-            let panels = (n / course::FLOOR_PANEL - 1e-9).ceil() * course::FLOOR_PANEL;
-            panels.max(course::FLOOR_SIZE)
-        })),
+        FloorSize::Auto => {
+            let size = need.map(|n| {
+                let panels = ((n - tolerance) / course::FLOOR_PANEL - 1e-9).ceil();
+                (panels * course::FLOOR_PANEL).max(course::FLOOR_SIZE)
+            });
+            if size.iter().any(|&s| s > limits::MAX_FLOOR) {
+                return Err(format!(
+                    "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin), more than the largest floor, {} m x {} m: move --origin towards 0,0",
+                    need[0],
+                    need[1],
+                    limits::MAX_FLOOR,
+                    limits::MAX_FLOOR
+                ));
+            }
+            Ok(size)
+        }
     }
 }
 
@@ -153,7 +245,12 @@ pub fn extent_needed(points: &[Point2<f64>]) -> [f64; 2] {
 
 /// `true` if an extent fits a floor size (micrometre tolerance).
 pub fn fits(need: [f64; 2], size: [f64; 2]) -> bool {
-    need[0] <= size[0] + 2e-6 && need[1] <= size[1] + 2e-6
+    fits_within(need, size, 2e-6)
+}
+
+/// `true` if an extent fits a floor size, `tolerance` metres to spare on each axis.
+pub fn fits_within(need: [f64; 2], size: [f64; 2], tolerance: f64) -> bool {
+    need[0] <= size[0] + tolerance && need[1] <= size[1] + tolerance
 }
 
 #[cfg(test)]

@@ -94,6 +94,41 @@ impl fmt::Display for EndpointSpec {
     }
 }
 
+/// Checks the start and end specs against `grid` before any maze exists: cells on the
+/// grid, `farthest` only for the end, `farthest-pair` only for the start and then with
+/// no other end (it picks both).
+pub fn check(grid: Grid, start: EndpointSpec, end: EndpointSpec) -> Result<(), String> {
+    match (start, end) {
+        (EndpointSpec::Farthest, _) => {
+            return Err("--start farthest needs a reference: use --start farthest-pair".into());
+        }
+        (_, EndpointSpec::FarthestPair) => {
+            return Err("--end farthest-pair is not a thing: use --start farthest-pair".into());
+        }
+        (EndpointSpec::FarthestPair, EndpointSpec::Farthest) => return Ok(()),
+        (EndpointSpec::FarthestPair, end) => {
+            return Err(format!(
+                "--end {end} conflicts with --start farthest-pair, which picks both ends: drop --end"
+            ));
+        }
+        _ => {}
+    }
+    for (spec, which) in [(start, "start"), (end, "end")] {
+        if let EndpointSpec::Cell(cell) = spec
+            && !grid.contains(cell)
+        {
+            return Err(format!(
+                "--{which} {},{} is off the {grid} grid (columns 0..{}, rows 0..{})",
+                cell.x,
+                cell.y,
+                grid.width() - 1,
+                grid.height() - 1
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Resolves the start and end specs on `maze` to cells, or says why they don't fit.
 pub fn resolve(
     maze: &Maze,
@@ -101,6 +136,7 @@ pub fn resolve(
     end: EndpointSpec,
 ) -> Result<(Cell, Cell), String> {
     let grid = maze.grid();
+    check(grid, start, end)?;
     let fixed = |spec: EndpointSpec, which: &str| -> Result<Option<Cell>, String> {
         match spec {
             EndpointSpec::Cell(cell) if grid.contains(cell) => Ok(Some(cell)),
@@ -182,5 +218,18 @@ mod tests {
         )
         .unwrap_err();
         assert!(err.contains("--start 3,0 is off the 3x3 grid"), "{err}");
+    }
+
+    #[test]
+    fn farthest_pair_refuses_an_explicit_end() {
+        let grid = Grid::new(3, 3).unwrap();
+        let pair = EndpointSpec::FarthestPair;
+        assert!(check(grid, pair, EndpointSpec::Farthest).is_ok());
+        let err = check(grid, pair, EndpointSpec::Corner(Corner::NorthEast)).unwrap_err();
+        assert_eq!(
+            err,
+            "--end ne conflicts with --start farthest-pair, which picks both ends: drop --end"
+        );
+        assert!(check(grid, pair, EndpointSpec::Cell(Cell::new(1, 1))).is_err());
     }
 }

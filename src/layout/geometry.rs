@@ -4,7 +4,7 @@
 //! isometry (nalgebra) moves that frame onto the floor: translation = the floor position
 //! of cell (0, 0), rotation = the maze's rotation about z.
 
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 use nalgebra::{Isometry2, Point2, Vector2};
 
@@ -71,6 +71,27 @@ impl Geometry {
     pub fn centred_origin(grid: Grid, cell_size: f64) -> [f64; 2] {
         let half = |n: u32| -f64::from((n - 1) / 2) * cell_size;
         [half(grid.width()), half(grid.height())]
+    }
+
+    /// This geometry as a layout stores it: every length rounded to the micrometre and
+    /// the rotation, folded into -2pi..2pi when beyond a full turn, to the microradian.
+    /// Layouts are computed from these values, so what `validate` recomputes from the
+    /// file is what was drawn, at any rotation.
+    pub fn rounded(&self) -> Self {
+        let rotation = if self.rotation.abs() > TAU {
+            self.rotation % TAU
+        } else {
+            self.rotation
+        };
+        Self {
+            cell_size: round_um(self.cell_size),
+            origin: self.origin.map(round_um),
+            rotation: round_um(rotation),
+            line_length: round_um(self.line_length),
+            line_width: round_um(self.line_width),
+            line_z: round_um(self.line_z),
+            marker_z: round_um(self.marker_z),
+        }
     }
 
     /// The maze-to-floor isometry.

@@ -8,6 +8,7 @@ pub mod build;
 pub mod endpoints;
 pub mod geometry;
 pub mod json;
+pub mod limits;
 pub mod passages;
 
 use std::collections::BTreeMap;
@@ -82,12 +83,15 @@ pub struct GridSpec {
     pub rows: u32,
     /// Side of a square cell, metres.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
     pub cell_size: f64,
     /// Floor coordinates (x, y) of the centre of cell (0, 0).
     #[serde(serialize_with = "json::micrometres_pair")]
+    #[schemars(inner(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max)))]
     pub origin: [f64; 2],
     /// Rotation of the maze about the floor's z axis, radians, counter-clockwise.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::ROTATION.min, max = limits::ROTATION.max))]
     pub rotation: f64,
 }
 
@@ -97,6 +101,7 @@ pub struct GridSpec {
 pub struct FloorSpec {
     /// Extent along x and y, metres.
     #[serde(serialize_with = "json::micrometres_pair")]
+    #[schemars(inner(range(min = limits::FLOOR.min, max = limits::FLOOR.max)))]
     pub size: [f64; 2],
 }
 
@@ -106,12 +111,15 @@ pub struct FloorSpec {
 pub struct LineSpec {
     /// Length along the template's own x axis, metres.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
     pub length: f64,
     /// Width along its y axis, metres.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
     pub width: f64,
     /// Height of every segment above the floor, metres.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::HEIGHT.min, max = limits::HEIGHT.max))]
     pub z: f64,
 }
 
@@ -129,16 +137,20 @@ pub struct Endpoint {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Pose {
-    /// Metres.
+    /// Metres, on the floor.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max))]
     pub x: f64,
-    /// Metres.
+    /// Metres, on the floor.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max))]
     pub y: f64,
-    /// Metres.
+    /// Metres above the floor.
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::HEIGHT.min, max = limits::HEIGHT.max))]
     pub z: f64,
     /// Rotation about z, radians in (-pi, pi].
     #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::YAW.min, max = limits::YAW.max))]
     pub yaw: f64,
 }

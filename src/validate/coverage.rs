@@ -11,10 +11,11 @@ use nalgebra::Point2;
 use super::Problems;
 use crate::layout::Layout;
 use crate::layout::geometry::{Geometry, normalize_angle};
+use crate::layout::limits;
 use crate::maze::{Cell, Direction, Maze};
 
-/// Position tolerance: layouts store micrometres, rotations add rounding.
-const TOLERANCE: f64 = 1e-5;
+/// Position tolerance in the maze frame: see [`limits::SEGMENT_TOLERANCE`].
+const TOLERANCE: f64 = limits::SEGMENT_TOLERANCE;
 /// Heading tolerance, radians.
 const YAW_TOLERANCE: f64 = 1e-4;
 

@@ -6,9 +6,12 @@ mod coverage;
 
 use std::fmt;
 
+use nalgebra::Point2;
+
 use crate::generate::Algorithm;
-use crate::layout::build::{extent_needed, fits};
+use crate::layout::build::{extent_needed, fits_within};
 use crate::layout::geometry::{Geometry, rectangle_corners};
+use crate::layout::limits::{self, Naming, show};
 use crate::layout::{Layout, Pose, passages};
 use crate::maze::analysis::{UNREACHED, component_count, distances_from};
 use crate::maze::{Cell, Grid, Maze, Metrics};
@@ -132,7 +135,10 @@ fn check_generator(layout: &Layout, problems: &mut Problems) {
         match key.as_str() {
             "growing" | "bias" => {}
             "braid" => {
-                if !value.parse::<f64>().is_ok_and(|v| (0.0..=1.0).contains(&v)) {
+                if !value
+                    .parse::<f64>()
+                    .is_ok_and(|v| limits::BRAID.contains(v))
+                {
                     problems.add(
                         "generator.options.braid",
                         format!("'{value}' is not a share from 0 to 1"),
@@ -147,50 +153,11 @@ fn check_generator(layout: &Layout, problems: &mut Problems) {
     }
 }
 
-/// Every length positive and finite, every coordinate finite; the geometry they make.
+/// Every number in the range [`limits`] documents (the same `generate` checks its
+/// options against); the geometry they make, unless one it depends on is out of range.
+/// Heights and poses are checked too but do not stop the rest of the validation.
 fn check_numbers(layout: &Layout, problems: &mut Problems) -> Option<Geometry> {
-    let before = problems.0.len();
-    let positive = [
-        ("grid.cell_size", layout.grid.cell_size),
-        ("line.length", layout.line.length),
-        ("line.width", layout.line.width),
-        ("floor.size[0]", layout.floor.size[0]),
-        ("floor.size[1]", layout.floor.size[1]),
-    ];
-    for (field, value) in positive {
-        if !(value.is_finite() && value > 0.0) {
-            problems.add(
-                field,
-                format!("must be a positive number of metres, not {value}"),
-            );
-        }
-    }
-    let finite = [
-        ("grid.origin[0]", layout.grid.origin[0]),
-        ("grid.origin[1]", layout.grid.origin[1]),
-        ("grid.rotation", layout.grid.rotation),
-        ("line.z", layout.line.z),
-    ];
-    for (field, value) in finite {
-        if !value.is_finite() {
-            problems.add(field, format!("must be a finite number, not {value}"));
-        }
-    }
-    for (index, pose) in layout.segments.iter().enumerate() {
-        if ![pose.x, pose.y, pose.z, pose.yaw]
-            .iter()
-            .all(|v| v.is_finite())
-        {
-            problems.add(
-                format!("segments[{index}]"),
-                "has a coordinate that is not a finite number",
-            );
-        }
-    }
-    if problems.0.len() > before {
-        return None;
-    }
-    Some(Geometry {
+    let geometry = Geometry {
         cell_size: layout.grid.cell_size,
         origin: layout.grid.origin,
         rotation: layout.grid.rotation,
@@ -198,10 +165,87 @@ fn check_numbers(layout: &Layout, problems: &mut Problems) -> Option<Geometry> {
         line_width: layout.line.width,
         line_z: layout.line.z,
         marker_z: layout.start.pose.z,
-    })
+    };
+    let mut blocking = false;
+    for v in limits::check_template(&geometry, Naming::Layout) {
+        // Heights do not change where anything lies; keep checking the rest.
+        blocking |= v.name != "line.z" && v.name != "start.pose.z";
+        problems.add(v.name, v.message);
+    }
+    for v in limits::check_placement(&geometry, Naming::Layout)
+        .into_iter()
+        .chain(limits::check_floor(layout.floor.size, Naming::Layout))
+    {
+        blocking = true;
+        problems.add(v.name, v.message);
+    }
+    if let Some(v) = limits::check_range("end.pose.z", layout.end.pose.z, limits::HEIGHT) {
+        problems.add(v.name, v.message);
+    } else if limits::HEIGHT.contains(layout.line.z) && layout.end.pose.z <= layout.line.z {
+        problems.add(
+            "end.pose.z",
+            format!(
+                "{} m is not above line.z {} m: the markers must lie on top of the lines",
+                show(layout.end.pose.z),
+                show(layout.line.z)
+            ),
+        );
+    }
+    for (which, pose) in [("start", &layout.start.pose), ("end", &layout.end.pose)] {
+        for (field, value) in [("x", pose.x), ("y", pose.y)] {
+            if !value.is_finite() {
+                blocking = true;
+                problems.add(
+                    format!("{which}.pose.{field}"),
+                    format!("must be a finite number, not {}", show(value)),
+                );
+            }
+        }
+        if let Some(v) = limits::check_range(&format!("{which}.pose.yaw"), pose.yaw, limits::YAW) {
+            problems.add(v.name, v.message);
+        }
+    }
+    for (index, pose) in layout.segments.iter().enumerate() {
+        if ![pose.x, pose.y, pose.z, pose.yaw]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            blocking = true;
+            problems.add(
+                format!("segments[{index}]"),
+                "has a coordinate that is not a finite number",
+            );
+            continue;
+        }
+        if let Some(v) =
+            limits::check_range(&format!("segments[{index}].yaw"), pose.yaw, limits::YAW)
+        {
+            problems.add(v.name, v.message);
+        }
+        if !limits::HEIGHT.contains(layout.line.z) {
+            // line.z itself is reported; judge the segment by the range alone.
+            if let Some(v) =
+                limits::check_range(&format!("segments[{index}].z"), pose.z, limits::HEIGHT)
+            {
+                problems.add(v.name, v.message);
+            }
+        } else if (pose.z - layout.line.z).abs() > 2.0 * limits::ROUNDING {
+            problems.add(
+                format!("segments[{index}].z"),
+                format!(
+                    "{} m is not line.z {} m: every segment lies at the height of the lines",
+                    show(pose.z),
+                    show(layout.line.z)
+                ),
+            );
+        }
+    }
+    (!blocking).then_some(geometry)
 }
 
-/// The endpoint's cell is on the grid and its marker sits on the cell centre.
+/// The endpoint's cell is on the grid and its marker sits on the cell centre: compared
+/// in the maze frame, within what the writer's rounding can move it
+/// ([`limits::marker_tolerance`]).
 fn check_endpoint(
     cell: &[u32; 2],
     pose: &Pose,
@@ -218,20 +262,21 @@ fn check_endpoint(
         );
         return None;
     }
-    let centre = geometry.cell_centre(cell);
-    if (centre.x - pose.x).abs() > 2e-6 || (centre.y - pose.y).abs() > 2e-6 {
+    let centre = geometry.local_centre(cell);
+    let local = geometry.maze_to_floor().inverse() * Point2::new(pose.x, pose.y);
+    let off = (local - centre).norm();
+    if off > limits::marker_tolerance(centre.coords.norm()) {
+        let floor = geometry.cell_centre(cell);
         problems.add(
             format!("{which}.pose"),
             format!(
-                "marker at ({}, {}) is not on the centre ({:.6}, {:.6}) of cell {cell}",
-                pose.x, pose.y, centre.x, centre.y
+                "marker at ({}, {}) is not on the centre ({:.6}, {:.6}) of cell {cell}: {} m off",
+                pose.x,
+                pose.y,
+                floor.x,
+                floor.y,
+                show(off)
             ),
-        );
-    }
-    if !pose.z.is_finite() || pose.z < 0.0 {
-        problems.add(
-            format!("{which}.pose.z"),
-            format!("must be a height >= 0, not {}", pose.z),
         );
     }
     Some(grid.index(cell))
@@ -330,27 +375,35 @@ fn check_route(
     Some(measured)
 }
 
-/// Every segment and both markers lie on the declared floor.
+/// The maze and every segment lie on the declared floor, within what the writer's
+/// rounding can move them ([`limits::floor_tolerance`]).
 fn check_floor(layout: &Layout, grid: Grid, geometry: &Geometry, problems: &mut Problems) {
     let size = layout.floor.size;
+    let tolerance = limits::floor_tolerance(geometry, grid);
     let need = extent_needed(&geometry.grid_corners(grid));
-    if !fits(need, size) {
+    if !fits_within(need, size, tolerance) {
         problems.add(
             "floor.size",
             format!(
                 "the maze needs {:.3} m x {:.3} m but the floor is {} m x {} m",
-                need[0], need[1], size[0], size[1]
+                need[0],
+                need[1],
+                show(size[0]),
+                show(size[1])
             ),
         );
     }
     for (index, pose) in layout.segments.iter().enumerate() {
         let corners = rectangle_corners(pose, layout.line.length, layout.line.width);
-        if !fits(extent_needed(&corners), size) {
+        if !fits_within(extent_needed(&corners), size, tolerance) {
             problems.add(
                 format!("segments[{index}]"),
                 format!(
                     "at ({}, {}) reaches off the {} m x {} m floor",
-                    pose.x, pose.y, size[0], size[1]
+                    pose.x,
+                    pose.y,
+                    show(size[0]),
+                    show(size[1])
                 ),
             );
         }
