@@ -22,7 +22,7 @@ pub struct ConnectArgs {
     #[arg(long, value_enum, default_value = "legacy")]
     pub api: Api,
     /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub port: Option<u16>,
     /// The floor: every layout coordinate is relative to it.
     #[arg(long, default_value = "Floor")]

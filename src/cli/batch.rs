@@ -28,10 +28,10 @@ pub struct BatchArgs {
     #[arg(long)]
     pub out_dir: PathBuf,
     /// Keep only mazes whose solution has at least this many cells.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub min_solution: Option<u64>,
     /// Keep only mazes with at most this percentage of dead ends.
-    #[arg(long, value_parser = super::values::parse_percent)]
+    #[arg(long, value_parser = super::values::parse_percent, allow_negative_numbers = true)]
     pub max_dead_ends: Option<f64>,
 }
 

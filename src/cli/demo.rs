@@ -28,7 +28,7 @@ use crate::validate::validate;
 #[command(after_help = "Example:\n  vrep-maze demo --seed 7 --algo kruskal")]
 pub struct DemoArgs {
     /// Seed of the course maze.
-    #[arg(long, default_value_t = 42)]
+    #[arg(long, default_value_t = 42, allow_negative_numbers = true)]
     pub seed: u64,
     /// Algorithm of the course maze (any of `generate --algo`).
     #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]

@@ -3,10 +3,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Result, anyhow};
+use anyhow::Result;
 use clap::Args;
 
 use super::output::write_output;
+use super::usage;
 use super::values::{
     parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
 };
@@ -98,11 +99,12 @@ impl MazeArgs {
     /// The generate spec these options describe (`seed` decided by the caller), every
     /// value checked against the layout limits before anything is allocated.
     pub fn spec(&self, seed: u64) -> Result<GenerateSpec> {
-        let grid = Grid::new(self.size.0, self.size.1).map_err(|e| anyhow!("--size: {e}"))?;
+        let grid =
+            Grid::new(self.size.0, self.size.1).map_err(|e| usage(format!("--size: {e}")))?;
         let algorithm = self
             .algo
             .with_options(self.growing, self.bias)
-            .map_err(|e| anyhow!(e))?;
+            .map_err(usage)?;
         let cell_size = self.cell_size;
         // Any finite angle: whole turns beyond one are dropped (exactly, in degrees), so
         // every angle a user could mean within a turn is kept as given.
@@ -131,36 +133,20 @@ impl MazeArgs {
             },
             floor: self.floor_size.map_or(FloorSize::Auto, FloorSize::Fixed),
         };
-        spec.check().map_err(|e| anyhow!(e))?;
+        spec.check().map_err(usage)?;
         Ok(spec)
     }
-}
-
-/// The exit code of a refused option: clap's own code for usage errors, so scripts can
-/// tell "you asked for something impossible" (2) from "something failed" (1).
-pub const USAGE_ERROR: u8 = 2;
-
-/// Reports a refused option in one line and gives the usage exit code.
-fn refuse(error: &anyhow::Error) -> ExitCode {
-    eprintln!("error: {}", super::one_line(error));
-    ExitCode::from(USAGE_ERROR)
 }
 
 /// Runs `generate`.
 pub fn run(args: GenerateArgs) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
-    let mut spec = match args.maze.spec(0) {
-        Ok(spec) => spec,
-        Err(e) => return Ok(refuse(&e)),
-    };
+    let mut spec = args.maze.spec(0)?;
     spec.seed = args.seed.unwrap_or_else(os_seed);
     let seed = spec.seed;
     // Options are checked; what is left to refuse depends on them too (start and end).
-    let layout = match build_layout(&spec) {
-        Ok(layout) => layout,
-        Err(e) => return Ok(refuse(&anyhow!(e))),
-    };
+    let layout = build_layout(&spec).map_err(usage)?;
     if layout.start.cell == layout.end.cell {
         eprintln!(
             "note: start and end are the same cell ({},{}); allowed, the robot is already there",

@@ -64,6 +64,11 @@ const USAGE_EXIT_CODE: u8 = 2;
 #[error("{0}")]
 pub(crate) struct UsageError(pub String);
 
+/// `message` as a [`UsageError`].
+pub(crate) fn usage(message: impl std::fmt::Display) -> anyhow::Error {
+    anyhow::Error::new(UsageError(message.to_string()))
+}
+
 /// Fails with a [`UsageError`] unless `condition` holds.
 macro_rules! ensure_usage {
     ($condition:expr, $($message:tt)+) => {
@@ -78,7 +83,10 @@ pub(crate) use ensure_usage;
 /// one line per hint), with exit code 2 for usage errors and 1 for other failures.
 pub fn main() -> ExitCode {
     end_quietly_on_broken_pipe();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return report_usage(&e),
+    };
     match run(cli) {
         Ok(code) => code,
         Err(error) => {
@@ -93,6 +101,35 @@ pub fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// Help and version go to standard output as clap prints them; a usage error becomes one
+/// `error:` line (clap's first), its tips `hint:` lines, and exit code 2.
+fn report_usage(error: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(
+        error.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        let _ = error.print();
+        return if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+            ExitCode::from(USAGE_EXIT_CODE)
+        } else {
+            ExitCode::SUCCESS
+        };
+    }
+    let text = error.render().to_string();
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    if let Some(first) = lines.next() {
+        eprintln!("{}", shorten(first));
+    }
+    for tip in lines.filter_map(|l| l.strip_prefix("tip:")) {
+        eprintln!("  hint:{}", shorten(tip));
+    }
+    eprintln!("  hint: `--help` lists every option, with examples");
+    ExitCode::from(USAGE_EXIT_CODE)
 }
 
 /// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use super::output::write_output;
-use super::{UsageError, ensure_usage};
+use super::{ensure_usage, usage};
 use crate::layout::read_layout;
 use crate::render::{Format, RenderOptions};
 
@@ -91,10 +91,6 @@ fn choose_format(
         (f, e) => Ok(f.or(e).unwrap_or(default)),
     }
 }
-fn usage(message: String) -> anyhow::Error {
-    anyhow::Error::new(UsageError(message))
-}
-
 /// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
 fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     if args.file.as_os_str() == "-" {

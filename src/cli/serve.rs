@@ -57,7 +57,7 @@ pub struct ServeArgs {
     pub trace: bool,
     /// After a client leaves, refuse connections for this many milliseconds while the
     /// listening socket is re-created, as CoppeliaSim does (500 ms or more). 0 = never refuse.
-    #[arg(long, default_value_t = 500)]
+    #[arg(long, default_value_t = 500, allow_negative_numbers = true)]
     pub rebind_delay_ms: u64,
 }
 
