@@ -112,7 +112,7 @@ fn main() {
     );
     for n in [9u64, 30] {
         let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, 42);
-        let d = Drawing::from(&build_layout(&spec).unwrap());
+        let d = Drawing::try_from(&build_layout(&spec).unwrap()).unwrap();
         for fps in [8, 0] {
             let (rt, wall) = ours(&d, fps);
             let sample = if full {

@@ -155,6 +155,15 @@ fn make_one(
         ..template.clone()
     };
     let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+    // the gate every layout passes before anything is done with it
+    crate::validate::checked(&layout).map_err(|e| {
+        let first = e
+            .problems
+            .first()
+            .map(|p| p.to_string())
+            .unwrap_or_default();
+        format!("seed {seed}: {e}: {first}")
+    })?;
     if !filter.accepts(&layout.metrics) {
         return Ok(Made::Filtered);
     }

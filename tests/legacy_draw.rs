@@ -11,7 +11,7 @@ use vrep_maze::sim::{NamingMode, Scene, Simulator};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
     let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
-    Drawing::from(&build_layout(&spec).unwrap())
+    Drawing::try_from(&build_layout(&spec).unwrap()).unwrap()
 }
 
 fn server_with(scene: Scene, fps: i32) -> ServerHandle {

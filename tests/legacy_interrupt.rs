@@ -15,7 +15,7 @@ use vrep_maze::sim::{Scene, Simulator};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
     let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Dfs, seed);
-    Drawing::from(&build_layout(&spec).unwrap())
+    Drawing::try_from(&build_layout(&spec).unwrap()).unwrap()
 }
 
 /// Forwards `limit` client messages to the server (or up to the first message carrying a

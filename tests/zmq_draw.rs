@@ -22,7 +22,7 @@ use vrep_maze::zmq_api::{
 
 fn drawing(n: u64, seed: u64) -> Drawing {
     let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
-    Drawing::from(&build_layout(&spec).unwrap())
+    Drawing::try_from(&build_layout(&spec).unwrap()).unwrap()
 }
 
 fn config(protocol: Protocol) -> ServerConfig {

@@ -68,15 +68,16 @@ fn lines(s: &ServerHandle) -> usize {
 #[test]
 fn zmq_apply_cut_at_any_call_is_repaired() {
     let spec = GenerateSpec::course(Grid::new(4, 4).unwrap(), Algorithm::Prim, 3);
-    let d = Drawing::from(&build_layout(&spec).unwrap());
-    let other = Drawing::from(
+    let d = Drawing::try_from(&build_layout(&spec).unwrap()).unwrap();
+    let other = Drawing::try_from(
         &build_layout(&GenerateSpec::course(
             Grid::new(3, 3).unwrap(),
             Algorithm::Prim,
             1,
         ))
         .unwrap(),
-    );
+    )
+    .unwrap();
     let cfg = ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
         protocol: Protocol::V2,
@@ -120,14 +121,15 @@ fn zmq_apply_cut_at_any_call_is_repaired() {
 
 #[test]
 fn zmq_idle_rate_left_at_zero_by_an_interrupted_apply_is_restored() {
-    let d = Drawing::from(
+    let d = Drawing::try_from(
         &build_layout(&GenerateSpec::course(
             Grid::new(4, 4).unwrap(),
             Algorithm::Prim,
             3,
         ))
         .unwrap(),
-    );
+    )
+    .unwrap();
     let cfg = ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
         protocol: Protocol::V2,

@@ -115,7 +115,8 @@ pub struct ApplyArgs {
 /// Runs `apply`.
 pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let layout = crate::layout::read_layout(&args.layout)?;
-    let drawing = Drawing::from(&layout);
+    let drawing = Drawing::try_from(&layout)
+        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
     let opts = ApplyOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,

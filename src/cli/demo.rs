@@ -75,7 +75,7 @@ fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
     let server = spawn(config, Simulator::new(SimScene::course(), DEFAULT_IDLE_FPS))
         .context("starting the emulated simulator")?;
     let port = server.local_addr().port();
-    let drawing = Drawing::from(layout);
+    let drawing = Drawing::try_from(layout)?;
     let result = (|| -> Result<String> {
         let mut scene = LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(10))?;
         let report = draw::apply(&mut scene, &drawing, &ApplyOptions::default(), &mut |_| {})?;

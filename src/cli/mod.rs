@@ -91,6 +91,9 @@ pub fn main() -> ExitCode {
         Ok(code) => code,
         Err(error) => {
             eprintln!("error: {}", one_line(&error));
+            for detail in details(&error) {
+                eprintln!("  {detail}");
+            }
             for hint in hints(&error) {
                 eprintln!("  hint: {hint}");
             }
@@ -195,6 +198,16 @@ fn shorten(text: &str) -> String {
     }
     let head: String = text.chars().take(MAX_CAUSE_CHARS).collect();
     format!("{head}... ({chars} characters in all)")
+}
+
+/// What the error's causes list beyond their one line (an invalid layout's problems).
+fn details(error: &anyhow::Error) -> Vec<String> {
+    error
+        .chain()
+        .filter_map(|cause| cause.downcast_ref::<crate::validate::Invalid>())
+        .flat_map(|invalid| invalid.shown())
+        .map(|line| shorten(&line))
+        .collect()
 }
 
 /// The remedies the error's causes know of, one per line, printed after the error line.

@@ -11,6 +11,7 @@ use super::output::write_output;
 use super::{ensure_usage, usage};
 use crate::layout::read_layout;
 use crate::render::{Format, RenderOptions};
+use crate::validate::checked;
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -51,6 +52,7 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
         "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
     );
     let layout = read_layout(&args.file)?;
+    checked(&layout).with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
     let options = RenderOptions {
         solution: args.solution,
     };

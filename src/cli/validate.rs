@@ -8,7 +8,7 @@ use clap::Args;
 
 use crate::layout::{Layout, read_layout};
 use crate::maze::Metrics;
-use crate::validate::validate;
+use crate::validate::{Invalid, validate};
 
 /// Options of `validate`.
 #[derive(Debug, Args)]
@@ -20,10 +20,6 @@ pub struct ValidateArgs {
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
 }
-
-/// The most problems printed per file: the first ones say what is wrong, a broken
-/// layout can have millions.
-pub const MAX_PRINTED: usize = 20;
 
 /// Runs `validate`: exit 0 only if every file is valid.
 pub fn run(args: ValidateArgs) -> Result<ExitCode> {
@@ -46,16 +42,14 @@ pub fn run(args: ValidateArgs) -> Result<ExitCode> {
             }
         } else {
             all_ok = false;
-            for problem in report.problems.iter().take(MAX_PRINTED) {
-                eprintln!("error: {name}: {problem}");
+            let count = report.problems.len();
+            let invalid = Invalid {
+                problems: report.problems,
+            };
+            for line in invalid.shown() {
+                eprintln!("error: {name}: {line}");
             }
-            if report.problems.len() > MAX_PRINTED {
-                eprintln!(
-                    "error: {name}: ... and {} more problem(s)",
-                    report.problems.len() - MAX_PRINTED
-                );
-            }
-            eprintln!("INVALID {name}: {} problem(s)", report.problems.len());
+            eprintln!("INVALID {name}: {count} problem(s)");
         }
     }
     Ok(if all_ok {

@@ -18,8 +18,6 @@ pub use clear::{ClearOptions, ClearReport, clear};
 pub use lease::{LEASE_SIGNAL, Lease};
 pub use verify::verify;
 
-use serde::{Deserialize, Serialize};
-
 pub use crate::layout::Pose;
 
 /// Position of a pose as an array.
@@ -33,14 +31,16 @@ pub fn euler(p: &Pose) -> [f64; 3] {
 }
 
 /// What to draw: one pose per copy of `Line` (the template itself is the first), plus where
-/// `Start` and `End` go. All in the Floor frame.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// `Start` and `End` go. All in the Floor frame. Made only from a valid layout
+/// (`Drawing::try_from(&layout)`), so its fields can be read but not assembled by hand.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub struct Drawing {
-    /// Line segments.
+    /// Poses of the line copies, in the layout's segment order.
     pub lines: Vec<Pose>,
-    /// Start marker.
+    /// Pose of the start marker.
     pub start: Pose,
-    /// End marker.
+    /// Pose of the end marker.
     pub end: Pose,
 }
 
@@ -331,13 +331,18 @@ pub fn resolve_handles(names: &ObjectNames, survey: &Survey) -> Result<Handles, 
     })
 }
 
-impl From<&crate::layout::Layout> for Drawing {
-    /// The layout's segments (template first), start and end poses.
-    fn from(layout: &crate::layout::Layout) -> Drawing {
-        Drawing {
+impl TryFrom<&crate::layout::Layout> for Drawing {
+    type Error = crate::validate::Invalid;
+
+    /// The layout's segments (template first), start and end poses, once the layout has
+    /// passed [`crate::validate::checked`]: the only way to make a drawing, so nothing
+    /// invalid is ever drawn.
+    fn try_from(layout: &crate::layout::Layout) -> Result<Drawing, Self::Error> {
+        crate::validate::checked(layout)?;
+        Ok(Drawing {
             lines: layout.segments.clone(),
             start: layout.start.pose,
             end: layout.end.pose,
-        }
+        })
     }
 }

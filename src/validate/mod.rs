@@ -409,3 +409,48 @@ fn check_floor(layout: &Layout, grid: Grid, geometry: &Geometry, problems: &mut 
         }
     }
 }
+
+/// The most problems an error shows: the first ones say what is wrong, and a broken layout
+/// can have millions.
+pub const MAX_SHOWN: usize = 20;
+
+/// A layout that failed [`validate`]. Every consumer of layouts (drawing, rendering, writing
+/// a dataset) passes [`checked`] first and refuses with this, so nothing is ever drawn,
+/// rendered or written from a layout that `vrep-maze validate` rejects.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("invalid layout ({} problem(s); `vrep-maze validate` lists them)", .problems.len())]
+pub struct Invalid {
+    /// Everything wrong, in the order [`validate`] found it.
+    pub problems: Vec<Problem>,
+}
+
+impl Invalid {
+    /// The first [`MAX_SHOWN`] problems, one per line, then how many more there are.
+    pub fn shown(&self) -> Vec<String> {
+        let mut lines: Vec<String> = self
+            .problems
+            .iter()
+            .take(MAX_SHOWN)
+            .map(Problem::to_string)
+            .collect();
+        if self.problems.len() > MAX_SHOWN {
+            lines.push(format!(
+                "... and {} more problem(s)",
+                self.problems.len() - MAX_SHOWN
+            ));
+        }
+        lines
+    }
+}
+
+/// The one gate every consumer of a layout passes: `Ok` when [`validate`] finds nothing.
+pub fn checked(layout: &Layout) -> Result<(), Invalid> {
+    let report = validate(layout);
+    if report.is_ok() {
+        Ok(())
+    } else {
+        Err(Invalid {
+            problems: report.problems,
+        })
+    }
+}
