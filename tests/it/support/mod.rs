@@ -1,5 +1,4 @@
 //! Helpers shared by the integration tests.
-#![allow(dead_code)]
 
 use assert_cmd::Command;
 use vrep_maze::generate::Algorithm;

@@ -1,0 +1,21 @@
+//! The integration tests, one binary (`cargo test --test it`; filter by module, e.g.
+//! `cargo test --test it interrupt` or `cargo test --test it zmq2`): linking the crate once
+//! instead of once per file. `support` holds what the topics share.
+
+mod support;
+
+mod cli;
+mod cli_legacy;
+mod cli_zmq;
+mod generators;
+mod golden;
+mod legacy_client_server;
+mod legacy_draw;
+mod legacy_interrupt;
+mod properties;
+mod schema;
+mod texture;
+mod validate;
+mod zmq_client_server;
+mod zmq_draw;
+mod zmq_interrupt;
