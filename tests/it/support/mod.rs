@@ -1,21 +1,38 @@
-//! Helpers shared by the integration tests.
+//! What the integration tests share: the binary and its `serve` child ([`cli`]), mazes to
+//! draw ([`layouts`]), the three emulated backends ([`backend`]) and a cutting proxy
+//! ([`proxy`]).
 
-use assert_cmd::Command;
-use vrep_maze::generate::Algorithm;
-use vrep_maze::layout::{GenerateSpec, Layout, build_layout};
-use vrep_maze::maze::Grid;
+pub mod backend;
+pub mod cli;
+pub mod layouts;
+pub mod proxy;
 
-/// The `vrep-maze` binary under test.
-pub fn bin() -> Command {
-    Command::cargo_bin("vrep-maze").expect("binary built")
+pub use cli::bin;
+pub use layouts::course_layout;
+
+/// Instantiates each backend-neutral scenario `fn scenario(kind: Kind)` once per backend,
+/// as `scenario::legacy`, `scenario::zmq1` and `scenario::zmq2`, so a failure names the
+/// backend (and `cargo test --test it zmq1` runs one backend).
+macro_rules! backend_tests {
+    ($($scenario:ident),+ $(,)?) => {$(
+        mod $scenario {
+            use crate::support::backend::Kind;
+
+            #[test]
+            fn legacy() {
+                super::$scenario(Kind::Legacy)
+            }
+
+            #[test]
+            fn zmq1() {
+                super::$scenario(Kind::Zmq1)
+            }
+
+            #[test]
+            fn zmq2() {
+                super::$scenario(Kind::Zmq2)
+            }
+        }
+    )+};
 }
-
-/// The course layout for `algorithm` and `seed` on a `w` x `h` grid.
-pub fn course_layout(algorithm: Algorithm, w: u64, h: u64, seed: u64) -> Layout {
-    build_layout(&GenerateSpec::course(
-        Grid::new(w, h).unwrap(),
-        algorithm,
-        seed,
-    ))
-    .unwrap()
-}
+pub(crate) use backend_tests;
