@@ -7,6 +7,7 @@ mod support;
 mod cli;
 mod cli_legacy;
 mod cli_zmq;
+mod draw;
 mod generators;
 mod golden;
 mod interrupt;

@@ -6,6 +6,7 @@ use std::net::SocketAddr;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
+use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{Backend, BackendError};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::sim::{Scene, Simulator};
@@ -26,6 +27,9 @@ pub enum Kind {
 }
 
 impl Kind {
+    /// Every backend.
+    pub const ALL: [Kind; 3] = [Kind::Legacy, Kind::Zmq1, Kind::Zmq2];
+
     /// Its name in failure messages.
     pub fn name(self) -> &'static str {
         match self {
@@ -90,6 +94,25 @@ impl Kind {
             })?),
         })
     }
+
+    /// The most round trips `apply` may take to draw an `n` x `n` maze into the course
+    /// scene, where this backend promises a bound: the legacy API batches each stage into
+    /// one message (ZeroMQ makes one call per request: no such bound).
+    pub fn apply_round_trip_bound(self, n: u64) -> Option<usize> {
+        match (self, n) {
+            (Kind::Legacy, 9) => Some(15),
+            (Kind::Legacy, 30) => Some(20),
+            _ => None,
+        }
+    }
+
+    /// What the error of a refused re-parenting (a cycle) says over this API.
+    pub fn parent_cycle_error(self) -> &'static str {
+        match self {
+            Kind::Legacy => "set the parent of object",
+            Kind::Zmq1 | Kind::Zmq2 => "cannot be made a child of",
+        }
+    }
 }
 
 enum Handle {
@@ -105,6 +128,9 @@ pub struct Server {
     handle: Handle,
 }
 
+/// Every object as (alias, parent alias, world pose rounded to 0.1 mm / 0.1 mrad), sorted.
+pub type Snapshot = Vec<(String, Option<String>, [i64; 6])>;
+
 impl Server {
     /// Where it listens.
     pub fn addr(&self) -> SocketAddr {
@@ -117,17 +143,24 @@ impl Server {
             .kind
             .connect(self.addr.port(), TIMEOUT)
             .unwrap_or_else(|e| panic!("{}: {e}", self.kind.name()));
-        if let Some(p) = self.kind.protocol() {
-            let description = b.describe();
-            let version = if p == Protocol::V1 {
-                "protocol 1"
-            } else {
-                "protocol 2"
-            };
-            assert!(description.contains(version), "{description}");
-            assert!(b.authoring().is_some(), "{description}");
-        } else {
-            assert!(b.authoring().is_none(), "the legacy API creates nothing");
+        let description = b.describe();
+        match self.kind.protocol() {
+            Some(p) => {
+                let n = if p == Protocol::V1 { 1 } else { 2 };
+                assert!(
+                    description.starts_with("ZeroMQ remote API")
+                        && description.contains(&format!(", protocol {n}, ")),
+                    "{description}"
+                );
+                assert!(b.authoring().is_some(), "{description}");
+            }
+            None => {
+                assert!(
+                    description.starts_with("legacy remote API"),
+                    "{description}"
+                );
+                assert!(b.authoring().is_none(), "the legacy API creates nothing");
+            }
         }
         b
     }
@@ -150,6 +183,28 @@ impl Server {
     /// The simulator's current idle rate.
     pub fn idle_fps(&self) -> i32 {
         self.with_sim(|sim| sim.idle_fps)
+    }
+
+    /// See [`Snapshot`].
+    pub fn snapshot(&self) -> Snapshot {
+        self.with_sim(|sim| {
+            let r = |x: f64| (x * 1e4).round() as i64;
+            let mut out: Snapshot = sim
+                .scene
+                .objects()
+                .map(|o| {
+                    let (p, e) = sim.scene.pose(o.handle, HANDLE_WORLD).unwrap();
+                    let parent = o.parent.map(|p| sim.scene.get(p).unwrap().alias.clone());
+                    (
+                        o.alias.clone(),
+                        parent,
+                        [r(p[0]), r(p[1]), r(p[2]), r(e[0]), r(e[1]), r(e[2])],
+                    )
+                })
+                .collect();
+            out.sort();
+            out
+        })
     }
 
     /// Stops the server (every proxy to it must be gone).

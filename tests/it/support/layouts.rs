@@ -15,6 +15,11 @@ pub fn course_layout(algorithm: Algorithm, w: u64, h: u64, seed: u64) -> Layout 
     .unwrap()
 }
 
+/// The lines of the `n` x `n` Prim course for `seed` (9 x 9 seed 42 has 160 lines).
+pub fn drawing(n: u64, seed: u64) -> Drawing {
+    drawing_with(Algorithm::Prim, n, seed)
+}
+
 /// The lines of the `n` x `n` course of `algorithm` for `seed`.
 pub fn drawing_with(algorithm: Algorithm, n: u64, seed: u64) -> Drawing {
     Drawing::from(&course_layout(algorithm, n, n, seed))
