@@ -1,20 +1,19 @@
-//! What only the ZeroMQ backend does: fresh scenes with --create-missing (and saving
-//! them), and serving one scene with the legacy API (`--api both`). The scenarios every
-//! backend shares are in `draw`.
+//! What only the ZeroMQ backend does: fresh scenes with --create-missing and saving them
+//! (both protocols), and serving one scene with the legacy API (`--api both`). The
+//! scenarios every backend shares are in `draw`.
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use ciborium::Value;
 use vrep_maze::coppelia::HANDLE_WORLD;
-use vrep_maze::draw::{self, ApplyOptions, Authoring, Backend, DrawError, ObjectNames};
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, ObjectNames};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::sim::{Scene, Simulator};
 use vrep_maze::zmq_api::cbor::{self, int};
-use vrep_maze::zmq_api::{
-    ClientOptions, Protocol, ServerConfig, ServerHandle, ZmqBackend, spawn, spawn_shared,
-};
+use vrep_maze::zmq_api::{ClientOptions, Protocol, ServerConfig, ZmqBackend, spawn_shared};
 
+use crate::support::backend::Kind;
 use crate::support::layouts::drawing;
 
 fn config(protocol: Protocol) -> ServerConfig {
@@ -23,10 +22,6 @@ fn config(protocol: Protocol) -> ServerConfig {
         protocol,
         ..Default::default()
     }
-}
-
-fn server(scene: Scene, fps: i32, protocol: Protocol) -> ServerHandle {
-    spawn(config(protocol), Simulator::new(scene, fps)).unwrap()
 }
 
 fn connect(port: u16) -> ZmqBackend {
@@ -41,21 +36,37 @@ fn connect(port: u16) -> ZmqBackend {
 fn no_progress(_: draw::Stage) {}
 
 #[test]
-fn zmq_create_missing_in_an_empty_scene() {
-    let s = server(Scene::empty(), 0, Protocol::V2);
-    let mut sc = connect(s.local_addr().port());
+fn zmq_create_missing_in_an_empty_scene_protocol_2() {
+    create_missing_in_an_empty_scene(Kind::Zmq2);
+}
+
+#[test]
+fn zmq_create_missing_in_an_empty_scene_protocol_1() {
+    create_missing_in_an_empty_scene(Kind::Zmq1);
+}
+
+fn create_missing_in_an_empty_scene(kind: Kind) {
+    let s = kind.serve(Scene::empty(), 0);
+    let mut sc = s.connect();
     let d = drawing(4, 1);
     let names = ObjectNames::default();
-    match draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress) {
+    match draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress) {
         Err(DrawError::Missing { names, .. }) => {
             assert_eq!(names, ["Floor", "Maze", "Line", "Start", "End"])
         }
         other => panic!("{other:?}"),
     }
-    let created = sc.create_missing(&names).unwrap();
+    let created = sc.authoring().unwrap().create_missing(&names).unwrap();
     assert_eq!(created, ["Floor", "Maze", "Line", "Start", "End"]);
-    assert!(sc.create_missing(&names).unwrap().is_empty(), "idempotent");
-    draw::apply(&mut sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
+    assert!(
+        sc.authoring()
+            .unwrap()
+            .create_missing(&names)
+            .unwrap()
+            .is_empty(),
+        "idempotent"
+    );
+    draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
     s.with_sim(|sim| {
         let get = |n: &str| {
             sim.scene
@@ -73,7 +84,7 @@ fn zmq_create_missing_in_an_empty_scene() {
     });
     // not collidable, measurable or detectable; renderable (the camera sees it); static, not respondable
     let mut c = vrep_maze::zmq_api::Client::connect(&ClientOptions {
-        port: s.local_addr().port(),
+        port: s.addr().port(),
         ..Default::default()
     })
     .unwrap();
@@ -95,8 +106,14 @@ fn zmq_create_missing_in_an_empty_scene() {
             .unwrap(),
         1
     );
-    let path = std::env::temp_dir().join(format!("vrep-maze-zmq-save-{}.json", std::process::id()));
-    sc.save_scene(path.to_str().unwrap()).unwrap();
+    let path = std::env::temp_dir().join(format!(
+        "vrep-maze-zmq-save-{}-{kind:?}.json",
+        std::process::id()
+    ));
+    sc.authoring()
+        .unwrap()
+        .save_scene(path.to_str().unwrap())
+        .unwrap();
     let saved = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
     assert_eq!(saved.len(), 4 + d.lines.len());
     let _ = std::fs::remove_file(path);
