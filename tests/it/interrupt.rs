@@ -14,6 +14,7 @@ use crate::support::layouts::drawing_with;
 use crate::support::proxy::{Cut, Proxy};
 
 backend_tests!(
+    proxy_counts_a_turn_per_request,
     interrupted_apply_is_repaired_by_apply_and_by_clear,
     idle_rate_left_at_zero_by_an_interrupted_apply_is_restored,
 );
@@ -37,6 +38,29 @@ fn apply_through(
     );
     r.map(|_| ())
         .map_err(|e| BackendError::Transport(e.to_string()))
+}
+
+/// The proxy's turns are the client's requests (legacy: messages, keep-alives included),
+/// plus, over ZeroMQ, the handshake's (greetings and READY commands, which may interleave).
+fn proxy_counts_a_turn_per_request(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let proxy = Proxy::start(s.addr(), Cut::Never);
+    let mut b = kind.connect(proxy.port(), TIMEOUT).unwrap();
+    let d = drawing_with(Algorithm::Dfs, 3, 4);
+    draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+    let (turns, requests) = (proxy.turns(), s.requests() as usize);
+    let handshake = match kind {
+        Kind::Legacy => 0..=0,
+        Kind::Zmq1 | Kind::Zmq2 => 1..=3,
+    };
+    assert!(
+        turns >= requests && handshake.contains(&(turns - requests)),
+        "{}: {turns} turns for {requests} requests",
+        kind.name()
+    );
+    drop(b);
+    drop(proxy);
+    s.shutdown();
 }
 
 /// Timeout of the connection that gets cut: a cut legacy connection fails at once (2 s

@@ -175,6 +175,14 @@ impl Server {
         with_sim(&*self.host, f)
     }
 
+    /// The requests (legacy: messages) the server has received.
+    pub fn requests(&self) -> u64 {
+        match &self.handle {
+            Handle::Legacy(h) => h.stats().messages,
+            Handle::Zmq(h) => h.requests(),
+        }
+    }
+
     /// The maze lines in the scene, template included.
     pub fn line_count(&self) -> usize {
         self.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count())
