@@ -311,6 +311,18 @@ fn check_fit(g: &Geometry, n: &Names) -> Option<Violation> {
                 show((c + w) / MAX_SEGMENTS_PER_PASSAGE as f64)
             ),
         ))
+    } else if l <= w + 2.0 * SEGMENT_TOLERANCE {
+        // copies are spread by (c + w - l) / (n - 1); with l <= w some copy of one passage
+        // lands exactly on a copy of the next where they meet at a cell centre
+        Some(violation(
+            n.length,
+            format!(
+                "{} m is not longer than {} {} m: copies of so short a line land on each other where passages meet",
+                show(l),
+                n.width,
+                show(w)
+            ),
+        ))
     } else {
         None
     }
@@ -437,6 +449,14 @@ mod tests {
                 .message
                 .contains("110 copies")
         );
+        g.line_length = 0.05;
+        g.cell_size = 0.5;
+        let v = &check_template(&g, Naming::Options)[0];
+        assert!(
+            v.name == "--line-length" && v.message.contains("not longer than"),
+            "{v}"
+        );
+        g.cell_size = 1.0;
         g.line_length = 0.6;
         g.marker_z = 0.001;
         assert_eq!(check_template(&g, Naming::Layout)[0].name, "start.pose.z");

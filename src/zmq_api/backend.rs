@@ -450,20 +450,33 @@ impl Backend for ZmqBackend {
         Ok(())
     }
 
+    /// The record and the rate are two calls (ZeroMQ has no batching), ordered so that a cut
+    /// between them never loses the user's rate: the record is written before the rate is
+    /// lowered, and deleted only after the rate is restored.
     fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
-        self.call(
-            "sim.setInt32Param",
-            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
-        )?;
         let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
-        let record = match saved {
-            Some(v) => self.call("sim.setInt32Signal", vec![name, int(v.into())]),
-            None => self.call("sim.clearInt32Signal", vec![name]),
+        let set_rate = |backend: &mut Self| {
+            backend
+                .call(
+                    "sim.setInt32Param",
+                    vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+                )
+                .map(drop)
         };
-        match record {
-            // A simulator without integer signals only loses the crash record.
+        // A simulator without integer signals only loses the crash record.
+        let tolerate = |record: Result<Vec<Value>, BackendError>| match record {
             Ok(_) | Err(BackendError::Remote(_)) => Ok(()),
             Err(e) => Err(e),
+        };
+        match saved {
+            Some(v) => {
+                tolerate(self.call("sim.setInt32Signal", vec![name, int(v.into())]))?;
+                set_rate(self)
+            }
+            None => {
+                set_rate(self)?;
+                tolerate(self.call("sim.clearInt32Signal", vec![name]))
+            }
         }
     }
 

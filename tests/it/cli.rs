@@ -1,9 +1,7 @@
 //! The command line, end to end: generate, validate, render, demo, and every bad input
 //! the core issue lists. Bad input must give one clear error line and a non-zero exit.
 
-mod common;
-
-use common::bin;
+use crate::support::bin;
 use predicates::prelude::*;
 use predicates::str::contains;
 use std::fs;

@@ -154,7 +154,7 @@ fn ordinary_geometry() -> impl Strategy<Value = (Geometry, bool)> {
         .prop_flat_map(|(cell, width)| {
             (
                 Just((cell, width)),
-                (cell + width) / 60.0..(cell + width),
+                ((cell + width) / 60.0).max(width + 1e-4)..(cell + width),
                 -1e6..1e6f64,
                 proptest::option::of((-20.0..20.0f64, -20.0..20.0f64)),
                 1e-6..0.01f64,
@@ -301,6 +301,7 @@ fn the_library_refuses_before_allocating() {
     huge.geometry.cell_size = 0.2;
     huge.geometry.origin = Geometry::centred_origin(huge.grid, 0.2);
     huge.geometry.line_length = 0.06;
+    huge.geometry.line_width = 0.05;
     let err = build_layout(&huge).unwrap_err();
     assert!(
         err.contains("more than the 67108864 a layout may hold"),

@@ -1,66 +1,25 @@
 //! The `serve`, `apply` and `clear` commands end to end (the binary, a real socket).
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
-
-use assert_cmd::cargo::CommandCargoExt;
 use predicates::prelude::*;
 
-struct Serve(Child, u16);
+use crate::support::bin;
+use crate::support::cli::{Serve, generate};
 
-impl Drop for Serve {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
+/// `serve --listen 127.0.0.1:0` plus `extra` (the legacy API only).
 fn serve(extra: &[&str]) -> Serve {
-    let mut child = Command::cargo_bin("vrep-maze")
-        .unwrap()
-        .args(["serve", "--listen", "127.0.0.1:0"])
-        .args(extra)
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    let port = line
-        .split("127.0.0.1:")
-        .nth(1)
-        .and_then(|r| r.split_whitespace().next())
-        .unwrap()
-        .parse()
-        .unwrap();
-    Serve(child, port)
-}
-
-fn cmd() -> assert_cmd::Command {
-    assert_cmd::Command::cargo_bin("vrep-maze").unwrap()
-}
-
-fn generate(dir: &std::path::Path, seed: &str, algo: &str) -> String {
-    let path = dir
-        .join(format!("{algo}-{seed}.json"))
-        .display()
-        .to_string();
-    cmd()
-        .args(["generate", "--seed", seed, "--algo", algo, "-o", &path])
-        .assert()
-        .success();
-    path
+    let mut args = vec!["--listen", "127.0.0.1:0"];
+    args.extend(extra);
+    Serve::start(&args, 1)
 }
 
 #[test]
 fn legacy_cli_apply_replace_clear() {
     let dir = tempfile::tempdir().unwrap();
     let s = serve(&["--idle-fps", "8"]);
-    let port = s.1.to_string();
+    let port = s.port();
     let m1 = generate(dir.path(), "42", "prim");
     let m2 = generate(dir.path(), "7", "dfs");
-    cmd()
+    bin()
         .args(["apply", &m1, "--port", &port])
         .assert()
         .success()
@@ -68,24 +27,24 @@ fn legacy_cli_apply_replace_clear() {
             predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed")
                 .and(predicate::str::contains("verified")),
         );
-    cmd()
+    bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
         .stdout(predicate::str::contains("159 reused, 0 pasted, 0 removed"));
-    cmd()
+    bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
         .stdout(predicate::str::contains(
             "0 pasted, 0 removed, 162 already in place",
         ));
-    cmd()
+    bin()
         .args(["clear", "--port", &port])
         .assert()
         .success()
         .stdout(predicate::str::contains("removed 159 maze line(s): Line0"));
-    cmd()
+    bin()
         .args(["clear", "--port", &port])
         .assert()
         .success()
@@ -97,8 +56,8 @@ fn legacy_cli_errors_are_one_clear_line() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "1", "kruskal");
     let s = serve(&["--scene", "empty", "--idle-fps", "0"]);
-    let port = s.1.to_string();
-    cmd()
+    let port = s.port();
+    bin()
         .args(["apply", &m, "--port", &port])
         .assert()
         .failure()
@@ -108,12 +67,12 @@ fn legacy_cli_errors_are_one_clear_line() {
         );
     // nothing listens on the port any more
     drop(s);
-    cmd()
+    bin()
         .args(["apply", &m, "--port", &port, "--timeout", "0.3"])
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot connect"));
-    cmd()
+    bin()
         .args(["clear", "--port", &port, "--timeout", "0.3"])
         .assert()
         .failure()
@@ -126,7 +85,7 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     let dump = dir.path().join("scene.json");
     let m = generate(dir.path(), "3", "prim");
     let s = serve(&["--idle-fps", "0", "--dump", dump.to_str().unwrap()]);
-    let port = s.1.to_string();
+    let port = s.port();
     // start the simulation with our client
     let mut c = vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default())
         .unwrap();
@@ -135,12 +94,12 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     ))
     .unwrap();
     c.close().unwrap();
-    cmd()
+    bin()
         .args(["apply", &m, "--port", &port])
         .assert()
         .failure()
         .stderr(predicate::str::contains("simulation is running"));
-    cmd()
+    bin()
         .args(["apply", &m, "--port", &port, "--stop-simulation"])
         .assert()
         .success()
@@ -159,7 +118,7 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     assert_eq!(scene.len(), 5 + 159);
     // `render` draws a scene dump as SVG: Floor, Start, End and 160 lines (the dummy has no footprint)
     let svg = dir.path().join("scene.svg");
-    cmd()
+    bin()
         .args([
             "render",
             dump.to_str().unwrap(),
@@ -173,17 +132,17 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
     assert_eq!(svg.matches("rgb(0,255,0)").count(), 160);
     // a dump is a scene file for the next `serve`
     let s2 = serve(&["--scene", dump.to_str().unwrap(), "--idle-fps", "0"]);
-    cmd()
-        .args(["clear", "--port", &s2.1.to_string()])
+    bin()
+        .args(["clear", "--port", &s2.port()])
         .assert()
         .success()
         .stdout(predicate::str::contains("removed 159 maze line(s)"));
-    cmd()
+    bin()
         .args(["serve", "--scene", "/nonexistent/scene.json"])
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot read scene file"));
-    cmd()
+    bin()
         .args(["render", dump.to_str().unwrap(), "--format", "ascii"])
         .assert()
         .failure()

@@ -1,8 +1,6 @@
 //! Validation catches hand-edited and broken layouts, each problem named with its place.
 
-mod common;
-
-use common::course_layout;
+use crate::support::course_layout;
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{Layout, passages};
 use vrep_maze::maze::{Cell, Direction, Maze};

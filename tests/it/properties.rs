@@ -2,9 +2,7 @@
 //! solvable maze whose segments cover every passage gap-free, and the same inputs always
 //! give the same layout.
 
-mod common;
-
-use common::course_layout;
+use crate::support::course_layout;
 use proptest::prelude::*;
 use vrep_maze::generate::{Algorithm, generate};
 use vrep_maze::layout::json::to_string;

@@ -1,58 +1,19 @@
 //! `serve --api zmq|both`, `apply --api zmq|auto --create-missing --save-scene` and `clear`
 //! end to end through the binary.
 
-use std::io::{BufRead, BufReader};
-use std::process::{Child, Command, Stdio};
+use std::process::Command;
 
-use assert_cmd::cargo::CommandCargoExt;
 use predicates::prelude::*;
 
-struct Serve(Child, Vec<u16>);
+use crate::support::bin;
+use crate::support::cli::{self, Serve};
 
-impl Drop for Serve {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// Starts `serve` with `args`; returns the ports it printed (one line per API).
 fn serve(args: &[&str], lines: usize) -> Serve {
-    let mut child = Command::cargo_bin("vrep-maze")
-        .unwrap()
-        .arg("serve")
-        .args(args)
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut out = BufReader::new(child.stdout.take().unwrap());
-    let mut ports = vec![];
-    for _ in 0..lines {
-        let mut line = String::new();
-        out.read_line(&mut line).unwrap();
-        let port = line
-            .split("127.0.0.1:")
-            .nth(1)
-            .and_then(|r| r.split_whitespace().next())
-            .unwrap_or_else(|| panic!("no address in {line:?}"))
-            .parse()
-            .unwrap();
-        ports.push(port);
-    }
-    Serve(child, ports)
-}
-
-fn cmd() -> assert_cmd::Command {
-    assert_cmd::Command::cargo_bin("vrep-maze").unwrap()
+    Serve::start(args, lines)
 }
 
 fn generate(dir: &std::path::Path, seed: &str) -> String {
-    let path = dir.join(format!("m{seed}.json")).display().to_string();
-    cmd()
-        .args(["generate", "--seed", seed, "--algo", "prim", "-o", &path])
-        .assert()
-        .success();
-    path
+    cli::generate(dir, seed, "prim")
 }
 
 #[test]
@@ -69,9 +30,9 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
         ],
         1,
     );
-    let port = s.1[0].to_string();
+    let port = s.port();
     let m = generate(dir.path(), "42");
-    cmd()
+    bin()
         .args(["apply", &m, "--api", "zmq", "--port", &port])
         .assert()
         .failure()
@@ -79,7 +40,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
             "missing in the scene: Floor, Maze, Line, Start, End",
         ));
     let saved = dir.path().join("saved.json").display().to_string();
-    cmd()
+    bin()
         .args([
             "apply",
             &m,
@@ -109,7 +70,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
             .unwrap()
             .contains("vrep-maze scene")
     );
-    cmd()
+    bin()
         .args([
             "apply",
             &m,
@@ -125,7 +86,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
             predicate::str::contains("159 reused, 0 pasted, 0 removed")
                 .and(predicate::str::contains("created").not()),
         );
-    cmd()
+    bin()
         .args(["clear", "--api", "zmq", "--port", &port])
         .assert()
         .success()
@@ -149,8 +110,8 @@ fn zmq_cli_protocol_1_server() {
         1,
     );
     let m = generate(dir.path(), "5");
-    cmd()
-        .args(["apply", &m, "--api", "zmq", "--port", &s.1[0].to_string()])
+    bin()
+        .args(["apply", &m, "--api", "zmq", "--port", &s.port()])
         .assert()
         .success()
         .stdout(
@@ -175,18 +136,18 @@ fn zmq_cli_both_apis_share_one_scene() {
         ],
         2,
     );
-    let (legacy, zmq) = (s.1[0].to_string(), s.1[1].to_string());
+    let (legacy, zmq) = (s.ports[0].to_string(), s.ports[1].to_string());
     let m = generate(dir.path(), "42");
-    cmd()
+    bin()
         .args(["apply", &m, "--port", &legacy])
         .assert()
         .success();
-    cmd()
+    bin()
         .args(["clear", "--api", "zmq", "--port", &zmq])
         .assert()
         .success()
         .stdout(predicate::str::contains("removed 159 maze line(s)"));
-    cmd()
+    bin()
         .args(["clear", "--port", &legacy])
         .assert()
         .success()
@@ -197,14 +158,14 @@ fn zmq_cli_both_apis_share_one_scene() {
 fn zmq_cli_errors_are_one_clear_line() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "3");
-    cmd()
+    bin()
         .args(["apply", &m, "--create-missing"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
             "need the ZeroMQ remote API (--api zmq)",
         ));
-    cmd()
+    bin()
         .args(["apply", &m, "--api", "auto", "--port", "1"])
         .assert()
         .failure()
@@ -216,7 +177,7 @@ fn zmq_cli_errors_are_one_clear_line() {
         .local_addr()
         .unwrap()
         .port();
-    cmd()
+    bin()
         .args([
             "clear",
             "--api",
@@ -235,7 +196,7 @@ fn zmq_cli_errors_are_one_clear_line() {
                     s.trim_end().lines().count() == 1
                 })),
         );
-    cmd()
+    bin()
         .args(["serve", "--api", "zmq", "--zmq-listen", "127.0.0.1:0"])
         .assert()
         .failure()
@@ -260,11 +221,11 @@ fn zmq_cli_serve_dumps_the_scene_on_sigterm() {
         1,
     );
     let m = generate(dir.path(), "11");
-    cmd()
-        .args(["apply", &m, "--api", "zmq", "--port", &s.1[0].to_string()])
+    bin()
+        .args(["apply", &m, "--api", "zmq", "--port", &s.port()])
         .assert()
         .success();
-    let pid = s.0.id().to_string();
+    let pid = s.child.id().to_string();
     assert!(
         Command::new("kill")
             .args(["-TERM", &pid])
@@ -272,7 +233,7 @@ fn zmq_cli_serve_dumps_the_scene_on_sigterm() {
             .unwrap()
             .success()
     );
-    assert!(s.0.wait().unwrap().success());
+    assert!(s.child.wait().unwrap().success());
     let text = std::fs::read_to_string(&dump).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let lines = v["scene"]["objects"]
@@ -302,7 +263,7 @@ fn zmq_cli_auto_falls_back_to_the_zeromq_port() {
     let dir = tempfile::tempdir().unwrap();
     let _s = serve(&["--api", "zmq", "--idle-fps", "0"], 1);
     let m = generate(dir.path(), "8");
-    cmd()
+    bin()
         .args(["apply", &m, "--api", "auto", "--timeout", "3"])
         .assert()
         .success()

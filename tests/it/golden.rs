@@ -2,14 +2,12 @@
 //! code change or dependency upgrade can silently change a user's maze.
 //!
 //! Re-bless (after a deliberate change, explained in the issue note) with
-//! `VREP_MAZE_BLESS=1 cargo test --test golden`.
-
-mod common;
+//! `VREP_MAZE_BLESS=1 cargo test --test it golden`.
 
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use common::bin;
+use crate::support::bin;
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::read_layout;
 use vrep_maze::validate::validate;

@@ -19,7 +19,7 @@ fn the_checked_in_schema_matches_the_types() {
     let checked_in = fs::read_to_string(&path).unwrap_or_default();
     assert!(
         checked_in == text,
-        "{} is out of date: re-bless with VREP_MAZE_BLESS=1 cargo test --test schema",
+        "{} is out of date: re-bless with VREP_MAZE_BLESS=1 cargo test --test it schema",
         path.display()
     );
     assert!(text.contains("\"segments\""));

@@ -1,0 +1,335 @@
+//! apply / clear / verify against each emulated server: the same scenarios for the legacy
+//! API and the ZeroMQ API in both protocols (`legacy_draw` and `zmq_draw` hold what only
+//! one API has).
+
+use vrep_maze::draw::{
+    self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Survey,
+};
+use vrep_maze::sim::Scene;
+
+use crate::support::backend::{Kind, Server};
+use crate::support::backend_tests;
+use crate::support::layouts::drawing;
+
+backend_tests!(
+    apply_draws_verifies_and_reapplies_without_changes,
+    apply_replaces_a_bigger_maze_and_clear_removes_it,
+    apply_refuses_a_running_simulation_and_missing_objects,
+    dry_run_changes_nothing,
+    one_cell_maze_hides_the_template_under_start,
+    idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs,
+    idle_rate_is_restored_after_a_remote_error,
+    apply_in_a_moved_floor_with_templates_under_maze,
+    template_inside_the_maze_dummy_is_kept_and_reused,
+);
+
+fn no_progress(_: draw::Stage) {}
+
+fn apply(b: &mut Box<dyn Backend>, d: &draw::Drawing) -> Result<draw::ApplyReport, DrawError> {
+    draw::apply(&mut **b, d, &ApplyOptions::default(), &mut no_progress)
+}
+
+fn verify(b: &mut Box<dyn Backend>, d: &draw::Drawing) -> Result<(), DrawError> {
+    draw::verify(&mut **b, d, &ObjectNames::default())
+}
+
+fn clear(b: &mut Box<dyn Backend>) -> draw::ClearReport {
+    draw::clear(&mut **b, &draw::ClearOptions::default()).unwrap()
+}
+
+/// Apply, verify, re-apply (no change), then replace by a smaller maze and clear twice.
+fn apply_draws_verifies_and_reapplies_without_changes(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let d = drawing(9, 42);
+    assert_eq!(d.lines.len(), 160);
+    let mut b = s.connect();
+    let r = apply(&mut b, &d).unwrap();
+    assert_eq!((r.lines, r.pasted, r.reused, r.removed), (160, 159, 0, 0));
+    if let Some(bound) = kind.apply_round_trip_bound(9) {
+        assert!(
+            r.round_trips <= bound,
+            "9x9 took {} round trips",
+            r.round_trips
+        );
+    }
+    assert_eq!(s.line_count(), 160);
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    verify(&mut b, &d).unwrap();
+    let again = apply(&mut b, &d).unwrap();
+    assert_eq!(
+        (again.pasted, again.removed, again.edits, again.reused),
+        (0, 0, 0, 159),
+        "{again}"
+    );
+    let small = drawing(3, 2);
+    let r = apply(&mut b, &small).unwrap();
+    assert_eq!((r.pasted, r.removed), (0, 160 - small.lines.len()));
+    assert!(matches!(verify(&mut b, &d), Err(DrawError::Verify(_))));
+    let c = clear(&mut b);
+    assert_eq!(c.removed.len(), small.lines.len() - 1);
+    assert_eq!(s.line_count(), 1, "only the template is left");
+    assert!(clear(&mut b).removed.is_empty(), "idempotent");
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    b.close().unwrap();
+    s.shutdown();
+}
+
+fn apply_replaces_a_bigger_maze_and_clear_removes_it(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let mut b = s.connect();
+    let big = drawing(5, 1);
+    let small = drawing(3, 2);
+    apply(&mut b, &big).unwrap();
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    let r = apply(&mut b, &small).unwrap();
+    assert_eq!(
+        (r.pasted, r.removed),
+        (0, big.lines.len() - small.lines.len())
+    );
+    assert_eq!(s.line_count(), small.lines.len());
+    verify(&mut b, &small).unwrap();
+    assert!(matches!(verify(&mut b, &big), Err(DrawError::Verify(_))));
+    let c = clear(&mut b);
+    assert_eq!(c.removed.len(), small.lines.len() - 1);
+    assert_eq!(s.line_count(), 1, "only the template is left");
+    assert!(clear(&mut b).removed.is_empty(), "idempotent");
+    s.shutdown();
+}
+
+fn apply_refuses_a_running_simulation_and_missing_objects(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    s.with_sim(|sim| sim.start());
+    let mut b = s.connect();
+    let d = drawing(3, 3);
+    assert!(matches!(
+        apply(&mut b, &d),
+        Err(DrawError::SimulationRunning)
+    ));
+    let opts = ApplyOptions {
+        stop_simulation: true,
+        ..Default::default()
+    };
+    let r = draw::apply(&mut *b, &d, &opts, &mut no_progress).unwrap();
+    assert!(r.stopped_simulation);
+    assert_eq!(s.line_count(), d.lines.len());
+    drop(b);
+    s.shutdown();
+
+    let mut scene = Scene::course();
+    for n in ["Maze", "End"] {
+        let h = scene.resolve(n).unwrap();
+        scene.remove(h).unwrap();
+    }
+    let s = kind.serve(scene, 0);
+    let mut b = s.connect();
+    let e = apply(&mut b, &d).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        matches!(e, DrawError::Missing { .. })
+            && msg.contains("Maze, End")
+            && e.hints().iter().any(|h| h.contains("dummy")),
+        "{msg} / {:?}",
+        e.hints()
+    );
+    drop(b);
+    s.shutdown();
+}
+
+fn dry_run_changes_nothing(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let mut b = s.connect();
+    let opts = ApplyOptions {
+        dry_run: true,
+        ..Default::default()
+    };
+    let r = draw::apply(&mut *b, &drawing(4, 4), &opts, &mut no_progress).unwrap();
+    assert!(r.dry_run && r.pasted > 0);
+    assert_eq!(s.line_count(), 1);
+    drop(b);
+    s.shutdown();
+}
+
+fn one_cell_maze_hides_the_template_under_start(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let mut b = s.connect();
+    apply(&mut b, &drawing(3, 1)).unwrap();
+    let one = drawing(1, 1);
+    assert!(one.lines.is_empty());
+    let r = apply(&mut b, &one).unwrap();
+    assert_eq!(r.removed, 15);
+    assert_eq!(s.line_count(), 1);
+    let (line, start) = s.with_sim(|sim| {
+        let l = sim.scene.resolve("Line").unwrap();
+        let st = sim.scene.resolve("Start").unwrap();
+        (
+            sim.scene.pose(l, -1).unwrap().0,
+            sim.scene.pose(st, -1).unwrap().0,
+        )
+    });
+    assert!(
+        (line[0] - start[0]).abs() < 1e-6
+            && (line[1] - start[1]).abs() < 1e-6
+            && line[2] < start[2]
+    );
+    drop(b);
+    s.shutdown();
+}
+
+/// Fails every edit: the idle rate must still be restored.
+struct FailingEdits(Box<dyn Backend>);
+
+impl Backend for FailingEdits {
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
+        self.0.survey(names)
+    }
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        self.0.objects()
+    }
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
+        self.0.copy_paste(groups)
+    }
+    fn edit(&mut self, _: &[Edit]) -> Result<(), BackendError> {
+        Err(BackendError::Remote("injected failure".into()))
+    }
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
+        self.0.set_idle_fps(fps, saved)
+    }
+    fn stop_simulation(&mut self) -> Result<(), BackendError> {
+        self.0.stop_simulation()
+    }
+    fn round_trips(&self) -> usize {
+        self.0.round_trips()
+    }
+    fn describe(&self) -> String {
+        format!("{} failing every edit", self.0.describe())
+    }
+}
+
+fn idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let d = drawing(5, 9);
+    let mut failing = FailingEdits(s.connect());
+    let e = draw::apply(&mut failing, &d, &ApplyOptions::default(), &mut no_progress).unwrap_err();
+    assert!(e.to_string().contains("injected failure"), "{e}");
+    assert_eq!(s.idle_fps(), 8);
+    drop(failing);
+    // the pasted copies are parentless root objects with alias Line: found again as strays
+    let mut b = s.connect();
+    let r = apply(&mut b, &d).unwrap();
+    assert_eq!((r.pasted, r.reused), (0, d.lines.len() - 1), "{r}");
+    assert_eq!(s.line_count(), d.lines.len());
+    drop(b);
+    s.shutdown();
+}
+
+fn idle_rate_is_restored_after_a_remote_error(kind: Kind) {
+    // Maze hangs under a parentless Line copy: re-parenting that copy to Maze is a cycle
+    let mut scene = Scene::course();
+    let (line, maze) = (
+        scene.resolve("Line").unwrap(),
+        scene.resolve("Maze").unwrap(),
+    );
+    let copy = scene.copy_paste(&[line]).unwrap()[0];
+    scene.set_parent(maze, Some(copy), true).unwrap();
+    let s = kind.serve(scene, 8);
+    let mut b = s.connect();
+    let e = apply(&mut b, &drawing(3, 1)).unwrap_err();
+    assert!(e.to_string().contains(kind.parent_cycle_error()), "{e}");
+    assert_eq!(s.idle_fps(), 8);
+    drop(b);
+    s.shutdown();
+}
+
+fn apply_in_a_moved_floor_with_templates_under_maze(kind: Kind) {
+    let mut scene = Scene::course();
+    let h = |s: &Scene, n: &str| s.resolve(n).unwrap();
+    let (floor, maze) = (h(&scene, "Floor"), h(&scene, "Maze"));
+    scene.set_position(floor, -1, [1.0, 2.0, 0.05]).unwrap();
+    scene.set_orientation(floor, -1, [0.0, 0.0, 0.3]).unwrap();
+    scene.set_position(maze, -1, [-3.0, 0.5, 0.0]).unwrap();
+    scene.set_orientation(maze, -1, [0.0, 0.0, -1.0]).unwrap();
+    for t in ["Line", "Start", "End"] {
+        let th = h(&scene, t);
+        scene.set_parent(th, Some(maze), true).unwrap();
+    }
+    let s = kind.serve(scene, 0);
+    let mut b = s.connect();
+    let d = drawing(4, 9);
+    apply(&mut b, &d).unwrap();
+    verify(&mut b, &d).unwrap();
+    // every line sits where the layout says, in the Floor frame
+    let ok = s.with_sim(|sim| {
+        let floor = sim.scene.resolve("Floor").unwrap();
+        let lines: Vec<i32> = sim
+            .scene
+            .objects()
+            .filter(|o| o.alias == "Line")
+            .map(|o| o.handle)
+            .collect();
+        d.lines.iter().all(|p| {
+            lines.iter().any(|&l| {
+                let (q, e) = sim.scene.pose(l, floor).unwrap();
+                (q[0] - p.x).abs() < 1e-5
+                    && (q[1] - p.y).abs() < 1e-5
+                    && (q[2] - p.z).abs() < 1e-5
+                    && (e[2] - p.yaw).abs() < 1e-5
+            })
+        })
+    });
+    assert!(ok);
+    let c = clear(&mut b);
+    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    for t in ["Line", "Start", "End"] {
+        assert!(
+            s.with_sim(|sim| sim.scene.resolve(t).is_ok()),
+            "template {t} kept"
+        );
+    }
+    drop(b);
+    s.shutdown();
+}
+
+fn template_inside_the_maze_dummy_is_kept_and_reused(kind: Kind) {
+    let mut scene = Scene::course();
+    let (maze, line) = (
+        scene.resolve("Maze").unwrap(),
+        scene.resolve("Line").unwrap(),
+    );
+    scene.set_parent(line, Some(maze), true).unwrap();
+    let s = kind.serve(scene, 0);
+    let mut b = s.connect();
+    let d = drawing(3, 4);
+    let r = apply(&mut b, &d).unwrap();
+    assert_eq!(r.pasted, d.lines.len() - 1);
+    let again = apply(&mut b, &d).unwrap();
+    assert_eq!((again.pasted, again.edits), (0, 0), "{again}");
+    let c = clear(&mut b);
+    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    assert_eq!(s.line_count(), 1);
+    drop(b);
+    s.shutdown();
+}
+
+/// The three APIs leave the same scene: same objects, parents and poses.
+#[test]
+fn every_backend_draws_the_same_scene() {
+    let d = drawing(9, 42);
+    let snapshots: Vec<(Kind, _)> = Kind::ALL
+        .into_iter()
+        .map(|kind| {
+            let s: Server = kind.serve(Scene::course(), 0);
+            let mut b = s.connect();
+            apply(&mut b, &d).unwrap();
+            b.close().unwrap();
+            drop(b);
+            let snapshot = s.snapshot();
+            s.shutdown();
+            (kind, snapshot)
+        })
+        .collect();
+    let (_, legacy) = &snapshots[0];
+    assert_eq!(legacy.len(), 164, "Floor, Maze, Start, End and 160 lines");
+    for (kind, snapshot) in &snapshots[1..] {
+        assert_eq!(legacy, snapshot, "legacy and {}", kind.name());
+    }
+}

@@ -1,0 +1,325 @@
+//! A connection cut at any point of `apply` leaves a scene that the next `apply` or `clear`
+//! fully repairs (no stray lines, the user's idle rate back), on every backend.
+
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use vrep_maze::draw::{
+    self, ApplyOptions, BackendError, Drawing, ObjectNames, SAVED_IDLE_FPS_SIGNAL,
+};
+use vrep_maze::generate::Algorithm;
+use vrep_maze::sim::Scene;
+
+use crate::support::backend::{Kind, TIMEOUT, with_sim};
+use crate::support::backend_tests;
+use crate::support::layouts::drawing_with;
+use crate::support::proxy::{Cut, Proxy};
+
+backend_tests!(
+    proxy_counts_a_turn_per_request,
+    interrupted_apply_is_repaired_by_apply_and_by_clear,
+    idle_rate_left_at_zero_by_an_interrupted_apply_is_restored,
+);
+
+/// Connects through `proxy` and applies `d`; any failure (connecting included) is an error.
+/// `timeout` is how long a cut ZeroMQ call waits for its reply (a cut legacy connection
+/// fails at once); a cut during the apply must fail it (a cut while closing may not).
+fn apply_through(
+    kind: Kind,
+    proxy: &Proxy,
+    d: &Drawing,
+    timeout: Duration,
+) -> Result<(), BackendError> {
+    let mut b = kind.connect(proxy.port(), timeout)?;
+    let r = draw::apply(&mut *b, d, &ApplyOptions::default(), &mut |_| {});
+    assert!(
+        r.is_err() || !proxy.has_cut(),
+        "{}: cut after {} turns, yet the apply succeeded",
+        kind.name(),
+        proxy.turns()
+    );
+    r.map(|_| ())
+        .map_err(|e| BackendError::Transport(e.to_string()))
+}
+
+/// The proxy's turns are the client's requests (legacy: messages, keep-alives included),
+/// plus, over ZeroMQ, the handshake's (greetings and READY commands, which may interleave).
+fn proxy_counts_a_turn_per_request(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let proxy = Proxy::start(s.addr(), Cut::Never);
+    let mut b = kind.connect(proxy.port(), TIMEOUT).unwrap();
+    let d = drawing_with(Algorithm::Dfs, 3, 4);
+    draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+    let (turns, requests) = (proxy.turns(), s.requests() as usize);
+    let handshake = match kind {
+        Kind::Legacy => 0..=0,
+        Kind::Zmq1 | Kind::Zmq2 => 1..=3,
+    };
+    assert!(
+        turns >= requests && handshake.contains(&(turns - requests)),
+        "{}: {turns} turns for {requests} requests",
+        kind.name()
+    );
+    drop(b);
+    drop(proxy);
+    s.shutdown();
+}
+
+/// Timeout of the connection that gets cut: a cut legacy connection fails at once (2 s
+/// as a bound, as before); a cut ZeroMQ one only by timeouts, three per run (the cut call,
+/// restoring the idle rate, the goodbye), so short: the run is about the repair, and a
+/// call that times out early under load only moves the cut forward.
+fn cut_timeout(kind: Kind) -> Duration {
+    match kind {
+        Kind::Legacy => Duration::from_secs(2),
+        Kind::Zmq1 | Kind::Zmq2 => Duration::from_millis(100),
+    }
+}
+
+/// The course with `d` drawn into it by `kind`.
+fn scene_with(kind: Kind, d: &Drawing) -> Scene {
+    let s = kind.serve(Scene::course(), 0);
+    let mut b = s.connect();
+    draw::apply(&mut *b, d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+    drop(b);
+    let scene = s.with_sim(|sim| sim.scene.clone());
+    s.shutdown();
+    scene
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Repair {
+    Apply,
+    Clear,
+}
+
+/// One run: apply `d` into `scene` cut after `k` client turns, then repair. Returns whether
+/// the apply was interrupted.
+fn cut_and_repair(kind: Kind, scene: &Scene, d: &Drawing, k: usize, repair: Repair) -> bool {
+    let earlier = scene.len() > Scene::course().len();
+    let at = format!(
+        "{}: cut after {k} turns, {} earlier maze, repaired by {repair:?}",
+        kind.name(),
+        if earlier { "an" } else { "no" }
+    );
+    let s = kind.serve(scene.clone(), 0);
+    let proxy = Proxy::start(s.addr(), Cut::After(k));
+    let r = apply_through(kind, &proxy, d, cut_timeout(kind));
+    drop(proxy);
+    if r.is_ok() {
+        s.shutdown();
+        return false;
+    }
+    let mut b = s.connect();
+    match repair {
+        Repair::Clear => {
+            draw::clear(&mut *b, &draw::ClearOptions::default())
+                .unwrap_or_else(|e| panic!("{at}: {e}"));
+            assert_eq!(s.line_count(), 1, "{at}: clear left lines");
+        }
+        Repair::Apply => {
+            draw::apply(&mut *b, d, &ApplyOptions::default(), &mut |_| {})
+                .unwrap_or_else(|e| panic!("{at}: {e}"));
+            draw::verify(&mut *b, d, &ObjectNames::default())
+                .unwrap_or_else(|e| panic!("{at}: {e}"));
+            assert_eq!(s.line_count(), d.lines.len(), "{at}");
+        }
+    }
+    drop(b);
+    let (fps, signals) = s.with_sim(|sim| (sim.idle_fps, sim.int_signals.len()));
+    assert_eq!(
+        (fps, signals),
+        (0, 0),
+        "{at}: idle rate restored, record deleted"
+    );
+    s.shutdown();
+    true
+}
+
+/// Client turns of an uncut apply of `d` into `scene`.
+fn turns(kind: Kind, scene: &Scene, d: &Drawing) -> usize {
+    let s = kind.serve(scene.clone(), 0);
+    let proxy = Proxy::start(s.addr(), Cut::Never);
+    let mut b = kind.connect(proxy.port(), TIMEOUT).unwrap();
+    draw::apply(&mut *b, d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+    let t = proxy.turns();
+    drop(b);
+    drop(proxy);
+    s.shutdown();
+    t
+}
+
+/// Where to cut an apply of about `turns` client turns: after every count up to 40 (all of
+/// a legacy apply and its end), then every 5th, and every one of the last 12 and just past
+/// the end (a ZeroMQ apply of the 5 x 5 maze takes about 180 turns: one call each, plus
+/// the handshake).
+fn cut_points(turns: usize) -> Vec<usize> {
+    let mut points: Vec<usize> = (1..=40).collect();
+    points.extend((45..turns.saturating_sub(12)).step_by(5));
+    points.extend(turns.saturating_sub(12).max(41)..turns + 3);
+    points
+}
+
+/// Runs `cases` on a few threads (much of a run waits on sockets).
+fn run_parallel<T: Sync>(cases: &[T], run: impl Fn(&T) + Sync) {
+    let next = Mutex::new(0);
+    std::thread::scope(|scope| {
+        for _ in 0..4 {
+            scope.spawn(|| {
+                loop {
+                    let i = {
+                        let mut n = next.lock().unwrap_or_else(|e| e.into_inner());
+                        *n += 1;
+                        *n - 1
+                    };
+                    let Some(case) = cases.get(i) else { break };
+                    run(case);
+                }
+            });
+        }
+    });
+}
+
+/// An apply cut after k client turns (see [`cut_points`]), into the course with an earlier,
+/// smaller maze and into a fresh one, each repaired by apply or by clear. When the cut
+/// points are few (legacy: every run of today's legacy test) every cut runs all three
+/// (earlier maze, apply), (earlier maze, clear), (fresh, apply at even k and clear at odd).
+/// When they are many (ZeroMQ, where a cut run ends only by timeouts and the whole matrix
+/// would take minutes): every cut point of the earlier maze, repaired by apply and by
+/// clear in turn, and every third of the fresh course's.
+fn interrupted_apply_is_repaired_by_apply_and_by_clear(kind: Kind) {
+    let first = drawing_with(Algorithm::Dfs, 4, 1);
+    let second = drawing_with(Algorithm::Dfs, 5, 2);
+    let started = Instant::now();
+    let (earlier, fresh) = (scene_with(kind, &first), Scene::course());
+    let over_first = turns(kind, &earlier, &second);
+    let on_fresh = turns(kind, &fresh, &second);
+    let (points, fresh_points) = (cut_points(over_first), cut_points(on_fresh));
+    let alternate = |k: usize| {
+        if k.is_multiple_of(2) {
+            Repair::Apply
+        } else {
+            Repair::Clear
+        }
+    };
+    let mut cases = vec![];
+    if points.len() + fresh_points.len() <= 90 {
+        for &k in &points {
+            cases.push((&earlier, k, Repair::Apply));
+            cases.push((&earlier, k, Repair::Clear));
+        }
+        for &k in &fresh_points {
+            cases.push((&fresh, k, alternate(k)));
+        }
+    } else {
+        for (i, &k) in points.iter().enumerate() {
+            cases.push((&earlier, k, alternate(i)));
+        }
+        for (i, &k) in fresh_points
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| i.is_multiple_of(3))
+        {
+            cases.push((&fresh, k, alternate(i / 3)));
+        }
+    }
+    let interrupted = Mutex::new(0);
+    run_parallel(&cases, |&(scene, k, repair)| {
+        let cut = cut_and_repair(kind, scene, &second, k, repair);
+        // turn counts vary a little with timing (the legacy client polls for late
+        // replies, the ZeroMQ handshake interleaves): only the first half is sure to be
+        // inside the apply
+        let end = if std::ptr::eq(scene, &earlier) {
+            over_first
+        } else {
+            on_fresh
+        };
+        assert!(
+            cut || k > end / 2,
+            "{}: cut after {k} turns of about {end}, yet the apply succeeded",
+            kind.name()
+        );
+        if cut {
+            *interrupted.lock().unwrap() += 1;
+        }
+    });
+    let interrupted = interrupted.into_inner().unwrap();
+    assert!(
+        interrupted >= 10,
+        "{}: only {interrupted} runs were interrupted",
+        kind.name()
+    );
+    eprintln!(
+        "{}: {} runs ({over_first} and {on_fresh} turns), {interrupted} interrupted, {:?}",
+        kind.name(),
+        cases.len(),
+        started.elapsed()
+    );
+}
+
+/// Cut right after the turn that raised the idle rate (set it to 0 and recorded the
+/// user's): the user's rate (8) is restored, and its record deleted, by the next apply or
+/// clear.
+fn idle_rate_left_at_zero_by_an_interrupted_apply_is_restored(kind: Kind) {
+    let d = drawing_with(Algorithm::Dfs, 3, 4);
+    for repair in [Repair::Apply, Repair::Clear] {
+        let at = format!("{}, repaired by {repair:?}", kind.name());
+        let s = kind.serve(Scene::course(), 8);
+        let host = s.host();
+        let raised = move || {
+            with_sim(&*host, |sim| {
+                sim.idle_fps == 0 && sim.int_signals.contains_key(SAVED_IDLE_FPS_SIGNAL)
+            })
+        };
+        let proxy = Proxy::start(s.addr(), Cut::When(Box::new(raised)));
+        // longer than a call paced at 8 fps
+        let r = apply_through(kind, &proxy, &d, Duration::from_millis(300));
+        assert!(r.is_err() && proxy.has_cut(), "{at}: {r:?}");
+        drop(proxy);
+        assert_eq!(
+            s.idle_fps(),
+            0,
+            "{at}: the interrupted run left the rate at 0"
+        );
+        let mut b = s.connect();
+        match repair {
+            Repair::Clear => {
+                let r = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+                assert_eq!(r.restored_idle_fps, Some(8), "{at}");
+            }
+            Repair::Apply => {
+                draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+            }
+        }
+        drop(b);
+        let (fps, signals) = s.with_sim(|sim| (sim.idle_fps, sim.int_signals.len()));
+        assert_eq!(
+            (fps, signals),
+            (8, 0),
+            "{at}: user's rate restored and the record deleted"
+        );
+        s.shutdown();
+    }
+}
+
+/// Cut right after the turn that set the idle rate to 0, whether or not the user's rate is
+/// recorded yet: the legacy API does both in one message; `ZmqBackend::set_idle_fps` makes
+/// two calls and records first, so no cut between them loses the user's rate.
+#[test]
+fn idle_rate_cut_between_raising_and_recording_it() {
+    let d = drawing_with(Algorithm::Dfs, 3, 4);
+    for kind in [Kind::Legacy, Kind::Zmq1, Kind::Zmq2] {
+        let s = kind.serve(Scene::course(), 8);
+        let host = s.host();
+        let raised = move || with_sim(&*host, |sim| sim.idle_fps == 0);
+        let proxy = Proxy::start(s.addr(), Cut::When(Box::new(raised)));
+        let r = apply_through(kind, &proxy, &d, Duration::from_millis(300));
+        assert!(r.is_err() && proxy.has_cut(), "{}: {r:?}", kind.name());
+        drop(proxy);
+        let mut b = s.connect();
+        draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+        drop(b);
+        assert_eq!(s.idle_fps(), 8, "{}: user's rate restored", kind.name());
+        s.shutdown();
+    }
+}

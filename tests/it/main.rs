@@ -1,0 +1,24 @@
+//! The integration tests, one binary (`cargo test --test it`; filter by module, e.g.
+//! `cargo test --test it interrupt` or `cargo test --test it zmq2`): linking the crate once
+//! instead of once per file. `support` holds what the topics share.
+
+mod support;
+
+mod cli;
+mod cli_legacy;
+mod cli_zmq;
+mod draw;
+mod generation_gate;
+mod generators;
+mod golden;
+mod interrupt;
+mod layering;
+mod legacy_client_server;
+mod legacy_draw;
+mod properties;
+mod schema;
+mod texture;
+mod validate;
+mod zmq_client_server;
+mod zmq_concurrency;
+mod zmq_draw;
