@@ -18,6 +18,7 @@ mod legacy_draw;
 mod properties;
 mod schema;
 mod texture;
+mod trust;
 mod validate;
 mod zmq_client_server;
 mod zmq_concurrency;
