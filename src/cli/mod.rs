@@ -95,7 +95,7 @@ pub fn main() -> ExitCode {
                 eprintln!("  {detail}");
             }
             for hint in hints(&error) {
-                eprintln!("  hint: {hint}");
+                eprintln!("  hint: {}", shorten(&hint));
             }
             if error.chain().any(|cause| cause.is::<UsageError>()) {
                 ExitCode::from(USAGE_EXIT_CODE)

@@ -5,6 +5,7 @@
 mod support;
 
 mod cli;
+mod cli_fuzz;
 mod cli_legacy;
 mod cli_zmq;
 mod draw;

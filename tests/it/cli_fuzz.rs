@@ -1,0 +1,334 @@
+//! The command line under generated abuse: every subcommand driven with a few hundred
+//! argument lists drawn from extreme values (NaN, 1e308, negatives, huge strings, special
+//! files) and mutated layout files. Whatever the input: no panic (exit 101), a short error
+//! (a few KB at most), one of the documented exit codes, and no invalid layout accepted
+//! (a zero exit from `validate`, `render`, `apply` or `generate` means the layout is valid).
+//! The draws are seeded, so a failure repeats.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use tempfile::TempDir;
+use vrep_maze::layout::read_layout;
+use vrep_maze::rng::MazeRng;
+use vrep_maze::validate::validate;
+
+use crate::support::bin;
+use crate::support::cli::Serve;
+
+/// Runs per subcommand family; the whole test stays within a few seconds per hundred.
+const RUNS: usize = 240;
+/// The most stderr a refusal may print.
+const MAX_STDERR: usize = 4096;
+/// Stop drawing new cases after this long (a slow machine runs fewer, never longer).
+const TIME_BUDGET: Duration = Duration::from_secs(60);
+
+fn pick<'a>(rng: &mut MazeRng, items: &[&'a str]) -> &'a str {
+    items[rng.index(items.len())]
+}
+
+/// Values that broke earlier versions, and ordinary ones.
+const NUMBERS: &[&str] = &[
+    "0",
+    "1",
+    "-1",
+    "-0.5",
+    "0.5",
+    "3",
+    "1e308",
+    "-1e308",
+    "1e-300",
+    "1e-9",
+    "nan",
+    "inf",
+    "-inf",
+    "18446744073709551616",
+    "0.001",
+    "10000",
+    "360",
+    "-720",
+    "",
+];
+const SIZES: &[&str] = &[
+    "9x9", "1x1", "0x5", "4097x1", "3x-2", "x", "2x3", "1x12", "nanxnan",
+];
+const ENDPOINTS: &[&str] = &[
+    "sw",
+    "ne",
+    "farthest",
+    "farthest-pair",
+    "4,4",
+    "9,9",
+    "-1,0",
+    "a,b",
+];
+const ALGOS: &[&str] = &[
+    "dfs",
+    "prim",
+    "kruskal",
+    "wilson",
+    "binary-tree",
+    "nope",
+    "",
+];
+
+/// A layout file with one random change: a number made extreme, a key removed, a type
+/// swapped, or the text cut short.
+fn mutated_layout(rng: &mut MazeRng, golden: &serde_json::Value, dir: &Path, n: usize) -> PathBuf {
+    let mut v = golden.clone();
+    let fields: &[&[&str]] = &[
+        &["grid", "cell_size"],
+        &["grid", "columns"],
+        &["grid", "rotation"],
+        &["grid", "origin"],
+        &["floor", "size"],
+        &["line", "z"],
+        &["line", "length"],
+        &["line", "width"],
+        &["start", "cell"],
+        &["end", "pose"],
+        &["metrics", "loops"],
+        &["passages"],
+        &["segments"],
+        &["version"],
+        &["generator", "seed"],
+    ];
+    let path = fields[rng.index(fields.len())];
+    let replacement = match rng.below(7) {
+        0 => serde_json::json!(1e308),
+        1 => serde_json::json!(-1),
+        2 => serde_json::Value::Null,
+        3 => serde_json::json!("zzz"),
+        4 => serde_json::json!([]),
+        5 => serde_json::json!(0),
+        _ => serde_json::json!({"x": 1e300, "y": -5, "z": 0, "yaw": 1e308}),
+    };
+    let mut target = &mut v;
+    for key in &path[..path.len() - 1] {
+        target = &mut target[*key];
+    }
+    let last = path[path.len() - 1];
+    if rng.chance(1, 5) {
+        if let Some(map) = target.as_object_mut() {
+            map.remove(last);
+        }
+    } else {
+        target[last] = replacement;
+    }
+    if let Some(segments) = v["segments"].as_array_mut()
+        && !segments.is_empty()
+        && rng.chance(1, 4)
+    {
+        let i = rng.index(segments.len());
+        segments[i]["x"] = serde_json::json!(0.123);
+    }
+    let mut text = v.to_string();
+    if rng.chance(1, 10) {
+        text.truncate(rng.index(text.len()));
+    }
+    let file = dir.join(format!("mutant-{n}.json"));
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+/// One argument list for `command`, given files to draw from, and the layout file it reads
+/// (if any).
+fn arguments(
+    rng: &mut MazeRng,
+    command: &str,
+    files: &[String],
+    port: &str,
+) -> (Vec<String>, Option<String>) {
+    let long = "L".repeat(20_000);
+    let mut args = vec![command.to_string()];
+    let file = |rng: &mut MazeRng| files[rng.index(files.len())].clone();
+    let options: &[(&str, &[&str])] = match command {
+        "generate" | "batch" => &[
+            ("--seed", NUMBERS),
+            ("--algo", ALGOS),
+            ("--size", SIZES),
+            ("--start", ENDPOINTS),
+            ("--end", ENDPOINTS),
+            ("--braid", NUMBERS),
+            ("--cell-size", NUMBERS),
+            ("--line-length", NUMBERS),
+            ("--line-width", NUMBERS),
+            ("--line-z", NUMBERS),
+            ("--marker-z", NUMBERS),
+            ("--rotation", NUMBERS),
+            ("--origin", &["0,0", "1e308,0", "nan,1", "5,5", "x"]),
+            ("--floor-size", &["10x10", "1e308x1", "0x0", "25x25"]),
+            ("--growing", &["newest", "mix:0.5", "mix:2", "bogus"]),
+            ("--bias", &["ne", "sw", "up"]),
+        ],
+        "render" => &[
+            ("--format", &["ascii", "svg", "png", "jpg"]),
+            ("--solution", &[]),
+        ],
+        "apply" | "clear" => &[
+            ("--timeout", &["0.3", "0", "-1", "1e308", "nan"]),
+            ("--api", &["legacy", "zmq", "auto", "bogus"]),
+            ("--line", &["Line", "Nope", ""]),
+            ("--dry-run", &[]),
+            ("--stop-simulation", &[]),
+        ],
+        _ => &[],
+    };
+    // a third of the runs take no option, so success paths are reached too
+    let count = if options.is_empty() || rng.chance(1, 3) {
+        0
+    } else {
+        1 + rng.below(4)
+    };
+    for _ in 0..count {
+        let (name, values) = options[rng.index(options.len())];
+        args.push(name.to_string());
+        if !values.is_empty() {
+            args.push(if rng.chance(1, 30) {
+                long.clone()
+            } else {
+                pick(rng, values).to_string()
+            });
+        }
+    }
+    let mut layout = None;
+    match command {
+        "validate" | "render" | "apply" => {
+            let f = file(rng);
+            layout = Some(f.clone());
+            args.push(f);
+        }
+        "completions" => args.push(pick(rng, &["bash", "zsh", "fish", "nosh"]).into()),
+        "batch" => {
+            args.extend([
+                "--seeds".into(),
+                pick(rng, &["0..3", "5", "3..3", "x"]).into(),
+            ]);
+            args.extend(["--out-dir".into(), format!("{}-dataset", files[0])]);
+        }
+        _ => {}
+    }
+    if matches!(command, "apply" | "clear") {
+        args.extend([
+            "--port".into(),
+            port.into(),
+            "--timeout".into(),
+            "0.5".into(),
+        ]);
+    }
+    if command == "generate" && rng.chance(1, 2) {
+        args.extend(["-o".into(), format!("{}-out.json", files[0])]);
+    }
+    if command == "render" && rng.chance(1, 2) {
+        let ext = pick(rng, &["svg", "png", "txt", "jpg", ""]);
+        args.extend(["-o".into(), format!("{}-picture.{ext}", files[0])]);
+    }
+    (args, layout)
+}
+
+/// `true` if `path` reads as a layout that `validate` accepts.
+fn valid(path: &str) -> bool {
+    read_layout(Path::new(path)).is_ok_and(|l| validate(&l).is_ok())
+}
+
+#[test]
+fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
+    let dir = TempDir::new().unwrap();
+    let golden_path = concat!(env!("CARGO_MANIFEST_DIR"), "/mazes/kruskal-9x9-seed42.json");
+    let golden: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(golden_path).unwrap()).unwrap();
+    let mut rng = MazeRng::from_seed(0xF022);
+    let base = dir.path().join("base").display().to_string();
+    // the golden layout often, so drawing and rendering succeed too
+    let mut files = vec![base.clone()];
+    files.extend(std::iter::repeat_n(golden_path.to_string(), 12));
+    files.extend(["/dev/null", "/nonexistent.json", "-"].map(String::from));
+    files.push(dir.path().display().to_string());
+    for n in 0..60 {
+        files.push(
+            mutated_layout(&mut rng, &golden, dir.path(), n)
+                .display()
+                .to_string(),
+        );
+    }
+    let serve = Serve::start(&["--listen", "127.0.0.1:0", "--idle-fps", "0"], 1);
+    let port = serve.port();
+    let commands = [
+        "generate",
+        "validate",
+        "render",
+        "batch",
+        "apply",
+        "clear",
+        "completions",
+    ];
+    let started = Instant::now();
+    let mut runs = 0;
+    let mut accepted_layouts = 0;
+    let mut codes = [0usize; 3];
+    while runs < RUNS && started.elapsed() < TIME_BUDGET {
+        let command = commands[runs % commands.len()];
+        let (args, layout) = arguments(&mut rng, command, &files, &port);
+        runs += 1;
+        let out = bin().args(&args).write_stdin("").output().unwrap();
+        let shown: Vec<String> = args
+            .iter()
+            .map(|a| {
+                if a.len() > 40 {
+                    format!("<{} chars>", a.len())
+                } else {
+                    a.clone()
+                }
+            })
+            .collect();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let code = out.status.code();
+        assert!(
+            matches!(code, Some(0..=2)),
+            "{shown:?}: exit {code:?}\n{stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{shown:?}: {stderr}");
+        assert!(
+            stderr.len() <= MAX_STDERR,
+            "{shown:?}: {} bytes on stderr",
+            stderr.len()
+        );
+        codes[code.unwrap_or(1) as usize] += 1;
+        if code != Some(0) {
+            continue;
+        }
+        match command {
+            "validate" | "render" | "apply" => {
+                if let Some(path) = layout.filter(|p| p != "-") {
+                    accepted_layouts += 1;
+                    assert!(valid(&path), "{shown:?} accepted an invalid layout");
+                }
+            }
+            "generate" => {
+                let written = args.iter().position(|a| a == "-o").map(|i| &args[i + 1]);
+                if let Some(path) = written {
+                    accepted_layouts += 1;
+                    assert!(valid(path), "{shown:?} wrote an invalid layout");
+                } else {
+                    accepted_layouts += 1;
+                    let text = String::from_utf8_lossy(&out.stdout);
+                    let layout = vrep_maze::layout::json::parse_layout(&text, "stdout").unwrap();
+                    assert!(
+                        validate(&layout).is_ok(),
+                        "{shown:?} printed an invalid layout"
+                    );
+                }
+            }
+            _ => {}
+        }
+    }
+    eprintln!(
+        "cli fuzz: {runs} runs: {} exit 0, {} exit 1, {} exit 2; {accepted_layouts} accepted layouts checked",
+        codes[0], codes[1], codes[2]
+    );
+    assert!(runs >= 100, "only {runs} runs in the time budget");
+    assert!(
+        accepted_layouts > 0,
+        "the draws never reached a success path"
+    );
+}
