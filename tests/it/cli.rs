@@ -5,6 +5,7 @@ use crate::support::bin;
 use predicates::prelude::*;
 use predicates::str::contains;
 use std::fs;
+use std::path::Path;
 use tempfile::TempDir;
 
 fn generate_to(dir: &TempDir, name: &str, args: &[&str]) -> std::path::PathBuf {
@@ -315,4 +316,79 @@ fn completions_cover_every_command() {
         }
     }
     bin().args(["completions", "tcsh"]).assert().failure();
+}
+
+/// Every `--help` example that makes files runs as printed (through `sh`, in a scratch
+/// folder with `HOME` pointing there) and makes them: a help example that makes nothing,
+/// like the old batch example whose filter refused every maze, fails here. Examples that
+/// need a running simulator (apply, clear, serve) are left to the drawing tests.
+#[test]
+fn help_examples_that_make_files_make_them() {
+    let dir = tempfile::TempDir::new().unwrap();
+    let home = dir.path();
+    for sub in [
+        ".local/share/bash-completion/completions",
+        ".zfunc",
+        ".config/fish/completions",
+    ] {
+        std::fs::create_dir_all(home.join(sub)).unwrap();
+    }
+    std::os::unix::fs::symlink(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("mazes"),
+        home.join("mazes"),
+    )
+    .unwrap();
+    let exe = assert_cmd::cargo::cargo_bin("vrep-maze");
+    let path = format!(
+        "{}:{}",
+        exe.parent().unwrap().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let mut ran = 0;
+    for command in ["generate", "validate", "render", "batch", "completions"] {
+        let help = bin().args([command, "--help"]).output().unwrap();
+        let help = String::from_utf8(help.stdout).unwrap();
+        let examples = help
+            .lines()
+            .skip_while(|l| !l.starts_with("Example"))
+            .filter_map(|l| l.trim().strip_prefix("vrep-maze ").map(|_| l.trim()));
+        for example in examples {
+            let out = std::process::Command::new("sh")
+                .args(["-c", example])
+                .current_dir(home)
+                .env("HOME", home)
+                .env("PATH", &path)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "`{example}` failed: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            ran += 1;
+            let words: Vec<&str> = example.split_whitespace().collect();
+            for (i, w) in words.iter().enumerate() {
+                let Some(target) = words.get(i + 1) else {
+                    continue;
+                };
+                let target = target.replace('~', &home.display().to_string());
+                let made = home.join(&target);
+                match *w {
+                    "-o" | ">" => assert!(
+                        std::fs::metadata(&made).is_ok_and(|m| m.len() > 0),
+                        "`{example}` made no {target}"
+                    ),
+                    "--out-dir" => {
+                        let layouts = std::fs::read_dir(&made)
+                            .unwrap()
+                            .filter(|e| e.as_ref().unwrap().file_name() != "manifest.jsonl")
+                            .count();
+                        assert!(layouts > 0, "`{example}` made no layout in {target}");
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    assert!(ran >= 12, "only {ran} examples found");
 }
