@@ -9,7 +9,8 @@ use anyhow::Context;
 use super::ensure_usage;
 
 use super::connect::{Api, connect};
-use crate::draw::{self, ApplyOptions, Backend, Drawing, ObjectNames, Stage};
+use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use crate::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
 #[derive(Debug, Clone, clap::Args)]
@@ -117,7 +118,7 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let layout = crate::layout::read_layout(&args.layout)?;
     let drawing = Drawing::try_from(&layout)
         .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
-    let opts = ApplyOptions {
+    let mut opts = ApplyOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
@@ -128,7 +129,13 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
     );
+    let interrupt = Interrupt::install()?;
+    opts.interrupt = Some(interrupt.shared());
     let mut backend = args.scene.connect()?;
+    if interrupt.requested() {
+        let _ = backend.close();
+        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
+    }
     if args.create_missing && !args.dry_run {
         let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
@@ -145,8 +152,10 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(drawing.lines.len() as u64);
         b.set_style(
-            indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len}")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            indicatif::ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:30}] {pos}/{len} lines, {per_sec:.0}, eta {eta}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
         b.enable_steady_tick(Duration::from_millis(100));
         b
@@ -155,13 +164,10 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         if let Some(b) = &bar {
             match stage {
                 Stage::Surveyed => b.set_message("reading the scene"),
-                Stage::Pasting { done, .. } => {
-                    b.set_message("pasting lines");
-                    b.set_position(done as u64 + 1);
-                }
-                Stage::Placing => {
+                Stage::Pasting { .. } => b.set_message("pasting lines"),
+                Stage::Placing { done, .. } => {
                     b.set_message("placing lines");
-                    b.set_position(drawing.lines.len() as u64);
+                    b.set_position(done as u64);
                 }
                 Stage::Verifying => b.set_message("verifying"),
             }
@@ -170,6 +176,23 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
     if let Some(b) = bar {
         b.finish_and_clear();
+    }
+    if let Err(DrawError::Interrupted { placed, total }) = &result {
+        // the run stopped between requests and restored the idle rate; closing the way the
+        // official client does spares the user the simulator's one-minute refusal
+        let closed = backend.close();
+        eprintln!(
+            "interrupted: {placed} of {total} lines placed; the idle rate is restored{}",
+            if closed.is_ok() {
+                " and the connection closed cleanly"
+            } else {
+                ""
+            }
+        );
+        eprintln!(
+            "  hint: run the same apply again to finish the maze, or vrep-maze clear to remove it"
+        );
+        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
     let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
     if let Some(path) = &args.save_scene

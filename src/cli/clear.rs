@@ -1,7 +1,8 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
 use super::apply::ConnectArgs;
-use crate::draw::{self, ClearOptions};
+use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use crate::draw::{self, ClearOptions, DrawError};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
 /// parentless copies of the line template). Idempotent.
@@ -23,13 +24,22 @@ pub struct ClearArgs {
 
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
+    let interrupt = Interrupt::install()?;
     let mut backend = args.scene.connect()?;
     let opts = ClearOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
+        interrupt: Some(interrupt.shared()),
     };
-    let report = draw::clear(backend.as_mut(), &opts)?;
+    let result = draw::clear(backend.as_mut(), &opts);
+    if let Err(DrawError::Interrupted { .. }) = &result {
+        let _ = backend.close();
+        eprintln!("interrupted: some maze lines may remain; the idle rate is restored");
+        eprintln!("  hint: run vrep-maze clear again to finish");
+        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
+    }
+    let report = result?;
     let _ = backend.close();
     if report.stopped_simulation {
         println!("stopped the simulation first");

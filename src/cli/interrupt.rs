@@ -1,4 +1,5 @@
-//! Ctrl-C, SIGTERM and SIGHUP for commands that must stop cleanly (`batch` now): the first
+//! Ctrl-C, SIGTERM and SIGHUP for commands that must stop cleanly (`batch`, `apply`,
+//! `clear`): the first
 //! signal asks the running command to finish what is in flight and stop; a second one ends
 //! the process at once with exit code 130.
 
@@ -35,6 +36,11 @@ impl Interrupt {
     /// The flag the library polls.
     pub fn flag(&self) -> &AtomicBool {
         &self.0
+    }
+
+    /// The flag, shared, for options that own it.
+    pub fn shared(&self) -> Arc<AtomicBool> {
+        self.0.clone()
     }
 
     /// `true` once a signal has arrived.

@@ -1,6 +1,10 @@
-//! Draw a [`Drawing`]: reuse earlier copies, paste only the missing ones (batched doubling),
-//! set every parent and pose in one batch, remove the surplus, verify.
+//! Draw a [`Drawing`]: remove the surplus, reuse earlier copies, paste only the missing ones
+//! (batched doubling), place each round's copies before the next, in requests of bounded
+//! server time, then verify.
 
+use std::collections::HashMap;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::lease::Claim;
@@ -20,6 +24,9 @@ pub struct ApplyOptions {
     pub dry_run: bool,
     /// Copy-paste commands per round trip (each copies the whole current set of lines).
     pub paste_blocks_per_round: usize,
+    /// Set by a Ctrl-C handler: the run stops after the request in flight, restores the
+    /// idle rate and fails with [`DrawError::Interrupted`].
+    pub interrupt: Option<Arc<AtomicBool>>,
 }
 
 impl Default for ApplyOptions {
@@ -29,6 +36,7 @@ impl Default for ApplyOptions {
             stop_simulation: false,
             dry_run: false,
             paste_blocks_per_round: 16,
+            interrupt: None,
         }
     }
 }
@@ -45,8 +53,13 @@ pub enum Stage {
         /// Copies this apply pastes in all.
         total: usize,
     },
-    /// Setting parents and poses.
-    Placing,
+    /// Lines placed so far (parent and pose sent, or found in place) / in all.
+    Placing {
+        /// Lines placed so far.
+        done: usize,
+        /// Lines in the drawing.
+        total: usize,
+    },
     /// Reading back.
     Verifying,
 }
@@ -93,9 +106,10 @@ impl std::fmt::Display for ApplyReport {
     }
 }
 
-/// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) while
-/// drawing and restored afterwards, also on error. The run claims the scene first
-/// ([`super::lease`]) and fails with [`DrawError::Concurrent`] if another run takes it over.
+/// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) before
+/// the scene is read and restored afterwards, also on error or interrupt. The run claims the
+/// scene first ([`super::lease`]) and fails with [`DrawError::Concurrent`] if another run
+/// takes it over.
 pub fn apply(
     scene: &mut dyn Backend,
     drawing: &Drawing,
@@ -104,28 +118,57 @@ pub fn apply(
 ) -> Result<ApplyReport, DrawError> {
     let started = Instant::now();
     let rt0 = scene.round_trips();
-    if opts.dry_run {
-        return apply_claimed(scene, drawing, opts, progress, &Claim::none(), started, rt0);
-    }
-    let claim = Claim::take(scene)?;
-    let result = apply_claimed(scene, drawing, opts, progress, &claim, started, rt0);
+    let claim = if opts.dry_run {
+        Claim::none()
+    } else {
+        Claim::take(scene)?
+    };
+    let result = raised(scene, opts.dry_run, |scene| {
+        apply_claimed(scene, drawing, opts, progress, &claim)
+    });
     let released = claim.release(scene);
     let mut report = result?;
     released?;
     report.round_trips = scene.round_trips() - rt0;
+    report.elapsed = started.elapsed();
     Ok(report)
 }
 
-/// [`apply`] under `claim`.
-#[allow(clippy::too_many_arguments)]
+/// Runs `work` with the idle rate raised to 0 (unless `dry_run`), so that reading and
+/// drawing are not paced by CoppeliaSim's idle main loop (8 passes a second by default: a
+/// ZeroMQ call then takes 93-125 ms instead of 0.45 ms, `../shared/spec/real-coppeliasim-4.5.1.md`),
+/// and restores the user's rate afterwards, whatever `work` returned. The user's rate is
+/// recorded in the scene while it is raised, so an interrupted run is repaired by the next.
+pub(crate) fn raised<T>(
+    scene: &mut dyn Backend,
+    dry_run: bool,
+    work: impl FnOnce(&mut dyn Backend) -> Result<T, DrawError>,
+) -> Result<T, DrawError> {
+    let rates = scene.idle_rates()?;
+    // an interrupted earlier run may have left the rate at 0 and recorded the user's value
+    let user_fps = rates.saved.unwrap_or(rates.current);
+    let raise = !dry_run && (user_fps != 0 || rates.saved.is_some());
+    if raise {
+        scene.set_idle_fps(0, Some(user_fps))?;
+    }
+    let result = work(scene);
+    let restored = if raise {
+        scene.set_idle_fps(user_fps, None)
+    } else {
+        Ok(())
+    };
+    let value = result?;
+    restored?;
+    Ok(value)
+}
+
+/// [`apply`] under `claim`, with the idle rate raised.
 fn apply_claimed(
     scene: &mut dyn Backend,
     drawing: &Drawing,
     opts: &ApplyOptions,
     progress: &mut dyn FnMut(Stage),
     claim: &Claim,
-    started: Instant,
-    rt0: usize,
 ) -> Result<ApplyReport, DrawError> {
     let survey = scene.survey(&opts.names.all())?;
     let h = resolve_handles(&opts.names, &survey)?;
@@ -150,146 +193,237 @@ fn apply_claimed(
     report.reused = p.reuse.len();
     report.removed = p.remove.len();
     report.pasted = p.paste;
-    if opts.dry_run {
-        report.round_trips = scene.round_trips() - rt0;
-        report.elapsed = started.elapsed();
-        return Ok(report);
+    if !opts.dry_run {
+        let mut run = Drawer {
+            scene,
+            drawing,
+            opts,
+            h: &h,
+            claim,
+            progress,
+            report: &mut report,
+            objects_in_scene: survey.objects.len(),
+            placed: 0,
+        };
+        run.draw(&survey.objects, p)?;
     }
-    // an interrupted earlier run may have left the rate at 0 and recorded the user's value
-    let user_fps = survey.saved_idle_fps.unwrap_or(survey.idle_fps);
-    let raise = user_fps != 0 || survey.saved_idle_fps.is_some();
-    if raise {
-        scene.set_idle_fps(0, Some(user_fps))?;
-    }
-    let result = draw(
-        scene,
-        drawing,
-        opts,
-        &h,
-        &survey.objects,
-        p,
-        &mut report,
-        progress,
-        claim,
-    );
-    let restored = if raise {
-        scene.set_idle_fps(user_fps, None)
-    } else {
-        Ok(())
-    };
-    result?;
-    restored?;
-    report.round_trips = scene.round_trips() - rt0;
-    report.elapsed = started.elapsed();
     Ok(report)
 }
 
-#[allow(clippy::too_many_arguments)]
-fn draw(
-    scene: &mut dyn Backend,
-    drawing: &Drawing,
-    opts: &ApplyOptions,
-    h: &Handles,
-    objects: &[ObjectInfo],
-    p: plan::Plan,
-    report: &mut ApplyReport,
-    progress: &mut dyn FnMut(Stage),
-    claim: &Claim,
-) -> Result<(), DrawError> {
-    // lines in segment order: template first, then reused copies, then pasted ones
-    let mut lines = vec![h.line];
-    lines.extend(&p.reuse);
-    let mut pasted = 0;
-    while pasted < p.paste {
-        claim.check(scene, "while pasting the lines")?;
-        let groups = paste_round(&lines, p.paste - pasted, opts.paste_blocks_per_round);
-        if groups.is_empty() {
-            break;
+/// One apply's drawing state: what is sent, in requests of bounded server time.
+struct Drawer<'a, 'p> {
+    scene: &'a mut dyn Backend,
+    drawing: &'a Drawing,
+    opts: &'a ApplyOptions,
+    h: &'a Handles,
+    claim: &'a Claim,
+    progress: &'p mut dyn FnMut(Stage),
+    report: &'a mut ApplyReport,
+    /// Objects in the scene now (the simulator's per-object costs grow with it).
+    objects_in_scene: usize,
+    /// Lines whose place has been sent (or found right).
+    placed: usize,
+}
+
+impl Drawer<'_, '_> {
+    /// Removes the surplus, places the template, reused copies and markers, then pastes the
+    /// missing copies round by round, placing each round's copies before pasting the next
+    /// (so few copies are ever parentless, which the simulator pays for per object), and
+    /// verifies.
+    fn draw(&mut self, objects: &[ObjectInfo], p: plan::Plan) -> Result<(), DrawError> {
+        let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+        let floor = by_handle
+            .get(&self.h.floor)
+            .map(|o| world_frame(o))
+            .unwrap_or_default();
+        let (h, drawing) = (self.h, self.drawing);
+        // the surplus goes first: fewer objects make every later copy cheaper
+        let removals: Vec<Edit> = p.remove.iter().map(|&r| Edit::Remove(r)).collect();
+        self.send(&removals, 0)?;
+        self.objects_in_scene = self.objects_in_scene.saturating_sub(p.remove.len());
+        // the template, reused copies and markers, where they differ, go with the first
+        // round of copies (or alone, if nothing is pasted)
+        let mut edits: Vec<Edit> = Vec::new();
+        let mut lines = vec![h.line];
+        lines.extend(&p.reuse);
+        let mut placed_now = 0;
+        for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
+            let parent = (i > 0).then_some(h.parent);
+            self.place(
+                &mut edits,
+                by_handle.get(&handle).copied(),
+                &floor,
+                handle,
+                want,
+                parent,
+            );
+            placed_now += 1;
         }
-        for new in scene.copy_paste(&groups)? {
-            pasted += new.len();
-            lines.extend(new);
+        if drawing.lines.is_empty() {
+            // no segment (a 1-cell maze): hide the template under Start rather than leave it lying
+            let hidden = super::Pose {
+                z: (drawing.start.z - 0.001).max(0.0),
+                yaw: drawing.start.yaw,
+                ..drawing.start
+            };
+            self.place(
+                &mut edits,
+                by_handle.get(&h.line).copied(),
+                &floor,
+                h.line,
+                &hidden,
+                None,
+            );
         }
-        progress(Stage::Pasting {
-            done: pasted,
-            total: p.paste,
+        for (handle, want) in [(h.start, &drawing.start), (h.end, &drawing.end)] {
+            self.place(
+                &mut edits,
+                by_handle.get(&handle).copied(),
+                &floor,
+                handle,
+                want,
+                None,
+            );
+        }
+        let mut pasted = 0;
+        while pasted < p.paste {
+            self.checkpoint("while pasting the lines")?;
+            let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
+            let groups = paste_round(
+                &lines,
+                (p.paste - pasted).min(budget),
+                self.opts.paste_blocks_per_round,
+            );
+            if groups.is_empty() {
+                break;
+            }
+            let carried = std::mem::take(&mut placed_now);
+            let mut new_lines = 0;
+            for new in self.scene.copy_paste(&groups)? {
+                for handle in new {
+                    if let Some(want) = drawing.lines.get(lines.len()) {
+                        self.place(&mut edits, None, &floor, handle, want, Some(h.parent));
+                        new_lines += 1;
+                    }
+                    lines.push(handle);
+                    pasted += 1;
+                }
+            }
+            self.objects_in_scene += new_lines;
+            (self.progress)(Stage::Pasting {
+                done: pasted,
+                total: p.paste,
+            });
+            self.send(&std::mem::take(&mut edits), carried + new_lines)?;
+        }
+        self.send(&edits, placed_now)?;
+        if pasted < p.paste {
+            return Err(super::BackendError::Remote(format!(
+                "copy-paste produced {pasted} of {} copies",
+                p.paste
+            ))
+            .into());
+        }
+        lines.truncate(drawing.lines.len().max(1));
+        (self.progress)(Stage::Verifying);
+        self.claim.check(self.scene, "before verifying")?;
+        let after = if self.claim.contended() {
+            self.scene.objects_from_scene()?
+        } else {
+            self.scene.objects()?
+        };
+        self.claim.check(self.scene, "while verifying")?;
+        let problems = verify::check(
+            &after,
+            h,
+            &self.opts.names.line,
+            &lines[..drawing.lines.len().min(lines.len())],
+            drawing,
+        );
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(DrawError::Verify(problems))
+        }
+    }
+
+    /// Adds the edits that put `handle` at `want` (under `parent`), unless `current` shows
+    /// it there already.
+    fn place(
+        &mut self,
+        edits: &mut Vec<Edit>,
+        current: Option<&ObjectInfo>,
+        floor: &crate::coppelia::frame::Frame,
+        handle: i32,
+        want: &super::Pose,
+        parent: Option<i32>,
+    ) {
+        let parent_ok = parent.is_none_or(|p| current.is_some_and(|o| o.parent == Some(p)));
+        let pose_ok = current.is_some_and(|o| pose_differences(floor, o, want).is_none());
+        if parent_ok && pose_ok {
+            self.report.unchanged += 1;
+            return;
+        }
+        if let Some(p) = parent
+            && !parent_ok
+        {
+            edits.push(Edit::SetParent {
+                handle,
+                parent: Some(p),
+                keep_in_place: false,
+            });
+        }
+        edits.push(Edit::SetPose {
+            handle,
+            relative_to: self.h.floor,
+            position: crate::draw::position(want),
+            orientation: crate::draw::euler(want),
         });
     }
-    if pasted < p.paste {
-        return Err(super::BackendError::Remote(format!(
-            "copy-paste produced {pasted} of {} copies",
-            p.paste
-        ))
-        .into());
-    }
-    lines.truncate(drawing.lines.len().max(1));
-    progress(Stage::Placing);
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
-    let by_handle = |handle: i32| objects.iter().find(|o| o.handle == handle);
-    let mut edits = Vec::new();
-    let mut place =
-        |edits: &mut Vec<Edit>, handle: i32, want: &super::Pose, parent: Option<i32>| {
-            let current = by_handle(handle);
-            let parent_ok = parent.is_none_or(|p| current.is_some_and(|o| o.parent == Some(p)));
-            let pose_ok = current.is_some_and(|o| pose_differences(&floor, o, want).is_none());
-            if parent_ok && pose_ok {
-                report.unchanged += 1;
-                return;
-            }
-            if let Some(p) = parent
-                && !parent_ok
-            {
-                edits.push(Edit::SetParent {
-                    handle,
-                    parent: Some(p),
-                    keep_in_place: false,
-                });
-            }
-            edits.push(Edit::SetPose {
-                handle,
-                relative_to: h.floor,
-                position: crate::draw::position(want),
-                orientation: crate::draw::euler(want),
+
+    /// Sends `edits`, which place `lines` lines, in requests the simulator finishes in
+    /// bounded time ([`Backend::lines_per_request`], about two edits a line) and the lease
+    /// checks between them.
+    fn send(&mut self, edits: &[Edit], lines: usize) -> Result<(), DrawError> {
+        if edits.is_empty() {
+            self.placed += lines;
+            return Ok(());
+        }
+        self.report.edits += edits.len();
+        let per_request = self
+            .scene
+            .lines_per_request(self.objects_in_scene)
+            .saturating_mul(2)
+            .min(self.claim.edits_per_check())
+            .max(1);
+        let mut sent = 0;
+        for chunk in edits.chunks(per_request) {
+            self.checkpoint("while placing the lines")?;
+            self.scene.edit(chunk)?;
+            sent += chunk.len();
+            let done = self.placed + lines * sent / edits.len().max(1);
+            (self.progress)(Stage::Placing {
+                done: done.min(self.drawing.lines.len()),
+                total: self.drawing.lines.len(),
             });
-        };
-    for (i, (handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
-        place(&mut edits, *handle, want, (i > 0).then_some(h.parent));
-    }
-    if drawing.lines.is_empty() {
-        // no segment (a 1-cell maze): hide the template under Start rather than leave it lying
-        let hidden = super::Pose {
-            z: (drawing.start.z - 0.001).max(0.0),
-            yaw: drawing.start.yaw,
-            ..drawing.start
-        };
-        place(&mut edits, h.line, &hidden, None);
-    }
-    place(&mut edits, h.start, &drawing.start, None);
-    place(&mut edits, h.end, &drawing.end, None);
-    edits.extend(p.remove.iter().map(|&r| Edit::Remove(r)));
-    report.edits = edits.len();
-    for chunk in edits.chunks(claim.edits_per_check()) {
-        claim.check(scene, "while placing the lines")?;
-        scene.edit(chunk)?;
-    }
-    progress(Stage::Verifying);
-    claim.check(scene, "before verifying")?;
-    let after = scene.objects()?;
-    claim.check(scene, "while verifying")?;
-    let problems = verify::check(
-        &after,
-        h,
-        &opts.names.line,
-        &lines[..drawing.lines.len().min(lines.len())],
-        drawing,
-    );
-    if problems.is_empty() {
+        }
+        self.placed += lines;
         Ok(())
-    } else {
-        Err(DrawError::Verify(problems))
+    }
+
+    /// Stops here if the user interrupted or another run took the scene over.
+    fn checkpoint(&mut self, phase: &'static str) -> Result<(), DrawError> {
+        if self
+            .opts
+            .interrupt
+            .as_ref()
+            .is_some_and(|flag| flag.load(Ordering::SeqCst))
+        {
+            return Err(DrawError::Interrupted {
+                placed: self.placed,
+                total: self.drawing.lines.len(),
+            });
+        }
+        self.claim.check(self.scene, phase)
     }
 }

@@ -1,6 +1,11 @@
 //! Remove a drawn maze: every child of the maze dummy except the templates, and parentless
 //! copies of the line template left by an interrupted run. Templates stay where they are.
 
+use std::collections::HashMap;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use super::apply::raised;
 use super::lease::Claim;
 use super::plan::maze_lines;
 use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
@@ -19,7 +24,7 @@ pub struct ClearReport {
 }
 
 /// How [`clear`] runs.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Default)]
 pub struct ClearOptions {
     /// Names of the scene objects.
     pub names: ObjectNames,
@@ -28,6 +33,8 @@ pub struct ClearOptions {
     pub stop_simulation: bool,
     /// Only list what would be removed.
     pub dry_run: bool,
+    /// Set by a Ctrl-C handler: the run stops after the request in flight.
+    pub interrupt: Option<Arc<AtomicBool>>,
 }
 
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
@@ -39,15 +46,21 @@ pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport
     } else {
         Claim::take(scene)?
     };
-    let result = clear_claimed(scene, opts, &claim);
+    // a record of the user's rate means an interrupted apply left the rate at 0: `raised`
+    // restores it, which the report says
+    let saved = scene.idle_rates()?.saved;
+    let result = raised(scene, opts.dry_run, |scene| {
+        clear_claimed(scene, opts, &claim)
+    });
     let released = claim.release(scene);
     let mut report = result?;
     released?;
     report.round_trips = scene.round_trips() - rt0;
+    report.restored_idle_fps = saved.filter(|_| !opts.dry_run);
     Ok(report)
 }
 
-/// [`clear`] under `claim`.
+/// [`clear`] under `claim`, with the idle rate raised.
 fn clear_claimed(
     scene: &mut dyn Backend,
     opts: &ClearOptions,
@@ -67,31 +80,37 @@ fn clear_claimed(
         }
     }
     let doomed = maze_lines(&survey.objects, &h, &names.line);
+    let names_by_handle: HashMap<i32, &str> = survey
+        .objects
+        .iter()
+        .map(|o| (o.handle, o.name.as_str()))
+        .collect();
     let removed = doomed
         .iter()
-        .filter_map(|d| {
-            survey
-                .objects
-                .iter()
-                .find(|o| o.handle == *d)
-                .map(|o| o.name.clone())
-        })
+        .filter_map(|d| names_by_handle.get(d).map(|n| n.to_string()))
         .collect();
-    claim.check(scene, "before removing the lines")?;
-    if !doomed.is_empty() && !dry_run {
-        scene.edit(&doomed.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
-    }
-    let restored_idle_fps = match survey.saved_idle_fps {
-        Some(fps) if !dry_run => {
-            scene.set_idle_fps(fps, None)?;
-            Some(fps)
+    if !dry_run {
+        // in requests the simulator finishes in bounded time (removal costs per object)
+        let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+        for chunk in doomed.chunks(per_request) {
+            if opts
+                .interrupt
+                .as_ref()
+                .is_some_and(|flag| flag.load(Ordering::SeqCst))
+            {
+                return Err(DrawError::Interrupted {
+                    placed: 0,
+                    total: 0,
+                });
+            }
+            claim.check(scene, "while removing the lines")?;
+            scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
         }
-        _ => None,
-    };
+    }
     Ok(ClearReport {
         removed,
         round_trips: 0,
-        restored_idle_fps,
+        restored_idle_fps: None,
         stopped_simulation,
     })
 }

@@ -26,30 +26,60 @@ pub trait Lease {
 /// CoppeliaSim at idle fps 0, `../shared/spec/real-coppeliasim-4.5.1.md`: about 0.1 s).
 const EDITS_PER_CHECK: usize = 200;
 
+/// How long a run that takes the lease over from another waits before it reads the scene:
+/// the other run stops at its next check, after at most [`EDITS_PER_CHECK`] calls (about
+/// 0.1 s on a real simulator at idle fps 0), so its last writes land before this run looks.
+const TAKEOVER_GRACE: std::time::Duration = std::time::Duration::from_secs(2);
+
 /// This run's claim on a scene; `token` is `None` where the backend has no lease.
 #[derive(Debug)]
 pub(crate) struct Claim {
     token: Option<i32>,
+    /// Another run held the lease when this one claimed it: a concurrent run (now stopping)
+    /// or an interrupted one. Such a run verifies against what it reads from the scene, not
+    /// against what it was told it set.
+    contended: bool,
 }
 
 impl Claim {
     /// No claim: for a dry run, which changes nothing.
     pub(crate) fn none() -> Claim {
-        Claim { token: None }
+        Claim {
+            token: None,
+            contended: false,
+        }
+    }
+
+    /// See [`Claim::contended`](Claim).
+    pub(crate) fn contended(&self) -> bool {
+        self.contended
     }
 
     /// Claims the scene with a fresh random token. A simulator that cannot record one (no
     /// integer signals) gives an empty claim: the run goes on unguarded.
     pub(crate) fn take(backend: &mut dyn Backend) -> Result<Claim, DrawError> {
         let Some(lease) = backend.lease() else {
-            return Ok(Claim { token: None });
+            return Ok(Claim::none());
         };
         let token = random_token();
+        let previous = match lease.holder() {
+            Ok(holder) => holder,
+            Err(BackendError::Remote(_)) => return Ok(Claim::none()),
+            Err(e) => return Err(e.into()),
+        };
         match lease.claim(token) {
-            Ok(()) => Ok(Claim { token: Some(token) }),
-            Err(BackendError::Remote(_)) => Ok(Claim { token: None }),
-            Err(e) => Err(e.into()),
+            Ok(()) => {}
+            Err(BackendError::Remote(_)) => return Ok(Claim::none()),
+            Err(e) => return Err(e.into()),
         }
+        let contended = previous.is_some();
+        if contended {
+            std::thread::sleep(TAKEOVER_GRACE);
+        }
+        Ok(Claim {
+            token: Some(token),
+            contended,
+        })
     }
 
     /// How many edits to send between two checks: few enough that a run which lost the lease

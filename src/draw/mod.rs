@@ -145,15 +145,22 @@ pub struct ObjectInfo {
 pub struct Survey {
     /// Handle of each requested name (same order), `None` if missing.
     pub handles: Vec<Option<i32>>,
-    /// All scene objects.
+    /// The scene objects drawing needs: the named ones, the children of the maze dummy and
+    /// parentless copies of the line template (a backend may list more). A pose a backend
+    /// did not read is NaN: never in place, so it is set.
     pub objects: Vec<ObjectInfo>,
-    /// Current `sim_intparam_idle_fps`.
-    pub idle_fps: i32,
-    /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
-    /// (the simulator keeps it as the integer signal [`SAVED_IDLE_FPS_SIGNAL`]).
-    pub saved_idle_fps: Option<i32>,
     /// Simulation not stopped.
     pub simulation_running: bool,
+}
+
+/// The idle rate now and the user's rate recorded by an interrupted run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct IdleRates {
+    /// Current `sim_intparam_idle_fps`.
+    pub current: i32,
+    /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
+    /// (the simulator keeps it as the integer signal [`SAVED_IDLE_FPS_SIGNAL`]).
+    pub saved: Option<i32>,
 }
 
 /// A scene edit; [`Backend::edit`] applies a list of them in order, in one round trip.
@@ -202,11 +209,19 @@ pub enum BackendError {
 /// object where it must); [`Backend::round_trips`] reports the cost so far. Errors leave the
 /// scene in a state that a later [`apply()`] or [`clear()`] repairs.
 pub trait Backend {
-    /// Resolves `names`, lists all objects (name, parent, world pose), reads the idle rate
-    /// and the simulation state.
+    /// Reads the idle rate and the record of the user's rate ([`IdleRates`]).
+    fn idle_rates(&mut self) -> Result<IdleRates, BackendError>;
+    /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
+    /// simulation state.
     fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError>;
-    /// Lists all objects.
+    /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
+    /// backend may give a pose it set itself, acknowledged by the simulator, without reading
+    /// it back (ZeroMQ, where each read is a call).
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError>;
+    /// [`Backend::objects`], every pose read from the scene now.
+    fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        self.objects()
+    }
     /// Copy-pastes each group; returns the new handles of each group.
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError>;
     /// Applies edits in order.
@@ -219,6 +234,13 @@ pub trait Backend {
     fn stop_simulation(&mut self) -> Result<(), BackendError>;
     /// Messages exchanged with the simulator so far (requests with their replies).
     fn round_trips(&self) -> usize;
+    /// How many lines (a copy, or a parent and a pose) one request may carry so that the
+    /// simulator answers in bounded time, given the objects in the scene (its per-object
+    /// costs grow with them). Unbounded where each call is its own request (ZeroMQ).
+    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
+        let _ = objects_in_scene;
+        usize::MAX
+    }
     /// One line naming the API, where it answered and, if known, the simulator's version.
     fn describe(&self) -> String;
     /// Ends the connection the way the official client does, so the simulator is ready for
@@ -270,6 +292,15 @@ pub enum DrawError {
         /// When this run noticed, e.g. "before placing the lines".
         phase: &'static str,
     },
+    /// Ctrl-C (or SIGTERM, SIGHUP) stopped the run between two requests; the idle rate
+    /// was restored and the connection can be closed cleanly.
+    #[error("interrupted with {placed} of {total} lines placed")]
+    Interrupted {
+        /// Lines placed before the interrupt.
+        placed: usize,
+        /// Lines in the drawing.
+        total: usize,
+    },
     /// Backend failure.
     #[error(transparent)]
     Backend(#[from] BackendError),
@@ -298,6 +329,10 @@ impl DrawError {
             }
             DrawError::Concurrent { .. } => vec![
                 "run one apply or clear at a time on a scene; running one again alone repairs it"
+                    .into(),
+            ],
+            DrawError::Interrupted { .. } => vec![
+                "the scene holds part of the maze; run the same apply again to finish it, or clear to remove it"
                     .into(),
             ],
             DrawError::Backend(_) => vec![],

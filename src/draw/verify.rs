@@ -1,7 +1,9 @@
 //! Compare a scene with a drawing: every line, `Start` and `End` in place (1e-4 m, 1e-4 rad),
 //! copies parented to the maze dummy, and no other maze lines.
 
-use super::plan::{maze_lines, pose_differences, world_frame};
+use std::collections::{HashMap, HashSet};
+
+use super::plan::{maze_lines, pose_differences, relative_pose, world_frame};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, resolve_handles};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
@@ -21,7 +23,8 @@ pub fn check(
     else {
         return vec!["the floor object disappeared".into()];
     };
-    let get = |handle: i32| objects.iter().find(|o| o.handle == handle);
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let get = |handle: i32| by_handle.get(&handle).copied();
     if lines.len() != drawing.lines.len() {
         problems.push(format!(
             "{} line objects for {} segments",
@@ -58,25 +61,42 @@ pub fn check(
             }
         }
     }
-    let mut expected: Vec<i32> = lines.iter().skip(1).copied().collect();
-    expected.sort_unstable();
-    let mut found = maze_lines(objects, h, template);
-    found.sort_unstable();
-    if found != expected {
-        let stray: Vec<String> = found
-            .iter()
-            .filter(|x| !expected.contains(x))
-            .filter_map(|x| get(*x).map(|o| o.name.clone()))
-            .collect();
-        if !stray.is_empty() {
-            problems.push(format!(
-                "{} stray maze object(s): {}",
-                stray.len(),
-                stray.join(", ")
-            ));
-        }
+    let expected: HashSet<i32> = lines.iter().skip(1).copied().collect();
+    let stray: Vec<&str> = maze_lines(objects, h, template)
+        .into_iter()
+        .filter(|x| !expected.contains(x))
+        .filter_map(|x| get(x).map(|o| o.name.as_str()))
+        .collect();
+    if !stray.is_empty() {
+        problems.push(stray_problem(&stray));
     }
     problems
+}
+
+/// Side of the squares [`verify`] sorts objects into: far above the position tolerance, so
+/// a line in place is always in its segment's square or a neighbour.
+const BUCKET: f64 = 0.01;
+
+/// The square of the floor a position lies in (`None` for a non-finite one, never in place).
+fn bucket(position: [f64; 3]) -> Option<(i64, i64)> {
+    let (x, y) = (position[0] / BUCKET, position[1] / BUCKET);
+    (x.is_finite() && y.is_finite() && x.abs() < 1e15 && y.abs() < 1e15)
+        .then(|| (x.floor() as i64, y.floor() as i64))
+}
+
+/// "N stray maze object(s): a, b, c, ..." naming at most the first few.
+fn stray_problem(stray: &[&str]) -> String {
+    const NAMED: usize = 5;
+    let more = if stray.len() > NAMED {
+        format!(", ... ({} more)", stray.len() - NAMED)
+    } else {
+        String::new()
+    };
+    format!(
+        "{} stray maze object(s): {}{more}",
+        stray.len(),
+        stray[..stray.len().min(NAMED)].join(", ")
+    )
 }
 
 /// Verifies a scene against a drawing without knowing which copy is which line: every
@@ -90,23 +110,45 @@ pub fn verify(
 ) -> Result<(), DrawError> {
     let survey = scene.survey(&names.all())?;
     let h = resolve_handles(names, &survey)?;
-    let objects = &survey.objects;
+    // every pose as the scene holds it now, not as a backend remembers setting it
+    let objects = &scene.objects_from_scene()?;
     let floor = objects
         .iter()
         .find(|o| o.handle == h.floor)
         .map(world_frame)
         .unwrap_or_default();
-    let get = |handle: i32| objects.iter().find(|o| o.handle == handle);
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let get = |handle: i32| by_handle.get(&handle).copied();
     let mut pool: Vec<i32> = vec![h.line];
     pool.extend(maze_lines(objects, &h, &names.line));
+    // the pool by where each object lies on the floor, so each segment finds its line among
+    // a few neighbours instead of all of them
+    let mut near: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    for (k, &c) in pool.iter().enumerate() {
+        if let Some(key) = get(c).and_then(|o| bucket(relative_pose(&floor, o).0)) {
+            near.entry(key).or_default().push(k);
+        }
+    }
+    let mut used = vec![false; pool.len()];
     let mut problems = Vec::new();
     for (i, want) in drawing.lines.iter().enumerate() {
-        let hit = pool
-            .iter()
-            .position(|&c| get(c).is_some_and(|o| pose_differences(&floor, o, want).is_none()));
+        // the lowest pool index among the lines in place: the template first, as before
+        let hit = bucket(crate::draw::position(want)).and_then(|(bx, by)| {
+            (-1..=1)
+                .flat_map(|dx| (-1..=1).map(move |dy| (bx + dx, by + dy)))
+                .filter_map(|key| near.get(&key))
+                .flatten()
+                .copied()
+                .filter(|&k| {
+                    !used[k]
+                        && get(pool[k]).is_some_and(|o| pose_differences(&floor, o, want).is_none())
+                })
+                .min()
+        });
         match hit {
             Some(k) => {
-                let c = pool.remove(k);
+                used[k] = true;
+                let c = pool[k];
                 if c != h.line && get(c).and_then(|o| o.parent) != Some(h.parent) {
                     problems.push(format!(
                         "line {i} `{}` is not a child of `{}`",
@@ -123,15 +165,12 @@ pub fn verify(
     }
     let stray: Vec<&str> = pool
         .iter()
-        .filter(|&&c| c != h.line)
-        .filter_map(|&c| get(c).map(|o| o.name.as_str()))
+        .zip(&used)
+        .filter(|&(&c, &u)| !u && c != h.line)
+        .filter_map(|(&c, _)| get(c).map(|o| o.name.as_str()))
         .collect();
     if !stray.is_empty() {
-        problems.push(format!(
-            "{} stray maze object(s): {}",
-            stray.len(),
-            stray.join(", ")
-        ));
+        problems.push(stray_problem(&stray));
     }
     for (what, handle, want) in [
         ("start", h.start, &drawing.start),

@@ -6,6 +6,7 @@
 //! one `sim.setObjectPose` call; removals go in one `sim.removeObjects` call. The ZeroMQ API
 //! has no batching, so "one round trip" operations of the trait cost one call per object.
 
+use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
@@ -13,7 +14,9 @@ use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
-use crate::coppelia::frame::{euler_from_rotation, rotation_from_euler};
+use crate::coppelia::frame::{
+    Frame, euler_from_rotation, frame, position_euler, rotation_from_euler,
+};
 use crate::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
     INTPARAM_PROGRAM_VERSION, PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE,
@@ -21,8 +24,8 @@ use crate::coppelia::{
 };
 use crate::draw::plan::is_copy_name;
 use crate::draw::{
-    Authoring, Backend, BackendError, Edit, LEASE_SIGNAL, Lease, ObjectInfo, ObjectNames,
-    SAVED_IDLE_FPS_SIGNAL, Survey,
+    Authoring, Backend, BackendError, Edit, IdleRates, LEASE_SIGNAL, Lease, ObjectInfo,
+    ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
 
 impl From<ZmqError> for BackendError {
@@ -42,6 +45,21 @@ struct Known {
     line_alias: String,
 }
 
+/// A world pose: position and CoppeliaSim Euler angles.
+type WorldPose = ([f64; 3], [f64; 3]);
+
+/// Whether [`ZmqBackend::collect`] reads the poses of the maze's lines.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LinePoses {
+    /// Poses this connection set (and the simulator acknowledged), NaN for the others: a
+    /// survey then reads no line one by one, and apply sets every line it does not know.
+    Known,
+    /// Poses this connection set, and a read of every other (verification).
+    Read,
+    /// Every pose read now.
+    Fresh,
+}
+
 /// A connected ZeroMQ remote API scene.
 #[derive(Debug)]
 pub struct ZmqBackend {
@@ -49,6 +67,10 @@ pub struct ZmqBackend {
     version: i32,
     known: Known,
     timeout: Duration,
+    /// World poses of objects this connection placed or read, by handle. ZeroMQ has no
+    /// batching, so reading a line costs as much as placing it; a pose the simulator
+    /// acknowledged setting is not read back.
+    poses: HashMap<i32, WorldPose>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -102,6 +124,7 @@ impl ZmqBackend {
             version,
             known: Known::default(),
             timeout,
+            poses: HashMap::new(),
         })
     }
 
@@ -165,6 +188,29 @@ impl ZmqBackend {
         Ok(([p[0], p[1], p[2]], euler_from_rotation(&q)))
     }
 
+    /// An object with its pose: from [`ZmqBackend::poses`] if known, else read (`Read`) or
+    /// NaN (`Known`, never in place).
+    fn line_info(
+        &mut self,
+        handle: i32,
+        name: String,
+        parent: Option<i32>,
+        poses: LinePoses,
+    ) -> Result<ObjectInfo, BackendError> {
+        let (position, orientation) = match (self.poses.get(&handle), poses) {
+            (Some(&pose), LinePoses::Known | LinePoses::Read) => pose,
+            (None, LinePoses::Known) => ([f64::NAN; 3], [f64::NAN; 3]),
+            (_, LinePoses::Read | LinePoses::Fresh) => self.world_pose(handle)?,
+        };
+        Ok(ObjectInfo {
+            handle,
+            name,
+            parent,
+            position,
+            orientation,
+        })
+    }
+
     fn info(
         &mut self,
         handle: i32,
@@ -181,6 +227,7 @@ impl ZmqBackend {
             }
         };
         let (position, orientation) = self.world_pose(handle)?;
+        self.poses.insert(handle, (position, orientation));
         Ok(ObjectInfo {
             handle,
             name,
@@ -190,20 +237,20 @@ impl ZmqBackend {
         })
     }
 
-    /// The named objects, the maze dummy's children and root copies of the line template.
-    fn collect(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+    /// The named objects (read), the maze dummy's children and root copies of the line
+    /// template (their poses as `poses` says).
+    fn collect(&mut self, poses: LinePoses) -> Result<Vec<ObjectInfo>, BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
         for (name, h) in &known.named {
             out.push(self.info(*h, name.clone(), None)?);
         }
-        let mut seen: Vec<i32> = known.named.iter().map(|(_, h)| *h).collect();
+        let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself
             for h in self.handles_in(parent, 3)? {
-                if !seen.contains(&h) {
-                    seen.push(h);
-                    out.push(self.info(h, format!("object {h}"), Some(Some(parent)))?);
+                if seen.insert(h) {
+                    out.push(self.line_info(h, format!("object {h}"), Some(parent), poses)?);
                 }
             }
         }
@@ -235,10 +282,37 @@ impl ZmqBackend {
                 Some(p) if is_copy_name(p, &known.line_alias) => p.to_string(),
                 _ => format!("/{}[{strays}]", known.line_alias),
             };
-            seen.push(h);
-            out.push(self.info(h, name, Some(None))?);
+            seen.insert(h);
+            out.push(self.line_info(h, name, None, poses)?);
         }
         Ok(out)
+    }
+
+    /// Records the world pose an acknowledged `sim.setObjectPose` gave `handle`.
+    fn remember_pose(
+        &mut self,
+        handle: i32,
+        relative_to: i32,
+        position: [f64; 3],
+        euler: [f64; 3],
+    ) -> Result<(), BackendError> {
+        let reference = match relative_to {
+            HANDLE_WORLD => Frame::identity(),
+            r => {
+                let (p, e) = match self.poses.get(&r) {
+                    Some(&pose) => pose,
+                    None => {
+                        let pose = self.world_pose(r)?;
+                        self.poses.insert(r, pose);
+                        pose
+                    }
+                };
+                frame(p, e)
+            }
+        };
+        let world = position_euler(&(reference * frame(position, euler)));
+        self.poses.insert(handle, world);
+        Ok(())
     }
 
     fn set_pose(
@@ -362,27 +436,33 @@ impl Backend for ZmqBackend {
                 .map(|n| alias_of(n).to_string())
                 .unwrap_or_default(),
         };
-        let idle_fps = self
-            .client
-            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let saved_idle_fps = self.saved_idle_fps()?;
         let objects = if handles.iter().all(Option::is_some) {
-            self.collect()?
+            self.collect(LinePoses::Known)?
         } else {
             vec![]
         };
         Ok(Survey {
             handles,
             objects,
-            idle_fps,
-            saved_idle_fps,
-            simulation_running: state != 0,
+            simulation_running: state != SIMULATION_STOPPED,
         })
     }
 
+    fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
+        let current = self
+            .client
+            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
+        let saved = self.saved_idle_fps()?;
+        Ok(IdleRates { current, saved })
+    }
+
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
-        self.collect()
+        self.collect(LinePoses::Read)
+    }
+
+    fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        self.collect(LinePoses::Fresh)
     }
 
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
@@ -420,6 +500,10 @@ impl Backend for ZmqBackend {
                         "sim.setObjectParent",
                         vec![int(handle.into()), p, Value::Bool(keep_in_place)],
                     )?;
+                    if !keep_in_place {
+                        // the local pose is kept, so the world pose moves with the parent
+                        self.poses.remove(&handle);
+                    }
                 }
                 Edit::SetPose {
                     handle,
@@ -428,6 +512,7 @@ impl Backend for ZmqBackend {
                     orientation,
                 } => {
                     self.set_pose(handle, relative_to, position, orientation)?;
+                    self.remember_pose(handle, relative_to, position, orientation)?;
                 }
                 Edit::Remove(_) => {
                     let run: Vec<i32> = edits[i..]
@@ -442,6 +527,9 @@ impl Backend for ZmqBackend {
                         .collect();
                     i += run.len();
                     self.remove(&run)?;
+                    for h in &run {
+                        self.poses.remove(h);
+                    }
                     continue;
                 }
             }
