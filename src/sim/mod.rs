@@ -5,6 +5,7 @@
 //! main-loop rate (`sim_intparam_idle_fps`) and integer parameters.
 
 pub mod clock;
+mod index;
 pub mod scene;
 pub mod svg;
 
