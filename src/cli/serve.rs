@@ -11,7 +11,7 @@ use super::ensure_usage;
 use std::sync::Arc;
 
 use crate::legacy::{ServerConfig, spawn};
-use crate::sim::{NamingMode, Scene, Simulator};
+use crate::sim::{NamingMode, Scene, Simulator, Timing};
 use crate::zmq_api::{self, Protocol};
 
 /// Serve an in-memory scene over the legacy and/or ZeroMQ remote API (no CoppeliaSim needed).
@@ -55,10 +55,30 @@ pub struct ServeArgs {
     /// Log every received message and command block on stderr (protocol debugging).
     #[arg(long)]
     pub trace: bool,
-    /// After a client leaves, refuse connections for this many milliseconds while the
-    /// listening socket is re-created, as CoppeliaSim does (500 ms or more). 0 = never refuse.
-    #[arg(long, default_value_t = 500, allow_negative_numbers = true)]
+    /// After any client leaves, refuse connections for this many milliseconds while the
+    /// listening socket is re-created. 0 = never refuse (a real CoppeliaSim 4.5.1 accepts the
+    /// next client at once after a normal close).
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
     pub rebind_delay_ms: u64,
+    /// `realistic`: take the time a real CoppeliaSim 4.5.1 takes (modeled server work of each
+    /// call, the legacy reconnect penalty); `instant`: no modeled costs and no penalty (the
+    /// main loop still passes at the idle rate).
+    #[arg(long, value_enum, default_value = "realistic")]
+    pub timing: TimingMode,
+    /// Legacy API: after a client leaves without the closing exchange (killed, reset, timed
+    /// out), refuse every connection for this many seconds [default: 60 with realistic
+    /// timing, 0 with instant].
+    #[arg(long, value_name = "SECS")]
+    pub reconnect_penalty: Option<f64>,
+}
+
+/// How long the emulated server takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TimingMode {
+    /// What a real CoppeliaSim 4.5.1 takes.
+    Realistic,
+    /// No modeled costs, no reconnect penalty.
+    Instant,
 }
 
 /// Remote APIs `serve` can speak.
@@ -101,6 +121,17 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         "--idle-fps must be in 0..=1000, got {}",
         args.idle_fps
     );
+    let mut timing = match args.timing {
+        TimingMode::Realistic => Timing::realistic(),
+        TimingMode::Instant => Timing::instant(),
+    };
+    if let Some(secs) = args.reconnect_penalty {
+        ensure_usage!(
+            secs.is_finite() && (0.0..=86_400.0).contains(&secs),
+            "--reconnect-penalty must be a number of seconds in 0..=86400, got {secs}"
+        );
+        timing.reconnect_penalty = std::time::Duration::from_secs_f64(secs);
+    }
     let legacy_listen = args
         .listen
         .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 19997)));
@@ -126,6 +157,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
             None
         },
         verbose: args.verbose,
+        timing,
         ..Default::default()
     };
     let config = ServerConfig {
@@ -134,6 +166,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         verbose: args.verbose || args.trace,
         trace: args.trace,
         rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms),
+        timing,
         ..Default::default()
     };
     let (tx, rx) = std::sync::mpsc::channel();

@@ -5,12 +5,15 @@
 //! main-loop rate (`sim_intparam_idle_fps`) and integer parameters.
 
 pub mod clock;
+pub mod cost;
+mod index;
 pub mod scene;
 pub mod svg;
 
 use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
-pub use clock::Clock;
+pub use clock::{Clock, ZmqPacer, ZmqPacing};
+pub use cost::{CostModel, Timing};
 pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
 
 /// The program version we report (CoppeliaSim 4.5.1).

@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::index::Index;
 use crate::coppelia::frame::{Frame, frame, position_euler};
 use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
 
@@ -93,14 +94,46 @@ impl Object {
     }
 }
 
-/// An in-memory scene.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// An in-memory scene. Lookups by name, alias, parent and copy number go through an index
+/// kept beside the objects (never serialized: the JSON is the objects, the next handle and the
+/// naming mode), so no operation scans the whole scene for one object.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(from = "SceneData")]
 pub struct Scene {
     objects: BTreeMap<i32, Object>,
     next_handle: i32,
     /// Naming of pasted copies.
     pub naming: NamingMode,
+    #[serde(skip)]
+    index: Index,
+}
+
+/// What a scene's JSON holds; the index is rebuilt from it.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneData {
+    objects: BTreeMap<i32, Object>,
+    next_handle: i32,
+    naming: NamingMode,
+}
+
+impl From<SceneData> for Scene {
+    fn from(d: SceneData) -> Scene {
+        Scene {
+            index: Index::build(d.objects.values()),
+            objects: d.objects,
+            next_handle: d.next_handle,
+            naming: d.naming,
+        }
+    }
+}
+
+impl PartialEq for Scene {
+    fn eq(&self, other: &Scene) -> bool {
+        self.objects == other.objects
+            && self.next_handle == other.next_handle
+            && self.naming == other.naming
+    }
 }
 
 impl Default for Scene {
@@ -133,6 +166,7 @@ impl Scene {
             objects: BTreeMap::new(),
             next_handle: 10,
             naming: NamingMode::Plain,
+            index: Index::default(),
         }
     }
 
@@ -261,24 +295,28 @@ impl Scene {
         Ok(())
     }
 
-    /// Adds an object with a fresh handle; the alias is the name.
+    /// Puts an object into the scene and its index.
+    fn insert(&mut self, o: Object) {
+        self.index.insert(&o);
+        self.objects.insert(o.handle, o);
+    }
+
+    /// Adds an object with a fresh handle; the alias is the name (which no other object may
+    /// have: names are unique in a scene).
     pub fn add(&mut self, name: &str, o: NewObject) -> i32 {
         let handle = self.next_handle;
         self.next_handle += 1;
-        self.objects.insert(
+        self.insert(Object {
             handle,
-            Object {
-                handle,
-                name: name.to_string(),
-                alias: name.to_string(),
-                kind: o.kind,
-                parent: o.parent,
-                position: o.position,
-                orientation: o.orientation,
-                size: o.size,
-                colour: o.colour,
-            },
-        );
+            name: name.to_string(),
+            alias: name.to_string(),
+            kind: o.kind,
+            parent: o.parent,
+            position: o.position,
+            orientation: o.orientation,
+            size: o.size,
+            colour: o.colour,
+        });
         handle
     }
 
@@ -304,17 +342,44 @@ impl Scene {
         self.objects.is_empty()
     }
 
+    /// Children of `parent` (`None`: the objects without parent), in handle order.
+    pub fn children(&self, parent: Option<i32>) -> impl Iterator<Item = i32> + '_ {
+        self.index.children(parent)
+    }
+
+    /// How many children `parent` has (`None`: how many objects have no parent); O(1).
+    pub fn child_count(&self, parent: Option<i32>) -> usize {
+        self.index.child_count(parent)
+    }
+
     /// Objects in hierarchy order: depth first from the roots, siblings in handle order.
     pub fn tree_order(&self) -> Vec<i32> {
         let mut out = Vec::with_capacity(self.objects.len());
-        fn visit(s: &Scene, parent: Option<i32>, out: &mut Vec<i32>) {
-            for o in s.objects.values().filter(|o| o.parent == parent) {
-                out.push(o.handle);
-                visit(s, Some(o.handle), out);
-            }
+        for root in self.children(None) {
+            self.push_subtree(root, &mut out);
         }
-        visit(self, None, &mut out);
         out
+    }
+
+    /// `base` and everything under it, depth first, siblings in handle order (the order of
+    /// [`Scene::tree_order`]); empty if `base` does not exist.
+    pub fn subtree(&self, base: i32) -> Vec<i32> {
+        let mut out = vec![];
+        if self.objects.contains_key(&base) {
+            self.push_subtree(base, &mut out);
+        }
+        out
+    }
+
+    /// Depth first without recursion (a deep chain must not overflow the stack).
+    fn push_subtree(&self, base: i32, out: &mut Vec<i32>) {
+        let mut stack = vec![base];
+        while let Some(h) = stack.pop() {
+            out.push(h);
+            let first = stack.len();
+            stack.extend(self.children(Some(h)));
+            stack[first..].reverse();
+        }
     }
 
     fn is_descendant(&self, handle: i32, ancestor: i32) -> bool {
@@ -337,21 +402,16 @@ impl Scene {
             for comp in path.split('/') {
                 let (alias, index) = parse_path_component(comp).ok_or_else(missing)?;
                 let found = self
-                    .objects
-                    .values()
-                    .filter(|o| scope.is_none_or(|s| self.is_descendant(o.handle, s)))
-                    .filter(|o| o.alias == alias)
+                    .index
+                    .with_alias(alias)
+                    .filter(|&h| scope.is_none_or(|s| self.is_descendant(h, s)))
                     .nth(index)
                     .ok_or_else(missing)?;
-                scope = Some(found.handle);
+                scope = Some(found);
             }
             scope.ok_or_else(missing)
         } else {
-            self.objects
-                .values()
-                .find(|o| o.name == name)
-                .map(|o| o.handle)
-                .ok_or_else(missing)
+            self.index.named(name).ok_or_else(missing)
         }
     }
 
@@ -373,21 +433,19 @@ impl Scene {
         let mut out = String::new();
         for alias in &chain {
             let first = self
-                .objects
-                .values()
-                .find(|x| {
-                    scope.is_none_or(|s| self.is_descendant(x.handle, s)) && &x.alias == alias
-                })
-                .map(|x| x.handle);
+                .index
+                .with_alias(alias)
+                .find(|&x| scope.is_none_or(|s| self.is_descendant(x, s)));
             scope = first;
             out.push('/');
             out.push_str(alias);
         }
         let index = self
-            .objects
-            .values()
-            .filter(|x| scope.is_none_or(|s| self.is_descendant(x.handle, s)) && x.alias == o.alias)
-            .position(|x| x.handle == handle)
+            .index
+            .with_alias(&o.alias)
+            .take_while(|&x| x <= handle)
+            .filter(|&x| scope.is_none_or(|s| self.is_descendant(x, s)))
+            .position(|x| x == handle)
             .unwrap_or(0);
         out.push('/');
         out.push_str(&o.alias);
@@ -484,10 +542,12 @@ impl Scene {
                 });
             }
         }
-        self.objects
+        let o = self
+            .objects
             .get_mut(&handle)
-            .ok_or(SimError::NoSuchHandle(handle))?
-            .parent = parent;
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        let old = std::mem::replace(&mut o.parent, parent);
+        self.index.reparent(handle, old, parent);
         if keep_in_place {
             self.set_world(handle, world)?;
         }
@@ -497,16 +557,13 @@ impl Scene {
     /// Removes an object; its children move to its parent, keeping their world pose.
     pub fn remove(&mut self, handle: i32) -> Result<(), SimError> {
         let parent = self.get(handle)?.parent;
-        let children: Vec<i32> = self
-            .objects
-            .values()
-            .filter(|o| o.parent == Some(handle))
-            .map(|o| o.handle)
-            .collect();
+        let children: Vec<i32> = self.children(Some(handle)).collect();
         for c in children {
             self.set_parent(c, parent, true)?;
         }
-        self.objects.remove(&handle);
+        if let Some(o) = self.objects.remove(&handle) {
+            self.index.remove(&o);
+        }
         Ok(())
     }
 
@@ -515,9 +572,13 @@ impl Scene {
     /// else none (pasted copies are parentless, as observed on CoppeliaSim 4.5.1).
     pub fn copy_paste(&mut self, handles: &[i32]) -> Result<Vec<i32>, SimError> {
         let mut unique: Vec<i32> = Vec::with_capacity(handles.len());
+        // position of each original in `unique`
+        let mut position: std::collections::HashMap<i32, usize> =
+            std::collections::HashMap::with_capacity(handles.len());
         for &h in handles {
             self.get(h)?;
-            if !unique.contains(&h) {
+            if let std::collections::hash_map::Entry::Vacant(e) = position.entry(h) {
+                e.insert(unique.len());
                 unique.push(h);
             }
         }
@@ -526,43 +587,33 @@ impl Scene {
             .map(|&h| self.world(h))
             .collect::<Result<_, _>>()?;
         let mut new = Vec::with_capacity(unique.len());
-        let mut taken: std::collections::HashSet<String> =
-            self.objects.values().map(|o| o.name.clone()).collect();
+        // within one call, the copies of one base count on from the previous one
         let mut next: std::collections::HashMap<(String, &'static str), u64> =
             std::collections::HashMap::new();
         for (&h, world) in unique.iter().zip(&worlds) {
             let original = self.objects[&h].clone();
             let (base, sep, start) = self.copy_name_parts(&original.name);
-            let from = next
-                .get(&(base.clone(), sep))
-                .copied()
-                .unwrap_or(0)
-                .max(start);
-            let n = (from..)
-                .find(|n| !taken.contains(&format!("{base}{sep}{n}")))
-                .expect("unbounded range");
-            next.insert((base.clone(), sep), n + 1);
-            let name = format!("{base}{sep}{n}");
-            taken.insert(name.clone());
+            let key = (base, sep);
+            let from = next.get(&key).copied().unwrap_or(0).max(start);
+            let n = self.index.first_free(&key.0, sep, from);
+            let name = format!("{}{sep}{n}", key.0);
+            next.insert(key, n.saturating_add(1));
             let handle = self.next_handle;
             self.next_handle += 1;
             let (position, orientation) = position_euler(world);
-            self.objects.insert(
+            self.insert(Object {
                 handle,
-                Object {
-                    handle,
-                    name,
-                    parent: None,
-                    position,
-                    orientation,
-                    ..original
-                },
-            );
+                name,
+                parent: None,
+                position,
+                orientation,
+                ..original
+            });
             new.push(handle);
         }
         for (i, &h) in unique.iter().enumerate() {
             if let Some(p) = self.objects[&h].parent
-                && let Some(j) = unique.iter().position(|&u| u == p)
+                && let Some(&j) = position.get(&p)
             {
                 self.set_parent(new[i], Some(new[j]), true)?;
             }
@@ -573,10 +624,7 @@ impl Scene {
     /// Name a copy of `name` gets under the current naming mode.
     pub fn copy_name(&self, name: &str) -> String {
         let (base, sep, start) = self.copy_name_parts(name);
-        (start..)
-            .map(|n| format!("{base}{sep}{n}"))
-            .find(|n| !self.objects.values().any(|o| &o.name == n))
-            .expect("unbounded range")
+        format!("{base}{sep}{}", self.index.first_free(&base, sep, start))
     }
 
     /// (base, separator, first number to try) of the names of copies of `name`.
@@ -627,11 +675,7 @@ impl Scene {
     /// `base` if no object has that name (other than `except`), else `base0`, `base1`, ...:
     /// the names CoppeliaSim gives newly created objects.
     pub fn unique_name(&self, base: &str, except: Option<i32>) -> String {
-        let taken = |n: &str| {
-            self.objects
-                .values()
-                .any(|o| o.name == n && Some(o.handle) != except)
-        };
+        let taken = |n: &str| self.index.named(n).is_some_and(|h| Some(h) != except);
         if !taken(base) {
             return base.to_string();
         }
@@ -645,9 +689,7 @@ impl Scene {
     pub fn create(&mut self, base: &str, o: NewObject) -> i32 {
         let name = self.unique_name(base, None);
         let handle = self.add(&name, o);
-        if let Some(obj) = self.objects.get_mut(&handle) {
-            obj.alias = base.to_string();
-        }
+        self.rename(handle, None, Some(base.to_string()));
         handle
     }
 
@@ -666,13 +708,23 @@ impl Scene {
             })
             .collect();
         let name = self.unique_name(&clean, Some(handle));
-        let o = self
-            .objects
-            .get_mut(&handle)
-            .ok_or(SimError::NoSuchHandle(handle))?;
-        o.alias = clean;
-        o.name = name;
+        self.rename(handle, Some(name), Some(clean));
         Ok(())
+    }
+
+    /// Gives an object a new name and/or alias, keeping the index in step.
+    fn rename(&mut self, handle: i32, name: Option<String>, alias: Option<String>) {
+        let Some(mut o) = self.objects.remove(&handle) else {
+            return;
+        };
+        self.index.remove(&o);
+        if let Some(n) = name {
+            o.name = n;
+        }
+        if let Some(a) = alias {
+            o.alias = a;
+        }
+        self.insert(o);
     }
 
     /// Sets an object's colour.
@@ -726,6 +778,125 @@ mod tests {
         assert_eq!(s.resolve("/Line[2]").unwrap(), again[0]);
         assert_eq!(s.resolve("/Line").unwrap(), line);
         assert!(s.resolve("Line#0").is_err());
+    }
+
+    /// The names, paths and orders the scene's index gives, against a scan of every object
+    /// (what the scene did before it had an index), over random edits in both naming modes.
+    #[test]
+    fn the_index_answers_what_a_full_scan_answers() {
+        use crate::rng::MazeRng;
+        for (seed, naming) in [(1u64, NamingMode::Plain), (2, NamingMode::Hash)] {
+            let mut rng = MazeRng::from_seed(seed);
+            let mut s = Scene::course();
+            s.naming = naming;
+            for step in 0..200 {
+                let hs: Vec<i32> = s.objects().map(|o| o.handle).collect();
+                let pick = |rng: &mut MazeRng| hs[rng.index(hs.len())];
+                match rng.below(6) {
+                    0 | 1 => {
+                        let picked: Vec<i32> =
+                            (0..1 + rng.below(3)).map(|_| pick(&mut rng)).collect();
+                        // reference: lowest free name counting on from the previous one
+                        let want: Vec<String> = {
+                            let mut taken: std::collections::HashSet<String> =
+                                s.objects().map(|o| o.name.clone()).collect();
+                            let mut next = std::collections::HashMap::new();
+                            let mut seen = vec![];
+                            let mut out = vec![];
+                            for h in &picked {
+                                if seen.contains(h) {
+                                    continue;
+                                }
+                                seen.push(*h);
+                                let (base, sep, start) =
+                                    s.copy_name_parts(&s.get(*h).unwrap().name);
+                                let from = next
+                                    .get(&(base.clone(), sep))
+                                    .copied()
+                                    .unwrap_or(0)
+                                    .max(start);
+                                let n = (from..)
+                                    .find(|n| !taken.contains(&format!("{base}{sep}{n}")))
+                                    .unwrap();
+                                next.insert((base.clone(), sep), n + 1);
+                                taken.insert(format!("{base}{sep}{n}"));
+                                out.push(format!("{base}{sep}{n}"));
+                            }
+                            out
+                        };
+                        let new = s.copy_paste(&picked).unwrap();
+                        assert_eq!(names(&s, &new), want, "step {step}");
+                    }
+                    2 if s.len() > 3 => s.remove(pick(&mut rng)).unwrap(),
+                    3 => {
+                        let (h, p) = (pick(&mut rng), pick(&mut rng));
+                        let _ = s.set_parent(h, (rng.below(4) > 0).then_some(p), true);
+                    }
+                    4 => {
+                        let alias = ["Line", "Line7", "Wall", "Line#2", "x"][rng.index(5)];
+                        s.set_alias(pick(&mut rng), alias).unwrap();
+                    }
+                    _ => {
+                        let base = ["Line", "Plane", "Line0"][rng.index(3)];
+                        let want = if s.objects().any(|o| o.name == base) {
+                            (0u64..)
+                                .map(|n| format!("{base}{n}"))
+                                .find(|n| s.objects().all(|o| &o.name != n))
+                                .unwrap()
+                        } else {
+                            base.to_string()
+                        };
+                        let h = s.create(
+                            base,
+                            NewObject {
+                                kind: ObjectType::Shape,
+                                parent: None,
+                                position: [0.0; 3],
+                                orientation: [0.0; 3],
+                                size: [1.0; 3],
+                                colour: [0; 3],
+                            },
+                        );
+                        assert_eq!(s.get(h).unwrap().name, want);
+                    }
+                }
+                if step % 5 != 0 {
+                    continue;
+                }
+                // names and paths resolve to their objects; copy names are the first free
+                for o in s.objects() {
+                    assert_eq!(s.resolve(&o.name).unwrap(), o.handle);
+                    let path = s.path(o.handle).unwrap();
+                    let (base, sep, start) = s.copy_name_parts(&o.name);
+                    let first = (start..)
+                        .map(|n| format!("{base}{sep}{n}"))
+                        .find(|n| s.objects().all(|x| &x.name != n))
+                        .unwrap();
+                    assert_eq!(s.copy_name(&o.name), first);
+                    if s.get(o.handle).unwrap().parent.is_none() {
+                        assert_eq!(s.resolve(&path).unwrap(), o.handle, "{path}");
+                    }
+                }
+                // tree order: depth first from the roots, siblings in handle order
+                let mut want = vec![];
+                fn visit(s: &Scene, parent: Option<i32>, out: &mut Vec<i32>) {
+                    for o in s.objects().filter(|o| o.parent == parent) {
+                        out.push(o.handle);
+                        visit(s, Some(o.handle), out);
+                    }
+                }
+                visit(&s, None, &mut want);
+                assert_eq!(s.tree_order(), want);
+                assert_eq!(
+                    s.child_count(None),
+                    s.objects().filter(|o| o.parent.is_none()).count()
+                );
+                // a scene read back has the same index
+                let back = Scene::from_json(&s.to_json().to_string()).unwrap();
+                assert_eq!(back, s);
+                assert_eq!(back.tree_order(), want);
+            }
+        }
     }
 
     #[test]

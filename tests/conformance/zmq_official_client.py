@@ -154,8 +154,13 @@ try:
 
     sim.removeObjects([copy, plane])
     check("removeObjects", sim.getObject("/Fresh_Line", {"noError": True}) == -1 and sim.getObject("/Line[3]", {"noError": True}) == -1)
-    ok, msg = raises(lambda: sim.removeObjects([copy]), "does not exist")
-    check("removing a removed handle is an error", ok, msg)
+    # a real CoppeliaSim 4.5.1 skips handles already removed (spec real-coppeliasim-4.5.1.md)
+    try:
+        sim.removeObjects([copy])
+        ok, msg = True, ""
+    except Exception as e:  # noqa: BLE001
+        ok, msg = False, str(e)
+    check("removing a removed handle succeeds", ok, msg)
     ok, msg = raises(lambda: client.call("sim.noSuchThing", [1]), "No such function: sim.noSuchThing")
     check("unknown function: 'No such function: sim.noSuchThing'", ok, msg)
     ok, msg = raises(lambda: sim.getObjectPosition("x", -1), "argument")

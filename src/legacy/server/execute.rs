@@ -1,5 +1,7 @@
-//! What each command does to the simulator: [`execute`] one stored command in a pass, and
-//! the group data of `simxGetObjectGroupData`.
+//! What each command does to the simulator: [`execute`] one stored command in a pass, its
+//! modeled server work ([`cost`]), and the group data of `simxGetObjectGroupData`.
+
+use std::time::Duration;
 
 use crate::coppelia::frame::rotation_from_euler;
 use crate::coppelia::{HANDLE_ALL, HANDLE_PARENT, HANDLE_WORLD};
@@ -8,7 +10,7 @@ use crate::legacy::command::{
     encode_handle_list, group,
 };
 use crate::legacy::wire::Block;
-use crate::sim::Simulator;
+use crate::sim::{CostModel, Simulator};
 
 fn f32x3(v: [f64; 3]) -> Vec<u8> {
     v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
@@ -16,6 +18,30 @@ fn f32x3(v: [f64; 3]) -> Vec<u8> {
 
 fn widen(v: [f32; 3]) -> [f64; 3] {
     [v[0] as f64, v[1] as f64, v[2] as f64]
+}
+
+/// The server work a real CoppeliaSim 4.5.1 does for one command, from the scene as it is
+/// before the command (`crate::sim::cost`; spec "Drawing cost on the server (legacy API,
+/// idle fps 0)"): a paste scans the scene to name each copy, a set-parent scans the new
+/// parent's children and the parentless objects, positions and orientations cost a constant.
+/// Commands the spec has no figure for cost nothing.
+pub(super) fn cost(sim: &Simulator, block: &Block, model: &CostModel) -> Duration {
+    let scene = &sim.scene;
+    match Command::from_block(block) {
+        Some(Command::CopyPaste(hs)) => {
+            let mut unique = hs;
+            unique.sort_unstable();
+            unique.dedup();
+            model.legacy_paste(scene.len(), unique.len())
+        }
+        Some(Command::SetObjectParent { parent, .. }) => {
+            let parent = (parent != HANDLE_WORLD).then_some(parent);
+            model.legacy_set_parent(scene.child_count(parent), scene.child_count(None))
+        }
+        Some(Command::SetPosition { .. }) => model.set_position,
+        Some(Command::SetOrientation { .. }) => model.set_orientation,
+        _ => Duration::ZERO,
+    }
 }
 
 /// Executes one command; returns (success, reply pure data).
@@ -313,6 +339,41 @@ mod tests {
         assert_eq!(list(&mut sim, HANDLE_ALL), all);
         let dummy = sim.scene.get(maze).unwrap().kind.code();
         assert_eq!(list(&mut sim, dummy), [maze]);
+    }
+
+    #[test]
+    fn drawing_commands_cost_what_the_model_says_from_the_scene_counts() {
+        let (sim, maze, line) = sim();
+        let m = CostModel::measured();
+        let block = |c: Command| c.to_block(opmode::BLOCKING);
+        // 5 objects; pasting `line` twice is one copy
+        assert_eq!(
+            cost(&sim, &block(Command::CopyPaste(vec![line, line])), &m),
+            m.legacy_paste(5, 1)
+        );
+        // `Maze` has one child (`Line`); 4 objects are parentless
+        let to_maze = Command::SetObjectParent {
+            handle: line,
+            parent: maze,
+            keep_in_place: true,
+        };
+        assert_eq!(cost(&sim, &block(to_maze), &m), m.legacy_set_parent(1, 4));
+        let at = Command::SetPosition {
+            handle: line,
+            relative_to: HANDLE_WORLD,
+            xyz: [0.0; 3],
+        };
+        assert_eq!(cost(&sim, &block(at), &m), m.set_position);
+        let free = Command::GetIntParam(0);
+        assert_eq!(cost(&sim, &block(free), &m), Duration::ZERO);
+    }
+
+    #[test]
+    fn removing_a_removed_object_is_still_an_error() {
+        // simInternal-old.cpp:5593-5597: the legacy remove command checks the handle
+        let (mut sim, _, line) = sim();
+        assert!(run(&mut sim, Command::RemoveObject(line)).is_some());
+        assert!(run(&mut sim, Command::RemoveObject(line)).is_none());
     }
 
     #[test]

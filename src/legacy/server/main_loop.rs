@@ -6,16 +6,24 @@
 //! ([`store`]); a pass stamps the reply header and executes them in order: oneshot and
 //! blocking commands once, streaming ones every pass (at most once per their period) until
 //! discontinued. Their results wait in the output buffer for the next reply.
+//!
+//! With realistic [`Timing`](crate::sim::Timing), a pass also takes the modeled server work of
+//! the commands it executed ([`super::execute::cost`], `crate::sim::cost`), at least
+//! [`CostModel::legacy_pass_floor`](crate::sim::CostModel::legacy_pass_floor) at idle fps 0
+//! (`../shared/spec/real-coppeliasim-4.5.1.md`, "Pacing": a legacy blocking call at idle fps 0
+//! takes 9–10 ms): its results are held back until then, replies meanwhile carry none (message
+//! ID -1, as while no pass happened), and the next pass waits for it. A big pass checks the
+//! stop flag between commands, so the server stops promptly even in the middle of one.
 
 use std::collections::HashMap;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::Shared;
-use super::execute::execute;
+use super::execute::{cost, execute};
 use crate::legacy::command::opmode;
 use crate::legacy::wire::{Block, Message, MessageHeader, server_state, status};
-use crate::sim::{SimState, Simulator};
+use crate::sim::{SimState, Simulator, Timing};
 
 /// Reply header `scene_id`: the low 16 bits of CoppeliaSim's `sim_intparam_scene_unique_id`;
 /// the emulated scene never changes identity, so any fixed value does.
@@ -51,6 +59,8 @@ pub(super) struct Core {
     new_input: bool,
     /// Simulation time of reply blocks, in ms (0 while stopped).
     sim_time_ms: i32,
+    /// The latest pass is still working (modeled cost) until then: its results are held back.
+    busy_until: Option<Instant>,
     /// Passes that executed the input list.
     pub(super) passes: u64,
     /// Client messages received.
@@ -72,6 +82,7 @@ impl Core {
             latest_client_time: 0,
             new_input: false,
             sim_time_ms: 0,
+            busy_until: None,
             passes: 0,
             messages: 0,
         }
@@ -96,10 +107,17 @@ impl Core {
         // at idle fps 0 every client message triggers a pass (CoppeliaSim then loops as fast as it can)
         self.new_input = true;
         store(&mut self.input, blocks);
-        let header = self.fresh.take().unwrap_or(MessageHeader {
+        let stale = MessageHeader {
             message_id: -1,
             ..self.stale
-        });
+        };
+        if self.busy_until.is_some_and(|t| Instant::now() < t) {
+            return Message {
+                header: stale,
+                blocks: vec![],
+            };
+        }
+        let header = self.fresh.take().unwrap_or(stale);
         Message {
             header,
             blocks: std::mem::take(&mut self.output),
@@ -108,10 +126,18 @@ impl Core {
 
     /// One main-loop pass: stamp the output header, execute the stored commands in order.
     /// `step` is the simulation step, `started` the start of the server clock. Does nothing
-    /// while the results of the previous pass have not been sent.
-    fn pass(&mut self, step: Duration, started: Instant) {
+    /// while the results of the previous pass have not been sent. Returns the modeled work
+    /// of the commands executed (zero with instant `timing`); when `stop` is set it leaves
+    /// the commands not executed yet in the input list.
+    fn pass(
+        &mut self,
+        step: Duration,
+        started: Instant,
+        timing: &Timing,
+        stop: &AtomicBool,
+    ) -> Duration {
         if !self.output.is_empty() {
-            return;
+            return Duration::ZERO;
         }
         self.passes += 1;
         if self.sim.state == SimState::Running {
@@ -131,7 +157,11 @@ impl Core {
         let sim_time = self.sim_time_ms;
         let sim = &mut self.sim;
         let mut results = Vec::new();
+        let mut work = Duration::ZERO;
         self.input.retain_mut(|s| {
+            if stop.load(Ordering::Relaxed) {
+                return true;
+            }
             let mode = s.block.opmode();
             let mut reply = Block {
                 delay: 0,
@@ -153,6 +183,9 @@ impl Core {
                 return true;
             }
             s.last_exec = Some(now);
+            if let Some(model) = &timing.costs {
+                work += cost(sim, &s.block, model);
+            }
             let (ok, data) = execute(sim, &s.block);
             reply.status = if ok { 0 } else { status::REMOTE_ERROR };
             reply.data = data;
@@ -162,7 +195,17 @@ impl Core {
         if self.sim.state == SimState::Stopped {
             self.sim_time_ms = 0;
         }
+        let executed = !results.is_empty();
         self.output = results;
+        match &timing.costs {
+            Some(m) if executed && self.idle_spinning() => work.max(m.legacy_pass_floor),
+            _ => work,
+        }
+    }
+
+    /// Whether the main loop passes without sleeping (stopped or paused at idle fps 0).
+    fn idle_spinning(&self) -> bool {
+        self.sim.state != SimState::Running && self.sim.idle_fps <= 0
     }
 }
 
@@ -205,6 +248,20 @@ pub(super) fn run(shared: &Shared) {
     let mut last_pass = Instant::now();
     let mut core = shared.lock();
     while !shared.stop.load(Ordering::SeqCst) {
+        // the latest pass is still working: wait for it (the lock is free meanwhile)
+        if let Some(busy) = core.busy_until {
+            match busy.checked_duration_since(Instant::now()) {
+                Some(wait) if !wait.is_zero() => {
+                    core = shared
+                        .wake
+                        .wait_timeout(core, wait.min(STOP_POLL))
+                        .unwrap_or_else(|e| e.into_inner())
+                        .0;
+                    continue;
+                }
+                _ => core.busy_until = None,
+            }
+        }
         let next = shared
             .config
             .clock
@@ -225,7 +282,15 @@ pub(super) fn run(shared: &Shared) {
         }
         last_pass = Instant::now();
         core.new_input = false;
-        core.pass(shared.config.clock.step, shared.started);
+        let work = core.pass(
+            shared.config.clock.step,
+            shared.started,
+            &shared.config.timing,
+            &shared.stop,
+        );
+        if !work.is_zero() {
+            core.busy_until = Some(last_pass + work);
+        }
     }
 }
 
@@ -306,7 +371,12 @@ mod tests {
             "no pass yet"
         );
 
-        core.pass(STEP, Instant::now());
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
         let r = core.receive(&header(1), vec![]);
         assert_eq!(r.header.message_id, 0, "the latest message before the pass");
         assert_eq!(r.header.client_time, 1000);
@@ -339,17 +409,37 @@ mod tests {
             relative_to: HANDLE_WORLD,
         };
         core.receive(&header(0), vec![get.to_block(opmode::STREAMING)]);
-        core.pass(STEP, Instant::now());
-        core.pass(STEP, Instant::now());
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
         assert_eq!(core.passes, 1, "the second pass found unsent results");
         let r = core.receive(&header(1), vec![]);
         assert_eq!(r.blocks.len(), 1);
-        core.pass(STEP, Instant::now());
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
         assert_eq!(core.passes, 2);
         let missing = Command::GetObjectHandle("Nope".into()).to_block(opmode::BLOCKING);
         let r = core.receive(&header(2), vec![missing.clone(), missing]);
         assert_eq!(r.blocks.len(), 1, "the stream's result");
-        core.pass(STEP, Instant::now());
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
         let r = core.receive(&header(3), vec![]);
         let failed: Vec<u8> = r
             .blocks
@@ -374,7 +464,12 @@ mod tests {
         let (maze, floor) = (get("Maze"), get("Floor"));
         let cycle = |core: &mut Core, blocks| {
             core.receive(&header(0), blocks);
-            core.pass(STEP, Instant::now());
+            core.pass(
+                STEP,
+                Instant::now(),
+                &Timing::instant(),
+                &AtomicBool::new(false),
+            );
             core.receive(&header(1), vec![]).blocks
         };
         assert_eq!(
@@ -401,19 +496,74 @@ mod tests {
     }
 
     #[test]
+    fn a_stopping_server_leaves_the_rest_of_a_big_pass_undone() {
+        let mut core = core();
+        let blocks = (0..100).map(|i| set_x(i, 0.0)).collect();
+        core.receive(&header(0), blocks);
+        let stop = AtomicBool::new(true);
+        core.pass(STEP, Instant::now(), &Timing::instant(), &stop);
+        assert_eq!(core.input.len(), 100, "nothing executed once stopping");
+    }
+
+    #[test]
+    fn a_realistic_pass_takes_its_modeled_work_and_holds_its_results_back() {
+        let mut core = core();
+        let line = core.sim.scene.resolve("Line").unwrap();
+        let real = Timing::realistic();
+        let m = real.costs.unwrap();
+        let paste = Command::CopyPaste(vec![line]).to_block(opmode::BLOCKING);
+        core.receive(&header(0), vec![paste, set_x(line, 1.0)]);
+        let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
+        // at idle fps 0 a pass lasts at least the floor (spec "Pacing": 9–10 ms)
+        assert_eq!(
+            work,
+            (m.legacy_paste(5, 1) + m.set_position).max(m.legacy_pass_floor)
+        );
+        core.busy_until = Some(Instant::now() + Duration::from_secs(60));
+        let r = core.receive(&header(1), vec![]);
+        assert_eq!(
+            (r.header.message_id, r.blocks.len()),
+            (-1, 0),
+            "still working"
+        );
+        core.busy_until = None;
+        let r = core.receive(&header(2), vec![]);
+        assert_eq!((r.header.message_id, r.blocks.len()), (0, 2));
+        // an empty pass costs nothing; at idle fps 8 there is no floor
+        assert_eq!(
+            core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false)),
+            Duration::ZERO
+        );
+        core.sim.idle_fps = 8;
+        core.receive(&header(3), vec![set_x(line, 2.0)]);
+        let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
+        assert_eq!(work, m.set_position);
+    }
+
+    #[test]
     fn running_passes_advance_sim_time_and_set_the_state_bits() {
         let mut core = core();
         let get = Command::GetIntParam(crate::coppelia::INTPARAM_IDLE_FPS);
         core.sim.start();
         for n in 1..=2 {
             core.receive(&header(n), vec![get.to_block(opmode::BLOCKING)]);
-            core.pass(STEP, Instant::now());
+            core.pass(
+                STEP,
+                Instant::now(),
+                &Timing::instant(),
+                &AtomicBool::new(false),
+            );
             let r = core.receive(&header(n), vec![]);
             assert_eq!(r.header.server_state, server_state::NOT_STOPPED);
             assert_eq!(r.blocks[0].sim_time, 50 * n);
         }
         core.sim.pause();
-        core.pass(STEP, Instant::now());
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        );
         let r = core.receive(&header(3), vec![]);
         assert_eq!(
             r.header.server_state,

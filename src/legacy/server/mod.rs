@@ -27,7 +27,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::wire::MAX_PACKET_SIZE;
-use crate::sim::{Clock, Simulator};
+use crate::sim::{Clock, Simulator, Timing};
 use main_loop::Core;
 
 /// Server settings.
@@ -49,7 +49,14 @@ pub struct ServerConfig {
     pub trace: bool,
     /// After a client leaves, the listening socket is closed and re-created this much later
     /// (CoppeliaSim: 500 ms and more; connections are refused meanwhile). Zero keeps it open.
+    /// A client that left with the kill command can be followed at once on a real 4.5.1
+    /// (`../shared/spec/real-coppeliasim-4.5.1.md`, "Connections (legacy API)"), so `serve`
+    /// leaves this at zero.
     pub rebind_delay: Duration,
+    /// Modeled server work and the reconnect penalty after an abrupt end of session
+    /// ([`Timing::instant`] by default: nothing modeled, no penalty;
+    /// [`Timing::realistic`] for what a real CoppeliaSim 4.5.1 does).
+    pub timing: Timing,
 }
 
 impl Default for ServerConfig {
@@ -63,6 +70,7 @@ impl Default for ServerConfig {
             verbose: false,
             trace: false,
             rebind_delay: Duration::ZERO,
+            timing: Timing::instant(),
         }
     }
 }
@@ -194,4 +202,110 @@ pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
         shared,
         threads: vec![main_loop, acceptor],
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::legacy::command::{Command, opmode};
+    use crate::legacy::wire::{Message, MessageHeader, read_message, write_message};
+    use crate::sim::{Scene, Timing};
+
+    const PENALTY: Duration = Duration::from_millis(500);
+
+    fn server() -> ServerHandle {
+        let config = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            timing: Timing {
+                reconnect_penalty: PENALTY,
+                ..Timing::realistic()
+            },
+            ..Default::default()
+        };
+        spawn(config, Simulator::new(Scene::course(), 0)).unwrap()
+    }
+
+    /// Sends one message (with the kill command last if `kill`) and reads its reply.
+    fn exchange(stream: &mut TcpStream, kill: bool) {
+        let blocks = if kill {
+            vec![Command::KillConnection.to_block(opmode::ONESHOT)]
+        } else {
+            vec![]
+        };
+        let msg = Message {
+            header: MessageHeader::default(),
+            blocks,
+        };
+        write_message(stream, &msg.encode(), MAX_PACKET_SIZE).unwrap();
+        read_message(stream).unwrap();
+    }
+
+    /// Tries to connect every 10 ms for up to `within`: true once `want_refused` holds.
+    fn becomes(addr: SocketAddr, want_refused: bool, within: Duration) -> bool {
+        let end = Instant::now() + within;
+        while Instant::now() < end {
+            // a connection that lands in the backlog of a socket being closed is reset later
+            if TcpStream::connect(addr).is_err() == want_refused {
+                return true;
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        false
+    }
+
+    #[test]
+    fn after_the_kill_command_the_next_client_is_accepted_at_once() {
+        let s = server();
+        for _ in 0..3 {
+            let mut c = TcpStream::connect(s.local_addr()).expect("accepted at once");
+            exchange(&mut c, false);
+            exchange(&mut c, true);
+        }
+        s.shutdown();
+    }
+
+    #[test]
+    fn after_an_abrupt_end_every_connection_is_refused_until_the_penalty_expires() {
+        let s = server();
+        let addr = s.local_addr();
+        let mut c = TcpStream::connect(addr).unwrap();
+        exchange(&mut c, false);
+        drop(c); // no kill command: end of file mid-session
+        assert!(
+            becomes(addr, true, PENALTY / 2),
+            "refused during the penalty"
+        );
+        // the first connection accepted is served (a probe dropped here would end abruptly)
+        let end = Instant::now() + Duration::from_secs(10);
+        let mut c = loop {
+            if let Ok(c) = TcpStream::connect(addr) {
+                break c;
+            }
+            assert!(Instant::now() < end, "accepted after the penalty");
+            std::thread::sleep(Duration::from_millis(10));
+        };
+        exchange(&mut c, true);
+        s.shutdown();
+    }
+
+    #[test]
+    fn the_library_default_has_no_penalty_and_no_modeled_costs() {
+        let config = ServerConfig::default();
+        assert_eq!(config.timing, Timing::instant());
+        assert!(config.timing.reconnect_penalty.is_zero() && config.rebind_delay.is_zero());
+    }
+
+    #[test]
+    fn shutdown_is_prompt_during_the_penalty() {
+        let config = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            timing: Timing::realistic(), // 60 s
+            ..Default::default()
+        };
+        let s = spawn(config, Simulator::new(Scene::course(), 0)).unwrap();
+        drop(TcpStream::connect(s.local_addr()).unwrap());
+        assert!(becomes(s.local_addr(), true, Duration::from_secs(5)));
+        // joins the accept thread, which is sleeping out the penalty
+        s.shutdown();
+    }
 }

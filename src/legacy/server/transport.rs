@@ -4,11 +4,19 @@
 //! [`Core::receive`](super::main_loop::Core::receive) and
 //! writes back the reply it returns; it ends on a socket or protocol error, after a message
 //! whose last block is the kill command, or when the server stops.
+//!
+//! A session that ends any other way than with the kill command (connection reset, end of
+//! file, the idle timeout, a protocol error) closes the port for
+//! [`Timing::reconnect_penalty`](crate::sim::Timing::reconnect_penalty): every connection is
+//! refused until it expires (`../shared/spec/real-coppeliasim-4.5.1.md`, "Connections (legacy
+//! API)": about 60 s, measured 62–65 s stopped and 43–60 s running; the real cause is the
+//! server socket in TIME_WAIT and a re-bind without SO_REUSEADDR retried every 2.5 s,
+//! simExtRemoteApi `inConnection.cpp:243-277`, `simxSocket.cpp:544-554`).
 
 use std::io;
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
-use std::sync::atomic::Ordering;
-use std::time::Duration;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use super::{Shared, write_dump};
 use crate::legacy::command::id;
@@ -50,7 +58,7 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} connected");
         }
-        let why = session(shared, stream);
+        let (why, killed) = session(shared, stream);
         shared
             .active
             .lock()
@@ -64,17 +72,41 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} left: {why}");
         }
-        if shared.config.rebind_delay.is_zero() {
+        let penalty = shared.config.timing.reconnect_penalty;
+        let closed_for = if killed || shared.stop.load(Ordering::SeqCst) {
+            shared.config.rebind_delay
+        } else {
+            shared.config.rebind_delay.max(penalty)
+        };
+        if closed_for.is_zero() {
             listener = Some(l);
         } else {
             drop(l);
-            std::thread::sleep(shared.config.rebind_delay);
+            if shared.config.verbose && !killed && !penalty.is_zero() {
+                eprintln!(
+                    "vrep-maze serve: the client left without the kill command: refusing connections for {:.1} s",
+                    closed_for.as_secs_f64()
+                );
+            }
+            sleep_unless_stopped(&shared.stop, closed_for);
         }
     }
 }
 
-/// Serves one client until it leaves; returns why the session ended.
-fn session(shared: &Shared, mut stream: TcpStream) -> String {
+/// Sleeps `d`, or less if the server stops meanwhile.
+fn sleep_unless_stopped(stop: &AtomicBool, d: Duration) {
+    let end = Instant::now() + d;
+    while !stop.load(Ordering::SeqCst) {
+        let Some(left) = end.checked_duration_since(Instant::now()) else {
+            return;
+        };
+        std::thread::sleep(left.min(Duration::from_millis(20)));
+    }
+}
+
+/// Serves one client until it leaves; returns why the session ended, and whether it ended
+/// with the kill command.
+fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
     let _ = stream.set_read_timeout(Some(shared.config.idle_timeout));
     let _ = stream.set_nodelay(true);
     *shared.active.lock().unwrap_or_else(|e| e.into_inner()) = stream.try_clone().ok();
@@ -82,15 +114,15 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
     loop {
         if shared.stop.load(Ordering::SeqCst) {
             let _ = stream.shutdown(Shutdown::Both);
-            return "server stopping".into();
+            return ("server stopping".into(), false);
         }
         let bytes = match read_message(&mut stream) {
             Ok(b) => b,
-            Err(e) => return format!("{e}"),
+            Err(e) => return (format!("{e}"), false),
         };
         let msg = match Message::decode(&bytes) {
             Ok(m) => m,
-            Err(e) => return format!("protocol error: {e}"),
+            Err(e) => return (format!("protocol error: {e}"), false),
         };
         if shared.config.trace {
             trace(&msg, bytes.len());
@@ -120,11 +152,11 @@ fn session(shared: &Shared, mut stream: TcpStream) -> String {
             reply
         };
         if let Err(e) = write_message(&mut stream, &reply.encode(), shared.config.max_packet_size) {
-            return format!("{e}");
+            return (format!("{e}"), kill);
         }
         if kill {
             let _ = stream.shutdown(Shutdown::Both);
-            return "kill command".into();
+            return ("kill command".into(), true);
         }
     }
 }

@@ -1,8 +1,11 @@
 //! An emulated ZeroMQ remote API server (the CoppeliaSim add-on) over a shared [`Simulator`].
 //!
 //! One REP socket, one thread. The add-on serves requests from CoppeliaSim's main loop, timed
-//! by [`Clock::serve_at`]: a request arriving within the busy window of the previous reply is
-//! served at once, a later one waits for the next pass (1 / `idle_fps`; none at idle fps 0).
+//! by [`ZmqPacer::serve_at`]: protocol 1 (4.5.1) one request per pass, protocol 2 (4.6+) also
+//! at once within the busy window of a pass that served one; at idle fps 0 at once. With
+//! realistic [`Timing`], each call then takes its modeled cost (`crate::sim::cost`: about
+//! 0.45 ms, bulk copy, removal and tree queries by their size, `../shared/spec/
+//! real-coppeliasim-4.5.1.md` "Pacing" and "ZeroMQ costs at idle fps 0") before its reply.
 //! This module is the transport (socket, request and reply maps of either protocol generation,
 //! protocol-2 results held back behind `_*wait*_`); the functions themselves are in the
 //! `functions` registry.
@@ -15,11 +18,11 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use ciborium::Value;
 
-use crate::sim::{Clock, SimState, Simulator};
+use crate::sim::{Clock, SimState, Simulator, Timing, ZmqPacer, ZmqPacing};
 use crate::zmq_api::cbor;
 use crate::zmq_api::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
 use functions::{Extras, Outcome};
@@ -51,10 +54,19 @@ pub struct ServerConfig {
     pub protocol: Protocol,
     /// When the emulated main loop serves a request.
     pub clock: Clock,
+    /// How requests are paced; `None` (the default): as the add-on of [`Self::protocol`]'s
+    /// generation does (protocol 1: one request per main-loop pass; protocol 2: also at once
+    /// within the busy window of a pass that served one). `Some(ZmqPacing::Window)` with
+    /// protocol 1 keeps a protocol-1 test fast at idle fps above 0 (not what 4.5.1 does).
+    pub pacing: Option<ZmqPacing>,
     /// Write the scene as JSON here on shutdown.
     pub dump: Option<PathBuf>,
     /// Log requests that fail on stderr.
     pub verbose: bool,
+    /// Modeled cost of each call ([`Timing::instant`] by default: none;
+    /// [`Timing::realistic`]: what a real CoppeliaSim 4.5.1 takes). The reconnect penalty is
+    /// legacy only.
+    pub timing: Timing,
 }
 
 impl Default for ServerConfig {
@@ -63,8 +75,10 @@ impl Default for ServerConfig {
             listen: SocketAddr::from(([127, 0, 0, 1], 23000)),
             protocol: Protocol::V2,
             clock: Clock::default(),
+            pacing: None,
             dump: None,
             verbose: false,
+            timing: Timing::instant(),
         }
     }
 }
@@ -134,6 +148,9 @@ pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Re
     let socket = context.socket(zmq::REP).map_err(io)?;
     socket.set_linger(0).map_err(io)?;
     socket.set_rcvtimeo(50).map_err(io)?;
+    // a peer that is not a ZeroMQ client (a legacy client pointed at this port) never
+    // completes the greeting: drop it after 2 s rather than libzmq's 30 s
+    socket.set_handshake_ivl(2000).map_err(io)?;
     socket.set_sndtimeo(1000).map_err(io)?;
     let ip = config.listen.ip();
     socket.set_ipv6(ip.is_ipv6()).map_err(io)?;
@@ -198,9 +215,25 @@ struct State {
     pending: HashMap<String, Vec<Value>>,
 }
 
+/// Sleeps until `t`, or less if the server stops meanwhile; false if it stopped.
+fn sleep_until(t: Instant, stop: &AtomicBool) -> bool {
+    while let Some(left) = t.checked_duration_since(Instant::now()) {
+        if stop.load(Ordering::SeqCst) {
+            return false;
+        }
+        std::thread::sleep(left.min(Duration::from_millis(20)));
+    }
+    !stop.load(Ordering::SeqCst)
+}
+
 /// Receives, paces and answers requests until `stop` is set.
 fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &AtomicU64) {
-    let mut last_reply: Option<Instant> = None;
+    let mut pacer = ZmqPacer::new(Instant::now());
+    let pacing = state.config.pacing.unwrap_or(match state.config.protocol {
+        Protocol::V1 => ZmqPacing::OnePerPass,
+        Protocol::V2 => ZmqPacing::Window,
+    });
+    let clock = state.config.clock;
     while !stop.load(Ordering::SeqCst) {
         let bytes = match socket.recv_bytes(0) {
             Ok(b) => b,
@@ -213,52 +246,82 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         state
             .host
             .with_sim(&mut |s| (sim_state, fps) = (s.state, s.idle_fps));
-        let at = state
-            .config
-            .clock
-            .serve_at(sim_state, fps, arrived, last_reply);
-        if let Some(wait) = at.checked_duration_since(Instant::now()) {
-            std::thread::sleep(wait);
+        let at = pacer.serve_at(&clock, pacing, sim_state, fps, arrived);
+        if !sleep_until(at, stop) {
+            break;
         }
-        let reply = handle(state, &bytes);
+        let (reply, work) = handle(state, &bytes);
+        if !sleep_until(Instant::now() + work, stop) {
+            break;
+        }
         // a REP socket must answer before it can receive again; a failed send drops the client
         let _ = socket.send(cbor::encode(&reply), 0);
-        last_reply = Some(Instant::now());
+        pacer.served(&clock, sim_state, fps, at, Instant::now());
     }
 }
 
-/// Answers one request (bytes in, reply map out).
-fn handle(state: &mut State, bytes: &[u8]) -> Value {
+/// Answers one request (bytes in, reply map out) and says how long a real CoppeliaSim would
+/// have worked on it ([`ServerConfig::timing`]).
+fn handle(state: &mut State, bytes: &[u8]) -> (Value, Duration) {
     let protocol = state.config.protocol;
+    let base = state.config.timing.cost(|m| m.zmq_call);
     let req = match cbor::decode(bytes).and_then(|v| Request::from_value(&v)) {
         Ok(r) => r,
         Err(e) => {
             if state.config.verbose {
                 eprintln!("vrep-maze serve (zmq): bad request: {e}");
             }
-            return message::err_reply(protocol, &format!("malformed request: {e}"));
+            return (
+                message::err_reply(protocol, &format!("malformed request: {e}")),
+                base,
+            );
         }
     };
     if protocol == Protocol::V1 {
         return outcome_reply(state, Protocol::V1, &req, None);
     }
     let Some(uuid) = req.uuid.clone() else {
-        return cbor::map([
+        let reply = cbor::map([
             ("success", Value::Bool(false)),
             ("error", Value::Text(VERSION_MISMATCH.into())),
         ]);
+        return (reply, base);
     };
     match req.func.as_str() {
         END => {
             state.pending.remove(&uuid);
-            Value::Map(vec![])
+            (Value::Map(vec![]), base)
         }
-        EXECUTED => message::ret_reply(
-            Protocol::V2,
-            state.pending.remove(&uuid).unwrap_or_default(),
+        EXECUTED => (
+            message::ret_reply(
+                Protocol::V2,
+                state.pending.remove(&uuid).unwrap_or_default(),
+            ),
+            base,
         ),
         _ => outcome_reply(state, Protocol::V2, &req, Some(uuid)),
     }
+}
+
+/// The modeled cost of a call to `func` with `args` that ended in `outcome`
+/// (`crate::sim::cost`, spec "ZeroMQ costs at idle fps 0" and "Pacing").
+fn call_cost(timing: &Timing, func: &str, args: &[Value], outcome: &Outcome) -> Duration {
+    let listed = || match args.first() {
+        Some(Value::Array(v)) => v.len(),
+        _ => 1,
+    };
+    timing.cost(|m| match func {
+        "sim.copyPasteObjects" => m.zmq_copy_paste(listed()),
+        "sim.removeObjects" => m.zmq_remove(listed()),
+        "sim.getObjectsInTree" => match outcome {
+            Outcome::Ret(v) => match v.first() {
+                Some(Value::Array(hs)) => m.zmq_objects_in_tree(hs.len()),
+                _ => m.zmq_call,
+            },
+            _ => m.zmq_call,
+        },
+        _ => m.zmq_call,
+    })
 }
 
 /// Calls the requested function and turns its outcome into the reply of `protocol`
@@ -268,13 +331,14 @@ fn outcome_reply(
     protocol: Protocol,
     req: &Request,
     uuid: Option<String>,
-) -> Value {
+) -> (Value, Duration) {
     let mut outcome = Outcome::Ret(vec![]);
     let extras = &mut state.extras;
     state
         .host
         .with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
-    match outcome {
+    let work = call_cost(&state.config.timing, &req.func, &req.args, &outcome);
+    let reply = match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
         Outcome::Err(e) => {
             if state.config.verbose {
@@ -289,5 +353,98 @@ fn outcome_reply(
             }
             None => message::ret_reply(protocol, values),
         },
+    };
+    (reply, work)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Write;
+
+    use super::*;
+    use crate::sim::Scene;
+
+    fn server(timing: Timing) -> ServerHandle {
+        let config = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            protocol: Protocol::V1,
+            timing,
+            ..Default::default()
+        };
+        spawn(config, Simulator::new(Scene::course(), 0)).unwrap()
+    }
+
+    /// One protocol-1 call from a fresh REQ socket: the reply, or `None` after 5 s.
+    fn call(addr: SocketAddr, func: &str, args: Vec<Value>) -> Option<Value> {
+        let context = zmq::Context::new();
+        let s = context.socket(zmq::REQ).unwrap();
+        s.set_linger(0).unwrap();
+        s.set_rcvtimeo(5000).unwrap();
+        s.connect(&format!("tcp://{addr}")).unwrap();
+        let req = cbor::map([
+            ("func", Value::Text(func.into())),
+            ("args", Value::Array(args)),
+        ]);
+        s.send(cbor::encode(&req), 0).unwrap();
+        s.recv_bytes(0).ok().map(|b| cbor::decode(&b).unwrap())
+    }
+
+    #[test]
+    fn bytes_that_are_not_zeromq_do_not_hold_up_the_next_client() {
+        let s = server(Timing::instant());
+        let addr = s.local_addr();
+        let idle_fps = || call(addr, "sim.getInt32Param", vec![cbor::int(26)]);
+        assert!(idle_fps().is_some());
+        // a legacy client's first packet (header 01 00, length, packets left, message), and
+        // one that stops in the middle of a frame; both peers stay connected
+        let mut legacy = std::net::TcpStream::connect(addr).unwrap();
+        legacy
+            .write_all(&[1, 0, 26, 0, 0, 0, 0x2a, 0x2a, 0, 0, 1, 0, 0, 0, 2, 0, 0, 0])
+            .unwrap();
+        let mut partial = std::net::TcpStream::connect(addr).unwrap();
+        partial.write_all(&[1, 0, 2, 1, 0x41, 0x30]).unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        assert!(idle_fps().is_some(), "answered while they are connected");
+        drop((legacy, partial));
+        assert!(idle_fps().is_some(), "answered after they left");
+        s.shutdown();
+    }
+
+    #[test]
+    fn removing_a_removed_handle_is_ok_over_the_wire() {
+        let s = server(Timing::realistic());
+        let line = s.with_sim(|sim| sim.scene.resolve("Line").unwrap());
+        let list = || vec![Value::Array(vec![cbor::int(line.into())])];
+        for _ in 0..2 {
+            let reply = call(s.local_addr(), "sim.removeObjects", list()).unwrap();
+            assert_eq!(cbor::get(&reply, "success"), Some(&Value::Bool(true)));
+        }
+        s.shutdown();
+    }
+
+    #[test]
+    fn calls_cost_what_the_model_says_and_nothing_when_instant() {
+        let m = crate::sim::CostModel::measured();
+        let real = Timing::realistic();
+        let handles = |n: usize| vec![Value::Array(vec![cbor::int(1); n])];
+        let ok = Outcome::Ret(vec![]);
+        assert_eq!(
+            call_cost(&real, "sim.copyPasteObjects", &handles(2000), &ok),
+            m.zmq_copy_paste(2000)
+        );
+        assert_eq!(
+            call_cost(&real, "sim.removeObjects", &handles(500), &ok),
+            m.zmq_remove(500)
+        );
+        let tree = Outcome::Ret(vec![Value::Array(vec![cbor::int(1); 500])]);
+        assert_eq!(
+            call_cost(&real, "sim.getObjectsInTree", &[], &tree),
+            m.zmq_objects_in_tree(500)
+        );
+        assert_eq!(call_cost(&real, "sim.getObject", &[], &ok), m.zmq_call);
+        assert_eq!(
+            call_cost(&Timing::instant(), "sim.copyPasteObjects", &handles(9), &ok),
+            Duration::ZERO
+        );
     }
 }

@@ -36,11 +36,6 @@ impl<'a> Args<'a> {
         format!("in {}: {NO_OBJECT}", self.func)
     }
 
-    /// The error for `handle`, one of a list, naming no object.
-    pub(super) fn no_object_in_list(&self, handle: i32) -> String {
-        format!("in {}: {NO_OBJECT} (handle {handle})", self.func)
-    }
-
     /// Argument `i`, unless missing or null.
     pub(super) fn get(&self, i: usize) -> Option<&'a Value> {
         self.args.get(i).filter(|v| !matches!(v, Value::Null))

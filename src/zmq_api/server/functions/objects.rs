@@ -67,16 +67,17 @@ pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outc
     )])
 }
 
-/// `sim.removeObjects(handles)`: all or nothing; an unknown handle removes none.
+/// `sim.removeObjects(handles)`: removes those that exist. A handle already removed (or
+/// listed twice) is no error: CoppeliaSim 4.5.1 skips objects it does not find
+/// (coppeliaSimLib `simInternal.cpp:1290-1316`, `sceneObjectContainer.cpp:250-268`;
+/// `../shared/spec/real-coppeliasim-4.5.1.md`, "ZeroMQ API details": "`sim.removeObjects`
+/// with a handle that was already removed succeeds").
 pub(super) fn remove_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
-    let hs = a.handles(0)?;
-    if let Some(bad) = hs.iter().find(|h| ctx.sim.scene.get(**h).is_err()) {
-        return Err(a.no_object_in_list(*bad));
-    }
-    for h in hs {
-        // a handle listed twice is already gone: like CoppeliaSim, ignore it
-        let _ = ctx.sim.scene.remove(h);
-        ctx.extras.special.remove(&h);
+    for h in a.handles(0)? {
+        if ctx.sim.scene.remove(h).is_ok() {
+            ctx.extras.special.remove(&h);
+            ctx.extras.shape_params.retain(|(o, _), _| *o != h);
+        }
     }
     nothing()
 }
@@ -96,33 +97,29 @@ pub(super) fn get_objects_in_tree(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Out
     let kind = a.int_or(1, HANDLE_ALL)?;
     let options = a.int_or(2, 0)?;
     let scene = &ctx.sim.scene;
-    let order = scene.tree_order();
-    let in_tree = |h: i32| -> bool {
-        if base == HANDLE_SCENE {
-            return options & 2 == 0 || scene.get(h).is_ok_and(|o| o.parent.is_none());
-        }
-        if h == base {
-            return options & 1 == 0;
-        }
-        let parent = scene.get(h).ok().and_then(|o| o.parent);
+    // only the tree asked for is walked, through the scene's parent index
+    let order: Vec<i32> = if base == HANDLE_SCENE {
         if options & 2 != 0 {
-            return parent == Some(base);
+            scene.children(None).collect()
+        } else {
+            scene.tree_order()
         }
-        let mut cur = parent;
-        while let Some(p) = cur {
-            if p == base {
-                return true;
-            }
-            cur = scene.get(p).ok().and_then(|o| o.parent);
-        }
-        false
-    };
-    if base != HANDLE_SCENE {
+    } else {
         scene.get(base).map_err(|_| a.no_object())?;
-    }
+        let mut order = if options & 2 != 0 {
+            std::iter::once(base)
+                .chain(scene.children(Some(base)))
+                .collect()
+        } else {
+            scene.subtree(base)
+        };
+        if options & 1 != 0 {
+            order.remove(0);
+        }
+        order
+    };
     let hs: Vec<Value> = order
         .into_iter()
-        .filter(|&h| in_tree(h))
         .filter(|&h| kind == HANDLE_ALL || scene.get(h).is_ok_and(|o| o.kind.code() == kind))
         .map(|h| int(h.into()))
         .collect();
@@ -175,5 +172,23 @@ mod tests {
         let roots = tree(&mut sim, HANDLE_SCENE, 2);
         assert!(!roots.contains(&line) && roots.contains(&maze));
         assert_eq!(tree(&mut sim, HANDLE_SCENE, 0).len(), 5);
+        assert_eq!(tree(&mut sim, maze, 2), vec![maze, line]);
+    }
+
+    #[test]
+    fn removing_a_removed_object_succeeds() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let line = sim.scene.resolve("Line").unwrap();
+        let list = Value::Array(vec![int(line.into()), int(line.into())]);
+        assert_eq!(
+            run(&mut sim, "sim.removeObjects", vec![list.clone()]),
+            Outcome::Ret(vec![])
+        );
+        assert!(sim.scene.get(line).is_err());
+        assert_eq!(
+            run(&mut sim, "sim.removeObjects", vec![list]),
+            Outcome::Ret(vec![])
+        );
+        assert_eq!(sim.scene.len(), 4);
     }
 }
