@@ -3,6 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::apply::raised;
 use super::plan::{maze_lines, pose_differences, relative_pose, world_frame};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, resolve_handles};
 
@@ -102,8 +103,18 @@ fn stray_problem(stray: &[&str]) -> String {
 /// Verifies a scene against a drawing without knowing which copy is which line: every
 /// segment must be covered by a distinct maze line in place (the template may cover any
 /// segment), copies must be children of the maze dummy, no other maze line may exist, and
-/// `Start`/`End` must be in place. One round trip.
+/// `Start`/`End` must be in place. Every pose is read from the scene, with the idle rate
+/// raised while reading (and restored).
 pub fn verify(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    raised(scene, false, |scene| verify_raised(scene, drawing, names))
+}
+
+/// [`verify`] with the idle rate raised.
+fn verify_raised(
     scene: &mut dyn Backend,
     drawing: &Drawing,
     names: &ObjectNames,

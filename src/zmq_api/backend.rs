@@ -197,10 +197,16 @@ impl ZmqBackend {
         parent: Option<i32>,
         poses: LinePoses,
     ) -> Result<ObjectInfo, BackendError> {
+        let unknown = ([f64::NAN; 3], [f64::NAN; 3]);
         let (position, orientation) = match (self.poses.get(&handle), poses) {
             (Some(&pose), LinePoses::Known | LinePoses::Read) => pose,
-            (None, LinePoses::Known) => ([f64::NAN; 3], [f64::NAN; 3]),
-            (_, LinePoses::Read | LinePoses::Fresh) => self.world_pose(handle)?,
+            (None, LinePoses::Known) => unknown,
+            (_, LinePoses::Read | LinePoses::Fresh) => match self.world_pose(handle) {
+                Ok(pose) => pose,
+                // listed a moment ago, gone now (another run removed it): never in place
+                Err(BackendError::Remote(_)) => unknown,
+                Err(e) => return Err(e),
+            },
         };
         Ok(ObjectInfo {
             handle,
