@@ -344,3 +344,30 @@ impl Countdown {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_connect_error_is_one_line_and_its_remedies_are_hints() {
+        let error = connect_error(
+            "cannot connect to 127.0.0.1:19997: nothing accepted a connection within 75 s".into(),
+            vec!["wait".into(), "try --api zmq".into()],
+        );
+        assert_eq!(
+            one_line(&error),
+            "cannot connect to 127.0.0.1:19997: nothing accepted a connection within 75 s"
+        );
+        assert_eq!(super::super::hints(&error), ["wait", "try --api zmq"]);
+    }
+
+    #[test]
+    fn seconds_read_as_written_and_addresses_bracket_ipv6() {
+        assert_eq!(seconds(LEGACY_CONNECT_TIMEOUT), "75");
+        assert_eq!(seconds(Duration::from_millis(300)), "0.3");
+        assert_eq!(seconds(AUTO_LEGACY_WAIT), "1.5");
+        assert_eq!(socket_addr("::1", 19997), "[::1]:19997");
+        assert_eq!(socket_addr("localhost", 23000), "localhost:23000");
+    }
+}

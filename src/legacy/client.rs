@@ -455,3 +455,76 @@ fn map_io(e: WireError, timeout: Duration) -> ClientError {
         other => ClientError::Wire(other),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::io::{Read, Write};
+    use std::net::TcpListener;
+
+    use super::*;
+
+    /// The first 10 bytes libzmq sends on a new connection.
+    const ZMTP_SIGNATURE: [u8; 10] = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+
+    #[test]
+    fn a_zeromq_peer_is_recognised_before_anything_is_sent_to_it() {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let server = std::thread::spawn(move || {
+            let (mut s, _) = l.accept().unwrap();
+            s.write_all(&ZMTP_SIGNATURE).unwrap();
+            let mut got = vec![];
+            s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+            let _ = s.read_to_end(&mut got);
+            got
+        });
+        let e = Client::connect(addr, ClientOptions::default())
+            .err()
+            .unwrap();
+        assert!(matches!(e, ClientError::ZeroMqPeer { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            format!("{addr} speaks the ZeroMQ remote API, not the legacy one")
+        );
+        assert!(server.join().unwrap().is_empty(), "legacy bytes were sent");
+    }
+
+    #[test]
+    fn refused_attempts_call_the_retry_hook_and_the_error_tells_the_truth() {
+        let port = TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let opts = ClientOptions {
+            connect_timeout: Duration::from_millis(400),
+            ..Default::default()
+        };
+        let mut lefts = vec![];
+        let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |r| {
+            assert!(!r.why.is_empty());
+            lefts.push(r.left)
+        })
+        .err()
+        .unwrap();
+        assert!(matches!(e, ClientError::Connect { .. }), "{e}");
+        assert!(!lefts.is_empty());
+        assert!(lefts.windows(2).all(|w| w[0] >= w[1]), "{lefts:?}");
+        let text = e.to_string();
+        assert!(text.contains("about a minute"), "{text}");
+        assert!(!text.contains("few seconds"), "{text}");
+    }
+
+    #[test]
+    fn the_greeting_wait_is_a_few_round_trips_within_bounds() {
+        assert_eq!(greeting_wait(Duration::ZERO), Duration::from_millis(15));
+        assert_eq!(
+            greeting_wait(Duration::from_millis(10)),
+            Duration::from_millis(45)
+        );
+        assert_eq!(
+            greeting_wait(Duration::from_secs(2)),
+            Duration::from_millis(300)
+        );
+    }
+}

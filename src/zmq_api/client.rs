@@ -473,3 +473,55 @@ fn new_socket(
     socket.connect(endpoint).map_err(transport)?;
     Ok(socket)
 }
+
+#[cfg(test)]
+mod tests {
+    use std::io::Write;
+    use std::net::TcpListener;
+
+    use super::*;
+
+    /// What `check_greeting` says of a peer that, once connected, runs `peer`.
+    fn greeting_of(peer: impl FnOnce(TcpStream) + Send + 'static) -> Result<(), String> {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let t = std::thread::spawn(move || peer(l.accept().unwrap().0));
+        let r = check_greeting(
+            TcpStream::connect(addr).unwrap(),
+            Duration::from_millis(300),
+        );
+        t.join().unwrap();
+        r
+    }
+
+    #[test]
+    fn a_zmtp_signature_is_a_greeting_and_anything_else_is_named() {
+        let signature = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+        assert_eq!(
+            greeting_of(move |mut s| s.write_all(&signature).unwrap()),
+            Ok(())
+        );
+        let silent = greeting_of(|s| {
+            std::thread::sleep(Duration::from_millis(500));
+            drop(s);
+        });
+        assert!(
+            silent
+                .unwrap_err()
+                .contains("no ZeroMQ greeting within 0.3 s")
+        );
+        let http = greeting_of(|mut s| s.write_all(b"HTTP/1.1 400").unwrap());
+        assert!(
+            http.as_ref().unwrap_err().contains("it sent 48 54 54 50"),
+            "{http:?}"
+        );
+        let closed = greeting_of(drop);
+        assert!(
+            closed
+                .as_ref()
+                .unwrap_err()
+                .contains("closed the connection without a ZeroMQ greeting"),
+            "{closed:?}"
+        );
+    }
+}
