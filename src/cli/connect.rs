@@ -180,7 +180,14 @@ fn legacy(
         Err(e) => e,
     };
     Err(match error {
-        ClientError::Connect { why, .. } => {
+        ClientError::Connect { why, waited, .. } => {
+            if waited + 0.5 < connect_timeout.as_secs_f64() {
+                // only a name that does not resolve fails before the deadline
+                return Err(connect_error(
+                    format!("cannot connect to {addr}: {why}"),
+                    vec!["check --host: a name this machine resolves, or an IP address".into()],
+                ));
+            }
             let mut hints = vec![
                 format!(
                     "is CoppeliaSim running with the legacy remote API on port {port}? (CoppeliaSim up to 4.10 starts it on {LEGACY_PORT})"
