@@ -40,9 +40,13 @@ pub struct ConnectArgs {
     /// The end marker (a 1 m x 1 m red plane).
     #[arg(long, default_value = "End")]
     pub end: String,
-    /// Seconds to keep retrying to connect, and to wait for each reply (more than 0, at most
-    /// a day).
-    #[arg(long, default_value = "10", value_parser = parse_timeout, allow_negative_numbers = true)]
+    /// Seconds to keep trying to connect [default: 75 for legacy: CoppeliaSim refuses every
+    /// connection for about a minute after a client left abruptly; 10 for zmq; auto tries
+    /// legacy for at most 1.5] (more than 0, at most a day).
+    #[arg(long, value_name = "SECS", value_parser = parse_timeout, allow_negative_numbers = true)]
+    pub connect_timeout: Option<Duration>,
+    /// Seconds to wait for each reply (more than 0, at most a day).
+    #[arg(long, value_name = "SECS", default_value = "10", value_parser = parse_timeout, allow_negative_numbers = true)]
     pub timeout: Duration,
 }
 
@@ -58,14 +62,21 @@ impl ConnectArgs {
         }
     }
 
-    /// Connects to the simulator over the chosen API; with `auto` (and over ZeroMQ) says
-    /// which API and version answered.
+    /// Connects to the simulator over the chosen API, saying on standard error what it
+    /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
+    /// answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
-        let backend = connect(self.api, &self.host, self.port, self.timeout)?;
+        let connected = connect(
+            self.api,
+            &self.host,
+            self.port,
+            self.timeout,
+            self.connect_timeout,
+        )?;
         if self.api != Api::Legacy {
-            println!("using the {}", backend.describe());
+            println!("using the {}", connected.description);
         }
-        Ok(backend)
+        Ok(connected.backend)
     }
 }
 

@@ -214,8 +214,14 @@ fn details(error: &anyhow::Error) -> Vec<String> {
 fn hints(error: &anyhow::Error) -> Vec<String> {
     error
         .chain()
-        .filter_map(|cause| cause.downcast_ref::<crate::draw::DrawError>())
-        .flat_map(|e| e.hints())
+        .flat_map(|cause| {
+            let draw = cause.downcast_ref::<crate::draw::DrawError>();
+            let connect = cause.downcast_ref::<connect::ConnectError>();
+            draw.map(|e| e.hints())
+                .into_iter()
+                .chain(connect.map(|e| e.hints()))
+                .flatten()
+        })
         .collect()
 }
 

@@ -19,17 +19,36 @@ use super::wire::{
 /// Why connecting or a call failed.
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
-    /// Nobody accepted the connection before the deadline.
+    /// Nobody accepted the connection before the deadline (nothing listens, or CoppeliaSim
+    /// refuses connections: it does so for about a minute after a client left abruptly).
     #[error(
-        "cannot connect to {addr}: {why} (is CoppeliaSim running with the legacy remote API on this port? it refuses connections for a few seconds after a client left, so we retried for {waited:.1} s)"
+        "cannot connect to {addr}: nothing accepted a connection within {waited:.1} s ({why}; is CoppeliaSim running with the legacy remote API on this port? it refuses every connection for about a minute after a client left abruptly)"
     )]
     Connect {
         /// Address tried.
         addr: String,
-        /// Last OS error.
+        /// The last attempt's failure (OS error, or the connection dropped at once).
         why: String,
         /// How long we retried.
         waited: f64,
+    },
+    /// A connection was accepted but nothing answered our first message: the simulator
+    /// serves one client at a time, so another one is probably connected.
+    #[error(
+        "connected to {addr}, but no answer within {waited:.1} s: another client is probably connected (the simulator serves one at a time)"
+    )]
+    Busy {
+        /// Address tried.
+        addr: String,
+        /// How long we waited for the answer.
+        waited: f64,
+    },
+    /// The peer greeted us in ZeroMQ's ZMTP (first byte 0xFF, 0x7F at byte 9): the port is
+    /// the ZeroMQ remote API's.
+    #[error("{addr} speaks the ZeroMQ remote API, not the legacy one")]
+    ZeroMqPeer {
+        /// Address tried.
+        addr: String,
     },
     /// The server did not answer in time.
     #[error(
@@ -85,6 +104,17 @@ impl Default for ClientOptions {
     }
 }
 
+/// A failed connection attempt that [`Client::connect_with`] is about to retry.
+#[derive(Debug, Clone, Copy)]
+pub struct Retrying<'a> {
+    /// Time since the first attempt.
+    pub waited: Duration,
+    /// Time left until the connect timeout.
+    pub left: Duration,
+    /// Why the latest attempt failed (the OS error, or the connection dropped at once).
+    pub why: &'a str,
+}
+
 /// The result of one command.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reply {
@@ -112,6 +142,17 @@ impl Client {
         addr: impl ToSocketAddrs + std::fmt::Display,
         opts: ClientOptions,
     ) -> Result<Client, ClientError> {
+        Client::connect_with(addr, opts, &mut |_| {})
+    }
+
+    /// [`Client::connect`], calling `retrying` after each failed attempt that will be
+    /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after
+    /// a client left abruptly).
+    pub fn connect_with(
+        addr: impl ToSocketAddrs + std::fmt::Display,
+        opts: ClientOptions,
+        retrying: &mut dyn FnMut(&Retrying<'_>),
+    ) -> Result<Client, ClientError> {
         let started = Instant::now();
         let name = addr.to_string();
         let fail = |why: String| ClientError::Connect {
@@ -130,9 +171,16 @@ impl Client {
                     .connect_timeout
                     .saturating_sub(started.elapsed())
                     .max(Duration::from_millis(50));
+                let attempt = Instant::now();
                 match TcpStream::connect_timeout(a, left) {
                     Ok(stream) => {
                         stream.set_nodelay(true).ok();
+                        // A ZeroMQ peer greets at once; a legacy server never speaks first.
+                        // Look before sending: legacy bytes that reach a ZeroMQ socket can
+                        // keep it from answering its next clients for seconds.
+                        if greets_in_zmtp(&stream, greeting_wait(attempt.elapsed())) {
+                            return Err(ClientError::ZeroMqPeer { addr: name.clone() });
+                        }
                         let mut client = Client {
                             stream,
                             opts: opts.clone(),
@@ -147,17 +195,17 @@ impl Client {
                         // is about to close (it re-creates it after each client): check that
                         // the server answers a header-only message before using it.
                         let wait = opts
-                            .connect_timeout
-                            .saturating_sub(started.elapsed())
+                            .reply_timeout
+                            .min(opts.connect_timeout.saturating_sub(started.elapsed()))
                             .max(Duration::from_millis(200));
                         client.stream.set_read_timeout(Some(wait)).ok();
                         match client.exchange(vec![]) {
                             Ok(_) => return Ok(client),
                             Err(ClientError::Timeout(_)) => {
-                                return Err(fail(format!(
-                                    "connected, but no answer within {:.1} s: another client is probably connected (the simulator serves one at a time)",
-                                    wait.as_secs_f64()
-                                )));
+                                return Err(ClientError::Busy {
+                                    addr: name.clone(),
+                                    waited: wait.as_secs_f64(),
+                                });
                             }
                             Err(
                                 e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
@@ -166,17 +214,43 @@ impl Client {
                                     "connection dropped at once ({e}): the server was re-creating its socket"
                                 )
                             }
+                            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
+                                if client.greeted_in_zmtp(marker) =>
+                            {
+                                return Err(ClientError::ZeroMqPeer { addr: name.clone() });
+                            }
                             Err(e) => return Err(e),
                         }
                     }
                     Err(e) => last = e.to_string(),
                 }
             }
-            if started.elapsed() + opts.retry_interval >= opts.connect_timeout {
+            let waited = started.elapsed();
+            if waited + opts.retry_interval >= opts.connect_timeout {
                 return Err(fail(last));
             }
+            retrying(&Retrying {
+                waited,
+                left: opts.connect_timeout - waited,
+                why: &last,
+            });
             std::thread::sleep(opts.retry_interval);
         }
+    }
+
+    /// Whether the peer's first bytes (`marker`: bytes 0 and 1 of the bad packet header we
+    /// read, then 4 more after that header) are a ZMTP greeting's signature: byte 0 is 0xFF,
+    /// byte 9 is 0x7F. A ZeroMQ peer sends it as soon as the connection is made.
+    fn greeted_in_zmtp(&mut self, marker: u16) -> bool {
+        use std::io::Read;
+        if marker & 0xFF != 0xFF {
+            return false;
+        }
+        self.stream
+            .set_read_timeout(Some(Duration::from_millis(500)))
+            .ok();
+        let mut rest = [0u8; 4];
+        self.stream.read_exact(&mut rest).is_ok() && rest[3] == 0x7F
     }
 
     /// Blocking calls done so far (each is one round trip, however many commands it carried).
@@ -340,6 +414,32 @@ impl Client {
     }
 }
 
+/// How long to look for a ZeroMQ greeting after a connection that took `connected_in` (about
+/// one round trip): a few round trips, at least 15 ms, at most 300 ms.
+fn greeting_wait(connected_in: Duration) -> Duration {
+    (connected_in * 3 + Duration::from_millis(15)).min(Duration::from_millis(300))
+}
+
+/// Whether the peer sent, within `wait` and before we sent anything, the start of a ZMTP
+/// greeting (first byte 0xFF, 0x7F at byte 9). Only peeks: nothing is consumed.
+fn greets_in_zmtp(stream: &TcpStream, wait: Duration) -> bool {
+    let deadline = Instant::now() + wait;
+    let mut buf = [0u8; 10];
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() || stream.set_read_timeout(Some(left)).is_err() {
+            return false;
+        }
+        match stream.peek(&mut buf) {
+            Ok(0) | Err(_) => return false,
+            Ok(_) if buf[0] != 0xFF => return false,
+            Ok(10) => return buf[9] == 0x7F,
+            // part of the greeting: wait for the rest
+            Ok(_) => std::thread::sleep(Duration::from_millis(1)),
+        }
+    }
+}
+
 fn map_io(e: WireError, timeout: Duration) -> ClientError {
     match e {
         WireError::Io(io) => match io.kind() {
@@ -353,5 +453,78 @@ fn map_io(e: WireError, timeout: Duration) -> ClientError {
             _ => ClientError::Wire(WireError::Io(io)),
         },
         other => ClientError::Wire(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::{Read, Write};
+    use std::net::TcpListener;
+
+    use super::*;
+
+    /// The first 10 bytes libzmq sends on a new connection.
+    const ZMTP_SIGNATURE: [u8; 10] = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+
+    #[test]
+    fn a_zeromq_peer_is_recognised_before_anything_is_sent_to_it() {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let server = std::thread::spawn(move || {
+            let (mut s, _) = l.accept().unwrap();
+            s.write_all(&ZMTP_SIGNATURE).unwrap();
+            let mut got = vec![];
+            s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+            let _ = s.read_to_end(&mut got);
+            got
+        });
+        let e = Client::connect(addr, ClientOptions::default())
+            .err()
+            .unwrap();
+        assert!(matches!(e, ClientError::ZeroMqPeer { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            format!("{addr} speaks the ZeroMQ remote API, not the legacy one")
+        );
+        assert!(server.join().unwrap().is_empty(), "legacy bytes were sent");
+    }
+
+    #[test]
+    fn refused_attempts_call_the_retry_hook_and_the_error_tells_the_truth() {
+        let port = TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let opts = ClientOptions {
+            connect_timeout: Duration::from_millis(400),
+            ..Default::default()
+        };
+        let mut lefts = vec![];
+        let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |r| {
+            assert!(!r.why.is_empty());
+            lefts.push(r.left)
+        })
+        .err()
+        .unwrap();
+        assert!(matches!(e, ClientError::Connect { .. }), "{e}");
+        assert!(!lefts.is_empty());
+        assert!(lefts.windows(2).all(|w| w[0] >= w[1]), "{lefts:?}");
+        let text = e.to_string();
+        assert!(text.contains("about a minute"), "{text}");
+        assert!(!text.contains("few seconds"), "{text}");
+    }
+
+    #[test]
+    fn the_greeting_wait_is_a_few_round_trips_within_bounds() {
+        assert_eq!(greeting_wait(Duration::ZERO), Duration::from_millis(15));
+        assert_eq!(
+            greeting_wait(Duration::from_millis(10)),
+            Duration::from_millis(45)
+        );
+        assert_eq!(
+            greeting_wait(Duration::from_secs(2)),
+            Duration::from_millis(300)
+        );
     }
 }

@@ -13,6 +13,10 @@ use ciborium::Value;
 use super::cbor::{self, CborError};
 use super::message::{END, EXECUTED, Protocol, Reply, Request, parse_reply};
 
+/// Longest wait for a ZeroMQ peer's greeting: it comes one round trip after the connection
+/// (libzmq sends it from its I/O thread, however busy the simulator is).
+const GREETING_WAIT: Duration = Duration::from_secs(2);
+
 /// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
 const MAX_TURNS: usize = 10_000;
 
@@ -28,6 +32,15 @@ pub enum ZmqError {
         endpoint: String,
         /// OS error.
         why: String,
+    },
+    /// The port accepts TCP connections but the peer does not greet in ZeroMQ's ZMTP (a
+    /// ZeroMQ peer sends its 10-byte signature, 0xFF ... 0x7F, as soon as it is connected).
+    #[error("{endpoint} does not speak ZeroMQ: {detail}")]
+    NotZeroMq {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// What it did instead (stayed silent, closed, sent other bytes).
+        detail: String,
     },
     /// No reply in time.
     #[error(
@@ -93,6 +106,10 @@ pub struct ClientOptions {
     pub port: u16,
     /// Send and receive timeout of one round trip.
     pub timeout: Duration,
+    /// How long to wait for the TCP connection and the peer's ZeroMQ greeting [default:
+    /// `timeout`, at most 3 s]. A refused connection fails at once: a ZeroMQ remote API
+    /// server does not refuse connections for a while the way the legacy one does.
+    pub connect_timeout: Option<Duration>,
     /// Force a protocol generation instead of detecting it from the first reply.
     pub protocol: Option<Protocol>,
 }
@@ -103,6 +120,7 @@ impl Default for ClientOptions {
             host: "127.0.0.1".into(),
             port: 23000,
             timeout: Duration::from_secs(5),
+            connect_timeout: None,
             protocol: None,
         }
     }
@@ -154,7 +172,9 @@ pub fn new_uuid() -> String {
 }
 
 impl Client {
-    /// Connects: checks that the port accepts TCP connections, opens the REQ socket, then
+    /// Connects: checks that the port accepts TCP connections and that the peer greets in
+    /// ZeroMQ's ZMTP (else [`ZmqError::NotZeroMq`] at once, not a timeout of the first
+    /// call), opens the REQ socket, then
     /// calls `zmqRemoteApi.require('sim')`, which also reveals the protocol generation (a
     /// protocol-1 server has no `require`, and `sim` is global there).
     pub fn connect(options: &ClientOptions) -> Result<Client, ZmqError> {
@@ -186,19 +206,35 @@ impl Client {
             .to_socket_addrs()
             .map_err(|e| connect_err(e.to_string()))?
             .collect();
+        let wait = options
+            .connect_timeout
+            .unwrap_or(options.timeout.min(Duration::from_secs(3)));
         let mut last = String::from("no address");
-        let reachable = addrs.iter().any(|a| {
-            match TcpStream::connect_timeout(a, options.timeout.min(Duration::from_secs(3))) {
-                Ok(_) => true,
-                Err(e) => {
-                    last = e.to_string();
-                    false
+        let mut connected_in = Duration::ZERO;
+        let stream = addrs
+            .iter()
+            .find_map(|a| {
+                let attempt = std::time::Instant::now();
+                match TcpStream::connect_timeout(a, wait) {
+                    Ok(s) => {
+                        connected_in = attempt.elapsed();
+                        Some(s)
+                    }
+                    Err(e) => {
+                        last = e.to_string();
+                        None
+                    }
                 }
-            }
-        });
-        if !reachable {
-            return Err(connect_err(last));
-        }
+            })
+            .ok_or_else(|| connect_err(last))?;
+        // the greeting comes about one round trip (the connection's time) after it
+        let greeting_wait = (connected_in * 3 + Duration::from_millis(250))
+            .min(GREETING_WAIT)
+            .min(wait);
+        check_greeting(stream, greeting_wait).map_err(|detail| ZmqError::NotZeroMq {
+            endpoint: endpoint.clone(),
+            detail,
+        })?;
         let context = zmq::Context::new();
         let socket = new_socket(&context, &endpoint, options.timeout, ipv6)?;
         Ok(Client {
@@ -355,6 +391,67 @@ impl Drop for Client {
     }
 }
 
+/// Reads the first 10 bytes the peer sends on `stream` within `wait`: a ZMTP greeting starts
+/// with 0xFF and has 0x7F at byte 9. Says what the peer did otherwise.
+fn check_greeting(mut stream: TcpStream, wait: Duration) -> Result<(), String> {
+    use std::io::Read;
+    let deadline = std::time::Instant::now() + wait;
+    let mut got = Vec::with_capacity(10);
+    let mut buf = [0u8; 10];
+    while got.len() < 10 {
+        let left = deadline.saturating_duration_since(std::time::Instant::now());
+        if left.is_zero() {
+            break;
+        }
+        stream.set_read_timeout(Some(left)).ok();
+        match stream.read(&mut buf[..10 - got.len()]) {
+            Ok(0) => {
+                return Err(format!(
+                    "it closed the connection without a ZeroMQ greeting{}",
+                    shown(&got)
+                ));
+            }
+            Ok(n) => {
+                got.extend_from_slice(&buf[..n]);
+                if got[0] != 0xFF {
+                    break;
+                }
+            }
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+                ) =>
+            {
+                break;
+            }
+            Err(e) => return Err(format!("{e} before a ZeroMQ greeting{}", shown(&got))),
+        }
+    }
+    if got.len() == 10 && got[0] == 0xFF && got[9] == 0x7F {
+        Ok(())
+    } else if got.is_empty() {
+        Err(format!(
+            "no ZeroMQ greeting within {:.1} s (a ZeroMQ peer sends one at once)",
+            wait.as_secs_f64()
+        ))
+    } else {
+        Err(format!(
+            "its first bytes are no ZeroMQ greeting{}",
+            shown(&got)
+        ))
+    }
+}
+
+/// `" (it sent 01 00 ...)"` for the bytes a peer sent, or nothing.
+fn shown(bytes: &[u8]) -> String {
+    if bytes.is_empty() {
+        return String::new();
+    }
+    let hex: Vec<String> = bytes.iter().map(|b| format!("{b:02x}")).collect();
+    format!(" (it sent {})", hex.join(" "))
+}
+
 fn new_socket(
     context: &zmq::Context,
     endpoint: &str,
@@ -375,4 +472,56 @@ fn new_socket(
     socket.set_sndtimeo(ms).map_err(transport)?;
     socket.connect(endpoint).map_err(transport)?;
     Ok(socket)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::io::Write;
+    use std::net::TcpListener;
+
+    use super::*;
+
+    /// What `check_greeting` says of a peer that, once connected, runs `peer`.
+    fn greeting_of(peer: impl FnOnce(TcpStream) + Send + 'static) -> Result<(), String> {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let t = std::thread::spawn(move || peer(l.accept().unwrap().0));
+        let r = check_greeting(
+            TcpStream::connect(addr).unwrap(),
+            Duration::from_millis(300),
+        );
+        t.join().unwrap();
+        r
+    }
+
+    #[test]
+    fn a_zmtp_signature_is_a_greeting_and_anything_else_is_named() {
+        let signature = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+        assert_eq!(
+            greeting_of(move |mut s| s.write_all(&signature).unwrap()),
+            Ok(())
+        );
+        let silent = greeting_of(|s| {
+            std::thread::sleep(Duration::from_millis(500));
+            drop(s);
+        });
+        assert!(
+            silent
+                .unwrap_err()
+                .contains("no ZeroMQ greeting within 0.3 s")
+        );
+        let http = greeting_of(|mut s| s.write_all(b"HTTP/1.1 400").unwrap());
+        assert!(
+            http.as_ref().unwrap_err().contains("it sent 48 54 54 50"),
+            "{http:?}"
+        );
+        let closed = greeting_of(drop);
+        assert!(
+            closed
+                .as_ref()
+                .unwrap_err()
+                .contains("closed the connection without a ZeroMQ greeting"),
+            "{closed:?}"
+        );
+    }
 }

@@ -68,12 +68,29 @@ fn legacy_cli_errors_are_one_clear_line() {
     // nothing listens on the port any more
     drop(s);
     bin()
-        .args(["apply", &m, "--port", &port, "--timeout", "0.3"])
+        .args([
+            "apply",
+            &m,
+            "--port",
+            &port,
+            "--timeout",
+            "0.3",
+            "--connect-timeout",
+            "0.3",
+        ])
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot connect"));
     bin()
-        .args(["clear", "--port", &port, "--timeout", "0.3"])
+        .args([
+            "clear",
+            "--port",
+            &port,
+            "--timeout",
+            "0.3",
+            "--connect-timeout",
+            "0.3",
+        ])
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot connect"));

@@ -193,7 +193,12 @@ fn zmq_cli_errors_are_one_clear_line() {
             predicate::str::contains(format!("cannot connect to tcp://127.0.0.1:{free}"))
                 .and(predicate::str::contains("ZeroMQ remote API add-on"))
                 .and(predicate::function(|s: &str| {
-                    s.trim_end().lines().count() == 1
+                    // what is tried, then the error on one line
+                    let mut lines = s.trim_end().lines();
+                    lines
+                        .next()
+                        .is_some_and(|l| l.starts_with("connecting to "))
+                        && lines.count() == 1
                 })),
         );
     bin()
