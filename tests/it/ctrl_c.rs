@@ -35,7 +35,7 @@ fn ctrl_c_at_any_point_leaves_a_scene_the_next_apply_repairs_at_once() {
     let port = serve.port();
     let mut interrupted = 0;
     for delay_ms in [150u64, 400, 700, 1000, 1400] {
-        let mut apply = Command::cargo_bin("vrep-maze")
+        let apply = Command::cargo_bin("vrep-maze")
             .unwrap()
             .args(["apply", layout.to_str().unwrap(), "--port", &port])
             .stdout(Stdio::null())
