@@ -116,6 +116,13 @@ impl Simulator {
     }
 }
 
+/// Writes `sim`'s scene as a `--dump` file (the JSON of [`Scene::to_json`]), atomically: a
+/// reader never sees half a file, and a failed write keeps the previous one.
+pub fn write_dump(sim: &Simulator, path: &std::path::Path) -> std::io::Result<()> {
+    let text = serde_json::to_string_pretty(&sim.scene.to_json())?;
+    crate::atomic_file::write_atomically(path, |w| w.write_all(text.as_bytes()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

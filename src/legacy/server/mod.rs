@@ -164,16 +164,16 @@ impl ServerHandle {
     }
 }
 
-/// Writes the scene as JSON to `config.dump`, if set (a failure is reported, not fatal).
+/// Writes the scene as JSON to `config.dump`, if set, atomically (a failure is reported, not
+/// fatal).
 fn write_dump(config: &ServerConfig, sim: &Simulator) {
-    if let Some(path) = &config.dump {
-        let text = serde_json::to_string_pretty(&sim.scene.to_json()).unwrap_or_default();
-        if let Err(e) = std::fs::write(path, text) {
-            eprintln!(
-                "vrep-maze serve: cannot write scene dump {}: {e}",
-                path.display()
-            );
-        }
+    if let Some(path) = &config.dump
+        && let Err(e) = crate::sim::write_dump(sim, path)
+    {
+        eprintln!(
+            "vrep-maze serve: cannot write scene dump {}: {e}",
+            path.display()
+        );
     }
 }
 

@@ -67,7 +67,9 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         {
             let mut core = shared.lock();
             core.end_session();
-            write_dump(&shared.config, &core.sim);
+            if !killed {
+                write_dump(&shared.config, &core.sim);
+            }
         }
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} left: {why}");
@@ -149,6 +151,11 @@ fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
             let mut core = shared.lock();
             let reply = core.receive(&msg.header, blocks);
             shared.wake.notify_all();
+            if kill {
+                // the client's work is done (its blocking calls had their results): the dump
+                // is on disk before its last reply, so `apply && render dump` never races
+                write_dump(&shared.config, &core.sim);
+            }
             reply
         };
         if let Err(e) = write_message(&mut stream, &reply.encode(), shared.config.max_packet_size) {

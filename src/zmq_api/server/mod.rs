@@ -122,15 +122,13 @@ impl ServerHandle {
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }
-        if let Some(path) = &self.dump {
-            let text = self
-                .with_sim(|s| serde_json::to_string_pretty(&s.scene.to_json()).unwrap_or_default());
-            if let Err(e) = std::fs::write(path, text) {
-                eprintln!(
-                    "vrep-maze serve: cannot write scene dump {}: {e}",
-                    path.display()
-                );
-            }
+        if let Some(path) = &self.dump
+            && let Err(e) = self.with_sim(|s| crate::sim::write_dump(s, path))
+        {
+            eprintln!(
+                "vrep-maze serve: cannot write scene dump {}: {e}",
+                path.display()
+            );
         }
     }
 }
