@@ -304,6 +304,17 @@ fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
                     assert!(valid(&path), "{shown:?} accepted an invalid layout");
                 }
             }
+            "batch" => {
+                let out_dir = format!("{}-dataset", files[0]);
+                for entry in std::fs::read_dir(&out_dir).into_iter().flatten() {
+                    let path = entry.unwrap().path();
+                    if path.extension().is_some_and(|e| e == "json") {
+                        accepted_layouts += 1;
+                        let path = path.display().to_string();
+                        assert!(valid(&path), "{shown:?} wrote an invalid layout {path}");
+                    }
+                }
+            }
             "generate" => {
                 let written = args.iter().position(|a| a == "-o").map(|i| &args[i + 1]);
                 if let Some(path) = written {
