@@ -248,8 +248,11 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         if !sleep_until(at, stop) {
             break;
         }
+        // the modeled work is the whole time a real simulator takes from serving the request
+        // to replying: the emulator's own processing counts towards it
+        let serving = Instant::now();
         let (reply, work) = handle(state, &bytes);
-        if !sleep_until(Instant::now() + work, stop) {
+        if !sleep_until(serving + work, stop) {
             break;
         }
         // a REP socket must answer before it can receive again; a failed send drops the client
