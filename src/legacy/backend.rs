@@ -128,13 +128,13 @@ fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, BackendError> {
 /// progress bar moves every couple of seconds.
 const REQUEST_SECONDS: f64 = 1.5;
 /// The server's time per pasted and placed line, and its growth per object in the scene
-/// (each copy's lowest free `Line<N>` name is found by a scan of the scene, and re-parenting
-/// rebuilds the parent's child order): fitted to `../shared/spec/real-coppeliasim-4.5.1.md`,
-/// "Drawing cost on the server" (30x30: 1.54 s, 60x60: 11.1 s; 100x100 over 60 s in one
-/// request).
+/// (re-parenting rebuilds the new parent's child order and walks the parentless objects):
+/// fitted to `../shared/spec/real-coppeliasim-4.5.1.md`, "Drawing cost on the server"
+/// (30x30: 1.54 s, 60x60: 11.1 s; 100x100 over 60 s in one request).
 const SECONDS_PER_LINE: f64 = 0.65e-3;
-/// See [`SECONDS_PER_LINE`]: naming and re-parenting each scan about the scene once.
-const SECONDS_PER_LINE_PER_OBJECT: f64 = 2.0 * 85e-9;
+/// See [`SECONDS_PER_LINE`] (an upper bound: `Maze`'s children plus the parentless objects
+/// are at most the objects in the scene).
+const SECONDS_PER_LINE_PER_OBJECT: f64 = 127e-9;
 
 impl Backend for LegacyBackend {
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {

@@ -22,8 +22,8 @@ fn widen(v: [f32; 3]) -> [f64; 3] {
 
 /// The server work a real CoppeliaSim 4.5.1 does for one command, from the scene as it is
 /// before the command (`crate::sim::cost`; spec "Drawing cost on the server (legacy API,
-/// idle fps 0)"): a paste scans the scene to name each copy, a set-parent scans the new
-/// parent's children and the parentless objects, positions and orientations cost a constant.
+/// idle fps 0)"): a paste costs per copy, a set-parent grows with the new parent's children
+/// and the parentless objects, positions and orientations cost a constant.
 /// Commands the spec has no figure for cost nothing.
 pub(super) fn cost(sim: &Simulator, block: &Block, model: &CostModel) -> Duration {
     let scene = &sim.scene;
@@ -32,7 +32,7 @@ pub(super) fn cost(sim: &Simulator, block: &Block, model: &CostModel) -> Duratio
             let mut unique = hs;
             unique.sort_unstable();
             unique.dedup();
-            model.legacy_paste(scene.len(), unique.len())
+            model.legacy_paste(unique.len())
         }
         Some(Command::SetObjectParent { parent, .. }) => {
             let parent = (parent != HANDLE_WORLD).then_some(parent);
@@ -349,7 +349,7 @@ mod tests {
         // 5 objects; pasting `line` twice is one copy
         assert_eq!(
             cost(&sim, &block(Command::CopyPaste(vec![line, line])), &m),
-            m.legacy_paste(5, 1)
+            m.legacy_paste(1)
         );
         // `Maze` has one child (`Line`); 4 objects are parentless
         let to_maze = Command::SetObjectParent {

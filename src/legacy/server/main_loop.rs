@@ -517,7 +517,7 @@ mod tests {
         // at idle fps 0 a pass lasts at least the floor (spec "Pacing": 9–10 ms)
         assert_eq!(
             work,
-            (m.legacy_paste(5, 1) + m.set_position).max(m.legacy_pass_floor)
+            (m.legacy_paste(1) + m.set_position).max(m.legacy_pass_floor)
         );
         core.busy_until = Some(Instant::now() + Duration::from_secs(60));
         let r = core.receive(&header(1), vec![]);
