@@ -10,7 +10,8 @@ use std::time::{Duration, Instant};
 use super::lease::Claim;
 use super::plan::{self, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, ObjectNames, resolve_handles, verify,
+    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
+    resolve_handles, verify,
 };
 
 /// Options of [`apply`].
@@ -118,17 +119,19 @@ pub fn apply(
 ) -> Result<ApplyReport, DrawError> {
     let started = Instant::now();
     let rt0 = scene.round_trips();
-    let claim = if opts.dry_run {
-        Claim::none()
-    } else {
-        Claim::take(scene)?
-    };
-    let result = raised(scene, opts.dry_run, |scene| {
-        apply_claimed(scene, drawing, opts, progress, &claim)
-    });
-    let released = claim.release(scene);
-    let mut report = result?;
-    released?;
+    // the rate first: every call before it waits for an idle pass (the claim too)
+    let (mut report, _) = raised(scene, opts.dry_run, |scene| {
+        let claim = if opts.dry_run {
+            Claim::none()
+        } else {
+            Claim::take(scene)?
+        };
+        let result = apply_claimed(scene, drawing, opts, progress, &claim);
+        let released = claim.release(scene);
+        let report = result?;
+        released?;
+        Ok(report)
+    })?;
     report.round_trips = scene.round_trips() - rt0;
     report.elapsed = started.elapsed();
     Ok(report)
@@ -139,11 +142,12 @@ pub fn apply(
 /// ZeroMQ call then takes 93-125 ms instead of 0.45 ms, `../shared/spec/real-coppeliasim-4.5.1.md`),
 /// and restores the user's rate afterwards, whatever `work` returned. The user's rate is
 /// recorded in the scene while it is raised, so an interrupted run is repaired by the next.
+/// Returns `work`'s value and the rates found.
 pub(crate) fn raised<T>(
     scene: &mut dyn Backend,
     dry_run: bool,
     work: impl FnOnce(&mut dyn Backend) -> Result<T, DrawError>,
-) -> Result<T, DrawError> {
+) -> Result<(T, IdleRates), DrawError> {
     let rates = scene.idle_rates()?;
     // an interrupted earlier run may have left the rate at 0 and recorded the user's value
     let user_fps = rates.saved.unwrap_or(rates.current);
@@ -159,7 +163,7 @@ pub(crate) fn raised<T>(
     };
     let value = result?;
     restored?;
-    Ok(value)
+    Ok((value, rates))
 }
 
 /// [`apply`] under `claim`, with the idle rate raised.

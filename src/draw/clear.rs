@@ -41,22 +41,23 @@ pub struct ClearOptions {
 /// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
 pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
     let rt0 = scene.round_trips();
-    let claim = if opts.dry_run {
-        Claim::none()
-    } else {
-        Claim::take(scene)?
-    };
-    // a record of the user's rate means an interrupted apply left the rate at 0: `raised`
-    // restores it, which the report says
-    let saved = scene.idle_rates()?.saved;
-    let result = raised(scene, opts.dry_run, |scene| {
-        clear_claimed(scene, opts, &claim)
-    });
-    let released = claim.release(scene);
-    let mut report = result?;
-    released?;
+    // the rate first: every call before it waits for an idle pass (the claim too)
+    let (mut report, rates) = raised(scene, opts.dry_run, |scene| {
+        let claim = if opts.dry_run {
+            Claim::none()
+        } else {
+            Claim::take(scene)?
+        };
+        let result = clear_claimed(scene, opts, &claim);
+        let released = claim.release(scene);
+        let report = result?;
+        released?;
+        Ok(report)
+    })?;
     report.round_trips = scene.round_trips() - rt0;
-    report.restored_idle_fps = saved.filter(|_| !opts.dry_run);
+    // a record of the user's rate means an interrupted apply left the rate at 0: `raised`
+    // restored it
+    report.restored_idle_fps = rates.saved.filter(|_| !opts.dry_run);
     Ok(report)
 }
 

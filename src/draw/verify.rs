@@ -110,7 +110,7 @@ pub fn verify(
     drawing: &Drawing,
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
-    raised(scene, false, |scene| verify_raised(scene, drawing, names))
+    raised(scene, false, |scene| verify_raised(scene, drawing, names)).map(|(ok, _)| ok)
 }
 
 /// [`verify`] with the idle rate raised.

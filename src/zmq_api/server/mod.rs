@@ -265,7 +265,10 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         // 0.45 ms was timed by a client): the emulator's own processing and its loopback
         // round trip count towards it
         let (reply, work) = handle(state, &bytes);
-        if !sleep_until(at.max(arrived) + work.saturating_sub(LOOPBACK_ROUND_TRIP), stop) {
+        if !sleep_until(
+            at.max(arrived) + work.saturating_sub(LOOPBACK_ROUND_TRIP),
+            stop,
+        ) {
             break;
         }
         // a REP socket must answer before it can receive again; a failed send drops the client
