@@ -117,6 +117,9 @@ pub struct CostModel {
     pub legacy_pass_floor: Duration,
     /// ZeroMQ: one call (spec "Pacing": about 0.45 ms at idle fps 0).
     pub zmq_call: Duration,
+    /// ZeroMQ: one `sim.setObjectParent` or `sim.setObjectPose` (spec "ZeroMQ costs at idle
+    /// fps 0": 0.33–0.45 ms per call, the middle of that range).
+    pub zmq_set: Duration,
     /// ZeroMQ `sim.getObjectsInTree`: the call, and per handle returned (spec "ZeroMQ costs":
     /// 0.3 ms, 0.9 ms with 500 children).
     pub zmq_tree: Duration,
@@ -159,6 +162,7 @@ impl CostModel {
             per_object: Duration::from_nanos(127),
             legacy_pass_floor: Duration::from_millis(9),
             zmq_call: us(450),
+            zmq_set: us(390),
             zmq_tree: us(300),
             zmq_tree_per_handle: Duration::from_nanos(1200),
         }
@@ -265,6 +269,7 @@ mod tests {
         close(m.zmq_objects_in_tree(500), 0.9);
         // spec "Pacing": one call, or the removal of one handle, about 0.45 ms
         close(m.zmq_call, 0.45);
+        assert!((0.33..=0.45).contains(&(m.zmq_set.as_secs_f64() * 1000.0)));
         close(m.zmq_remove(1), 0.45);
         close(m.zmq_remove(0), 0.45);
         // beyond the table: the last slope

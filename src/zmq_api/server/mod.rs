@@ -330,6 +330,7 @@ fn call_cost(timing: &Timing, func: &str, args: &[Value], outcome: &Outcome) -> 
     timing.cost(|m| match func {
         "sim.copyPasteObjects" => m.zmq_copy_paste(listed()),
         "sim.removeObjects" => m.zmq_remove(listed()),
+        "sim.setObjectParent" | "sim.setObjectPose" => m.zmq_set,
         "sim.getObjectsInTree" => match outcome {
             Outcome::Ret(v) => match v.first() {
                 Some(Value::Array(hs)) => m.zmq_objects_in_tree(hs.len()),
