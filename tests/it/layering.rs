@@ -51,6 +51,10 @@ fn referenced_modules(text: &str, module: &[String]) -> Vec<String> {
     let bytes = text.as_bytes();
     let mut i = 0;
     while i < bytes.len() {
+        if !text.is_char_boundary(i) {
+            i += 1;
+            continue;
+        }
         let rest = &text[i..];
         let starts_path = (rest.starts_with("crate::") || rest.starts_with("super::"))
             && (i == 0 || !(bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_'));

@@ -289,6 +289,17 @@ mod tests {
     }
 
     #[test]
+    fn a_client_that_closes_before_sending_anything_leaves_no_penalty() {
+        let s = server();
+        let addr = s.local_addr();
+        drop(TcpStream::connect(addr).unwrap()); // a port probe
+        std::thread::sleep(Duration::from_millis(50));
+        let mut c = TcpStream::connect(addr).expect("accepted at once");
+        exchange(&mut c, true);
+        s.shutdown();
+    }
+
+    #[test]
     fn the_library_default_has_no_penalty_and_no_modeled_costs() {
         let config = ServerConfig::default();
         assert_eq!(config.timing, Timing::instant());
@@ -303,7 +314,9 @@ mod tests {
             ..Default::default()
         };
         let s = spawn(config, Simulator::new(Scene::course(), 0)).unwrap();
-        drop(TcpStream::connect(s.local_addr()).unwrap());
+        let mut c = TcpStream::connect(s.local_addr()).unwrap();
+        exchange(&mut c, false);
+        drop(c); // no kill command: end of file mid-session
         assert!(becomes(s.local_addr(), true, Duration::from_secs(5)));
         // joins the accept thread, which is sleeping out the penalty
         s.shutdown();

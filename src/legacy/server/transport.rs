@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use super::{Shared, write_dump};
 use crate::legacy::command::id;
-use crate::legacy::wire::{Message, read_message, write_message};
+use crate::legacy::wire::{Message, WireError, read_message, write_message};
 
 /// Accepts one client at a time. Like CoppeliaSim, after a client leaves the listening
 /// socket is closed and re-created `rebind_delay` later (connections are refused meanwhile).
@@ -107,12 +107,13 @@ fn sleep_unless_stopped(stop: &AtomicBool, d: Duration) {
 }
 
 /// Serves one client until it leaves; returns why the session ended, and whether it ended
-/// with the kill command.
+/// cleanly (with the kill command, or closed by the client before any message).
 fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
     let _ = stream.set_read_timeout(Some(shared.config.idle_timeout));
     let _ = stream.set_nodelay(true);
     *shared.active.lock().unwrap_or_else(|e| e.into_inner()) = stream.try_clone().ok();
     shared.lock().end_session();
+    let mut exchanged = false;
     loop {
         if shared.stop.load(Ordering::SeqCst) {
             let _ = stream.shutdown(Shutdown::Both);
@@ -120,8 +121,19 @@ fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
         }
         let bytes = match read_message(&mut stream) {
             Ok(b) => b,
+            // A client that closed before sending anything (a port probe) is not counted as
+            // leaving abruptly: the measured refusal followed clients killed or interrupted
+            // during their exchanges, and by the source it follows a close on the server's
+            // side, while a probe closes first itself (spec "Connections (legacy API)";
+            // simExtRemoteApi inConnection.cpp:243-277). Unmeasured: a modeling choice.
+            Err(WireError::Io(e))
+                if !exchanged && e.kind() == std::io::ErrorKind::UnexpectedEof =>
+            {
+                return ("closed before sending anything".into(), true);
+            }
             Err(e) => return (format!("{e}"), false),
         };
+        exchanged = true;
         let msg = match Message::decode(&bytes) {
             Ok(m) => m,
             Err(e) => return (format!("protocol error: {e}"), false),
