@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use super::lease::Claim;
+use super::lease::{Claim, claimed};
 use super::plan::{self, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
     Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
@@ -121,16 +121,9 @@ pub fn apply(
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
     let (mut report, _) = raised(scene, opts.dry_run, |scene| {
-        let claim = if opts.dry_run {
-            Claim::none()
-        } else {
-            Claim::take(scene)?
-        };
-        let result = apply_claimed(scene, drawing, opts, progress, &claim);
-        let released = claim.release(scene);
-        let report = result?;
-        released?;
-        Ok(report)
+        claimed(scene, opts.dry_run, |scene, claim| {
+            apply_claimed(scene, drawing, opts, progress, claim)
+        })
     })?;
     report.round_trips = scene.round_trips() - rt0;
     report.elapsed = started.elapsed();

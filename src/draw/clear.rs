@@ -6,7 +6,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::apply::raised;
-use super::lease::Claim;
+use super::lease::{Claim, claimed};
 use super::plan::maze_lines;
 use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
 
@@ -43,16 +43,9 @@ pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
     let (mut report, rates) = raised(scene, opts.dry_run, |scene| {
-        let claim = if opts.dry_run {
-            Claim::none()
-        } else {
-            Claim::take(scene)?
-        };
-        let result = clear_claimed(scene, opts, &claim);
-        let released = claim.release(scene);
-        let report = result?;
-        released?;
-        Ok(report)
+        claimed(scene, opts.dry_run, |scene, claim| {
+            clear_claimed(scene, opts, claim)
+        })
     })?;
     report.round_trips = scene.round_trips() - rt0;
     // a record of the user's rate means an interrupted apply left the rate at 0: `raised`

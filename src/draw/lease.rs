@@ -120,6 +120,25 @@ impl Claim {
     }
 }
 
+/// Runs `work` under a fresh claim (an empty one for a dry run, which changes nothing) and
+/// releases the claim afterwards, whatever `work` returned.
+pub(crate) fn claimed<T>(
+    scene: &mut dyn Backend,
+    dry_run: bool,
+    work: impl FnOnce(&mut dyn Backend, &Claim) -> Result<T, DrawError>,
+) -> Result<T, DrawError> {
+    let claim = if dry_run {
+        Claim::none()
+    } else {
+        Claim::take(scene)?
+    };
+    let result = work(scene, &claim);
+    let released = claim.release(scene);
+    let value = result?;
+    released?;
+    Ok(value)
+}
+
 /// A random non-zero token (the standard library's per-process random hasher keys).
 fn random_token() -> i32 {
     let bits = RandomState::new().hash_one((std::process::id(), std::time::SystemTime::now()));
