@@ -15,11 +15,12 @@ use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::command::{Command, decode_handle_list, read_i32};
 use vrep_maze::legacy::{Client, ClientOptions, LegacyBackend, ServerConfig, ServerHandle, spawn};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::{Scene, Simulator};
+use vrep_maze::sim::{Scene, Simulator, Timing};
 
 fn server(fps: i32) -> ServerHandle {
     let cfg = ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
+        timing: Timing::realistic(),
         ..Default::default()
     };
     spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()

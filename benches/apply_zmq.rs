@@ -15,7 +15,7 @@ use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::{Scene, Simulator};
+use vrep_maze::sim::{Scene, Simulator, Timing};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
 struct Run {
@@ -29,6 +29,7 @@ struct Run {
 fn legacy_run(d: &Drawing, fps: i32) -> Run {
     let cfg = legacy::ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
+        timing: Timing::realistic(),
         ..Default::default()
     };
     let s = legacy::spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap();
@@ -56,6 +57,7 @@ fn zmq_run(d: &Drawing, fps: i32, protocol: Protocol) -> Run {
     let cfg = zmq_api::ServerConfig {
         listen: "127.0.0.1:0".parse().unwrap(),
         protocol,
+        timing: Timing::realistic(),
         ..Default::default()
     };
     let s = zmq_api::spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap();
