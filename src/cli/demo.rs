@@ -17,10 +17,10 @@ use crate::generate::Algorithm;
 use crate::layout::geometry::course;
 use crate::layout::{GenerateSpec, build_layout};
 use crate::legacy::LegacyBackend;
-use crate::legacy::server::{ServerConfig, spawn};
+use crate::legacy::{ServerConfig, spawn};
 use crate::maze::Grid;
 use crate::render::{Format, RenderOptions};
-use crate::sim::{Scene as SimScene, Simulator};
+use crate::sim::{Scene as SimScene, Simulator, Timing};
 use crate::validate::validate;
 
 /// Options of `demo`.
@@ -68,8 +68,10 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
 /// Starts the legacy emulator on a free loopback port, applies `layout` through our client,
 /// verifies it, and reports what the emulated scene holds.
 fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
+    // the time a real CoppeliaSim 4.5.1 takes, so the figure printed is what to expect
     let config = ServerConfig {
         listen: SocketAddr::from(([127, 0, 0, 1], 0)),
+        timing: Timing::realistic(),
         ..ServerConfig::default()
     };
     let server = spawn(config, Simulator::new(SimScene::course(), DEFAULT_IDLE_FPS))
