@@ -168,22 +168,22 @@ pub struct IdleRates {
 pub enum Edit {
     /// Set the parent (`None` = no parent).
     SetParent {
-        /// Object.
+        /// The object to move in the hierarchy.
         handle: i32,
-        /// New parent.
+        /// Its new parent, `None` for the scene root.
         parent: Option<i32>,
-        /// Keep the world pose.
+        /// Keep the world pose (else the local pose is kept and the object moves).
         keep_in_place: bool,
     },
     /// Set position and orientation relative to another object.
     SetPose {
-        /// Object.
+        /// The object to place.
         handle: i32,
-        /// Reference object.
+        /// The object whose frame the pose is in (the floor).
         relative_to: i32,
-        /// Position.
+        /// Position in that frame, metres.
         position: [f64; 3],
-        /// Euler angles.
+        /// CoppeliaSim Euler angles in that frame, radians.
         orientation: [f64; 3],
     },
     /// Remove an object.
