@@ -229,10 +229,8 @@ impl Drawer<'_, '_> {
     /// verifies.
     fn draw(&mut self, objects: &[ObjectInfo], p: plan::Plan) -> Result<(), DrawError> {
         let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
-        let floor = by_handle
-            .get(&self.h.floor)
-            .map(|o| world_frame(o))
-            .unwrap_or_default();
+        let known = |handle: i32| by_handle.get(&handle).copied();
+        let floor = known(self.h.floor).map(world_frame).unwrap_or_default();
         let (h, drawing) = (self.h, self.drawing);
         // the surplus goes first: fewer objects make every later copy cheaper
         let removals: Vec<Edit> = p.remove.iter().map(|&r| Edit::Remove(r)).collect();
@@ -246,14 +244,7 @@ impl Drawer<'_, '_> {
         let mut placed_now = 0;
         for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
             let parent = (i > 0).then_some(h.parent);
-            self.place(
-                &mut edits,
-                by_handle.get(&handle).copied(),
-                &floor,
-                handle,
-                want,
-                parent,
-            );
+            self.place(&mut edits, known(handle), &floor, handle, want, parent);
             placed_now += 1;
         }
         if drawing.lines.is_empty() {
@@ -263,24 +254,10 @@ impl Drawer<'_, '_> {
                 yaw: drawing.start.yaw,
                 ..drawing.start
             };
-            self.place(
-                &mut edits,
-                by_handle.get(&h.line).copied(),
-                &floor,
-                h.line,
-                &hidden,
-                None,
-            );
+            self.place(&mut edits, known(h.line), &floor, h.line, &hidden, None);
         }
         for (handle, want) in [(h.start, &drawing.start), (h.end, &drawing.end)] {
-            self.place(
-                &mut edits,
-                by_handle.get(&handle).copied(),
-                &floor,
-                handle,
-                want,
-                None,
-            );
+            self.place(&mut edits, known(handle), &floor, handle, want, None);
         }
         let mut pasted = 0;
         while pasted < p.paste {

@@ -6,7 +6,9 @@ use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
-use crate::coppelia::{DEFAULT_IDLE_FPS, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
+use crate::coppelia::{
+    DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION,
+};
 use crate::draw::{
     Backend, BackendError, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
@@ -225,7 +227,7 @@ impl Backend for LegacyBackend {
                 } => {
                     cmds.push(Command::SetObjectParent {
                         handle,
-                        parent: parent.unwrap_or(-1),
+                        parent: parent.unwrap_or(HANDLE_WORLD),
                         keep_in_place,
                     });
                     what.push(format!("set the parent of object {handle}"));

@@ -307,6 +307,16 @@ mod tests {
         Core::new(Simulator::new(Scene::course(), 0))
     }
 
+    /// One pass now, with no modeled cost and no stop request.
+    fn instant_pass(core: &mut Core) -> Duration {
+        core.pass(
+            STEP,
+            Instant::now(),
+            &Timing::instant(),
+            &AtomicBool::new(false),
+        )
+    }
+
     fn header(message_id: i32) -> MessageHeader {
         MessageHeader {
             message_id,
@@ -371,12 +381,7 @@ mod tests {
             "no pass yet"
         );
 
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
+        instant_pass(&mut core);
         let r = core.receive(&header(1), vec![]);
         assert_eq!(r.header.message_id, 0, "the latest message before the pass");
         assert_eq!(r.header.client_time, 1000);
@@ -409,37 +414,17 @@ mod tests {
             relative_to: HANDLE_WORLD,
         };
         core.receive(&header(0), vec![get.to_block(opmode::STREAMING)]);
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
+        instant_pass(&mut core);
+        instant_pass(&mut core);
         assert_eq!(core.passes, 1, "the second pass found unsent results");
         let r = core.receive(&header(1), vec![]);
         assert_eq!(r.blocks.len(), 1);
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
+        instant_pass(&mut core);
         assert_eq!(core.passes, 2);
         let missing = Command::GetObjectHandle("Nope".into()).to_block(opmode::BLOCKING);
         let r = core.receive(&header(2), vec![missing.clone(), missing]);
         assert_eq!(r.blocks.len(), 1, "the stream's result");
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
+        instant_pass(&mut core);
         let r = core.receive(&header(3), vec![]);
         let failed: Vec<u8> = r
             .blocks
@@ -464,12 +449,7 @@ mod tests {
         let (maze, floor) = (get("Maze"), get("Floor"));
         let cycle = |core: &mut Core, blocks| {
             core.receive(&header(0), blocks);
-            core.pass(
-                STEP,
-                Instant::now(),
-                &Timing::instant(),
-                &AtomicBool::new(false),
-            );
+            instant_pass(core);
             core.receive(&header(1), vec![]).blocks
         };
         assert_eq!(
@@ -547,23 +527,13 @@ mod tests {
         core.sim.start();
         for n in 1..=2 {
             core.receive(&header(n), vec![get.to_block(opmode::BLOCKING)]);
-            core.pass(
-                STEP,
-                Instant::now(),
-                &Timing::instant(),
-                &AtomicBool::new(false),
-            );
+            instant_pass(&mut core);
             let r = core.receive(&header(n), vec![]);
             assert_eq!(r.header.server_state, server_state::NOT_STOPPED);
             assert_eq!(r.blocks[0].sim_time, 50 * n);
         }
         core.sim.pause();
-        core.pass(
-            STEP,
-            Instant::now(),
-            &Timing::instant(),
-            &AtomicBool::new(false),
-        );
+        instant_pass(&mut core);
         let r = core.receive(&header(3), vec![]);
         assert_eq!(
             r.header.server_state,
