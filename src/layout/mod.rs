@@ -59,6 +59,27 @@ pub struct Layout {
     pub segments: Vec<Pose>,
 }
 
+impl Layout {
+    /// A copy of everything but the segments (left empty): what a reader or writer that
+    /// streams the segments works with.
+    pub fn without_segments(&self) -> Layout {
+        Layout {
+            format: self.format.clone(),
+            version: self.version,
+            generator: self.generator.clone(),
+            grid: self.grid.clone(),
+            floor: self.floor.clone(),
+            line: self.line.clone(),
+            start: self.start.clone(),
+            end: self.end.clone(),
+            metrics: self.metrics.clone(),
+            passage_encoding: self.passage_encoding.clone(),
+            passages: self.passages.clone(),
+            segments: Vec::new(),
+        }
+    }
+}
+
 /// How a layout was generated.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

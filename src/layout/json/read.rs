@@ -1,0 +1,490 @@
+//! Reading layout JSON as a stream: the file is parsed as it is read (never held as text),
+//! and the segments go one by one to a [`SegmentSink`] instead of into a list, so a
+//! multi-gigabyte layout is checked or rendered in memory proportional to its grid.
+//!
+//! [`scan`](super::scan) splits the document: the head (every field but `segments`, a
+//! few megabytes at most) is read by serde; the segments, nearly all the bytes, are read
+//! fast ([`segment`](super::segment)) or, in any other spelling, by serde. A layout's
+//! fields may come in any order. When every other field comes before `segments` (as this
+//! crate writes them), the sink is made from them before the first segment and the
+//! segments stream through it; otherwise they are kept until the end of the document and
+//! then replayed into the sink.
+
+use std::fmt;
+use std::fs::File;
+use std::io::{self, Read};
+use std::path::Path;
+
+use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
+
+use super::ReadError;
+use super::scan::{Element, Position, ScanError, Source};
+use crate::layout::{
+    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, VERSION,
+};
+use crate::maze::Metrics;
+
+/// Receives a layout's segments as they are read.
+pub trait SegmentSink {
+    /// Called once per segment, in file order; `index` counts from 0.
+    fn segment(&mut self, index: usize, pose: Pose);
+}
+
+/// Keeps every segment: what [`read_layout`](super::read_layout) uses.
+impl SegmentSink for Vec<Pose> {
+    fn segment(&mut self, _index: usize, pose: Pose) {
+        self.push(pose);
+    }
+}
+
+/// Reads the layout at `path` (`-` reads standard input), streaming its segments into the
+/// sink that `sink_for` makes from the rest of the layout. Returns that rest (its
+/// `segments` empty) and the sink.
+pub fn read_layout_with<S: SegmentSink>(
+    path: &Path,
+    sink_for: impl FnOnce(&Layout) -> S,
+) -> Result<(Layout, S), ReadError> {
+    let name = path.display().to_string();
+    if name == "-" {
+        return read_from(io::stdin().lock(), &name, sink_for);
+    }
+    let file = File::open(path).map_err(|source| ReadError::Io {
+        path: name.clone(),
+        source,
+    })?;
+    read_from(file, &name, sink_for)
+}
+
+/// [`read_layout_with`] from any reader; `name` is used in error messages.
+pub fn read_from<S: SegmentSink>(
+    reader: impl Read,
+    name: &str,
+    sink_for: impl FnOnce(&Layout) -> S,
+) -> Result<(Layout, S), ReadError> {
+    let io_error = |source: io::Error| ReadError::Io {
+        path: name.to_string(),
+        source,
+    };
+    let scan_error = |e: ScanError| match e {
+        ScanError::Io(source) => io_error(source),
+        ScanError::Syntax(at, message) => syntax(name, at, message),
+    };
+    let mut source = Source::new(reader);
+    let mut head = Vec::new();
+    if !source.head(&mut head).map_err(io_error)? {
+        // No segment list to stream: serde reads (or refuses) the whole document.
+        let fields = parse_fields(&head, name)?;
+        return finish(fields, Vec::new(), name, sink_for);
+    }
+    // The head so far, closed, says whether the segments can stream.
+    let mut probe = head.clone();
+    probe.extend_from_slice(b"[]}");
+    let early = parse_fields(&probe, name)?;
+    if let Some(message) = early.refused {
+        return Err(format_error(name, message));
+    }
+    let mut streamed = None;
+    let mut kept = Vec::new();
+    let mut sink_for = Some(sink_for);
+    if early.complete() {
+        let layout = early.into_layout(name)?;
+        let make = sink_for.take().expect("made once");
+        streamed = Some((make(&layout), layout));
+    }
+    let mut index = 0;
+    let mut push = |pose: Pose| {
+        match &mut streamed {
+            Some((sink, _)) => sink.segment(index, pose),
+            None => kept.push(pose),
+        }
+        index += 1;
+    };
+    let breaks = source
+        .elements(|element, at| {
+            match element {
+                Element::Segment(pose) => push(pose),
+                Element::Other(bytes) => push(parse_segment(bytes, at)?),
+            }
+            Ok(())
+        })
+        .map_err(scan_error)?;
+    let mut tail = Vec::new();
+    source.rest(&mut tail).map_err(io_error)?;
+    if streamed.is_some() && tail.trim_ascii() == b"}" {
+        let (sink, layout) = streamed.expect("checked");
+        return Ok((layout, sink));
+    }
+    // Fields after the list (or junk): serde reads the document with the list left out;
+    // the placeholder keeps line numbers true.
+    head.push(b'[');
+    head.resize(head.len() + breaks, b'\n');
+    head.push(b']');
+    head.extend_from_slice(&tail);
+    let fields = parse_fields(&head, name)?;
+    match (streamed, sink_for) {
+        (Some((sink, layout)), _) => {
+            // The head was complete, so a known field after the list is a duplicate, which
+            // serde refused above; what is left to refuse is an unknown one.
+            fields.into_layout(name)?;
+            Ok((layout, sink))
+        }
+        (None, Some(sink_for)) => finish(fields, kept, name, sink_for),
+        (None, None) => unreachable!("the sink is made only when the head streams"),
+    }
+}
+
+/// The layout from its `fields`, and a sink fed `kept` then any segments serde read.
+fn finish<S: SegmentSink>(
+    mut fields: Fields,
+    kept: Vec<Pose>,
+    name: &str,
+    sink_for: impl FnOnce(&Layout) -> S,
+) -> Result<(Layout, S), ReadError> {
+    if let Some(message) = fields.refused.take() {
+        return Err(format_error(name, message));
+    }
+    let read_by_serde = fields.segments.take();
+    let scanned = !kept.is_empty();
+    let layout = fields.into_layout(name)?;
+    if read_by_serde.is_none() && !scanned {
+        return Err(format_error(name, "missing field `segments`".to_string()));
+    }
+    let mut sink = sink_for(&layout);
+    for (index, pose) in kept.into_iter().chain(read_by_serde.into_iter().flatten()).enumerate() {
+        sink.segment(index, pose);
+    }
+    Ok((layout, sink))
+}
+
+/// One segment serde reads from `bytes` (found at `at`): any spelling, or its error.
+fn parse_segment(bytes: &[u8], at: Position) -> Result<Pose, ScanError> {
+    serde_json::from_slice(bytes).map_err(|e| {
+        let column = if e.line() == 1 {
+            at.column + e.column().saturating_sub(1)
+        } else {
+            e.column()
+        };
+        let position = Position {
+            line: at.line + e.line().saturating_sub(1),
+            column,
+        };
+        ScanError::Syntax(position, super::strip_position(&e.to_string()))
+    })
+}
+
+/// A syntax error at a position.
+fn syntax(name: &str, at: Position, message: String) -> ReadError {
+    ReadError::Syntax {
+        path: name.to_string(),
+        line: at.line,
+        column: at.column,
+        message,
+    }
+}
+
+/// Not a layout this build reads.
+fn format_error(name: &str, message: String) -> ReadError {
+    ReadError::Format {
+        path: name.to_string(),
+        message,
+    }
+}
+
+/// The fields of the layout document in `bytes`, read by serde.
+fn parse_fields(bytes: &[u8], name: &str) -> Result<Fields, ReadError> {
+    let mut deserializer = serde_json::Deserializer::from_slice(bytes);
+    deserializer
+        .deserialize_map(FieldsVisitor)
+        .and_then(|fields| deserializer.end().map(|()| fields))
+        .map_err(|e| ReadError::Syntax {
+            path: name.to_string(),
+            line: e.line(),
+            column: e.column(),
+            message: super::strip_position(&e.to_string()),
+        })
+}
+
+/// Every field of a layout, as serde's derived code would name them in errors.
+const FIELDS: &[&str] = &[
+    "format",
+    "version",
+    "generator",
+    "grid",
+    "floor",
+    "line",
+    "start",
+    "end",
+    "metrics",
+    "passage_encoding",
+    "passages",
+    "segments",
+];
+
+/// The fields read so far.
+#[derive(Default)]
+struct Fields {
+    format: Option<serde_json::Value>,
+    version: Option<serde_json::Value>,
+    generator: Option<GeneratorInfo>,
+    grid: Option<GridSpec>,
+    floor: Option<FloorSpec>,
+    line: Option<LineSpec>,
+    start: Option<Endpoint>,
+    end: Option<Endpoint>,
+    metrics: Option<Metrics>,
+    passage_encoding: Option<String>,
+    passages: Option<Vec<String>>,
+    /// Segments serde read (the list the scanner leaves out reads as empty).
+    segments: Option<Vec<Pose>>,
+    /// The first key that is no layout field.
+    unknown: Option<String>,
+    /// Why this is not a layout this build reads (format or version).
+    refused: Option<String>,
+}
+
+impl Fields {
+    /// `true` once every field but `segments` has been read.
+    fn complete(&self) -> bool {
+        self.format.is_some()
+            && self.version.is_some()
+            && self.generator.is_some()
+            && self.grid.is_some()
+            && self.floor.is_some()
+            && self.line.is_some()
+            && self.start.is_some()
+            && self.end.is_some()
+            && self.metrics.is_some()
+            && self.passage_encoding.is_some()
+            && self.passages.is_some()
+    }
+
+    /// The layout without segments; a wrong format or version, an unknown field or a
+    /// missing one is the error.
+    fn into_layout(self, name: &str) -> Result<Layout, ReadError> {
+        let refuse = |message: String| format_error(name, message);
+        let format = check_header(self.format.as_ref(), self.version.as_ref()).map_err(refuse)?;
+        if let Some(key) = self.unknown {
+            return Err(refuse(format!(
+                "unknown field `{key}`, expected one of {}",
+                FIELDS
+                    .iter()
+                    .map(|f| format!("`{f}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+        let missing = |field: &str| refuse(format!("missing field `{field}`"));
+        Ok(Layout {
+            format,
+            version: VERSION,
+            generator: self.generator.ok_or_else(|| missing("generator"))?,
+            grid: self.grid.ok_or_else(|| missing("grid"))?,
+            floor: self.floor.ok_or_else(|| missing("floor"))?,
+            line: self.line.ok_or_else(|| missing("line"))?,
+            start: self.start.ok_or_else(|| missing("start"))?,
+            end: self.end.ok_or_else(|| missing("end"))?,
+            metrics: self.metrics.ok_or_else(|| missing("metrics"))?,
+            passage_encoding: self
+                .passage_encoding
+                .ok_or_else(|| missing("passage_encoding"))?,
+            passages: self.passages.ok_or_else(|| missing("passages"))?,
+            segments: Vec::new(),
+        })
+    }
+}
+
+/// What is wrong with the `format` and `version` read so far, once it is certain.
+fn header_problem(fields: &Fields) -> Option<String> {
+    match (&fields.format, &fields.version) {
+        (None, _) => None,
+        (Some(_), None) => check_header(fields.format.as_ref(), Some(&VERSION.into())).err(),
+        (Some(_), Some(_)) => check_header(fields.format.as_ref(), fields.version.as_ref()).err(),
+    }
+}
+
+/// The `format` and `version` fields say this is a layout this build reads; returns the
+/// format string.
+fn check_header(
+    format: Option<&serde_json::Value>,
+    version: Option<&serde_json::Value>,
+) -> Result<String, String> {
+    match format {
+        Some(serde_json::Value::String(f)) if f == FORMAT => {}
+        Some(other) => {
+            return Err(format!(
+                "format is {other}, not \"{FORMAT}\": not a vrep-maze layout"
+            ));
+        }
+        None => return Err(format!("no \"format\": \"{FORMAT}\" field: not a vrep-maze layout")),
+    }
+    match version {
+        Some(serde_json::Value::Number(v)) if v.as_u64() == Some(u64::from(VERSION)) => {
+            Ok(FORMAT.to_string())
+        }
+        Some(v) => Err(format!(
+            "layout version {v} is not supported (this vrep-maze reads version {VERSION})"
+        )),
+        None => Err("no \"version\" field".to_string()),
+    }
+}
+
+/// Reads the layout object into [`Fields`].
+struct FieldsVisitor;
+
+impl<'de> Visitor<'de> for FieldsVisitor {
+    type Value = Fields;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a vrep-maze layout object")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Fields, A::Error> {
+        let mut fields = Fields::default();
+        macro_rules! field {
+            ($name:ident) => {{
+                if fields.$name.is_some() {
+                    return Err(de::Error::duplicate_field(stringify!($name)));
+                }
+                fields.$name = Some(map.next_value()?);
+            }};
+        }
+        while let Some(key) = map.next_key::<String>()? {
+            match key.as_str() {
+                "format" => field!(format),
+                "version" => field!(version),
+                "generator" => field!(generator),
+                "grid" => field!(grid),
+                "floor" => field!(floor),
+                "line" => field!(line),
+                "start" => field!(start),
+                "end" => field!(end),
+                "metrics" => field!(metrics),
+                "passage_encoding" => field!(passage_encoding),
+                "passages" => field!(passages),
+                "segments" => field!(segments),
+                _ => {
+                    // Not a layout field: an error, unless the file is no layout at all,
+                    // which the format check says better.
+                    fields.unknown.get_or_insert(key);
+                    map.next_value::<IgnoredAny>()?;
+                }
+            }
+            // Refuse a file that is no layout (or a newer one) before reading more.
+            if let Some(message) = header_problem(&fields) {
+                while map.next_entry::<IgnoredAny, IgnoredAny>()?.is_some() {}
+                fields.refused = Some(message);
+                return Ok(fields);
+            }
+        }
+        Ok(fields)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::Algorithm;
+    use crate::layout::json::to_string;
+    use crate::layout::{GenerateSpec, build_layout};
+    use crate::maze::Grid;
+
+    fn layout() -> Layout {
+        build_layout(&GenerateSpec::course(
+            Grid::new(4, 3).unwrap(),
+            Algorithm::Kruskal,
+            5,
+        ))
+        .unwrap()
+    }
+
+    /// A reader that hands out `step` bytes at a time: every chunk boundary is tried.
+    struct Trickle<'a> {
+        bytes: &'a [u8],
+        step: usize,
+    }
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+            let n = self.step.min(buf.len()).min(self.bytes.len());
+            buf[..n].copy_from_slice(&self.bytes[..n]);
+            self.bytes = &self.bytes[n..];
+            Ok(n)
+        }
+    }
+
+    /// Reads `text`, recording whether the sink was made before any segment arrived.
+    fn read(text: &str, step: usize) -> Result<(Layout, Vec<(usize, Pose)>, bool), ReadError> {
+        struct Record(Vec<(usize, Pose)>, bool);
+        impl SegmentSink for Record {
+            fn segment(&mut self, index: usize, pose: Pose) {
+                self.0.push((index, pose));
+            }
+        }
+        let reader = Trickle {
+            bytes: text.as_bytes(),
+            step,
+        };
+        let (head, record) = read_from(reader, "t.json", |head| {
+            Record(Vec::new(), !head.passages.is_empty())
+        })?;
+        Ok((head, record.0, record.1))
+    }
+
+    #[test]
+    fn segments_stream_in_order_at_every_chunk_boundary() {
+        let layout = layout();
+        let text = to_string(&layout);
+        for step in [1, 7, 64, 1 << 20] {
+            let (head, segments, made_from_head) = read(&text, step).unwrap();
+            assert!(made_from_head);
+            assert_eq!(head, layout.without_segments());
+            let poses: Vec<Pose> = segments.iter().map(|&(_, p)| p).collect();
+            assert_eq!(poses, layout.segments, "step {step}");
+            assert!(segments.iter().enumerate().all(|(i, &(index, _))| i == index));
+        }
+    }
+
+    #[test]
+    fn fields_after_the_segments_and_other_spellings_are_read_too() {
+        let layout = layout();
+        let value: serde_json::Value = serde_json::from_str(&to_string(&layout)).unwrap();
+        let compact = serde_json::to_string(&value).unwrap();
+        let mut object = value.as_object().unwrap().clone();
+        let segments = object.remove("segments").unwrap();
+        let mut reordered = serde_json::Map::new();
+        reordered.insert("segments".into(), segments);
+        reordered.extend(object);
+        let pretty = serde_json::to_string_pretty(&reordered).unwrap();
+        for text in [pretty, compact] {
+            let (head, segments, _) = read(&text, 5).unwrap();
+            assert_eq!(head, layout.without_segments());
+            let poses: Vec<Pose> = segments.iter().map(|&(_, p)| p).collect();
+            assert_eq!(poses, layout.segments);
+        }
+    }
+
+    #[test]
+    fn broken_segments_are_refused_with_their_line_and_column() {
+        let text = to_string(&layout());
+        let line_of = |needle: &str| text[..text.find(needle).unwrap()].lines().count();
+        let broken = text.replacen("\"yaw\": 0.0}", "\"yaw\": \"east\"}", 1);
+        let err = read(&broken, 9).unwrap_err().to_string();
+        let line = line_of("\"yaw\": 0.0}");
+        assert!(err.starts_with(&format!("t.json:{line}:")), "{err}");
+        assert!(err.contains("invalid type: string \"east\""), "{err}");
+        let err = read(&text.replacen("0.0},", "0.0}", 1), 9).unwrap_err().to_string();
+        assert!(err.contains("expected `,` or `]`"), "{err}");
+        let err = read(&text.replacen("0.0}\n  ]", "0.0},\n  ]", 1), 9)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("trailing comma"), "{err}");
+        let err = read(&text[..text.len() - 20], 9).unwrap_err().to_string();
+        assert!(err.contains("EOF"), "{err}");
+        let extra = text.replacen("  ]\n}", "  ],\n  \"colour\": 1\n}", 1);
+        let err = read(&extra, 9).unwrap_err().to_string();
+        assert!(err.contains("unknown field `colour`"), "{err}");
+        let twice = text.replacen("  ]\n}", "  ],\n  \"segments\": []\n}", 1);
+        let err = read(&twice, 9).unwrap_err().to_string();
+        assert!(err.contains("duplicate field `segments`"), "{err}");
+    }
+}
