@@ -53,7 +53,7 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
         .renderer()
         .render(&layout, &RenderOptions { solution: true })?;
     println!("{}", String::from_utf8_lossy(&picture).trim_end());
-    println!("OK {}", describe(&layout));
+    println!("OK {}", describe(&layout, layout.segments.len()));
     if let Some(metrics) = &report.metrics {
         print_metrics(metrics);
     }

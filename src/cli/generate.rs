@@ -14,7 +14,10 @@ use super::values::{
 use crate::generate::{Algorithm, Bias, GrowingMode};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
-use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, build_layout, write_layout};
+use super::progress::{Progress, Unit};
+use crate::layout::build::plan_layout;
+use crate::layout::json::write_layout_parts;
+use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry};
 use crate::maze::Grid;
 use crate::rng::os_seed;
 
@@ -138,22 +141,41 @@ impl MazeArgs {
     }
 }
 
-/// Runs `generate`.
-pub fn run(args: GenerateArgs) -> Result<ExitCode> {
+/// Segments written between two updates of the bar.
+const BAR_STEP: usize = 1 << 16;
+
+/// Runs `generate`: the segments are written as they are computed, never held as a list.
+pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
     let mut spec = args.maze.spec(0)?;
     spec.seed = args.seed.unwrap_or_else(os_seed);
     let seed = spec.seed;
     // Options are checked; what is left to refuse depends on them too (start and end).
-    let layout = build_layout(&spec).map_err(usage)?;
+    let spinner = progress.spinner(format!("generating a {} maze", spec.grid));
+    let planned = plan_layout(&spec).map_err(usage);
+    spinner.finish_and_clear();
+    let planned = planned?;
+    let layout = &planned.head;
     if layout.start.cell == layout.end.cell {
         eprintln!(
             "note: start and end are the same cell ({},{}); allowed, the robot is already there",
             layout.start.cell[0], layout.start.cell[1]
         );
     }
-    write_output(args.output.as_deref(), |w| write_layout(&layout, w))?;
+    let count = planned.segment_count();
+    let bar = progress.bar("writing the layout", count as u64, Unit::Items("segments"));
+    let segments = planned.segments().enumerate().map(|(i, pose)| {
+        if i % BAR_STEP == 0 {
+            bar.set_position(i as u64);
+        }
+        pose
+    });
+    let written = write_output(args.output.as_deref(), |w| {
+        write_layout_parts(layout, segments, w)
+    });
+    bar.finish_and_clear();
+    written?;
     if drawn {
         eprintln!(
             "seed {seed} (drawn from the OS; recorded in the layout; pass --seed {seed} to make this maze again)"
@@ -167,7 +189,7 @@ pub fn run(args: GenerateArgs) -> Result<ExitCode> {
             layout.grid.rows,
             layout.generator.algorithm,
             seed,
-            layout.segments.len(),
+            count,
             layout.metrics.solution_cells
         );
     }

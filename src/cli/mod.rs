@@ -9,6 +9,7 @@ mod demo;
 mod generate;
 mod interrupt;
 mod output;
+mod progress;
 mod render;
 mod serve;
 mod validate;
@@ -26,6 +27,9 @@ use clap::{Parser, Subcommand};
     after_help = "Example:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze validate maze.json\n  vrep-maze render maze.json --solution\n  vrep-maze apply maze.json          # into a running CoppeliaSim (stopped simulation)\n  vrep-maze demo                     # all of it on the course default, no simulator needed"
 )]
 pub struct Cli {
+    /// No progress bars (they show on a terminal only, for steps of over a second).
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -156,9 +160,10 @@ fn end_quietly_on_broken_pipe() {
 }
 
 fn run(cli: Cli) -> Result<ExitCode> {
+    let progress = progress::Progress::new(cli.quiet);
     match cli.command {
-        Command::Generate(args) => generate::run(args),
-        Command::Validate(args) => validate::run(args),
+        Command::Generate(args) => generate::run(args, progress),
+        Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args),
         Command::Batch(args) => batch::run(args),
         Command::Completions(args) => completions::run(args),

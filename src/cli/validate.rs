@@ -1,14 +1,17 @@
 //! `vrep-maze validate`: check layout files and print what each maze is like.
 
-use std::path::PathBuf;
+use std::fs::File;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Result;
 use clap::Args;
 
-use crate::layout::{Layout, read_layout};
+use super::progress::{Progress, Unit};
+use crate::layout::Layout;
+use crate::layout::json::{read_from, ReadError};
 use crate::maze::Metrics;
-use crate::validate::{Invalid, validate};
+use crate::validate::Validator;
 
 /// Options of `validate`.
 #[derive(Debug, Args)]
@@ -21,35 +24,38 @@ pub struct ValidateArgs {
     pub files: Vec<PathBuf>,
 }
 
-/// Runs `validate`: exit 0 only if every file is valid.
-pub fn run(args: ValidateArgs) -> Result<ExitCode> {
+/// Runs `validate`: exit 0 only if every file is valid. Each file is read once, its
+/// segments checked as they stream in.
+pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
     let mut all_ok = true;
     for path in &args.files {
         let name = path.display();
-        let layout = match read_layout(path) {
-            Ok(layout) => layout,
+        let (layout, validator) = match read_checking(path, progress) {
+            Ok(read) => read,
             Err(e) => {
                 eprintln!("error: {e}");
                 all_ok = false;
                 continue;
             }
         };
-        let report = validate(&layout);
-        if report.is_ok() {
-            println!("OK {name}: {}", describe(&layout));
-            if let Some(metrics) = &report.metrics {
-                print_metrics(metrics);
+        let segments = validator.segments();
+        match validator.finish().into_result() {
+            Ok(metrics) => {
+                println!("OK {name}: {}", describe(&layout, segments));
+                if let Some(metrics) = &metrics {
+                    print_metrics(metrics);
+                }
             }
-        } else {
-            all_ok = false;
-            let count = report.problems.len();
-            let invalid = Invalid {
-                problems: report.problems,
-            };
-            for line in invalid.shown() {
-                eprintln!("error: {name}: {line}");
+            Err(invalid) => {
+                all_ok = false;
+                for line in invalid.shown() {
+                    eprintln!("error: {name}: {line}");
+                }
+                eprintln!(
+                    "INVALID {name}: {} problem(s)",
+                    invalid.problems.len() + invalid.omitted
+                );
             }
-            eprintln!("INVALID {name}: {count} problem(s)");
         }
     }
     Ok(if all_ok {
@@ -59,15 +65,30 @@ pub fn run(args: ValidateArgs) -> Result<ExitCode> {
     })
 }
 
-/// One line naming the maze.
-pub fn describe(layout: &Layout) -> String {
+/// Reads the layout at `path` (`-`: standard input), validating its segments as they
+/// stream past, with a bar over the file's bytes.
+pub fn read_checking(path: &Path, progress: Progress) -> Result<(Layout, Validator), ReadError> {
+    let name = path.display().to_string();
+    let io = |source| ReadError::Io {
+        path: name.clone(),
+        source,
+    };
+    if name == "-" {
+        return read_from(std::io::stdin().lock(), &name, Validator::new);
+    }
+    let file = File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    let bar = progress.bar(format!("reading {name}"), size, Unit::Bytes);
+    let read = read_from(bar.wrap_read(file), &name, Validator::new);
+    bar.finish_and_clear();
+    read
+}
+
+/// One line naming the maze and its number of segments.
+pub fn describe(layout: &Layout, segments: usize) -> String {
     format!(
         "{}x{} {} seed {}, {} segments",
-        layout.grid.columns,
-        layout.grid.rows,
-        layout.generator.algorithm,
-        layout.generator.seed,
-        layout.segments.len()
+        layout.grid.columns, layout.grid.rows, layout.generator.algorithm, layout.generator.seed, segments
     )
 }
 

@@ -8,7 +8,7 @@ use super::endpoints::{self, EndpointSpec, resolve};
 use super::geometry::{Geometry, course, round_um};
 use super::limits::{self, Naming};
 use super::{
-    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, VERSION, passages,
+    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, VERSION, passages,
 };
 use crate::generate::{Algorithm, generate_braided};
 use crate::maze::{Cell, Grid, Maze, Metrics};
@@ -131,27 +131,62 @@ fn check_span(grid: Grid, geometry: &Geometry) -> Result<(), String> {
 /// Generates the maze `spec` describes and lays it out; every option is checked first
 /// ([`GenerateSpec::check`]), so a refused spec allocates nothing.
 pub fn build_layout(spec: &GenerateSpec) -> Result<Layout, String> {
+    plan_layout(spec).map(Planned::into_layout)
+}
+
+/// [`build_layout`] without computing the segments: they come from the maze when asked,
+/// so a big layout can be written without its segment list in memory.
+pub fn plan_layout(spec: &GenerateSpec) -> Result<Planned, String> {
     spec.check()?;
     let maze = generate_braided(spec.grid, spec.algorithm, spec.seed, spec.braid);
-    layout_maze(&maze, spec)
+    plan_maze(maze, spec)
+}
+
+/// A layout whose segments are computed from its maze when asked.
+#[derive(Debug, Clone)]
+pub struct Planned {
+    /// Everything but the segments (left empty).
+    pub head: Layout,
+    maze: Maze,
+    geometry: Geometry,
+    offsets: Vec<f64>,
+}
+
+impl Planned {
+    /// How many segments the layout has.
+    pub fn segment_count(&self) -> usize {
+        self.maze.passage_count() * self.offsets.len()
+    }
+
+    /// The segments, in layout order: passage by passage, each passage's copies in turn.
+    pub fn segments(&self) -> impl Iterator<Item = Pose> + '_ {
+        self.maze.passages().flat_map(|(cell, dir)| {
+            self.geometry
+                .passage_segments(cell, dir, &self.offsets)
+        })
+    }
+
+    /// The whole layout, segments and all.
+    pub fn into_layout(self) -> Layout {
+        let segments = self.segments().collect();
+        Layout {
+            segments,
+            ..self.head
+        }
+    }
 }
 
 /// Lays out an already generated `maze` as `spec` says. Everything is computed from the
 /// geometry as the layout stores it (micrometres, microradians), so `validate` finds
 /// what was drawn.
-pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
+pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
     let grid = maze.grid();
-    let geometry = &spec.check_on(grid)?;
-    let (start, end) = resolve(maze, spec.start, spec.end)?;
-    let metrics = Metrics::measure(maze, grid.index(start), grid.index(end))
+    let geometry = spec.check_on(grid)?;
+    let (start, end) = resolve(&maze, spec.start, spec.end)?;
+    let metrics = Metrics::measure(&maze, grid.index(start), grid.index(end))
         .ok_or_else(|| format!("end {end} cannot be reached from start {start}"))?;
-    let floor = floor_for(grid, geometry, spec.floor)?;
-    let offsets = geometry.segment_offsets();
-    let segments = maze
-        .passages()
-        .flat_map(|(cell, dir)| geometry.passage_segments(cell, dir, &offsets))
-        .collect();
-    Ok(Layout {
+    let floor = floor_for(grid, &geometry, spec.floor)?;
+    let head = Layout {
         format: FORMAT.to_string(),
         version: VERSION,
         generator: GeneratorInfo {
@@ -173,12 +208,19 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
             width: geometry.line_width,
             z: geometry.line_z,
         },
-        start: endpoint(geometry, start),
-        end: endpoint(geometry, end),
+        start: endpoint(&geometry, start),
+        end: endpoint(&geometry, end),
         metrics,
         passage_encoding: passages::ENCODING.to_string(),
-        passages: passages::encode(maze),
-        segments,
+        passages: passages::encode(&maze),
+        segments: Vec::new(),
+    };
+    let offsets = geometry.segment_offsets();
+    Ok(Planned {
+        head,
+        maze,
+        geometry,
+        offsets,
     })
 }
 

@@ -141,7 +141,12 @@ impl Geometry {
 
     /// Floor poses of the segments that draw the passage from `cell` towards `dir`
     /// (east or north).
-    pub fn passage_segments(&self, cell: Cell, dir: Direction, offsets: &[f64]) -> Vec<Pose> {
+    pub fn passage_segments<'a>(
+        &self,
+        cell: Cell,
+        dir: Direction,
+        offsets: &'a [f64],
+    ) -> impl Iterator<Item = Pose> + use<'a> {
         let iso = self.maze_to_floor();
         let start = self.local_centre(cell);
         let (axis, local_yaw) = match dir {
@@ -150,13 +155,11 @@ impl Geometry {
             Direction::West => (Vector2::new(-1.0, 0.0), 0.0),
             Direction::South => (Vector2::new(0.0, -1.0), PI / 2.0),
         };
-        offsets
-            .iter()
-            .map(|&t| {
-                let p = iso * (start + axis * t);
-                Pose::rounded(p.x, p.y, self.line_z, local_yaw + self.rotation)
-            })
-            .collect()
+        let (z, yaw) = (self.line_z, local_yaw + self.rotation);
+        offsets.iter().map(move |&t| {
+            let p = iso * (start + axis * t);
+            Pose::rounded(p.x, p.y, z, yaw)
+        })
     }
 
     /// The floor-frame corners of the rectangle the grid covers (cell edges, not centres).
@@ -235,10 +238,14 @@ mod tests {
         assert_eq!(g.segments_per_passage(), 2);
         let offsets = g.segment_offsets();
         assert!((offsets[0] - 0.25).abs() < 1e-12 && (offsets[1] - 0.75).abs() < 1e-12);
-        let east = g.passage_segments(Cell::new(0, 0), Direction::East, &offsets);
+        let east: Vec<Pose> = g
+            .passage_segments(Cell::new(0, 0), Direction::East, &offsets)
+            .collect();
         assert_eq!(east[0], Pose::rounded(-3.75, -4.0, 0.001, 0.0));
         assert_eq!(east[1], Pose::rounded(-3.25, -4.0, 0.001, 0.0));
-        let north = g.passage_segments(Cell::new(8, 8), Direction::South, &offsets);
+        let north: Vec<Pose> = g
+            .passage_segments(Cell::new(8, 8), Direction::South, &offsets)
+            .collect();
         assert_eq!(north[0].x, 4.0);
         assert_eq!(north[0].y, 3.75);
         assert_eq!(north[0].yaw, round_um(PI / 2.0));

@@ -1,18 +1,22 @@
-//! Segment checks: every passage is covered without gaps, no segment lies off a passage
-//! (over a wall, between rows, off the grid), and no segment is drawn twice.
+//! Segment checks against the maze: every passage is covered without gaps, no segment
+//! lies off a passage (over a wall, between rows, off the grid), and no segment is drawn
+//! twice.
 //!
 //! Work happens in the maze frame, where every segment lies on a row (along x) or a
 //! column (along y), so each check is one-dimensional: intervals along one grid line.
+//! Segments are placed as they arrive and a stray one is reported at once; what needs
+//! all of a line (duplicates, gaps) is checked at the end, from 12 bytes kept per segment
+//! (its start along the line and its index), in lists sized from the passages up front.
 
-use std::collections::BTreeMap;
+use std::f64::consts::{FRAC_PI_2, PI};
 
-use nalgebra::Point2;
+use nalgebra::{Isometry2, Point2};
 
 use super::Problems;
-use crate::layout::Layout;
+use crate::layout::Pose;
 use crate::layout::geometry::{Geometry, normalize_angle};
 use crate::layout::limits;
-use crate::maze::{Cell, Direction, Maze};
+use crate::maze::{Cell, Direction, Grid, Maze};
 
 /// Position tolerance in the maze frame: see [`limits::SEGMENT_TOLERANCE`].
 const TOLERANCE: f64 = limits::SEGMENT_TOLERANCE;
@@ -20,7 +24,7 @@ const TOLERANCE: f64 = limits::SEGMENT_TOLERANCE;
 const YAW_TOLERANCE: f64 = 1e-4;
 
 /// Which way a grid line runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Axis {
     /// A row: along the maze's x.
     Row,
@@ -28,200 +32,265 @@ enum Axis {
     Column,
 }
 
-/// A stretch `lo..hi` along one grid line, and the segment that draws it.
-#[derive(Debug, Clone, Copy)]
-struct Span {
-    lo: f64,
-    hi: f64,
-    segment: usize,
-}
+impl Axis {
+    /// The cell at position `k` along grid line `line`.
+    fn cell(self, line: u32, k: u32) -> Cell {
+        match self {
+            Axis::Row => Cell::new(k, line),
+            Axis::Column => Cell::new(line, k),
+        }
+    }
 
-/// Runs every segment check on `layout`, whose passages are `maze`.
-pub(super) fn check(layout: &Layout, maze: &Maze, geometry: &Geometry, problems: &mut Problems) {
-    let lines = place_segments(layout, maze, geometry, problems);
-    let grid = maze.grid();
-    let c = geometry.cell_size;
-    let half_width = geometry.line_width / 2.0;
-    for (axis, count, length) in [
-        (Axis::Row, grid.height(), grid.width()),
-        (Axis::Column, grid.width(), grid.height()),
-    ] {
-        for line in 0..count {
-            let open: Vec<(u32, (f64, f64))> = (0..length.saturating_sub(1))
-                .filter(|&k| maze.is_open(grid.index(cell_on(axis, line, k)), forward(axis)))
-                .map(|k| {
-                    let k_f = f64::from(k);
-                    (k, (k_f * c - half_width, (k_f + 1.0) * c + half_width))
-                })
-                .collect();
-            let spans = lines.get(&(axis, line)).map(Vec::as_slice).unwrap_or(&[]);
-            check_line(axis, line, &open, spans, layout, c, problems);
+    /// The direction the line runs in.
+    fn forward(self) -> Direction {
+        match self {
+            Axis::Row => Direction::East,
+            Axis::Column => Direction::North,
         }
     }
 }
 
-/// Puts every segment on its grid line, reporting those that fit no line.
-fn place_segments(
-    layout: &Layout,
-    maze: &Maze,
-    geometry: &Geometry,
-    problems: &mut Problems,
-) -> BTreeMap<(Axis, u32), Vec<Span>> {
-    let grid = maze.grid();
-    let to_maze = geometry.maze_to_floor().inverse();
-    let c = geometry.cell_size;
-    let half_length = layout.line.length / 2.0;
-    let mut lines: BTreeMap<(Axis, u32), Vec<Span>> = BTreeMap::new();
-    for (index, pose) in layout.segments.iter().enumerate() {
-        let location = format!("segments[{index}]");
-        let local = to_maze * Point2::new(pose.x, pose.y);
-        let yaw = normalize_angle(pose.yaw - geometry.rotation);
-        let axis = if yaw.sin().abs() < YAW_TOLERANCE {
+/// The segments placed on one grid line: where each starts along it, and its index.
+#[derive(Debug, Default)]
+struct Line {
+    starts: Vec<f64>,
+    segments: Vec<u32>,
+}
+
+/// The segments placed so far, line by line.
+pub(super) struct Coverage {
+    maze: Maze,
+    to_maze: Isometry2<f64>,
+    rotation: f64,
+    cell: f64,
+    half_width: f64,
+    length: f64,
+    /// Rows (`0..height`), then columns.
+    lines: Vec<Line>,
+}
+
+impl Coverage {
+    /// Ready to place the segments of a layout whose passages are `maze`.
+    pub fn new(maze: Maze, geometry: &Geometry, length: f64) -> Self {
+        let grid = maze.grid();
+        let per_passage = geometry.segments_per_passage();
+        let mut open = vec![0usize; (grid.height() + grid.width()) as usize];
+        for (cell, dir) in maze.passages() {
+            match dir {
+                Direction::East => open[cell.y as usize] += 1,
+                Direction::North => open[(grid.height() + cell.x) as usize] += 1,
+                _ => {}
+            }
+        }
+        let lines = open
+            .into_iter()
+            .map(|passages| Line {
+                starts: Vec::with_capacity(passages * per_passage),
+                segments: Vec::with_capacity(passages * per_passage),
+            })
+            .collect();
+        Self {
+            to_maze: geometry.maze_to_floor().inverse(),
+            rotation: geometry.rotation,
+            cell: geometry.cell_size,
+            half_width: geometry.line_width / 2.0,
+            length,
+            maze,
+            lines,
+        }
+    }
+
+    fn grid(&self) -> Grid {
+        self.maze.grid()
+    }
+
+    /// Puts segment `index` on its grid line, or reports why it fits none or lies off the
+    /// passages.
+    pub fn place(&mut self, index: usize, pose: &Pose, problems: &mut Problems) {
+        let location = || format!("segments[{index}]");
+        let local = self.to_maze * Point2::new(pose.x, pose.y);
+        let yaw = normalize_angle(pose.yaw - self.rotation).abs();
+        let axis = if yaw < YAW_TOLERANCE || PI - yaw < YAW_TOLERANCE {
             Axis::Row
-        } else if yaw.cos().abs() < YAW_TOLERANCE {
+        } else if (yaw - FRAC_PI_2).abs() < YAW_TOLERANCE {
             Axis::Column
         } else {
             problems.add(
-                location,
+                location(),
                 format!(
                     "at ({}, {}) has yaw {} rad: it runs along neither maze axis",
                     pose.x, pose.y, pose.yaw
                 ),
             );
-            continue;
+            return;
         };
+        let grid = self.grid();
         let (across, along, count, noun) = match axis {
             Axis::Row => (local.y, local.x, grid.height(), "row"),
             Axis::Column => (local.x, local.y, grid.width(), "column"),
         };
+        let c = self.cell;
         let line = (across / c).round();
         if (across - line * c).abs() > TOLERANCE {
             problems.add(
-                location,
+                location(),
                 format!(
                     "at ({}, {}) lies between two {noun}s of cell centres",
                     pose.x, pose.y
                 ),
             );
-            continue;
+            return;
         }
         if line < 0.0 || line >= f64::from(count) {
             problems.add(
-                location,
+                location(),
                 format!("at ({}, {}) lies off the grid", pose.x, pose.y),
             );
-            continue;
+            return;
         }
-        lines.entry((axis, line as u32)).or_default().push(Span {
-            lo: along - half_length,
-            hi: along + half_length,
-            segment: index,
-        });
-    }
-    lines
-}
-
-/// Checks one grid line: `open` holds (passage index, interval to cover) per passage.
-fn check_line(
-    axis: Axis,
-    line: u32,
-    open: &[(u32, (f64, f64))],
-    spans: &[Span],
-    layout: &Layout,
-    c: f64,
-    problems: &mut Problems,
-) {
-    let allowed = merge(open.iter().map(|&(_, iv)| iv));
-    let mut sorted = spans.to_vec();
-    sorted.sort_by(|a, b| a.lo.total_cmp(&b.lo).then(a.segment.cmp(&b.segment)));
-    for pair in sorted.windows(2) {
-        if (pair[0].lo - pair[1].lo).abs() < TOLERANCE
-            && (pair[0].hi - pair[1].hi).abs() < TOLERANCE
-        {
+        let line = line as u32;
+        let start = along - self.length / 2.0;
+        if let Some(message) = self.stray(axis, line, start, start + self.length) {
             problems.add(
-                format!("segments[{}]", pair[1].segment),
-                format!(
-                    "duplicates segments[{}]: the same line drawn twice",
-                    pair[0].segment
-                ),
+                location(),
+                format!("at ({}, {}) {message}", pose.x, pose.y),
             );
+            return;
         }
+        let slot = match axis {
+            Axis::Row => line,
+            Axis::Column => grid.height() + line,
+        };
+        let placed = &mut self.lines[slot as usize];
+        placed.starts.push(start);
+        placed.segments.push(index as u32);
     }
-    for span in &sorted {
-        let inside = allowed
-            .iter()
-            .any(|&(lo, hi)| span.lo >= lo - TOLERANCE && span.hi <= hi + TOLERANCE);
-        if !inside {
-            let pose = &layout.segments[span.segment];
-            let stray = first_uncovered(span.lo, span.hi, &allowed);
-            let k = (stray / c).floor();
-            let (last, noun) = match axis {
-                Axis::Row => (layout.grid.columns, "east"),
-                Axis::Column => (layout.grid.rows, "north"),
+
+    /// Why `lo..hi` on grid line `line` is not within its open passages, if it is not.
+    /// Passage `k` (cell `k` to `k + 1`) may be drawn over `k·c − w/2 .. (k+1)·c + w/2`.
+    fn stray(&self, axis: Axis, line: u32, lo: f64, hi: f64) -> Option<String> {
+        let (c, hw) = (self.cell, self.half_width);
+        let passages = match axis {
+            Axis::Row => i64::from(self.grid().width()) - 1,
+            Axis::Column => i64::from(self.grid().height()) - 1,
+        };
+        let open = |k: i64| {
+            (0..passages).contains(&k) && {
+                let cell = axis.cell(line, k as u32);
+                self.maze.is_open(self.grid().index(cell), axis.forward())
+            }
+        };
+        // The first passage whose stretch can hold `lo`, the last that `hi` needs.
+        let first = ((lo + hw + TOLERANCE) / c).floor() as i64;
+        let last = ((hi - hw - TOLERANCE) / c).ceil() as i64 - 1;
+        let blocked = if first > last {
+            // Around the centre of cell `first`: either passage beside it will do.
+            (!open(first - 1) && !open(first)).then_some(first - 1)
+        } else {
+            (first..=last).find(|&k| !open(k))
+        }?;
+        Some(if blocked < 0 || blocked >= passages {
+            "sticks out past the edge of the grid".to_string()
+        } else {
+            let noun = match axis {
+                Axis::Row => "east",
+                Axis::Column => "north",
             };
-            let message = if k < 0.0 || k >= f64::from(last - 1) {
-                format!(
-                    "at ({}, {}) sticks out past the edge of the grid",
-                    pose.x, pose.y
-                )
+            format!(
+                "draws over a wall: there is no passage {noun} of cell {}",
+                axis.cell(line, blocked as u32)
+            )
+        })
+    }
+
+    /// The checks that need whole lines: no segment drawn twice, every passage covered.
+    pub fn finish(mut self, problems: &mut Problems) {
+        let grid = self.grid();
+        let mut merged = Vec::new();
+        let lines = std::mem::take(&mut self.lines);
+        for (slot, placed) in lines.into_iter().enumerate() {
+            let slot = slot as u32;
+            let (axis, line) = if slot < grid.height() {
+                (Axis::Row, slot)
             } else {
-                let cell = cell_on(axis, line, k as u32);
-                format!(
-                    "at ({}, {}) draws over a wall: there is no passage {noun} of cell {cell}",
-                    pose.x, pose.y
-                )
+                (Axis::Column, slot - grid.height())
             };
-            problems.add(format!("segments[{}]", span.segment), message);
+            let placed = sorted(placed);
+            self.duplicates(&placed, problems);
+            merged.clear();
+            for &lo in &placed.starts {
+                let hi = lo + self.length;
+                match merged.last_mut() {
+                    Some((_, end)) if lo <= *end + TOLERANCE => *end = f64::max(*end, hi),
+                    _ => merged.push((lo, hi)),
+                }
+            }
+            self.gaps(axis, line, &merged, problems);
         }
     }
-    let drawn = merge(sorted.iter().map(|s| (s.lo, s.hi)));
-    for &(k, (lo, hi)) in open {
-        let covered = drawn
-            .iter()
-            .any(|&(a, b)| a <= lo + TOLERANCE && b >= hi - TOLERANCE);
-        if !covered {
-            let from = cell_on(axis, line, k);
-            let to = cell_on(axis, line, k + 1);
-            let gap = first_uncovered(lo, hi, &drawn);
-            problems.add(
-                format!("passage {from}-{to}"),
-                format!(
-                    "is not covered gap-free by segments: nothing drawn {:.3} m past the centre of {from}",
-                    gap - f64::from(k) * c
-                ),
-            );
+
+    /// Pairs of segments drawing the same stretch.
+    fn duplicates(&self, placed: &Line, problems: &mut Problems) {
+        for k in 1..placed.starts.len() {
+            if (placed.starts[k] - placed.starts[k - 1]).abs() < TOLERANCE {
+                problems.add(
+                    format!("segments[{}]", placed.segments[k]),
+                    format!(
+                        "duplicates segments[{}]: the same line drawn twice",
+                        placed.segments[k - 1]
+                    ),
+                );
+            }
+        }
+    }
+
+    /// Open passages on the line that `drawn` (sorted, merged) does not cover.
+    fn gaps(&self, axis: Axis, line: u32, drawn: &[(f64, f64)], problems: &mut Problems) {
+        let grid = self.grid();
+        let (c, hw) = (self.cell, self.half_width);
+        let length = match axis {
+            Axis::Row => grid.width(),
+            Axis::Column => grid.height(),
+        };
+        let mut j = 0;
+        for k in 0..length.saturating_sub(1) {
+            let from = axis.cell(line, k);
+            if !self.maze.is_open(grid.index(from), axis.forward()) {
+                continue;
+            }
+            let (lo, hi) = (f64::from(k) * c - hw, f64::from(k + 1) * c + hw);
+            while j + 1 < drawn.len() && drawn[j + 1].0 <= lo + TOLERANCE {
+                j += 1;
+            }
+            let covered = drawn
+                .get(j)
+                .is_some_and(|&(a, b)| a <= lo + TOLERANCE && b >= hi - TOLERANCE);
+            if !covered {
+                let to = axis.cell(line, k + 1);
+                let gap = first_uncovered(lo, hi, drawn.get(j..).unwrap_or_default());
+                problems.add(
+                    format!("passage {from}-{to}"),
+                    format!(
+                        "is not covered gap-free by segments: nothing drawn {:.3} m past the centre of {from}",
+                        gap - f64::from(k) * c
+                    ),
+                );
+            }
         }
     }
 }
 
-/// The cell at position `k` along grid line `line`.
-fn cell_on(axis: Axis, line: u32, k: u32) -> Cell {
-    match axis {
-        Axis::Row => Cell::new(k, line),
-        Axis::Column => Cell::new(line, k),
+/// The line's segments in order along it (as this crate writes them, so usually as they
+/// came), ties by index.
+fn sorted(placed: Line) -> Line {
+    let in_order = placed.starts.is_sorted();
+    if in_order {
+        return placed;
     }
-}
-
-/// The direction a grid line runs in.
-fn forward(axis: Axis) -> Direction {
-    match axis {
-        Axis::Row => Direction::East,
-        Axis::Column => Direction::North,
-    }
-}
-
-/// Sorted, merged union of intervals (touching or overlapping within tolerance).
-fn merge(intervals: impl Iterator<Item = (f64, f64)>) -> Vec<(f64, f64)> {
-    let mut all: Vec<(f64, f64)> = intervals.collect();
-    all.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut merged: Vec<(f64, f64)> = Vec::with_capacity(all.len());
-    for (lo, hi) in all {
-        match merged.last_mut() {
-            Some(last) if lo <= last.1 + TOLERANCE => last.1 = last.1.max(hi),
-            _ => merged.push((lo, hi)),
-        }
-    }
-    merged
+    let mut pairs: Vec<(f64, u32)> = placed.starts.into_iter().zip(placed.segments).collect();
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let (starts, segments) = pairs.into_iter().unzip();
+    Line { starts, segments }
 }
 
 /// The first point of `lo..hi` that `cover` (merged, sorted) does not contain.
