@@ -7,15 +7,15 @@ use anyhow::Result;
 use clap::Args;
 
 use super::output::write_output;
+use super::progress::{Progress, Unit};
 use super::usage;
 use super::values::{
     parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
 };
 use crate::generate::{Algorithm, Bias, GrowingMode};
+use crate::layout::build::plan_layout;
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
-use super::progress::{Progress, Unit};
-use crate::layout::build::plan_layout;
 use crate::layout::json::write_layout_parts;
 use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry};
 use crate::maze::Grid;

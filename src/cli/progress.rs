@@ -43,8 +43,8 @@ impl Progress {
 
     /// A spinner with the time taken, for a step whose length is unknown.
     pub fn spinner(self, what: impl Into<String>) -> ProgressBar {
-        let style = ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
-            .expect("a valid template");
+        let style =
+            ProgressStyle::with_template("{spinner} {msg} ({elapsed})").expect("a valid template");
         self.later(None, style, what.into())
     }
 
@@ -77,14 +77,20 @@ fn style(unit: Unit) -> ProgressStyle {
     ProgressStyle::with_template(template)
         .expect("a valid template")
         .progress_chars("=> ")
-        .with_key("rate", move |state: &ProgressState, w: &mut dyn std::fmt::Write| {
-            let _ = w.write_str(&rate(unit, state.per_sec()));
-        })
-        .with_key("unit", move |_: &ProgressState, w: &mut dyn std::fmt::Write| {
-            if let Unit::Items(name) = unit {
-                let _ = w.write_str(name);
-            }
-        })
+        .with_key(
+            "rate",
+            move |state: &ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = w.write_str(&rate(unit, state.per_sec()));
+            },
+        )
+        .with_key(
+            "unit",
+            move |_: &ProgressState, w: &mut dyn std::fmt::Write| {
+                if let Unit::Items(name) = unit {
+                    let _ = w.write_str(name);
+                }
+            },
+        )
 }
 
 /// A rate with sensible precision: one decimal, bytes in MiB.

@@ -9,7 +9,7 @@ use clap::Args;
 
 use super::progress::{Progress, Unit};
 use crate::layout::Layout;
-use crate::layout::json::{read_from, ReadError};
+use crate::layout::json::{Background, ReadError, read_from};
 use crate::maze::Metrics;
 use crate::validate::Validator;
 
@@ -38,6 +38,7 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
                 continue;
             }
         };
+        let validator = validator.finish();
         let segments = validator.segments();
         match validator.finish().into_result() {
             Ok(metrics) => {
@@ -66,20 +67,24 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
 }
 
 /// Reads the layout at `path` (`-`: standard input), validating its segments as they
-/// stream past, with a bar over the file's bytes.
-pub fn read_checking(path: &Path, progress: Progress) -> Result<(Layout, Validator), ReadError> {
+/// stream past (on a second thread), with a bar over the file's bytes.
+pub fn read_checking(
+    path: &Path,
+    progress: Progress,
+) -> Result<(Layout, Background<Validator>), ReadError> {
+    let start = |head: &Layout| Background::new(Validator::new(head));
     let name = path.display().to_string();
     let io = |source| ReadError::Io {
         path: name.clone(),
         source,
     };
     if name == "-" {
-        return read_from(std::io::stdin().lock(), &name, Validator::new);
+        return read_from(std::io::stdin().lock(), &name, start);
     }
     let file = File::open(path).map_err(io)?;
     let size = file.metadata().map_err(io)?.len();
     let bar = progress.bar(format!("reading {name}"), size, Unit::Bytes);
-    let read = read_from(bar.wrap_read(file), &name, Validator::new);
+    let read = read_from(bar.wrap_read(file), &name, start);
     bar.finish_and_clear();
     read
 }
@@ -88,7 +93,11 @@ pub fn read_checking(path: &Path, progress: Progress) -> Result<(Layout, Validat
 pub fn describe(layout: &Layout, segments: usize) -> String {
     format!(
         "{}x{} {} seed {}, {} segments",
-        layout.grid.columns, layout.grid.rows, layout.generator.algorithm, layout.generator.seed, segments
+        layout.grid.columns,
+        layout.grid.rows,
+        layout.generator.algorithm,
+        layout.generator.seed,
+        segments
     )
 }
 

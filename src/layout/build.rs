@@ -160,10 +160,9 @@ impl Planned {
 
     /// The segments, in layout order: passage by passage, each passage's copies in turn.
     pub fn segments(&self) -> impl Iterator<Item = Pose> + '_ {
-        self.maze.passages().flat_map(|(cell, dir)| {
-            self.geometry
-                .passage_segments(cell, dir, &self.offsets)
-        })
+        self.maze
+            .passages()
+            .flat_map(|(cell, dir)| self.geometry.passage_segments(cell, dir, &self.offsets))
     }
 
     /// The whole layout, segments and all.

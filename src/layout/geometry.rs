@@ -179,6 +179,10 @@ impl Geometry {
 
 /// An angle folded into (-pi, pi].
 pub fn normalize_angle(angle: f64) -> f64 {
+    if angle > -PI && angle <= PI {
+        // Already in range: skip the (slow) remainder, which would return it unchanged.
+        return angle;
+    }
     let mut a = angle % (2.0 * PI);
     if a <= -PI {
         a += 2.0 * PI;

@@ -1,8 +1,9 @@
 //! What a maze is like: distances, the solution path, its structure and its metrics.
-//! Every traversal here is petgraph's, run on the compact [`Maze`] (see `graph.rs`).
+//! Traversals run on the compact [`Maze`] through petgraph's traits (see `graph.rs`);
+//! the breadth-first distances, run several times per layout, are a plain queue.
 
 use petgraph::algo::connected_components;
-use petgraph::visit::{Bfs, IntoNeighbors};
+use petgraph::visit::IntoNeighbors;
 use serde::{Deserialize, Serialize};
 
 use super::grid::{Cell, Direction};
@@ -12,23 +13,25 @@ use super::model::Maze;
 pub const UNREACHED: u32 = u32::MAX;
 
 /// Steps from `start` to every cell (breadth-first), [`UNREACHED`] where there is no path.
+/// A plain queue over the distance array (which doubles as the visited set): the one
+/// traversal every layout is measured with several times, so it is kept lean rather than
+/// run through petgraph's `Bfs` and a second neighbour scan.
 pub fn distances_from(maze: &Maze, start: usize) -> Vec<u32> {
     let mut dist = vec![UNREACHED; maze.grid().cell_count()];
     dist[start] = 0;
-    let mut bfs = Bfs::new(maze, start as u32);
-    // Bfs yields cells in order of distance, so a cell's nearest already-reached
-    // neighbour is its predecessor on a shortest path.
-    while let Some(node) = bfs.next(maze) {
-        let node = node as usize;
-        if node == start {
-            continue;
+    let mut queue = Vec::with_capacity(maze.grid().cell_count());
+    queue.push(start as u32);
+    let mut next = 0;
+    while let Some(&node) = queue.get(next) {
+        next += 1;
+        let step = dist[node as usize] + 1;
+        for neighbour in maze.neighbors(node) {
+            let d = &mut dist[neighbour as usize];
+            if *d == UNREACHED {
+                *d = step;
+                queue.push(neighbour);
+            }
         }
-        let nearest = maze
-            .neighbors(node as u32)
-            .map(|n| dist[n as usize])
-            .min()
-            .unwrap_or(UNREACHED);
-        dist[node] = nearest.saturating_add(1);
     }
     dist
 }
@@ -121,7 +124,10 @@ pub struct Metrics {
 impl Metrics {
     /// Measures `maze` for the route `start` to `end`; `None` if `end` is unreachable.
     pub fn measure(maze: &Maze, start: usize, end: usize) -> Option<Self> {
-        let path = shortest_path(maze, start, end)?;
+        // Three breadth-first sweeps, the diameter's two beside the solution's.
+        let (path, (_, _, diameter)) =
+            rayon::join(|| shortest_path(maze, start, end), || diameter_ends(maze));
+        let path = path?;
         let grid = maze.grid();
         let mut dead_ends = 0;
         let mut junctions = 0;
@@ -152,7 +158,6 @@ impl Metrics {
                 ways_on >= 2
             })
             .count();
-        let (_, _, diameter) = diameter_ends(maze);
         Some(Self {
             cells: grid.cell_count() as u64,
             passages: maze.passage_count() as u64,

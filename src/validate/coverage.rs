@@ -151,10 +151,7 @@ impl Coverage {
         let line = line as u32;
         let start = along - self.length / 2.0;
         if let Some(message) = self.stray(axis, line, start, start + self.length) {
-            problems.add(
-                location(),
-                format!("at ({}, {}) {message}", pose.x, pose.y),
-            );
+            problems.add(location(), format!("at ({}, {}) {message}", pose.x, pose.y));
             return;
         }
         let slot = match axis {

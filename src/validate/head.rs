@@ -234,7 +234,12 @@ pub(super) fn check_route(
 /// The maze lies on the declared floor, within what the writer's rounding can move it
 /// ([`limits::floor_tolerance`]); each segment is checked as it arrives
 /// ([`super::segment`]).
-pub(super) fn check_floor(layout: &Layout, grid: Grid, geometry: &Geometry, problems: &mut Problems) {
+pub(super) fn check_floor(
+    layout: &Layout,
+    grid: Grid,
+    geometry: &Geometry,
+    problems: &mut Problems,
+) {
     let size = layout.floor.size;
     let tolerance = limits::floor_tolerance(geometry, grid);
     let need = extent_needed(&geometry.grid_corners(grid));
@@ -251,4 +256,3 @@ pub(super) fn check_floor(layout: &Layout, grid: Grid, geometry: &Geometry, prob
         );
     }
 }
-

@@ -354,4 +354,3 @@ impl Report {
 pub fn checked(layout: &Layout) -> Result<(), Invalid> {
     validate(layout).into_result().map(|_| ())
 }
-

@@ -34,21 +34,20 @@ impl Numbers {
             );
             return false;
         }
-        if !limits::YAW.contains(pose.yaw) {
-            if let Some(v) =
+        // The range is checked first so that a valid segment formats no name.
+        if !limits::YAW.contains(pose.yaw)
+            && let Some(v) =
                 limits::check_range(&format!("segments[{index}].yaw"), pose.yaw, limits::YAW)
-            {
-                problems.add(v.name, v.message);
-            }
+        {
+            problems.add(v.name, v.message);
         }
         if !limits::HEIGHT.contains(self.line_z) {
             // line.z itself is reported; judge the segment by the range alone.
-            if !limits::HEIGHT.contains(pose.z) {
-                if let Some(v) =
+            if !limits::HEIGHT.contains(pose.z)
+                && let Some(v) =
                     limits::check_range(&format!("segments[{index}].z"), pose.z, limits::HEIGHT)
-                {
-                    problems.add(v.name, v.message);
-                }
+            {
+                problems.add(v.name, v.message);
             }
         } else if (pose.z - self.line_z).abs() > 2.0 * limits::ROUNDING {
             problems.add(
@@ -89,7 +88,8 @@ impl Floor {
 
     /// Checks that segment `index` lies on the floor.
     pub fn check(&self, index: usize, pose: &Pose, problems: &mut Problems) {
-        let within = |centre: f64, size: f64| 2.0 * (centre.abs() + self.reach) <= size + self.tolerance;
+        let within =
+            |centre: f64, size: f64| 2.0 * (centre.abs() + self.reach) <= size + self.tolerance;
         if within(pose.x, self.size[0]) && within(pose.y, self.size[1]) {
             return;
         }

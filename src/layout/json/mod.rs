@@ -20,7 +20,7 @@ use serde::{Serialize, Serializer};
 use super::Layout;
 use super::geometry::round_um;
 
-pub use read::{SegmentSink, read_from, read_layout_with};
+pub use read::{Background, SegmentSink, read_from, read_layout_with};
 pub use write::{write_layout, write_layout_parts};
 
 /// Serializes an `f64` rounded to the micrometre.

@@ -102,4 +102,3 @@ impl Formatter for ShallowPretty {
         Ok(())
     }
 }
-

@@ -14,6 +14,8 @@ use std::fmt;
 use std::fs::File;
 use std::io::{self, Read};
 use std::path::Path;
+use std::sync::mpsc;
+use std::thread;
 
 use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
 
@@ -34,6 +36,70 @@ pub trait SegmentSink {
 impl SegmentSink for Vec<Pose> {
     fn segment(&mut self, _index: usize, pose: Pose) {
         self.push(pose);
+    }
+}
+
+/// Segments handed to a [`Background`] sink at a time.
+const BATCH: usize = 1 << 16;
+
+/// A sink that works on its own thread, so reading and what the sink does run side by
+/// side: segments are handed over in batches. [`finish`](Background::finish) returns the
+/// sink once it has seen every segment.
+pub struct Background<S> {
+    batch: Vec<Pose>,
+    /// Index of the batch's first segment.
+    first: usize,
+    to_sink: Option<mpsc::SyncSender<(usize, Vec<Pose>)>>,
+    sink: thread::JoinHandle<S>,
+}
+
+impl<S: SegmentSink + Send + 'static> Background<S> {
+    /// Starts `sink` on its own thread.
+    pub fn new(mut sink: S) -> Self {
+        let (to_sink, batches) = mpsc::sync_channel::<(usize, Vec<Pose>)>(4);
+        let sink = thread::spawn(move || {
+            for (first, batch) in batches {
+                for (k, pose) in batch.into_iter().enumerate() {
+                    sink.segment(first + k, pose);
+                }
+            }
+            sink
+        });
+        Self {
+            batch: Vec::with_capacity(BATCH),
+            first: 0,
+            to_sink: Some(to_sink),
+            sink,
+        }
+    }
+
+    /// Hands over the segments not sent yet; `false` if the sink's thread is gone.
+    fn send(&mut self) -> bool {
+        let batch = std::mem::replace(&mut self.batch, Vec::with_capacity(BATCH));
+        let first = self.first;
+        self.first += batch.len();
+        self.to_sink
+            .as_ref()
+            .is_some_and(|to_sink| to_sink.send((first, batch)).is_ok())
+    }
+
+    /// The sink, once it has seen every segment. A panic on its thread resumes here.
+    pub fn finish(mut self) -> S {
+        self.send();
+        self.to_sink = None;
+        self.sink
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    }
+}
+
+impl<S: SegmentSink + Send + 'static> SegmentSink for Background<S> {
+    fn segment(&mut self, _index: usize, pose: Pose) {
+        self.batch.push(pose);
+        if self.batch.len() == BATCH && !self.send() {
+            // The sink's thread died: `finish` reports its panic.
+            self.batch.clear();
+        }
     }
 }
 
@@ -83,36 +149,36 @@ pub fn read_from<S: SegmentSink>(
     if let Some(message) = early.refused {
         return Err(format_error(name, message));
     }
-    let mut streamed = None;
-    let mut kept = Vec::new();
-    let mut sink_for = Some(sink_for);
-    if early.complete() {
+    let mut segments = if early.complete() {
         let layout = early.into_layout(name)?;
-        let make = sink_for.take().expect("made once");
-        streamed = Some((make(&layout), layout));
-    }
-    let mut index = 0;
-    let mut push = |pose: Pose| {
-        match &mut streamed {
-            Some((sink, _)) => sink.segment(index, pose),
-            None => kept.push(pose),
-        }
-        index += 1;
+        Segments::Streaming(sink_for(&layout), Box::new(layout))
+    } else {
+        Segments::Kept(Vec::new(), sink_for)
     };
+    let mut index = 0;
     let breaks = source
         .elements(|element, at| {
-            match element {
-                Element::Segment(pose) => push(pose),
-                Element::Other(bytes) => push(parse_segment(bytes, at)?),
+            let pose = match element {
+                Element::Segment(pose) => pose,
+                Element::Other(bytes) => parse_segment(bytes, at)?,
+            };
+            match &mut segments {
+                Segments::Streaming(sink, _) => sink.segment(index, pose),
+                Segments::Kept(kept, _) => kept.push(pose),
             }
+            index += 1;
             Ok(())
         })
         .map_err(scan_error)?;
     let mut tail = Vec::new();
     source.rest(&mut tail).map_err(io_error)?;
-    if streamed.is_some() && tail.trim_ascii() == b"}" {
-        let (sink, layout) = streamed.expect("checked");
-        return Ok((layout, sink));
+    if let Segments::Streaming(..) = &segments
+        && tail.trim_ascii() == b"}"
+    {
+        let Segments::Streaming(sink, layout) = segments else {
+            unreachable!("matched above")
+        };
+        return Ok((*layout, sink));
     }
     // Fields after the list (or junk): serde reads the document with the list left out;
     // the placeholder keeps line numbers true.
@@ -121,16 +187,23 @@ pub fn read_from<S: SegmentSink>(
     head.push(b']');
     head.extend_from_slice(&tail);
     let fields = parse_fields(&head, name)?;
-    match (streamed, sink_for) {
-        (Some((sink, layout)), _) => {
+    match segments {
+        Segments::Streaming(sink, layout) => {
             // The head was complete, so a known field after the list is a duplicate, which
             // serde refused above; what is left to refuse is an unknown one.
             fields.into_layout(name)?;
-            Ok((layout, sink))
+            Ok((*layout, sink))
         }
-        (None, Some(sink_for)) => finish(fields, kept, name, sink_for),
-        (None, None) => unreachable!("the sink is made only when the head streams"),
+        Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
     }
+}
+
+/// Where the segments go while the list is read.
+enum Segments<S, F> {
+    /// Into the sink, made from the fields read before the list.
+    Streaming(S, Box<Layout>),
+    /// Kept, for a sink made once the fields after the list are read.
+    Kept(Vec<Pose>, F),
 }
 
 /// The layout from its `fields`, and a sink fed `kept` then any segments serde read.
@@ -150,7 +223,11 @@ fn finish<S: SegmentSink>(
         return Err(format_error(name, "missing field `segments`".to_string()));
     }
     let mut sink = sink_for(&layout);
-    for (index, pose) in kept.into_iter().chain(read_by_serde.into_iter().flatten()).enumerate() {
+    for (index, pose) in kept
+        .into_iter()
+        .chain(read_by_serde.into_iter().flatten())
+        .enumerate()
+    {
         sink.segment(index, pose);
     }
     Ok((layout, sink))
@@ -315,7 +392,11 @@ fn check_header(
                 "format is {other}, not \"{FORMAT}\": not a vrep-maze layout"
             ));
         }
-        None => return Err(format!("no \"format\": \"{FORMAT}\" field: not a vrep-maze layout")),
+        None => {
+            return Err(format!(
+                "no \"format\": \"{FORMAT}\" field: not a vrep-maze layout"
+            ));
+        }
     }
     match version {
         Some(serde_json::Value::Number(v)) if v.as_u64() == Some(u64::from(VERSION)) => {
@@ -412,8 +493,12 @@ mod tests {
         }
     }
 
+    /// A layout read by [`read`]: the head, the segments with their indices, and whether
+    /// the sink was made from a complete head.
+    type Outcome = (Layout, Vec<(usize, Pose)>, bool);
+
     /// Reads `text`, recording whether the sink was made before any segment arrived.
-    fn read(text: &str, step: usize) -> Result<(Layout, Vec<(usize, Pose)>, bool), ReadError> {
+    fn read(text: &str, step: usize) -> Result<Outcome, ReadError> {
         struct Record(Vec<(usize, Pose)>, bool);
         impl SegmentSink for Record {
             fn segment(&mut self, index: usize, pose: Pose) {
@@ -440,7 +525,12 @@ mod tests {
             assert_eq!(head, layout.without_segments());
             let poses: Vec<Pose> = segments.iter().map(|&(_, p)| p).collect();
             assert_eq!(poses, layout.segments, "step {step}");
-            assert!(segments.iter().enumerate().all(|(i, &(index, _))| i == index));
+            assert!(
+                segments
+                    .iter()
+                    .enumerate()
+                    .all(|(i, &(index, _))| i == index)
+            );
         }
     }
 
@@ -472,7 +562,9 @@ mod tests {
         let line = line_of("\"yaw\": 0.0}");
         assert!(err.starts_with(&format!("t.json:{line}:")), "{err}");
         assert!(err.contains("invalid type: string \"east\""), "{err}");
-        let err = read(&text.replacen("0.0},", "0.0}", 1), 9).unwrap_err().to_string();
+        let err = read(&text.replacen("0.0},", "0.0}", 1), 9)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("expected `,` or `]`"), "{err}");
         let err = read(&text.replacen("0.0}\n  ]", "0.0},\n  ]", 1), 9)
             .unwrap_err()

@@ -224,13 +224,13 @@ impl<R: Read> Source<R> {
                 }
                 Some(b']') => return Ok(self.line - first_line),
                 Some(_) => {
-                    return Err(ScanError::Syntax(
-                        position,
-                        "expected `,` or `]`".into(),
-                    ));
+                    return Err(ScanError::Syntax(position, "expected `,` or `]`".into()));
                 }
                 None => {
-                    return Err(ScanError::Syntax(position, "EOF while parsing a list".into()));
+                    return Err(ScanError::Syntax(
+                        position,
+                        "EOF while parsing a list".into(),
+                    ));
                 }
             }
         }
@@ -238,10 +238,18 @@ impl<R: Read> Source<R> {
 
     /// Consumes whitespace.
     fn skip_space(&mut self) -> io::Result<()> {
-        while let Some(b' ' | b'\n' | b'\r' | b'\t') = self.peek()? {
-            self.next_byte()?;
+        loop {
+            let rest = &self.buffer[self.at..];
+            let space = rest
+                .iter()
+                .position(|b| !matches!(b, b' ' | b'\n' | b'\r' | b'\t'))
+                .unwrap_or(rest.len());
+            self.consumed(self.at, self.at + space);
+            self.at += space;
+            if self.at < self.buffer.len() || !self.fill()? {
+                return Ok(());
+            }
         }
-        Ok(())
     }
 
     /// The end (in `buffer`) of the value starting at the next byte, without trailing
@@ -255,12 +263,12 @@ impl<R: Read> Source<R> {
         let mut escaped = false;
         loop {
             let rest = &self.buffer[self.at..];
-            if scanned == 0 && rest.first() == Some(&b'{') {
-                if let Some(close) = memchr::memchr(b'}', rest) {
-                    if let Some(pose) = parse_fast(&rest[..=close]) {
-                        return Ok((self.at + close + 1, Some(pose)));
-                    }
-                }
+            if scanned == 0
+                && rest.first() == Some(&b'{')
+                && let Some(close) = memchr::memchr(b'}', rest)
+                && let Some(pose) = parse_fast(&rest[..=close])
+            {
+                return Ok((self.at + close + 1, Some(pose)));
             }
             let mut end = None;
             for (k, &b) in rest.iter().enumerate().skip(scanned) {
@@ -316,4 +324,3 @@ impl<R: Read> Source<R> {
         }
     }
 }
-

@@ -12,9 +12,6 @@ const POW10: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// Largest integer every smaller one of which an `f64` holds exactly.
-const EXACT_INTEGER: u64 = 1 << 53;
-
 /// The segment in `bytes` (one JSON value, trimmed), or `None` when it is not in the fast
 /// shape: the caller then asks serde.
 pub(super) fn parse_fast(bytes: &[u8]) -> Option<Pose> {
@@ -61,10 +58,62 @@ impl Cursor<'_> {
         self.expect(b':')?;
         self.skip_space();
         let start = self.at;
+        if let Some(value) = self.simple_decimal() {
+            return Some(value);
+        }
+        self.at = start;
         while let Some(b'0'..=b'9' | b'-' | b'+' | b'.' | b'e' | b'E') = self.bytes.get(self.at) {
             self.at += 1;
         }
         number(&self.bytes[start..self.at])
+    }
+
+    /// A number `-?(0|[1-9][0-9]*)(\.[0-9]+)?` of at most 15 digits, not followed by an
+    /// exponent, read in one pass: the integer of its digits divided by a power of ten,
+    /// both exact, so the one IEEE division is correctly rounded. `None` (the cursor
+    /// anywhere) for any other token.
+    fn simple_decimal(&mut self) -> Option<f64> {
+        let negative = self.bytes.get(self.at) == Some(&b'-');
+        if negative {
+            self.at += 1;
+        }
+        let mut mantissa: u64 = 0;
+        let mut count = 0;
+        let first = *self.bytes.get(self.at)?;
+        if !first.is_ascii_digit() {
+            return None;
+        }
+        while let Some(&b) = self.bytes.get(self.at).filter(|b| b.is_ascii_digit()) {
+            mantissa = mantissa * 10 + u64::from(b - b'0');
+            count += 1;
+            self.at += 1;
+        }
+        if first == b'0' && count > 1 {
+            return None;
+        }
+        let mut decimals = 0;
+        if self.bytes.get(self.at) == Some(&b'.') {
+            self.at += 1;
+            while let Some(&b) = self.bytes.get(self.at).filter(|b| b.is_ascii_digit()) {
+                mantissa = mantissa * 10 + u64::from(b - b'0');
+                count += 1;
+                decimals += 1;
+                self.at += 1;
+            }
+            if decimals == 0 {
+                return None;
+            }
+        }
+        if count > 15
+            || matches!(
+                self.bytes.get(self.at),
+                Some(b'e' | b'E' | b'.' | b'+' | b'-')
+            )
+        {
+            return None;
+        }
+        let value = mantissa as f64 / POW10[decimals];
+        Some(if negative { -value } else { value })
     }
 }
 
@@ -74,37 +123,8 @@ fn number(token: &[u8]) -> Option<f64> {
     if !is_json_number(token) {
         return None;
     }
-    simple_decimal(token).or_else(|| {
-        let value: f64 = std::str::from_utf8(token).ok()?.parse().ok()?;
-        value.is_finite().then_some(value)
-    })
-}
-
-/// `-?digits(.digits)?` with at most 15 digits: the integer of its digits divided by a
-/// power of ten, both exact, so the one IEEE division is correctly rounded.
-fn simple_decimal(token: &[u8]) -> Option<f64> {
-    let (negative, digits) = match token.split_first() {
-        Some((b'-', rest)) => (true, rest),
-        _ => (false, token),
-    };
-    let mut mantissa: u64 = 0;
-    let mut count = 0;
-    let mut decimals = None;
-    for (i, &b) in digits.iter().enumerate() {
-        match b {
-            b'0'..=b'9' => {
-                mantissa = mantissa * 10 + u64::from(b - b'0');
-                count += 1;
-            }
-            b'.' => decimals = Some(digits.len() - i - 1),
-            _ => return None,
-        }
-    }
-    if count > 15 || mantissa >= EXACT_INTEGER {
-        return None;
-    }
-    let value = mantissa as f64 / POW10[decimals.unwrap_or(0)];
-    Some(if negative { -value } else { value })
+    let value: f64 = std::str::from_utf8(token).ok()?.parse().ok()?;
+    value.is_finite().then_some(value)
 }
 
 /// The JSON number grammar: `-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?`.

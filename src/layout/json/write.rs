@@ -4,7 +4,9 @@
 //! uses (`zmij`), so the bytes are exactly what serde would write and no segment list has
 //! to exist in memory.
 
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Write};
+use std::sync::mpsc;
+use std::thread;
 
 use serde::Serialize;
 
@@ -12,8 +14,10 @@ use super::pretty::ShallowPretty;
 use crate::layout::geometry::round_um;
 use crate::layout::{Layout, Pose};
 
-/// Output buffer: big writes keep a multi-gigabyte layout at disk speed.
-const BUFFER: usize = 1 << 20;
+/// Segments handed from thread to thread at a time (about 4 MB of text).
+const BATCH: usize = 1 << 16;
+/// Batches waiting between two threads, at most.
+const QUEUE: usize = 4;
 
 /// How the serialized head ends when `segments` is empty: the writer splices the segments in
 /// before the `]`. `segments` is the last field of [`Layout`], so this is always the tail.
@@ -27,59 +31,140 @@ pub fn write_layout<W: Write>(layout: &Layout, writer: W) -> io::Result<()> {
 /// Writes the layout whose fields are `head`'s and whose segments are `segments` (the
 /// ones in `head.segments` are ignored): what [`write_layout`] writes for the whole layout.
 /// `segments` is consumed as it is written, so a generator can compute them on the fly.
+///
+/// Three threads share the work, so a big layout is written at disk speed: one takes the
+/// segments from the iterator (computing them, for a generator), one formats them, and
+/// this one writes the text.
 pub fn write_layout_parts<W: Write>(
     head: &Layout,
-    segments: impl IntoIterator<Item = Pose>,
-    writer: W,
+    segments: impl IntoIterator<Item = Pose, IntoIter: Send>,
+    mut writer: W,
 ) -> io::Result<()> {
-    let mut out = BufWriter::with_capacity(BUFFER, writer);
     let prefix = head_without_segments(head)?;
-    out.write_all(&prefix[..prefix.len() - EMPTY_SEGMENTS_TAIL.len()])?;
-    out.write_all(b"\"segments\": [")?;
-    let mut any = false;
-    for pose in segments {
-        out.write_all(if any { b",\n    " } else { b"\n    " })?;
-        write_pose(&mut out, &pose)?;
-        any = true;
-    }
-    out.write_all(if any { b"\n  ]\n}\n" } else { b"]\n}\n" })?;
-    out.flush()
+    writer.write_all(&prefix[..prefix.len() - EMPTY_SEGMENTS_TAIL.len()])?;
+    writer.write_all(b"\"segments\": [")?;
+    let segments = segments.into_iter();
+    let any = thread::scope(|scope| -> io::Result<bool> {
+        let (poses_out, poses_in) = mpsc::sync_channel::<Vec<Pose>>(QUEUE);
+        let (text_out, text_in) = mpsc::sync_channel::<Vec<u8>>(QUEUE);
+        scope.spawn(move || {
+            let mut segments = segments.peekable();
+            while segments.peek().is_some() {
+                let batch: Vec<Pose> = segments.by_ref().take(BATCH).collect();
+                if poses_out.send(batch).is_err() {
+                    return; // the writer stopped
+                }
+            }
+        });
+        scope.spawn(move || {
+            let mut first = true;
+            for batch in poses_in {
+                let mut text = Vec::with_capacity(batch.len() * 64);
+                for pose in &batch {
+                    text.extend_from_slice(if first { b"\n    " } else { b",\n    " });
+                    write_pose(&mut text, pose);
+                    first = false;
+                }
+                if text_out.send(text).is_err() {
+                    return;
+                }
+            }
+        });
+        let mut any = false;
+        for text in text_in {
+            writer.write_all(&text)?;
+            any = true;
+        }
+        Ok(any)
+    })?;
+    writer.write_all(if any { b"\n  ]\n}\n" } else { b"]\n}\n" })?;
+    writer.flush()
 }
 
 /// The head serialized with no segments: ends with [`EMPTY_SEGMENTS_TAIL`].
 fn head_without_segments(head: &Layout) -> io::Result<Vec<u8>> {
     let empty = head.without_segments();
     let mut bytes = Vec::new();
-    let mut serializer = serde_json::Serializer::with_formatter(&mut bytes, ShallowPretty::default());
-    empty
-        .serialize(&mut serializer)
-        .map_err(io::Error::other)?;
-    debug_assert!(bytes.ends_with(EMPTY_SEGMENTS_TAIL), "segments is the last field");
+    let mut serializer =
+        serde_json::Serializer::with_formatter(&mut bytes, ShallowPretty::default());
+    empty.serialize(&mut serializer).map_err(io::Error::other)?;
+    debug_assert!(
+        bytes.ends_with(EMPTY_SEGMENTS_TAIL),
+        "segments is the last field"
+    );
     Ok(bytes)
 }
 
-/// One segment on one line, as serde writes a [`Pose`] inside the segment list.
-fn write_pose(out: &mut impl Write, pose: &Pose) -> io::Result<()> {
-    out.write_all(b"{\"x\": ")?;
-    write_um(out, pose.x)?;
-    out.write_all(b", \"y\": ")?;
-    write_um(out, pose.y)?;
-    out.write_all(b", \"z\": ")?;
-    write_um(out, pose.z)?;
-    out.write_all(b", \"yaw\": ")?;
-    write_um(out, pose.yaw)?;
-    out.write_all(b"}")
+/// One segment, as serde writes a [`Pose`] inside the segment list.
+fn write_pose(line: &mut Vec<u8>, pose: &Pose) {
+    line.extend_from_slice(b"{\"x\": ");
+    write_um(line, pose.x);
+    line.extend_from_slice(b", \"y\": ");
+    write_um(line, pose.y);
+    line.extend_from_slice(b", \"z\": ");
+    write_um(line, pose.z);
+    line.extend_from_slice(b", \"yaw\": ");
+    write_um(line, pose.yaw);
+    line.push(b'}');
 }
 
 /// A number rounded to the micrometre in its shortest form; `null` when not finite, as
 /// serde_json writes it.
-fn write_um(out: &mut impl Write, value: f64) -> io::Result<()> {
-    let value = round_um(value);
-    if value.is_finite() {
-        out.write_all(zmij::Buffer::new().format_finite(value).as_bytes())
-    } else {
-        out.write_all(b"null")
+fn write_um(out: &mut Vec<u8>, value: f64) {
+    let micrometres = round_half_away(value * 1e6);
+    if !micrometres.is_finite() {
+        return out.extend_from_slice(b"null");
     }
+    if !plain(micrometres) {
+        return out.extend_from_slice(
+            zmij::Buffer::new()
+                .format_finite(round_um(value))
+                .as_bytes(),
+        );
+    }
+    if micrometres < 0.0 {
+        out.push(b'-');
+    }
+    let micrometres = micrometres.abs() as u64;
+    let (whole, mut fraction) = (micrometres / 1_000_000, micrometres % 1_000_000);
+    out.extend_from_slice(itoa::Buffer::new().format(whole).as_bytes());
+    out.push(b'.');
+    let mut places = 6;
+    while places > 1 && fraction % 10 == 0 {
+        fraction /= 10;
+        places -= 1;
+    }
+    let mut digits = [b'0'; 6];
+    for slot in digits[..places].iter_mut().rev() {
+        *slot = b'0' + (fraction % 10) as u8;
+        fraction /= 10;
+    }
+    out.extend_from_slice(&digits[..places]);
+}
+
+/// `x.round()` (half away from zero), exactly, without the libm call that `f64::round`
+/// is on baseline x86-64: the fraction `x - trunc(x)` is exact below 2^52.
+fn round_half_away(x: f64) -> f64 {
+    if x.is_nan() || x.abs() >= 4.5e15 {
+        return x.round();
+    }
+    let whole = (x as i64 as f64).copysign(x);
+    let fraction = x - whole;
+    if fraction >= 0.5 {
+        whole + 1.0
+    } else if fraction <= -0.5 {
+        whole - 1.0
+    } else {
+        whole
+    }
+}
+
+/// `true` when a value of `micrometres` (a whole number) is written as `[-]int.frac`, its
+/// shortest form as zmij writes it: zero, and magnitudes from 1 mm up to 10^7 m; smaller
+/// ones take an exponent, and larger ones lie far beyond any floor. Segment coordinates are
+/// all plain, and written this way several times faster than by zmij.
+fn plain(micrometres: f64) -> bool {
+    micrometres == 0.0 || (1e3..1e13).contains(&micrometres.abs())
 }
 
 #[cfg(test)]
@@ -105,7 +190,7 @@ mod tests {
         spec.geometry.rotation = 0.3;
         let mut layout = build_layout(&spec).unwrap();
         // Awkward numbers: negative zero, tiny, huge, not micrometre-round, not finite.
-        for (i, v) in [-0.0, 1e-6, 2.5e-7, 9999.999_999_4, 0.1 + 0.2, f64::NAN]
+        for (i, v) in [-0.0, 1e-6, 2.5e-7, 9_999.999_999_4, 0.1 + 0.2, f64::NAN]
             .into_iter()
             .enumerate()
         {
@@ -121,10 +206,61 @@ mod tests {
     }
 
     #[test]
+    fn micrometre_numbers_are_what_zmij_writes() {
+        let check = |micrometres: i64| {
+            let value = micrometres as f64 / 1e6;
+            let mut ours = Vec::new();
+            write_um(&mut ours, value);
+            let theirs = zmij::Buffer::new()
+                .format_finite(round_um(value))
+                .to_string();
+            assert_eq!(String::from_utf8(ours).unwrap(), theirs, "{micrometres}");
+        };
+        for micrometres in -300_000..=300_000 {
+            check(micrometres);
+        }
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..300_000 {
+            // xorshift: magnitudes up to 10^13 micrometres (10,000 km), both signs.
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            check((x % 20_000_000_000_001) as i64 - 10_000_000_000_000);
+        }
+    }
+
+    #[test]
+    fn rounding_half_away_is_f64_round() {
+        for x in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            -2.5,
+            0.499_999_999_999_999_94,
+            1e15 + 0.5,
+            4.6e15,
+            -7.5e15,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            -1_234.499_999,
+            1_234.500_000_1,
+        ] {
+            assert_eq!(round_half_away(x).to_bits(), x.round().to_bits(), "{x}");
+        }
+    }
+
+    #[test]
     fn an_empty_segment_list_is_written_as_serde_writes_it() {
-        let layout =
-            build_layout(&GenerateSpec::course(Grid::new(1, 1).unwrap(), Algorithm::Dfs, 1))
-                .unwrap();
+        let layout = build_layout(&GenerateSpec::course(
+            Grid::new(1, 1).unwrap(),
+            Algorithm::Dfs,
+            1,
+        ))
+        .unwrap();
         assert!(layout.segments.is_empty());
         let mut ours = Vec::new();
         write_layout(&layout, &mut ours).unwrap();
