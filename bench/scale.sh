@@ -115,6 +115,9 @@ step() {
     fi
     rows+=("| $name | ${side}x$side | $wall | $rss_mb | $size_mb | $target | $result |")
     echo "$name ${side}x$side: $result ($wall s, $rss_mb MB)" >&2
+    if ((status != 0)); then
+        echo "  its last error line: $(tail -n 1 "$work/$name-$side.stderr")" >&2
+    fi
     return 0
 }
 
