@@ -39,7 +39,7 @@ fn num(value: f64) -> Num {
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let scaled = (self.0 * 1e4).round();
-        if !(scaled.abs() < 1e18) {
+        if !scaled.is_finite() || scaled.abs() >= 1e18 {
             // Not finite, or beyond i64: no checked layout has such a number.
             return write!(f, "{}", self.0);
         }
@@ -54,7 +54,7 @@ impl fmt::Display for Num {
         let mut fraction = whole % 10_000;
         whole /= 10_000;
         let mut decimals = 4;
-        while decimals > 0 && fraction % 10 == 0 {
+        while decimals > 0 && fraction.is_multiple_of(10) {
             fraction /= 10;
             decimals -= 1;
         }
