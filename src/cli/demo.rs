@@ -9,6 +9,7 @@ use std::time::Duration;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
+use indicatif::ProgressBar;
 
 use super::validate::{describe, print_metrics};
 use crate::coppelia::DEFAULT_IDLE_FPS;
@@ -49,9 +50,13 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
             report.problems[0]
         );
     }
-    let picture = Format::Ascii
-        .renderer()
-        .render(&layout, &RenderOptions { solution: true })?;
+    let mut picture = Vec::new();
+    Format::Ascii.renderer().render(
+        &layout,
+        &RenderOptions { solution: true },
+        &mut picture,
+        &ProgressBar::hidden(),
+    )?;
     println!("{}", String::from_utf8_lossy(&picture).trim_end());
     println!("OK {}", describe(&layout, layout.segments.len()));
     if let Some(metrics) = &report.metrics {

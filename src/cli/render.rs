@@ -1,11 +1,12 @@
 //! `vrep-maze render`: draw a layout.
 
-use std::io::IsTerminal;
+use std::io::{self, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::write_output;
 use super::{ensure_usage, usage};
@@ -56,12 +57,40 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
     let options = RenderOptions {
         solution: args.solution,
     };
-    let bytes = format
-        .renderer()
-        .render(&layout, &options)
-        .with_context(|| format!("{}", args.file.display()))?;
-    write_output(output, |w| w.write_all(&bytes))?;
+    let progress = progress_bar();
+    // The picture streams into the output; a failure that is not the output's own (an
+    // I/O error) is kept whole here and reported with the layout's name.
+    let mut failure = None;
+    let written = write_output(output, |w| {
+        format
+            .renderer()
+            .render(&layout, &options, w, &progress)
+            .map_err(|e| {
+                e.downcast::<io::Error>().unwrap_or_else(|other| {
+                    failure = Some(other);
+                    io::Error::other("the picture could not be drawn")
+                })
+            })
+    });
+    progress.finish_and_clear();
+    if let Some(e) = failure {
+        return Err(e.context(format!("{}", args.file.display())));
+    }
+    written?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// A bar on standard error while a picture is drawn, if standard error is a terminal.
+fn progress_bar() -> ProgressBar {
+    if !io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("rendering {bar:40} {percent}%, eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
 }
 
 /// The format to write: `--format` if given, else the one the output's extension names, else

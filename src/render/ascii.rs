@@ -1,7 +1,10 @@
 //! Terminal pictures: walls as `+---+`, north at the top, `S` start, `E` end, `.` the
 //! solution.
 
+use std::io::{BufWriter, Write};
+
 use anyhow::Result;
+use indicatif::ProgressBar;
 
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
@@ -12,25 +15,37 @@ use crate::maze::{Cell, Direction};
 pub struct Ascii;
 
 impl Renderer for Ascii {
-    fn render(&self, layout: &Layout, options: &RenderOptions) -> Result<Vec<u8>> {
+    /// Sets `progress` to the maze's rows and advances it a row at a time.
+    fn render(
+        &self,
+        layout: &Layout,
+        options: &RenderOptions,
+        out: &mut dyn Write,
+        progress: &ProgressBar,
+    ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
         let grid = view.maze.grid();
+        progress.set_length(u64::from(grid.height()));
         let mut on_path = vec![false; grid.cell_count()];
         for cell in &view.solution {
             on_path[grid.index(*cell)] = true;
         }
-        let mut out = String::new();
-        let wall_row = |out: &mut String, y: u32, dir: Direction| {
-            out.push('+');
+        let mut out = BufWriter::new(out);
+        let mut line = String::new();
+        let wall_row = |line: &mut String, y: u32, dir: Direction| {
+            line.clear();
+            line.push('+');
             for x in 0..grid.width() {
                 let open = view.maze.is_open(grid.index(Cell::new(x, y)), dir);
-                out.push_str(if open { "   +" } else { "---+" });
+                line.push_str(if open { "   +" } else { "---+" });
             }
-            out.push('\n');
+            line.push('\n');
         };
         for y in (0..grid.height()).rev() {
-            wall_row(&mut out, y, Direction::North);
-            out.push('|');
+            wall_row(&mut line, y, Direction::North);
+            out.write_all(line.as_bytes())?;
+            line.clear();
+            line.push('|');
             for x in 0..grid.width() {
                 let cell = Cell::new(x, y);
                 let index = grid.index(cell);
@@ -43,19 +58,23 @@ impl Renderer for Ascii {
                 } else {
                     ' '
                 };
-                out.push(' ');
-                out.push(mark);
-                out.push(' ');
-                out.push(if view.maze.is_open(index, Direction::East) {
+                line.push(' ');
+                line.push(mark);
+                line.push(' ');
+                line.push(if view.maze.is_open(index, Direction::East) {
                     ' '
                 } else {
                     '|'
                 });
             }
-            out.push('\n');
+            line.push('\n');
+            out.write_all(line.as_bytes())?;
+            progress.inc(1);
         }
-        wall_row(&mut out, 0, Direction::South);
-        Ok(out.into_bytes())
+        wall_row(&mut line, 0, Direction::South);
+        out.write_all(line.as_bytes())?;
+        out.flush()?;
+        Ok(())
     }
 }
 
@@ -74,12 +93,16 @@ mod tests {
             1,
         ))
         .unwrap();
-        let text = String::from_utf8(
-            Ascii
-                .render(&layout, &RenderOptions { solution: true })
-                .unwrap(),
-        )
-        .unwrap();
+        let mut bytes = Vec::new();
+        Ascii
+            .render(
+                &layout,
+                &RenderOptions { solution: true },
+                &mut bytes,
+                &ProgressBar::hidden(),
+            )
+            .unwrap();
+        let text = String::from_utf8(bytes).unwrap();
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines.len(), 5);
         assert!(lines.iter().all(|l| l.len() == 13));

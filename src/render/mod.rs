@@ -1,13 +1,20 @@
 //! Pictures of a layout: one file per output format, all behind [`Renderer`].
+//!
+//! Renderers stream: they write the picture into an [`io::Write`] as they draw it, so a
+//! 4096 x 4096 maze never exists as one string or one image in memory. They draw the
+//! green lines from the layout's passages ([`figure::Runs`]), never from its `segments`.
 
 mod ascii;
+mod figure;
 mod png;
 mod svg;
 
 use std::fmt;
+use std::io;
 use std::str::FromStr;
 
 use anyhow::{Result, anyhow};
+use indicatif::ProgressBar;
 
 use crate::layout::{Layout, passages};
 use crate::maze::analysis::shortest_path;
@@ -24,10 +31,20 @@ pub struct RenderOptions {
     pub solution: bool,
 }
 
-/// Turns a layout into the bytes of one picture format.
+/// Turns a layout into one picture format.
 pub trait Renderer {
-    /// Renders `layout`.
-    fn render(&self, layout: &Layout, options: &RenderOptions) -> Result<Vec<u8>>;
+    /// Writes the picture of `layout` into `out`, advancing `progress` (whose length it
+    /// sets) as it goes; pass [`ProgressBar::hidden`] to show nothing.
+    ///
+    /// `layout` must have passed [`crate::validate::checked`]; its `segments` are not read
+    /// (they may be empty). A failed write is returned as the [`io::Error`] itself.
+    fn render(
+        &self,
+        layout: &Layout,
+        options: &RenderOptions,
+        out: &mut dyn io::Write,
+        progress: &ProgressBar,
+    ) -> Result<()>;
 }
 
 /// The formats `render --format` accepts.
@@ -37,7 +54,7 @@ pub enum Format {
     Ascii,
     /// The floor as the robot's camera sees it: green lines, blue start, red end.
     Svg,
-    /// The SVG picture as pixels.
+    /// The same picture as pixels.
     Png,
 }
 
@@ -128,5 +145,88 @@ impl MazeView {
             end,
             solution,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Instant;
+
+    use super::*;
+    use crate::generate::Algorithm;
+    use crate::layout::{GenerateSpec, build_layout};
+
+    fn render(format: Format, layout: &Layout, options: &RenderOptions) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        format
+            .renderer()
+            .render(layout, options, &mut bytes, &ProgressBar::hidden())
+            .unwrap();
+        bytes
+    }
+
+    #[test]
+    fn renderers_never_read_the_segments() {
+        let mut spec = GenerateSpec::course(Grid::new(6, 5).unwrap(), Algorithm::Kruskal, 7);
+        spec.geometry.rotation = 0.3;
+        let layout = build_layout(&spec).unwrap();
+        let mut bare = layout.clone();
+        bare.segments.clear();
+        let options = RenderOptions { solution: true };
+        for format in Format::ALL {
+            let picture = render(format, &layout, &options);
+            assert!(!picture.is_empty());
+            assert!(picture == render(format, &bare, &options), "{format}");
+        }
+    }
+
+    /// Render-only time and memory at scale (release build):
+    /// `VREP_MAZE_RENDER_SIZE=4096 cargo test --release --lib render::tests::timing -- --ignored --nocapture`.
+    /// The layout is built in memory and its segments dropped (as the CLI will hand it
+    /// over); the peak resident memory is reset before each render (Linux).
+    #[test]
+    #[ignore = "a measurement, minutes in release at 4096"]
+    fn timing() {
+        let size: u64 = std::env::var("VREP_MAZE_RENDER_SIZE")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1000);
+        let started = Instant::now();
+        let spec = GenerateSpec::course(Grid::new(size, size).unwrap(), Algorithm::Dfs, 1);
+        let mut layout = build_layout(&spec).unwrap();
+        layout.segments = Vec::new();
+        println!("{size}x{size}: layout built in {:.1?}", started.elapsed());
+        let peak = || {
+            std::fs::read_to_string("/proc/self/status")
+                .unwrap_or_default()
+                .lines()
+                .find(|l| l.starts_with("VmHWM"))
+                .map(|l| l.split_whitespace().nth(1).unwrap_or("?").to_string())
+                .unwrap_or_default()
+        };
+        for format in [Format::Svg, Format::Png] {
+            let _ = std::fs::write("/proc/self/clear_refs", "5");
+            let before = peak();
+            let path = std::env::temp_dir().join(format!("vrep-maze-timing.{format}"));
+            let mut file = io::BufWriter::new(std::fs::File::create(&path).unwrap());
+            let started = Instant::now();
+            format
+                .renderer()
+                .render(
+                    &layout,
+                    &RenderOptions::default(),
+                    &mut file,
+                    &ProgressBar::hidden(),
+                )
+                .unwrap();
+            io::Write::flush(&mut file).unwrap();
+            let bytes = std::fs::metadata(&path).unwrap().len();
+            println!(
+                "{format}: {:.2?}, {} MB, peak RSS {} kB (was {before} kB before rendering)",
+                started.elapsed(),
+                bytes / 1_000_000,
+                peak()
+            );
+        }
     }
 }

@@ -1,238 +1,241 @@
 //! The floor as a top-down camera sees it: grey floor with a metre grid, pure green
 //! lines, pure blue start, pure red end, and optionally the solution path.
+//!
+//! Written while it is drawn, through a buffer, never held whole: the lines are one
+//! `<rect>` per run ([`Run`]) in a group placed in the maze frame
+//! (`translate(origin) rotate(rotation)`), so each is an axis-aligned rectangle with four
+//! short numbers, at any rotation.
 
-use std::fmt::Write;
+use std::fmt;
+use std::io::{self, BufWriter, Write};
 
 use anyhow::Result;
+use indicatif::ProgressBar;
 
+use super::figure::{
+    END, FLOOR, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
+    ScaleBar, for_each_run,
+};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
 
-/// Pixels per metre.
+/// Pixels per metre of the picture's nominal size.
 const SCALE: f64 = 40.0;
 
 /// The SVG renderer.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Svg;
 
-/// A number as SVG text: at most 4 decimals, no trailing zeros.
-fn num(value: f64) -> String {
-    let text = format!("{value:.4}");
-    let text = text.trim_end_matches('0').trim_end_matches('.');
-    if text == "-0" {
-        "0".to_string()
-    } else {
-        text.to_string()
+/// A number as SVG text: at most 4 decimals (a tenth of a millimetre), no trailing zeros,
+/// never `-0`. It is written digit by digit without allocating: a 4096 x 4096 maze writes
+/// tens of millions of them.
+struct Num(f64);
+
+/// `value` as SVG text (see [`Num`]).
+fn num(value: f64) -> Num {
+    Num(value)
+}
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let scaled = (self.0 * 1e4).round();
+        if !scaled.is_finite() || scaled.abs() >= 1e18 {
+            // Not finite, or beyond i64: no checked layout has such a number.
+            return write!(f, "{}", self.0);
+        }
+        let scaled = scaled as i64;
+        let mut buf = [0u8; 24];
+        let mut at = buf.len();
+        let mut push = |digit: u8| {
+            at -= 1;
+            buf[at] = digit;
+        };
+        let mut whole = scaled.unsigned_abs();
+        let mut fraction = whole % 10_000;
+        whole /= 10_000;
+        let mut decimals = 4;
+        while decimals > 0 && fraction.is_multiple_of(10) {
+            fraction /= 10;
+            decimals -= 1;
+        }
+        if decimals > 0 {
+            for _ in 0..decimals {
+                push(b'0' + (fraction % 10) as u8);
+                fraction /= 10;
+            }
+            push(b'.');
+        }
+        loop {
+            push(b'0' + (whole % 10) as u8);
+            whole /= 10;
+            if whole == 0 {
+                break;
+            }
+        }
+        if scaled < 0 {
+            push(b'-');
+        }
+        f.write_str(std::str::from_utf8(&buf[at..]).map_err(|_| fmt::Error)?)
     }
 }
 
 impl Renderer for Svg {
-    fn render(&self, layout: &Layout, options: &RenderOptions) -> Result<Vec<u8>> {
+    /// Sets `progress` to the maze's rows and advances it a row at a time.
+    fn render(
+        &self,
+        layout: &Layout,
+        options: &RenderOptions,
+        out: &mut dyn Write,
+        progress: &ProgressBar,
+    ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
-        let [fx, fy] = layout.floor.size;
-        let (width, height) = (fx * SCALE, fy * SCALE);
-        let mut out = String::new();
-        let _ = writeln!(
-            out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="{} {} {} {}">"#,
-            num(width),
-            num(height),
-            num(-fx / 2.0),
-            num(-fy / 2.0),
-            num(fx),
-            num(fy)
-        );
-        let _ = writeln!(
-            out,
-            "<title>vrep-maze {}x{} {} seed {}</title>",
-            layout.grid.columns,
-            layout.grid.rows,
-            layout.generator.algorithm,
-            layout.generator.seed
-        );
-        // Floor y grows up, SVG y grows down: flip once for everything inside.
-        out.push_str("<g transform=\"scale(1,-1)\">\n");
-        let _ = writeln!(
-            out,
-            r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#b4b4b4"/>"##,
-            num(-fx / 2.0),
-            num(-fy / 2.0),
-            num(fx),
-            num(fy)
-        );
-        floor_grid(&mut out, fx, fy);
-        let (l, w) = (layout.line.length, layout.line.width);
-        out.push_str("<g fill=\"#00ff00\">\n");
-        for s in &layout.segments {
-            let _ = writeln!(
-                out,
-                r#"<rect x="{}" y="{}" width="{}" height="{}" transform="translate({},{}) rotate({})"/>"#,
-                num(-l / 2.0),
-                num(-w / 2.0),
-                num(l),
-                num(w),
-                num(s.x),
-                num(s.y),
-                num(s.yaw.to_degrees())
-            );
-        }
-        out.push_str("</g>\n");
-        let c = layout.grid.cell_size;
-        for (pose, colour) in [
-            (&layout.start.pose, "#0000ff"),
-            (&layout.end.pose, "#ff0000"),
-        ] {
-            let _ = writeln!(
-                out,
-                r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{colour}" transform="translate({},{}) rotate({})"/>"#,
-                num(-c / 2.0),
-                num(-c / 2.0),
-                num(c),
-                num(c),
-                num(pose.x),
-                num(pose.y),
-                num(pose.yaw.to_degrees())
-            );
-        }
-        if !view.solution.is_empty() {
-            let geometry = crate::layout::Geometry {
-                cell_size: c,
-                origin: layout.grid.origin,
-                rotation: layout.grid.rotation,
-                line_length: l,
-                line_width: w,
-                line_z: layout.line.z,
-                marker_z: layout.start.pose.z,
-            };
-            let points: Vec<String> = view
-                .solution
-                .iter()
-                .map(|&cell| {
-                    let p = geometry.cell_centre(cell);
-                    format!("{},{}", num(p.x), num(p.y))
-                })
-                .collect();
-            let _ = writeln!(
-                out,
-                r##"<polyline points="{}" fill="none" stroke="#ffa500" stroke-width="{}" stroke-linejoin="round" stroke-opacity="0.8"/>"##,
-                points.join(" "),
-                num(w / 2.0)
-            );
-        }
-        scale_bar(&mut out, fx, fy);
-        out.push_str("</g>\n</svg>\n");
-        Ok(out.into_bytes())
+        progress.set_length(u64::from(layout.grid.rows));
+        let mut out = BufWriter::with_capacity(1 << 16, out);
+        write_svg(&mut out, layout, &view, progress)?;
+        out.flush()?;
+        Ok(())
     }
 }
 
-/// A scale bar in the south-west corner of the floor: a white bar of a round number of
-/// metres (about a fifth of the floor), labelled with stroked seven-segment digits so the
-/// label survives rasterizing without fonts.
-fn scale_bar(out: &mut String, fx: f64, fy: f64) {
-    let length = [
-        1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0,
-    ]
-    .into_iter()
-    .take_while(|&l| l <= fx / 5.0)
-    .last()
-    .unwrap_or(1.0);
-    let unit = length / 10.0;
-    let (x0, y0) = (-fx / 2.0 + unit, -fy / 2.0 + unit);
-    let _ = writeln!(
+fn write_svg(
+    out: &mut impl Write,
+    layout: &Layout,
+    view: &MazeView,
+    progress: &ProgressBar,
+) -> io::Result<()> {
+    let [fx, fy] = layout.floor.size;
+    writeln!(
         out,
-        r##"<rect x="{}" y="{}" width="{}" height="{}" fill="#ffffff" stroke="#000000" stroke-width="{}"/>"##,
-        num(x0),
-        num(y0),
-        num(length),
-        num(unit),
-        num(unit / 5.0)
-    );
-    let label = format!("{}m", length as u64);
-    let glyph_height = unit * 2.0;
-    let mut x = x0 + length + unit;
-    let mut path = String::new();
-    for ch in label.chars() {
-        for (ax, ay, bx, by) in glyph_strokes(ch) {
-            let _ = write!(
-                path,
-                "M{},{}L{},{}",
-                num(x + ax * glyph_height / 2.0),
-                num(y0 + ay * glyph_height),
-                num(x + bx * glyph_height / 2.0),
-                num(y0 + by * glyph_height)
-            );
-        }
-        x += glyph_height * 0.75;
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="{} {} {} {}">"#,
+        num(fx * SCALE),
+        num(fy * SCALE),
+        num(-fx / 2.0),
+        num(-fy / 2.0),
+        num(fx),
+        num(fy)
+    )?;
+    writeln!(
+        out,
+        "<title>vrep-maze {}x{} {} seed {}</title>",
+        layout.grid.columns, layout.grid.rows, layout.generator.algorithm, layout.generator.seed
+    )?;
+    // Floor y grows up, SVG y grows down: flip once for everything inside.
+    out.write_all(b"<g transform=\"scale(1,-1)\">\n")?;
+    writeln!(
+        out,
+        r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{FLOOR}"/>"#,
+        num(-fx / 2.0),
+        num(-fy / 2.0),
+        num(fx),
+        num(fy)
+    )?;
+    metre_grid(out, layout.floor.size)?;
+    let (c, w) = (layout.grid.cell_size, layout.line.width);
+    let [ox, oy] = layout.grid.origin;
+    // The maze frame: cell (i, j) is centred at (i c, j c).
+    writeln!(
+        out,
+        r#"<g transform="translate({},{}) rotate({})">"#,
+        num(ox),
+        num(oy),
+        num(layout.grid.rotation.to_degrees())
+    )?;
+    writeln!(out, r#"<g fill="{LINE}">"#)?;
+    for_each_run(
+        &view.maze,
+        |run: Run| {
+            let [x0, y0, x1, y1] = run.rect(c, w);
+            writeln!(
+                out,
+                r#"<rect x="{}" y="{}" width="{}" height="{}"/>"#,
+                num(x0),
+                num(y0),
+                num(x1 - x0),
+                num(y1 - y0)
+            )
+        },
+        |_| progress.inc(1),
+    )?;
+    out.write_all(b"</g>\n")?;
+    for (cell, colour) in [(view.start, START), (view.end, END)] {
+        writeln!(
+            out,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{colour}"/>"#,
+            num(f64::from(cell.x) * c - c / 2.0),
+            num(f64::from(cell.y) * c - c / 2.0),
+            num(c),
+            num(c)
+        )?;
     }
-    let _ = writeln!(
-        out,
-        r##"<path d="{path}" fill="none" stroke="#000000" stroke-width="{}" stroke-linecap="round"/>"##,
-        num(unit / 3.0)
-    );
-}
-
-/// The strokes of a seven-segment glyph in a 1 x 1 box (y up): digits and `m`.
-fn glyph_strokes(ch: char) -> Vec<(f64, f64, f64, f64)> {
-    // Segments a (top), b, c (right, top to bottom), d (bottom), e, f (left), g (middle).
-    const SEGMENTS: [(f64, f64, f64, f64); 7] = [
-        (0.0, 1.0, 1.0, 1.0),
-        (1.0, 1.0, 1.0, 0.5),
-        (1.0, 0.5, 1.0, 0.0),
-        (0.0, 0.0, 1.0, 0.0),
-        (0.0, 0.0, 0.0, 0.5),
-        (0.0, 0.5, 0.0, 1.0),
-        (0.0, 0.5, 1.0, 0.5),
-    ];
-    let mask: u8 = match ch {
-        '0' => 0b011_1111,
-        '1' => 0b000_0110,
-        '2' => 0b101_1011,
-        '5' => 0b110_1101,
-        'm' => {
-            return vec![
-                (0.0, 0.0, 0.0, 0.5),
-                (0.0, 0.5, 1.0, 0.5),
-                (0.5, 0.0, 0.5, 0.5),
-                (1.0, 0.0, 1.0, 0.5),
-            ];
+    if !view.solution.is_empty() {
+        out.write_all(b"<polyline points=\"")?;
+        for (k, cell) in view.solution.iter().enumerate() {
+            let separator = if k == 0 { "" } else { " " };
+            write!(
+                out,
+                "{separator}{},{}",
+                num(f64::from(cell.x) * c),
+                num(f64::from(cell.y) * c)
+            )?;
         }
-        _ => 0,
-    };
-    SEGMENTS
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| mask & (1 << i) != 0)
-        .map(|(_, &s)| s)
-        .collect()
+        writeln!(
+            out,
+            r#"" fill="none" stroke="{SOLUTION}" stroke-width="{}" stroke-linejoin="round" stroke-opacity="{}"/>"#,
+            num(w / 2.0),
+            num(SOLUTION_OPACITY)
+        )?;
+    }
+    out.write_all(b"</g>\n")?;
+    scale_bar(out, &ScaleBar::for_floor(layout.floor.size))?;
+    out.write_all(b"</g>\n</svg>\n")
 }
 
-/// Thin lines every metre, thicker ones every 5 m floor panel.
-fn floor_grid(out: &mut String, fx: f64, fy: f64) {
-    out.push_str("<g stroke=\"#8c8c8c\">\n");
-    let lines = |out: &mut String, extent: f64, other: f64, vertical: bool| {
-        let n = (extent / 2.0).floor() as i64;
-        for k in -n..=n {
-            let at = k as f64;
-            let stroke = if k % 5 == 0 { 0.03 } else { 0.01 };
+/// The scale bar: a rectangle and one path of round-capped label strokes.
+fn scale_bar(out: &mut impl Write, bar: &ScaleBar) -> io::Result<()> {
+    writeln!(
+        out,
+        r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{PAPER}" stroke="{INK}" stroke-width="{}"/>"#,
+        num(bar.x),
+        num(bar.y),
+        num(bar.length),
+        num(bar.unit),
+        num(bar.outline_width())
+    )?;
+    out.write_all(b"<path d=\"")?;
+    for [ax, ay, bx, by] in bar.label_strokes() {
+        write!(out, "M{},{}L{},{}", num(ax), num(ay), num(bx), num(by))?;
+    }
+    writeln!(
+        out,
+        r#"" fill="none" stroke="{INK}" stroke-width="{}" stroke-linecap="round"/>"#,
+        num(bar.label_width())
+    )
+}
+
+/// The metre grid ([`MetreGrid`]) as `<line>`s across the whole floor.
+fn metre_grid(out: &mut impl Write, size: [f64; 2]) -> io::Result<()> {
+    writeln!(out, r#"<g stroke="{GRID}">"#)?;
+    let grid = MetreGrid::for_floor(size);
+    let [fx, fy] = size;
+    for (vertical, extent, other) in [(true, fx, fy), (false, fy, fx)] {
+        for (at, width) in grid.lines(extent) {
             let (x1, y1, x2, y2) = if vertical {
                 (at, -other / 2.0, at, other / 2.0)
             } else {
                 (-other / 2.0, at, other / 2.0, at)
             };
-            let _ = writeln!(
+            writeln!(
                 out,
                 r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke-width="{}"/>"#,
                 num(x1),
                 num(y1),
                 num(x2),
                 num(y2),
-                num(stroke)
-            );
+                num(width)
+            )?;
         }
-    };
-    lines(out, fx, fy, true);
-    lines(out, fy, fx, false);
-    out.push_str("</g>\n");
+    }
+    out.write_all(b"</g>\n")
 }
 
 #[cfg(test)]
@@ -241,30 +244,44 @@ mod tests {
     use crate::generate::Algorithm;
     use crate::layout::{GenerateSpec, build_layout};
     use crate::maze::Grid;
+    use crate::render::figure::tests::count_runs;
+
+    fn svg_of(layout: &Layout, options: &RenderOptions) -> String {
+        let mut bytes = Vec::new();
+        Svg.render(layout, options, &mut bytes, &ProgressBar::hidden())
+            .unwrap();
+        String::from_utf8(bytes).unwrap()
+    }
+
+    /// The elements of the green group.
+    fn line_elements(svg: &str) -> &str {
+        svg.split(&format!("<g fill=\"{LINE}\">"))
+            .nth(1)
+            .unwrap()
+            .split("</g>")
+            .next()
+            .unwrap()
+    }
 
     #[test]
-    fn draws_every_segment_and_both_markers() {
+    fn draws_one_rect_per_run_both_markers_and_the_solution() {
         let layout = build_layout(&GenerateSpec::course(
             Grid::new(9, 9).unwrap(),
             Algorithm::Prim,
             42,
         ))
         .unwrap();
-        let svg = String::from_utf8(
-            Svg.render(&layout, &RenderOptions { solution: true })
-                .unwrap(),
-        )
-        .unwrap();
+        let svg = svg_of(&layout, &RenderOptions { solution: true });
         assert!(svg.starts_with("<svg "));
         assert!(svg.ends_with("</svg>\n"));
-        let lines = svg
-            .split("<g fill=\"#00ff00\">")
-            .nth(1)
-            .unwrap()
-            .split("</g>")
-            .next()
-            .unwrap();
-        assert_eq!(lines.matches("<rect").count(), layout.segments.len());
+        let view = MazeView::of(&layout, &RenderOptions::default()).unwrap();
+        let lines = line_elements(&svg);
+        assert_eq!(lines.matches("<rect").count(), count_runs(&view.maze));
+        assert!(
+            lines.contains(r#"<rect x="-0.05" y="-0.05" width="#),
+            "{lines}"
+        );
+        assert!(svg.contains(r#"<g transform="translate(-4,-4) rotate(0)">"#));
         assert_eq!(svg.matches("fill=\"#0000ff\"").count(), 1);
         assert_eq!(svg.matches("fill=\"#ff0000\"").count(), 1);
         let path = svg
@@ -278,10 +295,36 @@ mod tests {
             path.split(' ').count() as u64,
             layout.metrics.solution_cells
         );
-        assert_eq!(num(0.30000000000000004), "0.3");
+        assert!(path.starts_with("0,0 "), "the solution starts at the start");
         assert!(svg.contains("fill=\"#ffffff\""), "a scale bar");
-        assert_eq!(glyph_strokes('1').len(), 2);
-        assert_eq!(glyph_strokes('0').len(), 6);
-        assert_eq!(num(-0.00001), "0");
+        // 11 metre lines each way on the 10 m floor.
+        assert_eq!(svg.matches("<line ").count(), 22);
+        assert!(!svg_of(&layout, &RenderOptions::default()).contains("<polyline"));
+    }
+
+    #[test]
+    fn a_one_cell_maze_draws_no_line() {
+        let layout = build_layout(&GenerateSpec::course(
+            Grid::new(1, 1).unwrap(),
+            Algorithm::Dfs,
+            1,
+        ))
+        .unwrap();
+        let svg = svg_of(&layout, &RenderOptions { solution: true });
+        assert_eq!(line_elements(&svg).matches('<').count(), 0);
+    }
+
+    #[test]
+    fn numbers_have_at_most_four_decimals() {
+        let text = |v: f64| num(v).to_string();
+        assert_eq!(text(0.30000000000000004), "0.3");
+        assert_eq!(text(-0.00001), "0");
+        assert_eq!(text(-0.05), "-0.05");
+        assert_eq!(text(4095.95), "4095.95");
+        assert_eq!(text(12.0), "12");
+        assert_eq!(text(0.00005), "0.0001");
+        assert_eq!(text(-1234.56789), "-1234.5679");
+        assert_eq!(text(90.00000250447816), "90");
+        assert_eq!(text(f64::NAN), "NaN");
     }
 }

@@ -1,0 +1,348 @@
+//! What the SVG and PNG pictures show, in metres: the colours, the green line runs, the
+//! floor's metre grid and the scale bar. Both formats draw exactly this, each its own way.
+
+use std::fmt;
+
+use crate::maze::{Direction, Maze};
+
+/// An opaque sRGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Colour(pub [u8; 3]);
+
+impl fmt::Display for Colour {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let [r, g, b] = self.0;
+        write!(f, "#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+/// The floor.
+pub(super) const FLOOR: Colour = Colour([0xb4, 0xb4, 0xb4]);
+/// The metre grid on the floor.
+pub(super) const GRID: Colour = Colour([0x8c, 0x8c, 0x8c]);
+/// The lines the robot follows: pure green, as the camera must see them.
+pub(super) const LINE: Colour = Colour([0x00, 0xff, 0x00]);
+/// The start marker: pure blue.
+pub(super) const START: Colour = Colour([0x00, 0x00, 0xff]);
+/// The end marker: pure red.
+pub(super) const END: Colour = Colour([0xff, 0x00, 0x00]);
+/// The solution path, drawn at [`SOLUTION_OPACITY`].
+pub(super) const SOLUTION: Colour = Colour([0xff, 0xa5, 0x00]);
+/// Opacity of the solution path.
+pub(super) const SOLUTION_OPACITY: f64 = 0.8;
+/// The scale bar.
+pub(super) const PAPER: Colour = Colour([0xff, 0xff, 0xff]);
+/// The scale bar's outline and label.
+pub(super) const INK: Colour = Colour([0x00, 0x00, 0x00]);
+
+/// Which way a run goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Axis {
+    /// Along a row (the maze's x): open east passages.
+    Row,
+    /// Along a column (the maze's y): open north passages.
+    Column,
+}
+
+/// A run: a maximal chain of open east passages along a row, or of open north passages
+/// up a column, from cell `first` to cell `last` on grid line `line`.
+///
+/// Its picture is one rectangle ([`Run::rect`]) from `width / 2` before the first cell's
+/// centre to `width / 2` past the last one's, `width` across. That is exactly the
+/// picture of the layout's segments: a renderer is only given layouts that passed
+/// [`crate::validate::checked`], which proves that on every grid line the union of the
+/// segments equals the union of the passage intervals `[k c - w/2, (k + 1) c + w/2]`
+/// (within 10 um), and a run is a maximal union of touching passage intervals. A cell with
+/// no passage (a 1 x 1 maze) lies in no run and draws nothing, as it has no segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct Run {
+    /// Row or column.
+    pub axis: Axis,
+    /// The row's y or the column's x, in cells.
+    pub line: u32,
+    /// The first cell along the line.
+    pub first: u32,
+    /// The last cell along the line (after `first`).
+    pub last: u32,
+}
+
+impl Run {
+    /// Its rectangle in the maze frame, `[x0, y0, x1, y1]`, for cells of side `cell` and
+    /// lines `width` wide.
+    pub fn rect(&self, cell: f64, width: f64) -> [f64; 4] {
+        let half = width / 2.0;
+        let across = f64::from(self.line) * cell;
+        let lo = f64::from(self.first) * cell - half;
+        let hi = f64::from(self.last) * cell + half;
+        match self.axis {
+            Axis::Row => [lo, across - half, hi, across + half],
+            Axis::Column => [across - half, lo, across + half, hi],
+        }
+    }
+}
+
+/// Calls `emit` for every run of `maze` and `row_done` after each row, in one pass over the
+/// cells, south row first: row `y` yields its east runs and the north runs that end on it.
+/// Stops at the first error `emit` returns.
+pub(super) fn for_each_run<E>(
+    maze: &Maze,
+    mut emit: impl FnMut(Run) -> Result<(), E>,
+    mut row_done: impl FnMut(u32),
+) -> Result<(), E> {
+    const NONE: u32 = u32::MAX;
+    let (east, north) = (Direction::East.bit(), Direction::North.bit());
+    let width = maze.grid().width() as usize;
+    // The row each column's open run started on, NONE when no run is open.
+    let mut column_starts = vec![NONE; width];
+    for (y, masks) in (0u32..).zip(maze.masks().chunks_exact(width)) {
+        let mut row_start = NONE;
+        for ((x, &mask), column_start) in (0u32..).zip(masks).zip(&mut column_starts) {
+            if mask & east != 0 {
+                if row_start == NONE {
+                    row_start = x;
+                }
+            } else if row_start != NONE {
+                emit(Run {
+                    axis: Axis::Row,
+                    line: y,
+                    first: row_start,
+                    last: x,
+                })?;
+                row_start = NONE;
+            }
+            if mask & north != 0 {
+                if *column_start == NONE {
+                    *column_start = y;
+                }
+            } else if *column_start != NONE {
+                emit(Run {
+                    axis: Axis::Column,
+                    line: x,
+                    first: *column_start,
+                    last: y,
+                })?;
+                *column_start = NONE;
+            }
+        }
+        row_done(y);
+    }
+    Ok(())
+}
+
+/// Most lines of the metre grid along one axis: beyond, they are thinned out.
+const MAX_GRID_LINES: f64 = 200.0;
+
+/// The floor's metre grid: lines through the floor origin every `step` metres, every
+/// fifth one thick (the 5 m floor panels when `step` is 1 m).
+///
+/// `step` is 1 m unless that would draw more than [`MAX_GRID_LINES`] lines along the
+/// floor's longer side; then it is the smallest of 2, 5, 10, 20, 50, 100 ... m that draws
+/// no more, so a 4 km floor gets a line every 50 m (a thick one every 250 m) and the
+/// picture is not dominated by grid lines. Line widths grow with the step (1 % and 3 % of
+/// it), so the grid looks the same at every size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct MetreGrid {
+    /// Metres between two lines.
+    pub step: f64,
+}
+
+impl MetreGrid {
+    /// The grid for a floor of `size` (x, y) metres.
+    pub fn for_floor(size: [f64; 2]) -> Self {
+        let extent = size[0].max(size[1]);
+        let mut step = 1.0;
+        for next in [2.0, 2.5, 2.0].into_iter().cycle() {
+            if extent / step <= MAX_GRID_LINES {
+                break;
+            }
+            step *= next;
+        }
+        Self { step }
+    }
+
+    /// The lines across an axis `extent` metres long, centred on 0: (position, width).
+    pub fn lines(&self, extent: f64) -> impl Iterator<Item = (f64, f64)> + use<> {
+        let step = self.step;
+        let n = (extent / 2.0 / step).floor() as i64;
+        (-n..=n).map(move |k| {
+            let width = if k % 5 == 0 { 0.03 } else { 0.01 } * step;
+            (k as f64 * step, width)
+        })
+    }
+}
+
+/// A scale bar in the south-west corner of the floor: a white bar of a round number of
+/// metres (about a fifth of the floor), outlined in black, labelled with stroked
+/// seven-segment digits so the label needs no font.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct ScaleBar {
+    /// Floor x of the bar's west end.
+    pub x: f64,
+    /// Floor y of the bar's south edge.
+    pub y: f64,
+    /// Length, metres.
+    pub length: f64,
+    /// Height of the bar (a tenth of its length), metres.
+    pub unit: f64,
+}
+
+impl ScaleBar {
+    /// The bar for a floor of `size` (x, y) metres.
+    pub fn for_floor(size: [f64; 2]) -> Self {
+        let [fx, fy] = size;
+        let length = [
+            1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0,
+        ]
+        .into_iter()
+        .take_while(|&l| l <= fx / 5.0)
+        .last()
+        .unwrap_or(1.0);
+        let unit = length / 10.0;
+        Self {
+            x: -fx / 2.0 + unit,
+            y: -fy / 2.0 + unit,
+            length,
+            unit,
+        }
+    }
+
+    /// Width of the bar's outline.
+    pub fn outline_width(&self) -> f64 {
+        self.unit / 5.0
+    }
+
+    /// Width of the label's strokes (round caps).
+    pub fn label_width(&self) -> f64 {
+        self.unit / 3.0
+    }
+
+    /// The label's strokes, `[x0, y0, x1, y1]` on the floor: "2m" after the bar.
+    pub fn label_strokes(&self) -> Vec<[f64; 4]> {
+        let label = format!("{}m", self.length as u64);
+        let glyph_height = self.unit * 2.0;
+        let mut x = self.x + self.length + self.unit;
+        let mut strokes = Vec::new();
+        for ch in label.chars() {
+            for (ax, ay, bx, by) in glyph_strokes(ch) {
+                strokes.push([
+                    x + ax * glyph_height / 2.0,
+                    self.y + ay * glyph_height,
+                    x + bx * glyph_height / 2.0,
+                    self.y + by * glyph_height,
+                ]);
+            }
+            x += glyph_height * 0.75;
+        }
+        strokes
+    }
+}
+
+/// The strokes of a seven-segment glyph in a 1 x 1 box (y up): digits and `m`.
+fn glyph_strokes(ch: char) -> Vec<(f64, f64, f64, f64)> {
+    // Segments a (top), b, c (right, top to bottom), d (bottom), e, f (left), g (middle).
+    const SEGMENTS: [(f64, f64, f64, f64); 7] = [
+        (0.0, 1.0, 1.0, 1.0),
+        (1.0, 1.0, 1.0, 0.5),
+        (1.0, 0.5, 1.0, 0.0),
+        (0.0, 0.0, 1.0, 0.0),
+        (0.0, 0.0, 0.0, 0.5),
+        (0.0, 0.5, 0.0, 1.0),
+        (0.0, 0.5, 1.0, 0.5),
+    ];
+    let mask: u8 = match ch {
+        '0' => 0b011_1111,
+        '1' => 0b000_0110,
+        '2' => 0b101_1011,
+        '5' => 0b110_1101,
+        'm' => {
+            return vec![
+                (0.0, 0.0, 0.0, 0.5),
+                (0.0, 0.5, 1.0, 0.5),
+                (0.5, 0.0, 0.5, 0.5),
+                (1.0, 0.0, 1.0, 0.5),
+            ];
+        }
+        _ => 0,
+    };
+    SEGMENTS
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| mask & (1 << i) != 0)
+        .map(|(_, &s)| s)
+        .collect()
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+    use crate::generate::{Algorithm, generate};
+    use crate::maze::{Cell, Grid};
+
+    /// Runs counted straight from the passages: a run starts at every open passage
+    /// whose cell has no open passage behind it.
+    pub(in crate::render) fn count_runs(maze: &Maze) -> usize {
+        maze.passages()
+            .filter(|&(cell, dir)| {
+                let behind = match dir {
+                    Direction::East if cell.x > 0 => Cell::new(cell.x - 1, cell.y),
+                    Direction::North if cell.y > 0 => Cell::new(cell.x, cell.y - 1),
+                    _ => return true,
+                };
+                !maze.is_open(maze.grid().index(behind), dir)
+            })
+            .count()
+    }
+
+    #[test]
+    fn runs_cover_every_passage_once_and_are_maximal() {
+        for (w, h, algorithm) in [(1, 1, Algorithm::Dfs), (7, 5, Algorithm::Prim)] {
+            let maze = generate(Grid::new(w, h).unwrap(), algorithm, 3);
+            let mut runs = Vec::new();
+            let mut rows = 0;
+            let Ok(()) = for_each_run::<std::convert::Infallible>(
+                &maze,
+                |run| {
+                    runs.push(run);
+                    Ok(())
+                },
+                |_| rows += 1,
+            );
+            assert_eq!(rows, h);
+            assert_eq!(runs.len(), count_runs(&maze));
+            let covered: u32 = runs.iter().map(|r| r.last - r.first).sum();
+            assert_eq!(covered as usize, maze.passage_count());
+        }
+        let run = Run {
+            axis: Axis::Column,
+            line: 2,
+            first: 1,
+            last: 3,
+        };
+        assert_eq!(run.rect(1.0, 0.1), [1.95, 0.95, 2.05, 3.05]);
+    }
+
+    #[test]
+    fn the_metre_grid_thins_out_on_huge_floors() {
+        assert_eq!(MetreGrid::for_floor([10.0, 10.0]).step, 1.0);
+        assert_eq!(MetreGrid::for_floor([200.0, 15.0]).step, 1.0);
+        assert_eq!(MetreGrid::for_floor([15.0, 201.0]).step, 2.0);
+        let huge = MetreGrid::for_floor([4100.0, 4100.0]);
+        assert_eq!(huge.step, 50.0);
+        let lines: Vec<_> = huge.lines(4100.0).collect();
+        assert_eq!(lines.len(), 83);
+        assert_eq!(lines[41], (0.0, 1.5));
+        assert_eq!(lines[42], (50.0, 0.5));
+        assert_eq!(MetreGrid::for_floor([10_000.0, 1.0]).step, 50.0);
+        assert_eq!(Colour([0, 0xff, 0x0a]).to_string(), "#00ff0a");
+    }
+
+    #[test]
+    fn the_scale_bar_is_labelled() {
+        let bar = ScaleBar::for_floor([10.0, 10.0]);
+        assert_eq!((bar.length, bar.x, bar.y), (2.0, -4.8, -4.8));
+        // "2" has five segments, "m" four strokes.
+        assert_eq!(bar.label_strokes().len(), 9);
+        assert_eq!(glyph_strokes('1').len(), 2);
+        assert_eq!(glyph_strokes('0').len(), 6);
+    }
+}
