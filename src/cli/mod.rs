@@ -164,7 +164,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::Generate(args) => generate::run(args, progress),
         Command::Validate(args) => validate::run(args, progress),
-        Command::Render(args) => render::run(args),
+        Command::Render(args) => render::run(args, progress),
         Command::Batch(args) => batch::run(args),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),

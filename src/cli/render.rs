@@ -6,13 +6,12 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 
 use super::output::write_output;
+use super::progress::{Progress, Unit};
+use super::validate::read_checking;
 use super::{ensure_usage, usage};
-use crate::layout::read_layout;
 use crate::render::{Format, RenderOptions};
-use crate::validate::checked;
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -34,7 +33,7 @@ pub struct RenderArgs {
 }
 
 /// Runs `render`.
-pub fn run(args: RenderArgs) -> Result<ExitCode> {
+pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     let output = args.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(scene) = scene_dump(&args)? {
         let format = choose_format(args.format, output, Format::Svg)?;
@@ -52,12 +51,23 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
         format != Format::Png || output.is_some() || !std::io::stdout().is_terminal(),
         "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
     );
-    let layout = read_layout(&args.file)?;
-    checked(&layout).with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
+    // Read once: the segments are validated as they stream past and then dropped; the
+    // picture is drawn from the passages, which validation proved they cover exactly.
+    let (layout, validator) = read_checking(&args.file, bars)?;
+    validator
+        .finish()
+        .finish()
+        .into_result()
+        .with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
     let options = RenderOptions {
         solution: args.solution,
     };
-    let progress = progress_bar();
+    let rows = if format == Format::Png {
+        0
+    } else {
+        u64::from(layout.grid.rows)
+    };
+    let progress = bars.bar("rendering", rows, Unit::Items("rows"));
     // The picture streams into the output; a failure that is not the output's own (an
     // I/O error) is kept whole here and reported with the layout's name.
     let mut failure = None;
@@ -78,19 +88,6 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
     }
     written?;
     Ok(ExitCode::SUCCESS)
-}
-
-/// A bar on standard error while a picture is drawn, if standard error is a terminal.
-fn progress_bar() -> ProgressBar {
-    if !io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(0);
-    bar.set_style(
-        ProgressStyle::with_template("rendering {bar:40} {percent}%, eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar
 }
 
 /// The format to write: `--format` if given, else the one the output's extension names, else
