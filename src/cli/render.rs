@@ -1,6 +1,6 @@
 //! `vrep-maze render`: draw a layout.
 
-use std::io::{self, IsTerminal};
+use std::io::{self, IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -120,16 +120,26 @@ fn choose_format(
     }
 }
 /// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
+/// Bytes read from the start of a file to tell a scene dump from a layout.
+const SNIFF: u64 = 4096;
+
 fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     if args.file.as_os_str() == "-" {
+        return Ok(None);
+    }
+    // A dump says what it is in its first lines: a layout (of any size) is not read whole.
+    let Ok(file) = std::fs::File::open(&args.file) else {
+        return Ok(None);
+    };
+    let mut start = Vec::new();
+    if file.take(SNIFF).read_to_end(&mut start).is_err()
+        || !String::from_utf8_lossy(&start).contains("\"vrep-maze scene\"")
+    {
         return Ok(None);
     }
     let Ok(text) = std::fs::read_to_string(&args.file) else {
         return Ok(None);
     };
-    if !text.contains("\"vrep-maze scene\"") {
-        return Ok(None);
-    }
     let scene =
         crate::sim::Scene::from_json(&text).with_context(|| format!("{}", args.file.display()))?;
     Ok(Some(scene))
