@@ -13,7 +13,7 @@
 //! - The protocols, each a codec, a client, a drawing backend and an emulated server:
 //!   [`legacy`] (port 19997) and [`zmq_api`] (ZeroMQ, port 23000).
 //! - [`sim`]: the emulated simulator's scene, state and clock, under both servers.
-//! - [`cli`]: the command line, the only user of clap, anyhow and indicatif.
+//! - [`cli`]: the command line, the only user of clap; it makes the progress bars (indicatif) that renderers advance.
 
 pub mod atomic_file;
 pub mod batch;
