@@ -1,12 +1,12 @@
 //! `vrep-maze apply`: draw a layout into CoppeliaSim over the legacy or the ZeroMQ remote API.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::Context;
 
 use super::ensure_usage;
+use super::progress::{Progress, Unit};
 
 use super::connect::{Api, connect};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
@@ -125,7 +125,7 @@ pub struct ApplyArgs {
 }
 
 /// Runs `apply`.
-pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
+pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
     let layout = crate::layout::read_layout(&args.layout)?;
     let drawing = Drawing::try_from(&layout)
         .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
@@ -160,34 +160,22 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
             println!("created {}", created.join(", "));
         }
     }
-    let bar = std::io::stderr().is_terminal().then(|| {
-        let b = indicatif::ProgressBar::new(drawing.lines.len() as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} {msg} [{bar:30}] {pos}/{len} lines, {per_sec:.0}, eta {eta}",
-            )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b.enable_steady_tick(Duration::from_millis(100));
-        b
-    });
-    let mut progress = |stage: Stage| {
-        if let Some(b) = &bar {
-            match stage {
-                Stage::Surveyed => b.set_message("reading the scene"),
-                Stage::Pasting { .. } => b.set_message("pasting lines"),
-                Stage::Placing { done, .. } => {
-                    b.set_message("placing lines");
-                    b.set_position(done as u64);
-                }
-                Stage::Verifying => b.set_message("verifying"),
-            }
+    let bar = bars.bar(
+        "reading the scene",
+        drawing.lines.len() as u64,
+        Unit::Items("lines"),
+    );
+    let mut progress = |stage: Stage| match stage {
+        Stage::Surveyed => bar.set_message("reading the scene"),
+        Stage::Pasting { .. } => bar.set_message("pasting lines"),
+        Stage::Placing { done, .. } => {
+            bar.set_message("placing lines");
+            bar.set_position(done as u64);
         }
+        Stage::Verifying => bar.set_message("verifying"),
     };
     let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    bar.finish_and_clear();
     if let Err(DrawError::Interrupted { placed, total }) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal

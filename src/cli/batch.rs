@@ -6,10 +6,10 @@ use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::generate::MazeArgs;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::progress::{Progress, Unit};
 use crate::batch::{self, Filter, parse_seeds};
 
 /// Options of `batch`.
@@ -41,16 +41,11 @@ pub struct SeedList(pub Vec<u64>);
 
 /// Runs `batch`. Ctrl-C (or SIGTERM, SIGHUP) finishes the mazes in flight, writes the
 /// manifest of every maze made, says how to resume and exits 130.
-pub fn run(args: BatchArgs) -> Result<ExitCode> {
+pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
     let template = args.maze.spec(0)?;
     let seeds = args.seeds.0;
     let interrupt = Interrupt::install()?;
-    let progress =
-        ProgressBar::with_draw_target(Some(seeds.len() as u64), ProgressDrawTarget::stderr());
-    progress.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} mazes, {per_sec:.1}, eta {eta}")
-            .expect("valid template"),
-    );
+    let progress = bars.bar("generating", seeds.len() as u64, Unit::Items("mazes"));
     let filter = Filter {
         min_solution: args.min_solution,
         max_dead_end_percent: args.max_dead_ends,

@@ -165,10 +165,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Generate(args) => generate::run(args, progress),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
-        Command::Batch(args) => batch::run(args),
+        Command::Batch(args) => batch::run(args, progress),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),
-        Command::Apply(args) => apply::run(args),
+        Command::Apply(args) => apply::run(args, progress),
         Command::Clear(args) => clear::run(args),
         Command::Serve(args) => serve::run(args),
     }
