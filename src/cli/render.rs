@@ -62,12 +62,8 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     let options = RenderOptions {
         solution: args.solution,
     };
-    let rows = if format == Format::Png {
-        0
-    } else {
-        u64::from(layout.grid.rows)
-    };
-    let progress = bars.bar("rendering", rows, Unit::Items("rows"));
+    // Each renderer sets the length: maze rows, or pixel rows for PNG.
+    let progress = bars.bar("rendering", 0, Unit::Items("rows"));
     // The picture streams into the output; a failure that is not the output's own (an
     // I/O error) is kept whole here and reported with the layout's name.
     let mut failure = None;

@@ -52,10 +52,7 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
                 for line in invalid.shown() {
                     eprintln!("error: {name}: {line}");
                 }
-                eprintln!(
-                    "INVALID {name}: {} problem(s)",
-                    invalid.problems.len() + invalid.omitted
-                );
+                eprintln!("INVALID {name}: {} problem(s)", invalid.count());
             }
         }
     }

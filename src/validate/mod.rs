@@ -311,7 +311,7 @@ pub const MAX_SHOWN: usize = 20;
 /// a dataset) passes [`checked`] first and refuses with this, so nothing is ever drawn,
 /// rendered or written from a layout that `vrep-maze validate` rejects.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("invalid layout ({} problem(s); `vrep-maze validate` lists them)", .problems.len() + .omitted)]
+#[error("invalid layout ({} problem(s); `vrep-maze validate` lists them)", self.count())]
 pub struct Invalid {
     /// What is wrong, in the order [`validate`] found it (the first [`MAX_KEPT`]).
     pub problems: Vec<Problem>,
@@ -320,6 +320,11 @@ pub struct Invalid {
 }
 
 impl Invalid {
+    /// How many problems were found, kept or not.
+    pub fn count(&self) -> usize {
+        self.problems.len() + self.omitted
+    }
+
     /// The first [`MAX_SHOWN`] problems, one per line, then how many more there are.
     pub fn shown(&self) -> Vec<String> {
         let mut lines: Vec<String> = self
@@ -328,7 +333,7 @@ impl Invalid {
             .take(MAX_SHOWN)
             .map(Problem::to_string)
             .collect();
-        let total = self.problems.len() + self.omitted;
+        let total = self.count();
         if total > MAX_SHOWN {
             lines.push(format!("... and {} more problem(s)", total - MAX_SHOWN));
         }
