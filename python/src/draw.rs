@@ -52,8 +52,6 @@ pub struct ApplyReport {
     created: Vec<String>,
     /// Where `save_scene` saved the scene (on the simulator's machine), if asked.
     saved_scene: Option<String>,
-    /// Which remote API answered, and where.
-    api: String,
     /// The line `vrep-maze apply` prints.
     summary: String,
 }
@@ -82,8 +80,6 @@ pub struct ClearReport {
     stopped_simulation: bool,
     /// `dry_run=True`: nothing was changed.
     dry_run: bool,
-    /// Which remote API answered, and where.
-    api: String,
 }
 
 #[pymethods]
@@ -223,7 +219,7 @@ pub fn apply(
             finished => finished,
         })
     };
-    run_drawing(py, &stop, job, |(report, created, saved_scene, api)| {
+    run_drawing(py, &stop, job, |(report, created, saved_scene)| {
         ApplyReport {
             lines: report.lines,
             reused: report.reused,
@@ -238,15 +234,14 @@ pub fn apply(
             verified: !report.dry_run,
             created,
             saved_scene,
-            api,
             summary: report.to_string(),
         }
     })
 }
 
 /// What a finished `apply` hands back: the library's report, the objects created, the
-/// scene saved, the API that answered.
-type Applied = (draw::ApplyReport, Vec<String>, Option<String>, String);
+/// scene saved.
+type Applied = (draw::ApplyReport, Vec<String>, Option<String>);
 
 /// `apply`'s work once connected, as `vrep-maze apply` does it: create what is missing,
 /// draw and verify, save the scene.
@@ -268,7 +263,6 @@ fn draw_connected(
             counts: Some((0, total)),
         });
     }
-    let api = backend.describe();
     let mut created = Vec::new();
     if create_missing && !opts.dry_run {
         let authoring = backend.authoring().context(
@@ -301,7 +295,7 @@ fn draw_connected(
             .with_context(|| format!("saving the scene to {path}"))?;
         saved = Some(path.to_string());
     }
-    Ok(Finished::Done((report, created, saved, api)))
+    Ok(Finished::Done((report, created, saved)))
 }
 
 /// Removes a drawn maze from CoppeliaSim as `vrep-maze clear` does (the templates stay).
@@ -336,7 +330,6 @@ pub fn clear(
     let job = move || {
         let mut backend = scene.connect()?;
         connected.store(true, Ordering::SeqCst);
-        let api = backend.describe();
         let result = draw::clear(backend.as_mut(), &opts);
         let _ = backend.close();
         match result {
@@ -345,15 +338,14 @@ pub fn clear(
                     .into(),
                 counts: None,
             }),
-            other => Ok(Finished::Done((other?, api))),
+            other => Ok(Finished::Done(other?)),
         }
     };
-    run_drawing(py, &stop, job, |(report, api)| ClearReport {
+    run_drawing(py, &stop, job, |report| ClearReport {
         removed: report.removed,
         round_trips: report.round_trips,
         restored_idle_fps: report.restored_idle_fps,
         stopped_simulation: report.stopped_simulation,
         dry_run,
-        api,
     })
 }

@@ -72,7 +72,6 @@ class ApplyReport:
     verified: bool
     created: list[str]
     saved_scene: Optional[str]
-    api: str
     summary: str
 
 class ClearReport:
@@ -81,7 +80,6 @@ class ClearReport:
     restored_idle_fps: Optional[int]
     stopped_simulation: bool
     dry_run: bool
-    api: str
 
 class Batch(Iterator[Layout]):
     def __iter__(self) -> Batch: ...
