@@ -99,7 +99,8 @@ fn make(
 /// (`algo`, `size`, `braid`, ...); `min_solution=N` keeps only mazes whose solution has at
 /// least N cells, `max_dead_ends=PCT` only those with at most PCT % dead ends. A refused
 /// option raises `ValueError` with the command line's message. Mazes are made in parallel
-/// on all cores, a few per core at a time, without the GIL.
+/// on all cores, a few per core at a time, without the GIL; Ctrl-C raises
+/// `KeyboardInterrupt` at once (nothing is written, so nothing is left half done).
 #[pyfunction]
 #[pyo3(signature = (seeds, algo=None, size=None, **options))]
 pub fn batch(
@@ -112,7 +113,7 @@ pub fn batch(
     let options = options::with(options, py, &[("algo", algo), ("size", size)])?;
     let seeds = format!("--seeds={}", seeds_text(seeds)?);
     // the layouts are yielded, not written: `.` only fills the command's place for a folder
-    let argv = options::command_line("batch", "batch", &[&seeds, "--out-dir=."], &options)?;
+    let argv = options::command_line("batch", &[&seeds, "--out-dir=."], &options)?;
     let Command::Batch(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err("batch parsed as another command"));
     };

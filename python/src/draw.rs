@@ -111,7 +111,7 @@ enum Finished<T> {
 }
 
 /// What a connection job needs to know about Ctrl-C.
-#[derive(Clone, Default)]
+#[derive(Default)]
 struct Stop {
     /// Set at the first Ctrl-C: the job stops after the request in flight.
     requested: Arc<AtomicBool>,
@@ -140,11 +140,11 @@ fn run_drawing<T: Send + 'static, R>(
         pending = Some(raised);
         OnSignal::Wait
     })?;
-    match finished.map_err(|e| errors::from_anyhow(py, &e))? {
-        Finished::Stopped { message, counts } => Err(errors::interrupted(py, message, counts)),
+    match (finished.map_err(|e| errors::from_anyhow(py, &e))?, pending) {
+        (Finished::Stopped { message, counts }, _) => Err(errors::interrupted(py, message, counts)),
         // the job ended before it saw the Ctrl-C: the script stops all the same
-        Finished::Done(_) if pending.is_some() => Err(pending.expect("pending Ctrl-C")),
-        Finished::Done(done) => Ok(report(done)),
+        (Finished::Done(_), Some(ctrl_c)) => Err(ctrl_c),
+        (Finished::Done(done), None) => Ok(report(done)),
     }
 }
 
@@ -173,7 +173,7 @@ pub fn apply(
 ) -> PyResult<ApplyReport> {
     let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
     // the layout is the object, not a file: `-` only fills the command's place for it
-    let argv = options::command_line("apply", "apply", &["-"], &options)?;
+    let argv = options::command_line("apply", &["-"], &options)?;
     let Command::Apply(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err("apply parsed as another command"));
     };
@@ -313,7 +313,7 @@ pub fn clear(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<ClearReport> {
     let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
-    let argv = options::command_line("clear", "clear", &[], &options)?;
+    let argv = options::command_line("clear", &[], &options)?;
     let Command::Clear(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err("clear parsed as another command"));
     };

@@ -343,7 +343,7 @@ pub fn generate(
         py,
         &[("seed", seed), ("algo", algo), ("size", size)],
     )?;
-    let argv = options::command_line("generate", "generate", &[], &options)?;
+    let argv = options::command_line("generate", &[], &options)?;
     let Command::Generate(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err(
             "generate parsed as another command",

@@ -22,10 +22,9 @@ const PROGRAM: &str = "vrep-maze";
 const NOT_KEYWORDS: &[&str] = &["help", "version", "output", "out-dir", "seeds"];
 
 /// The command line `vrep-maze <command> <fixed...> --option=value...` for the keyword
-/// arguments `options` of Python function `function`. An unknown keyword is a `TypeError`,
-/// as Python raises for any function.
+/// arguments `options` of the Python function of the same name. An unknown keyword is a
+/// `TypeError`, as Python raises for any function.
 pub fn command_line(
-    function: &str,
     command: &str,
     fixed: &[&str],
     options: &Bound<'_, PyDict>,
@@ -44,7 +43,7 @@ pub fn command_line(
             .find(|a| a.get_long() == Some(long.as_str()) && !NOT_KEYWORDS.contains(&long.as_str()))
             .ok_or_else(|| {
                 PyTypeError::new_err(format!(
-                    "{function}() got an unexpected keyword argument '{key}'"
+                    "{command}() got an unexpected keyword argument '{key}'"
                 ))
             })?;
         if value.is_none() {
