@@ -9,7 +9,6 @@ use std::time::Duration;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
-use indicatif::ProgressBar;
 
 use super::validate::{describe, print_metrics};
 use crate::coppelia::DEFAULT_IDLE_FPS;
@@ -50,13 +49,7 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
             report.problems[0]
         );
     }
-    let mut picture = Vec::new();
-    Format::Ascii.renderer().render(
-        &layout,
-        &RenderOptions { solution: true },
-        &mut picture,
-        &ProgressBar::hidden(),
-    )?;
+    let picture = Format::Ascii.render_to_vec(&layout, &RenderOptions { solution: true })?;
     println!("{}", String::from_utf8_lossy(&picture).trim_end());
     println!("OK {}", describe(&layout, layout.segments.len()));
     if let Some(metrics) = &report.metrics {

@@ -15,6 +15,7 @@ mod serve;
 mod validate;
 mod values;
 
+use std::ffi::OsString;
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -63,10 +64,11 @@ const USAGE_EXIT_CODE: u8 = 2;
 
 /// A command line that asks for something impossible (a value out of range, options that
 /// conflict): reported like clap's own usage errors, with exit code 2. Any other failure
-/// exits with 1.
+/// exits with 1. Public so that programs embedding the command line (the Python package)
+/// tell usage errors from failures as the exit code does.
 #[derive(Debug, thiserror::Error)]
 #[error("{0}")]
-pub(crate) struct UsageError(pub String);
+pub struct UsageError(pub String);
 
 /// `message` as a [`UsageError`].
 pub(crate) fn usage(message: impl std::fmt::Display) -> anyhow::Error {
@@ -86,8 +88,14 @@ pub(crate) use ensure_usage;
 /// Parses the command line and runs it; errors become one line on standard error (then
 /// one line per hint), with exit code 2 for usage errors and 1 for other failures.
 pub fn main() -> ExitCode {
+    main_with_args(std::env::args_os())
+}
+
+/// [`main`] for the command line `args` (the program name first): the `vrep-maze` binary's
+/// code for programs that embed it (the Python package's `vrep-maze` command).
+pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     end_quietly_on_broken_pipe();
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => return report_usage(&e),
     };
@@ -180,7 +188,7 @@ const MAX_CAUSE_CHARS: usize = 400;
 
 /// The error and its causes on one line, each cause once: a cause whose text the line
 /// already holds (an inner error that its context also printed) is not repeated.
-pub(crate) fn one_line(error: &anyhow::Error) -> String {
+pub fn one_line(error: &anyhow::Error) -> String {
     let mut line = String::new();
     for cause in error.chain() {
         let text = shorten(&cause.to_string().replace('\n', " "));
@@ -206,7 +214,7 @@ fn shorten(text: &str) -> String {
 }
 
 /// What the error's causes list beyond their one line (an invalid layout's problems).
-fn details(error: &anyhow::Error) -> Vec<String> {
+pub fn details(error: &anyhow::Error) -> Vec<String> {
     error
         .chain()
         .filter_map(|cause| cause.downcast_ref::<crate::validate::Invalid>())
@@ -216,7 +224,7 @@ fn details(error: &anyhow::Error) -> Vec<String> {
 }
 
 /// The remedies the error's causes know of, one per line, printed after the error line.
-fn hints(error: &anyhow::Error) -> Vec<String> {
+pub fn hints(error: &anyhow::Error) -> Vec<String> {
     error
         .chain()
         .flat_map(|cause| {

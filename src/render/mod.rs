@@ -90,6 +90,15 @@ impl Format {
             Format::Png => Box::new(Png),
         }
     }
+
+    /// The picture in memory, without a progress bar: for small mazes (the demo, the
+    /// Python package); files of any size stream through [`Renderer::render`] instead.
+    pub fn render_to_vec(self, layout: &Layout, options: &RenderOptions) -> Result<Vec<u8>> {
+        let mut bytes = Vec::new();
+        self.renderer()
+            .render(layout, options, &mut bytes, &ProgressBar::hidden())?;
+        Ok(bytes)
+    }
 }
 
 impl fmt::Display for Format {
@@ -157,12 +166,7 @@ mod tests {
     use crate::layout::{GenerateSpec, build_layout};
 
     fn render(format: Format, layout: &Layout, options: &RenderOptions) -> Vec<u8> {
-        let mut bytes = Vec::new();
-        format
-            .renderer()
-            .render(layout, options, &mut bytes, &ProgressBar::hidden())
-            .unwrap();
-        bytes
+        format.render_to_vec(layout, options).unwrap()
     }
 
     #[test]

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The Python package's tests, as CI runs them: build the wheel with maturin (release), install
+# it in a fresh virtual environment, and run pytest on python/tests against it.
+# Prints pytest's summary last; exits non-zero on failure.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+target="${CARGO_TARGET_DIR:-$root/target}"
+venv="$target/python-venv"
+rm -rf "$venv"
+if ! python3 -m venv "$venv" 2>/dev/null; then
+    # Debian's python3 keeps venv in a package of its own
+    apt-get update -qq && apt-get install -y -qq python3-venv
+    rm -rf "$venv"
+    python3 -m venv "$venv"
+fi
+"$venv/bin/pip" install --quiet maturin pytest numpy
+rm -rf "$target/wheels"
+"$venv/bin/maturin" build --release --quiet --out "$target/wheels"
+"$venv/bin/pip" install --quiet "$target"/wheels/vrep_maze-*.whl
+# from the repository root, so `import vrep_maze` is the installed wheel, not python/vrep_maze
+exec timeout 600 "$venv/bin/python" -m pytest -q python/tests

@@ -1,0 +1,351 @@
+//! `apply` and `clear`: drawing into CoppeliaSim as `vrep-maze apply` and `vrep-maze clear`
+//! do, over the same connection code and the same `draw` functions, with their reports as
+//! Python objects.
+//!
+//! Ctrl-C: the first stops the drawing after the request in flight (the idle rate restored,
+//! the connection closed cleanly) and raises `Interrupted`; while still connecting, or at a
+//! second Ctrl-C, `KeyboardInterrupt` is raised at once and the worker thread ends on its own
+//! (it stops at its next request, or closes the connection it was making).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::Context;
+use clap::ValueEnum;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use vrep_maze::cli::Command;
+use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing};
+
+use crate::errors;
+use crate::layout::Layout;
+use crate::options;
+use crate::worker::{self, OnSignal};
+
+/// What `apply` did: the numbers `vrep-maze apply` prints. `str(report)` is its line.
+#[pyclass(frozen, get_all, module = "vrep_maze")]
+pub struct ApplyReport {
+    /// Lines drawn (the template included).
+    lines: usize,
+    /// Copies from an earlier maze reused.
+    reused: usize,
+    /// Copies pasted.
+    pasted: usize,
+    /// Earlier copies removed.
+    removed: usize,
+    /// Objects already in place (no edit sent).
+    unchanged: usize,
+    /// Edits sent.
+    edits: usize,
+    /// Messages exchanged with the simulator.
+    round_trips: usize,
+    /// Wall time, seconds.
+    elapsed: f64,
+    /// The simulation was running and `stop_simulation=True` stopped it first.
+    stopped_simulation: bool,
+    /// `dry_run=True`: nothing was changed.
+    dry_run: bool,
+    /// Every line, start and end was read back in place (always, unless a dry run).
+    verified: bool,
+    /// Objects `create_missing=True` created.
+    created: Vec<String>,
+    /// Where `save_scene` saved the scene (on the simulator's machine), if asked.
+    saved_scene: Option<String>,
+    /// The line `vrep-maze apply` prints.
+    summary: String,
+}
+
+#[pymethods]
+impl ApplyReport {
+    fn __str__(&self) -> &str {
+        &self.summary
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<ApplyReport {}>", self.summary)
+    }
+}
+
+/// What `clear` did.
+#[pyclass(frozen, get_all, module = "vrep_maze")]
+pub struct ClearReport {
+    /// Names of the objects removed (or, in a dry run, that would be).
+    removed: Vec<String>,
+    /// Messages exchanged with the simulator.
+    round_trips: usize,
+    /// The idle rate restored (an interrupted `apply` had left it at 0), if it was.
+    restored_idle_fps: Option<i32>,
+    /// The simulation was running and `stop_simulation=True` stopped it first.
+    stopped_simulation: bool,
+    /// `dry_run=True`: nothing was changed.
+    dry_run: bool,
+}
+
+#[pymethods]
+impl ClearReport {
+    fn __repr__(&self) -> String {
+        let verb = if self.dry_run {
+            "would remove"
+        } else {
+            "removed"
+        };
+        format!(
+            "<ClearReport {verb} {} maze line(s); {} round trip(s)>",
+            self.removed.len(),
+            self.round_trips
+        )
+    }
+}
+
+/// How a drawing job ended, short of an error.
+enum Finished<T> {
+    /// It did the whole job.
+    Done(T),
+    /// Ctrl-C stopped it cleanly: what the command line says, and (apply) lines placed of
+    /// all.
+    Stopped {
+        message: String,
+        counts: Option<(usize, usize)>,
+    },
+}
+
+/// What a connection job needs to know about Ctrl-C.
+#[derive(Default)]
+struct Stop {
+    /// Set at the first Ctrl-C: the job stops after the request in flight.
+    requested: Arc<AtomicBool>,
+    /// Set once the connection is made (before that, Ctrl-C raises at once).
+    connected: Arc<AtomicBool>,
+}
+
+/// Runs a drawing `job` on a worker thread with Ctrl-C handled as the command line handles
+/// it, and turns its outcome into the Python result.
+fn run_drawing<T: Send + 'static, R>(
+    py: Python<'_>,
+    stop: &Stop,
+    job: impl FnOnce() -> anyhow::Result<Finished<T>> + Send + 'static,
+    report: impl FnOnce(T) -> R,
+) -> PyResult<R> {
+    let mut pending = None;
+    let finished = worker::run(py, job, |raised| {
+        if !stop.connected.load(Ordering::SeqCst) || stop.requested.swap(true, Ordering::SeqCst) {
+            // nothing drawn yet, or a second Ctrl-C: stop at once
+            stop.requested.store(true, Ordering::SeqCst);
+            return OnSignal::Raise(raised);
+        }
+        eprintln!(
+            "\ninterrupted: finishing what is in flight (press Ctrl-C again to stop at once)"
+        );
+        pending = Some(raised);
+        OnSignal::Wait
+    })?;
+    match (finished.map_err(|e| errors::from_anyhow(py, &e))?, pending) {
+        (Finished::Stopped { message, counts }, _) => Err(errors::interrupted(py, message, counts)),
+        // the job ended before it saw the Ctrl-C: the script stops all the same
+        (Finished::Done(_), Some(ctrl_c)) => Err(ctrl_c),
+        (Finished::Done(done), None) => Ok(report(done)),
+    }
+}
+
+/// Draws `layout` into CoppeliaSim as `vrep-maze apply` does and verifies it.
+///
+/// Every option of `apply` is a keyword: `api="legacy"` (port 19997, the default),
+/// `"zmq"` (port 23000) or `"auto"`; `host="127.0.0.1"`; `port`; the scene's object names
+/// `floor="Floor"`, `parent="Maze"`, `line="Line"`, `start="Start"`, `end="End"`;
+/// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `dry_run`,
+/// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
+/// (ZeroMQ only). Returns an `ApplyReport`. A refused option raises `ValueError`, a
+/// simulator that does not answer or refuses `SimulatorError` (with the command line's
+/// hints in `.hints`). Drawing runs without the GIL; Ctrl-C stops after the request in
+/// flight, restores the idle rate, closes the connection and raises `Interrupted` (running
+/// the same call again finishes the maze); a second Ctrl-C raises `KeyboardInterrupt` at
+/// once.
+#[pyfunction]
+#[pyo3(signature = (layout, api=None, host=None, port=None, **options))]
+pub fn apply(
+    py: Python<'_>,
+    layout: &Layout,
+    api: Option<Bound<'_, PyAny>>,
+    host: Option<Bound<'_, PyAny>>,
+    port: Option<Bound<'_, PyAny>>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<ApplyReport> {
+    let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
+    // the layout is the object, not a file: `-` only fills the command's place for it
+    let argv = options::command_line("apply", &["-"], &options)?;
+    let Command::Apply(args) = options::parse(argv)? else {
+        return Err(PyRuntimeError::new_err("apply parsed as another command"));
+    };
+    let legacy = args
+        .scene
+        .api
+        .to_possible_value()
+        .is_some_and(|v| v.get_name() == "legacy");
+    if (args.create_missing || args.save_scene.is_some()) && legacy {
+        return Err(PyValueError::new_err(
+            "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes",
+        ));
+    }
+    let stop = Stop::default();
+    let opts = ApplyOptions {
+        names: args.scene.names(),
+        stop_simulation: args.stop_simulation,
+        dry_run: args.dry_run,
+        interrupt: Some(stop.requested.clone()),
+        ..Default::default()
+    };
+    let (create_missing, save_scene) = (args.create_missing, args.save_scene);
+    let scene = args.scene;
+    let layout = layout.layout.clone();
+    let connected = stop.connected.clone();
+    let job = move || {
+        let drawing = Drawing::try_from(&*layout).context("nothing was drawn")?;
+        let mut backend = scene.connect()?;
+        connected.store(true, Ordering::SeqCst);
+        let result = draw_connected(
+            backend.as_mut(),
+            &drawing,
+            &opts,
+            create_missing,
+            save_scene.as_deref(),
+        );
+        let closed = backend.close().is_ok();
+        Ok(match result? {
+            Finished::Stopped { message, counts } if closed => Finished::Stopped {
+                message: message + " and the connection closed cleanly",
+                counts,
+            },
+            finished => finished,
+        })
+    };
+    run_drawing(py, &stop, job, |(report, created, saved_scene)| {
+        ApplyReport {
+            lines: report.lines,
+            reused: report.reused,
+            pasted: report.pasted,
+            removed: report.removed,
+            unchanged: report.unchanged,
+            edits: report.edits,
+            round_trips: report.round_trips,
+            elapsed: report.elapsed.as_secs_f64(),
+            stopped_simulation: report.stopped_simulation,
+            dry_run: report.dry_run,
+            verified: !report.dry_run,
+            created,
+            saved_scene,
+            summary: report.to_string(),
+        }
+    })
+}
+
+/// What a finished `apply` hands back: the library's report, the objects created, the
+/// scene saved.
+type Applied = (draw::ApplyReport, Vec<String>, Option<String>);
+
+/// `apply`'s work once connected, as `vrep-maze apply` does it: create what is missing,
+/// draw and verify, save the scene.
+fn draw_connected(
+    backend: &mut dyn Backend,
+    drawing: &Drawing,
+    opts: &ApplyOptions,
+    create_missing: bool,
+    save_scene: Option<&str>,
+) -> anyhow::Result<Finished<Applied>> {
+    let total = drawing.lines.len();
+    if opts
+        .interrupt
+        .as_ref()
+        .is_some_and(|i| i.load(Ordering::SeqCst))
+    {
+        return Ok(Finished::Stopped {
+            message: format!("interrupted: 0 of {total} lines placed; the idle rate is unchanged"),
+            counts: Some((0, total)),
+        });
+    }
+    let mut created = Vec::new();
+    if create_missing && !opts.dry_run {
+        let authoring = backend.authoring().context(
+            "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)",
+        )?;
+        created = authoring
+            .create_missing(&opts.names)
+            .context("creating the missing scene objects")?;
+    }
+    let report = match draw::apply(backend, drawing, opts, &mut |_| {}) {
+        Err(DrawError::Interrupted { placed, total }) => {
+            return Ok(Finished::Stopped {
+                message: format!(
+                    "interrupted: {placed} of {total} lines placed; the idle rate is restored"
+                ),
+                counts: Some((placed, total)),
+            });
+        }
+        other => other?,
+    };
+    let mut saved = None;
+    if let Some(path) = save_scene
+        && !opts.dry_run
+    {
+        let authoring = backend.authoring().context(
+            "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)",
+        )?;
+        authoring
+            .save_scene(path)
+            .with_context(|| format!("saving the scene to {path}"))?;
+        saved = Some(path.to_string());
+    }
+    Ok(Finished::Done((report, created, saved)))
+}
+
+/// Removes a drawn maze from CoppeliaSim as `vrep-maze clear` does (the templates stay).
+///
+/// Takes the connection keywords of `apply` (`api`, `host`, `port`, `floor`, `parent`,
+/// `line`, `start`, `end`, `connect_timeout`, `timeout`) and `stop_simulation`,
+/// `dry_run`. Returns a `ClearReport`. Errors and Ctrl-C as for `apply`.
+#[pyfunction]
+#[pyo3(signature = (api=None, host=None, port=None, **options))]
+pub fn clear(
+    py: Python<'_>,
+    api: Option<Bound<'_, PyAny>>,
+    host: Option<Bound<'_, PyAny>>,
+    port: Option<Bound<'_, PyAny>>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<ClearReport> {
+    let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
+    let argv = options::command_line("clear", &[], &options)?;
+    let Command::Clear(args) = options::parse(argv)? else {
+        return Err(PyRuntimeError::new_err("clear parsed as another command"));
+    };
+    let stop = Stop::default();
+    let dry_run = args.dry_run;
+    let opts = ClearOptions {
+        names: args.scene.names(),
+        stop_simulation: args.stop_simulation,
+        dry_run: args.dry_run,
+        interrupt: Some(stop.requested.clone()),
+    };
+    let scene = args.scene;
+    let connected = stop.connected.clone();
+    let job = move || {
+        let mut backend = scene.connect()?;
+        connected.store(true, Ordering::SeqCst);
+        let result = draw::clear(backend.as_mut(), &opts);
+        let _ = backend.close();
+        match result {
+            Err(DrawError::Interrupted { .. }) => Ok(Finished::Stopped {
+                message: "interrupted: some maze lines may remain; the idle rate is restored"
+                    .into(),
+                counts: None,
+            }),
+            other => Ok(Finished::Done(other?)),
+        }
+    };
+    run_drawing(py, &stop, job, |report| ClearReport {
+        removed: report.removed,
+        round_trips: report.round_trips,
+        restored_idle_fps: report.restored_idle_fps,
+        stopped_simulation: report.stopped_simulation,
+        dry_run,
+    })
+}

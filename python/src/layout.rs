@@ -1,0 +1,354 @@
+//! `Layout`: one maze, as `vrep-maze generate` writes it, and the functions that make one
+//! (`generate`, `load`, `Layout.from_json`).
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use numpy::PyArray2;
+use numpy::ndarray::Array2;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyString};
+use vrep_maze::atomic_file::write_atomically;
+use vrep_maze::cli::Command;
+use vrep_maze::layout::json::{parse_layout, to_string};
+use vrep_maze::layout::{self as library, GenerateSpec, build_layout, passages, read_layout};
+use vrep_maze::maze::analysis::shortest_path;
+use vrep_maze::maze::{Cell, Direction, Grid, Maze};
+use vrep_maze::render::{Format, RenderOptions};
+use vrep_maze::rng::os_seed;
+use vrep_maze::validate::validate;
+
+use crate::errors::{self, invalid_error, read_error};
+use crate::options;
+use crate::worker::{self, OnSignal};
+
+/// One maze: what `vrep-maze generate` writes and `vrep-maze apply` draws.
+///
+/// A `Layout` has always passed the checks of `vrep-maze validate` (the gate every
+/// consumer passes) and never changes. `to_json()` gives the layout file, byte for byte as
+/// the command line writes it.
+#[pyclass(frozen, module = "vrep_maze", name = "Layout")]
+pub struct Layout {
+    /// The layout (shared with drawing threads).
+    pub layout: Arc<library::Layout>,
+    /// Its passages, decoded.
+    maze: Maze,
+}
+
+impl Layout {
+    /// A layout known to pass the gate, with its passages decoded.
+    pub fn new(layout: library::Layout) -> PyResult<Layout> {
+        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let maze = passages::decode(grid, &layout.passages).map_err(PyValueError::new_err)?;
+        Ok(Layout {
+            layout: Arc::new(layout),
+            maze,
+        })
+    }
+
+    /// `layout` if it passes the gate, else a `ValidationError` naming `name`.
+    fn checked(py: Python<'_>, layout: library::Layout, name: &str) -> PyResult<Layout> {
+        if let Err(invalid) = py.detach(|| validate(&layout).into_result()) {
+            let headline = format!("invalid layout {name}: {} problem(s)", invalid.count());
+            return Err(invalid_error(py, &headline, &invalid));
+        }
+        Layout::new(layout)
+    }
+
+    fn cell(&self, cell: [u32; 2]) -> (u32, u32) {
+        (cell[0], cell[1])
+    }
+}
+
+#[pymethods]
+impl Layout {
+    /// The layout as JSON, exactly the bytes `vrep-maze generate` writes (top two levels
+    /// indented, one segment a line, a final newline).
+    fn to_json(&self, py: Python<'_>) -> String {
+        py.detach(|| to_string(&self.layout))
+    }
+
+    /// Reads a layout from JSON text and checks it as `vrep-maze validate` does: a
+    /// `ValueError` if it is not a layout, a `ValidationError` listing the problems if it
+    /// is an invalid one.
+    #[staticmethod]
+    fn from_json(py: Python<'_>, text: &str) -> PyResult<Layout> {
+        let name = "<json>";
+        let layout = parse_layout(text, name).map_err(read_error)?;
+        Layout::checked(py, layout, name)
+    }
+
+    /// Writes the layout file to `path` (atomically: a temporary file, then a rename), as
+    /// `vrep-maze generate -o path` does.
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let text = self.to_json(py);
+        py.detach(|| write_atomically(&path, |w| w.write_all(text.as_bytes())))
+            .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+        Ok(())
+    }
+
+    /// Checks the layout again as `vrep-maze validate` does and returns the metrics it
+    /// measured (a dict); raises `ValidationError` listing the problems otherwise.
+    fn validate<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let metrics = py
+            .detach(|| validate(&self.layout).into_result())
+            .map_err(|invalid| {
+                let headline = format!("invalid layout: {} problem(s)", invalid.count());
+                invalid_error(py, &headline, &invalid)
+            })?;
+        let metrics = metrics.ok_or_else(|| {
+            PyRuntimeError::new_err("a valid layout was not measured (please report this)")
+        })?;
+        json_value(py, &metrics)
+    }
+
+    /// What the maze is like (the layout's `metrics`): `cells`, `passages`, `loops`,
+    /// `solution_cells`, `solution_turns`, `decision_points`, `dead_ends`, `junctions`,
+    /// `straights`, `diameter_cells`.
+    #[getter]
+    fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_value(py, &self.layout.metrics)
+    }
+
+    /// The start cell, `(x, y)`: column, and row from the south.
+    #[getter]
+    fn start(&self) -> (u32, u32) {
+        self.cell(self.layout.start.cell)
+    }
+
+    /// The end cell, `(x, y)`.
+    #[getter]
+    fn end(&self) -> (u32, u32) {
+        self.cell(self.layout.end.cell)
+    }
+
+    /// Columns and rows, `(width, height)`.
+    #[getter]
+    fn size(&self) -> (u32, u32) {
+        (self.layout.grid.columns, self.layout.grid.rows)
+    }
+
+    /// The seed the maze was made from.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.layout.generator.seed
+    }
+
+    /// The algorithm's name (`dfs`, `prim`, ...).
+    #[getter]
+    fn algorithm(&self) -> &str {
+        &self.layout.generator.algorithm
+    }
+
+    /// The open passages as a NumPy `uint8` array of shape `(height, width)`, indexed
+    /// `[y, x]` (row 0 is the south row): bit 1 east, 2 north, 4 west, 8 south.
+    #[getter]
+    fn passages<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u8>>> {
+        let grid = self.maze.grid();
+        let shape = (grid.height() as usize, grid.width() as usize);
+        let masks = Array2::from_shape_vec(shape, self.maze.masks().to_vec())
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(PyArray2::from_owned_array(py, masks))
+    }
+
+    /// Whether cell `(x, y)` has a passage towards `direction`: `"east"`, `"north"`,
+    /// `"west"`, `"south"` (or `"e"`, `"n"`, `"w"`, `"s"`).
+    fn open(&self, x: u32, y: u32, direction: &str) -> PyResult<bool> {
+        let grid = self.maze.grid();
+        let cell = Cell::new(x, y);
+        if !grid.contains(cell) {
+            return Err(PyValueError::new_err(format!(
+                "cell {cell} is off the {grid} grid"
+            )));
+        }
+        Ok(self
+            .maze
+            .is_open(grid.index(cell), parse_direction(direction)?))
+    }
+
+    /// The shortest path from start to end, a list of `(x, y)` cells, both ends included.
+    fn solution(&self, py: Python<'_>) -> PyResult<Vec<(u32, u32)>> {
+        let grid = self.maze.grid();
+        let start = Cell::new(self.layout.start.cell[0], self.layout.start.cell[1]);
+        let end = Cell::new(self.layout.end.cell[0], self.layout.end.cell[1]);
+        let path = py
+            .detach(|| shortest_path(&self.maze, grid.index(start), grid.index(end)))
+            .ok_or_else(|| PyValueError::new_err(format!("end {end} cannot be reached")))?;
+        Ok(path
+            .into_iter()
+            .map(|i| grid.cell(i))
+            .map(|c| (c.x, c.y))
+            .collect())
+    }
+
+    /// The copies of `Line` to draw, a NumPy `float64` array of shape `(n, 4)`: one row
+    /// `(x, y, z, yaw)` per segment in the floor's frame (metres, radians), the template
+    /// first. Made in one allocation, not one object per segment.
+    #[getter]
+    fn segments<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let segments = &self.layout.segments;
+        let flat: Vec<f64> = segments
+            .iter()
+            .flat_map(|p| [p.x, p.y, p.z, p.yaw])
+            .collect();
+        let array = Array2::from_shape_vec((segments.len(), 4), flat)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(PyArray2::from_owned_array(py, array))
+    }
+
+    /// Draws the maze as `vrep-maze render` does: `"ascii"` (walls in text), `"svg"` (the
+    /// floor as the robot's camera sees it) or `"png"`. With `path`, writes the file (the
+    /// format follows its extension, `.txt`, `.svg` or `.png`, unless `format` is given) and
+    /// returns `None`; without, returns the picture (`str`, or `bytes` for PNG; ASCII by
+    /// default). `solution=True` overlays the shortest path.
+    #[pyo3(signature = (path=None, *, format=None, solution=false))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        path: Option<PathBuf>,
+        format: Option<&str>,
+        solution: bool,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let format = choose_format(format, path.as_deref())?;
+        let options = RenderOptions { solution };
+        let layout = &self.layout;
+        let bytes = py
+            .detach(|| format.render_to_vec(layout, &options))
+            .map_err(|e| errors::from_anyhow(py, &e))?;
+        match path {
+            Some(path) => {
+                py.detach(|| write_atomically(&path, |w| w.write_all(&bytes)))
+                    .map_err(|e| {
+                        std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
+                    })?;
+                Ok(None)
+            }
+            None if format == Format::Png => Ok(Some(PyBytes::new(py, &bytes).into_any())),
+            None => {
+                let text =
+                    String::from_utf8(bytes).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+                Ok(Some(PyString::new(py, &text).into_any()))
+            }
+        }
+    }
+
+    /// The SVG picture (without the solution), so Jupyter shows a `Layout` as the maze.
+    fn _repr_svg_(&self, py: Python<'_>) -> PyResult<String> {
+        let layout = &self.layout;
+        let bytes = py
+            .detach(|| Format::Svg.render_to_vec(layout, &RenderOptions::default()))
+            .map_err(|e| errors::from_anyhow(py, &e))?;
+        String::from_utf8(bytes).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    fn __repr__(&self) -> String {
+        let l = &self.layout;
+        format!(
+            "<Layout {}x{} {} seed {}: solution {} cells, {} segments>",
+            l.grid.columns,
+            l.grid.rows,
+            l.generator.algorithm,
+            l.generator.seed,
+            l.metrics.solution_cells,
+            l.segments.len()
+        )
+    }
+
+    fn __eq__(&self, other: &Layout) -> bool {
+        self.layout == other.layout
+    }
+}
+
+/// The render format: `format` if given, else the one `path`'s extension names, else ASCII;
+/// an extension that names no format, or another format than `format`, is refused (as
+/// `vrep-maze render -o` refuses it).
+fn choose_format(format: Option<&str>, path: Option<&std::path::Path>) -> PyResult<Format> {
+    let explicit = format
+        .map(|f| f.parse::<Format>().map_err(PyValueError::new_err))
+        .transpose()?;
+    let by_extension = match path.and_then(|p| p.extension().map(|e| (p, e))) {
+        None => None,
+        Some((path, ext)) => Some(Format::from_extension(path).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "{}: render writes .svg, .png and .txt (ascii) files, not .{}",
+                path.display(),
+                ext.to_string_lossy()
+            ))
+        })?),
+    };
+    match (explicit, by_extension) {
+        (Some(f), Some(e)) if f != e => Err(PyValueError::new_err(format!(
+            "format {f} does not match the file's extension (.{e})"
+        ))),
+        (f, e) => Ok(f.or(e).unwrap_or(Format::Ascii)),
+    }
+}
+
+/// A direction by name or initial.
+fn parse_direction(text: &str) -> PyResult<Direction> {
+    match text.to_ascii_lowercase().as_str() {
+        "e" | "east" => Ok(Direction::East),
+        "n" | "north" => Ok(Direction::North),
+        "w" | "west" => Ok(Direction::West),
+        "s" | "south" => Ok(Direction::South),
+        _ => Err(PyValueError::new_err(format!(
+            "'{text}' is not a direction: east, north, west or south (or e, n, w, s)"
+        ))),
+    }
+}
+
+/// `value` as Python objects (through its JSON form).
+fn json_value<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// Makes a maze as `vrep-maze generate` does and returns its layout.
+///
+/// Every option of `generate` is a keyword, written as in Python: `seed=42`, `algo="prim"`,
+/// `size=(20, 15)`, `growing="mix:0.5"`, `bias="sw"`, `braid=0.3`, `start=(0, 3)` or
+/// `"nw"` or `"farthest-pair"`, `end="farthest"`, `cell_size=0.5`, `line_length=0.3`,
+/// `line_width=0.05`, `line_z=0.001`, `marker_z=0.002`, `origin=(0.0, 0.0)`,
+/// `rotation=90` (degrees), `floor_size=(20, 20)`. An option left out (or `None`) has
+/// its command-line default (`algo="dfs"`, `size=(9, 9)`, `start="sw"`,
+/// `end="farthest"`, the course geometry); without `seed` one is drawn from the OS and
+/// recorded (`layout.seed`). The result is the same maze, byte for byte, as
+/// `vrep-maze generate` with the same options. A refused value raises `ValueError` with
+/// the command line's message; generation runs without the GIL, and Ctrl-C raises
+/// `KeyboardInterrupt` at once.
+#[pyfunction]
+#[pyo3(signature = (seed=None, algo=None, size=None, **options))]
+pub fn generate(
+    py: Python<'_>,
+    seed: Option<Bound<'_, PyAny>>,
+    algo: Option<Bound<'_, PyAny>>,
+    size: Option<Bound<'_, PyAny>>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Layout> {
+    let options = options::with(
+        options,
+        py,
+        &[("seed", seed), ("algo", algo), ("size", size)],
+    )?;
+    let argv = options::command_line("generate", &[], &options)?;
+    let Command::Generate(args) = options::parse(argv)? else {
+        return Err(PyRuntimeError::new_err(
+            "generate parsed as another command",
+        ));
+    };
+    let mut spec: GenerateSpec = args.maze.spec(0).map_err(|e| errors::from_anyhow(py, &e))?;
+    spec.seed = args.seed.unwrap_or_else(os_seed);
+    let built = worker::run(py, move || build_layout(&spec), OnSignal::Raise)?;
+    Layout::new(built.map_err(PyValueError::new_err)?)
+}
+
+/// Reads the layout file at `path` and checks it as `vrep-maze validate` does: an
+/// `OSError` if it cannot be read, a `ValueError` if it is not a layout, a
+/// `ValidationError` listing the problems if it is an invalid one.
+#[pyfunction]
+pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<Layout> {
+    let layout = py.detach(|| read_layout(&path)).map_err(read_error)?;
+    Layout::checked(py, layout, &path.display().to_string())
+}

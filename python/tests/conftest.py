@@ -1,0 +1,94 @@
+"""Shared fixtures: the repository's golden mazes, the pip-installed `vrep-maze` command, and
+`vrep-maze serve` emulators to draw into."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+MAZES = ROOT / "mazes"
+
+
+def command() -> str:
+    """The `vrep-maze` command the package installed beside this Python."""
+    path = Path(sys.executable).parent / "vrep-maze"
+    assert path.exists(), f"{path}: the package's vrep-maze command is not installed"
+    return str(path)
+
+
+def run_cli(*args, **kwargs) -> subprocess.CompletedProcess:
+    """Runs the package's `vrep-maze` command; output captured as bytes."""
+    return subprocess.run([command(), *map(str, args)], capture_output=True, timeout=120, **kwargs)
+
+
+def cli_error(*args) -> str:
+    """The error line `vrep-maze` prints for a refused command line, without `error: `."""
+    done = run_cli(*args)
+    assert done.returncode == 2, done
+    first = done.stderr.decode().splitlines()[0]
+    assert first.startswith("error: "), first
+    return first[len("error: "):]
+
+
+def golden_cases():
+    """Every golden layout and the `generate` keywords that make it."""
+    cases = []
+    for path in sorted(MAZES.glob("*.json")):
+        layout = json.loads(path.read_text())
+        generator = layout["generator"]
+        options = dict(
+            seed=generator["seed"],
+            algo=generator["algorithm"],
+            size=(layout["grid"]["columns"], layout["grid"]["rows"]),
+            **generator["options"],
+        )
+        cases.append(pytest.param(path, options, id=path.stem))
+    return cases
+
+
+class Serve:
+    """A `vrep-maze serve --api both` process (one scene behind both APIs), instant timing."""
+
+    def __init__(self, *extra: str):
+        self.process = subprocess.Popen(
+            [command(), "serve", "--api", "both", "--listen", "127.0.0.1:0",
+             "--zmq-listen", "127.0.0.1:0", *extra],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        lines = [self.process.stdout.readline() for _ in range(2)]
+        ports = [int(line.split("127.0.0.1:")[1].split()[0]) for line in lines]
+        self.legacy_port, self.zmq_port = ports
+
+    def port(self, api: str) -> int:
+        return self.legacy_port if api == "legacy" else self.zmq_port
+
+    def stop(self) -> str:
+        """Stops it as Ctrl-C does; returns what it said on standard error."""
+        self.process.send_signal(2)
+        _, err = self.process.communicate(timeout=30)
+        return err
+
+
+@pytest.fixture
+def serve():
+    """A fresh emulator with the course scene and instant timing."""
+    server = Serve("--timing", "instant")
+    yield server
+    if server.process.poll() is None:
+        server.process.kill()
+        server.process.wait()
+
+
+@pytest.fixture
+def in_tmp(tmp_path):
+    """Runs the test in a temporary directory."""
+    old = os.getcwd()
+    os.chdir(tmp_path)
+    yield tmp_path
+    os.chdir(old)

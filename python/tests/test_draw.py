@@ -1,0 +1,101 @@
+"""apply and clear against `vrep-maze serve`, over both remote APIs."""
+
+import re
+
+import pytest
+
+import vrep_maze
+from conftest import Serve, cli_error, run_cli
+
+APIS = ["legacy", "zmq"]
+
+
+@pytest.mark.parametrize("api", APIS)
+def test_apply_replace_and_clear(serve, api):
+    port = serve.port(api)
+    first = vrep_maze.generate(seed=42, algo="prim")
+    report = vrep_maze.apply(first, api=api, port=port)
+    lines = len(first.segments)
+    assert (report.lines, report.pasted, report.reused, report.removed) == (lines, lines - 1, 0, 0)
+    assert report.verified and not report.dry_run and report.round_trips > 0
+    assert str(report).startswith(f"drew {lines} lines: 0 reused, {lines - 1} pasted")
+    # a second maze reuses the first one's copies
+    second = vrep_maze.generate(seed=7, size=(5, 5))
+    again = vrep_maze.apply(second, api=api, host="127.0.0.1", port=port)
+    assert again.verified and again.reused == len(second.segments) - 1 and again.pasted == 0
+    assert again.removed == lines - len(second.segments)
+    dry = vrep_maze.clear(api=api, port=port, dry_run=True)
+    assert dry.dry_run and len(dry.removed) == len(second.segments) - 1
+    cleared = vrep_maze.clear(api=api, port=port)
+    assert sorted(cleared.removed) == sorted(dry.removed)
+    assert vrep_maze.clear(api=api, port=port).removed == []
+
+
+@pytest.mark.parametrize("api", APIS)
+def test_the_report_carries_the_numbers_the_command_prints(serve, api, tmp_path):
+    layout = vrep_maze.generate(seed=3, algo="kruskal", size=(6, 4))
+    ours = vrep_maze.apply(layout, api=api, port=serve.port(api))
+    path = tmp_path / "m.json"
+    layout.save(path)
+    other = Serve("--timing", "instant")  # the same fresh scene for the command
+    try:
+        done = run_cli("apply", path, "--api", api, "--port", other.port(api))
+    finally:
+        other.process.kill()
+        other.process.wait()
+    assert done.returncode == 0, done.stderr
+    line = next(l for l in done.stdout.decode().splitlines() if l.startswith("drew"))
+    without_time = lambda text: re.sub(r", [0-9.]+ s$", "", text)
+    assert without_time(str(ours)) == without_time(line)
+    assert "verified: every line, start and end in place" in done.stdout.decode()
+
+
+def test_zmq_creates_missing_objects_and_both_apis_share_the_scene(tmp_path):
+    server = Serve("--timing", "instant", "--scene", "empty")
+    try:
+        layout = vrep_maze.generate(seed=1, size=(4, 4))
+        report = vrep_maze.apply(layout, api="zmq", port=server.zmq_port, create_missing=True,
+                                 save_scene=str(tmp_path / "scene.ttt"))
+        assert set(report.created) == {"Floor", "Maze", "Line", "Start", "End"}
+        assert report.saved_scene == str(tmp_path / "scene.ttt") and report.verified
+        # the legacy API sees the maze the ZeroMQ one drew
+        legacy = vrep_maze.apply(layout, api="legacy", port=server.legacy_port)
+        assert legacy.unchanged == legacy.lines + 2 and legacy.pasted == 0
+    finally:
+        server.process.kill()
+        server.process.wait()
+
+
+def test_refused_options_raise_value_error_with_the_commands_message():
+    layout = vrep_maze.generate(seed=1, size=(3, 3))
+    with pytest.raises(ValueError) as raised:
+        vrep_maze.apply(layout, api="rest")
+    assert str(raised.value) == cli_error("apply", "m.json", "--api", "rest")
+    with pytest.raises(ValueError) as raised:
+        vrep_maze.clear(timeout=0)
+    assert str(raised.value) == cli_error("clear", "--timeout", "0")
+    with pytest.raises(ValueError, match="--port needs --api legacy or --api zmq"):
+        vrep_maze.clear(api="auto", port=19997)
+    with pytest.raises(ValueError, match="need the ZeroMQ remote API"):
+        vrep_maze.apply(layout, create_missing=True)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'colour'"):
+        vrep_maze.clear(colour="red")
+
+
+def test_a_simulator_that_does_not_answer_is_a_simulator_error_with_hints(serve):
+    port = serve.legacy_port
+    serve.process.kill()
+    serve.process.wait()
+    with pytest.raises(vrep_maze.SimulatorError) as raised:
+        vrep_maze.clear(port=port, connect_timeout=0.3)
+    assert raised.value.hints, raised.value
+    assert f"127.0.0.1:{port}" in str(raised.value)
+    assert "hint: " in str(raised.value)
+
+
+def test_missing_scene_objects_are_named_with_remedies(serve):
+    layout = vrep_maze.generate(seed=1, size=(3, 3))
+    with pytest.raises(vrep_maze.SimulatorError) as raised:
+        vrep_maze.apply(layout, port=serve.legacy_port, line="GreenLine")
+    assert "missing in the scene: GreenLine" in str(raised.value)
+    assert any("--line" in hint for hint in raised.value.hints)

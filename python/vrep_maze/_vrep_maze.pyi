@@ -1,0 +1,163 @@
+"""Type stubs of the extension module; see the docstrings for what each item does."""
+
+from os import PathLike
+from typing import Iterable, Iterator, Literal, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Pair = Union[str, Tuple[float, float], Sequence[float]]
+Cell = Tuple[int, int]
+StrPath = Union[str, PathLike[str]]
+Api = Literal["legacy", "zmq", "auto"]
+
+class ValidationError(ValueError):
+    problems: list[str]
+
+class SimulatorError(RuntimeError):
+    hints: list[str]
+
+class Interrupted(KeyboardInterrupt):
+    placed: Optional[int]
+    total: Optional[int]
+
+class Layout:
+    @staticmethod
+    def from_json(text: str) -> Layout: ...
+    def to_json(self) -> str: ...
+    def save(self, path: StrPath) -> None: ...
+    def validate(self) -> dict[str, int]: ...
+    @property
+    def metrics(self) -> dict[str, int]: ...
+    @property
+    def start(self) -> Cell: ...
+    @property
+    def end(self) -> Cell: ...
+    @property
+    def size(self) -> Tuple[int, int]: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def algorithm(self) -> str: ...
+    @property
+    def passages(self) -> npt.NDArray[np.uint8]: ...
+    def open(self, x: int, y: int, direction: str) -> bool: ...
+    def solution(self) -> list[Cell]: ...
+    @property
+    def segments(self) -> npt.NDArray[np.float64]: ...
+    @overload
+    def render(
+        self, path: StrPath, *, format: Optional[str] = None, solution: bool = False
+    ) -> None: ...
+    @overload
+    def render(
+        self, path: None = None, *, format: Optional[str] = None, solution: bool = False
+    ) -> Union[str, bytes]: ...
+    def _repr_svg_(self) -> str: ...
+    def __eq__(self, other: object) -> bool: ...
+
+class ApplyReport:
+    lines: int
+    reused: int
+    pasted: int
+    removed: int
+    unchanged: int
+    edits: int
+    round_trips: int
+    elapsed: float
+    stopped_simulation: bool
+    dry_run: bool
+    verified: bool
+    created: list[str]
+    saved_scene: Optional[str]
+    summary: str
+
+class ClearReport:
+    removed: list[str]
+    round_trips: int
+    restored_idle_fps: Optional[int]
+    stopped_simulation: bool
+    dry_run: bool
+
+class Batch(Iterator[Layout]):
+    def __iter__(self) -> Batch: ...
+    def __next__(self) -> Layout: ...
+    def __len__(self) -> int: ...
+
+def generate(
+    seed: Optional[int] = None,
+    algo: Optional[str] = None,
+    size: Optional[Pair] = None,
+    *,
+    growing: Optional[str] = None,
+    bias: Optional[str] = None,
+    braid: Optional[float] = None,
+    start: Optional[Pair] = None,
+    end: Optional[Pair] = None,
+    cell_size: Optional[float] = None,
+    line_length: Optional[float] = None,
+    line_width: Optional[float] = None,
+    line_z: Optional[float] = None,
+    marker_z: Optional[float] = None,
+    origin: Optional[Pair] = None,
+    rotation: Optional[float] = None,
+    floor_size: Optional[Pair] = None,
+) -> Layout: ...
+def load(path: StrPath) -> Layout: ...
+def batch(
+    seeds: Union[int, str, Iterable[int]],
+    algo: Optional[str] = None,
+    size: Optional[Pair] = None,
+    *,
+    min_solution: Optional[int] = None,
+    max_dead_ends: Optional[float] = None,
+    growing: Optional[str] = None,
+    bias: Optional[str] = None,
+    braid: Optional[float] = None,
+    start: Optional[Pair] = None,
+    end: Optional[Pair] = None,
+    cell_size: Optional[float] = None,
+    line_length: Optional[float] = None,
+    line_width: Optional[float] = None,
+    line_z: Optional[float] = None,
+    marker_z: Optional[float] = None,
+    origin: Optional[Pair] = None,
+    rotation: Optional[float] = None,
+    floor_size: Optional[Pair] = None,
+) -> Batch: ...
+def apply(
+    layout: Layout,
+    api: Optional[Api] = None,
+    host: Optional[str] = None,
+    port: Optional[int] = None,
+    *,
+    floor: Optional[str] = None,
+    parent: Optional[str] = None,
+    line: Optional[str] = None,
+    start: Optional[str] = None,
+    end: Optional[str] = None,
+    connect_timeout: Optional[float] = None,
+    timeout: Optional[float] = None,
+    stop_simulation: bool = False,
+    dry_run: bool = False,
+    create_missing: bool = False,
+    save_scene: Optional[str] = None,
+) -> ApplyReport: ...
+def clear(
+    api: Optional[Api] = None,
+    host: Optional[str] = None,
+    port: Optional[int] = None,
+    *,
+    floor: Optional[str] = None,
+    parent: Optional[str] = None,
+    line: Optional[str] = None,
+    start: Optional[str] = None,
+    end: Optional[str] = None,
+    connect_timeout: Optional[float] = None,
+    timeout: Optional[float] = None,
+    stop_simulation: bool = False,
+    dry_run: bool = False,
+) -> ClearReport: ...
+def main(argv: list[str]) -> int: ...
