@@ -14,14 +14,19 @@ use super::values::{
 use crate::generate::{Algorithm, Bias, GrowingMode};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
-use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, build_layout, write_layout};
+use crate::layout::micromouse::{self, Preset};
+use crate::layout::walls::{self, Openings, WallOptions};
+use crate::layout::{
+    EndpointSpec, FloorSize, GenerateSpec, Geometry, Layout, Style, build_layout, passages,
+    write_layout,
+};
 use crate::maze::Grid;
 use crate::rng::os_seed;
 
 /// Options of `generate`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1"
+    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1\n  vrep-maze generate --style walls --openings start,end --end ne --seed 42 -o walls.json\n  vrep-maze generate --preset micromouse --seed 3 -o mouse.json"
 )]
 pub struct GenerateArgs {
     /// Seed of the random stream; without it one is drawn from the OS and recorded in the
@@ -31,6 +36,9 @@ pub struct GenerateArgs {
     /// What maze to make.
     #[command(flatten)]
     pub maze: MazeArgs,
+    /// How the maze is drawn.
+    #[command(flatten)]
+    pub style: StyleArgs,
     /// Write the layout here (atomically) instead of standard output.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -90,6 +98,97 @@ pub struct MazeArgs {
     pub floor_size: Option<[f64; 2]>,
 }
 
+/// How `generate` draws the maze: lines or walls, and the micromouse presets.
+#[derive(Debug, Args)]
+pub struct StyleArgs {
+    /// lines (Line copies on the floor, for line followers) or walls (a Wall cuboid on
+    /// every closed side and around the grid, for robots that sense walls).
+    #[arg(long, default_value = "lines", value_parser = parse_style)]
+    pub style: Style,
+    /// Walls only: length of the Wall template, metres, at most the cell size [default: 1].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_length: Option<f64>,
+    /// Walls only: thickness of the Wall template, metres, less than the cell size [default: 0.05].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_thickness: Option<f64>,
+    /// Walls only: height of the Wall template, metres, 0.001..100 [default: 0.2].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_height: Option<f64>,
+    /// Walls only: gaps in the outer wall beside the start and/or end cell: none, start,
+    /// end or start,end (the cell must be on the edge) [default: none].
+    #[arg(long, value_parser = parse_openings)]
+    pub openings: Option<Openings>,
+    /// A micromouse maze: micromouse (16x16 cells of 0.18 m, walls 0.012 m thick, 0.05 m
+    /// high) or micromouse-half (32x32 of 0.09 m); start in the south-west corner opening
+    /// one way, goal the 2x2 centre with a single entrance.
+    #[arg(long, value_parser = parse_preset, conflicts_with_all = [
+        "size", "cell_size", "start", "end", "braid", "line_length", "line_width",
+        "style", "wall_length", "wall_thickness", "wall_height", "openings",
+    ])]
+    pub preset: Option<Preset>,
+}
+
+fn parse_style(s: &str) -> Result<Style, String> {
+    match s {
+        "lines" => Ok(Style::Lines),
+        "walls" => Ok(Style::Walls),
+        _ => Err(format!("'{s}' is not a style: use lines or walls")),
+    }
+}
+
+fn parse_openings(s: &str) -> Result<Openings, String> {
+    s.parse()
+}
+
+fn parse_preset(s: &str) -> Result<Preset, String> {
+    Preset::from_name(s)
+        .ok_or_else(|| format!("'{s}' is not a preset: use micromouse or micromouse-half"))
+}
+
+impl StyleArgs {
+    /// The wall options asked for, `None` for lines; wall options without `--style walls`
+    /// are refused.
+    fn walls(&self) -> Result<Option<WallOptions>> {
+        if self.style == Style::Lines {
+            let given = [
+                ("--wall-length", self.wall_length.is_some()),
+                ("--wall-thickness", self.wall_thickness.is_some()),
+                ("--wall-height", self.wall_height.is_some()),
+                ("--openings", self.openings.is_some()),
+            ];
+            if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(usage(format!(
+                    "{name} shapes walls: add --style walls (the maze is drawn with lines)"
+                )));
+            }
+            return Ok(None);
+        }
+        let d = WallOptions::default();
+        Ok(Some(WallOptions {
+            length: self.wall_length.unwrap_or(d.length),
+            thickness: self.wall_thickness.unwrap_or(d.thickness),
+            height: self.wall_height.unwrap_or(d.height),
+            openings: self.openings.unwrap_or(d.openings),
+        }))
+    }
+}
+
+/// The layout `spec` and the style options describe.
+fn make_layout(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Layout> {
+    if let Some(preset) = style.preset {
+        let spec = preset.spec(spec.clone(), origin);
+        return micromouse::build(preset, &spec).map_err(usage);
+    }
+    let walls = style.walls()?;
+    let mut layout = build_layout(spec).map_err(usage)?;
+    if let Some(options) = walls {
+        let maze = passages::decode(spec.grid, &layout.passages).map_err(usage)?;
+        walls::into_walls(&mut layout, &maze, &options, spec.floor == FloorSize::Auto)
+            .map_err(usage)?;
+    }
+    Ok(layout)
+}
+
 fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
     s.parse()
         .map_err(|e: String| format!("{e}; use {ENDPOINT_HELP}"))
@@ -146,7 +245,7 @@ pub fn run(args: GenerateArgs) -> Result<ExitCode> {
     spec.seed = args.seed.unwrap_or_else(os_seed);
     let seed = spec.seed;
     // Options are checked; what is left to refuse depends on them too (start and end).
-    let layout = build_layout(&spec).map_err(usage)?;
+    let layout = make_layout(&spec, &args.style, args.maze.origin)?;
     if layout.start.cell == layout.end.cell {
         eprintln!(
             "note: start and end are the same cell ({},{}); allowed, the robot is already there",
@@ -161,13 +260,16 @@ pub fn run(args: GenerateArgs) -> Result<ExitCode> {
     }
     if let Some(path) = &args.output {
         eprintln!(
-            "wrote {}: {}x{} {} seed {}, {} segments, solution {} cells",
+            "wrote {}: {}x{} {} seed {}, {}, solution {} cells",
             path.display(),
             layout.grid.columns,
             layout.grid.rows,
             layout.generator.algorithm,
             seed,
-            layout.segments.len(),
+            match layout.style {
+                Style::Lines => format!("{} segments", layout.segments.len()),
+                Style::Walls => format!("{} walls", layout.walls.len()),
+            },
             layout.metrics.solution_cells
         );
     }

@@ -179,6 +179,9 @@ pub fn layout_maze(maze: &Maze, spec: &GenerateSpec) -> Result<Layout, String> {
         passage_encoding: passages::ENCODING.to_string(),
         passages: passages::encode(maze),
         segments,
+        style: super::Style::Lines,
+        wall: None,
+        walls: Vec::new(),
     })
 }
 
@@ -200,6 +203,7 @@ fn endpoint(geometry: &Geometry, cell: Cell) -> Endpoint {
     Endpoint {
         cell: [cell.x, cell.y],
         pose: geometry.marker_pose(cell),
+        region: Vec::new(),
     }
 }
 

@@ -3,6 +3,8 @@
 //! and where.
 
 mod coverage;
+mod goal;
+mod walls;
 
 use std::fmt;
 
@@ -112,7 +114,11 @@ pub fn validate(layout: &Layout) -> Report {
         if let (Some(start), Some(end)) = (start, end) {
             metrics = check_route(layout, maze, start, end, &mut problems);
         }
-        coverage::check(layout, maze, &geometry, &mut problems);
+        if layout.style.is_lines() {
+            coverage::check(layout, maze, &geometry, &mut problems);
+        }
+        walls::check_walls(layout, maze, &geometry, &mut problems);
+        goal::check_goal(layout, maze, &mut problems);
     }
     check_floor(layout, grid, &geometry, &mut problems);
     Report {
@@ -133,7 +139,7 @@ fn check_generator(layout: &Layout, problems: &mut Problems) {
     }
     for (key, value) in &generator.options {
         match key.as_str() {
-            "growing" | "bias" => {}
+            "growing" | "bias" | "preset" => {}
             "braid" => {
                 if !value
                     .parse::<f64>()

@@ -35,7 +35,7 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
             )
         })
         .collect();
-    let extra: [(&str, &[&str]); 6] = [
+    let extra: [(&str, &[&str]); 8] = [
         (
             "growing-tree-mix0.5-9x9-seed42.json",
             &[
@@ -63,6 +63,14 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
         (
             "kruskal-1x12-seed42.json",
             &["--algo", "kruskal", "--size", "1x12", "--seed", "42"],
+        ),
+        (
+            "dfs-9x9-seed42-walls.json",
+            &["--style", "walls", "--seed", "42"],
+        ),
+        (
+            "dfs-micromouse-seed42.json",
+            &["--preset", "micromouse", "--seed", "42"],
         ),
     ];
     for (name, args) in extra {
