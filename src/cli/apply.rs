@@ -34,6 +34,10 @@ pub struct ConnectArgs {
     /// The line template (a 0.6 m x 0.1 m green plane).
     #[arg(long, default_value = "Line")]
     pub line: String,
+    /// The wall template of wall mazes (a cuboid as long as a cell side; it stays where it is,
+    /// every wall is a copy).
+    #[arg(long, default_value = "Wall")]
+    pub wall: String,
     /// The start marker (a 1 m x 1 m blue plane).
     #[arg(long, default_value = "Start")]
     pub start: String,
@@ -59,6 +63,7 @@ impl ConnectArgs {
             line: self.line.clone(),
             start: self.start.clone(),
             end: self.end.clone(),
+            wall: self.wall.clone(),
         }
     }
 
@@ -153,9 +158,12 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = authoring
-            .create_missing(&opts.names)
-            .context("creating the missing scene objects")?;
+        let created = match &layout.wall {
+            Some(wall) => authoring
+                .create_missing_walls(&opts.names, [wall.length, wall.thickness, wall.height]),
+            None => authoring.create_missing(&opts.names),
+        }
+        .context("creating the missing scene objects")?;
         if !created.is_empty() {
             println!("created {}", created.join(", "));
         }

@@ -1,0 +1,324 @@
+//! Wall mazes and micromouse: `generate --style walls` and `--preset micromouse` validate
+//! and render; apply draws walls into each emulated server and verifies; a line maze
+//! applied over walls replaces them (and the reverse); `clear` removes walls.
+
+use std::fs;
+
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
+use vrep_maze::layout::json::parse_layout;
+use vrep_maze::layout::walls::{WallOptions, into_walls};
+use vrep_maze::layout::{Layout, Style, passages};
+use vrep_maze::maze::Grid;
+use vrep_maze::sim::Scene;
+use vrep_maze::validate::validate;
+
+use crate::support::backend::{Kind, Server};
+use crate::support::backend_tests;
+use crate::support::bin;
+use crate::support::layouts::course_layout;
+
+backend_tests!(
+    walls_apply_verify_then_lines_replace_them,
+    clear_removes_walls_and_leaves_the_templates,
+);
+
+fn no_progress(_: draw::Stage) {}
+
+fn apply(b: &mut Box<dyn Backend>, d: &Drawing) -> Result<draw::ApplyReport, DrawError> {
+    draw::apply(&mut **b, d, &ApplyOptions::default(), &mut no_progress)
+}
+
+/// The course layout of `seed` (Prim, `n` x `n`) drawn with walls.
+fn wall_layout(n: u64, seed: u64) -> Layout {
+    let mut layout = course_layout(vrep_maze::generate::Algorithm::Prim, n, n, seed);
+    let grid = Grid::new(n, n).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    into_walls(&mut layout, &maze, &WallOptions::default(), true).unwrap();
+    layout
+}
+
+/// Copies of `Wall` in the scene (the template not counted) and whether each is a child of
+/// `Maze`.
+fn wall_copies(s: &Server) -> (usize, bool) {
+    s.with_sim(|sim| {
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let copies: Vec<_> = sim
+            .scene
+            .objects()
+            .filter(|o| o.alias == "Wall" && o.name != "Wall")
+            .map(|o| o.parent)
+            .collect();
+        let all_children = copies.iter().all(|&p| p == Some(maze));
+        (copies.len(), all_children)
+    })
+}
+
+fn walls_apply_verify_then_lines_replace_them(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let walls = Drawing::try_from(&wall_layout(5, 3)).unwrap();
+    assert_eq!(walls.style, Style::Walls);
+    let mut b = s.connect();
+    let r = apply(&mut b, &walls).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
+    assert_eq!(
+        r.pasted,
+        walls.lines.len(),
+        "{}: every wall is a copy",
+        kind.name()
+    );
+    assert_eq!(
+        wall_copies(&s),
+        (walls.lines.len(), true),
+        "{}",
+        kind.name()
+    );
+    draw::verify(&mut *b, &walls, &ObjectNames::default()).unwrap();
+    // the template stays where the scene has it, beside the floor
+    let template_y = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Wall").unwrap();
+        sim.scene.get(h).unwrap().position[1]
+    });
+    assert_eq!(template_y, -6.0);
+    // again: nothing to paste, nothing to move
+    let again = apply(&mut b, &walls).unwrap();
+    assert_eq!(
+        (again.pasted, again.removed, again.edits),
+        (0, 0, 0),
+        "{}",
+        kind.name()
+    );
+    // a line maze over it: every wall copy goes, none is reused as a line
+    let lines = Drawing::try_from(&course_layout(
+        vrep_maze::generate::Algorithm::Prim,
+        5,
+        5,
+        3,
+    ))
+    .unwrap();
+    let r = apply(&mut b, &lines).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
+    assert_eq!(r.reused, 0, "{}: no wall reused as a line", kind.name());
+    assert_eq!(r.removed, walls.lines.len(), "{}", kind.name());
+    assert_eq!(wall_copies(&s).0, 0, "{}", kind.name());
+    assert_eq!(s.line_count(), lines.lines.len());
+    draw::verify(&mut *b, &lines, &ObjectNames::default()).unwrap();
+    // and walls over the lines again: every line copy goes
+    let r = apply(&mut b, &walls).unwrap();
+    assert_eq!(
+        (r.reused, r.removed),
+        (0, lines.lines.len() - 1),
+        "{}",
+        kind.name()
+    );
+    assert_eq!(
+        s.line_count(),
+        1,
+        "{}: only the line template is left",
+        kind.name()
+    );
+    draw::verify(&mut *b, &walls, &ObjectNames::default()).unwrap();
+}
+
+fn clear_removes_walls_and_leaves_the_templates(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    apply(&mut b, &walls).unwrap();
+    let report = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+    assert_eq!(report.removed.len(), walls.lines.len(), "{}", kind.name());
+    assert_eq!(wall_copies(&s).0, 0);
+    s.with_sim(|sim| {
+        for name in ["Wall", "Line", "Start", "End", "Maze", "Floor"] {
+            assert!(
+                sim.scene.resolve(name).is_ok(),
+                "{}: {name} kept",
+                kind.name()
+            );
+        }
+    });
+}
+
+#[test]
+fn walls_need_a_wall_template_and_say_how_to_make_one() {
+    let s = Kind::Legacy.serve(Scene::course(), 8);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    let e = apply(&mut b, &walls).unwrap_err();
+    assert_eq!(e.to_string(), "missing in the scene: Wall");
+    assert!(
+        e.hints()
+            .iter()
+            .any(|h| h.contains("Primitive shape > Cuboid")),
+        "{:?}",
+        e.hints()
+    );
+}
+
+#[test]
+fn zmq_create_missing_makes_a_wall_cuboid() {
+    let s = Kind::Zmq2.serve(Scene::empty(), 8);
+    let mut b = s.connect();
+    let names = ObjectNames::default();
+    let created = b
+        .authoring()
+        .unwrap()
+        .create_missing_walls(&names, [1.0, 0.05, 0.2])
+        .unwrap();
+    assert_eq!(created, ["Floor", "Maze", "Wall", "Start", "End"]);
+    let size = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Wall").unwrap();
+        sim.scene.get(h).unwrap().size
+    });
+    assert_eq!(size, [1.0, 0.05, 0.2]);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    apply(&mut b, &walls).unwrap();
+}
+
+#[test]
+fn walls_cli_generate_validate_render_and_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("walls.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("walls, solution"));
+    let layout = vrep_maze::layout::read_layout(&path).unwrap();
+    assert_eq!(layout.style, Style::Walls);
+    assert!(layout.segments.is_empty() && !layout.walls.is_empty());
+    assert!(validate(&layout).is_ok());
+    bin().arg("validate").arg(&path).assert().success();
+    let text = bin()
+        .args(["render", "--solution"])
+        .arg(&path)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(text).unwrap();
+    assert!(text.starts_with("+---+"), "{text}");
+    // wall options without walls are refused
+    bin()
+        .args(["generate", "--wall-height", "0.3"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--wall-height shapes walls: add --style walls",
+        ));
+    // an opening beside an end inside the grid is refused
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--openings",
+            "start,end",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("is not on the edge"));
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--openings",
+            "start,end",
+            "--end",
+            "ne",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .success();
+}
+
+#[test]
+fn micromouse_preset_has_the_right_size_and_a_goal_with_one_entrance() {
+    for (preset, side, cell) in [("micromouse", 16u32, 0.18), ("micromouse-half", 32, 0.09)] {
+        let out = bin()
+            .args(["generate", "--preset", preset, "--seed", "5"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let layout = parse_layout(&String::from_utf8(out).unwrap(), "stdout").unwrap();
+        assert_eq!((layout.grid.columns, layout.grid.rows), (side, side));
+        assert_eq!(layout.grid.cell_size, cell);
+        let wall = layout.wall.as_ref().unwrap();
+        assert_eq!(wall.length, cell);
+        assert!(wall.openings.is_empty());
+        assert_eq!(layout.start.cell, [0, 0]);
+        assert_eq!(layout.end.region.len(), 4);
+        assert_eq!(layout.metrics.loops, 1, "the goal's inside is one loop");
+        let report = validate(&layout);
+        assert!(report.is_ok(), "{preset}: {:?}", report.problems);
+        let grid = Grid::new(side.into(), side.into()).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let goal: Vec<usize> = layout
+            .end
+            .region
+            .iter()
+            .map(|c| grid.index(vrep_maze::maze::Cell::new(c[0], c[1])))
+            .collect();
+        let entrances: usize = goal
+            .iter()
+            .map(|&g| {
+                maze.open_neighbours(g)
+                    .filter(|n| !goal.contains(n))
+                    .count()
+            })
+            .sum();
+        assert_eq!(entrances, 1, "{preset}");
+        assert_eq!(maze.degree(0), 1, "{preset}: the start opens one way");
+    }
+    bin()
+        .args(["generate", "--preset", "micromouse", "--size", "5x5"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("cannot be used with"));
+}
+
+#[test]
+fn walls_validation_names_a_missing_wall_a_wall_over_a_passage_and_a_duplicate() {
+    let layout = wall_layout(4, 2);
+    assert!(validate(&layout).is_ok());
+    let dir = tempfile::tempdir().unwrap();
+    let mut broken = layout.clone();
+    broken.walls.remove(0);
+    let first = layout.walls[1];
+    broken.walls.push(first);
+    // a wall across the first open passage east of a cell in row 0
+    let grid = Grid::new(4, 4).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    let x = (0..3)
+        .find(|&x| maze.is_open(x, vrep_maze::maze::Direction::East))
+        .expect("row 0 has an open passage east");
+    let mut across = layout.walls[0];
+    across.x = layout.grid.origin[0] + x as f64 + 0.5;
+    across.y = layout.grid.origin[1];
+    across.yaw = vrep_maze::layout::geometry::round_um(std::f64::consts::FRAC_PI_2);
+    broken.walls.push(across);
+    let path = dir.path().join("broken.json");
+    fs::write(&path, vrep_maze::layout::json::to_string(&broken)).unwrap();
+    let out = bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let text = String::from_utf8(out.stdout).unwrap() + &String::from_utf8(out.stderr).unwrap();
+    assert!(
+        text.contains("is closed but not covered gap-free by walls"),
+        "{text}"
+    );
+    assert!(text.contains("duplicates walls[0]"), "{text}");
+    assert!(
+        text.contains("stands in the open passage between cells"),
+        "{text}"
+    );
+}
