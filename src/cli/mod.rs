@@ -7,6 +7,7 @@ mod completions;
 mod connect;
 mod demo;
 mod generate;
+mod import;
 mod interrupt;
 mod output;
 mod render;
@@ -36,6 +37,8 @@ pub struct Cli {
 pub enum Command {
     /// Generate a maze and write its layout JSON.
     Generate(generate::GenerateArgs),
+    /// Read a maze drawn as text (micromouse drawings, our ASCII render) into a layout.
+    Import(import::ImportArgs),
     /// Check a layout file and print its metrics.
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
@@ -158,6 +161,7 @@ fn end_quietly_on_broken_pipe() {
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::Generate(args) => generate::run(args),
+        Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args),
         Command::Render(args) => render::run(args),
         Command::Batch(args) => batch::run(args),

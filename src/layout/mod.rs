@@ -7,6 +7,7 @@
 pub mod build;
 pub mod endpoints;
 pub mod geometry;
+pub mod import;
 pub mod json;
 pub mod limits;
 pub mod micromouse;

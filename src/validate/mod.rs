@@ -134,12 +134,15 @@ fn check_generator(layout: &Layout, problems: &mut Problems) {
         .options
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()));
-    if let Err(e) = Algorithm::from_name_and_pairs(&generator.algorithm, pairs) {
+    let imported = generator.algorithm == crate::layout::import::ALGORITHM;
+    if let Err(e) = Algorithm::from_name_and_pairs(&generator.algorithm, pairs)
+        && !imported
+    {
         problems.add("generator", e);
     }
     for (key, value) in &generator.options {
         match key.as_str() {
-            "growing" | "bias" | "preset" => {}
+            "growing" | "bias" | "preset" | "source" => {}
             "braid" => {
                 if !value
                     .parse::<f64>()

@@ -130,3 +130,29 @@ fn every_file_in_mazes_is_valid() {
     }
     assert!(count >= golden_cases().len(), "only {count} golden files");
 }
+
+/// The golden imported maze: `mazes/drawn-4x4.txt`, drawn by hand in the micromouse
+/// community's text format, imported to `mazes/drawn-4x4.json`.
+#[test]
+fn golden_import_is_reproduced_byte_for_byte() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let output = bin()
+        .current_dir(root)
+        .args(["import", "mazes/drawn-4x4.txt"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let path = mazes_dir().join("drawn-4x4.json");
+    if std::env::var_os(BLESS).is_some() {
+        fs::write(&path, &output).unwrap();
+        return;
+    }
+    let golden = fs::read(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (bless with {BLESS}=1)", path.display()));
+    assert!(
+        golden == output,
+        "import mazes/drawn-4x4.txt differs from mazes/drawn-4x4.json; if deliberate, re-bless with {BLESS}=1"
+    );
+}

@@ -322,3 +322,118 @@ fn walls_validation_names_a_missing_wall_a_wall_over_a_passage_and_a_duplicate()
         "{text}"
     );
 }
+
+#[test]
+fn import_round_trips_through_the_ascii_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name);
+    bin()
+        .args(["generate", "--preset", "micromouse", "--seed", "11", "-o"])
+        .arg(p("m.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("m.json"))
+        .arg("-o")
+        .arg(p("m.txt"))
+        .assert()
+        .success();
+    bin()
+        .arg("import")
+        .arg(p("m.txt"))
+        .arg("-o")
+        .arg(p("i.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("i.json"))
+        .arg("-o")
+        .arg(p("i.txt"))
+        .assert()
+        .success();
+    bin()
+        .arg("import")
+        .arg(p("i.txt"))
+        .arg("-o")
+        .arg(p("j.json"))
+        .assert()
+        .success();
+    let read = |name: &str| vrep_maze::layout::read_layout(&p(name)).unwrap();
+    let (m, i, j) = (read("m.json"), read("i.json"), read("j.json"));
+    assert_eq!(m.passages, i.passages);
+    assert_eq!(i.passages, j.passages);
+    assert_eq!((m.start.cell, m.end.cell), (i.start.cell, i.end.cell));
+    let sorted = |mut r: Vec<[u32; 2]>| {
+        r.sort();
+        r
+    };
+    assert_eq!(sorted(m.end.region.clone()), sorted(i.end.region.clone()));
+    assert_eq!(i.generator.algorithm, "import");
+    assert_eq!(
+        i.walls.len(),
+        m.walls.len(),
+        "the same walls at the same cell size"
+    );
+    assert!(validate(&i).is_ok());
+    // a line maze in our own render round-trips too
+    bin()
+        .args(["generate", "--seed", "4", "-o"])
+        .arg(p("l.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("l.json"))
+        .arg("-o")
+        .arg(p("l.txt"))
+        .assert()
+        .success();
+    bin()
+        .args(["import", "--lines", "--cell-size", "1"])
+        .arg(p("l.txt"))
+        .arg("-o")
+        .arg(p("k.json"))
+        .assert()
+        .success();
+    let (l, k) = (read("l.json"), read("k.json"));
+    assert_eq!(l.passages, k.passages);
+    assert_eq!(
+        l.segments, k.segments,
+        "the same lines at the course geometry"
+    );
+}
+
+#[test]
+fn import_refuses_malformed_drawings_with_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.txt");
+    fs::write(&path, "o---o---o\n|   |   |\no---o-x-o\n").unwrap();
+    let shown = path.display().to_string();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(format!(
+            "{shown}:3:7: expected a wall '---' or a gap '   ' between posts, found '-x-'"
+        )));
+    fs::write(&path, "o---o---o\n| S | S |\no---o---o\n").unwrap();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(format!(
+            "{shown}:2:7: a second 'S': the first is at line 2, column 3"
+        )));
+    // two cells walled apart: refused as a whole
+    fs::write(&path, "o---o---o\n|   |   |\no---o---o\n").unwrap();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("1 of 2 cells cannot be reached"));
+}
