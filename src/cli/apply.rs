@@ -171,9 +171,10 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     let bar = std::io::stderr().is_terminal().then(|| {
         let b = indicatif::ProgressBar::new(drawing.lines.len() as u64);
         b.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{spinner} {msg} [{bar:30}] {pos}/{len} lines, {per_sec:.0}, eta {eta}",
-            )
+            indicatif::ProgressStyle::with_template(&format!(
+                "{{spinner}} {{msg}} [{{bar:30}}] {{pos}}/{{len}} {}, {{per_sec:.0}}, eta {{eta}}",
+                drawing.style.name()
+            ))
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
         b.enable_steady_tick(Duration::from_millis(100));
@@ -183,9 +184,9 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
         if let Some(b) = &bar {
             match stage {
                 Stage::Surveyed => b.set_message("reading the scene"),
-                Stage::Pasting { .. } => b.set_message("pasting lines"),
+                Stage::Pasting { .. } => b.set_message(format!("pasting {}", drawing.style.name())),
                 Stage::Placing { done, .. } => {
-                    b.set_message("placing lines");
+                    b.set_message(format!("placing {}", drawing.style.name()));
                     b.set_position(done as u64);
                 }
                 Stage::Verifying => b.set_message("verifying"),
@@ -233,7 +234,11 @@ pub fn run(args: ApplyArgs) -> anyhow::Result<std::process::ExitCode> {
     }
     println!("{report}");
     if !report.dry_run {
-        println!("verified: every line, start and end in place");
+        let noun = match drawing.style {
+            crate::layout::Style::Lines => "line",
+            crate::layout::Style::Walls => "wall",
+        };
+        println!("verified: every {noun}, start and end in place");
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -68,7 +68,9 @@ pub enum Stage {
 /// What [`apply`] did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ApplyReport {
-    /// Lines drawn (template included).
+    /// Lines or walls: what `lines` counts.
+    pub style: super::Style,
+    /// Lines drawn (template included), or walls.
     pub lines: usize,
     /// Earlier copies reused.
     pub reused: usize,
@@ -95,8 +97,9 @@ impl std::fmt::Display for ApplyReport {
         let verb = if self.dry_run { "would draw" } else { "drew" };
         write!(
             f,
-            "{verb} {} lines: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
+            "{verb} {} {}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
             self.lines,
+            self.style.name(),
             self.reused,
             self.pasted,
             self.removed,
@@ -172,6 +175,7 @@ fn apply_claimed(
     let h = resolve_handles(&opts.names, style, &survey)?;
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
+        style,
         lines: drawing.lines.len(),
         dry_run: opts.dry_run,
         ..Default::default()

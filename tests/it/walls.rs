@@ -15,7 +15,9 @@ use vrep_maze::validate::validate;
 use crate::support::backend::{Kind, Server};
 use crate::support::backend_tests;
 use crate::support::bin;
+use crate::support::cli::Serve;
 use crate::support::layouts::course_layout;
+use predicates::prelude::*;
 
 backend_tests!(
     walls_apply_verify_then_lines_replace_them,
@@ -233,6 +235,51 @@ fn walls_cli_generate_validate_render_and_apply() {
         ])
         .assert()
         .success();
+}
+
+#[test]
+fn walls_cli_apply_into_serve_then_a_line_maze_replaces_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let walls = dir.path().join("walls.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&walls)
+        .assert()
+        .success();
+    let lines = crate::support::cli::generate(dir.path(), "42", "dfs");
+    let s = Serve::start(
+        &[
+            "--listen",
+            "127.0.0.1:0",
+            "--scene",
+            "course-walls",
+            "--timing",
+            "instant",
+        ],
+        1,
+    );
+    let port = s.port();
+    bin()
+        .arg("apply")
+        .arg(&walls)
+        .args(["--port", &port])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("walls: 0 reused").and(predicates::str::contains(
+                "verified: every wall, start and end in place",
+            )),
+        );
+    bin()
+        .args(["apply", &lines, "--port", &port])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("drew 160 lines").and(predicates::str::contains(
+                "verified: every line, start and end in place",
+            )),
+        );
+    bin().args(["clear", "--port", &port]).assert().success();
 }
 
 #[test]
