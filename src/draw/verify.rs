@@ -18,6 +18,7 @@ pub fn check(
     drawing: &Drawing,
 ) -> Vec<String> {
     let first_copy = usize::from(drawing.template_drawn());
+    let noun = noun(drawing);
     let mut problems = Vec::new();
     let Some(floor) = objects
         .iter()
@@ -30,21 +31,21 @@ pub fn check(
     let get = |handle: i32| by_handle.get(&handle).copied();
     if lines.len() != drawing.lines.len() {
         problems.push(format!(
-            "{} line objects for {} segments",
+            "{} {noun} objects for {} segments",
             lines.len(),
             drawing.lines.len()
         ));
     }
     for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
         match get(handle) {
-            None => problems.push(format!("line {i} (handle {handle}) is missing")),
+            None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
             Some(o) => {
                 if let Some(d) = pose_differences(&floor, o, want) {
-                    problems.push(format!("line {i} `{}` {d}", o.name));
+                    problems.push(format!("{noun} {i} `{}` {d}", o.name));
                 }
                 if i >= first_copy && o.parent != Some(h.parent) {
                     problems.push(format!(
-                        "line {i} `{}` has parent {:?}, expected {}",
+                        "{noun} {i} `{}` has parent {:?}, expected {}",
                         o.name, o.parent, h.parent
                     ));
                 }
@@ -76,6 +77,14 @@ pub fn check(
         problems.push(stray_problem(&stray));
     }
     problems
+}
+
+/// What the drawing's copies are called in messages: `line` or `wall`.
+fn noun(drawing: &Drawing) -> &'static str {
+    match drawing.style {
+        super::Style::Lines => "line",
+        super::Style::Walls => "wall",
+    }
 }
 
 /// Side of the squares [`verify`] sorts objects into: far above the position tolerance, so
@@ -172,15 +181,20 @@ fn verify_raised(
                 let c = pool[k];
                 if c != h.line && get(c).and_then(|o| o.parent) != Some(h.parent) {
                     problems.push(format!(
-                        "line {i} `{}` is not a child of `{}`",
+                        "{} {i} `{}` is not a child of `{}`",
+                        noun(drawing),
                         get(c).map(|o| o.name.as_str()).unwrap_or("?"),
                         names.parent
                     ));
                 }
             }
             None => problems.push(format!(
-                "no line at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
-                want.x, want.y, want.z, want.yaw
+                "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
+                noun(drawing),
+                want.x,
+                want.y,
+                want.z,
+                want.yaw
             )),
         }
     }

@@ -86,3 +86,78 @@ pub(super) fn check_goal(layout: &Layout, maze: &Maze, problems: &mut Problems) 
         );
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::generate::Algorithm;
+    use crate::layout::micromouse::{Preset, build};
+    use crate::layout::{GenerateSpec, Layout};
+    use crate::maze::Grid;
+    use crate::validate::validate;
+
+    fn mouse() -> Layout {
+        let preset = Preset::Micromouse;
+        let spec = preset.spec(
+            GenerateSpec::course(Grid::new(9, 9).unwrap(), Algorithm::Prim, 2),
+            None,
+        );
+        build(preset, &spec).unwrap()
+    }
+
+    fn problems(layout: &Layout) -> Vec<String> {
+        validate(layout)
+            .problems
+            .iter()
+            .map(|p| p.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn a_goal_region_must_hang_together_on_the_grid_and_hold_the_end() {
+        assert_eq!(problems(&mouse()), Vec::<String>::new());
+        let mut off = mouse();
+        off.end.region.push([16, 0]);
+        assert!(problems(&off).contains(&"end.region[4]: (16,0) is off the 16x16 grid".into()));
+        let mut apart = mouse();
+        apart.end.region.push([0, 15]);
+        assert!(
+            problems(&apart)
+                .iter()
+                .any(|p| p.starts_with("end.region: falls apart: 1 of its 5 cells")),
+            "{:?}",
+            problems(&apart)
+        );
+        let mut without = mouse();
+        without.end.region.retain(|&c| c != without.end.cell);
+        assert!(
+            problems(&without)
+                .iter()
+                .any(|p| p.contains("does not hold end.cell"))
+        );
+        let mut start = mouse();
+        start.start.region = vec![[0, 0]];
+        assert!(problems(&start).contains(&"start.region: only the end may be a region".into()));
+    }
+
+    #[test]
+    fn the_generator_names_a_known_preset_and_only_imports_a_source() {
+        let mut bad = mouse();
+        bad.generator
+            .options
+            .insert("preset".into(), "nanomouse".into());
+        bad.generator
+            .options
+            .insert("source".into(), "x.txt".into());
+        let found = problems(&bad);
+        assert!(
+            found
+                .iter()
+                .any(|p| p.starts_with("generator.options.preset: 'nanomouse'"))
+        );
+        assert!(
+            found
+                .iter()
+                .any(|p| p.starts_with("generator.options.source: only an imported"))
+        );
+    }
+}

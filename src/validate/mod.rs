@@ -14,6 +14,7 @@ use crate::generate::Algorithm;
 use crate::layout::build::{extent_needed, fits_within};
 use crate::layout::geometry::{Geometry, rectangle_corners};
 use crate::layout::limits::{self, Naming, show};
+use crate::layout::micromouse::Preset;
 use crate::layout::{Layout, Pose, passages};
 use crate::maze::analysis::{UNREACHED, component_count, distances_from};
 use crate::maze::{Cell, Grid, Maze, Metrics};
@@ -142,6 +143,14 @@ fn check_generator(layout: &Layout, problems: &mut Problems) {
     }
     for (key, value) in &generator.options {
         match key.as_str() {
+            "preset" if Preset::from_name(value).is_none() => problems.add(
+                "generator.options.preset",
+                format!("'{value}' is not a preset: micromouse or micromouse-half"),
+            ),
+            "source" if !imported => problems.add(
+                "generator.options.source",
+                "only an imported layout (generator.algorithm \"import\") names a source file",
+            ),
             "growing" | "bias" | "preset" | "source" => {}
             "braid" => {
                 if !value
