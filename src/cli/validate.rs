@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
-use crate::layout::{Layout, read_layout};
+use crate::layout::{Layout, Style, read_layout};
 use crate::maze::Metrics;
 use crate::validate::{Invalid, validate};
 
@@ -62,12 +62,15 @@ pub fn run(args: ValidateArgs) -> Result<ExitCode> {
 /// One line naming the maze.
 pub fn describe(layout: &Layout) -> String {
     format!(
-        "{}x{} {} seed {}, {} segments",
+        "{}x{} {} seed {}, {}",
         layout.grid.columns,
         layout.grid.rows,
         layout.generator.algorithm,
         layout.generator.seed,
-        layout.segments.len()
+        match layout.style {
+            Style::Lines => format!("{} segments", layout.segments.len()),
+            Style::Walls => format!("{} walls", layout.walls.len()),
+        }
     )
 }
 

@@ -188,7 +188,15 @@ fn walls_cli_generate_validate_render_and_apply() {
     assert_eq!(layout.style, Style::Walls);
     assert!(layout.segments.is_empty() && !layout.walls.is_empty());
     assert!(validate(&layout).is_ok());
-    bin().arg("validate").arg(&path).assert().success();
+    bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicates::str::contains(format!(
+            "{} walls",
+            layout.walls.len()
+        )));
     let text = bin()
         .args(["render", "--solution"])
         .arg(&path)
