@@ -53,6 +53,11 @@ pub fn run(args: RenderArgs) -> Result<ExitCode> {
     );
     let layout = read_layout(&args.file)?;
     checked(&layout).with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
+    ensure_usage!(
+        layout.style.is_lines() || format == Format::Ascii,
+        "{}: a wall maze renders as ASCII only so far (SVG and PNG draw line mazes): use --format ascii or -o FILE.txt",
+        args.file.display()
+    );
     let options = RenderOptions {
         solution: args.solution,
     };

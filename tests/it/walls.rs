@@ -207,6 +207,14 @@ fn walls_cli_generate_validate_render_and_apply() {
         .clone();
     let text = String::from_utf8(text).unwrap();
     assert!(text.starts_with("+---+"), "{text}");
+    bin()
+        .args(["render", "--format", "svg"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "a wall maze renders as ASCII only so far",
+        ));
     // wall options without walls are refused
     bin()
         .args(["generate", "--wall-height", "0.3"])
