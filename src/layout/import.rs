@@ -46,7 +46,7 @@ impl Default for ImportOptions {
 
 /// What the drawing says, before it is laid out.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Drawing {
+pub struct TextMaze {
     /// The passages.
     pub maze: Maze,
     /// The `S` cell, if marked.
@@ -66,7 +66,7 @@ fn at(name: &str, line: usize, column: usize, message: impl std::fmt::Display) -
 
 /// Reads the drawing in `text`; `name` (the file) starts every error, which names the line
 /// and column.
-pub fn parse(text: &str, name: &str) -> Result<Drawing, String> {
+pub fn parse(text: &str, name: &str) -> Result<TextMaze, String> {
     let mut lines: Vec<Vec<char>> = text
         .lines()
         .map(|l| l.trim_end().chars().collect())
@@ -104,7 +104,7 @@ pub fn parse(text: &str, name: &str) -> Result<Drawing, String> {
     let grid = Grid::new(width as u64, height as u64).map_err(|e| format!("{name}: {e}"))?;
     let char_at = |line: &[char], col: usize| line.get(col).copied().unwrap_or(' ');
     let mut masks = vec![0u8; grid.cell_count()];
-    let mut drawing = Drawing {
+    let mut drawing = TextMaze {
         maze: Maze::closed(grid),
         start: None,
         end: None,
