@@ -34,6 +34,10 @@ pub struct ConnectArgs {
     /// The line template (a 0.6 m x 0.1 m green plane).
     #[arg(long, default_value = "Line")]
     pub line: String,
+    /// The wall template of wall mazes (a cuboid as long as a cell side; it stays where it is,
+    /// every wall is a copy).
+    #[arg(long, default_value = "Wall")]
+    pub wall: String,
     /// The start marker (a 1 m x 1 m blue plane).
     #[arg(long, default_value = "Start")]
     pub start: String,
@@ -59,6 +63,7 @@ impl ConnectArgs {
             line: self.line.clone(),
             start: self.start.clone(),
             end: self.end.clone(),
+            wall: self.wall.clone(),
         }
     }
 
@@ -153,23 +158,27 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = authoring
-            .create_missing(&opts.names)
-            .context("creating the missing scene objects")?;
+        let created = match &layout.wall {
+            Some(wall) => authoring
+                .create_missing_walls(&opts.names, [wall.length, wall.thickness, wall.height]),
+            None => authoring.create_missing(&opts.names),
+        }
+        .context("creating the missing scene objects")?;
         if !created.is_empty() {
             println!("created {}", created.join(", "));
         }
     }
+    let what = drawing.style.name();
     let bar = bars.bar(
         "reading the scene",
         drawing.lines.len() as u64,
-        Unit::Items("lines"),
+        Unit::Items(what),
     );
     let mut progress = |stage: Stage| match stage {
         Stage::Surveyed => bar.set_message("reading the scene"),
-        Stage::Pasting { .. } => bar.set_message("pasting lines"),
+        Stage::Pasting { .. } => bar.set_message(format!("pasting {what}")),
         Stage::Placing { done, .. } => {
-            bar.set_message("placing lines");
+            bar.set_message(format!("placing {what}"));
             bar.set_position(done as u64);
         }
         Stage::Verifying => bar.set_message("verifying"),
@@ -213,7 +222,11 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     }
     println!("{report}");
     if !report.dry_run {
-        println!("verified: every line, start and end in place");
+        let noun = match drawing.style {
+            crate::layout::Style::Lines => "line",
+            crate::layout::Style::Walls => "wall",
+        };
+        println!("verified: every {noun}, start and end in place");
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -13,18 +13,20 @@ use super::values::{
     parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
 };
 use crate::generate::{Algorithm, Bias, GrowingMode};
-use crate::layout::build::plan_layout;
+use crate::layout::build::{Planned, plan_layout};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
 use crate::layout::json::write_layout_parts;
-use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry};
+use crate::layout::micromouse::{self, Preset};
+use crate::layout::walls::{self, Openings, WallOptions};
+use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Style};
 use crate::maze::Grid;
 use crate::rng::os_seed;
 
 /// Options of `generate`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1"
+    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1\n  vrep-maze generate --style walls --openings start,end --end ne --seed 42 -o walls.json\n  vrep-maze generate --preset micromouse --seed 3 -o mouse.json"
 )]
 pub struct GenerateArgs {
     /// Seed of the random stream; without it one is drawn from the OS and recorded in the
@@ -34,6 +36,9 @@ pub struct GenerateArgs {
     /// What maze to make.
     #[command(flatten)]
     pub maze: MazeArgs,
+    /// How the maze is drawn.
+    #[command(flatten)]
+    pub style: StyleArgs,
     /// Write the layout here (atomically) instead of standard output.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
@@ -91,6 +96,101 @@ pub struct MazeArgs {
     /// Floor size XxY in metres the maze must fit, each side 0.001..10000 [default: 10x10, grown in 5 m panels to fit].
     #[arg(long, value_parser = parse_floor, allow_hyphen_values = true)]
     pub floor_size: Option<[f64; 2]>,
+}
+
+/// How `generate` draws the maze: lines or walls, and the micromouse presets.
+#[derive(Debug, Args)]
+pub struct StyleArgs {
+    /// lines (Line copies on the floor, for line followers) or walls (a Wall cuboid on
+    /// every closed side and around the grid, for robots that sense walls).
+    #[arg(long, default_value = "lines", value_parser = parse_style)]
+    pub style: Style,
+    /// Walls only: length of the Wall template, metres, at most the cell size [default: 1].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_length: Option<f64>,
+    /// Walls only: thickness of the Wall template, metres, less than the cell size [default: 0.05].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_thickness: Option<f64>,
+    /// Walls only: height of the Wall template, metres, 0.001..100 [default: 0.2].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub wall_height: Option<f64>,
+    /// Walls only: gaps in the outer wall beside the start and/or end cell: none, start,
+    /// end or start,end (the cell must be on the edge) [default: none].
+    #[arg(long, value_parser = parse_openings)]
+    pub openings: Option<Openings>,
+    /// A micromouse maze: micromouse (16x16 cells of 0.18 m, walls 0.012 m thick, 0.05 m
+    /// high) or micromouse-half (32x32 of 0.09 m); start in the south-west corner opening
+    /// one way, goal the 2x2 centre with a single entrance.
+    #[arg(long, value_parser = parse_preset, conflicts_with_all = [
+        "size", "cell_size", "start", "end", "braid", "line_length", "line_width",
+        "style", "wall_length", "wall_thickness", "wall_height", "openings",
+    ])]
+    pub preset: Option<Preset>,
+}
+
+fn parse_style(s: &str) -> Result<Style, String> {
+    match s {
+        "lines" => Ok(Style::Lines),
+        "walls" => Ok(Style::Walls),
+        _ => Err(format!("'{s}' is not a style: use lines or walls")),
+    }
+}
+
+fn parse_openings(s: &str) -> Result<Openings, String> {
+    s.parse()
+}
+
+fn parse_preset(s: &str) -> Result<Preset, String> {
+    Preset::from_name(s)
+        .ok_or_else(|| format!("'{s}' is not a preset: use micromouse or micromouse-half"))
+}
+
+impl StyleArgs {
+    /// The wall options asked for, `None` for lines; wall options without `--style walls`
+    /// are refused.
+    fn walls(&self) -> Result<Option<WallOptions>> {
+        if self.style == Style::Lines {
+            let given = [
+                ("--wall-length", self.wall_length.is_some()),
+                ("--wall-thickness", self.wall_thickness.is_some()),
+                ("--wall-height", self.wall_height.is_some()),
+                ("--openings", self.openings.is_some()),
+            ];
+            if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(usage(format!(
+                    "{name} shapes walls: add --style walls (the maze is drawn with lines)"
+                )));
+            }
+            return Ok(None);
+        }
+        let d = WallOptions::default();
+        Ok(Some(WallOptions {
+            length: self.wall_length.unwrap_or(d.length),
+            thickness: self.wall_thickness.unwrap_or(d.thickness),
+            height: self.wall_height.unwrap_or(d.height),
+            openings: self.openings.unwrap_or(d.openings),
+        }))
+    }
+}
+
+/// The layout `spec` and the style options describe, its segments (if lines) still to be
+/// computed.
+fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
+    if let Some(preset) = style.preset {
+        let spec = preset.spec(spec.clone(), origin);
+        return micromouse::plan(preset, &spec).map_err(usage);
+    }
+    let walls = style.walls()?;
+    let planned = plan_layout(spec).map_err(usage)?;
+    match walls {
+        Some(options) => {
+            let auto_floor = spec.floor == FloorSize::Auto;
+            planned
+                .with_walls(|head, maze| walls::into_walls(head, maze, &options, auto_floor))
+                .map_err(usage)
+        }
+        None => Ok(planned),
+    }
 }
 
 fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {
@@ -153,7 +253,7 @@ pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     let seed = spec.seed;
     // Options are checked; what is left to refuse depends on them too (start and end).
     let spinner = progress.spinner(format!("generating a {} maze", spec.grid));
-    let planned = plan_layout(&spec).map_err(usage);
+    let planned = plan(&spec, &args.style, args.maze.origin);
     spinner.finish_and_clear();
     let planned = planned?;
     let layout = &planned.head;
@@ -183,13 +283,16 @@ pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     }
     if let Some(path) = &args.output {
         eprintln!(
-            "wrote {}: {}x{} {} seed {}, {} segments, solution {} cells",
+            "wrote {}: {}x{} {} seed {}, {}, solution {} cells",
             path.display(),
             layout.grid.columns,
             layout.grid.rows,
             layout.generator.algorithm,
             seed,
-            count,
+            match layout.style {
+                Style::Lines => format!("{count} segments"),
+                Style::Walls => format!("{} walls", layout.walls.len()),
+            },
             layout.metrics.solution_cells
         );
     }

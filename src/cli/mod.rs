@@ -7,6 +7,7 @@ mod completions;
 mod connect;
 mod demo;
 mod generate;
+mod import;
 mod interrupt;
 mod output;
 mod progress;
@@ -41,6 +42,8 @@ pub struct Cli {
 pub enum Command {
     /// Generate a maze and write its layout JSON.
     Generate(generate::GenerateArgs),
+    /// Read a maze drawn as text (micromouse drawings, our ASCII render) into a layout.
+    Import(import::ImportArgs),
     /// Check a layout file and print its metrics.
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
@@ -171,6 +174,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
     let progress = progress::Progress::new(cli.quiet);
     match cli.command {
         Command::Generate(args) => generate::run(args, progress),
+        Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
         Command::Batch(args) => batch::run(args, progress),

@@ -34,8 +34,8 @@ pub struct ServeArgs {
     /// ZeroMQ protocol generation: 1 (CoppeliaSim 4.3 to 4.5) or 2 (4.6 and later).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
     pub protocol: u8,
-    /// Scene to start from: `course` (Floor, Maze, Line, Start, End), `empty`, or a JSON scene
-    /// file (a `--dump` output).
+    /// Scene to start from: `course` (Floor, Maze, Line, Start, End), `course-walls` (the
+    /// course and a Wall cuboid), `empty`, or a JSON scene file (a `--dump` output).
     #[arg(long, default_value = "course")]
     pub scene: String,
     /// Main-loop passes per second while the simulation is stopped (CoppeliaSim's default is
@@ -105,6 +105,7 @@ pub enum Naming {
 pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut scene = match args.scene.as_str() {
         "course" => Scene::course(),
+        "course-walls" => Scene::course_walls(),
         "empty" => Scene::empty(),
         file => {
             let text = std::fs::read_to_string(file)

@@ -8,8 +8,8 @@ use anyhow::Result;
 use clap::Args;
 
 use super::progress::{Progress, Unit};
-use crate::layout::Layout;
 use crate::layout::json::{Background, ReadError, read_from};
+use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
 use crate::validate::Validator;
 
@@ -86,15 +86,19 @@ pub fn read_checking(
     read
 }
 
-/// One line naming the maze and its number of segments.
+/// One line naming the maze and what it draws: its number of segments (counted as they
+/// streamed past) or of walls.
 pub fn describe(layout: &Layout, segments: usize) -> String {
     format!(
-        "{}x{} {} seed {}, {} segments",
+        "{}x{} {} seed {}, {}",
         layout.grid.columns,
         layout.grid.rows,
         layout.generator.algorithm,
         layout.generator.seed,
-        segments
+        match layout.style {
+            Style::Lines => format!("{segments} segments"),
+            Style::Walls => format!("{} walls", layout.walls.len()),
+        }
     )
 }
 

@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::lease::{Claim, claimed};
-use super::plan::{self, maze_lines, paste_round, pose_differences, world_frame};
+use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
     Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
     resolve_handles, verify,
@@ -68,7 +68,9 @@ pub enum Stage {
 /// What [`apply`] did.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ApplyReport {
-    /// Lines drawn (template included).
+    /// Lines or walls: what `lines` counts.
+    pub style: super::Style,
+    /// Lines drawn (template included), or walls.
     pub lines: usize,
     /// Earlier copies reused.
     pub reused: usize,
@@ -95,8 +97,9 @@ impl std::fmt::Display for ApplyReport {
         let verb = if self.dry_run { "would draw" } else { "drew" };
         write!(
             f,
-            "{verb} {} lines: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
+            "{verb} {} {}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
             self.lines,
+            self.style.name(),
             self.reused,
             self.pasted,
             self.removed,
@@ -167,10 +170,12 @@ fn apply_claimed(
     progress: &mut dyn FnMut(Stage),
     claim: &Claim,
 ) -> Result<ApplyReport, DrawError> {
-    let survey = scene.survey(&opts.names.all())?;
-    let h = resolve_handles(&opts.names, &survey)?;
+    let style = drawing.style;
+    let survey = scene.survey(&opts.names.survey(style))?;
+    let h = resolve_handles(&opts.names, style, &survey)?;
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
+        style,
         lines: drawing.lines.len(),
         dry_run: opts.dry_run,
         ..Default::default()
@@ -184,9 +189,16 @@ fn apply_claimed(
             report.stopped_simulation = true;
         }
     }
-    let existing = maze_lines(&survey.objects, &h, &opts.names.line);
-    let copies_needed = drawing.lines.len().saturating_sub(1);
-    let p = plan::plan(&existing, copies_needed);
+    let others = opts.names.others(style);
+    let existing = maze_lines(&survey.objects, &h, opts.names.template(style), &others);
+    let copies_needed = drawing
+        .lines
+        .len()
+        .saturating_sub(usize::from(drawing.template_drawn()));
+    let mut p = plan::plan(&existing, copies_needed);
+    // an earlier maze of the other style goes: a wall is no line, nor a line a wall
+    p.remove
+        .extend(foreign_copies(&survey.objects, &h, &others));
     report.reused = p.reuse.len();
     report.removed = p.remove.len();
     report.pasted = p.paste;
@@ -239,15 +251,18 @@ impl Drawer<'_, '_> {
         // the template, reused copies and markers, where they differ, go with the first
         // round of copies (or alone, if nothing is pasted)
         let mut edits: Vec<Edit> = Vec::new();
-        let mut lines = vec![h.line];
+        // the objects drawn, `lines[i]` for `drawing.lines[i]`: a line maze starts with the
+        // template itself, a wall maze with copies only
+        let template_drawn = drawing.template_drawn();
+        let mut lines = if template_drawn { vec![h.line] } else { vec![] };
         lines.extend(&p.reuse);
         let mut placed_now = 0;
         for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
-            let parent = (i > 0).then_some(h.parent);
+            let parent = (i > 0 || !template_drawn).then_some(h.parent);
             self.place(&mut edits, known(handle), &floor, handle, want, parent);
             placed_now += 1;
         }
-        if drawing.lines.is_empty() {
+        if drawing.lines.is_empty() && template_drawn {
             // no segment (a 1-cell maze): hide the template under Start rather than leave it lying
             let hidden = super::Pose {
                 z: (drawing.start.z - 0.001).max(0.0),
@@ -263,8 +278,14 @@ impl Drawer<'_, '_> {
         while pasted < p.paste {
             self.checkpoint("while pasting the lines")?;
             let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
+            // with nothing drawn yet (a wall maze), the first copy is the template's
+            let sources = if lines.is_empty() {
+                std::slice::from_ref(&h.line)
+            } else {
+                &lines[..]
+            };
             let groups = paste_round(
-                &lines,
+                sources,
                 (p.paste - pasted).min(budget),
                 self.opts.paste_blocks_per_round,
             );
@@ -298,7 +319,7 @@ impl Drawer<'_, '_> {
             ))
             .into());
         }
-        lines.truncate(drawing.lines.len().max(1));
+        lines.truncate(drawing.lines.len().max(usize::from(template_drawn)));
         (self.progress)(Stage::Verifying);
         self.claim.check(self.scene, "before verifying")?;
         let after = if self.claim.contended() {
@@ -310,7 +331,7 @@ impl Drawer<'_, '_> {
         let problems = verify::check(
             &after,
             h,
-            &self.opts.names.line,
+            &self.opts.names,
             &lines[..drawing.lines.len().min(lines.len())],
             drawing,
         );

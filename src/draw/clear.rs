@@ -1,5 +1,6 @@
-//! Remove a drawn maze: every child of the maze dummy except the templates, and parentless
-//! copies of the line template left by an interrupted run. Templates stay where they are.
+//! Remove a drawn maze, lines or walls: every child of the maze dummy except the templates,
+//! and parentless copies of the templates left by an interrupted run. Templates stay where
+//! they are.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -7,8 +8,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::apply::raised;
 use super::lease::{Claim, claimed};
-use super::plan::maze_lines;
-use super::{Backend, DrawError, Edit, ObjectNames, resolve_handles};
+use super::plan::{foreign_copies, maze_lines};
+use super::{Backend, DrawError, Edit, ObjectNames, Style, resolve_handles};
 
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -61,8 +62,15 @@ fn clear_claimed(
     claim: &Claim,
 ) -> Result<ClearReport, DrawError> {
     let (names, dry_run) = (&opts.names, opts.dry_run);
-    let survey = scene.survey(&names.all())?;
-    let h = resolve_handles(names, &survey)?;
+    // a maze of either style: the line template is looked for first, the wall template
+    // serves when the scene has no line template
+    let mut style = Style::Lines;
+    let mut survey = scene.survey(&names.survey(style))?;
+    if survey.handles[2].is_none() && survey.handles.get(5).is_some_and(Option::is_some) {
+        style = Style::Walls;
+        survey = scene.survey(&names.survey(style))?;
+    }
+    let h = resolve_handles(names, style, &survey)?;
     let mut stopped_simulation = false;
     if survey.simulation_running {
         if !opts.stop_simulation {
@@ -73,7 +81,9 @@ fn clear_claimed(
             stopped_simulation = true;
         }
     }
-    let doomed = maze_lines(&survey.objects, &h, &names.line);
+    let others = names.others(style);
+    let mut doomed = maze_lines(&survey.objects, &h, names.template(style), &others);
+    doomed.extend(foreign_copies(&survey.objects, &h, &others));
     let names_by_handle: HashMap<i32, &str> = survey
         .objects
         .iter()

@@ -18,7 +18,7 @@ pub use clear::{ClearOptions, ClearReport, clear};
 pub use lease::{LEASE_SIGNAL, Lease};
 pub use verify::verify;
 
-pub use crate::layout::Pose;
+pub use crate::layout::{Pose, Style};
 
 /// Position of a pose as an array.
 pub fn position(p: &Pose) -> [f64; 3] {
@@ -30,13 +30,16 @@ pub fn euler(p: &Pose) -> [f64; 3] {
     [0.0, 0.0, p.yaw]
 }
 
-/// What to draw: one pose per copy of `Line` (the template itself is the first), plus where
+/// What to draw: one pose per copy of the style's template (`Line`: the template itself is
+/// the first; `Wall`: copies only, the template stays where the scene has it), plus where
 /// `Start` and `End` go. All in the Floor frame. Made only from a valid layout
 /// (`Drawing::try_from(&layout)`), so its fields can be read but not assembled by hand.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct Drawing {
-    /// Poses of the line copies, in the layout's segment order.
+    /// Lines or walls: which template is copied.
+    pub style: Style,
+    /// Poses of the copies, in the layout's order (`segments`, or `walls`).
     pub lines: Vec<Pose>,
     /// Pose of the start marker.
     pub start: Pose,
@@ -57,6 +60,16 @@ pub struct ObjectNames {
     pub start: String,
     /// End marker (`End`).
     pub end: String,
+    /// Wall template (`Wall`), the template of wall mazes.
+    pub wall: String,
+}
+
+impl Drawing {
+    /// `true` when the template itself is the first copy drawn (lines); a wall template
+    /// stays where the scene has it and every wall is a copy.
+    pub fn template_drawn(&self) -> bool {
+        self.style == Style::Lines
+    }
 }
 
 impl Default for ObjectNames {
@@ -67,6 +80,7 @@ impl Default for ObjectNames {
             line: "Line".into(),
             start: "Start".into(),
             end: "End".into(),
+            wall: "Wall".into(),
         }
     }
 }
@@ -74,13 +88,43 @@ impl Default for ObjectNames {
 impl ObjectNames {
     /// Names in the order floor, parent, line, start, end.
     pub fn all(&self) -> [&str; 5] {
+        self.for_style(Style::Lines)
+    }
+
+    /// The template `style` copies.
+    pub fn template(&self, style: Style) -> &str {
+        match style {
+            Style::Lines => &self.line,
+            Style::Walls => &self.wall,
+        }
+    }
+
+    /// Names in the order floor, parent, the style's template, start, end.
+    pub fn for_style(&self, style: Style) -> [&str; 5] {
         [
             &self.floor,
             &self.parent,
-            &self.line,
+            self.template(style),
             &self.start,
             &self.end,
         ]
+    }
+
+    /// The templates of the other styles: their copies in the maze are removed, never
+    /// reused (a wall is no line), and they themselves are never touched.
+    pub fn others(&self, style: Style) -> Vec<&str> {
+        match style {
+            Style::Lines => vec![&self.wall],
+            Style::Walls => vec![&self.line],
+        }
+    }
+
+    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`],
+    /// then [`ObjectNames::others`] (optional).
+    pub fn survey(&self, style: Style) -> Vec<&str> {
+        let mut names = self.for_style(style).to_vec();
+        names.extend(self.others(style));
+        names
     }
 
     /// What a missing object is and how to create it (one line).
@@ -91,6 +135,8 @@ impl ObjectNames {
             "a dummy that holds the maze lines (Add > Dummy, then rename it)"
         } else if name == self.line {
             "the line template: a plane 0.6 m x 0.1 m, pure green, at z = 0.001 (Add > Primitive shape > Plane)"
+        } else if name == self.wall {
+            "the wall template: a cuboid as long as a cell side, e.g. 1 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
         } else if name == self.start {
             "the start marker: a plane 1 m x 1 m, pure blue, at z = 0.002"
         } else {
@@ -110,7 +156,7 @@ pub struct Handles {
     pub floor: i32,
     /// The dummy every maze line is a child of.
     pub parent: i32,
-    /// The line template (also the first line of the maze).
+    /// The template copied: `Line` (also the first line of the maze) or, for walls, `Wall`.
     pub line: i32,
     /// The start marker.
     pub start: i32,
@@ -212,7 +258,10 @@ pub trait Backend {
     /// Reads the idle rate and the record of the user's rate ([`IdleRates`]).
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError>;
     /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
-    /// simulation state.
+    /// simulation state. `names` are [`ObjectNames::for_style`] (floor, parent, template,
+    /// start, end), then optional other templates ([`ObjectNames::others`]): objects are
+    /// listed only when the first five exist, and the maze's copies of the other templates
+    /// are named after them (so [`plan::foreign_copies`] can tell them apart).
     fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError>;
     /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
     /// backend may give a pose it set itself, acknowledged by the simulator, without reading
@@ -266,6 +315,13 @@ pub trait Authoring {
     /// Creates the objects of `names` that the scene lacks (the course's sizes and colours);
     /// returns the names it created.
     fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError>;
+    /// As [`Authoring::create_missing`] for a wall maze: the `Wall` template (a dark grey
+    /// cuboid of `size` x, y, z metres, respondable and detectable) instead of `Line`.
+    fn create_missing_walls(
+        &mut self,
+        names: &ObjectNames,
+        size: [f64; 3],
+    ) -> Result<Vec<String>, BackendError>;
     /// Saves the scene to `path` on the simulator's machine.
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
 }
@@ -316,7 +372,7 @@ impl DrawError {
             DrawError::Missing { names, hints } => {
                 let them = if names.len() == 1 { "it" } else { "them" };
                 let mut lines = vec![format!(
-                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --start, --end"
+                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --start, --end"
                 )];
                 lines.extend(hints.iter().cloned());
                 lines
@@ -340,9 +396,14 @@ impl DrawError {
     }
 }
 
-/// Resolves the names of a survey into [`Handles`] or a [`DrawError::Missing`].
-pub fn resolve_handles(names: &ObjectNames, survey: &Survey) -> Result<Handles, DrawError> {
-    let all = names.all();
+/// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
+/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template.
+pub fn resolve_handles(
+    names: &ObjectNames,
+    style: Style,
+    survey: &Survey,
+) -> Result<Handles, DrawError> {
+    let all = names.for_style(style);
     let missing: Vec<String> = all
         .iter()
         .zip(&survey.handles)
@@ -374,8 +435,13 @@ impl TryFrom<&crate::layout::Layout> for Drawing {
     /// invalid is ever drawn.
     fn try_from(layout: &crate::layout::Layout) -> Result<Drawing, Self::Error> {
         crate::validate::checked(layout)?;
+        let lines = match layout.style {
+            Style::Lines => layout.segments.clone(),
+            Style::Walls => layout.walls.clone(),
+        };
         Ok(Drawing {
-            lines: layout.segments.clone(),
+            style: layout.style,
+            lines,
             start: layout.start.pose,
             end: layout.end.pose,
         })

@@ -40,13 +40,29 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
             .is_some_and(digits)
 }
 
-/// The lines of an earlier maze: every child of the maze parent except the templates, then
-/// every parentless object named like a copy of the line template (left by an interrupted
-/// run between pasting and re-parenting). Children first, each group in handle order.
-pub fn maze_lines(objects: &[ObjectInfo], h: &Handles, template_name: &str) -> Vec<i32> {
+/// `true` if `o` is one of the `foreign` templates or named like a copy of one.
+fn is_foreign(o: &ObjectInfo, foreign: &[&str]) -> bool {
+    foreign
+        .iter()
+        .any(|f| o.name == *f || is_copy_name(&o.name, f))
+}
+
+/// The lines of an earlier maze: every child of the maze parent except the templates and
+/// the `foreign` templates' objects ([`foreign_copies`]), then every parentless object named
+/// like a copy of the line template (left by an interrupted run between pasting and
+/// re-parenting). Children first, each group in handle order.
+pub fn maze_lines(
+    objects: &[ObjectInfo],
+    h: &Handles,
+    template_name: &str,
+    foreign: &[&str],
+) -> Vec<i32> {
     let templates = h.templates();
     let eligible = |o: &&ObjectInfo| {
-        !templates.contains(&o.handle) && o.handle != h.parent && o.handle != h.floor
+        !templates.contains(&o.handle)
+            && o.handle != h.parent
+            && o.handle != h.floor
+            && !is_foreign(o, foreign)
     };
     let mut children: Vec<i32> = objects
         .iter()
@@ -64,6 +80,21 @@ pub fn maze_lines(objects: &[ObjectInfo], h: &Handles, template_name: &str) -> V
     strays.sort_unstable();
     children.extend(strays);
     children
+}
+
+/// Copies of the `foreign` templates (another style's: walls when drawing lines, lines when
+/// drawing walls) among the children of the maze parent and the parentless objects, in
+/// handle order: an earlier maze of the other style, removed and never reused. The
+/// templates themselves (named exactly so) are not among them.
+pub fn foreign_copies(objects: &[ObjectInfo], h: &Handles, foreign: &[&str]) -> Vec<i32> {
+    let mut copies: Vec<i32> = objects
+        .iter()
+        .filter(|o| o.parent == Some(h.parent) || o.parent.is_none())
+        .filter(|o| foreign.iter().any(|f| is_copy_name(&o.name, f)))
+        .map(|o| o.handle)
+        .collect();
+    copies.sort_unstable();
+    copies
 }
 
 /// What to do with existing copies.
@@ -190,7 +221,31 @@ mod tests {
             obj(13, "Line4", Some(1)),
             obj(14, "Cuboid0", None),
         ];
-        assert_eq!(maze_lines(&objects, &h, "Line"), vec![8, 9, 11, 12]);
+        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![8, 9, 11, 12]);
+    }
+
+    #[test]
+    fn another_styles_copies_are_foreign_and_its_template_untouched() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(6, "Wall", Some(2)),
+            obj(7, "Wall0", Some(2)),
+            obj(8, "Line0", Some(2)),
+            obj(9, "/Wall[3]", None),
+            obj(10, "Wall1", Some(1)),
+        ];
+        assert_eq!(maze_lines(&objects, &h, "Line", &["Wall"]), vec![8]);
+        assert_eq!(foreign_copies(&objects, &h, &["Wall"]), vec![7, 9]);
+        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![6, 7, 8]);
     }
 
     #[test]

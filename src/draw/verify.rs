@@ -4,18 +4,21 @@
 use std::collections::{HashMap, HashSet};
 
 use super::apply::raised;
-use super::plan::{maze_lines, pose_differences, relative_pose, world_frame};
+use super::plan::{foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, resolve_handles};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
-/// `drawing.lines[i]` (`lines[0]` is the template). Empty when the scene matches.
+/// `drawing.lines[i]` (`lines[0]` is the template in a line maze). Empty when the scene
+/// matches.
 pub fn check(
     objects: &[ObjectInfo],
     h: &Handles,
-    template: &str,
+    names: &ObjectNames,
     lines: &[i32],
     drawing: &Drawing,
 ) -> Vec<String> {
+    let first_copy = usize::from(drawing.template_drawn());
+    let noun = noun(drawing);
     let mut problems = Vec::new();
     let Some(floor) = objects
         .iter()
@@ -28,21 +31,21 @@ pub fn check(
     let get = |handle: i32| by_handle.get(&handle).copied();
     if lines.len() != drawing.lines.len() {
         problems.push(format!(
-            "{} line objects for {} segments",
+            "{} {noun} objects for {} segments",
             lines.len(),
             drawing.lines.len()
         ));
     }
     for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
         match get(handle) {
-            None => problems.push(format!("line {i} (handle {handle}) is missing")),
+            None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
             Some(o) => {
                 if let Some(d) = pose_differences(&floor, o, want) {
-                    problems.push(format!("line {i} `{}` {d}", o.name));
+                    problems.push(format!("{noun} {i} `{}` {d}", o.name));
                 }
-                if i > 0 && o.parent != Some(h.parent) {
+                if i >= first_copy && o.parent != Some(h.parent) {
                     problems.push(format!(
-                        "line {i} `{}` has parent {:?}, expected {}",
+                        "{noun} {i} `{}` has parent {:?}, expected {}",
                         o.name, o.parent, h.parent
                     ));
                 }
@@ -62,9 +65,11 @@ pub fn check(
             }
         }
     }
-    let expected: HashSet<i32> = lines.iter().skip(1).copied().collect();
-    let stray: Vec<&str> = maze_lines(objects, h, template)
+    let expected: HashSet<i32> = lines.iter().skip(first_copy).copied().collect();
+    let others = names.others(drawing.style);
+    let stray: Vec<&str> = maze_lines(objects, h, names.template(drawing.style), &others)
         .into_iter()
+        .chain(foreign_copies(objects, h, &others))
         .filter(|x| !expected.contains(x))
         .filter_map(|x| get(x).map(|o| o.name.as_str()))
         .collect();
@@ -72,6 +77,14 @@ pub fn check(
         problems.push(stray_problem(&stray));
     }
     problems
+}
+
+/// What the drawing's copies are called in messages: `line` or `wall`.
+fn noun(drawing: &Drawing) -> &'static str {
+    match drawing.style {
+        super::Style::Lines => "line",
+        super::Style::Walls => "wall",
+    }
 }
 
 /// Side of the squares [`verify`] sorts objects into: far above the position tolerance, so
@@ -119,8 +132,9 @@ fn verify_raised(
     drawing: &Drawing,
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
-    let survey = scene.survey(&names.all())?;
-    let h = resolve_handles(names, &survey)?;
+    let style = drawing.style;
+    let survey = scene.survey(&names.survey(style))?;
+    let h = resolve_handles(names, style, &survey)?;
     // every pose as the scene holds it now, not as a backend remembers setting it
     let objects = &scene.objects_from_scene()?;
     let floor = objects
@@ -130,8 +144,13 @@ fn verify_raised(
         .unwrap_or_default();
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let get = |handle: i32| by_handle.get(&handle).copied();
-    let mut pool: Vec<i32> = vec![h.line];
-    pool.extend(maze_lines(objects, &h, &names.line));
+    let others = names.others(style);
+    let mut pool: Vec<i32> = if drawing.template_drawn() {
+        vec![h.line]
+    } else {
+        vec![]
+    };
+    pool.extend(maze_lines(objects, &h, names.template(style), &others));
     // the pool by where each object lies on the floor, so each segment finds its line among
     // a few neighbours instead of all of them
     let mut near: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
@@ -162,15 +181,20 @@ fn verify_raised(
                 let c = pool[k];
                 if c != h.line && get(c).and_then(|o| o.parent) != Some(h.parent) {
                     problems.push(format!(
-                        "line {i} `{}` is not a child of `{}`",
+                        "{} {i} `{}` is not a child of `{}`",
+                        noun(drawing),
                         get(c).map(|o| o.name.as_str()).unwrap_or("?"),
                         names.parent
                     ));
                 }
             }
             None => problems.push(format!(
-                "no line at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
-                want.x, want.y, want.z, want.yaw
+                "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
+                noun(drawing),
+                want.x,
+                want.y,
+                want.z,
+                want.yaw
             )),
         }
     }
@@ -178,7 +202,9 @@ fn verify_raised(
         .iter()
         .zip(&used)
         .filter(|&(&c, &u)| !u && c != h.line)
-        .filter_map(|(&c, _)| get(c).map(|o| o.name.as_str()))
+        .map(|(&c, _)| c)
+        .chain(foreign_copies(objects, &h, &others))
+        .filter_map(|c| get(c).map(|o| o.name.as_str()))
         .collect();
     if !stray.is_empty() {
         problems.push(stray_problem(&stray));

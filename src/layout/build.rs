@@ -165,6 +165,18 @@ impl Planned {
             .flat_map(|(cell, dir)| self.geometry.passage_segments(cell, dir, &self.offsets))
     }
 
+    /// This layout drawn with walls instead of lines: `draw` turns the head into a wall
+    /// layout (see [`walls::into_walls`](super::walls::into_walls)) for the maze; no
+    /// segments are left to compute.
+    pub fn with_walls(
+        mut self,
+        draw: impl FnOnce(&mut Layout, &Maze) -> Result<(), String>,
+    ) -> Result<Planned, String> {
+        draw(&mut self.head, &self.maze)?;
+        self.offsets.clear();
+        Ok(self)
+    }
+
     /// The whole layout, segments and all.
     pub fn into_layout(self) -> Layout {
         let segments = self.segments().collect();
@@ -213,6 +225,9 @@ pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
         passage_encoding: passages::ENCODING.to_string(),
         passages: passages::encode(&maze),
         segments: Vec::new(),
+        style: super::Style::Lines,
+        wall: None,
+        walls: Vec::new(),
     };
     let offsets = geometry.segment_offsets();
     Ok(Planned {
@@ -241,6 +256,7 @@ fn endpoint(geometry: &Geometry, cell: Cell) -> Endpoint {
     Endpoint {
         cell: [cell.x, cell.y],
         pose: geometry.marker_pose(cell),
+        region: Vec::new(),
     }
 }
 

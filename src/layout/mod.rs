@@ -7,9 +7,12 @@
 pub mod build;
 pub mod endpoints;
 pub mod geometry;
+pub mod import;
 pub mod json;
 pub mod limits;
+pub mod micromouse;
 pub mod passages;
+pub mod walls;
 
 use std::collections::BTreeMap;
 
@@ -36,6 +39,9 @@ pub struct Layout {
     pub format: String,
     /// Layout version: 1.
     pub version: u32,
+    /// How the maze is drawn: absent for lines (v1's original style), `"walls"` for walls.
+    #[serde(default, skip_serializing_if = "Style::is_lines")]
+    pub style: Style,
     /// How the maze was made: enough to make it again.
     pub generator: GeneratorInfo,
     /// The cell grid and where it lies on the floor.
@@ -44,6 +50,10 @@ pub struct Layout {
     pub floor: FloorSpec,
     /// The line template (`Line`) every segment is a copy of.
     pub line: LineSpec,
+    /// Wall style only: the wall template (`Wall`, a cuboid) every wall is a copy of, and
+    /// the gaps left in the outer boundary.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallSpec>,
     /// Where the robot starts (`Start` marker).
     pub start: Endpoint,
     /// Where the robot must arrive (`End` marker).
@@ -55,8 +65,132 @@ pub struct Layout {
     /// The open passages, one string per row: `passages[0]` is row 0 (the south row);
     /// character `x` of a row is the open-passage hex digit of cell (x, row).
     pub passages: Vec<String>,
-    /// The line segments to draw, one per copy of `Line` (the template itself is the first).
+    /// The line segments to draw, one per copy of `Line` (the template itself is the first);
+    /// empty in a wall layout.
     pub segments: Vec<Pose>,
+    /// Wall style only: one pose (the cuboid's centre) per copy of `Wall`, every copy a
+    /// child of `Maze`; the template itself is not drawn.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[schemars(with = "Vec<WallPose>")]
+    pub walls: Vec<Pose>,
+}
+
+/// A wall's pose as the schema describes it: a [`Pose`] whose `z`, the centre of the
+/// cuboid, is half the wall's height (so up to half of [`walls::HEIGHT`]'s maximum).
+#[derive(Debug, Clone, Copy, PartialEq, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WallPose {
+    /// Metres, on the floor.
+    #[schemars(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max))]
+    pub x: f64,
+    /// Metres, on the floor.
+    #[schemars(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max))]
+    pub y: f64,
+    /// Metres above the floor: half the wall's height.
+    #[schemars(range(min = 0.0, max = 50.0))]
+    pub z: f64,
+    /// Rotation about z, radians in (-pi, pi].
+    #[schemars(range(min = limits::YAW.min, max = limits::YAW.max))]
+    pub yaw: f64,
+}
+
+/// How a maze is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Style {
+    /// Lines on the floor along the passages, for line-following robots (`Line` copies in
+    /// `segments`).
+    #[default]
+    Lines,
+    /// Walls on every closed side between cells and around the grid, for robots that
+    /// navigate by proximity sensors, lidar or camera (`Wall` copies in `walls`).
+    Walls,
+}
+
+impl Style {
+    /// `true` for [`Style::Lines`] (the field is then left out of the layout).
+    pub fn is_lines(&self) -> bool {
+        *self == Style::Lines
+    }
+
+    /// The style's name in the layout and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Style::Lines => "lines",
+            Style::Walls => "walls",
+        }
+    }
+}
+
+/// The wall template's size, and the gaps in the outer boundary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WallSpec {
+    /// Length along the template's own x axis (along the cell side), metres.
+    #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
+    pub length: f64,
+    /// Thickness along its y axis, metres.
+    #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
+    pub thickness: f64,
+    /// Height along its z axis, metres; every wall stands on the floor (centre at half
+    /// the height).
+    #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = walls::HEIGHT.min, max = walls::HEIGHT.max))]
+    pub height: f64,
+    /// Sides of the outer boundary left open (entrance and exit), in the order given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub openings: Vec<Opening>,
+}
+
+/// A side of the outer boundary left without a wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Opening {
+    /// Column and row of the boundary cell.
+    pub cell: [u32; 2],
+    /// Which of its sides is open: it must face out of the grid.
+    pub side: Side,
+}
+
+/// A side of a cell, by compass name (north is +y).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    /// -y.
+    South,
+    /// -x.
+    West,
+    /// +y.
+    North,
+    /// +x.
+    East,
+}
+
+impl Side {
+    /// The passage direction through this side.
+    pub fn direction(self) -> crate::maze::Direction {
+        use crate::maze::Direction;
+        match self {
+            Side::South => Direction::South,
+            Side::West => Direction::West,
+            Side::North => Direction::North,
+            Side::East => Direction::East,
+        }
+    }
+
+    /// The side's name in the layout.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::South => "south",
+            Side::West => "west",
+            Side::North => "north",
+            Side::East => "east",
+        }
+    }
 }
 
 impl Layout {
@@ -76,6 +210,9 @@ impl Layout {
             passage_encoding: self.passage_encoding.clone(),
             passages: self.passages.clone(),
             segments: Vec::new(),
+            style: self.style,
+            wall: self.wall.clone(),
+            walls: self.walls.clone(),
         }
     }
 }
@@ -152,6 +289,10 @@ pub struct Endpoint {
     pub cell: [u32; 2],
     /// The marker's pose: the cell centre, at marker height.
     pub pose: Pose,
+    /// End only, optional: a goal region, connected cells that `cell` belongs to; reaching
+    /// any of them solves the maze, and `cell` is the one nearest the start.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub region: Vec<[u32; 2]>,
 }
 
 /// A position and a heading in the floor frame (roll and pitch are always 0).

@@ -1,5 +1,5 @@
-//! Terminal pictures: walls as `+---+`, north at the top, `S` start, `E` end, `.` the
-//! solution.
+//! Terminal pictures: walls as `+---+`, north at the top, `S` start, `E` end, `G` the rest
+//! of a goal region, `.` the solution. A wall maze's openings are gaps in the outer wall.
 
 use std::io::{BufWriter, Write};
 
@@ -30,13 +30,29 @@ impl Renderer for Ascii {
         for cell in &view.solution {
             on_path[grid.index(*cell)] = true;
         }
+        // the outer sides a wall maze leaves open
+        let openings: Vec<(Cell, Direction)> = layout
+            .wall
+            .iter()
+            .flat_map(|w| &w.openings)
+            .map(|o| (Cell::new(o.cell[0], o.cell[1]), o.side.direction()))
+            .collect();
+        let open = |cell: Cell, dir: Direction| {
+            view.maze.is_open(grid.index(cell), dir) || openings.contains(&(cell, dir))
+        };
+        let goal: Vec<Cell> = layout
+            .end
+            .region
+            .iter()
+            .map(|c| Cell::new(c[0], c[1]))
+            .collect();
         let mut out = BufWriter::new(out);
         let mut line = String::new();
         let wall_row = |line: &mut String, y: u32, dir: Direction| {
             line.clear();
             line.push('+');
             for x in 0..grid.width() {
-                let open = view.maze.is_open(grid.index(Cell::new(x, y)), dir);
+                let open = open(Cell::new(x, y), dir);
                 line.push_str(if open { "   +" } else { "---+" });
             }
             line.push('\n');
@@ -45,7 +61,11 @@ impl Renderer for Ascii {
             wall_row(&mut line, y, Direction::North);
             out.write_all(line.as_bytes())?;
             line.clear();
-            line.push('|');
+            line.push(if open(Cell::new(0, y), Direction::West) {
+                ' '
+            } else {
+                '|'
+            });
             for x in 0..grid.width() {
                 let cell = Cell::new(x, y);
                 let index = grid.index(cell);
@@ -53,6 +73,8 @@ impl Renderer for Ascii {
                     'S'
                 } else if cell == view.end {
                     'E'
+                } else if goal.contains(&cell) {
+                    'G'
                 } else if on_path[index] {
                     '.'
                 } else {
@@ -61,7 +83,7 @@ impl Renderer for Ascii {
                 line.push(' ');
                 line.push(mark);
                 line.push(' ');
-                line.push(if view.maze.is_open(index, Direction::East) {
+                line.push(if open(cell, Direction::East) {
                     ' '
                 } else {
                     '|'
@@ -113,5 +135,24 @@ mod tests {
         // A perfect 3x2 maze has 5 passages: 7 inner walls minus 5 open ones.
         let open_gaps = text.matches("   +").count() + lines[1].matches("   ").count();
         assert!(open_gaps > 0);
+    }
+
+    #[test]
+    fn wall_openings_are_gaps_in_the_outer_wall() {
+        let grid = Grid::new(3, 2).unwrap();
+        let mut layout = build_layout(&GenerateSpec::course(grid, Algorithm::Dfs, 1)).unwrap();
+        let maze = crate::layout::passages::decode(grid, &layout.passages).unwrap();
+        let options = crate::layout::walls::WallOptions {
+            openings: "start".parse().unwrap(),
+            ..Default::default()
+        };
+        crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
+        let picture = crate::render::Format::Ascii
+            .render_to_vec(&layout, &RenderOptions { solution: false })
+            .unwrap();
+        let text = String::from_utf8(picture).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        // the start (0,0) opens south: a gap at the west end of the bottom wall
+        assert_eq!(lines[4], "+   +---+---+", "{text}");
     }
 }

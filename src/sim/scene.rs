@@ -210,6 +210,26 @@ impl Scene {
         s
     }
 
+    /// The course scene with a wall template as well: `Wall`, a dark grey cuboid of the
+    /// wall defaults (1 m x 0.05 m x 0.2 m), standing beside the floor at (0, -6), so the
+    /// scene takes line mazes and wall mazes (`serve --scene course-walls`).
+    pub fn course_walls() -> Scene {
+        use crate::layout::walls::defaults;
+        let mut s = Scene::course();
+        s.add(
+            "Wall",
+            NewObject {
+                kind: ObjectType::Shape,
+                parent: None,
+                position: [0.0, -6.0, defaults::HEIGHT / 2.0],
+                orientation: [0.0; 3],
+                size: [defaults::LENGTH, defaults::THICKNESS, defaults::HEIGHT],
+                colour: [77, 77, 77],
+            },
+        );
+        s
+    }
+
     /// Reads a scene from JSON (the format of [`Scene::to_json`] or of a `--dump` file) and
     /// checks it: unknown fields, handles that disagree with their keys or reach the next free
     /// handle, unknown parents, parent cycles (an object its own ancestor), duplicate names,

@@ -8,6 +8,7 @@ use crate::generate::Algorithm;
 use crate::layout::build::{extent_needed, fits_within};
 use crate::layout::geometry::Geometry;
 use crate::layout::limits::{self, Naming, show};
+use crate::layout::micromouse::Preset;
 use crate::layout::{Layout, Pose};
 use crate::maze::analysis::{UNREACHED, component_count, distances_from};
 use crate::maze::{Cell, Grid, Maze, Metrics};
@@ -19,12 +20,23 @@ pub(super) fn check_generator(layout: &Layout, problems: &mut Problems) {
         .options
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()));
-    if let Err(e) = Algorithm::from_name_and_pairs(&generator.algorithm, pairs) {
+    let imported = generator.algorithm == crate::layout::import::ALGORITHM;
+    if let Err(e) = Algorithm::from_name_and_pairs(&generator.algorithm, pairs)
+        && !imported
+    {
         problems.add("generator", e);
     }
     for (key, value) in &generator.options {
         match key.as_str() {
-            "growing" | "bias" => {}
+            "preset" if Preset::from_name(value).is_none() => problems.add(
+                "generator.options.preset",
+                format!("'{value}' is not a preset: micromouse or micromouse-half"),
+            ),
+            "source" if !imported => problems.add(
+                "generator.options.source",
+                "only an imported layout (generator.algorithm \"import\") names a source file",
+            ),
+            "growing" | "bias" | "preset" | "source" => {}
             "braid" => {
                 if !value
                     .parse::<f64>()

@@ -8,15 +8,17 @@
 //! memory.
 
 mod coverage;
+mod goal;
 mod head;
 mod segment;
+mod walls;
 
 use std::fmt;
 use std::thread;
 
 use crate::layout::json::SegmentSink;
 use crate::layout::limits;
-use crate::layout::{Layout, Pose, passages};
+use crate::layout::{Layout, Pose, Style, passages};
 use crate::maze::{Grid, Maze, Metrics};
 
 use coverage::Coverage;
@@ -107,6 +109,8 @@ pub fn validate(layout: &Layout) -> Report {
 /// Validates a layout in one pass over its segments: made from the rest of the layout,
 /// fed every segment (as a [`SegmentSink`]), then [`finish`](Validator::finish)ed.
 pub struct Validator {
+    /// Lines or walls: a wall layout has no segments.
+    style: Style,
     /// The generator's and the head's numbers.
     head: Problems,
     /// The segments' own numbers.
@@ -128,6 +132,8 @@ struct Placed {
     coverage: Option<Coverage>,
     /// Segments off their passages, found as they were placed.
     strays: Problems,
+    /// A wall layout's walls and a goal region: problems found from the head.
+    walls: Problems,
     floor: Option<(Problems, segment::Floor)>,
 }
 
@@ -146,6 +152,7 @@ impl Validator {
         let geometry = head::check_numbers(layout, &mut head);
         let placed = geometry.map(|geometry| placed(layout, &geometry));
         Self {
+            style: layout.style,
             head,
             numbers: Problems::default(),
             number_checks: segment::Numbers::new(layout),
@@ -163,6 +170,15 @@ impl Validator {
     /// The report: every problem, in the order of the layout's fields.
     pub fn finish(self) -> Report {
         let mut problems = self.head;
+        if self.style == Style::Walls && self.segments > 0 {
+            problems.add(
+                "segments",
+                format!(
+                    "has {} line segment(s): a wall layout draws walls, so segments must be empty",
+                    self.segments
+                ),
+            );
+        }
         problems.append(self.numbers);
         let mut metrics = None;
         if let Some(placed) = self.placed.filter(|_| !self.blocking) {
@@ -181,6 +197,7 @@ impl Validator {
             if let Some(coverage) = placed.coverage {
                 coverage.finish(&mut problems);
             }
+            problems.append(placed.walls);
             if let Some((floor, _)) = placed.floor {
                 problems.append(floor);
             }
@@ -235,6 +252,7 @@ fn placed(layout: &Layout, geometry: &crate::layout::Geometry) -> Placed {
                 route: None,
                 coverage: None,
                 strays: Problems::default(),
+                walls: Problems::default(),
                 floor: None,
             };
         }
@@ -274,6 +292,7 @@ fn placed(layout: &Layout, geometry: &crate::layout::Geometry) -> Placed {
             route: None,
             coverage: None,
             strays: Problems::default(),
+            walls: Problems::default(),
             floor,
         };
     };
@@ -294,11 +313,19 @@ fn placed(layout: &Layout, geometry: &crate::layout::Geometry) -> Placed {
         let (found, measured) = route_of(&maze);
         Route::Done(found, measured)
     };
+    let mut shape = Problems::default();
+    walls::check_walls(layout, &maze, geometry, &mut shape);
+    goal::check_goal(layout, &maze, &mut shape);
+    let coverage = match layout.style {
+        Style::Lines => Some(Coverage::new(maze, geometry, layout.line.length)),
+        Style::Walls => None,
+    };
     Placed {
         found,
         route: Some(route),
-        coverage: Some(Coverage::new(maze, geometry, layout.line.length)),
+        coverage,
         strays: Problems::default(),
+        walls: shape,
         floor,
     }
 }

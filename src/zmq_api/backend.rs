@@ -19,8 +19,9 @@ use crate::coppelia::frame::{
 };
 use crate::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
-    INTPARAM_PROGRAM_VERSION, PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE,
-    SHAPEINTPARAM_STATIC, SIMULATION_STOPPED, SPECIAL_RENDERABLE,
+    INTPARAM_PROGRAM_VERSION, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_PLANE,
+    SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED, SPECIAL_COLLIDABLE,
+    SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan::is_copy_name;
 use crate::draw::{
@@ -43,6 +44,9 @@ struct Known {
     named: Vec<(String, i32)>,
     parent: Option<i32>,
     line_alias: String,
+    /// Aliases of the other styles' templates found in the scene: the maze dummy's children
+    /// carrying one are named after it, so a drawing can tell them from its own copies.
+    foreign_aliases: Vec<String>,
 }
 
 /// A world pose: position and CoppeliaSim Euler angles.
@@ -254,9 +258,24 @@ impl ZmqBackend {
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself
+            let mut foreign = 0;
             for h in self.handles_in(parent, 3)? {
                 if seen.insert(h) {
-                    out.push(self.line_info(h, format!("object {h}"), Some(parent), poses)?);
+                    let mut name = format!("object {h}");
+                    if !known.foreign_aliases.is_empty() {
+                        // one call per child, only in a scene that holds another style's
+                        // template: is this a copy of it?
+                        let alias = self
+                            .client
+                            .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
+                        if let Some(a) = cbor::text(&alias)
+                            && known.foreign_aliases.iter().any(|f| f == a)
+                        {
+                            foreign += 1;
+                            name = format!("/{a}[{foreign}]");
+                        }
+                    }
+                    out.push(self.line_info(h, name, Some(parent), poses)?);
                 }
             }
         }
@@ -429,8 +448,15 @@ impl Backend for ZmqBackend {
         for n in names {
             handles.push(self.handle_of(&object_path(n))?);
         }
-        // ObjectNames order: floor, parent, line, start, end
+        // ObjectNames order: floor, parent, template, start, end, then other templates
         self.known = Known {
+            foreign_aliases: names
+                .iter()
+                .zip(&handles)
+                .skip(5)
+                .filter(|(_, h)| h.is_some())
+                .map(|(n, _)| alias_of(n).to_string())
+                .collect(),
             named: names
                 .iter()
                 .zip(&handles)
@@ -443,7 +469,7 @@ impl Backend for ZmqBackend {
                 .unwrap_or_default(),
         };
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let objects = if handles.iter().all(Option::is_some) {
+        let objects = if handles.iter().take(5).all(Option::is_some) {
             self.collect(LinePoses::Known)?
         } else {
             vec![]
@@ -643,6 +669,45 @@ impl Authoring for ZmqBackend {
     /// measurable, not detectable by proximity sensors, but seen by cameras), and a floor
     /// plane when the scene has none. Returns the names created.
     fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError> {
+        self.create_course(names, None)
+    }
+
+    /// As [`ZmqBackend::create_missing`], with the `Wall` template, a dark grey cuboid
+    /// (static, respondable, collidable, measurable, detectable by proximity sensors, seen
+    /// by cameras), standing beside the course floor at (0, -6) instead of the line.
+    fn create_missing_walls(
+        &mut self,
+        names: &ObjectNames,
+        size: [f64; 3],
+    ) -> Result<Vec<String>, BackendError> {
+        self.create_course(names, Some(size))
+    }
+
+    /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
+    fn save_scene(&mut self, path: &str) -> Result<(), BackendError> {
+        self.call("sim.saveScene", vec![Value::Text(path.into())])?;
+        Ok(())
+    }
+}
+
+/// An object `create_missing` makes.
+enum Make {
+    /// The maze dummy.
+    Dummy,
+    /// A plane: size, colour, height.
+    Plane(PlaneSpec),
+    /// The wall template: its size.
+    Wall([f64; 3]),
+}
+
+impl ZmqBackend {
+    /// Creates what the course scene has and this one lacks: a floor, the maze dummy, the
+    /// line template (or, with `wall`, the wall template of that size), start and end.
+    fn create_course(
+        &mut self,
+        names: &ObjectNames,
+        wall: Option<[f64; 3]>,
+    ) -> Result<Vec<String>, BackendError> {
         let mut created = Vec::new();
         let mut floor = self.handle_of(&object_path(&names.floor))?;
         if floor.is_none() {
@@ -659,11 +724,24 @@ impl Authoring for ZmqBackend {
             floor = Some(h);
             created.push(names.floor.clone());
         }
-        let specs: [(&str, Option<PlaneSpec>); 4] = [
-            (&names.parent, None),
-            (&names.line, Some(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001))),
-            (&names.start, Some(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002))),
-            (&names.end, Some(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002))),
+        let template = match wall {
+            None => (
+                names.line.as_str(),
+                Make::Plane(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001)),
+            ),
+            Some(size) => (names.wall.as_str(), Make::Wall(size)),
+        };
+        let specs: [(&str, Make); 4] = [
+            (&names.parent, Make::Dummy),
+            template,
+            (
+                &names.start,
+                Make::Plane(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002)),
+            ),
+            (
+                &names.end,
+                Make::Plane(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002)),
+            ),
         ];
         for (name, shape) in specs {
             if self.handle_of(&object_path(name))?.is_some() {
@@ -672,7 +750,7 @@ impl Authoring for ZmqBackend {
             check_alias(name)?;
             let alias = alias_of(name);
             let h = match shape {
-                None => {
+                Make::Dummy => {
                     let h = self
                         .client
                         .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
@@ -682,9 +760,10 @@ impl Authoring for ZmqBackend {
                     )?;
                     h
                 }
-                Some((size, colour, z)) => {
+                Make::Plane((size, colour, z)) => {
                     self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
                 }
+                Make::Wall(size) => self.create_wall(name, size, floor.unwrap_or(HANDLE_WORLD))?,
             };
             let parent_path = name
                 .rsplit_once('/')
@@ -704,9 +783,50 @@ impl Authoring for ZmqBackend {
         Ok(created)
     }
 
-    /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
-    fn save_scene(&mut self, path: &str) -> Result<(), BackendError> {
-        self.call("sim.saveScene", vec![Value::Text(path.into())])?;
-        Ok(())
+    /// The wall template `name`: a dark grey cuboid of `size`, static and respondable,
+    /// sensed by every sensor, standing beside the course floor at (0, -6) in the frame
+    /// `relative_to`.
+    fn create_wall(
+        &mut self,
+        name: &str,
+        size: [f64; 3],
+        relative_to: i32,
+    ) -> Result<i32, BackendError> {
+        let h = self.client.call_int(
+            "sim.createPrimitiveShape",
+            vec![
+                int(PRIMITIVESHAPE_CUBOID.into()),
+                float_array(&size),
+                int(0),
+            ],
+        )?;
+        let hv = || int(h.into());
+        self.call(
+            "sim.setShapeColor",
+            vec![
+                hv(),
+                Value::Null,
+                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                float_array(&[0.3, 0.3, 0.3]),
+            ],
+        )?;
+        let special =
+            SPECIAL_COLLIDABLE | SPECIAL_MEASURABLE | SPECIAL_DETECTABLE | SPECIAL_RENDERABLE;
+        self.call(
+            "sim.setObjectSpecialProperty",
+            vec![hv(), int(special.into())],
+        )?;
+        for param in [SHAPEINTPARAM_STATIC, SHAPEINTPARAM_RESPONDABLE] {
+            self.call(
+                "sim.setObjectInt32Param",
+                vec![hv(), int(param.into()), int(1)],
+            )?;
+        }
+        self.set_pose(h, relative_to, [0.0, -6.0, size[2] / 2.0], [0.0; 3])?;
+        self.call(
+            "sim.setObjectAlias",
+            vec![hv(), Value::Text(alias_of(name).into())],
+        )?;
+        Ok(h)
     }
 }

@@ -35,7 +35,7 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
             )
         })
         .collect();
-    let extra: [(&str, &[&str]); 6] = [
+    let extra: [(&str, &[&str]); 8] = [
         (
             "growing-tree-mix0.5-9x9-seed42.json",
             &[
@@ -63,6 +63,14 @@ fn golden_cases() -> Vec<(String, Vec<String>)> {
         (
             "kruskal-1x12-seed42.json",
             &["--algo", "kruskal", "--size", "1x12", "--seed", "42"],
+        ),
+        (
+            "dfs-9x9-seed42-walls.json",
+            &["--style", "walls", "--seed", "42"],
+        ),
+        (
+            "dfs-micromouse-seed42.json",
+            &["--preset", "micromouse", "--seed", "42"],
         ),
     ];
     for (name, args) in extra {
@@ -121,4 +129,30 @@ fn every_file_in_mazes_is_valid() {
         count += 1;
     }
     assert!(count >= golden_cases().len(), "only {count} golden files");
+}
+
+/// The golden imported maze: `mazes/drawn-4x4.txt`, drawn by hand in the micromouse
+/// community's text format, imported to `mazes/drawn-4x4.json`.
+#[test]
+fn golden_import_is_reproduced_byte_for_byte() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let output = bin()
+        .current_dir(root)
+        .args(["import", "mazes/drawn-4x4.txt"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let path = mazes_dir().join("drawn-4x4.json");
+    if std::env::var_os(BLESS).is_some() {
+        fs::write(&path, &output).unwrap();
+        return;
+    }
+    let golden = fs::read(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (bless with {BLESS}=1)", path.display()));
+    assert!(
+        golden == output,
+        "import mazes/drawn-4x4.txt differs from mazes/drawn-4x4.json; if deliberate, re-bless with {BLESS}=1"
+    );
 }

@@ -23,6 +23,7 @@ mod schema;
 mod texture;
 mod trust;
 mod validate;
+mod walls;
 mod zmq_client_server;
 mod zmq_concurrency;
 mod zmq_draw;

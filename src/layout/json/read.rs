@@ -22,7 +22,8 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
 use super::ReadError;
 use super::scan::{Element, Position, ScanError, Source};
 use crate::layout::{
-    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, VERSION,
+    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, Style, VERSION,
+    WallSpec,
 };
 use crate::maze::Metrics;
 
@@ -149,7 +150,9 @@ pub fn read_from<S: SegmentSink>(
     if let Some(message) = early.refused {
         return Err(format_error(name, message));
     }
-    let mut segments = if early.complete() {
+    // An empty list (a wall layout's) waits for the fields after it, which may be the
+    // wall layout's own.
+    let mut segments = if early.complete() && !source.list_is_empty().map_err(io_error)? {
         let layout = early.into_layout(name)?;
         Segments::Streaming(sink_for(&layout), Box::new(layout))
     } else {
@@ -190,8 +193,17 @@ pub fn read_from<S: SegmentSink>(
     match segments {
         Segments::Streaming(sink, layout) => {
             // The head was complete, so a known field after the list is a duplicate, which
-            // serde refused above; what is left to refuse is an unknown one.
-            fields.into_layout(name)?;
+            // serde refused above, or one of a wall layout's, which cannot come with
+            // segments (the sink saw a line layout); an unknown one is refused here.
+            let whole = fields.into_layout(name)?;
+            if (whole.style, &whole.wall, &whole.walls)
+                != (layout.style, &layout.wall, &layout.walls)
+            {
+                return Err(format_error(
+                    name,
+                    "a wall layout's fields (`style`, `wall`, `walls`) follow line segments: a layout draws lines or walls, not both".to_string(),
+                ));
+            }
             Ok((*layout, sink))
         }
         Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
@@ -285,16 +297,19 @@ fn parse_fields(bytes: &[u8], name: &str) -> Result<Fields, ReadError> {
 const FIELDS: &[&str] = &[
     "format",
     "version",
+    "style",
     "generator",
     "grid",
     "floor",
     "line",
+    "wall",
     "start",
     "end",
     "metrics",
     "passage_encoding",
     "passages",
     "segments",
+    "walls",
 ];
 
 /// The fields read so far.
@@ -302,10 +317,12 @@ const FIELDS: &[&str] = &[
 struct Fields {
     format: Option<serde_json::Value>,
     version: Option<serde_json::Value>,
+    style: Option<Style>,
     generator: Option<GeneratorInfo>,
     grid: Option<GridSpec>,
     floor: Option<FloorSpec>,
     line: Option<LineSpec>,
+    wall: Option<WallSpec>,
     start: Option<Endpoint>,
     end: Option<Endpoint>,
     metrics: Option<Metrics>,
@@ -313,6 +330,7 @@ struct Fields {
     passages: Option<Vec<String>>,
     /// Segments serde read (the list the scanner leaves out reads as empty).
     segments: Option<Vec<Pose>>,
+    walls: Option<Vec<Pose>>,
     /// The first key that is no layout field.
     unknown: Option<String>,
     /// Why this is not a layout this build reads (format or version).
@@ -366,6 +384,9 @@ impl Fields {
                 .ok_or_else(|| missing("passage_encoding"))?,
             passages: self.passages.ok_or_else(|| missing("passages"))?,
             segments: Vec::new(),
+            style: self.style.unwrap_or_default(),
+            wall: self.wall,
+            walls: self.walls.unwrap_or_default(),
         })
     }
 }
@@ -433,16 +454,19 @@ impl<'de> Visitor<'de> for FieldsVisitor {
             match key.as_str() {
                 "format" => field!(format),
                 "version" => field!(version),
+                "style" => field!(style),
                 "generator" => field!(generator),
                 "grid" => field!(grid),
                 "floor" => field!(floor),
                 "line" => field!(line),
+                "wall" => field!(wall),
                 "start" => field!(start),
                 "end" => field!(end),
                 "metrics" => field!(metrics),
                 "passage_encoding" => field!(passage_encoding),
                 "passages" => field!(passages),
                 "segments" => field!(segments),
+                "walls" => field!(walls),
                 _ => {
                     // Not a layout field: an error, unless the file is no layout at all,
                     // which the format check says better.
@@ -551,6 +575,56 @@ mod tests {
             let poses: Vec<Pose> = segments.iter().map(|&(_, p)| p).collect();
             assert_eq!(poses, layout.segments);
         }
+    }
+
+    fn wall_layout() -> Layout {
+        let mut layout = layout();
+        let grid = Grid::new(4, 3).unwrap();
+        let maze = crate::layout::passages::decode(grid, &layout.passages).unwrap();
+        let options = crate::layout::walls::WallOptions::default();
+        crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
+        layout
+    }
+
+    #[test]
+    fn a_wall_layouts_fields_are_read_wherever_they_stand() {
+        let layout = wall_layout();
+        let text = to_string(&layout);
+        assert!(
+            text.find("\n  \"walls\":") > text.find("\n  \"segments\":"),
+            "written after"
+        );
+        let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let mut object = value.as_object().unwrap().clone();
+        let style = object.remove("style").unwrap();
+        let mut moved = object.clone();
+        moved.insert("style".into(), style); // now after the segments too
+        let moved = serde_json::to_string_pretty(&moved).unwrap();
+        for text in [text, moved] {
+            for step in [1, 64, 1 << 20] {
+                let (head, segments, _) = read(&text, step).unwrap();
+                assert_eq!(head, layout, "step {step}");
+                assert!(segments.is_empty());
+            }
+        }
+    }
+
+    #[test]
+    fn wall_fields_after_line_segments_are_refused() {
+        let walls = serde_json::to_string(&wall_layout().walls).unwrap();
+        let text = to_string(&layout());
+        let mixed = text.replacen("  ]\n}", &format!("  ],\n  \"walls\": {walls}\n}}"), 1);
+        let err = read(&mixed, 9).unwrap_err().to_string();
+        assert!(err.contains("lines or walls, not both"), "{err}");
+        // the same layout with the fields before the segments reads, for validate to refuse
+        let early = text.replacen(
+            "\"segments\"",
+            &format!("\"walls\": {walls},\n  \"segments\""),
+            1,
+        );
+        let (head, segments, _) = read(&early, 9).unwrap();
+        assert_eq!(head.walls.len(), wall_layout().walls.len());
+        assert!(!segments.is_empty());
     }
 
     #[test]

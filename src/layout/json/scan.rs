@@ -55,6 +55,8 @@ pub(super) struct Source<R> {
     line: usize,
     /// Absolute offset of the first byte of the current line.
     line_start: usize,
+    /// The line of the segment list's `[`.
+    list_line: usize,
 }
 
 impl<R: Read> Source<R> {
@@ -68,6 +70,7 @@ impl<R: Read> Source<R> {
             base: 0,
             line: 1,
             line_start: 0,
+            list_line: 1,
         }
     }
 
@@ -143,6 +146,7 @@ impl<R: Read> Source<R> {
                 segments_next = false;
                 if byte == b'[' {
                     self.next_byte()?;
+                    self.list_line = self.line;
                     return Ok(true);
                 }
             }
@@ -191,11 +195,9 @@ impl<R: Read> Source<R> {
         &mut self,
         mut each: impl FnMut(Element, Position) -> Result<(), ScanError>,
     ) -> Result<usize, ScanError> {
-        let first_line = self.line;
-        self.skip_space()?;
-        if self.peek()? == Some(b']') {
+        if self.list_is_empty()? {
             self.next_byte()?;
-            return Ok(self.line - first_line);
+            return Ok(self.line - self.list_line);
         }
         loop {
             let start = self.at;
@@ -222,7 +224,7 @@ impl<R: Read> Source<R> {
                         return Err(ScanError::Syntax(self.position(), "trailing comma".into()));
                     }
                 }
-                Some(b']') => return Ok(self.line - first_line),
+                Some(b']') => return Ok(self.line - self.list_line),
                 Some(_) => {
                     return Err(ScanError::Syntax(position, "expected `,` or `]`".into()));
                 }
@@ -234,6 +236,13 @@ impl<R: Read> Source<R> {
                 }
             }
         }
+    }
+
+    /// Whether the segment list (its `[` consumed by [`head`](Self::head)) has no element:
+    /// only whitespace before its `]`. Consumes that whitespace.
+    pub fn list_is_empty(&mut self) -> io::Result<bool> {
+        self.skip_space()?;
+        Ok(self.peek()? == Some(b']'))
     }
 
     /// Consumes whitespace.

@@ -19,9 +19,10 @@ const BATCH: usize = 1 << 16;
 /// Batches waiting between two threads, at most.
 const QUEUE: usize = 4;
 
-/// How the serialized head ends when `segments` is empty: the writer splices the segments in
-/// before the `]`. `segments` is the last field of [`Layout`], so this is always the tail.
-const EMPTY_SEGMENTS_TAIL: &[u8] = b"\"segments\": []\n}";
+/// The empty segment list in the serialized head, a top-level field (indented once): the
+/// writer splices the segments in between its brackets. Fields after it (a wall layout's
+/// `walls`) follow the list as serde wrote them.
+const EMPTY_SEGMENTS: &[u8] = b"\n  \"segments\": []";
 
 /// Writes `layout` as layout JSON (with a final newline).
 pub fn write_layout<W: Write>(layout: &Layout, writer: W) -> io::Result<()> {
@@ -40,9 +41,8 @@ pub fn write_layout_parts<W: Write>(
     segments: impl IntoIterator<Item = Pose, IntoIter: Send>,
     mut writer: W,
 ) -> io::Result<()> {
-    let prefix = head_without_segments(head)?;
-    writer.write_all(&prefix[..prefix.len() - EMPTY_SEGMENTS_TAIL.len()])?;
-    writer.write_all(b"\"segments\": [")?;
+    let (before, after) = head_around_segments(head)?;
+    writer.write_all(&before)?;
     let segments = segments.into_iter();
     let any = thread::scope(|scope| -> io::Result<bool> {
         let (poses_out, poses_in) = mpsc::sync_channel::<Vec<Pose>>(QUEUE);
@@ -77,22 +77,26 @@ pub fn write_layout_parts<W: Write>(
         }
         Ok(any)
     })?;
-    writer.write_all(if any { b"\n  ]\n}\n" } else { b"]\n}\n" })?;
+    writer.write_all(if any { b"\n  ]" } else { b"]" })?;
+    writer.write_all(&after)?;
+    writer.write_all(b"\n")?;
     writer.flush()
 }
 
-/// The head serialized with no segments: ends with [`EMPTY_SEGMENTS_TAIL`].
-fn head_without_segments(head: &Layout) -> io::Result<Vec<u8>> {
+/// The head serialized with no segments, split inside the empty list: the text up to and
+/// including `[`, and the text from `]` on (without the final newline).
+fn head_around_segments(head: &Layout) -> io::Result<(Vec<u8>, Vec<u8>)> {
     let empty = head.without_segments();
     let mut bytes = Vec::new();
     let mut serializer =
         serde_json::Serializer::with_formatter(&mut bytes, ShallowPretty::default());
     empty.serialize(&mut serializer).map_err(io::Error::other)?;
-    debug_assert!(
-        bytes.ends_with(EMPTY_SEGMENTS_TAIL),
-        "segments is the last field"
-    );
-    Ok(bytes)
+    let at = memchr::memmem::find(&bytes, EMPTY_SEGMENTS)
+        .ok_or_else(|| io::Error::other("the layout has no segment list"))?;
+    let open = at + EMPTY_SEGMENTS.len() - 1;
+    let mut after = bytes.split_off(open);
+    after.remove(0); // the `]`, written after the segments
+    Ok((bytes, after))
 }
 
 /// One segment, as serde writes a [`Pose`] inside the segment list.

@@ -1,0 +1,502 @@
+//! Wall mazes and micromouse: `generate --style walls` and `--preset micromouse` validate
+//! and render; apply draws walls into each emulated server and verifies; a line maze
+//! applied over walls replaces them (and the reverse); `clear` removes walls.
+
+use std::fs;
+
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
+use vrep_maze::layout::json::parse_layout;
+use vrep_maze::layout::walls::{WallOptions, into_walls};
+use vrep_maze::layout::{Layout, Style, passages};
+use vrep_maze::maze::Grid;
+use vrep_maze::sim::Scene;
+use vrep_maze::validate::validate;
+
+use crate::support::backend::{Kind, Server};
+use crate::support::backend_tests;
+use crate::support::bin;
+use crate::support::cli::Serve;
+use crate::support::layouts::course_layout;
+use predicates::prelude::*;
+
+backend_tests!(
+    walls_apply_verify_then_lines_replace_them,
+    clear_removes_walls_and_leaves_the_templates,
+);
+
+fn no_progress(_: draw::Stage) {}
+
+fn apply(b: &mut Box<dyn Backend>, d: &Drawing) -> Result<draw::ApplyReport, DrawError> {
+    draw::apply(&mut **b, d, &ApplyOptions::default(), &mut no_progress)
+}
+
+/// The course layout of `seed` (Prim, `n` x `n`) drawn with walls.
+fn wall_layout(n: u64, seed: u64) -> Layout {
+    let mut layout = course_layout(vrep_maze::generate::Algorithm::Prim, n, n, seed);
+    let grid = Grid::new(n, n).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    into_walls(&mut layout, &maze, &WallOptions::default(), true).unwrap();
+    layout
+}
+
+/// Copies of `Wall` in the scene (the template not counted) and whether each is a child of
+/// `Maze`.
+fn wall_copies(s: &Server) -> (usize, bool) {
+    s.with_sim(|sim| {
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let copies: Vec<_> = sim
+            .scene
+            .objects()
+            .filter(|o| o.alias == "Wall" && o.name != "Wall")
+            .map(|o| o.parent)
+            .collect();
+        let all_children = copies.iter().all(|&p| p == Some(maze));
+        (copies.len(), all_children)
+    })
+}
+
+fn walls_apply_verify_then_lines_replace_them(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let walls = Drawing::try_from(&wall_layout(5, 3)).unwrap();
+    assert_eq!(walls.style, Style::Walls);
+    let mut b = s.connect();
+    let r = apply(&mut b, &walls).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
+    assert_eq!(
+        r.pasted,
+        walls.lines.len(),
+        "{}: every wall is a copy",
+        kind.name()
+    );
+    assert_eq!(
+        wall_copies(&s),
+        (walls.lines.len(), true),
+        "{}",
+        kind.name()
+    );
+    draw::verify(&mut *b, &walls, &ObjectNames::default()).unwrap();
+    // the template stays where the scene has it, beside the floor
+    let template_y = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Wall").unwrap();
+        sim.scene.get(h).unwrap().position[1]
+    });
+    assert_eq!(template_y, -6.0);
+    // again: nothing to paste, nothing to move
+    let again = apply(&mut b, &walls).unwrap();
+    assert_eq!(
+        (again.pasted, again.removed, again.edits),
+        (0, 0, 0),
+        "{}",
+        kind.name()
+    );
+    // a line maze over it: every wall copy goes, none is reused as a line
+    let lines = Drawing::try_from(&course_layout(
+        vrep_maze::generate::Algorithm::Prim,
+        5,
+        5,
+        3,
+    ))
+    .unwrap();
+    let r = apply(&mut b, &lines).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
+    assert_eq!(r.reused, 0, "{}: no wall reused as a line", kind.name());
+    assert_eq!(r.removed, walls.lines.len(), "{}", kind.name());
+    assert_eq!(wall_copies(&s).0, 0, "{}", kind.name());
+    assert_eq!(s.line_count(), lines.lines.len());
+    draw::verify(&mut *b, &lines, &ObjectNames::default()).unwrap();
+    // and walls over the lines again: every line copy goes
+    let r = apply(&mut b, &walls).unwrap();
+    assert_eq!(
+        (r.reused, r.removed),
+        (0, lines.lines.len() - 1),
+        "{}",
+        kind.name()
+    );
+    assert_eq!(
+        s.line_count(),
+        1,
+        "{}: only the line template is left",
+        kind.name()
+    );
+    draw::verify(&mut *b, &walls, &ObjectNames::default()).unwrap();
+}
+
+fn clear_removes_walls_and_leaves_the_templates(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    apply(&mut b, &walls).unwrap();
+    let report = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+    assert_eq!(report.removed.len(), walls.lines.len(), "{}", kind.name());
+    assert_eq!(wall_copies(&s).0, 0);
+    s.with_sim(|sim| {
+        for name in ["Wall", "Line", "Start", "End", "Maze", "Floor"] {
+            assert!(
+                sim.scene.resolve(name).is_ok(),
+                "{}: {name} kept",
+                kind.name()
+            );
+        }
+    });
+}
+
+#[test]
+fn walls_need_a_wall_template_and_say_how_to_make_one() {
+    let s = Kind::Legacy.serve(Scene::course(), 8);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    let e = apply(&mut b, &walls).unwrap_err();
+    assert_eq!(e.to_string(), "missing in the scene: Wall");
+    assert!(
+        e.hints()
+            .iter()
+            .any(|h| h.contains("Primitive shape > Cuboid")),
+        "{:?}",
+        e.hints()
+    );
+}
+
+#[test]
+fn zmq_create_missing_makes_a_wall_cuboid() {
+    let s = Kind::Zmq2.serve(Scene::empty(), 8);
+    let mut b = s.connect();
+    let names = ObjectNames::default();
+    let created = b
+        .authoring()
+        .unwrap()
+        .create_missing_walls(&names, [1.0, 0.05, 0.2])
+        .unwrap();
+    assert_eq!(created, ["Floor", "Maze", "Wall", "Start", "End"]);
+    let size = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Wall").unwrap();
+        sim.scene.get(h).unwrap().size
+    });
+    assert_eq!(size, [1.0, 0.05, 0.2]);
+    let walls = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    apply(&mut b, &walls).unwrap();
+}
+
+#[test]
+fn walls_cli_generate_validate_render_and_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("walls.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("walls, solution"));
+    let layout = vrep_maze::layout::read_layout(&path).unwrap();
+    assert_eq!(layout.style, Style::Walls);
+    assert!(layout.segments.is_empty() && !layout.walls.is_empty());
+    assert!(validate(&layout).is_ok());
+    bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicates::str::contains(format!(
+            "{} walls",
+            layout.walls.len()
+        )));
+    let text = bin()
+        .args(["render", "--solution"])
+        .arg(&path)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(text).unwrap();
+    assert!(text.starts_with("+---+"), "{text}");
+    bin()
+        .args(["render", "--format", "svg"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "a wall maze renders as ASCII only so far",
+        ));
+    // wall options without walls are refused
+    bin()
+        .args(["generate", "--wall-height", "0.3"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--wall-height shapes walls: add --style walls",
+        ));
+    // an opening beside an end inside the grid is refused
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--openings",
+            "start,end",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("is not on the edge"));
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--openings",
+            "start,end",
+            "--end",
+            "ne",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .success();
+}
+
+#[test]
+fn walls_cli_apply_into_serve_then_a_line_maze_replaces_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let walls = dir.path().join("walls.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&walls)
+        .assert()
+        .success();
+    let lines = crate::support::cli::generate(dir.path(), "42", "dfs");
+    let s = Serve::start(
+        &[
+            "--listen",
+            "127.0.0.1:0",
+            "--scene",
+            "course-walls",
+            "--timing",
+            "instant",
+        ],
+        1,
+    );
+    let port = s.port();
+    bin()
+        .arg("apply")
+        .arg(&walls)
+        .args(["--port", &port])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("walls: 0 reused").and(predicates::str::contains(
+                "verified: every wall, start and end in place",
+            )),
+        );
+    bin()
+        .args(["apply", &lines, "--port", &port])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("drew 160 lines").and(predicates::str::contains(
+                "verified: every line, start and end in place",
+            )),
+        );
+    bin().args(["clear", "--port", &port]).assert().success();
+}
+
+#[test]
+fn micromouse_preset_has_the_right_size_and_a_goal_with_one_entrance() {
+    for (preset, side, cell) in [("micromouse", 16u32, 0.18), ("micromouse-half", 32, 0.09)] {
+        let out = bin()
+            .args(["generate", "--preset", preset, "--seed", "5"])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let layout = parse_layout(&String::from_utf8(out).unwrap(), "stdout").unwrap();
+        assert_eq!((layout.grid.columns, layout.grid.rows), (side, side));
+        assert_eq!(layout.grid.cell_size, cell);
+        let wall = layout.wall.as_ref().unwrap();
+        assert_eq!(wall.length, cell);
+        assert!(wall.openings.is_empty());
+        assert_eq!(layout.start.cell, [0, 0]);
+        assert_eq!(layout.end.region.len(), 4);
+        assert_eq!(layout.metrics.loops, 1, "the goal's inside is one loop");
+        let report = validate(&layout);
+        assert!(report.is_ok(), "{preset}: {:?}", report.problems);
+        let grid = Grid::new(side.into(), side.into()).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let goal: Vec<usize> = layout
+            .end
+            .region
+            .iter()
+            .map(|c| grid.index(vrep_maze::maze::Cell::new(c[0], c[1])))
+            .collect();
+        let entrances: usize = goal
+            .iter()
+            .map(|&g| {
+                maze.open_neighbours(g)
+                    .filter(|n| !goal.contains(n))
+                    .count()
+            })
+            .sum();
+        assert_eq!(entrances, 1, "{preset}");
+        assert_eq!(maze.degree(0), 1, "{preset}: the start opens one way");
+    }
+    bin()
+        .args(["generate", "--preset", "micromouse", "--size", "5x5"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("cannot be used with"));
+}
+
+#[test]
+fn walls_validation_names_a_missing_wall_a_wall_over_a_passage_and_a_duplicate() {
+    let layout = wall_layout(4, 2);
+    assert!(validate(&layout).is_ok());
+    let dir = tempfile::tempdir().unwrap();
+    let mut broken = layout.clone();
+    broken.walls.remove(0);
+    let first = layout.walls[1];
+    broken.walls.push(first);
+    // a wall across the first open passage east of a cell in row 0
+    let grid = Grid::new(4, 4).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    let x = (0..3)
+        .find(|&x| maze.is_open(x, vrep_maze::maze::Direction::East))
+        .expect("row 0 has an open passage east");
+    let mut across = layout.walls[0];
+    across.x = layout.grid.origin[0] + x as f64 + 0.5;
+    across.y = layout.grid.origin[1];
+    across.yaw = vrep_maze::layout::geometry::round_um(std::f64::consts::FRAC_PI_2);
+    broken.walls.push(across);
+    let path = dir.path().join("broken.json");
+    fs::write(&path, vrep_maze::layout::json::to_string(&broken)).unwrap();
+    let out = bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let text = String::from_utf8(out.stdout).unwrap() + &String::from_utf8(out.stderr).unwrap();
+    assert!(
+        text.contains("is closed but not covered gap-free by walls"),
+        "{text}"
+    );
+    assert!(text.contains("duplicates walls[0]"), "{text}");
+    assert!(
+        text.contains("stands in the open passage between cells"),
+        "{text}"
+    );
+}
+
+#[test]
+fn import_round_trips_through_the_ascii_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name);
+    bin()
+        .args(["generate", "--preset", "micromouse", "--seed", "11", "-o"])
+        .arg(p("m.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("m.json"))
+        .arg("-o")
+        .arg(p("m.txt"))
+        .assert()
+        .success();
+    bin()
+        .arg("import")
+        .arg(p("m.txt"))
+        .arg("-o")
+        .arg(p("i.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("i.json"))
+        .arg("-o")
+        .arg(p("i.txt"))
+        .assert()
+        .success();
+    bin()
+        .arg("import")
+        .arg(p("i.txt"))
+        .arg("-o")
+        .arg(p("j.json"))
+        .assert()
+        .success();
+    let read = |name: &str| vrep_maze::layout::read_layout(&p(name)).unwrap();
+    let (m, i, j) = (read("m.json"), read("i.json"), read("j.json"));
+    assert_eq!(m.passages, i.passages);
+    assert_eq!(i.passages, j.passages);
+    assert_eq!((m.start.cell, m.end.cell), (i.start.cell, i.end.cell));
+    let sorted = |mut r: Vec<[u32; 2]>| {
+        r.sort();
+        r
+    };
+    assert_eq!(sorted(m.end.region.clone()), sorted(i.end.region.clone()));
+    assert_eq!(i.generator.algorithm, "import");
+    assert_eq!(
+        i.walls.len(),
+        m.walls.len(),
+        "the same walls at the same cell size"
+    );
+    assert!(validate(&i).is_ok());
+    // a line maze in our own render round-trips too
+    bin()
+        .args(["generate", "--seed", "4", "-o"])
+        .arg(p("l.json"))
+        .assert()
+        .success();
+    bin()
+        .arg("render")
+        .arg(p("l.json"))
+        .arg("-o")
+        .arg(p("l.txt"))
+        .assert()
+        .success();
+    bin()
+        .args(["import", "--lines", "--cell-size", "1"])
+        .arg(p("l.txt"))
+        .arg("-o")
+        .arg(p("k.json"))
+        .assert()
+        .success();
+    let (l, k) = (read("l.json"), read("k.json"));
+    assert_eq!(l.passages, k.passages);
+    assert_eq!(
+        l.segments, k.segments,
+        "the same lines at the course geometry"
+    );
+}
+
+#[test]
+fn import_refuses_malformed_drawings_with_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.txt");
+    fs::write(&path, "o---o---o\n|   |   |\no---o-x-o\n").unwrap();
+    let shown = path.display().to_string();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(format!(
+            "{shown}:3:7: expected a wall '---' or a gap '   ' between posts, found '-x-'"
+        )));
+    fs::write(&path, "o---o---o\n| S | S |\no---o---o\n").unwrap();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(format!(
+            "{shown}:2:7: a second 'S': the first is at line 2, column 3"
+        )));
+    // two cells walled apart: refused as a whole
+    fs::write(&path, "o---o---o\n|   |   |\no---o---o\n").unwrap();
+    bin()
+        .arg("import")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("1 of 2 cells cannot be reached"));
+}
