@@ -12,7 +12,7 @@ use pyo3::types::{PyBytes, PyDict, PyString};
 use vrep_maze::atomic_file::write_atomically;
 use vrep_maze::cli::Command;
 use vrep_maze::layout::json::{parse_layout, to_string};
-use vrep_maze::layout::{self as library, GenerateSpec, build_layout, passages, read_layout};
+use vrep_maze::layout::{self as library, Pose, Style, build::Planned, passages, read_layout};
 use vrep_maze::maze::analysis::shortest_path;
 use vrep_maze::maze::{Cell, Direction, Grid, Maze};
 use vrep_maze::render::{Format, RenderOptions};
@@ -188,14 +188,21 @@ impl Layout {
     /// first. Made in one allocation, not one object per segment.
     #[getter]
     fn segments<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let segments = &self.layout.segments;
-        let flat: Vec<f64> = segments
-            .iter()
-            .flat_map(|p| [p.x, p.y, p.z, p.yaw])
-            .collect();
-        let array = Array2::from_shape_vec((segments.len(), 4), flat)
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        Ok(PyArray2::from_owned_array(py, array))
+        poses_array(py, &self.layout.segments)
+    }
+
+    /// A wall layout's copies of `Wall`, as `segments` holds a line layout's: a `float64`
+    /// array of shape `(n, 4)`, one row `(x, y, z, yaw)` per wall (its centre; `z` is half
+    /// the wall's height). Empty for a line layout.
+    #[getter]
+    fn walls<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        poses_array(py, &self.layout.walls)
+    }
+
+    /// How the maze is drawn: `"lines"` or `"walls"`.
+    #[getter]
+    fn style(&self) -> &'static str {
+        self.layout.style.name()
     }
 
     /// Draws the maze as `vrep-maze render` does: `"ascii"` (walls in text), `"svg"` (the
@@ -246,19 +253,30 @@ impl Layout {
     fn __repr__(&self) -> String {
         let l = &self.layout;
         format!(
-            "<Layout {}x{} {} seed {}: solution {} cells, {} segments>",
+            "<Layout {}x{} {} seed {}: solution {} cells, {}>",
             l.grid.columns,
             l.grid.rows,
             l.generator.algorithm,
             l.generator.seed,
             l.metrics.solution_cells,
-            l.segments.len()
+            match l.style {
+                Style::Lines => format!("{} segments", l.segments.len()),
+                Style::Walls => format!("{} walls", l.walls.len()),
+            }
         )
     }
 
     fn __eq__(&self, other: &Layout) -> bool {
         self.layout == other.layout
     }
+}
+
+/// `poses` as a NumPy `(n, 4)` array of `(x, y, z, yaw)` rows, made in one allocation.
+fn poses_array<'py>(py: Python<'py>, poses: &[Pose]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = poses.iter().flat_map(|p| [p.x, p.y, p.z, p.yaw]).collect();
+    let array = Array2::from_shape_vec((poses.len(), 4), flat)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, array))
 }
 
 /// The render format: `format` if given, else the one `path`'s extension names, else ASCII;
@@ -311,7 +329,9 @@ fn json_value<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<B
 /// `size=(20, 15)`, `growing="mix:0.5"`, `bias="sw"`, `braid=0.3`, `start=(0, 3)` or
 /// `"nw"` or `"farthest-pair"`, `end="farthest"`, `cell_size=0.5`, `line_length=0.3`,
 /// `line_width=0.05`, `line_z=0.001`, `marker_z=0.002`, `origin=(0.0, 0.0)`,
-/// `rotation=90` (degrees), `floor_size=(20, 20)`. An option left out (or `None`) has
+/// `rotation=90` (degrees), `floor_size=(20, 20)`; wall mazes: `style="walls"`,
+/// `wall_length=1.0`, `wall_thickness=0.05`, `wall_height=0.2`, `openings="start,end"`,
+/// or `preset="micromouse"` (or `"micromouse-half"`). An option left out (or `None`) has
 /// its command-line default (`algo="dfs"`, `size=(9, 9)`, `start="sw"`,
 /// `end="farthest"`, the course geometry); without `seed` one is drawn from the OS and
 /// recorded (`layout.seed`). The result is the same maze, byte for byte, as
@@ -338,10 +358,13 @@ pub fn generate(
             "generate parsed as another command",
         ));
     };
-    let mut spec: GenerateSpec = args.maze.spec(0).map_err(|e| errors::from_anyhow(py, &e))?;
-    spec.seed = args.seed.unwrap_or_else(os_seed);
-    let built = worker::run(py, move || build_layout(&spec), OnSignal::Raise)?;
-    Layout::new(built.map_err(PyValueError::new_err)?)
+    let seed = args.seed.unwrap_or_else(os_seed);
+    let built = worker::run(
+        py,
+        move || args.plan(seed).map(Planned::into_layout),
+        OnSignal::Raise,
+    )?;
+    Layout::new(built.map_err(|e| errors::from_anyhow(py, &e))?)
 }
 
 /// Reads the layout file at `path` and checks it as `vrep-maze validate` does: an

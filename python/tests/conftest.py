@@ -35,19 +35,37 @@ def cli_error(*args) -> str:
 
 
 def golden_cases():
-    """Every golden layout and the `generate` keywords that make it."""
+    """Every generated golden layout and the `generate` keywords that make it (imported ones
+    are in `imported_goldens`)."""
     cases = []
     for path in sorted(MAZES.glob("*.json")):
         layout = json.loads(path.read_text())
         generator = layout["generator"]
-        options = dict(
-            seed=generator["seed"],
-            algo=generator["algorithm"],
-            size=(layout["grid"]["columns"], layout["grid"]["rows"]),
-            **generator["options"],
-        )
+        if generator["algorithm"] == "import":
+            continue
+        options = dict(seed=generator["seed"], algo=generator["algorithm"], **generator["options"])
+        if "preset" not in options:  # a preset sets the size and the walls itself
+            options["size"] = (layout["grid"]["columns"], layout["grid"]["rows"])
+            if layout.get("style") == "walls":
+                options.update(style="walls", **wall_keywords(layout))
         cases.append(pytest.param(path, options, id=path.stem))
     return cases
+
+
+def wall_keywords(layout) -> dict:
+    """The wall options that make `layout`'s walls: its template and its openings, named by
+    the endpoint they open beside."""
+    wall = layout["wall"]
+    beside = {tuple(layout[end]["cell"]): end for end in ("start", "end")}
+    opened = [beside[tuple(o["cell"])] for o in wall.get("openings", [])]
+    return dict(wall_length=wall["length"], wall_thickness=wall["thickness"],
+                wall_height=wall["height"], openings=",".join(opened) or "none")
+
+
+def imported_goldens():
+    """The golden layouts `vrep-maze import` made, with the drawing each came from."""
+    return [pytest.param(path, id=path.stem) for path in sorted(MAZES.glob("*.json"))
+            if json.loads(path.read_text())["generator"]["algorithm"] == "import"]
 
 
 class Serve:

@@ -7,13 +7,20 @@ import numpy as np
 import pytest
 
 import vrep_maze
-from conftest import MAZES, cli_error, golden_cases, run_cli
+from conftest import MAZES, cli_error, golden_cases, imported_goldens, run_cli
 
 
 @pytest.mark.parametrize("path, options", golden_cases())
 def test_every_golden_maze_is_generated_byte_for_byte(path, options):
     layout = vrep_maze.generate(**options)
     assert layout.to_json().encode() == path.read_bytes()
+
+
+@pytest.mark.parametrize("path", imported_goldens())
+def test_imported_golden_mazes_load_and_are_written_back_byte_for_byte(path):
+    layout = vrep_maze.load(path)
+    assert layout.to_json().encode() == path.read_bytes()
+    assert layout.render().count("+") > 0  # walls drawn as text
 
 
 def test_the_issue_example_equals_the_command_byte_for_byte():
@@ -142,3 +149,25 @@ def test_help_says_what_the_options_are():
     assert "cell_size" in vrep_maze.generate.__doc__
     installed = Path(vrep_maze.__file__).parent
     assert (installed / "py.typed").exists() and (installed / "_vrep_maze.pyi").exists()
+
+
+def test_a_wall_maze_has_walls_and_no_segments():
+    layout = vrep_maze.generate(seed=42, style="walls", openings="start,end", end="ne")
+    cli = run_cli("generate", "--seed", 42, "--style", "walls", "--openings", "start,end",
+                  "--end", "ne")
+    assert cli.returncode == 0, cli.stderr
+    assert layout.to_json().encode() == cli.stdout
+    assert layout.style == "walls"
+    assert layout.segments.shape == (0, 4)
+    walls = layout.walls
+    assert walls.shape == (len(json.loads(cli.stdout)["walls"]), 4)
+    assert np.allclose(walls[:, 2], 0.1)  # centres at half the 0.2 m height
+    assert "walls>" in repr(layout)
+    assert vrep_maze.generate(seed=42).style == "lines"
+    assert vrep_maze.generate(seed=42).walls.shape == (0, 4)
+
+
+def test_wall_options_without_walls_are_refused_as_the_command_refuses_them():
+    with pytest.raises(ValueError) as raised:
+        vrep_maze.generate(seed=1, wall_height=0.3)
+    assert str(raised.value) == cli_error("generate", "--seed", 1, "--wall-height", 0.3)

@@ -47,6 +47,10 @@ class Layout:
     def solution(self) -> list[Cell]: ...
     @property
     def segments(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def walls(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def style(self) -> str: ...
     @overload
     def render(
         self, path: StrPath, *, format: Optional[str] = None, solution: bool = False
@@ -104,6 +108,12 @@ def generate(
     origin: Optional[Pair] = None,
     rotation: Optional[float] = None,
     floor_size: Optional[Pair] = None,
+    style: Optional[str] = None,
+    wall_length: Optional[float] = None,
+    wall_thickness: Optional[float] = None,
+    wall_height: Optional[float] = None,
+    openings: Optional[str] = None,
+    preset: Optional[str] = None,
 ) -> Layout: ...
 def load(path: StrPath) -> Layout: ...
 def batch(

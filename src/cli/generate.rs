@@ -173,6 +173,16 @@ impl StyleArgs {
     }
 }
 
+impl GenerateArgs {
+    /// The layout these options describe for `seed` (the caller's: given, or drawn), its
+    /// segments (if lines) still to be computed: what `generate` writes, for programs that
+    /// embed the command line (the Python package's `generate`).
+    pub fn plan(&self, seed: u64) -> Result<Planned> {
+        let spec = self.maze.spec(seed)?;
+        plan(&spec, &self.style, self.maze.origin)
+    }
+}
+
 /// The layout `spec` and the style options describe, its segments (if lines) still to be
 /// computed.
 fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
@@ -248,12 +258,11 @@ const BAR_STEP: usize = 1 << 16;
 pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
-    let mut spec = args.maze.spec(0)?;
-    spec.seed = args.seed.unwrap_or_else(os_seed);
-    let seed = spec.seed;
+    let grid = args.maze.spec(0)?.grid;
+    let seed = args.seed.unwrap_or_else(os_seed);
     // Options are checked; what is left to refuse depends on them too (start and end).
-    let spinner = progress.spinner(format!("generating a {} maze", spec.grid));
-    let planned = plan(&spec, &args.style, args.maze.origin);
+    let spinner = progress.spinner(format!("generating a {grid} maze"));
+    let planned = args.plan(seed);
     spinner.finish_and_clear();
     let planned = planned?;
     let layout = &planned.head;
