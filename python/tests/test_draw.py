@@ -99,3 +99,20 @@ def test_missing_scene_objects_are_named_with_remedies(serve):
         vrep_maze.apply(layout, port=serve.legacy_port, line="GreenLine")
     assert "missing in the scene: GreenLine" in str(raised.value)
     assert any("--line" in hint for hint in raised.value.hints)
+
+
+@pytest.mark.parametrize("api", APIS)
+def test_a_wall_maze_is_drawn_and_a_line_maze_replaces_it(api):
+    scene = Serve("--timing", "instant", "--scene", "course-walls")
+    try:
+        port = scene.port(api)
+        walls = vrep_maze.generate(seed=42, style="walls")
+        report = vrep_maze.apply(walls, api=api, port=port)
+        assert report.verified and report.lines == len(walls.walls)
+        assert str(report).startswith(f"drew {len(walls.walls)} walls")
+        lines = vrep_maze.generate(seed=42)
+        again = vrep_maze.apply(lines, api=api, port=port)
+        assert again.verified and again.removed == len(walls.walls)
+    finally:
+        scene.process.kill()
+        scene.process.wait()
