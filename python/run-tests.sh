@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The Python package's tests, as CI runs them: build the wheel with maturin (release), install
-# it in a fresh virtual environment, and run pytest on python/tests against it.
+# The Python package's tests, as CI runs them: `pip install .` (the README's command: maturin
+# builds the release wheel) in a fresh virtual environment, then pytest on python/tests
+# against what it installed.
 # Prints pytest's summary last; exits non-zero on failure.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -14,9 +15,7 @@ if ! python3 -m venv "$venv" 2>/dev/null; then
     rm -rf "$venv"
     python3 -m venv "$venv"
 fi
-"$venv/bin/pip" install --quiet maturin pytest numpy
-rm -rf "$target/wheels"
-"$venv/bin/maturin" build --release --quiet --out "$target/wheels"
-"$venv/bin/pip" install --quiet "$target"/wheels/vrep_maze-*.whl
+"$venv/bin/pip" install --quiet pytest
+"$venv/bin/pip" install --quiet "$root"
 # from the repository root, so `import vrep_maze` is the installed wheel, not python/vrep_maze
 exec timeout 600 "$venv/bin/python" -m pytest -q python/tests
