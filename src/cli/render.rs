@@ -59,11 +59,6 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
         .finish()
         .into_result()
         .with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
-    ensure_usage!(
-        layout.style.is_lines() || format == Format::Ascii,
-        "{}: a wall maze renders as ASCII only so far (SVG and PNG draw line mazes): use --format ascii or -o FILE.txt",
-        args.file.display()
-    );
     let options = RenderOptions {
         solution: args.solution,
     };

@@ -1,5 +1,6 @@
 //! What the SVG and PNG pictures show, in metres: the colours, the green line runs, the
-//! floor's metre grid and the scale bar. Both formats draw exactly this, each its own way.
+//! floor's metre grid and the scale bar (a wall maze's walls are in [`super::walls`]). Both
+//! formats draw exactly this, each its own way.
 
 use std::fmt;
 
@@ -22,6 +23,10 @@ pub(super) const FLOOR: Colour = Colour([0xb4, 0xb4, 0xb4]);
 pub(super) const GRID: Colour = Colour([0x8c, 0x8c, 0x8c]);
 /// The lines the robot follows: pure green, as the camera must see them.
 pub(super) const LINE: Colour = Colour([0x00, 0xff, 0x00]);
+/// A wall maze's walls: near-black bars on the light floor.
+pub(super) const WALL: Colour = Colour([0x20, 0x20, 0x20]);
+/// A wall maze's goal region (but its end cell): a light red tint.
+pub(super) const GOAL: Colour = Colour([0xe6, 0xa0, 0xa0]);
 /// The start marker: pure blue.
 pub(super) const START: Colour = Colour([0x00, 0x00, 0xff]);
 /// The end marker: pure red.

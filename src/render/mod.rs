@@ -2,12 +2,14 @@
 //!
 //! Renderers stream: they write the picture into an [`io::Write`] as they draw it, so a
 //! 4096 x 4096 maze never exists as one string or one image in memory. They draw the
-//! green lines from the layout's passages ([`figure::Runs`]), never from its `segments`.
+//! green lines ([`figure::Run`]) and the walls ([`walls::WallRun`]) from the layout's
+//! passages, never from its `segments` or `walls`.
 
 mod ascii;
 mod figure;
 mod png;
 mod svg;
+mod walls;
 
 use std::fmt;
 use std::io;
@@ -52,7 +54,8 @@ pub trait Renderer {
 pub enum Format {
     /// Walls drawn with `+`, `-` and `|`, for a terminal.
     Ascii,
-    /// The floor as the robot's camera sees it: green lines, blue start, red end.
+    /// The floor as the robot's camera sees it: green lines (or dark walls), blue start,
+    /// red end.
     Svg,
     /// The same picture as pixels.
     Png,
@@ -118,12 +121,14 @@ impl FromStr for Format {
     }
 }
 
-/// The maze of a layout, with its start, end and (if asked) solution cells.
+/// The maze of a layout, with its start, end and (if asked) solution cells, and its walls
+/// if it is a wall maze.
 struct MazeView {
     maze: Maze,
     start: Cell,
     end: Cell,
     solution: Vec<Cell>,
+    walls: Option<walls::Walls>,
 }
 
 impl MazeView {
@@ -148,11 +153,13 @@ impl MazeView {
         } else {
             Vec::new()
         };
+        let walls = walls::Walls::of(layout, &maze, start, end)?;
         Ok(Self {
             maze,
             start,
             end,
             solution,
+            walls,
         })
     }
 }
@@ -176,6 +183,19 @@ mod tests {
         let layout = build_layout(&spec).unwrap();
         let mut bare = layout.clone();
         bare.segments.clear();
+        let options = RenderOptions { solution: true };
+        for format in Format::ALL {
+            let picture = render(format, &layout, &options);
+            assert!(!picture.is_empty());
+            assert!(picture == render(format, &bare, &options), "{format}");
+        }
+    }
+
+    #[test]
+    fn renderers_never_read_the_walls() {
+        let layout = walls::tests::wall_layout(6, 5, 7, 0.3, "start");
+        let mut bare = layout.clone();
+        bare.walls.clear();
         let options = RenderOptions { solution: true };
         for format in Format::ALL {
             let picture = render(format, &layout, &options);

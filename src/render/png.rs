@@ -5,8 +5,8 @@
 //! Every shape is filled by the pixel-centre rule (a pixel takes the shape's colour when
 //! its centre lies inside), without anti-aliasing: the colours stay pure where the
 //! robot's camera (and a test) looks, and a pixel's colour depends only on its own
-//! position, so strips join without seams. Lines, markers, grid lines and the scale bar's
-//! strokes are drawn at least one pixel wide, so a huge maze drawn at a few pixels per
+//! position, so strips join without seams. Lines, walls, markers, grid lines and the scale
+//! bar's strokes are drawn at least one pixel wide, so a huge maze drawn at a few pixels per
 //! metre stays visible (a 0.1 m line at 4 px/m is 0.4 px: it is drawn 1 px wide).
 
 use std::io::{self, Write};
@@ -16,9 +16,10 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 
 use super::figure::{
-    Colour, END, FLOOR, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
-    ScaleBar, for_each_run,
+    Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY,
+    START, ScaleBar, WALL, for_each_run,
 };
+use super::walls::{WallRun, for_each_wall_run};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
 use crate::maze::Cell;
@@ -206,8 +207,8 @@ impl Affine {
     }
 }
 
-/// Everything the PNG shows, in pixels, with the green runs left in the maze to be
-/// placed strip by strip.
+/// Everything the PNG shows, in pixels, with the green runs (or the walls) left in the
+/// maze to be placed strip by strip.
 struct Picture {
     width: u32,
     height: u32,
@@ -215,11 +216,13 @@ struct Picture {
     maze_frame: Affine,
     view: MazeView,
     cell_size: f64,
-    /// Line width as drawn: at least a pixel.
-    line_width: f64,
+    /// Line width, or a wall maze's wall thickness, as drawn: at least a pixel.
+    bar_width: f64,
     /// The metre grid, the start and end markers: drawn in every strip they touch.
     grid: Vec<Shape>,
     markers: [(Shape, Colour); 2],
+    /// A wall maze's tinted goal cells.
+    goal: Vec<Shape>,
     /// The solution path (bars and round joins), drawn at [`SOLUTION_OPACITY`].
     solution: Vec<Shape>,
     /// The scale bar: shapes in painting order.
@@ -271,6 +274,15 @@ impl Picture {
             maze_frame.rect([x - half, y - half, x + half, y + half])
         };
         let markers = [(marker(view.start), START), (marker(view.end), END)];
+        let goal = view
+            .walls
+            .iter()
+            .flat_map(|walls| walls.goal.iter().map(|&cell| marker(cell)))
+            .collect();
+        let bar_width = visible(match &view.walls {
+            Some(walls) => walls.thickness,
+            None => layout.line.width,
+        });
         let solution = solution_shapes(&view.solution, c, visible(layout.line.width / 2.0))
             .into_iter()
             .map(|shape| match shape {
@@ -305,18 +317,109 @@ impl Picture {
             maze_frame,
             view,
             cell_size: c,
-            line_width: visible(layout.line.width),
+            bar_width,
             grid,
             markers,
+            goal,
             solution,
             scale_bar,
         })
     }
 
-    /// The picture of a run.
+    /// The picture of a line run.
     fn run_shape(&self, run: &Run) -> Shape {
         self.maze_frame
-            .rect(run.rect(self.cell_size, self.line_width))
+            .rect(run.rect(self.cell_size, self.bar_width))
+    }
+
+    /// The picture of a wall run.
+    fn wall_shape(&self, run: &WallRun) -> Shape {
+        self.maze_frame
+            .rect(run.rect(self.cell_size, self.bar_width))
+    }
+
+    /// The maze's own shapes (line runs, or wall runs and goal cells), bucketed by strip.
+    fn bars(&self, strips: usize, strip_rows: u32) -> Bars {
+        match &self.view.walls {
+            None => Bars::Lines(Buckets::new(
+                strips,
+                strip_rows,
+                self.height,
+                |emit| {
+                    let Ok(()) = for_each_run::<std::convert::Infallible>(
+                        &self.view.maze,
+                        |run| {
+                            emit(run);
+                            Ok(())
+                        },
+                        |_| {},
+                    );
+                },
+                |run| self.run_shape(run).rows(),
+            )),
+            Some(walls) => Bars::Walls {
+                runs: Buckets::new(
+                    strips,
+                    strip_rows,
+                    self.height,
+                    |emit| {
+                        let Ok(()) = for_each_wall_run::<std::convert::Infallible>(
+                            &self.view.maze,
+                            &walls.open,
+                            |run| {
+                                emit(run);
+                                Ok(())
+                            },
+                            |_| {},
+                        );
+                    },
+                    |run| self.wall_shape(run).rows(),
+                ),
+                goal: Buckets::new(
+                    strips,
+                    strip_rows,
+                    self.height,
+                    |emit| self.goal.iter().copied().for_each(&mut *emit),
+                    Shape::rows,
+                ),
+            },
+        }
+    }
+
+    /// Paints the maze itself into `strip` (strip `k`): the green runs then the markers
+    /// over them, or the goal tint, the markers (whole cells) and the walls over them.
+    fn paint_maze(&self, strip: &mut Strip, k: usize, bars: &mut Bars) {
+        let top = strip.rows.start;
+        let markers = |strip: &mut Strip| {
+            for (shape, colour) in &self.markers {
+                strip.paint(shape, *colour);
+            }
+        };
+        match bars {
+            Bars::Lines(runs) => {
+                runs.visit(
+                    k,
+                    top,
+                    |run| self.run_shape(run).rows(),
+                    |run| {
+                        strip.paint(&self.run_shape(run), LINE);
+                    },
+                );
+                markers(strip);
+            }
+            Bars::Walls { runs, goal } => {
+                goal.visit(k, top, Shape::rows, |shape| strip.paint(shape, GOAL));
+                markers(strip);
+                runs.visit(
+                    k,
+                    top,
+                    |run| self.wall_shape(run).rows(),
+                    |run| {
+                        strip.paint(&self.wall_shape(run), WALL);
+                    },
+                );
+            }
+        }
     }
 
     /// Draws the picture `strip_rows` pixel rows at a time and streams it into `out` as a
@@ -325,23 +428,7 @@ impl Picture {
         progress.set_length(u64::from(self.height));
         let strip_rows = strip_rows.clamp(1, self.height as usize) as u32;
         let strips = self.height.div_ceil(strip_rows) as usize;
-        let run_rows = |run: &Run| self.run_shape(run).rows();
-        let mut runs = Buckets::new(
-            strips,
-            strip_rows,
-            self.height,
-            |emit| {
-                let Ok(()) = for_each_run::<std::convert::Infallible>(
-                    &self.view.maze,
-                    |run| {
-                        emit(run);
-                        Ok(())
-                    },
-                    |_| {},
-                );
-            },
-            run_rows,
-        );
+        let mut bars = self.bars(strips, strip_rows);
         let mut solution = Buckets::new(
             strips,
             strip_rows,
@@ -376,12 +463,7 @@ impl Picture {
             for shape in &self.grid {
                 strip.paint(shape, GRID);
             }
-            runs.visit(k, top, run_rows, |run| {
-                strip.paint(&self.run_shape(run), LINE);
-            });
-            for (shape, colour) in &self.markers {
-                strip.paint(shape, *colour);
-            }
+            self.paint_maze(&mut strip, k, &mut bars);
             mask.clear();
             mask.resize(strip.pixels.len() / 3, false);
             let mut any = false;
@@ -402,6 +484,17 @@ impl Picture {
         header.finish().map_err(io::Error::from)?;
         Ok(())
     }
+}
+
+/// The maze's own shapes, bucketed by the strip they start in.
+enum Bars {
+    /// A line maze's green runs.
+    Lines(Buckets<Run>),
+    /// A wall maze's walls and its tinted goal cells.
+    Walls {
+        runs: Buckets<WallRun>,
+        goal: Buckets<Shape>,
+    },
 }
 
 /// Some pixel rows of the image, RGB.
@@ -570,8 +663,10 @@ mod tests {
 
     use super::*;
     use crate::generate::Algorithm;
+    use crate::layout::walls::{WallAxis, WallOptions, into_walls, is_closed, lattice};
     use crate::layout::{GenerateSpec, build_layout};
     use crate::maze::{Direction, Grid};
+    use crate::render::walls::tests::wall_layout;
 
     /// A decoded PNG: width, height and RGB pixels.
     struct Image {
@@ -713,6 +808,110 @@ mod tests {
         assert!((90.0f64.to_radians() - PI / 2.0).abs() < 1e-12);
     }
 
+    /// The floor point a quarter of the way along side `k` of lattice line `line`.
+    fn on_side(layout: &Layout, axis: WallAxis, line: u32, k: u32) -> Point2<f64> {
+        let [ox, oy] = layout.grid.origin;
+        let to_floor = Isometry2::new(Vector2::new(ox, oy), layout.grid.rotation);
+        let c = layout.grid.cell_size;
+        let (across, along) = ((f64::from(line) - 0.5) * c, (f64::from(k) - 0.25) * c);
+        to_floor
+            * match axis {
+                WallAxis::AlongX => Point2::new(along, across),
+                WallAxis::AlongY => Point2::new(across, along),
+            }
+    }
+
+    const DARK: (u8, u8, u8) = (0x20, 0x20, 0x20);
+    const LIGHT: (u8, u8, u8) = (180, 180, 180);
+
+    #[test]
+    fn a_wall_maze_shows_dark_walls_on_the_light_floor_its_opening_and_goal() {
+        let mut layout = wall_layout(7, 5, 4, 0.0, "start");
+        let end = layout.end.cell;
+        // the cell north of the end, or south on the top row
+        let beside = [end[0], end[1] + 1 - 2 * u32::from(end[1] + 1 == 5)];
+        layout.end.region = vec![end, beside];
+        let image = render(&layout, &RenderOptions { solution: true });
+        let pixel = |p: Point2<f64>| at(&image, &layout, p.x, p.y);
+        let start = &layout.start.pose;
+        assert_eq!(
+            pixel(Point2::new(start.x + 0.3, start.y + 0.3)),
+            (0, 0, 255)
+        );
+        let end = &layout.end.pose;
+        assert_eq!(pixel(Point2::new(end.x + 0.3, end.y - 0.3)), (255, 0, 0));
+        let [ox, oy] = layout.grid.origin;
+        let goal = Point2::new(
+            ox + f64::from(beside[0]) + 0.3,
+            oy + f64::from(beside[1]) + 0.3,
+        );
+        assert_eq!(pixel(goal), (0xe6, 0xa0, 0xa0));
+        // inside a cell, off the walls and the metre grid
+        assert_eq!(pixel(Point2::new(ox + 2.3, oy + 1.3)), LIGHT);
+        let view = MazeView::of(&layout, &RenderOptions { solution: true }).unwrap();
+        let opening = layout.wall.as_ref().unwrap().openings[0];
+        let mut closed = 0;
+        for axis in [WallAxis::AlongX, WallAxis::AlongY] {
+            let (lines, sides) = lattice(view.maze.grid(), axis);
+            for line in 0..lines {
+                for k in 0..sides {
+                    let colour = pixel(on_side(&layout, axis, line, k));
+                    if is_closed(&view.maze, &[opening], axis, line, k) {
+                        assert_eq!(colour, DARK, "{axis:?} {line} {k}");
+                        closed += 1;
+                    } else {
+                        assert_ne!(colour, DARK, "{axis:?} {line} {k} is open");
+                    }
+                }
+            }
+        }
+        assert_eq!(closed, layout.walls.len());
+        // the start's south side is the opening: floor there, a wall without it
+        let gap = on_side(&layout, WallAxis::AlongX, 0, 0);
+        assert_eq!(pixel(gap), LIGHT);
+        let shut = wall_layout(7, 5, 4, 0.0, "none");
+        assert_eq!(shut.passages, layout.passages);
+        let shut_image = render(&shut, &RenderOptions::default());
+        assert_eq!(at(&shut_image, &shut, gap.x, gap.y), DARK);
+        // the solution crosses the floor in orange
+        let on_path = view.solution[view.solution.len() / 2];
+        let (x, y) = (ox + f64::from(on_path.x), oy + f64::from(on_path.y));
+        let (r, _, b) = pixel(Point2::new(x, y));
+        assert!(r >= 230 && b <= 40, "{:?}", pixel(Point2::new(x, y)));
+    }
+
+    #[test]
+    fn a_rotated_wall_maze_is_drawn_where_the_geometry_says() {
+        for degrees in [30.0, 90.0, -135.0] {
+            let layout = wall_layout(9, 9, 6, degrees, "start");
+            let image = render(&layout, &RenderOptions::default());
+            let view = MazeView::of(&layout, &RenderOptions::default()).unwrap();
+            let openings = &layout.wall.as_ref().unwrap().openings;
+            let bar = ScaleBar::for_floor(layout.floor.size);
+            let (mut open, mut closed) = (0, 0);
+            for axis in [WallAxis::AlongX, WallAxis::AlongY] {
+                let (lines, sides) = lattice(view.maze.grid(), axis);
+                for line in 0..lines {
+                    for k in 0..sides {
+                        let p = on_side(&layout, axis, line, k);
+                        if p.y < bar.y + 3.0 * bar.unit {
+                            continue; // under the scale bar's label
+                        }
+                        let colour = at(&image, &layout, p.x, p.y);
+                        if is_closed(&view.maze, openings, axis, line, k) {
+                            assert_eq!(colour, DARK, "{degrees} deg: {axis:?} {line} {k}");
+                            closed += 1;
+                        } else {
+                            assert_ne!(colour, DARK, "{degrees} deg: {axis:?} {line} {k}");
+                            open += 1;
+                        }
+                    }
+                }
+            }
+            assert!(open > 40 && closed > 40, "{open} open, {closed} closed");
+        }
+    }
+
     #[test]
     fn a_huge_floor_is_capped_and_its_lines_stay_visible() {
         let layout = build_layout(&GenerateSpec::course(
@@ -733,12 +932,36 @@ mod tests {
             .filter(|&x| image.pixel(x, y) == (0, 255, 0))
             .count();
         assert!(green > 4000, "{green} green pixels");
+        // 0.05 m walls are 0.2 px here, drawn 1 px wide
+        let grid = Grid::new(4096, 16).unwrap();
+        let mut walls = layout;
+        let maze = crate::layout::passages::decode(grid, &walls.passages).unwrap();
+        into_walls(&mut walls, &maze, &WallOptions::default(), true).unwrap();
+        let image = render(&walls, &RenderOptions::default());
+        let [fx, fy] = walls.floor.size;
+        let scale = MAX_SIDE / fx;
+        assert_eq!(image.width, MAX_SIDE as u32);
+        let y = ((fy / 2.0 - (walls.grid.origin[1] + 8.0)) * scale) as u32;
+        let dark = (0..image.width)
+            .filter(|&x| image.pixel(x, y) == DARK)
+            .count();
+        let closed = (0..=4096)
+            .filter(|&x| is_closed(&maze, &[], WallAxis::AlongY, x, 8))
+            .count();
+        assert!(
+            dark >= closed && closed > 1000,
+            "{dark} dark pixels, {closed} walls"
+        );
     }
 
     #[test]
     fn strips_join_without_seams() {
-        for (size, degrees) in [(9, 0.0), (5, 30.0)] {
-            let layout = course(size, Algorithm::Dfs, degrees);
+        let lines =
+            [(9, 0.0), (5, 30.0)].map(|(size, degrees)| course(size, Algorithm::Dfs, degrees));
+        let mut walls = wall_layout(6, 5, 2, 30.0, "start");
+        walls.end.region = vec![walls.end.cell, [3, 2], [3, 3]];
+        for layout in lines.into_iter().chain([walls]) {
+            let degrees = layout.grid.rotation.to_degrees();
             let options = RenderOptions { solution: true };
             let whole = decode(&encode(&layout, &options, usize::MAX));
             for strip_rows in [1, 7] {

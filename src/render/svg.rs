@@ -1,10 +1,11 @@
 //! The floor as a top-down camera sees it: grey floor with a metre grid, pure green
-//! lines, pure blue start, pure red end, and optionally the solution path.
+//! lines (a wall maze: near-black walls over a light red goal region), pure blue start,
+//! pure red end, and optionally the solution path.
 //!
 //! Written while it is drawn, through a buffer, never held whole: the lines are one
-//! `<rect>` per run ([`Run`]) in a group placed in the maze frame
-//! (`translate(origin) rotate(rotation)`), so each is an axis-aligned rectangle with four
-//! short numbers, at any rotation.
+//! `<rect>` per run ([`Run`]), the walls one per wall run ([`WallRun`]), in a group placed
+//! in the maze frame (`translate(origin) rotate(rotation)`), so each is an axis-aligned
+//! rectangle with four short numbers, at any rotation.
 
 use std::fmt;
 use std::io::{self, BufWriter, Write};
@@ -13,11 +14,13 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 
 use super::figure::{
-    END, FLOOR, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
-    ScaleBar, for_each_run,
+    END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
+    ScaleBar, WALL, for_each_run,
 };
+use super::walls::{WallRun, Walls, for_each_wall_run};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
+use crate::maze::Cell;
 
 /// Pixels per metre of the picture's nominal size.
 const SCALE: f64 = 40.0;
@@ -140,32 +143,16 @@ fn write_svg(
         num(oy),
         num(layout.grid.rotation.to_degrees())
     )?;
-    writeln!(out, r#"<g fill="{LINE}">"#)?;
-    for_each_run(
-        &view.maze,
-        |run: Run| {
-            let [x0, y0, x1, y1] = run.rect(c, w);
-            writeln!(
-                out,
-                r#"<rect x="{}" y="{}" width="{}" height="{}"/>"#,
-                num(x0),
-                num(y0),
-                num(x1 - x0),
-                num(y1 - y0)
-            )
-        },
-        |_| progress.inc(1),
-    )?;
-    out.write_all(b"</g>\n")?;
-    for (cell, colour) in [(view.start, START), (view.end, END)] {
-        writeln!(
-            out,
-            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{colour}"/>"#,
-            num(f64::from(cell.x) * c - c / 2.0),
-            num(f64::from(cell.y) * c - c / 2.0),
-            num(c),
-            num(c)
-        )?;
+    match &view.walls {
+        None => {
+            line_runs(out, view, c, w, progress)?;
+            markers(out, view, c)?;
+        }
+        Some(walls) => {
+            goal(out, &walls.goal, c)?;
+            markers(out, view, c)?;
+            wall_runs(out, view, walls, c, progress)?;
+        }
     }
     if !view.solution.is_empty() {
         out.write_all(b"<polyline points=\"")?;
@@ -188,6 +175,87 @@ fn write_svg(
     out.write_all(b"</g>\n")?;
     scale_bar(out, &ScaleBar::for_floor(layout.floor.size))?;
     out.write_all(b"</g>\n</svg>\n")
+}
+
+/// The green line runs, one `<rect>` each, advancing `progress` a maze row at a time.
+fn line_runs(
+    out: &mut impl Write,
+    view: &MazeView,
+    c: f64,
+    w: f64,
+    progress: &ProgressBar,
+) -> io::Result<()> {
+    writeln!(out, r#"<g fill="{LINE}">"#)?;
+    for_each_run(
+        &view.maze,
+        |run: Run| rect(out, run.rect(c, w)),
+        |_| progress.inc(1),
+    )?;
+    out.write_all(b"</g>\n")
+}
+
+/// The wall runs, one `<rect>` each, advancing `progress` a maze row at a time.
+fn wall_runs(
+    out: &mut impl Write,
+    view: &MazeView,
+    walls: &Walls,
+    c: f64,
+    progress: &ProgressBar,
+) -> io::Result<()> {
+    writeln!(out, r#"<g fill="{WALL}">"#)?;
+    for_each_wall_run(
+        &view.maze,
+        &walls.open,
+        |run: WallRun| rect(out, run.rect(c, walls.thickness)),
+        |_| progress.inc(1),
+    )?;
+    out.write_all(b"</g>\n")
+}
+
+/// The goal region's tinted cells, if any.
+fn goal(out: &mut impl Write, cells: &[Cell], c: f64) -> io::Result<()> {
+    if cells.is_empty() {
+        return Ok(());
+    }
+    writeln!(out, r#"<g fill="{GOAL}">"#)?;
+    for cell in cells {
+        rect(out, cell_rect(*cell, c))?;
+    }
+    out.write_all(b"</g>\n")
+}
+
+/// The start and end markers: whole cells in pure blue and pure red.
+fn markers(out: &mut impl Write, view: &MazeView, c: f64) -> io::Result<()> {
+    for (cell, colour) in [(view.start, START), (view.end, END)] {
+        let [x0, y0, ..] = cell_rect(cell, c);
+        writeln!(
+            out,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{colour}"/>"#,
+            num(x0),
+            num(y0),
+            num(c),
+            num(c)
+        )?;
+    }
+    Ok(())
+}
+
+/// The square of `cell` in the maze frame, `[x0, y0, x1, y1]`, for cells of side `c`.
+fn cell_rect(cell: Cell, c: f64) -> [f64; 4] {
+    let (x, y) = (f64::from(cell.x) * c, f64::from(cell.y) * c);
+    [x - c / 2.0, y - c / 2.0, x + c / 2.0, y + c / 2.0]
+}
+
+/// A `<rect>` filled as its group says.
+fn rect(out: &mut impl Write, [x0, y0, x1, y1]: [f64; 4]) -> io::Result<()> {
+    writeln!(
+        out,
+        r#"<rect x="{}" y="{}" width="{}" height="{}"/>"#,
+        num(x0),
+        num(y0),
+        num(x1 - x0),
+        num(y1 - y0)
+    )
 }
 
 /// The scale bar: a rectangle and one path of round-capped label strokes.
@@ -242,9 +310,13 @@ fn metre_grid(out: &mut impl Write, size: [f64; 2]) -> io::Result<()> {
 mod tests {
     use super::*;
     use crate::generate::Algorithm;
+    use crate::layout::Side;
     use crate::layout::{GenerateSpec, build_layout};
+    use crate::maze::Direction;
     use crate::maze::Grid;
+    use crate::render::figure::Colour;
     use crate::render::figure::tests::count_runs;
+    use crate::render::walls::tests::{count_wall_runs, wall_layout};
 
     fn svg_of(layout: &Layout, options: &RenderOptions) -> String {
         let mut bytes = Vec::new();
@@ -300,6 +372,118 @@ mod tests {
         // 11 metre lines each way on the 10 m floor.
         assert_eq!(svg.matches("<line ").count(), 22);
         assert!(!svg_of(&layout, &RenderOptions::default()).contains("<polyline"));
+    }
+
+    /// The `<rect>`s of the group filled with `colour`, as `[x0, y0, x1, y1]`.
+    fn rects(svg: &str, colour: Colour) -> Vec<[f64; 4]> {
+        let group = svg
+            .split(&format!("<g fill=\"{colour}\">"))
+            .nth(1)
+            .unwrap()
+            .split("</g>")
+            .next()
+            .unwrap();
+        group
+            .lines()
+            .filter(|l| l.starts_with("<rect"))
+            .map(|l| {
+                let value = |name: &str| -> f64 {
+                    l.split(&format!(" {name}=\""))
+                        .nth(1)
+                        .unwrap()
+                        .split('"')
+                        .next()
+                        .unwrap()
+                        .parse()
+                        .unwrap()
+                };
+                let (x, y) = (value("x"), value("y"));
+                [x, y, x + value("width"), y + value("height")]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_wall_maze_draws_one_rect_per_wall_run_and_none_across_a_passage() {
+        let mut layout = wall_layout(8, 6, 5, 30.0, "start");
+        layout.end.region = vec![layout.end.cell, [4, 3], [4, 4]];
+        let svg = svg_of(&layout, &RenderOptions { solution: true });
+        assert!(svg.contains(r#" rotate(30)">"#), "the maze frame turns");
+        assert!(
+            !svg.contains(&format!("<g fill=\"{LINE}\">")),
+            "no green lines"
+        );
+        let view = MazeView::of(&layout, &RenderOptions::default()).unwrap();
+        let openings = &layout.wall.as_ref().unwrap().openings;
+        let walls = rects(&svg, WALL);
+        assert_eq!(walls.len(), count_wall_runs(&view.maze, openings));
+        // every wall is 5 cm thick and whole cells long, on a lattice line
+        for [x0, y0, x1, y1] in &walls {
+            let (w, h) = (x1 - x0, y1 - y0);
+            let (thin, long, at) = if w < h { (w, h, x0) } else { (h, w, y0) };
+            assert!((thin - 0.05).abs() < 1e-9, "{w} x {h}");
+            assert!(
+                (long - long.round()).abs() < 1e-9 && long >= 1.0,
+                "{w} x {h}"
+            );
+            assert!((at + 0.525 - (at + 0.525).round()).abs() < 1e-9, "{at}");
+        }
+        // no wall covers the middle of an open side: a passage or the opening
+        let grid = view.maze.grid();
+        let mut gaps: Vec<(f64, f64)> = view
+            .maze
+            .passages()
+            .map(|(cell, dir)| {
+                let (x, y) = (f64::from(cell.x), f64::from(cell.y));
+                match dir {
+                    Direction::East => (x + 0.5, y),
+                    _ => (x, y + 0.5),
+                }
+            })
+            .collect();
+        assert_eq!(gaps.len(), view.maze.passage_count());
+        assert_eq!(openings[0].side, Side::South);
+        gaps.push((0.0, -0.5));
+        for (x, y) in gaps {
+            let across = walls
+                .iter()
+                .filter(|[x0, y0, x1, y1]| *x0 < x && x < *x1 && *y0 < y && y < *y1)
+                .count();
+            assert_eq!(across, 0, "a wall across the open side at ({x}, {y})");
+        }
+        // and every closed side's middle is under a wall
+        let mut covered = 0;
+        for index in 0..grid.cell_count() {
+            let cell = grid.cell(index);
+            for (dir, (dx, dy)) in [
+                (Direction::East, (0.5, 0.0)),
+                (Direction::North, (0.0, 0.5)),
+            ] {
+                if grid.step(cell, dir).is_none() || view.maze.is_open(index, dir) {
+                    continue;
+                }
+                let (x, y) = (f64::from(cell.x) + dx, f64::from(cell.y) + dy);
+                assert!(
+                    walls
+                        .iter()
+                        .any(|[x0, y0, x1, y1]| *x0 < x && x < *x1 && *y0 < y && y < *y1),
+                    "no wall at ({x}, {y})"
+                );
+                covered += 1;
+            }
+        }
+        assert!(covered > 10, "{covered}");
+        // the goal tint: the region but the end, under the markers and the walls
+        assert_eq!(
+            rects(&svg, GOAL),
+            [[3.5, 2.5, 4.5, 3.5], [3.5, 3.5, 4.5, 4.5]]
+        );
+        let order: Vec<usize> = [GOAL.to_string(), START.to_string(), WALL.to_string()]
+            .iter()
+            .map(|colour| svg.find(&format!("fill=\"{colour}\"")).unwrap())
+            .collect();
+        assert!(order.is_sorted(), "{order:?}");
+        assert_eq!(svg.matches("<polyline").count(), 1);
     }
 
     #[test]

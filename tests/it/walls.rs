@@ -207,14 +207,31 @@ fn walls_cli_generate_validate_render_and_apply() {
         .clone();
     let text = String::from_utf8(text).unwrap();
     assert!(text.starts_with("+---+"), "{text}");
-    bin()
+    let svg = bin()
         .args(["render", "--format", "svg"])
         .arg(&path)
         .assert()
-        .code(2)
-        .stderr(predicates::str::contains(
-            "a wall maze renders as ASCII only so far",
-        ));
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let svg = String::from_utf8(svg).unwrap();
+    assert!(svg.contains(WALL_GROUP), "{svg}");
+    assert!(!svg.contains("#00ff00"), "no green lines in a wall maze");
+    for name in ["walls.svg", "walls.png"] {
+        let out = dir.path().join(name);
+        bin()
+            .arg("render")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        assert!(fs::metadata(&out).unwrap().len() > 0, "{name}");
+    }
+    let png = png_pixels(&dir.path().join("walls.png"));
+    assert_eq!((png.width, png.height), (800, 800));
+    assert!(png.count(WALL) > 1000, "dark walls");
     // wall options without walls are refused
     bin()
         .args(["generate", "--wall-height", "0.3"])
@@ -343,6 +360,87 @@ fn micromouse_preset_has_the_right_size_and_a_goal_with_one_entrance() {
         .assert()
         .code(2)
         .stderr(predicates::str::contains("cannot be used with"));
+}
+
+/// The group of a wall maze's walls in its SVG.
+const WALL_GROUP: &str = r##"<g fill="#202020">"##;
+/// The colours of the walls and of the goal region in a picture.
+const WALL: [u8; 3] = [0x20, 0x20, 0x20];
+const GOAL: [u8; 3] = [0xe6, 0xa0, 0xa0];
+
+/// A decoded RGB PNG.
+struct Pixels {
+    width: u32,
+    height: u32,
+    rgb: Vec<u8>,
+}
+
+impl Pixels {
+    /// Pixels of exactly `colour`.
+    fn count(&self, colour: [u8; 3]) -> usize {
+        self.rgb.chunks_exact(3).filter(|p| *p == colour).count()
+    }
+}
+
+fn png_pixels(path: &std::path::Path) -> Pixels {
+    let file = std::io::BufReader::new(fs::File::open(path).unwrap());
+    let mut reader = png::Decoder::new(file).read_info().unwrap();
+    let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut rgb).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    Pixels {
+        width: info.width,
+        height: info.height,
+        rgb,
+    }
+}
+
+#[test]
+fn micromouse_and_imported_mazes_render_as_svg_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |name: &str| dir.path().join(name);
+    bin()
+        .args(["generate", "--preset", "micromouse", "--seed", "5", "-o"])
+        .arg(p("m.json"))
+        .assert()
+        .success();
+    // a gap in the north wall, the goal the two G cells (the end the one nearer S)
+    let drawing = "o---o---o   o\n| S     |   |\no---o   o   o\n|     G   G |\no---o---o---o\n";
+    fs::write(p("i.txt"), drawing).unwrap();
+    bin()
+        .arg("import")
+        .arg(p("i.txt"))
+        .arg("-o")
+        .arg(p("i.json"))
+        .assert()
+        .success();
+    let imported = vrep_maze::layout::read_layout(&p("i.json")).unwrap();
+    assert_eq!(imported.wall.as_ref().unwrap().openings.len(), 1);
+    for (name, goal_cells, walls) in [("m", 3, 1000), ("i", 1, 100)] {
+        for ext in ["svg", "png"] {
+            bin()
+                .args(["render", "--solution"])
+                .arg(p(&format!("{name}.json")))
+                .arg("-o")
+                .arg(p(&format!("{name}.{ext}")))
+                .assert()
+                .success();
+        }
+        let svg = fs::read_to_string(p(&format!("{name}.svg"))).unwrap();
+        assert!(svg.contains(WALL_GROUP), "{name}");
+        assert!(svg.contains("<polyline"), "{name}: the solution");
+        let tinted = svg.split(r##"<g fill="#e6a0a0">"##).nth(1).map_or(0, |g| {
+            g.split("</g>").next().unwrap().matches("<rect").count()
+        });
+        assert_eq!(tinted, goal_cells, "{name}: the goal region but the end");
+        let png = png_pixels(&p(&format!("{name}.png")));
+        assert!(png.count(WALL) > walls, "{name}: dark walls");
+        assert!(
+            png.count([0, 0, 255]) > 0 && png.count([255, 0, 0]) > 0,
+            "{name}"
+        );
+        assert_eq!(png.count(GOAL) > 0, goal_cells > 0, "{name}");
+    }
 }
 
 #[test]
