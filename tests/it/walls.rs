@@ -299,6 +299,92 @@ fn walls_cli_apply_into_serve_then_a_line_maze_replaces_them() {
 }
 
 #[test]
+fn posts_cli_generate_validate_and_refuse_posts_without_walls() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("posts.json");
+    bin()
+        .args([
+            "generate", "--style", "walls", "--posts", "--seed", "42", "-o",
+        ])
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("100 walls and 100 posts"));
+    let layout = vrep_maze::layout::read_layout(&path).unwrap();
+    assert_eq!(layout.post.as_ref().map(|p| p.size), Some(0.05));
+    assert_eq!(layout.wall.as_ref().map(|w| w.length), Some(0.95));
+    assert_eq!(
+        layout.posts.len(),
+        10 * 10,
+        "every corner of the 9x9 lattice"
+    );
+    bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicates::str::contains("100 walls and 100 posts"));
+    // the same maze without posts: the same sides closed, one wall each
+    let plain = dir.path().join("plain.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&plain)
+        .assert()
+        .success();
+    let plain = vrep_maze::layout::read_layout(&plain).unwrap();
+    assert_eq!(plain.walls.len(), layout.walls.len());
+    assert!(plain.post.is_none() && plain.posts.is_empty());
+    bin()
+        .args(["generate", "--posts"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--posts shapes walls: add --style walls",
+        ));
+    bin()
+        .args(["generate", "--style", "walls", "--post-size", "0.1"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--post-size shapes posts: add --posts",
+        ));
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--posts",
+            "--wall-length",
+            "1",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--wall-length 1 m is longer than the 0.95 m between two posts",
+        ));
+    // a competition micromouse maze: 289 posts, walls of 0.168 m between them
+    let out = bin()
+        .args([
+            "generate",
+            "--preset",
+            "micromouse",
+            "--posts",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let mouse = parse_layout(&String::from_utf8(out).unwrap(), "stdout").unwrap();
+    assert_eq!(mouse.posts.len(), 289);
+    assert_eq!(mouse.post.as_ref().map(|p| p.size), Some(0.012));
+    assert_eq!(mouse.wall.as_ref().map(|w| w.length), Some(0.168));
+    assert!(validate(&mouse).is_ok());
+}
+
+#[test]
 fn micromouse_preset_has_the_right_size_and_a_goal_with_one_entrance() {
     for (preset, side, cell) in [("micromouse", 16u32, 0.18), ("micromouse-half", 32, 0.09)] {
         let out = bin()
