@@ -38,6 +38,10 @@ pub struct ConnectArgs {
     /// every wall is a copy).
     #[arg(long, default_value = "Wall")]
     pub wall: String,
+    /// The post template of wall mazes with posts (a cuboid as thick as the walls and as
+    /// high; it stays where it is, every post is a copy).
+    #[arg(long, default_value = "Post")]
+    pub post: String,
     /// The start marker (a 1 m x 1 m blue plane).
     #[arg(long, default_value = "Start")]
     pub start: String,
@@ -64,6 +68,7 @@ impl ConnectArgs {
             start: self.start.clone(),
             end: self.end.clone(),
             wall: self.wall.clone(),
+            post: self.post.clone(),
         }
     }
 
@@ -121,7 +126,8 @@ pub struct ApplyArgs {
     #[arg(long)]
     pub dry_run: bool,
     /// ZeroMQ only: create missing scene objects first (Floor, the Maze dummy, the Line,
-    /// Start and End planes), so a brand-new scene needs no manual set-up.
+    /// Start and End planes; for a wall maze the Wall cuboid instead of Line, and a Post
+    /// cuboid if it has posts), so a brand-new scene needs no manual set-up.
     #[arg(long)]
     pub create_missing: bool,
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
@@ -159,8 +165,14 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
             );
         };
         let created = match &layout.wall {
-            Some(wall) => authoring
-                .create_missing_walls(&opts.names, [wall.length, wall.thickness, wall.height]),
+            Some(wall) => authoring.create_missing_walls(
+                &opts.names,
+                [wall.length, wall.thickness, wall.height],
+                layout
+                    .post
+                    .as_ref()
+                    .map(|post| [post.size, post.size, wall.height]),
+            ),
             None => authoring.create_missing(&opts.names),
         }
         .context("creating the missing scene objects")?;
@@ -168,10 +180,13 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
             println!("created {}", created.join(", "));
         }
     }
-    let what = drawing.style.name();
+    let what = match (drawing.style, drawing.posts.is_empty()) {
+        (crate::layout::Style::Walls, false) => "walls and posts",
+        (style, _) => style.name(),
+    };
     let bar = bars.bar(
         "reading the scene",
-        drawing.lines.len() as u64,
+        drawing.copies() as u64,
         Unit::Items(what),
     );
     let mut progress = |stage: Stage| match stage {
@@ -222,9 +237,10 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     }
     println!("{report}");
     if !report.dry_run {
-        let noun = match drawing.style {
-            crate::layout::Style::Lines => "line",
-            crate::layout::Style::Walls => "wall",
+        let noun = match (drawing.style, drawing.posts.is_empty()) {
+            (crate::layout::Style::Lines, _) => "line",
+            (crate::layout::Style::Walls, true) => "wall",
+            (crate::layout::Style::Walls, false) => "wall, post",
         };
         println!("verified: every {noun}, start and end in place");
     }

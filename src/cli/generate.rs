@@ -26,7 +26,7 @@ use crate::rng::os_seed;
 /// Options of `generate`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1\n  vrep-maze generate --style walls --openings start,end --end ne --seed 42 -o walls.json\n  vrep-maze generate --preset micromouse --seed 3 -o mouse.json"
+    after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1\n  vrep-maze generate --style walls --openings start,end --end ne --seed 42 -o walls.json\n  vrep-maze generate --style walls --posts --seed 42 -o posts.json\n  vrep-maze generate --preset micromouse --posts --seed 3 -o mouse.json"
 )]
 pub struct GenerateArgs {
     /// Seed of the random stream; without it one is drawn from the OS and recorded in the
@@ -118,9 +118,19 @@ pub struct StyleArgs {
     /// end or start,end (the cell must be on the edge) [default: none].
     #[arg(long, value_parser = parse_openings)]
     pub openings: Option<Openings>,
+    /// Walls only (with --style walls or a --preset): a Post cuboid at every lattice corner,
+    /// as high as the walls, so their joints are closed; the walls then fill the space
+    /// between two posts (default length: cell size - post size).
+    #[arg(long)]
+    pub posts: bool,
+    /// With --posts: side of the square Post, metres, at least the wall thickness and less
+    /// than the cell size [default: the wall thickness].
+    #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
+    pub post_size: Option<f64>,
     /// A micromouse maze: micromouse (16x16 cells of 0.18 m, walls 0.012 m thick, 0.05 m
     /// high) or micromouse-half (32x32 of 0.09 m); start in the south-west corner opening
-    /// one way, goal the 2x2 centre with a single entrance.
+    /// one way, goal the 2x2 centre with a single entrance. With --posts, posts as thick as
+    /// the walls and walls between them (0.168 m in the classic), as in competition mazes.
     #[arg(long, value_parser = parse_preset, conflicts_with_all = [
         "size", "cell_size", "start", "end", "braid", "line_length", "line_width",
         "style", "wall_length", "wall_thickness", "wall_height", "openings",
@@ -146,15 +156,17 @@ fn parse_preset(s: &str) -> Result<Preset, String> {
 }
 
 impl StyleArgs {
-    /// The wall options asked for, `None` for lines; wall options without `--style walls`
-    /// are refused.
-    fn walls(&self) -> Result<Option<WallOptions>> {
+    /// The wall options asked for on cells of `cell_size`, `None` for lines; wall options
+    /// without `--style walls` are refused.
+    fn walls(&self, cell_size: f64) -> Result<Option<WallOptions>> {
         if self.style == Style::Lines {
             let given = [
                 ("--wall-length", self.wall_length.is_some()),
                 ("--wall-thickness", self.wall_thickness.is_some()),
                 ("--wall-height", self.wall_height.is_some()),
                 ("--openings", self.openings.is_some()),
+                ("--posts", self.posts),
+                ("--post-size", self.post_size.is_some()),
             ];
             if let Some((name, _)) = given.iter().find(|(_, g)| *g) {
                 return Err(usage(format!(
@@ -164,12 +176,30 @@ impl StyleArgs {
             return Ok(None);
         }
         let d = WallOptions::default();
+        let thickness = self.wall_thickness.unwrap_or(d.thickness);
+        let posts = self.posts(thickness)?;
+        let length = match posts {
+            Some(size) => walls::length_between_posts(cell_size, size),
+            None => d.length,
+        };
         Ok(Some(WallOptions {
-            length: self.wall_length.unwrap_or(d.length),
-            thickness: self.wall_thickness.unwrap_or(d.thickness),
+            length: self.wall_length.unwrap_or(length),
+            thickness,
             height: self.wall_height.unwrap_or(d.height),
             openings: self.openings.unwrap_or(d.openings),
+            posts,
         }))
+    }
+
+    /// The side of the posts asked for (`--post-size`, else `thickness`), `None` without
+    /// `--posts`; a size without `--posts` is refused.
+    fn posts(&self, thickness: f64) -> Result<Option<f64>> {
+        if !self.posts && self.post_size.is_some() {
+            return Err(usage(
+                "--post-size shapes posts: add --posts (the maze has no posts)",
+            ));
+        }
+        Ok(self.posts.then(|| self.post_size.unwrap_or(thickness)))
     }
 }
 
@@ -188,9 +218,10 @@ impl GenerateArgs {
 fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
     if let Some(preset) = style.preset {
         let spec = preset.spec(spec.clone(), origin);
-        return micromouse::plan(preset, &spec).map_err(usage);
+        let posts = style.posts(preset.walls(None).thickness)?;
+        return micromouse::plan(preset, &spec, posts).map_err(usage);
     }
-    let walls = style.walls()?;
+    let walls = style.walls(spec.geometry.cell_size)?;
     let planned = plan_layout(spec).map_err(usage)?;
     match walls {
         Some(options) => {
@@ -292,16 +323,9 @@ pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     }
     if let Some(path) = &args.output {
         eprintln!(
-            "wrote {}: {}x{} {} seed {}, {}, solution {} cells",
+            "wrote {}: {}, solution {} cells",
             path.display(),
-            layout.grid.columns,
-            layout.grid.rows,
-            layout.generator.algorithm,
-            seed,
-            match layout.style {
-                Style::Lines => format!("{count} segments"),
-                Style::Walls => format!("{} walls", layout.walls.len()),
-            },
+            super::validate::describe(layout, count),
             layout.metrics.solution_cells
         );
     }

@@ -35,7 +35,8 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
     pub protocol: u8,
     /// Scene to start from: `course` (Floor, Maze, Line, Start, End), `course-walls` (the
-    /// course and a Wall cuboid), `empty`, or a JSON scene file (a `--dump` output).
+    /// course, a Wall cuboid and a Post cuboid), `empty`, or a JSON scene file (a `--dump`
+    /// output).
     #[arg(long, default_value = "course")]
     pub scene: String,
     /// Main-loop passes per second while the simulation is stopped (CoppeliaSim's default is

@@ -87,7 +87,7 @@ pub fn read_checking(
 }
 
 /// One line naming the maze and what it draws: its number of segments (counted as they
-/// streamed past) or of walls.
+/// streamed past) or of walls (and posts).
 pub fn describe(layout: &Layout, segments: usize) -> String {
     format!(
         "{}x{} {} seed {}, {}",
@@ -97,7 +97,12 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
         layout.generator.seed,
         match layout.style {
             Style::Lines => format!("{segments} segments"),
-            Style::Walls => format!("{} walls", layout.walls.len()),
+            Style::Walls if layout.posts.is_empty() => format!("{} walls", layout.walls.len()),
+            Style::Walls => format!(
+                "{} walls and {} posts",
+                layout.walls.len(),
+                layout.posts.len()
+            ),
         }
     )
 }

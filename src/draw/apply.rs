@@ -1,6 +1,7 @@
 //! Draw a [`Drawing`]: remove the surplus, reuse earlier copies, paste only the missing ones
 //! (batched doubling), place each round's copies before the next, in requests of bounded
-//! server time, then verify.
+//! server time, then verify. A wall maze with posts is drawn in two parts, walls then posts,
+//! each from its own template in the same way.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -10,7 +11,7 @@ use std::time::{Duration, Instant};
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
+    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose,
     resolve_handles, verify,
 };
 
@@ -56,9 +57,9 @@ pub enum Stage {
     },
     /// Lines placed so far (parent and pose sent, or found in place) / in all.
     Placing {
-        /// Lines placed so far.
+        /// Lines (or walls and posts) placed so far.
         done: usize,
-        /// Lines in the drawing.
+        /// Lines (or walls and posts) in the drawing.
         total: usize,
     },
     /// Reading back.
@@ -72,6 +73,8 @@ pub struct ApplyReport {
     pub style: super::Style,
     /// Lines drawn (template included), or walls.
     pub lines: usize,
+    /// Posts drawn (a wall maze with posts), else 0.
+    pub posts: usize,
     /// Earlier copies reused.
     pub reused: usize,
     /// Copies pasted.
@@ -95,9 +98,14 @@ pub struct ApplyReport {
 impl std::fmt::Display for ApplyReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let verb = if self.dry_run { "would draw" } else { "drew" };
+        let posts = if self.posts > 0 {
+            format!(" and {} posts", self.posts)
+        } else {
+            String::new()
+        };
         write!(
             f,
-            "{verb} {} {}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
+            "{verb} {} {}{posts}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
             self.lines,
             self.style.name(),
             self.reused,
@@ -171,12 +179,15 @@ fn apply_claimed(
     claim: &Claim,
 ) -> Result<ApplyReport, DrawError> {
     let style = drawing.style;
-    let survey = scene.survey(&opts.names.survey(style))?;
-    let h = resolve_handles(&opts.names, style, &survey)?;
+    let names = &opts.names;
+    let posts = !drawing.posts.is_empty();
+    let survey = scene.survey(&names.survey(style))?;
+    let h = resolve_handles(names, style, &survey, posts)?;
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
         style,
         lines: drawing.lines.len(),
+        posts: drawing.posts.len(),
         dry_run: opts.dry_run,
         ..Default::default()
     };
@@ -189,19 +200,36 @@ fn apply_claimed(
             report.stopped_simulation = true;
         }
     }
-    let others = opts.names.others(style);
-    let existing = maze_lines(&survey.objects, &h, opts.names.template(style), &others);
+    let others = names.others(style);
+    let existing = maze_lines(&survey.objects, &h, names.template(style), &others);
     let copies_needed = drawing
         .lines
         .len()
         .saturating_sub(usize::from(drawing.template_drawn()));
-    let mut p = plan::plan(&existing, copies_needed);
-    // an earlier maze of the other style goes: a wall is no line, nor a line a wall
-    p.remove
-        .extend(foreign_copies(&survey.objects, &h, &others));
-    report.reused = p.reuse.len();
-    report.removed = p.remove.len();
-    report.pasted = p.paste;
+    let mut parts = vec![Part {
+        template: h.line,
+        template_drawn: drawing.template_drawn(),
+        poses: &drawing.lines,
+        plan: plan::plan(&existing, copies_needed),
+    }];
+    if let Some(template) = h.post.filter(|_| posts) {
+        let existing = foreign_copies(&survey.objects, &h, &[&names.post]);
+        parts.push(Part {
+            template,
+            template_drawn: false,
+            poses: &drawing.posts,
+            plan: plan::plan(&existing, drawing.posts.len()),
+        });
+    }
+    // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
+    // its posts unless this maze has posts too
+    let foreign = foreign_copies(&survey.objects, &h, &names.foreign(style, posts));
+    for part in &parts {
+        report.reused += part.plan.reuse.len();
+        report.removed += part.plan.remove.len();
+        report.pasted += part.plan.paste;
+    }
+    report.removed += foreign.len();
     if !opts.dry_run {
         let mut run = Drawer {
             scene,
@@ -214,9 +242,21 @@ fn apply_claimed(
             objects_in_scene: survey.objects.len(),
             placed: 0,
         };
-        run.draw(&survey.objects, p)?;
+        run.draw(&survey.objects, &parts, &foreign)?;
     }
     Ok(report)
+}
+
+/// One template's copies in a drawing: the style's (lines or walls), or the posts.
+struct Part<'a> {
+    /// The template copied.
+    template: i32,
+    /// The template itself is the first copy (lines), else every copy is pasted.
+    template_drawn: bool,
+    /// Where the copies go.
+    poses: &'a [Pose],
+    /// The earlier copies reused and removed, and how many to paste.
+    plan: plan::Plan,
 }
 
 /// One apply's drawing state: what is sent, in requests of bounded server time.
@@ -235,91 +275,118 @@ struct Drawer<'a, 'p> {
 }
 
 impl Drawer<'_, '_> {
-    /// Removes the surplus, places the template, reused copies and markers, then pastes the
-    /// missing copies round by round, placing each round's copies before pasting the next
-    /// (so few copies are ever parentless, which the simulator pays for per object), and
-    /// verifies.
-    fn draw(&mut self, objects: &[ObjectInfo], p: plan::Plan) -> Result<(), DrawError> {
+    /// Removes the surplus (each part's and the `foreign` copies), places each part's
+    /// template, reused copies and the markers, then pastes each part's missing copies round
+    /// by round, placing each round's copies before pasting the next (so few copies are
+    /// ever parentless, which the simulator pays for per object), and verifies.
+    fn draw(
+        &mut self,
+        objects: &[ObjectInfo],
+        parts: &[Part<'_>],
+        foreign: &[i32],
+    ) -> Result<(), DrawError> {
         let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
         let known = |handle: i32| by_handle.get(&handle).copied();
         let floor = known(self.h.floor).map(world_frame).unwrap_or_default();
         let (h, drawing) = (self.h, self.drawing);
         // the surplus goes first: fewer objects make every later copy cheaper
-        let removals: Vec<Edit> = p.remove.iter().map(|&r| Edit::Remove(r)).collect();
+        let removals: Vec<Edit> = parts
+            .iter()
+            .flat_map(|part| &part.plan.remove)
+            .chain(foreign)
+            .map(|&r| Edit::Remove(r))
+            .collect();
         self.send(&removals, 0)?;
-        self.objects_in_scene = self.objects_in_scene.saturating_sub(p.remove.len());
-        // the template, reused copies and markers, where they differ, go with the first
+        self.objects_in_scene = self.objects_in_scene.saturating_sub(removals.len());
+        // the templates, reused copies and markers, where they differ, go with the first
         // round of copies (or alone, if nothing is pasted)
         let mut edits: Vec<Edit> = Vec::new();
-        // the objects drawn, `lines[i]` for `drawing.lines[i]`: a line maze starts with the
-        // template itself, a wall maze with copies only
-        let template_drawn = drawing.template_drawn();
-        let mut lines = if template_drawn { vec![h.line] } else { vec![] };
-        lines.extend(&p.reuse);
+        // the objects drawn per part, `drawn[p][i]` for `parts[p].poses[i]`: a line maze
+        // starts with the template itself, walls and posts with copies only
+        let mut drawn: Vec<Vec<i32>> = Vec::with_capacity(parts.len());
         let mut placed_now = 0;
-        for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
-            let parent = (i > 0 || !template_drawn).then_some(h.parent);
-            self.place(&mut edits, known(handle), &floor, handle, want, parent);
-            placed_now += 1;
-        }
-        if drawing.lines.is_empty() && template_drawn {
-            // no segment (a 1-cell maze): hide the template under Start rather than leave it lying
-            let hidden = super::Pose {
-                z: (drawing.start.z - 0.001).max(0.0),
-                yaw: drawing.start.yaw,
-                ..drawing.start
+        for part in parts {
+            let mut copies = if part.template_drawn {
+                vec![part.template]
+            } else {
+                vec![]
             };
-            self.place(&mut edits, known(h.line), &floor, h.line, &hidden, None);
+            copies.extend(&part.plan.reuse);
+            for (i, (&handle, want)) in copies.iter().zip(part.poses).enumerate() {
+                let parent = (i > 0 || !part.template_drawn).then_some(h.parent);
+                self.place(&mut edits, known(handle), &floor, handle, want, parent);
+                placed_now += 1;
+            }
+            if part.poses.is_empty() && part.template_drawn {
+                // no segment (a 1-cell maze): hide the template under Start rather than
+                // leave it lying
+                let hidden = Pose {
+                    z: (drawing.start.z - 0.001).max(0.0),
+                    yaw: drawing.start.yaw,
+                    ..drawing.start
+                };
+                let t = part.template;
+                self.place(&mut edits, known(t), &floor, t, &hidden, None);
+            }
+            drawn.push(copies);
         }
         for (handle, want) in [(h.start, &drawing.start), (h.end, &drawing.end)] {
             self.place(&mut edits, known(handle), &floor, handle, want, None);
         }
+        let to_paste: usize = parts.iter().map(|part| part.plan.paste).sum();
         let mut pasted = 0;
-        while pasted < p.paste {
-            self.checkpoint("while pasting the lines")?;
-            let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
-            // with nothing drawn yet (a wall maze), the first copy is the template's
-            let sources = if lines.is_empty() {
-                std::slice::from_ref(&h.line)
-            } else {
-                &lines[..]
-            };
-            let groups = paste_round(
-                sources,
-                (p.paste - pasted).min(budget),
-                self.opts.paste_blocks_per_round,
-            );
-            if groups.is_empty() {
-                break;
-            }
-            let carried = std::mem::take(&mut placed_now);
-            let mut new_lines = 0;
-            for new in self.scene.copy_paste(&groups)? {
-                for handle in new {
-                    if let Some(want) = drawing.lines.get(lines.len()) {
-                        self.place(&mut edits, None, &floor, handle, want, Some(h.parent));
-                        new_lines += 1;
-                    }
-                    lines.push(handle);
-                    pasted += 1;
+        let mut short = None;
+        for (part, copies) in parts.iter().zip(&mut drawn) {
+            let mut done = 0;
+            while done < part.plan.paste {
+                self.checkpoint("while pasting the lines")?;
+                let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
+                // with nothing drawn yet (walls, posts), the first copy is the template's
+                let sources = if copies.is_empty() {
+                    std::slice::from_ref(&part.template)
+                } else {
+                    &copies[..]
+                };
+                let groups = paste_round(
+                    sources,
+                    (part.plan.paste - done).min(budget),
+                    self.opts.paste_blocks_per_round,
+                );
+                if groups.is_empty() {
+                    break;
                 }
+                let carried = std::mem::take(&mut placed_now);
+                let mut new_lines = 0;
+                for new in self.scene.copy_paste(&groups)? {
+                    for handle in new {
+                        if let Some(want) = part.poses.get(copies.len()) {
+                            self.place(&mut edits, None, &floor, handle, want, Some(h.parent));
+                            new_lines += 1;
+                        }
+                        copies.push(handle);
+                        done += 1;
+                        pasted += 1;
+                    }
+                }
+                self.objects_in_scene += new_lines;
+                (self.progress)(Stage::Pasting {
+                    done: pasted,
+                    total: to_paste,
+                });
+                self.send(&std::mem::take(&mut edits), carried + new_lines)?;
             }
-            self.objects_in_scene += new_lines;
-            (self.progress)(Stage::Pasting {
-                done: pasted,
-                total: p.paste,
-            });
-            self.send(&std::mem::take(&mut edits), carried + new_lines)?;
+            if done < part.plan.paste {
+                short.get_or_insert((done, part.plan.paste));
+            }
+            copies.truncate(part.poses.len().max(usize::from(part.template_drawn)));
         }
         self.send(&edits, placed_now)?;
-        if pasted < p.paste {
+        if let Some((done, wanted)) = short {
             return Err(super::BackendError::Remote(format!(
-                "copy-paste produced {pasted} of {} copies",
-                p.paste
+                "copy-paste produced {done} of {wanted} copies"
             ))
             .into());
         }
-        lines.truncate(drawing.lines.len().max(usize::from(template_drawn)));
         (self.progress)(Stage::Verifying);
         self.claim.check(self.scene, "before verifying")?;
         let after = if self.claim.contended() {
@@ -328,11 +395,16 @@ impl Drawer<'_, '_> {
             self.scene.objects()?
         };
         self.claim.check(self.scene, "while verifying")?;
+        let drawn_of = |p: usize| {
+            let poses = parts.get(p).map_or(0, |part| part.poses.len());
+            drawn.get(p).map_or(&[][..], |d| &d[..poses.min(d.len())])
+        };
         let problems = verify::check(
             &after,
             h,
             &self.opts.names,
-            &lines[..drawing.lines.len().min(lines.len())],
+            drawn_of(0),
+            drawn_of(1),
             drawing,
         );
         if problems.is_empty() {
@@ -350,7 +422,7 @@ impl Drawer<'_, '_> {
         current: Option<&ObjectInfo>,
         floor: &crate::coppelia::frame::Frame,
         handle: i32,
-        want: &super::Pose,
+        want: &Pose,
         parent: Option<i32>,
     ) {
         let parent_ok = parent.is_none_or(|p| current.is_some_and(|o| o.parent == Some(p)));
@@ -398,8 +470,8 @@ impl Drawer<'_, '_> {
             sent += chunk.len();
             let done = self.placed + lines * sent / edits.len().max(1);
             (self.progress)(Stage::Placing {
-                done: done.min(self.drawing.lines.len()),
-                total: self.drawing.lines.len(),
+                done: done.min(self.drawing.copies()),
+                total: self.drawing.copies(),
             });
         }
         self.placed += lines;
@@ -416,7 +488,7 @@ impl Drawer<'_, '_> {
         {
             return Err(DrawError::Interrupted {
                 placed: self.placed,
-                total: self.drawing.lines.len(),
+                total: self.drawing.copies(),
             });
         }
         self.claim.check(self.scene, phase)

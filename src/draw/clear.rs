@@ -1,6 +1,6 @@
-//! Remove a drawn maze, lines or walls: every child of the maze dummy except the templates,
-//! and parentless copies of the templates left by an interrupted run. Templates stay where
-//! they are.
+//! Remove a drawn maze, lines or walls (and posts): every child of the maze dummy except the
+//! templates, and parentless copies of the templates left by an interrupted run. Templates
+//! stay where they are.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -70,7 +70,7 @@ fn clear_claimed(
         style = Style::Walls;
         survey = scene.survey(&names.survey(style))?;
     }
-    let h = resolve_handles(names, style, &survey)?;
+    let h = resolve_handles(names, style, &survey, false)?;
     let mut stopped_simulation = false;
     if survey.simulation_running {
         if !opts.stop_simulation {

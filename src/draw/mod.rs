@@ -2,9 +2,9 @@
 //!
 //! A backend ([`crate::legacy::LegacyBackend`], [`crate::zmq_api::ZmqBackend`]) implements
 //! [`Backend`]: a handful of scene operations, batched where the protocol allows. [`apply()`] draws a
-//! [`Drawing`] (reusing earlier copies of the `Line` template, pasting only the missing ones,
-//! removing the surplus), [`clear()`] removes a drawn maze and [`verify()`] compares the scene with
-//! a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
+//! [`Drawing`] (reusing earlier copies of the `Line` template, or of `Wall` and `Post`, pasting
+//! only the missing ones, removing the surplus), [`clear()`] removes a drawn maze and
+//! [`verify()`] compares the scene with a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
 //! paste) so they can be tested without a simulator.
 
 pub mod apply;
@@ -31,8 +31,9 @@ pub fn euler(p: &Pose) -> [f64; 3] {
 }
 
 /// What to draw: one pose per copy of the style's template (`Line`: the template itself is
-/// the first; `Wall`: copies only, the template stays where the scene has it), plus where
-/// `Start` and `End` go. All in the Floor frame. Made only from a valid layout
+/// the first; `Wall`: copies only, the template stays where the scene has it), one per copy
+/// of `Post` in a wall maze with posts (copies only, as walls), plus where `Start` and `End`
+/// go. All in the Floor frame. Made only from a valid layout
 /// (`Drawing::try_from(&layout)`), so its fields can be read but not assembled by hand.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -41,6 +42,8 @@ pub struct Drawing {
     pub style: Style,
     /// Poses of the copies, in the layout's order (`segments`, or `walls`).
     pub lines: Vec<Pose>,
+    /// Poses of the `Post` copies (`posts`): empty unless the maze has posts.
+    pub posts: Vec<Pose>,
     /// Pose of the start marker.
     pub start: Pose,
     /// Pose of the end marker.
@@ -62,6 +65,8 @@ pub struct ObjectNames {
     pub end: String,
     /// Wall template (`Wall`), the template of wall mazes.
     pub wall: String,
+    /// Post template (`Post`), standing at the lattice corners of wall mazes with posts.
+    pub post: String,
 }
 
 impl Drawing {
@@ -69,6 +74,11 @@ impl Drawing {
     /// stays where the scene has it and every wall is a copy.
     pub fn template_drawn(&self) -> bool {
         self.style == Style::Lines
+    }
+
+    /// Lines, or walls and posts: the objects placed, as progress counts them.
+    pub fn copies(&self) -> usize {
+        self.lines.len() + self.posts.len()
     }
 }
 
@@ -81,6 +91,7 @@ impl Default for ObjectNames {
             start: "Start".into(),
             end: "End".into(),
             wall: "Wall".into(),
+            post: "Post".into(),
         }
     }
 }
@@ -110,17 +121,28 @@ impl ObjectNames {
         ]
     }
 
-    /// The templates of the other styles: their copies in the maze are removed, never
-    /// reused (a wall is no line), and they themselves are never touched.
+    /// The templates other than `style`'s: the other style's, then the post template. Their
+    /// copies in the maze are never reused as the style's (a wall is no line, a post no
+    /// wall), and they themselves are never touched.
     pub fn others(&self, style: Style) -> Vec<&str> {
         match style {
-            Style::Lines => vec![&self.wall],
-            Style::Walls => vec![&self.line],
+            Style::Lines => vec![&self.wall, &self.post],
+            Style::Walls => vec![&self.line, &self.post],
         }
     }
 
+    /// The templates whose copies in the maze drawing `style` removes: [`ObjectNames::others`],
+    /// less the post template when the drawing has `posts` (its copies are the drawing's).
+    pub fn foreign(&self, style: Style, posts: bool) -> Vec<&str> {
+        let mut others = self.others(style);
+        if posts {
+            others.truncate(1);
+        }
+        others
+    }
+
     /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`],
-    /// then [`ObjectNames::others`] (optional).
+    /// then [`ObjectNames::others`] (optional; the post template at [`POST_IN_SURVEY`]).
     pub fn survey(&self, style: Style) -> Vec<&str> {
         let mut names = self.for_style(style).to_vec();
         names.extend(self.others(style));
@@ -137,6 +159,8 @@ impl ObjectNames {
             "the line template: a plane 0.6 m x 0.1 m, pure green, at z = 0.001 (Add > Primitive shape > Plane)"
         } else if name == self.wall {
             "the wall template: a cuboid as long as a cell side, e.g. 1 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+        } else if name == self.post {
+            "the post template: a cuboid as wide as the walls are thick and as high as them, e.g. 0.05 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
         } else if name == self.start {
             "the start marker: a plane 1 m x 1 m, pure blue, at z = 0.002"
         } else {
@@ -145,6 +169,10 @@ impl ObjectNames {
         format!("`{name}`: {role}")
     }
 }
+
+/// Where [`ObjectNames::survey`] puts the post template: after floor, parent, template,
+/// start, end and the other style's template.
+pub const POST_IN_SURVEY: usize = 6;
 
 /// Name of the integer signal in which `apply` records the user's idle rate while it runs.
 pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
@@ -162,6 +190,8 @@ pub struct Handles {
     pub start: i32,
     /// The end marker.
     pub end: i32,
+    /// The post template, if the scene has one (a drawing with posts needs it).
+    pub post: Option<i32>,
 }
 
 impl Handles {
@@ -316,11 +346,13 @@ pub trait Authoring {
     /// returns the names it created.
     fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError>;
     /// As [`Authoring::create_missing`] for a wall maze: the `Wall` template (a dark grey
-    /// cuboid of `size` x, y, z metres, respondable and detectable) instead of `Line`.
+    /// cuboid of `wall` x, y, z metres, respondable and detectable) instead of `Line`, and
+    /// with `post`, the `Post` template, a cuboid of that size, as well.
     fn create_missing_walls(
         &mut self,
         names: &ObjectNames,
-        size: [f64; 3],
+        wall: [f64; 3],
+        post: Option<[f64; 3]>,
     ) -> Result<Vec<String>, BackendError>;
     /// Saves the scene to `path` on the simulator's machine.
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
@@ -372,7 +404,7 @@ impl DrawError {
             DrawError::Missing { names, hints } => {
                 let them = if names.len() == 1 { "it" } else { "them" };
                 let mut lines = vec![format!(
-                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --start, --end"
+                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --post, --start, --end"
                 )];
                 lines.extend(hints.iter().cloned());
                 lines
@@ -397,19 +429,25 @@ impl DrawError {
 }
 
 /// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
-/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template.
+/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
+/// `posts`, the post template is needed too.
 pub fn resolve_handles(
     names: &ObjectNames,
     style: Style,
     survey: &Survey,
+    posts: bool,
 ) -> Result<Handles, DrawError> {
-    let all = names.for_style(style);
-    let missing: Vec<String> = all
+    let post = survey.handles.get(POST_IN_SURVEY).copied().flatten();
+    let mut missing: Vec<String> = names
+        .for_style(style)
         .iter()
         .zip(&survey.handles)
         .filter(|(_, h)| h.is_none())
         .map(|(n, _)| n.to_string())
         .collect();
+    if posts && post.is_none() {
+        missing.push(names.post.clone());
+    }
     if !missing.is_empty() {
         let hints = missing.iter().map(|n| names.how_to_create(n)).collect();
         return Err(DrawError::Missing {
@@ -424,15 +462,16 @@ pub fn resolve_handles(
         line: h[2],
         start: h[3],
         end: h[4],
+        post,
     })
 }
 
 impl TryFrom<&crate::layout::Layout> for Drawing {
     type Error = crate::validate::Invalid;
 
-    /// The layout's segments (template first), start and end poses, once the layout has
-    /// passed [`crate::validate::checked`]: the only way to make a drawing, so nothing
-    /// invalid is ever drawn.
+    /// The layout's segments (template first) or walls, posts, start and end poses, once
+    /// the layout has passed [`crate::validate::checked`]: the only way to make a drawing,
+    /// so nothing invalid is ever drawn.
     fn try_from(layout: &crate::layout::Layout) -> Result<Drawing, Self::Error> {
         crate::validate::checked(layout)?;
         let lines = match layout.style {
@@ -442,6 +481,7 @@ impl TryFrom<&crate::layout::Layout> for Drawing {
         Ok(Drawing {
             style: layout.style,
             lines,
+            posts: layout.posts.clone(),
             start: layout.start.pose,
             end: layout.end.pose,
         })

@@ -207,6 +207,7 @@ mod tests {
             line: 3,
             start: 4,
             end: 5,
+            post: None,
         };
         let objects = vec![
             obj(1, "Floor", None),
@@ -232,6 +233,7 @@ mod tests {
             line: 3,
             start: 4,
             end: 5,
+            post: None,
         };
         let objects = vec![
             obj(1, "Floor", None),
@@ -246,6 +248,21 @@ mod tests {
         assert_eq!(maze_lines(&objects, &h, "Line", &["Wall"]), vec![8]);
         assert_eq!(foreign_copies(&objects, &h, &["Wall"]), vec![7, 9]);
         assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![6, 7, 8]);
+        // a wall maze with posts: the posts are neither walls nor lines
+        let mut objects = objects;
+        objects.extend([
+            obj(11, "Post", None),
+            obj(12, "Post0", Some(2)),
+            obj(13, "/Post[2]", None),
+            obj(14, "Wall2", Some(2)),
+        ]);
+        let walls = Handles { line: 6, ..h };
+        assert_eq!(
+            maze_lines(&objects, &walls, "Wall", &["Line", "Post"]),
+            vec![7, 14, 9]
+        );
+        assert_eq!(foreign_copies(&objects, &h, &["Post"]), vec![12, 13]);
+        assert_eq!(foreign_copies(&objects, &h, &["Line"]), vec![8]);
     }
 
     #[test]

@@ -1,24 +1,25 @@
-//! Compare a scene with a drawing: every line, `Start` and `End` in place (1e-4 m, 1e-4 rad),
-//! copies parented to the maze dummy, and no other maze lines.
+//! Compare a scene with a drawing: every line (or wall and post), `Start` and `End` in place
+//! (1e-4 m, 1e-4 rad), copies parented to the maze dummy, and no other maze lines.
 
 use std::collections::{HashMap, HashSet};
 
 use super::apply::raised;
 use super::plan::{foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
-use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, resolve_handles};
+use super::{
+    Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style, resolve_handles,
+};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
-/// `drawing.lines[i]` (`lines[0]` is the template in a line maze). Empty when the scene
-/// matches.
+/// `drawing.lines[i]` (`lines[0]` is the template in a line maze) and `posts[i]` the one
+/// drawn for `drawing.posts[i]`. Empty when the scene matches.
 pub fn check(
     objects: &[ObjectInfo],
     h: &Handles,
     names: &ObjectNames,
     lines: &[i32],
+    posts: &[i32],
     drawing: &Drawing,
 ) -> Vec<String> {
-    let first_copy = usize::from(drawing.template_drawn());
-    let noun = noun(drawing);
     let mut problems = Vec::new();
     let Some(floor) = objects
         .iter()
@@ -29,25 +30,36 @@ pub fn check(
     };
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let get = |handle: i32| by_handle.get(&handle).copied();
-    if lines.len() != drawing.lines.len() {
-        problems.push(format!(
-            "{} {noun} objects for {} segments",
-            lines.len(),
-            drawing.lines.len()
-        ));
-    }
-    for (i, (&handle, want)) in lines.iter().zip(&drawing.lines).enumerate() {
-        match get(handle) {
-            None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
-            Some(o) => {
-                if let Some(d) = pose_differences(&floor, o, want) {
-                    problems.push(format!("{noun} {i} `{}` {d}", o.name));
-                }
-                if i >= first_copy && o.parent != Some(h.parent) {
-                    problems.push(format!(
-                        "{noun} {i} `{}` has parent {:?}, expected {}",
-                        o.name, o.parent, h.parent
-                    ));
+    let parts = [
+        (
+            noun(drawing.style),
+            lines,
+            &drawing.lines,
+            usize::from(drawing.template_drawn()),
+        ),
+        ("post", posts, &drawing.posts, 0),
+    ];
+    for (noun, drawn, wanted, first_copy) in parts {
+        if drawn.len() != wanted.len() {
+            problems.push(format!(
+                "{} {noun} objects for {} {noun}s",
+                drawn.len(),
+                wanted.len()
+            ));
+        }
+        for (i, (&handle, want)) in drawn.iter().zip(wanted).enumerate() {
+            match get(handle) {
+                None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
+                Some(o) => {
+                    if let Some(d) = pose_differences(&floor, o, want) {
+                        problems.push(format!("{noun} {i} `{}` {d}", o.name));
+                    }
+                    if i >= first_copy && o.parent != Some(h.parent) {
+                        problems.push(format!(
+                            "{noun} {i} `{}` has parent {:?}, expected {}",
+                            o.name, o.parent, h.parent
+                        ));
+                    }
                 }
             }
         }
@@ -65,25 +77,51 @@ pub fn check(
             }
         }
     }
-    let expected: HashSet<i32> = lines.iter().skip(first_copy).copied().collect();
-    let others = names.others(drawing.style);
-    let stray: Vec<&str> = maze_lines(objects, h, names.template(drawing.style), &others)
-        .into_iter()
-        .chain(foreign_copies(objects, h, &others))
-        .filter(|x| !expected.contains(x))
-        .filter_map(|x| get(x).map(|o| o.name.as_str()))
+    let first_copy = usize::from(drawing.template_drawn());
+    let expected: HashSet<i32> = lines
+        .iter()
+        .skip(first_copy)
+        .chain(posts)
+        .copied()
         .collect();
+    let with_posts = !drawing.posts.is_empty();
+    let stray: Vec<&str> = maze_lines(
+        objects,
+        h,
+        names.template(drawing.style),
+        &names.others(drawing.style),
+    )
+    .into_iter()
+    .chain(maze_posts(objects, h, names, with_posts))
+    .chain(foreign_copies(
+        objects,
+        h,
+        &names.foreign(drawing.style, with_posts),
+    ))
+    .filter(|x| !expected.contains(x))
+    .filter_map(|x| get(x).map(|o| o.name.as_str()))
+    .collect();
     if !stray.is_empty() {
         problems.push(stray_problem(&stray));
     }
     problems
 }
 
-/// What the drawing's copies are called in messages: `line` or `wall`.
-fn noun(drawing: &Drawing) -> &'static str {
-    match drawing.style {
-        super::Style::Lines => "line",
-        super::Style::Walls => "wall",
+/// The maze's copies of the post template when the drawing has posts (else they are
+/// foreign, [`ObjectNames::foreign`]).
+fn maze_posts(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames, posts: bool) -> Vec<i32> {
+    if posts {
+        foreign_copies(objects, h, &[&names.post])
+    } else {
+        Vec::new()
+    }
+}
+
+/// What the copies of a style's template are called in messages: `line` or `wall`.
+fn noun(style: Style) -> &'static str {
+    match style {
+        Style::Lines => "line",
+        Style::Walls => "wall",
     }
 }
 
@@ -114,10 +152,10 @@ fn stray_problem(stray: &[&str]) -> String {
 }
 
 /// Verifies a scene against a drawing without knowing which copy is which line: every
-/// segment must be covered by a distinct maze line in place (the template may cover any
-/// segment), copies must be children of the maze dummy, no other maze line may exist, and
-/// `Start`/`End` must be in place. Every pose is read from the scene, with the idle rate
-/// raised while reading (and restored).
+/// segment (wall, post) must be covered by a distinct maze copy of its template in place (a
+/// line maze's template may cover any segment), copies must be children of the maze dummy,
+/// no other maze copy may exist, and `Start`/`End` must be in place. Every pose is read
+/// from the scene, with the idle rate raised while reading (and restored).
 pub fn verify(
     scene: &mut dyn Backend,
     drawing: &Drawing,
@@ -133,8 +171,9 @@ fn verify_raised(
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
     let style = drawing.style;
+    let with_posts = !drawing.posts.is_empty();
     let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey)?;
+    let h = resolve_handles(names, style, &survey, with_posts)?;
     // every pose as the scene holds it now, not as a backend remembers setting it
     let objects = &scene.objects_from_scene()?;
     let floor = objects
@@ -143,68 +182,45 @@ fn verify_raised(
         .map(world_frame)
         .unwrap_or_default();
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
-    let get = |handle: i32| by_handle.get(&handle).copied();
-    let others = names.others(style);
     let mut pool: Vec<i32> = if drawing.template_drawn() {
         vec![h.line]
     } else {
         vec![]
     };
-    pool.extend(maze_lines(objects, &h, names.template(style), &others));
-    // the pool by where each object lies on the floor, so each segment finds its line among
-    // a few neighbours instead of all of them
-    let mut near: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-    for (k, &c) in pool.iter().enumerate() {
-        if let Some(key) = get(c).and_then(|o| bucket(relative_pose(&floor, o).0)) {
-            near.entry(key).or_default().push(k);
-        }
-    }
-    let mut used = vec![false; pool.len()];
+    pool.extend(maze_lines(
+        objects,
+        &h,
+        names.template(style),
+        &names.others(style),
+    ));
     let mut problems = Vec::new();
-    for (i, want) in drawing.lines.iter().enumerate() {
-        // the lowest pool index among the lines in place: the template first, as before
-        let hit = bucket(crate::draw::position(want)).and_then(|(bx, by)| {
-            (-1..=1)
-                .flat_map(|dx| (-1..=1).map(move |dy| (bx + dx, by + dy)))
-                .filter_map(|key| near.get(&key))
-                .flatten()
-                .copied()
-                .filter(|&k| {
-                    !used[k]
-                        && get(pool[k]).is_some_and(|o| pose_differences(&floor, o, want).is_none())
-                })
-                .min()
-        });
-        match hit {
-            Some(k) => {
-                used[k] = true;
-                let c = pool[k];
-                if c != h.line && get(c).and_then(|o| o.parent) != Some(h.parent) {
-                    problems.push(format!(
-                        "{} {i} `{}` is not a child of `{}`",
-                        noun(drawing),
-                        get(c).map(|o| o.name.as_str()).unwrap_or("?"),
-                        names.parent
-                    ));
-                }
-            }
-            None => problems.push(format!(
-                "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
-                noun(drawing),
-                want.x,
-                want.y,
-                want.z,
-                want.yaw
-            )),
-        }
+    let mut stray = Vec::new();
+    let parts = [
+        (noun(style), pool, &drawing.lines),
+        (
+            "post",
+            maze_posts(objects, &h, names, with_posts),
+            &drawing.posts,
+        ),
+    ];
+    for (noun, pool, wanted) in parts {
+        let matched = Matching {
+            floor: &floor,
+            by_handle: &by_handle,
+            h: &h,
+            parent: &names.parent,
+            noun,
+        };
+        stray.extend(matched.run(&pool, wanted, &mut problems));
     }
-    let stray: Vec<&str> = pool
-        .iter()
-        .zip(&used)
-        .filter(|&(&c, &u)| !u && c != h.line)
-        .map(|(&c, _)| c)
-        .chain(foreign_copies(objects, &h, &others))
-        .filter_map(|c| get(c).map(|o| o.name.as_str()))
+    stray.extend(foreign_copies(
+        objects,
+        &h,
+        &names.foreign(style, with_posts),
+    ));
+    let stray: Vec<&str> = stray
+        .into_iter()
+        .filter_map(|c| by_handle.get(&c).map(|o| o.name.as_str()))
         .collect();
     if !stray.is_empty() {
         problems.push(stray_problem(&stray));
@@ -213,7 +229,10 @@ fn verify_raised(
         ("start", h.start, &drawing.start),
         ("end", h.end, &drawing.end),
     ] {
-        if let Some(d) = get(handle).and_then(|o| pose_differences(&floor, o, want)) {
+        if let Some(d) = by_handle
+            .get(&handle)
+            .and_then(|o| pose_differences(&floor, o, want))
+        {
             problems.push(format!("{what} {d}"));
         }
     }
@@ -221,5 +240,73 @@ fn verify_raised(
         Ok(())
     } else {
         Err(DrawError::Verify(problems))
+    }
+}
+
+/// What [`verify`] matches one template's copies with.
+struct Matching<'a> {
+    floor: &'a crate::coppelia::frame::Frame,
+    by_handle: &'a HashMap<i32, &'a ObjectInfo>,
+    h: &'a Handles,
+    /// The maze dummy's name, for messages.
+    parent: &'a str,
+    /// What a copy is called in messages.
+    noun: &'static str,
+}
+
+impl Matching<'_> {
+    /// Finds a distinct object of `pool` in place for each of `wanted`, adding what is
+    /// missing or wrongly parented to `problems`; returns the copies of `pool` left over
+    /// (the line template, if in the pool, is never left over).
+    fn run(&self, pool: &[i32], wanted: &[Pose], problems: &mut Vec<String>) -> Vec<i32> {
+        let get = |handle: i32| self.by_handle.get(&handle).copied();
+        // the pool by where each object lies on the floor, so each segment finds its copy
+        // among a few neighbours instead of all of them
+        let mut near: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        for (k, &c) in pool.iter().enumerate() {
+            if let Some(key) = get(c).and_then(|o| bucket(relative_pose(self.floor, o).0)) {
+                near.entry(key).or_default().push(k);
+            }
+        }
+        let mut used = vec![false; pool.len()];
+        for (i, want) in wanted.iter().enumerate() {
+            // the lowest pool index among the copies in place: the template first, as before
+            let hit = bucket(crate::draw::position(want)).and_then(|(bx, by)| {
+                (-1..=1)
+                    .flat_map(|dx| (-1..=1).map(move |dy| (bx + dx, by + dy)))
+                    .filter_map(|key| near.get(&key))
+                    .flatten()
+                    .copied()
+                    .filter(|&k| {
+                        !used[k]
+                            && get(pool[k])
+                                .is_some_and(|o| pose_differences(self.floor, o, want).is_none())
+                    })
+                    .min()
+            });
+            match hit {
+                Some(k) => {
+                    used[k] = true;
+                    let c = pool[k];
+                    if c != self.h.line && get(c).and_then(|o| o.parent) != Some(self.h.parent) {
+                        problems.push(format!(
+                            "{} {i} `{}` is not a child of `{}`",
+                            self.noun,
+                            get(c).map(|o| o.name.as_str()).unwrap_or("?"),
+                            self.parent
+                        ));
+                    }
+                }
+                None => problems.push(format!(
+                    "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
+                    self.noun, want.x, want.y, want.z, want.yaw
+                )),
+            }
+        }
+        pool.iter()
+            .zip(&used)
+            .filter(|&(&c, &u)| !u && c != self.h.line)
+            .map(|(&c, _)| c)
+            .collect()
     }
 }

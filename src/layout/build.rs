@@ -228,6 +228,8 @@ pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
         style: super::Style::Lines,
         wall: None,
         walls: Vec::new(),
+        post: None,
+        posts: Vec::new(),
     };
     let offsets = geometry.segment_offsets();
     Ok(Planned {

@@ -331,6 +331,7 @@ pub fn import(text: &str, name: &str, options: &ImportOptions) -> Result<Layout,
             thickness: cell / 15.0,
             height: cell * 5.0 / 18.0,
             openings: Openings::default(),
+            posts: None,
         };
         let openings = drawing.openings;
         planned = planned

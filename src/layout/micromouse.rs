@@ -11,7 +11,7 @@ use super::FloorSize;
 use super::build::{GenerateSpec, Planned, plan_maze};
 use super::endpoints::EndpointSpec;
 use super::geometry::{Geometry, round_um};
-use super::walls::{Openings, WallOptions, into_walls};
+use super::walls::{Openings, WallOptions, into_walls, length_between_posts};
 use crate::generate::generate;
 use crate::maze::{Cell, Direction, Grid, Maze};
 use crate::rng::MazeRng;
@@ -57,17 +57,22 @@ impl Preset {
         }
     }
 
-    /// The wall template: one cell long, no openings.
-    pub fn walls(self) -> WallOptions {
+    /// The wall template, no openings. Without `posts`, walls are one cell long; with
+    /// posts of side `Some(size)` at every lattice corner (a competition maze's: 0.012 m
+    /// posts and 0.168 m walls in the classic), walls fill the space between two posts.
+    pub fn walls(self, posts: Option<f64>) -> WallOptions {
         let (thickness, height) = match self {
             Preset::Micromouse => (0.012, 0.05),
             Preset::MicromouseHalf => (0.006, 0.025),
         };
         WallOptions {
-            length: self.cell_size(),
+            length: posts.map_or(self.cell_size(), |size| {
+                length_between_posts(self.cell_size(), size)
+            }),
             thickness,
             height,
             openings: Openings::default(),
+            posts,
         }
     }
 
@@ -100,8 +105,9 @@ impl Preset {
 
 /// The wall layout of `preset` for `spec` (already made the preset's with
 /// [`Preset::spec`]): shaped maze, start in the south-west corner, end at the goal's
-/// entrance cell with the goal as `end.region`.
-pub fn plan(preset: Preset, spec: &GenerateSpec) -> Result<Planned, String> {
+/// entrance cell with the goal as `end.region`; posts of side `posts` at every lattice
+/// corner if asked for (see [`Preset::walls`]).
+pub fn plan(preset: Preset, spec: &GenerateSpec, posts: Option<f64>) -> Result<Planned, String> {
     spec.check()?;
     let carved = generate(spec.grid, spec.algorithm, spec.seed);
     let (maze, entrance) = shape(&carved, preset.goal(), spec.seed);
@@ -117,7 +123,8 @@ pub fn plan(preset: Preset, spec: &GenerateSpec) -> Result<Planned, String> {
         .insert("preset".to_string(), preset.name().to_string());
     head.end.region = preset.goal().iter().map(|c| [c.x, c.y]).collect();
     let auto_floor = spec.floor == FloorSize::Auto;
-    planned.with_walls(|head, maze| into_walls(head, maze, &preset.walls(), auto_floor))
+    let walls = preset.walls(posts);
+    planned.with_walls(|head, maze| into_walls(head, maze, &walls, auto_floor))
 }
 
 /// `maze` shaped for micromouse around `goal` (a 2x2 block): the goal joined inside with
@@ -213,7 +220,9 @@ mod tests {
                 GenerateSpec::course(Grid::new(9, 9).unwrap(), Algorithm::Dfs, seed),
                 None,
             );
-            let layout = plan(preset, &spec).unwrap().into_layout();
+            let posts = (seed % 2 == 1).then_some(0.012);
+            let layout = plan(preset, &spec, posts).unwrap().into_layout();
+            assert_eq!(layout.posts.is_empty(), posts.is_none());
             let maze = crate::layout::passages::decode(spec.grid, &layout.passages).unwrap();
             assert_eq!(component_count(&maze), 1);
             assert_eq!(layout.metrics.loops, 1);

@@ -54,6 +54,10 @@ pub struct Layout {
     /// the gaps left in the outer boundary.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wall: Option<WallSpec>,
+    /// Wall style with posts only: the post template (`Post`, a square cuboid as high as the
+    /// walls) every post is a copy of.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub post: Option<PostSpec>,
     /// Where the robot starts (`Start` marker).
     pub start: Endpoint,
     /// Where the robot must arrive (`End` marker).
@@ -73,10 +77,15 @@ pub struct Layout {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     #[schemars(with = "Vec<WallPose>")]
     pub walls: Vec<Pose>,
+    /// Wall style with posts only: one pose (the cuboid's centre) per copy of `Post`, one at
+    /// every lattice corner, every copy a child of `Maze`; the template itself is not drawn.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[schemars(with = "Vec<WallPose>")]
+    pub posts: Vec<Pose>,
 }
 
-/// A wall's pose as the schema describes it: a [`Pose`] whose `z`, the centre of the
-/// cuboid, is half the wall's height (so up to half of [`walls::HEIGHT`]'s maximum).
+/// A wall's or a post's pose as the schema describes it: a [`Pose`] whose `z`, the centre
+/// of the cuboid, is half the wall's height (so up to half of [`walls::HEIGHT`]'s maximum).
 #[derive(Debug, Clone, Copy, PartialEq, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallPose {
@@ -86,7 +95,7 @@ pub struct WallPose {
     /// Metres, on the floor.
     #[schemars(range(min = limits::ORIGIN.min, max = limits::ORIGIN.max))]
     pub y: f64,
-    /// Metres above the floor: half the wall's height.
+    /// Metres above the floor: half the wall's height (a post is as high as the walls).
     #[schemars(range(min = 0.0, max = 50.0))]
     pub z: f64,
     /// Rotation about z, radians in (-pi, pi].
@@ -142,6 +151,18 @@ pub struct WallSpec {
     /// Sides of the outer boundary left open (entrance and exit), in the order given.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub openings: Vec<Opening>,
+}
+
+/// The post template's size: a cuboid with a square footprint, as high as the walls
+/// (`wall.height`), standing at every lattice corner so the walls' joints are closed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PostSpec {
+    /// Side of the square footprint, metres: at least the wall thickness and less than the
+    /// cell; the walls fill the `cell_size - size` between two posts.
+    #[serde(serialize_with = "json::micrometres")]
+    #[schemars(range(min = limits::LENGTH.min, max = limits::LENGTH.max))]
+    pub size: f64,
 }
 
 /// A side of the outer boundary left without a wall.
@@ -213,6 +234,8 @@ impl Layout {
             style: self.style,
             wall: self.wall.clone(),
             walls: self.walls.clone(),
+            post: self.post.clone(),
+            posts: self.posts.clone(),
         }
     }
 }

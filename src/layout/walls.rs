@@ -1,12 +1,20 @@
 //! Wall style: a `Wall` cuboid copy on every closed side between cells and on the outer
-//! boundary, except the openings asked for.
+//! boundary, except the openings asked for; with posts, a `Post` cuboid at every lattice
+//! corner as well.
 //!
 //! The sides lie on the lattice lines between cell centres, in the maze frame: lattice
 //! line `j` along x at `y = (j - 1/2) * cell` (`j = 0..=rows`, south of row `j`), lattice
 //! line `i` along y at `x = (i - 1/2) * cell` (`i = 0..=columns`, west of column `i`).
-//! Side `k` of a line spans one cell. A closed side takes `n = ceil(cell / length)` copies
-//! spread evenly from one lattice corner to the next, so walls meet end to end along a
-//! line and overlap at corners: no gap a robot could pass.
+//! Side `k` of a line spans one cell. Without posts, a closed side takes
+//! `n = ceil(cell / length)` copies spread evenly from one lattice corner to the next, so
+//! walls meet end to end along a line: no gap a robot could pass.
+//!
+//! With posts (as in micromouse mazes, whose 16x16 lattice holds all 289 posts), lattice
+//! corner `(i, j)`, where line `i` along y crosses line `j` along x (the south-west corner
+//! of cell `(i, j)`), holds a post of side `p`, every corner of the lattice whether or not a
+//! wall meets there. A closed side then takes `n = ceil((cell - p) / length)` copies spread
+//! evenly between the faces of its two posts: walls and posts cover the side gap-free, the
+//! walls never reach into a post, and the posts close the joints where walls meet.
 
 use std::f64::consts::PI;
 use std::fmt;
@@ -17,7 +25,7 @@ use nalgebra::Point2;
 use super::build::{extent_needed, fits_within};
 use super::geometry::{Geometry, course, rectangle_corners, round_um};
 use super::limits::{self, Naming, Range, Violation, show};
-use super::{Layout, Opening, Pose, Side, Style, WallSpec};
+use super::{Layout, Opening, Pose, PostSpec, Side, Style, WallSpec};
 use crate::maze::{Cell, Grid, Maze};
 
 /// The course defaults for walls: 1 m long (one cell side), 5 cm thick, 20 cm high.
@@ -90,6 +98,8 @@ pub struct WallOptions {
     pub height: f64,
     /// Gaps beside the start and end.
     pub openings: Openings,
+    /// Side of the `Post` at every lattice corner, metres; `None` for no posts.
+    pub posts: Option<f64>,
 }
 
 impl Default for WallOptions {
@@ -99,8 +109,16 @@ impl Default for WallOptions {
             thickness: defaults::THICKNESS,
             height: defaults::HEIGHT,
             openings: Openings::default(),
+            posts: None,
         }
     }
+}
+
+/// The wall length that fills the space between two posts of side `post` on a side of
+/// `cell_size`: one wall a side, computed from the values as the layout stores them
+/// (micrometres), so exactly one copy fits.
+pub fn length_between_posts(cell_size: f64, post: f64) -> f64 {
+    round_um(round_um(cell_size) - round_um(post))
 }
 
 /// Which way a lattice line runs, in the maze frame.
@@ -112,25 +130,35 @@ pub enum WallAxis {
     AlongY,
 }
 
-/// Checks the wall template against `cell_size`: each number in range, the thickness
-/// less than the cell (thicker walls close the passages), the length at most the cell
-/// (a longer copy reaches into the next side, which may be open) and at least
-/// cell / [`limits::MAX_SEGMENTS_PER_PASSAGE`].
+/// Checks the wall template (and the post template, side `post`) against `cell_size`:
+/// each number in range, the thickness less than the cell (thicker walls close the
+/// passages), the length at most the stretch a side leaves for walls (the cell, or the
+/// cell less one post: a longer copy reaches into the next side, which may be open, or
+/// into a post) and at least that stretch / [`limits::MAX_SEGMENTS_PER_PASSAGE`]. A post
+/// is at least as thick as the walls (their ends would show beside it) and leaves at least
+/// [`limits::MIN_LENGTH`] of the side for walls.
 pub fn check_template(
     cell_size: f64,
     length: f64,
     thickness: f64,
     height: f64,
+    post: Option<f64>,
     naming: Naming,
 ) -> Vec<Violation> {
-    let (l, t, h) = match naming {
-        Naming::Options => ("--wall-length", "--wall-thickness", "--wall-height"),
-        Naming::Layout => ("wall.length", "wall.thickness", "wall.height"),
+    let (l, t, h, p) = match naming {
+        Naming::Options => (
+            "--wall-length",
+            "--wall-thickness",
+            "--wall-height",
+            "--post-size",
+        ),
+        Naming::Layout => ("wall.length", "wall.thickness", "wall.height", "post.size"),
     };
     let mut out: Vec<Violation> = [
         limits::check_range(l, length, limits::LENGTH),
         limits::check_range(t, thickness, limits::LENGTH),
         limits::check_range(h, height, HEIGHT),
+        post.and_then(|size| limits::check_range(p, size, limits::LENGTH)),
     ]
     .into_iter()
     .flatten()
@@ -154,22 +182,74 @@ pub fn check_template(
             ),
         );
     }
-    if length > cell_size + limits::ROUNDING * 2.0 {
+    // the stretch of a side the walls fill, and what bounds it in messages
+    let (span, bound) = match post {
+        None => (cell_size, format!("the cell size {} m", show(cell_size))),
+        Some(size) => {
+            let mut fits = true;
+            if size < thickness - limits::ROUNDING * 2.0 {
+                add(
+                    p,
+                    format!(
+                        "{} m is thinner than the walls ({} m): their ends would show beside the posts",
+                        show(size),
+                        show(thickness)
+                    ),
+                );
+                fits = false;
+            }
+            if cell_size - size < limits::MIN_LENGTH - limits::ROUNDING * 2.0 {
+                add(
+                    p,
+                    format!(
+                        "{} m leaves less than {} m between two posts of a {} m cell: no room for a wall",
+                        show(size),
+                        limits::MIN_LENGTH,
+                        show(cell_size)
+                    ),
+                );
+                fits = false;
+            }
+            if !fits {
+                return out;
+            }
+            let span = round_um(cell_size - size);
+            (
+                span,
+                format!(
+                    "the {} m between two posts (cell {} m - post {} m)",
+                    show(span),
+                    show(cell_size),
+                    show(size)
+                ),
+            )
+        }
+    };
+    if length > span + limits::ROUNDING * 2.0 {
+        let into = if post.is_some() {
+            "a post"
+        } else {
+            "the next side, which may be open"
+        };
         add(
             l,
             format!(
-                "{} m is longer than the cell size {} m: a wall would reach into the next side, which may be open",
-                show(length),
-                show(cell_size)
+                "{} m is longer than {bound}: a wall would reach into {into}",
+                show(length)
             ),
         );
     }
-    let shortest = cell_size / limits::MAX_SEGMENTS_PER_PASSAGE as f64;
+    let shortest = span / limits::MAX_SEGMENTS_PER_PASSAGE as f64;
     if length < shortest - limits::ROUNDING * 2.0 {
+        let over = if post.is_some() {
+            format!("(cell - post) {}", show(span))
+        } else {
+            "cell".to_string()
+        };
         add(
             l,
             format!(
-                "{} m is shorter than cell / {} = {} m: a side may take at most {} copies",
+                "{} m is shorter than {over} / {} = {} m: a side may take at most {} copies",
                 show(length),
                 limits::MAX_SEGMENTS_PER_PASSAGE,
                 show(shortest),
@@ -180,7 +260,7 @@ pub fn check_template(
     out
 }
 
-/// Copies of `Wall` per closed side: `ceil(cell / length)`, at least 1.
+/// Copies of `Wall` per stretch `cell_size` long: `ceil(cell / length)`, at least 1.
 pub fn copies_per_side(cell_size: f64, length: f64) -> usize {
     // the epsilon keeps an exact fit (1.0 / 1.0) from rounding up to one more
     (((cell_size / length) - 1e-9).ceil() as usize).max(1)
@@ -196,6 +276,19 @@ pub fn copy_offsets(cell_size: f64, length: f64) -> Vec<f64> {
     let (first, last) = (length / 2.0, cell_size - length / 2.0);
     let step = (last - first) / (n - 1) as f64;
     (0..n).map(|k| first + step * k as f64).collect()
+}
+
+/// Offsets of the wall copies' centres along a closed side, from its first lattice corner:
+/// [`copy_offsets`] over the whole side, or with posts of side `post`, over the stretch
+/// between the posts' faces.
+pub fn side_offsets(cell_size: f64, length: f64, post: Option<f64>) -> Vec<f64> {
+    match post {
+        None => copy_offsets(cell_size, length),
+        Some(size) => copy_offsets(cell_size - size, length)
+            .into_iter()
+            .map(|t| t + size / 2.0)
+            .collect(),
+    }
 }
 
 /// Lattice lines of `axis` on `grid` and the sides on each: (lines, sides per line).
@@ -301,12 +394,18 @@ pub fn resolve_openings(
 }
 
 /// Floor poses of the walls of `maze`: lattice lines along x (south to north, each west
-/// to east), then along y (west to east, each south to north).
-pub fn wall_poses(maze: &Maze, geometry: &Geometry, spec: &WallSpec) -> Vec<Pose> {
+/// to east), then along y (west to east, each south to north); with posts of side `post`,
+/// between the posts.
+pub fn wall_poses(
+    maze: &Maze,
+    geometry: &Geometry,
+    spec: &WallSpec,
+    post: Option<f64>,
+) -> Vec<Pose> {
     let grid = maze.grid();
     let iso = geometry.maze_to_floor();
     let c = geometry.cell_size;
-    let offsets = copy_offsets(c, spec.length);
+    let offsets = side_offsets(c, spec.length, post);
     let z = round_um(spec.height / 2.0);
     let mut poses = Vec::new();
     for axis in [WallAxis::AlongX, WallAxis::AlongY] {
@@ -332,8 +431,30 @@ pub fn wall_poses(maze: &Maze, geometry: &Geometry, spec: &WallSpec) -> Vec<Pose
     poses
 }
 
-/// The floor-frame corners of the rectangle the walls cover: the grid plus half a wall
-/// thickness all round.
+/// Floor poses of the posts of a `grid`, one per lattice corner: corner `(i, j)` (the
+/// south-west corner of cell `(i, j)`) at index `j * (columns + 1) + i`, each standing on
+/// the floor at half the walls' `height`, square to the maze.
+pub fn post_poses(grid: Grid, geometry: &Geometry, height: f64) -> Vec<Pose> {
+    let iso = geometry.maze_to_floor();
+    let c = geometry.cell_size;
+    let z = round_um(height / 2.0);
+    let mut poses = Vec::with_capacity(post_count(grid) as usize);
+    for j in 0..=grid.height() {
+        for i in 0..=grid.width() {
+            let p = iso * Point2::new((f64::from(i) - 0.5) * c, (f64::from(j) - 0.5) * c);
+            poses.push(Pose::rounded(p.x, p.y, z, geometry.rotation));
+        }
+    }
+    poses
+}
+
+/// Lattice corners of `grid`, one post each: `(columns + 1) * (rows + 1)`.
+pub fn post_count(grid: Grid) -> u64 {
+    (u64::from(grid.width()) + 1) * (u64::from(grid.height()) + 1)
+}
+
+/// The floor-frame corners of the rectangle the walls (and posts) cover: the grid plus
+/// `thickness / 2` all round (pass the thicker of walls and posts).
 pub fn wall_extent_corners(grid: Grid, geometry: &Geometry, thickness: f64) -> [Point2<f64>; 4] {
     let m = geometry.cell_size / 2.0 + thickness / 2.0;
     let max_x = f64::from(grid.width() - 1) * geometry.cell_size + m;
@@ -354,8 +475,16 @@ pub fn on_floor(pose: &Pose, spec: &WallSpec, size: [f64; 2], tolerance: f64) ->
     fits_within(extent_needed(&corners), size, tolerance)
 }
 
+/// `true` if the footprint of a post of `spec` at `pose` lies on a floor of `size`
+/// (centred on the floor origin), within `tolerance`.
+pub fn post_on_floor(pose: &Pose, spec: &PostSpec, size: [f64; 2], tolerance: f64) -> bool {
+    let corners = rectangle_corners(pose, spec.size, spec.size);
+    fits_within(extent_needed(&corners), size, tolerance)
+}
+
 /// Turns the line layout of `maze` into a wall layout: the wall template and openings in
-/// `wall`, one pose per wall in `walls`, no line segments. The floor grows in whole
+/// `wall`, one pose per wall in `walls`, with posts the post template in `post` and one
+/// pose per lattice corner in `posts`, no line segments. The floor grows in whole
 /// panels when `auto_floor` and the boundary walls reach past it; otherwise a floor they
 /// reach past is refused.
 pub fn into_walls(
@@ -402,6 +531,7 @@ pub fn into_walls_with(
         options.length,
         options.thickness,
         options.height,
+        options.posts,
         Naming::Options,
     )
     .into_iter()
@@ -409,13 +539,24 @@ pub fn into_walls_with(
     {
         return Err(v.to_string());
     }
-    let per_side = copies_per_side(geometry.cell_size, round_um(options.length)) as u64;
+    let post = options.posts.map(|size| PostSpec {
+        size: round_um(size),
+    });
+    let post_size = post.as_ref().map(|p| p.size);
+    let span = geometry.cell_size - post_size.unwrap_or(0.0);
+    let per_side = copies_per_side(span, round_um(options.length)) as u64;
     let sides = u64::from(grid.width()) * (u64::from(grid.height()) + 1)
         + u64::from(grid.height()) * (u64::from(grid.width()) + 1);
-    if sides * per_side > limits::MAX_SEGMENTS {
+    let posts = if post.is_some() { post_count(grid) } else { 0 };
+    if sides * per_side + posts > limits::MAX_SEGMENTS {
         return Err(format!(
-            "a {grid} maze with {per_side} wall copies a side could need {} walls, more than the {} a layout may hold: use a smaller --size or a longer --wall-length",
+            "a {grid} maze with {per_side} wall copies a side could need {} walls{}, more than the {} copies a layout may hold: use a smaller --size or a longer --wall-length",
             sides * per_side,
+            if posts > 0 {
+                format!(" and {posts} posts")
+            } else {
+                String::new()
+            },
             limits::MAX_SEGMENTS
         ));
     }
@@ -425,7 +566,8 @@ pub fn into_walls_with(
         height: round_um(options.height),
         openings,
     };
-    let need = extent_needed(&wall_extent_corners(grid, &geometry, spec.thickness));
+    let reach = spec.thickness.max(post_size.unwrap_or(0.0));
+    let need = extent_needed(&wall_extent_corners(grid, &geometry, reach));
     let tolerance = limits::floor_tolerance(&geometry, grid);
     if !fits_within(need, layout.floor.size, tolerance) {
         if !auto_floor {
@@ -452,9 +594,14 @@ pub fn into_walls_with(
         }
         layout.floor.size = size;
     }
-    layout.walls = wall_poses(maze, &geometry, &spec);
+    layout.walls = wall_poses(maze, &geometry, &spec, post_size);
+    layout.posts = match post_size {
+        Some(_) => post_poses(grid, &geometry, spec.height),
+        None => Vec::new(),
+    };
     layout.style = Style::Walls;
     layout.wall = Some(spec);
+    layout.post = post;
     layout.segments.clear();
     Ok(())
 }
@@ -512,18 +659,69 @@ mod tests {
     }
 
     #[test]
+    fn posts_stand_at_every_corner_and_the_walls_between_them() {
+        let spec = GenerateSpec::course(Grid::new(3, 2).unwrap(), Algorithm::Dfs, 1);
+        let mut layout = build_layout(&spec).unwrap();
+        let maze = passages::decode(Grid::new(3, 2).unwrap(), &layout.passages).unwrap();
+        let options = WallOptions {
+            length: length_between_posts(1.0, 0.05),
+            posts: Some(0.05),
+            ..WallOptions::default()
+        };
+        into_walls(&mut layout, &maze, &options, true).unwrap();
+        assert_eq!(layout.post, Some(PostSpec { size: 0.05 }));
+        assert_eq!(layout.wall.as_ref().unwrap().length, 0.95);
+        // every corner of the 4 x 3 lattice, the closed sides one wall each as before
+        assert_eq!(layout.posts.len(), 12);
+        assert_eq!(layout.walls.len(), 17 - 5);
+        assert_eq!(layout.posts[0], Pose::rounded(-1.5, -0.5, 0.1, 0.0));
+        assert_eq!(layout.posts[11], Pose::rounded(1.5, 1.5, 0.1, 0.0));
+        // a wall still centred on its side, now between the posts' faces
+        assert_eq!(layout.walls[0], Pose::rounded(-1.0, -0.5, 0.1, 0.0));
+        let offsets = side_offsets(1.0, 0.475, Some(0.05));
+        assert_eq!(offsets.len(), 2);
+        assert!((offsets[0] - 0.2625).abs() < 1e-12 && (offsets[1] - 0.7375).abs() < 1e-12);
+        // without posts the options leave the layout without them
+        let (plain, _) = walled(Openings::default());
+        assert!(plain.post.is_none() && plain.posts.is_empty());
+    }
+
+    #[test]
+    fn the_post_template_must_fit_the_walls_and_the_cell() {
+        let v = check_template(0.18, 0.168, 0.012, 0.05, Some(0.01), Naming::Options);
+        assert!(
+            v[0].to_string()
+                .starts_with("--post-size 0.01 m is thinner than the walls (0.012 m)"),
+            "{v:?}"
+        );
+        let v = check_template(0.18, 0.168, 0.012, 0.05, Some(0.18), Naming::Layout);
+        assert!(
+            v[0].to_string()
+                .starts_with("post.size 0.18 m leaves less than 0.001 m between two posts"),
+            "{v:?}"
+        );
+        let v = check_template(0.18, 0.18, 0.012, 0.05, Some(0.012), Naming::Layout);
+        assert_eq!(
+            v[0].to_string(),
+            "wall.length 0.18 m is longer than the 0.168 m between two posts (cell 0.18 m - post 0.012 m): a wall would reach into a post"
+        );
+        assert!(check_template(0.18, 0.168, 0.012, 0.05, Some(0.012), Naming::Layout).is_empty());
+        assert!(check_template(0.18, 0.084, 0.012, 0.05, Some(0.012), Naming::Layout).is_empty());
+    }
+
+    #[test]
     fn options_parse_and_copies_spread() {
         assert_eq!("none".parse::<Openings>().unwrap(), Openings::default());
         assert!("start,exit".parse::<Openings>().is_err());
         assert_eq!(copies_per_side(1.0, 1.0), 1);
         assert_eq!(copy_offsets(1.0, 0.4), vec![0.2, 0.5, 0.8]);
-        let v = check_template(0.18, 0.2, 0.012, 0.05, Naming::Options);
+        let v = check_template(0.18, 0.2, 0.012, 0.05, None, Naming::Options);
         assert!(
             v[0].to_string()
                 .starts_with("--wall-length 0.2 m is longer"),
             "{v:?}"
         );
-        let v = check_template(0.18, 0.18, 0.2, 0.05, Naming::Layout);
+        let v = check_template(0.18, 0.18, 0.2, 0.05, None, Naming::Layout);
         assert!(v[0].to_string().starts_with("wall.thickness"), "{v:?}");
     }
 }

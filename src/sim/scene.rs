@@ -210,22 +210,35 @@ impl Scene {
         s
     }
 
-    /// The course scene with a wall template as well: `Wall`, a dark grey cuboid of the
-    /// wall defaults (1 m x 0.05 m x 0.2 m), standing beside the floor at (0, -6), so the
-    /// scene takes line mazes and wall mazes (`serve --scene course-walls`).
+    /// The course scene with a wall template and a post template as well: `Wall`, a dark
+    /// grey cuboid of the wall defaults (1 m x 0.05 m x 0.2 m), standing beside the floor at
+    /// (0, -6), and `Post`, one of 0.05 m x 0.05 m x 0.2 m (the default post) at (0, -6.3),
+    /// so the scene takes line mazes and wall mazes with or without posts (`serve --scene
+    /// course-walls`).
     pub fn course_walls() -> Scene {
         use crate::layout::walls::defaults;
         let mut s = Scene::course();
+        let cuboid = |position: [f64; 2], size: [f64; 3]| NewObject {
+            kind: ObjectType::Shape,
+            parent: None,
+            position: [position[0], position[1], size[2] / 2.0],
+            orientation: [0.0; 3],
+            size,
+            colour: [77, 77, 77],
+        };
         s.add(
             "Wall",
-            NewObject {
-                kind: ObjectType::Shape,
-                parent: None,
-                position: [0.0, -6.0, defaults::HEIGHT / 2.0],
-                orientation: [0.0; 3],
-                size: [defaults::LENGTH, defaults::THICKNESS, defaults::HEIGHT],
-                colour: [77, 77, 77],
-            },
+            cuboid(
+                [0.0, -6.0],
+                [defaults::LENGTH, defaults::THICKNESS, defaults::HEIGHT],
+            ),
+        );
+        s.add(
+            "Post",
+            cuboid(
+                [0.0, -6.3],
+                [defaults::THICKNESS, defaults::THICKNESS, defaults::HEIGHT],
+            ),
         );
         s
     }

@@ -101,7 +101,7 @@ mod tests {
             GenerateSpec::course(Grid::new(9, 9).unwrap(), Algorithm::Prim, 2),
             None,
         );
-        plan(preset, &spec).unwrap().into_layout()
+        plan(preset, &spec, None).unwrap().into_layout()
     }
 
     fn problems(layout: &Layout) -> Vec<String> {

@@ -1,6 +1,9 @@
 //! Wall checks: the style's fields are consistent, the wall template fits the cell, every
 //! closed side is covered gap-free by walls, no wall stands in an open passage or an
-//! opening, no wall is drawn twice, and every wall stands on the floor.
+//! opening, no wall is drawn twice, and every wall stands on the floor. With posts: the
+//! post template fits the walls and the cell, a post stands at every lattice corner (none
+//! missing, none doubled, none elsewhere), each on the floor, and the walls fill every
+//! closed side between its posts without reaching into one.
 //!
 //! As for lines, work happens in the maze frame, one lattice line at a time: each wall is
 //! an interval along the line between two rows or two columns of cells.
@@ -14,9 +17,10 @@ use crate::layout::geometry::{Geometry, normalize_angle};
 use crate::layout::limits::{self, Naming, show};
 use crate::layout::walls::{
     WallAxis, cells_beside, check_template, is_closed, lattice, on_floor, opening_side,
+    post_on_floor,
 };
-use crate::layout::{Layout, Style, WallSpec};
-use crate::maze::Maze;
+use crate::layout::{Layout, PostSpec, Style, WallSpec};
+use crate::maze::{Grid, Maze};
 
 /// Position tolerance in the maze frame (as for line segments).
 const TOLERANCE: f64 = limits::SEGMENT_TOLERANCE;
@@ -37,6 +41,14 @@ pub(super) fn check_walls(
             if !layout.walls.is_empty() {
                 problems.add("walls", "only a layout with style \"walls\" has walls");
             }
+            if layout.post.is_some() {
+                problems.add(
+                    "post",
+                    "only a layout with style \"walls\" has a post template",
+                );
+            } else if !layout.posts.is_empty() {
+                problems.add("posts", "only a layout with style \"walls\" has posts");
+            }
             return;
         }
         (Style::Lines, Some(_)) => {
@@ -55,11 +67,20 @@ pub(super) fn check_walls(
         }
         (Style::Walls, Some(spec)) => spec,
     };
+    if layout.post.is_none() && !layout.posts.is_empty() {
+        problems.add(
+            "post",
+            "missing: a layout with posts needs its post template",
+        );
+        return;
+    }
+    let post = layout.post.as_ref();
     let template = check_template(
         geometry.cell_size,
         spec.length,
         spec.thickness,
         spec.height,
+        post.map(|p| p.size),
         Naming::Layout,
     );
     let bad_template = !template.is_empty();
@@ -91,6 +112,8 @@ pub(super) fn check_walls(
     }
     let lines = place_walls(layout, spec, maze, geometry, problems);
     let c = geometry.cell_size;
+    // with posts, the walls fill each closed side between the faces of its two posts
+    let inset = post.map_or(0.0, |p| p.size / 2.0);
     for axis in [WallAxis::AlongX, WallAxis::AlongY] {
         let (count, sides) = lattice(grid, axis);
         for line in 0..count {
@@ -98,11 +121,17 @@ pub(super) fn check_walls(
                 .filter(|&k| is_closed(maze, &spec.openings, axis, line, k))
                 .map(|k| {
                     let from = (f64::from(k) - 0.5) * c;
-                    (k, (from, from + c))
+                    (k, (from + inset, from + c - inset))
                 })
                 .collect();
             let spans = lines.get(&(axis, line)).map(Vec::as_slice).unwrap_or(&[]);
-            check_line(layout, maze, axis, line, &closed, spans, c, problems);
+            let on_line = Line {
+                axis,
+                index: line,
+                cell: c,
+                inset,
+            };
+            check_line(layout, maze, on_line, &closed, spans, problems);
         }
     }
     let tolerance = limits::floor_tolerance(geometry, grid);
@@ -120,6 +149,129 @@ pub(super) fn check_walls(
             );
         }
     }
+    if let Some(post) = post {
+        check_posts(layout, spec, post, grid, geometry, problems);
+    }
+}
+
+/// Checks the posts of `post`: one at every lattice corner of `grid`, standing on the
+/// floor at half the walls' height, square to the maze, none doubled, none elsewhere.
+fn check_posts(
+    layout: &Layout,
+    spec: &WallSpec,
+    post: &PostSpec,
+    grid: Grid,
+    geometry: &Geometry,
+    problems: &mut Problems,
+) {
+    let to_maze = geometry.maze_to_floor().inverse();
+    let c = geometry.cell_size;
+    let z = spec.height / 2.0;
+    let tolerance = limits::floor_tolerance(geometry, grid);
+    let columns = grid.width() as usize + 1;
+    // the post found at each lattice corner, corner (i, j) at j * columns + i (`NONE`: no
+    // post yet); four bytes a corner, as a big grid has millions
+    const NONE: u32 = u32::MAX;
+    let mut at_corner: Vec<u32> = vec![NONE; columns * (grid.height() as usize + 1)];
+    for (index, pose) in layout.posts.iter().enumerate() {
+        let location = format!("posts[{index}]");
+        if ![pose.x, pose.y, pose.z, pose.yaw]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            problems.add(location, "has a coordinate that is not a finite number");
+            continue;
+        }
+        if let Some(v) = limits::check_range(&format!("{location}.yaw"), pose.yaw, limits::YAW) {
+            problems.add(v.name, v.message);
+        }
+        if (pose.z - z).abs() > 2.0 * limits::ROUNDING {
+            problems.add(
+                format!("{location}.z"),
+                format!(
+                    "{} m is not half of wall.height {} m: every post stands on the floor, as high as the walls",
+                    show(pose.z),
+                    show(spec.height)
+                ),
+            );
+        }
+        // a square turned a quarter is the same square
+        if (2.0 * (pose.yaw - geometry.rotation)).sin().abs() > 2.0 * YAW_TOLERANCE {
+            problems.add(
+                location.clone(),
+                format!(
+                    "at ({}, {}) has yaw {} rad: it is not square to the maze axes",
+                    pose.x, pose.y, pose.yaw
+                ),
+            );
+        }
+        if !post_on_floor(pose, post, layout.floor.size, tolerance) {
+            problems.add(
+                location.clone(),
+                format!(
+                    "at ({}, {}) reaches off the {} m x {} m floor",
+                    pose.x,
+                    pose.y,
+                    show(layout.floor.size[0]),
+                    show(layout.floor.size[1])
+                ),
+            );
+        }
+        let local = to_maze * Point2::new(pose.x, pose.y);
+        let (i, j) = ((local.x / c + 0.5).round(), (local.y / c + 0.5).round());
+        if (local.x - (i - 0.5) * c).abs() > TOLERANCE
+            || (local.y - (j - 0.5) * c).abs() > TOLERANCE
+        {
+            problems.add(
+                location,
+                format!(
+                    "at ({}, {}) does not stand on a lattice corner, where the sides of the cells meet",
+                    pose.x, pose.y
+                ),
+            );
+            continue;
+        }
+        if i < 0.0 || j < 0.0 || i > f64::from(grid.width()) || j > f64::from(grid.height()) {
+            problems.add(
+                location,
+                format!("at ({}, {}) lies off the grid", pose.x, pose.y),
+            );
+            continue;
+        }
+        let (i, j) = (i as usize, j as usize);
+        match &mut at_corner[j * columns + i] {
+            empty if *empty == NONE => *empty = u32::try_from(index).unwrap_or(NONE - 1),
+            first => problems.add(
+                location,
+                format!("duplicates posts[{first}]: two posts stand at lattice corner ({i},{j})"),
+            ),
+        }
+    }
+    for (corner, &found) in at_corner.iter().enumerate() {
+        if found == NONE {
+            problems.add(
+                format!(
+                    "posts (lattice corner ({},{}))",
+                    corner % columns,
+                    corner / columns
+                ),
+                "missing: every lattice corner takes a post, and none stands here",
+            );
+        }
+    }
+}
+
+/// A lattice line, as [`check_line`] needs it.
+#[derive(Debug, Clone, Copy)]
+struct Line {
+    axis: WallAxis,
+    /// Which line of `axis` it is.
+    index: u32,
+    /// The cell size.
+    cell: f64,
+    /// Half a post's side (0 without posts): how far from each lattice corner the walls
+    /// begin.
+    inset: f64,
 }
 
 /// A stretch `lo..hi` along one lattice line, and the wall that covers it.
@@ -213,18 +365,17 @@ fn place_walls(
     lines
 }
 
-/// Checks one lattice line: `closed` holds (side index, interval to cover) per closed side.
-#[allow(clippy::too_many_arguments)]
+/// Checks one lattice line: `closed` holds (side index, interval the walls cover) per
+/// closed side.
 fn check_line(
     layout: &Layout,
     maze: &Maze,
-    axis: WallAxis,
-    line: u32,
+    on: Line,
     closed: &[(u32, (f64, f64))],
     spans: &[Span],
-    c: f64,
     problems: &mut Problems,
 ) {
+    let (axis, line, c) = (on.axis, on.index, on.cell);
     let grid = maze.grid();
     let allowed = merge(closed.iter().map(|&(_, iv)| iv));
     let mut sorted = spans.to_vec();
@@ -253,7 +404,22 @@ fn check_line(
         let pose = &layout.walls[span.wall];
         let stray = first_uncovered(span.lo, span.hi, &allowed);
         let k = (stray / c + 0.5).floor();
-        let message = if k < 0.0 || k >= f64::from(sides) {
+        // with posts: the lattice corner nearest the stray point, along the line
+        let corner = (stray / c + 0.5).round();
+        let message = if on.inset > 0.0
+            && (stray - (corner - 0.5) * c).abs() <= on.inset + TOLERANCE
+            && corner >= 0.0
+            && corner <= f64::from(sides)
+        {
+            let (i, j) = match axis {
+                WallAxis::AlongX => (corner as u32, line),
+                WallAxis::AlongY => (line, corner as u32),
+            };
+            format!(
+                "at ({}, {}) reaches into the post at lattice corner ({i},{j})",
+                pose.x, pose.y
+            )
+        } else if k < 0.0 || k >= f64::from(sides) {
             format!(
                 "at ({}, {}) sticks out past the edge of the grid",
                 pose.x, pose.y
@@ -282,16 +448,23 @@ fn check_line(
             continue;
         }
         let gap = first_uncovered(lo, hi, &drawn);
+        // the posts cover the first `inset` of the side
+        let end = lo - on.inset;
         let what = match cells_beside(grid, axis, line, k) {
             (Some(a), Some(b)) => format!("the side between cells {a} and {b}"),
             (Some(cell), None) | (None, Some(cell)) => format!("the outer side of cell {cell}"),
             (None, None) => unreachable!("a lattice side has a cell on one side at least"),
         };
+        let between = if on.inset > 0.0 {
+            " between its posts"
+        } else {
+            ""
+        };
         problems.add(
             format!("walls ({what})"),
             format!(
-                "is closed but not covered gap-free by walls: nothing stands {:.3} m from its {} end",
-                gap - lo,
+                "is closed but not covered gap-free by walls{between}: nothing stands {:.3} m from its {} end",
+                gap - end,
                 match axis {
                     WallAxis::AlongX => "west",
                     WallAxis::AlongY => "south",
@@ -332,8 +505,8 @@ fn first_uncovered(lo: f64, hi: f64, cover: &[(f64, f64)]) -> f64 {
 #[cfg(test)]
 mod tests {
     use crate::generate::Algorithm;
-    use crate::layout::walls::{WallOptions, into_walls};
-    use crate::layout::{GenerateSpec, Layout, build_layout, passages};
+    use crate::layout::walls::{WallOptions, into_walls, length_between_posts};
+    use crate::layout::{GenerateSpec, Layout, PostSpec, build_layout, passages};
     use crate::maze::Grid;
     use crate::validate::validate;
 
@@ -399,6 +572,182 @@ mod tests {
                 .iter()
                 .any(|p| p.contains("stands in the open passage between cells")),
             "{found:?}"
+        );
+    }
+
+    /// The 4x3 course maze (Prim, seed 9) in walls with posts of `size`.
+    fn post_layout(size: f64) -> Layout {
+        let grid = Grid::new(4, 3).unwrap();
+        let mut layout = build_layout(&GenerateSpec::course(grid, Algorithm::Prim, 9)).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let options = WallOptions {
+            length: length_between_posts(1.0, size),
+            posts: Some(size),
+            ..WallOptions::default()
+        };
+        into_walls(&mut layout, &maze, &options, true).unwrap();
+        layout
+    }
+
+    #[test]
+    fn a_generated_post_layout_is_valid() {
+        let layout = post_layout(0.05);
+        assert_eq!(layout.posts.len(), 5 * 4);
+        assert_eq!(problems(&layout), Vec::<String>::new());
+        assert_eq!(problems(&post_layout(0.2)), Vec::<String>::new());
+    }
+
+    #[test]
+    fn a_missing_post_is_named_by_its_corner() {
+        let mut layout = post_layout(0.05);
+        layout.posts.remove(6); // corner (1,1): 5 corners a row
+        assert_eq!(
+            problems(&layout),
+            [
+                "posts (lattice corner (1,1)): missing: every lattice corner takes a post, and none stands here"
+            ]
+        );
+        layout.posts.clear();
+        assert_eq!(problems(&layout).len(), 20);
+    }
+
+    #[test]
+    fn an_extra_post_off_the_corners_or_the_grid_is_named() {
+        let mut layout = post_layout(0.05);
+        let mut inside = layout.posts[6];
+        inside.x += 0.5; // the middle of a side
+        let mut beyond = layout.posts[4]; // corner (4,0), the south-east one
+        beyond.x += 1.0;
+        layout.posts.extend([inside, beyond]);
+        let found = problems(&layout);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(
+            found[0].starts_with("posts[20]: at (")
+                && found[0].ends_with(
+                    "does not stand on a lattice corner, where the sides of the cells meet"
+                ),
+            "{found:?}"
+        );
+        assert!(
+            found[1].starts_with("posts[21]: at (") && found[1].ends_with("lies off the grid"),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn a_duplicate_post_is_named() {
+        let mut layout = post_layout(0.05);
+        let again = layout.posts[7];
+        layout.posts.push(again);
+        assert_eq!(
+            problems(&layout),
+            ["posts[20]: duplicates posts[7]: two posts stand at lattice corner (2,1)"]
+        );
+    }
+
+    #[test]
+    fn a_post_off_the_floor_or_the_ground_is_named() {
+        // the grid spans x -1.5..2.5, y -1.5..1.5: walls 0.05 m thick fit a floor 5.1 m x
+        // 3.1 m (centred on the floor origin), posts of 0.2 m do not
+        let mut layout = post_layout(0.2);
+        layout.floor.size = [5.1, 3.1];
+        let found = problems(&layout);
+        // the 12 corners on the south, east and north edges reach past the floor
+        assert_eq!(found.len(), 12, "{found:?}");
+        assert!(
+            found[0].starts_with("posts[0]: at (-1.5, -1.5)")
+                && found[0].ends_with("reaches off the 5.1 m x 3.1 m floor"),
+            "{found:?}"
+        );
+        let mut layout = post_layout(0.05);
+        layout.posts[3].z = 0.2;
+        layout.posts[5].yaw = 0.3;
+        let found = problems(&layout);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(
+            found[0].starts_with("posts[3].z: 0.2 m is not half of wall.height 0.2 m"),
+            "{found:?}"
+        );
+        assert!(
+            found[1].starts_with("posts[5]: at (")
+                && found[1].ends_with("it is not square to the maze axes"),
+            "{found:?}"
+        );
+        // a quarter turn is the same square
+        let mut layout = post_layout(0.05);
+        layout.posts[5].yaw = crate::layout::geometry::round_um(std::f64::consts::FRAC_PI_2);
+        assert_eq!(problems(&layout), Vec::<String>::new());
+    }
+
+    #[test]
+    fn a_bad_post_template_or_a_wall_into_a_post_is_named() {
+        let mut layout = post_layout(0.05);
+        layout.post = Some(PostSpec { size: 0.04 });
+        assert_eq!(
+            problems(&layout),
+            [
+                "post.size: 0.04 m is thinner than the walls (0.05 m): their ends would show beside the posts"
+            ]
+        );
+        let mut layout = post_layout(0.05);
+        layout.post = Some(PostSpec { size: 1.0 });
+        assert!(
+            problems(&layout)[0]
+                .starts_with("post.size: 1 m leaves less than 0.001 m between two posts"),
+            "{:?}",
+            problems(&layout)
+        );
+        let mut layout = post_layout(0.05);
+        layout.post = Some(PostSpec { size: 0.0 });
+        assert!(
+            problems(&layout)[0].starts_with("post.size: 0 is out of range"),
+            "{:?}",
+            problems(&layout)
+        );
+        // the walls of a layout without posts are a post too long
+        let mut layout = wall_layout();
+        layout.post = Some(PostSpec { size: 0.05 });
+        assert!(
+            problems(&layout)[0]
+                .starts_with("wall.length: 1 m is longer than the 0.95 m between two posts"),
+            "{:?}",
+            problems(&layout)
+        );
+        // a wall moved along its side reaches into a post, and leaves a gap behind
+        let mut layout = post_layout(0.05);
+        layout.walls[0].x += 0.03;
+        let found = problems(&layout);
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(
+            found[0].starts_with("walls[0]: at (")
+                && found[0].ends_with("reaches into the post at lattice corner (1,0)"),
+            "{found:?}"
+        );
+        assert!(
+            found[1].contains("is closed but not covered gap-free by walls between its posts: nothing stands 0.025 m from its west end"),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn post_fields_belong_to_wall_layouts_with_a_post_template() {
+        let mut layout = post_layout(0.05);
+        layout.post = None;
+        assert_eq!(
+            problems(&layout),
+            ["post: missing: a layout with posts needs its post template"]
+        );
+        let grid = Grid::new(4, 3).unwrap();
+        let mut lines = build_layout(&GenerateSpec::course(grid, Algorithm::Prim, 9)).unwrap();
+        lines.posts = post_layout(0.05).posts;
+        assert_eq!(
+            problems(&lines),
+            ["posts: only a layout with style \"walls\" has posts"]
+        );
+        lines.post = Some(PostSpec { size: 0.05 });
+        assert_eq!(
+            problems(&lines),
+            ["post: only a layout with style \"walls\" has a post template"]
         );
     }
 

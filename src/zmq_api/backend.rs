@@ -1,8 +1,8 @@
 //! The ZeroMQ remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
 //!
 //! Objects are found by path (`/Maze`, `/Line`); the earlier maze is the object tree under
-//! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry the line template's
-//! alias (copies pasted by an interrupted run, reported by their path `/Line[n]`). Each pose is
+//! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry a template's alias
+//! (copies pasted by an interrupted run, reported by their path `/Line[n]`). Each pose is
 //! one `sim.setObjectPose` call; removals go in one `sim.removeObjects` call. The ZeroMQ API
 //! has no batching, so "one round trip" operations of the trait cost one call per object.
 
@@ -44,8 +44,9 @@ struct Known {
     named: Vec<(String, i32)>,
     parent: Option<i32>,
     line_alias: String,
-    /// Aliases of the other styles' templates found in the scene: the maze dummy's children
-    /// carrying one are named after it, so a drawing can tell them from its own copies.
+    /// Aliases of the other templates found in the scene (the other style's, the post's):
+    /// the maze dummy's children carrying one are named after it, so a drawing can tell
+    /// them from copies of its own template.
     foreign_aliases: Vec<String>,
 }
 
@@ -247,8 +248,8 @@ impl ZmqBackend {
         })
     }
 
-    /// The named objects (read), the maze dummy's children and root copies of the line
-    /// template (their poses as `poses` says).
+    /// The named objects (read), the maze dummy's children and root copies of the templates
+    /// found (their poses as `poses` says).
     fn collect(&mut self, poses: LinePoses) -> Result<Vec<ObjectInfo>, BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
@@ -279,10 +280,15 @@ impl ZmqBackend {
                 }
             }
         }
-        // root objects carrying the template's alias: copies left parentless by an
-        // interrupted run. They are copies whatever their path looks like, so a path that is
-        // not `/Line[n]` (the template elsewhere than at the root) gets that form.
-        let mut strays = 0;
+        // root objects carrying a template's alias: copies left parentless by an interrupted
+        // run (of this style's template, or of another found in the scene, which a drawing
+        // removes or, for posts, reuses). They are copies whatever their path looks like, so
+        // a path that is not `/Line[n]` (the template elsewhere than at the root) gets that
+        // form.
+        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
+            .chain(known.foreign_aliases.iter().map(String::as_str))
+            .collect();
+        let mut strays = vec![0; templates.len()];
         for h in self.handles_in(HANDLE_SCENE, 2)? {
             if seen.contains(&h) {
                 continue;
@@ -290,22 +296,23 @@ impl ZmqBackend {
             let alias = self
                 .client
                 .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
-            if cbor::text(&alias) != Some(known.line_alias.as_str()) {
+            let Some(t) = cbor::text(&alias).and_then(|a| templates.iter().position(|t| *t == a))
+            else {
                 continue;
-            }
+            };
             let parent = self
                 .client
                 .call_int("sim.getObjectParent", vec![int(h.into())])?;
             if parent >= 0 {
                 continue; // not a root object after all
             }
-            strays += 1;
+            strays[t] += 1;
             let path = self
                 .client
                 .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
             let name = match cbor::text(&path) {
-                Some(p) if is_copy_name(p, &known.line_alias) => p.to_string(),
-                _ => format!("/{}[{strays}]", known.line_alias),
+                Some(p) if is_copy_name(p, templates[t]) => p.to_string(),
+                _ => format!("/{}[{}]", templates[t], strays[t]),
             };
             seen.insert(h);
             out.push(self.line_info(h, name, None, poses)?);
@@ -448,7 +455,7 @@ impl Backend for ZmqBackend {
         for n in names {
             handles.push(self.handle_of(&object_path(n))?);
         }
-        // ObjectNames order: floor, parent, template, start, end, then other templates
+        // ObjectNames order: floor, parent, template, start, end, then the other templates
         self.known = Known {
             foreign_aliases: names
                 .iter()
@@ -674,13 +681,15 @@ impl Authoring for ZmqBackend {
 
     /// As [`ZmqBackend::create_missing`], with the `Wall` template, a dark grey cuboid
     /// (static, respondable, collidable, measurable, detectable by proximity sensors, seen
-    /// by cameras), standing beside the course floor at (0, -6) instead of the line.
+    /// by cameras), standing beside the course floor at (0, -6) instead of the line, and
+    /// with `post` the `Post` template, such a cuboid of that size, 0.25 m south of the wall.
     fn create_missing_walls(
         &mut self,
         names: &ObjectNames,
-        size: [f64; 3],
+        wall: [f64; 3],
+        post: Option<[f64; 3]>,
     ) -> Result<Vec<String>, BackendError> {
-        self.create_course(names, Some(size))
+        self.create_course(names, Some((wall, post)))
     }
 
     /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
@@ -696,17 +705,18 @@ enum Make {
     Dummy,
     /// A plane: size, colour, height.
     Plane(PlaneSpec),
-    /// The wall template: its size.
-    Wall([f64; 3]),
+    /// A wall or post template: its size and where it stands on the floor (x, y).
+    Cuboid([f64; 3], [f64; 2]),
 }
 
 impl ZmqBackend {
     /// Creates what the course scene has and this one lacks: a floor, the maze dummy, the
-    /// line template (or, with `wall`, the wall template of that size), start and end.
+    /// line template (or, with `walls`, the wall template of that size and the post
+    /// template if a post size is given), start and end.
     fn create_course(
         &mut self,
         names: &ObjectNames,
-        wall: Option<[f64; 3]>,
+        walls: Option<([f64; 3], Option<[f64; 3]>)>,
     ) -> Result<Vec<String>, BackendError> {
         let mut created = Vec::new();
         let mut floor = self.handle_of(&object_path(&names.floor))?;
@@ -724,25 +734,30 @@ impl ZmqBackend {
             floor = Some(h);
             created.push(names.floor.clone());
         }
-        let template = match wall {
-            None => (
-                names.line.as_str(),
+        let mut specs: Vec<(&str, Make)> = vec![(&names.parent, Make::Dummy)];
+        match walls {
+            None => specs.push((
+                &names.line,
                 Make::Plane(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001)),
-            ),
-            Some(size) => (names.wall.as_str(), Make::Wall(size)),
-        };
-        let specs: [(&str, Make); 4] = [
-            (&names.parent, Make::Dummy),
-            template,
+            )),
+            Some((wall, post)) => {
+                specs.push((&names.wall, Make::Cuboid(wall, [0.0, -6.0])));
+                if let Some(post) = post {
+                    let y = -6.0 - (wall[1] + post[1]) / 2.0 - 0.25;
+                    specs.push((&names.post, Make::Cuboid(post, [0.0, y])));
+                }
+            }
+        }
+        specs.extend([
             (
-                &names.start,
+                names.start.as_str(),
                 Make::Plane(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002)),
             ),
             (
-                &names.end,
+                names.end.as_str(),
                 Make::Plane(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002)),
             ),
-        ];
+        ]);
         for (name, shape) in specs {
             if self.handle_of(&object_path(name))?.is_some() {
                 continue;
@@ -763,7 +778,9 @@ impl ZmqBackend {
                 Make::Plane((size, colour, z)) => {
                     self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
                 }
-                Make::Wall(size) => self.create_wall(name, size, floor.unwrap_or(HANDLE_WORLD))?,
+                Make::Cuboid(size, at) => {
+                    self.create_cuboid(name, size, at, floor.unwrap_or(HANDLE_WORLD))?
+                }
             };
             let parent_path = name
                 .rsplit_once('/')
@@ -783,13 +800,14 @@ impl ZmqBackend {
         Ok(created)
     }
 
-    /// The wall template `name`: a dark grey cuboid of `size`, static and respondable,
-    /// sensed by every sensor, standing beside the course floor at (0, -6) in the frame
-    /// `relative_to`.
-    fn create_wall(
+    /// The wall or post template `name`: a dark grey cuboid of `size`, static and
+    /// respondable, sensed by every sensor, standing on the floor at `at` (x, y) in the
+    /// frame `relative_to`.
+    fn create_cuboid(
         &mut self,
         name: &str,
         size: [f64; 3],
+        at: [f64; 2],
         relative_to: i32,
     ) -> Result<i32, BackendError> {
         let h = self.client.call_int(
@@ -822,7 +840,7 @@ impl ZmqBackend {
                 vec![hv(), int(param.into()), int(1)],
             )?;
         }
-        self.set_pose(h, relative_to, [0.0, -6.0, size[2] / 2.0], [0.0; 3])?;
+        self.set_pose(h, relative_to, [at[0], at[1], size[2] / 2.0], [0.0; 3])?;
         self.call(
             "sim.setObjectAlias",
             vec![hv(), Value::Text(alias_of(name).into())],

@@ -1,12 +1,13 @@
 //! Wall mazes and micromouse: `generate --style walls` and `--preset micromouse` validate
-//! and render; apply draws walls into each emulated server and verifies; a line maze
-//! applied over walls replaces them (and the reverse); `clear` removes walls.
+//! and render; apply draws walls (and posts) into each emulated server and verifies; a line
+//! maze applied over walls replaces them (and the reverse), a wall maze without posts
+//! removes the posts; `clear` removes walls and posts.
 
 use std::fs;
 
 use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
 use vrep_maze::layout::json::parse_layout;
-use vrep_maze::layout::walls::{WallOptions, into_walls};
+use vrep_maze::layout::walls::{WallOptions, into_walls, length_between_posts};
 use vrep_maze::layout::{Layout, Style, passages};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::Scene;
@@ -22,6 +23,9 @@ use predicates::prelude::*;
 backend_tests!(
     walls_apply_verify_then_lines_replace_them,
     clear_removes_walls_and_leaves_the_templates,
+    posts_apply_verify_then_plain_walls_and_lines_remove_them,
+    clear_removes_walls_and_posts,
+    parentless_post_copies_are_reused_or_removed,
 );
 
 fn no_progress(_: draw::Stage) {}
@@ -39,15 +43,40 @@ fn wall_layout(n: u64, seed: u64) -> Layout {
     layout
 }
 
+/// [`wall_layout`] with posts of the default size (the wall thickness) at every corner.
+fn post_layout(n: u64, seed: u64) -> Layout {
+    let mut layout = course_layout(vrep_maze::generate::Algorithm::Prim, n, n, seed);
+    let grid = Grid::new(n, n).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    let options = WallOptions {
+        length: length_between_posts(1.0, 0.05),
+        posts: Some(0.05),
+        ..WallOptions::default()
+    };
+    into_walls(&mut layout, &maze, &options, true).unwrap();
+    layout
+}
+
 /// Copies of `Wall` in the scene (the template not counted) and whether each is a child of
 /// `Maze`.
 fn wall_copies(s: &Server) -> (usize, bool) {
+    copies_of(s, "Wall")
+}
+
+/// Copies of `Post` in the scene, as [`wall_copies`].
+fn post_copies(s: &Server) -> (usize, bool) {
+    copies_of(s, "Post")
+}
+
+/// Copies of the template `name` in the scene (the template not counted) and whether each
+/// is a child of `Maze`.
+fn copies_of(s: &Server, name: &str) -> (usize, bool) {
     s.with_sim(|sim| {
         let maze = sim.scene.resolve("Maze").unwrap();
         let copies: Vec<_> = sim
             .scene
             .objects()
-            .filter(|o| o.alias == "Wall" && o.name != "Wall")
+            .filter(|o| o.alias == name && o.name != name)
             .map(|o| o.parent)
             .collect();
         let all_children = copies.iter().all(|&p| p == Some(maze));
@@ -138,6 +167,174 @@ fn clear_removes_walls_and_leaves_the_templates(kind: Kind) {
     });
 }
 
+fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
+    let k = kind.name();
+    let s = kind.serve(Scene::course_walls(), 8);
+    let posts = Drawing::try_from(&post_layout(5, 3)).unwrap();
+    let (walls_n, posts_n) = (posts.lines.len(), posts.posts.len());
+    assert_eq!(posts_n, 36, "every corner of the 6 x 6 lattice");
+    let mut b = s.connect();
+    let r = apply(&mut b, &posts).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!((r.lines, r.posts), (walls_n, posts_n), "{k}");
+    assert_eq!(
+        r.pasted,
+        walls_n + posts_n,
+        "{k}: every wall and post is a copy"
+    );
+    assert!(
+        r.to_string()
+            .contains(&format!("walls and {posts_n} posts")),
+        "{r}"
+    );
+    assert_eq!(wall_copies(&s), (walls_n, true), "{k}");
+    assert_eq!(post_copies(&s), (posts_n, true), "{k}");
+    draw::verify(&mut *b, &posts, &ObjectNames::default()).unwrap();
+    // the post template stays where the scene has it
+    let template = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Post").unwrap();
+        sim.scene.get(h).unwrap().position
+    });
+    assert_eq!(template, [0.0, -6.3, 0.1]);
+    // again: nothing to paste, nothing to move
+    let again = apply(&mut b, &posts).unwrap();
+    assert_eq!(
+        (again.reused, again.pasted, again.removed, again.edits),
+        (walls_n + posts_n, 0, 0, 0),
+        "{k}"
+    );
+    // the same maze without posts: the walls stay (their centres are the same), the posts go
+    let plain = Drawing::try_from(&wall_layout(5, 3)).unwrap();
+    assert_eq!(plain.lines.len(), walls_n);
+    let r = apply(&mut b, &plain).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!(
+        (r.reused, r.removed, r.pasted),
+        (walls_n, posts_n, 0),
+        "{k}"
+    );
+    assert_eq!(post_copies(&s).0, 0, "{k}");
+    draw::verify(&mut *b, &plain, &ObjectNames::default()).unwrap();
+    // verify tells a maze with posts from one without
+    let e = draw::verify(&mut *b, &posts, &ObjectNames::default()).unwrap_err();
+    assert!(e.to_string().contains("no post at ("), "{k}: {e}");
+    // posts again, then a line maze over it: every wall and post copy goes
+    let r = apply(&mut b, &posts).unwrap();
+    assert_eq!((r.reused, r.pasted), (walls_n, posts_n), "{k}");
+    let e = draw::verify(&mut *b, &plain, &ObjectNames::default()).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains(&format!("{posts_n} stray maze object(s)")),
+        "{k}: {e}"
+    );
+    let lines = Drawing::try_from(&course_layout(
+        vrep_maze::generate::Algorithm::Prim,
+        5,
+        5,
+        3,
+    ))
+    .unwrap();
+    let r = apply(&mut b, &lines).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!((r.reused, r.removed), (0, walls_n + posts_n), "{k}");
+    assert_eq!((wall_copies(&s).0, post_copies(&s).0), (0, 0), "{k}");
+    draw::verify(&mut *b, &lines, &ObjectNames::default()).unwrap();
+    // and posts over the lines: every line copy goes
+    let r = apply(&mut b, &posts).unwrap();
+    assert_eq!((r.reused, r.removed), (0, lines.lines.len() - 1), "{k}");
+    assert_eq!(s.line_count(), 1, "{k}: only the line template is left");
+    draw::verify(&mut *b, &posts, &ObjectNames::default()).unwrap();
+}
+
+fn clear_removes_walls_and_posts(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let posts = Drawing::try_from(&post_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    apply(&mut b, &posts).unwrap();
+    let report = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+    assert_eq!(
+        report.removed.len(),
+        posts.lines.len() + posts.posts.len(),
+        "{}",
+        kind.name()
+    );
+    assert_eq!((wall_copies(&s).0, post_copies(&s).0), (0, 0));
+    s.with_sim(|sim| {
+        for name in ["Post", "Wall", "Line", "Start", "End", "Maze", "Floor"] {
+            assert!(
+                sim.scene.resolve(name).is_ok(),
+                "{}: {name} kept",
+                kind.name()
+            );
+        }
+    });
+}
+
+/// Copies of `Post` an interrupted run left at the scene root (pasted, never parented) are
+/// the maze's: reused by a maze with posts, removed by one without.
+fn parentless_post_copies_are_reused_or_removed(kind: Kind) {
+    let k = kind.name();
+    let s = kind.serve(Scene::course_walls(), 8);
+    let template = s.with_sim(|sim| sim.scene.resolve("Post").unwrap());
+    let mut b = s.connect();
+    let left = b.copy_paste(&[vec![template], vec![template]]).unwrap();
+    assert_eq!(left.len(), 2);
+    let posts = Drawing::try_from(&post_layout(3, 1)).unwrap();
+    let r = apply(&mut b, &posts).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!(
+        (r.reused, r.pasted),
+        (2, posts.lines.len() + posts.posts.len() - 2),
+        "{k}"
+    );
+    assert_eq!(post_copies(&s), (posts.posts.len(), true), "{k}");
+    b.copy_paste(&[vec![template]]).unwrap();
+    let plain = Drawing::try_from(&wall_layout(3, 1)).unwrap();
+    let r = apply(&mut b, &plain).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!(r.removed, posts.posts.len() + 1, "{k}");
+    assert_eq!(post_copies(&s).0, 0, "{k}");
+}
+
+#[test]
+fn posts_need_a_post_template_and_say_how_to_make_one() {
+    let mut scene = Scene::course_walls();
+    let post = scene.resolve("Post").unwrap();
+    scene.remove(post).unwrap();
+    let s = Kind::Legacy.serve(scene, 8);
+    let posts = Drawing::try_from(&post_layout(3, 1)).unwrap();
+    let mut b = s.connect();
+    let e = apply(&mut b, &posts).unwrap_err();
+    assert_eq!(e.to_string(), "missing in the scene: Post");
+    assert!(
+        e.hints()
+            .iter()
+            .any(|h| h.contains("`Post`: the post template")),
+        "{:?}",
+        e.hints()
+    );
+    // a maze without posts needs none
+    apply(&mut b, &Drawing::try_from(&wall_layout(3, 1)).unwrap()).unwrap();
+}
+
+#[test]
+fn zmq_create_missing_makes_a_post_cuboid_too() {
+    let s = Kind::Zmq2.serve(Scene::empty(), 8);
+    let mut b = s.connect();
+    let names = ObjectNames::default();
+    let created = b
+        .authoring()
+        .unwrap()
+        .create_missing_walls(&names, [0.95, 0.05, 0.2], Some([0.05, 0.05, 0.2]))
+        .unwrap();
+    assert_eq!(created, ["Floor", "Maze", "Wall", "Post", "Start", "End"]);
+    let (size, position) = s.with_sim(|sim| {
+        let h = sim.scene.resolve("Post").unwrap();
+        let o = sim.scene.get(h).unwrap();
+        (o.size, o.position)
+    });
+    assert_eq!(size, [0.05, 0.05, 0.2]);
+    assert_eq!(position, [0.0, -6.3, 0.1], "0.25 m south of the wall");
+    let posts = Drawing::try_from(&post_layout(3, 1)).unwrap();
+    apply(&mut b, &posts).unwrap();
+    assert_eq!(post_copies(&s), (posts.posts.len(), true));
+}
+
 #[test]
 fn walls_need_a_wall_template_and_say_how_to_make_one() {
     let s = Kind::Legacy.serve(Scene::course(), 8);
@@ -162,7 +359,7 @@ fn zmq_create_missing_makes_a_wall_cuboid() {
     let created = b
         .authoring()
         .unwrap()
-        .create_missing_walls(&names, [1.0, 0.05, 0.2])
+        .create_missing_walls(&names, [1.0, 0.05, 0.2], None)
         .unwrap();
     assert_eq!(created, ["Floor", "Maze", "Wall", "Start", "End"]);
     let size = s.with_sim(|sim| {
@@ -313,6 +510,198 @@ fn walls_cli_apply_into_serve_then_a_line_maze_replaces_them() {
             )),
         );
     bin().args(["clear", "--port", &port]).assert().success();
+}
+
+#[test]
+fn posts_cli_generate_validate_and_refuse_posts_without_walls() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("posts.json");
+    bin()
+        .args([
+            "generate", "--style", "walls", "--posts", "--seed", "42", "-o",
+        ])
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(predicates::str::contains("100 walls and 100 posts"));
+    let layout = vrep_maze::layout::read_layout(&path).unwrap();
+    assert_eq!(layout.post.as_ref().map(|p| p.size), Some(0.05));
+    assert_eq!(layout.wall.as_ref().map(|w| w.length), Some(0.95));
+    assert_eq!(
+        layout.posts.len(),
+        10 * 10,
+        "every corner of the 9x9 lattice"
+    );
+    bin()
+        .arg("validate")
+        .arg(&path)
+        .assert()
+        .success()
+        .stdout(predicates::str::contains("100 walls and 100 posts"));
+    // the same maze without posts: the same sides closed, one wall each
+    let plain = dir.path().join("plain.json");
+    bin()
+        .args(["generate", "--style", "walls", "--seed", "42", "-o"])
+        .arg(&plain)
+        .assert()
+        .success();
+    let plain = vrep_maze::layout::read_layout(&plain).unwrap();
+    assert_eq!(plain.walls.len(), layout.walls.len());
+    assert!(plain.post.is_none() && plain.posts.is_empty());
+    bin()
+        .args(["generate", "--posts"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--posts shapes walls: add --style walls",
+        ));
+    bin()
+        .args(["generate", "--style", "walls", "--post-size", "0.1"])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--post-size shapes posts: add --posts",
+        ));
+    bin()
+        .args([
+            "generate",
+            "--style",
+            "walls",
+            "--posts",
+            "--wall-length",
+            "1",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains(
+            "--wall-length 1 m is longer than the 0.95 m between two posts",
+        ));
+    // a competition micromouse maze: 289 posts, walls of 0.168 m between them
+    let out = bin()
+        .args([
+            "generate",
+            "--preset",
+            "micromouse",
+            "--posts",
+            "--seed",
+            "42",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let mouse = parse_layout(&String::from_utf8(out).unwrap(), "stdout").unwrap();
+    assert_eq!(mouse.posts.len(), 289);
+    assert_eq!(mouse.post.as_ref().map(|p| p.size), Some(0.012));
+    assert_eq!(mouse.wall.as_ref().map(|w| w.length), Some(0.168));
+    assert!(validate(&mouse).is_ok());
+}
+
+#[test]
+fn posts_cli_apply_into_serve_over_both_apis_then_a_line_maze_replaces_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let posts = dir.path().join("posts.json");
+    bin()
+        .args([
+            "generate", "--style", "walls", "--posts", "--seed", "42", "-o",
+        ])
+        .arg(&posts)
+        .assert()
+        .success();
+    let lines = crate::support::cli::generate(dir.path(), "42", "dfs");
+    let s = Serve::start(
+        &[
+            "--api",
+            "both",
+            "--listen",
+            "127.0.0.1:0",
+            "--zmq-listen",
+            "127.0.0.1:0",
+            "--scene",
+            "course-walls",
+            "--timing",
+            "instant",
+        ],
+        2,
+    );
+    let (legacy, zmq) = (s.ports[0].to_string(), s.ports[1].to_string());
+    bin()
+        .arg("apply")
+        .arg(&posts)
+        .args(["--port", &legacy])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("drew 100 walls and 100 posts: 0 reused, 200 pasted").and(
+                predicates::str::contains("verified: every wall, post, start and end in place"),
+            ),
+        );
+    bin()
+        .arg("apply")
+        .arg(&posts)
+        .args(["--api", "zmq", "--port", &zmq])
+        .assert()
+        .success()
+        .stdout(predicates::str::contains(
+            "drew 100 walls and 100 posts: 200 reused, 0 pasted, 0 removed",
+        ));
+    bin()
+        .args(["apply", &lines, "--api", "zmq", "--port", &zmq])
+        .assert()
+        .success()
+        .stdout(predicates::str::contains(
+            "drew 160 lines: 0 reused, 159 pasted, 200 removed",
+        ));
+    // posts again, then clear over the legacy API removes walls and posts
+    bin()
+        .arg("apply")
+        .arg(&posts)
+        .args(["--port", &legacy])
+        .assert()
+        .success();
+    bin()
+        .args(["clear", "--port", &legacy])
+        .assert()
+        .success()
+        .stdout(predicates::str::contains("removed 200 maze"));
+}
+
+#[test]
+fn posts_cli_zmq_create_missing_makes_wall_and_post() {
+    let dir = tempfile::tempdir().unwrap();
+    let posts = dir.path().join("posts.json");
+    bin()
+        .args([
+            "generate", "--style", "walls", "--posts", "--size", "3x3", "--seed", "1", "-o",
+        ])
+        .arg(&posts)
+        .assert()
+        .success();
+    let s = Serve::start(
+        &[
+            "--api",
+            "zmq",
+            "--listen",
+            "127.0.0.1:0",
+            "--scene",
+            "empty",
+            "--timing",
+            "instant",
+        ],
+        1,
+    );
+    bin()
+        .arg("apply")
+        .arg(&posts)
+        .args(["--api", "zmq", "--port", &s.port(), "--create-missing"])
+        .assert()
+        .success()
+        .stdout(
+            predicates::str::contains("created Floor, Maze, Wall, Post, Start, End")
+                .and(predicates::str::contains("and 16 posts"))
+                .and(predicates::str::contains("verified: every wall, post")),
+        );
 }
 
 #[test]

@@ -22,8 +22,8 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
 use super::ReadError;
 use super::scan::{Element, Position, ScanError, Source};
 use crate::layout::{
-    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, Style, VERSION,
-    WallSpec,
+    Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, PostSpec, Style,
+    VERSION, WallSpec,
 };
 use crate::maze::Metrics;
 
@@ -196,18 +196,36 @@ pub fn read_from<S: SegmentSink>(
             // serde refused above, or one of a wall layout's, which cannot come with
             // segments (the sink saw a line layout); an unknown one is refused here.
             let whole = fields.into_layout(name)?;
-            if (whole.style, &whole.wall, &whole.walls)
-                != (layout.style, &layout.wall, &layout.walls)
-            {
+            if wall_fields(&whole) != wall_fields(&layout) {
                 return Err(format_error(
                     name,
-                    "a wall layout's fields (`style`, `wall`, `walls`) follow line segments: a layout draws lines or walls, not both".to_string(),
+                    "a wall layout's fields (`style`, `wall`, `walls`, `post`, `posts`) follow line segments: a layout draws lines or walls, not both".to_string(),
                 ));
             }
             Ok((*layout, sink))
         }
         Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
     }
+}
+
+/// A wall layout's own fields (style, wall template, walls, post template, posts).
+type WallFields<'a> = (
+    Style,
+    &'a Option<WallSpec>,
+    &'a [Pose],
+    &'a Option<PostSpec>,
+    &'a [Pose],
+);
+
+/// The fields of `layout` that only a wall layout sets.
+fn wall_fields(layout: &Layout) -> WallFields<'_> {
+    (
+        layout.style,
+        &layout.wall,
+        &layout.walls,
+        &layout.post,
+        &layout.posts,
+    )
 }
 
 /// Where the segments go while the list is read.
@@ -303,6 +321,7 @@ const FIELDS: &[&str] = &[
     "floor",
     "line",
     "wall",
+    "post",
     "start",
     "end",
     "metrics",
@@ -310,6 +329,7 @@ const FIELDS: &[&str] = &[
     "passages",
     "segments",
     "walls",
+    "posts",
 ];
 
 /// The fields read so far.
@@ -323,6 +343,7 @@ struct Fields {
     floor: Option<FloorSpec>,
     line: Option<LineSpec>,
     wall: Option<WallSpec>,
+    post: Option<PostSpec>,
     start: Option<Endpoint>,
     end: Option<Endpoint>,
     metrics: Option<Metrics>,
@@ -331,6 +352,7 @@ struct Fields {
     /// Segments serde read (the list the scanner leaves out reads as empty).
     segments: Option<Vec<Pose>>,
     walls: Option<Vec<Pose>>,
+    posts: Option<Vec<Pose>>,
     /// The first key that is no layout field.
     unknown: Option<String>,
     /// Why this is not a layout this build reads (format or version).
@@ -387,6 +409,8 @@ impl Fields {
             style: self.style.unwrap_or_default(),
             wall: self.wall,
             walls: self.walls.unwrap_or_default(),
+            post: self.post,
+            posts: self.posts.unwrap_or_default(),
         })
     }
 }
@@ -460,6 +484,7 @@ impl<'de> Visitor<'de> for FieldsVisitor {
                 "floor" => field!(floor),
                 "line" => field!(line),
                 "wall" => field!(wall),
+                "post" => field!(post),
                 "start" => field!(start),
                 "end" => field!(end),
                 "metrics" => field!(metrics),
@@ -467,6 +492,7 @@ impl<'de> Visitor<'de> for FieldsVisitor {
                 "passages" => field!(passages),
                 "segments" => field!(segments),
                 "walls" => field!(walls),
+                "posts" => field!(posts),
                 _ => {
                     // Not a layout field: an error, unless the file is no layout at all,
                     // which the format check says better.
@@ -577,28 +603,44 @@ mod tests {
         }
     }
 
-    fn wall_layout() -> Layout {
+    /// [`layout`] in walls, with posts of 0.05 m if `posts`.
+    fn wall_layout(posts: bool) -> Layout {
+        use crate::layout::walls::{WallOptions, into_walls, length_between_posts};
         let mut layout = layout();
         let grid = Grid::new(4, 3).unwrap();
         let maze = crate::layout::passages::decode(grid, &layout.passages).unwrap();
-        let options = crate::layout::walls::WallOptions::default();
-        crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
+        let options = match posts {
+            false => WallOptions::default(),
+            true => WallOptions {
+                length: length_between_posts(1.0, 0.05),
+                posts: Some(0.05),
+                ..WallOptions::default()
+            },
+        };
+        into_walls(&mut layout, &maze, &options, true).unwrap();
         layout
     }
 
     #[test]
     fn a_wall_layouts_fields_are_read_wherever_they_stand() {
-        let layout = wall_layout();
+        let layout = wall_layout(true);
         let text = to_string(&layout);
         assert!(
             text.find("\n  \"walls\":") > text.find("\n  \"segments\":"),
             "written after"
         );
+        assert!(
+            text.find("\n  \"posts\":") > text.find("\n  \"walls\":"),
+            "written after"
+        );
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();
         let mut object = value.as_object().unwrap().clone();
         let style = object.remove("style").unwrap();
+        let post = object.remove("post").unwrap();
         let mut moved = object.clone();
-        moved.insert("style".into(), style); // now after the segments too
+        // now after the segments too
+        moved.insert("style".into(), style);
+        moved.insert("post".into(), post);
         let moved = serde_json::to_string_pretty(&moved).unwrap();
         for text in [text, moved] {
             for step in [1, 64, 1 << 20] {
@@ -611,11 +653,23 @@ mod tests {
 
     #[test]
     fn wall_fields_after_line_segments_are_refused() {
-        let walls = serde_json::to_string(&wall_layout().walls).unwrap();
+        let walls = serde_json::to_string(&wall_layout(false).walls).unwrap();
         let text = to_string(&layout());
         let mixed = text.replacen("  ]\n}", &format!("  ],\n  \"walls\": {walls}\n}}"), 1);
         let err = read(&mixed, 9).unwrap_err().to_string();
         assert!(err.contains("lines or walls, not both"), "{err}");
+        let posts = serde_json::to_string(&wall_layout(true).posts).unwrap();
+        for extra in [
+            format!("\"posts\": {posts}"),
+            "\"post\": {\"size\": 0.05}".to_string(),
+        ] {
+            let mixed = text.replacen("  ]\n}", &format!("  ],\n  {extra}\n}}"), 1);
+            let err = read(&mixed, 9).unwrap_err().to_string();
+            assert!(
+                err.contains("(`style`, `wall`, `walls`, `post`, `posts`)"),
+                "{err}"
+            );
+        }
         // the same layout with the fields before the segments reads, for validate to refuse
         let early = text.replacen(
             "\"segments\"",
@@ -623,7 +677,7 @@ mod tests {
             1,
         );
         let (head, segments, _) = read(&early, 9).unwrap();
-        assert_eq!(head.walls.len(), wall_layout().walls.len());
+        assert_eq!(head.walls.len(), wall_layout(false).walls.len());
         assert!(!segments.is_empty());
     }
 
