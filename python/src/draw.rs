@@ -26,8 +26,10 @@ use crate::worker::{self, OnSignal};
 /// What `apply` did: the numbers `vrep-maze apply` prints. `str(report)` is its line.
 #[pyclass(frozen, get_all, module = "vrep_maze")]
 pub struct ApplyReport {
-    /// Lines drawn (the template included).
+    /// Lines drawn (the template included), or a wall maze's walls.
     lines: usize,
+    /// A wall maze's posts drawn, else 0.
+    posts: usize,
     /// Copies from an earlier maze reused.
     reused: usize,
     /// Copies pasted.
@@ -91,8 +93,9 @@ impl ClearReport {
             "removed"
         };
         format!(
-            "<ClearReport {verb} {} maze line(s); {} round trip(s)>",
+            "<ClearReport {verb} {} maze cop{}; {} round trip(s)>",
             self.removed.len(),
+            if self.removed.len() == 1 { "y" } else { "ies" },
             self.round_trips
         )
     }
@@ -205,6 +208,7 @@ pub fn apply(
         connected.store(true, Ordering::SeqCst);
         let result = draw_connected(
             backend.as_mut(),
+            &layout,
             &drawing,
             &opts,
             create_missing,
@@ -222,6 +226,7 @@ pub fn apply(
     run_drawing(py, &stop, job, |(report, created, saved_scene)| {
         ApplyReport {
             lines: report.lines,
+            posts: report.posts,
             reused: report.reused,
             pasted: report.pasted,
             removed: report.removed,
@@ -247,6 +252,7 @@ type Applied = (draw::ApplyReport, Vec<String>, Option<String>);
 /// draw and verify, save the scene.
 fn draw_connected(
     backend: &mut dyn Backend,
+    layout: &vrep_maze::layout::Layout,
     drawing: &Drawing,
     opts: &ApplyOptions,
     create_missing: bool,
@@ -259,7 +265,7 @@ fn draw_connected(
         .is_some_and(|i| i.load(Ordering::SeqCst))
     {
         return Ok(Finished::Stopped {
-            message: format!("interrupted: 0 of {total} lines placed; the idle rate is unchanged"),
+            message: format!("interrupted: 0 of {total} copies placed; the idle rate is unchanged"),
             counts: Some((0, total)),
         });
     }
@@ -268,15 +274,14 @@ fn draw_connected(
         let authoring = backend.authoring().context(
             "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)",
         )?;
-        created = authoring
-            .create_missing(&opts.names)
+        created = draw::create_missing_for(authoring, &opts.names, layout)
             .context("creating the missing scene objects")?;
     }
     let report = match draw::apply(backend, drawing, opts, &mut |_| {}) {
         Err(DrawError::Interrupted { placed, total }) => {
             return Ok(Finished::Stopped {
                 message: format!(
-                    "interrupted: {placed} of {total} lines placed; the idle rate is restored"
+                    "interrupted: {placed} of {total} copies placed; the idle rate is restored"
                 ),
                 counts: Some((placed, total)),
             });

@@ -199,6 +199,13 @@ impl Layout {
         poses_array(py, &self.layout.walls)
     }
 
+    /// A wall layout's copies of `Post` (with `posts=True`), one per lattice corner, as a
+    /// `float64` array of shape `(n, 4)`; empty without posts.
+    #[getter]
+    fn posts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        poses_array(py, &self.layout.posts)
+    }
+
     /// How the maze is drawn: `"lines"` or `"walls"`.
     #[getter]
     fn style(&self) -> &'static str {
@@ -331,7 +338,8 @@ fn json_value<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<B
 /// `line_width=0.05`, `line_z=0.001`, `marker_z=0.002`, `origin=(0.0, 0.0)`,
 /// `rotation=90` (degrees), `floor_size=(20, 20)`; wall mazes: `style="walls"`,
 /// `wall_length=1.0`, `wall_thickness=0.05`, `wall_height=0.2`, `openings="start,end"`,
-/// or `preset="micromouse"` (or `"micromouse-half"`). An option left out (or `None`) has
+/// `posts=True`, `post_size=0.05`, or `preset="micromouse"` (or `"micromouse-half"`). An
+/// option left out (or `None`) has
 /// its command-line default (`algo="dfs"`, `size=(9, 9)`, `start="sw"`,
 /// `end="farthest"`, the course geometry); without `seed` one is drawn from the OS and
 /// recorded (`layout.seed`). The result is the same maze, byte for byte, as

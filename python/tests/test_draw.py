@@ -116,3 +116,11 @@ def test_a_wall_maze_is_drawn_and_a_line_maze_replaces_it(api):
     finally:
         scene.process.kill()
         scene.process.wait()
+
+
+def test_create_missing_makes_a_wall_mazes_templates(serve):
+    layout = vrep_maze.generate(seed=5, size=(4, 4), style="walls", posts=True)
+    report = vrep_maze.apply(layout, api="zmq", port=serve.zmq_port, create_missing=True)
+    assert {"Wall", "Post"} <= set(report.created), report.created
+    assert len(layout.posts) == 5 * 5  # every lattice corner
+    assert report.verified and (report.lines, report.posts) == (len(layout.walls), len(layout.posts))

@@ -50,6 +50,8 @@ class Layout:
     @property
     def walls(self) -> npt.NDArray[np.float64]: ...
     @property
+    def posts(self) -> npt.NDArray[np.float64]: ...
+    @property
     def style(self) -> str: ...
     @overload
     def render(
@@ -64,6 +66,7 @@ class Layout:
 
 class ApplyReport:
     lines: int
+    posts: int
     reused: int
     pasted: int
     removed: int
@@ -113,6 +116,8 @@ def generate(
     wall_thickness: Optional[float] = None,
     wall_height: Optional[float] = None,
     openings: Optional[str] = None,
+    posts: Optional[bool] = None,
+    post_size: Optional[float] = None,
     preset: Optional[str] = None,
 ) -> Layout: ...
 def load(path: StrPath) -> Layout: ...

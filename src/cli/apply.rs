@@ -164,18 +164,8 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = match &layout.wall {
-            Some(wall) => authoring.create_missing_walls(
-                &opts.names,
-                [wall.length, wall.thickness, wall.height],
-                layout
-                    .post
-                    .as_ref()
-                    .map(|post| [post.size, post.size, wall.height]),
-            ),
-            None => authoring.create_missing(&opts.names),
-        }
-        .context("creating the missing scene objects")?;
+        let created = draw::create_missing_for(authoring, &opts.names, &layout)
+            .context("creating the missing scene objects")?;
         if !created.is_empty() {
             println!("created {}", created.join(", "));
         }
@@ -205,7 +195,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         // official client does spares the user the simulator's one-minute refusal
         let closed = backend.close();
         eprintln!(
-            "interrupted: {placed} of {total} lines placed; the idle rate is restored{}",
+            "interrupted: {placed} of {total} copies placed; the idle rate is restored{}",
             if closed.is_ok() {
                 " and the connection closed cleanly"
             } else {

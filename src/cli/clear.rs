@@ -59,11 +59,16 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         println!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)");
     }
     if report.removed.is_empty() {
-        println!("nothing to remove: no maze lines in the scene");
+        println!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene");
     } else {
         println!(
-            "{verb} {} maze line(s): {}{more}",
+            "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
+            if report.removed.len() == 1 {
+                "y"
+            } else {
+                "ies"
+            },
             shown.join(", ")
         );
     }

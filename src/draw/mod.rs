@@ -358,6 +358,27 @@ pub trait Authoring {
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
 }
 
+/// Creates the objects `layout` is drawn with that the scene lacks: the course's
+/// ([`Authoring::create_missing`]), or for a wall maze its `Wall` (and `Post`) cuboids at the
+/// layout's sizes ([`Authoring::create_missing_walls`]). Returns the names created.
+pub fn create_missing_for(
+    authoring: &mut dyn Authoring,
+    names: &ObjectNames,
+    layout: &crate::layout::Layout,
+) -> Result<Vec<String>, BackendError> {
+    match &layout.wall {
+        Some(wall) => authoring.create_missing_walls(
+            names,
+            [wall.length, wall.thickness, wall.height],
+            layout
+                .post
+                .as_ref()
+                .map(|post| [post.size, post.size, wall.height]),
+        ),
+        None => authoring.create_missing(names),
+    }
+}
+
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
@@ -382,7 +403,7 @@ pub enum DrawError {
     },
     /// Ctrl-C (or SIGTERM, SIGHUP) stopped the run between two requests; the idle rate
     /// was restored and the connection can be closed cleanly.
-    #[error("interrupted with {placed} of {total} lines placed")]
+    #[error("interrupted with {placed} of {total} copies placed")]
     Interrupted {
         /// Lines placed before the interrupt.
         placed: usize,

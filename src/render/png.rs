@@ -19,7 +19,7 @@ use super::figure::{
     Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY,
     START, ScaleBar, WALL, for_each_run,
 };
-use super::walls::{WallRun, for_each_wall_run};
+use super::walls::{WallRun, for_each_wall_run, post_rect};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
 use crate::maze::Cell;
@@ -218,6 +218,8 @@ struct Picture {
     cell_size: f64,
     /// Line width, or a wall maze's wall thickness, as drawn: at least a pixel.
     bar_width: f64,
+    /// A wall maze's post side, metres (at least a pixel), if it has posts.
+    post_width: Option<f64>,
     /// The metre grid, the start and end markers: drawn in every strip they touch.
     grid: Vec<Shape>,
     markers: [(Shape, Colour); 2],
@@ -283,6 +285,7 @@ impl Picture {
             Some(walls) => walls.thickness,
             None => layout.line.width,
         });
+        let post_width = view.walls.as_ref().and_then(|w| w.post).map(visible);
         let solution = solution_shapes(&view.solution, c, visible(layout.line.width / 2.0))
             .into_iter()
             .map(|shape| match shape {
@@ -318,6 +321,7 @@ impl Picture {
             view,
             cell_size: c,
             bar_width,
+            post_width,
             grid,
             markers,
             goal,
@@ -338,7 +342,14 @@ impl Picture {
             .rect(run.rect(self.cell_size, self.bar_width))
     }
 
-    /// The maze's own shapes (line runs, or wall runs and goal cells), bucketed by strip.
+    /// The picture of the post at lattice corner `corner`, `size` wide.
+    fn post_shape(&self, corner: [u32; 2], size: f64) -> Shape {
+        self.maze_frame
+            .rect(post_rect(corner, self.cell_size, size))
+    }
+
+    /// The maze's own shapes (line runs, or wall runs, posts and goal cells), bucketed by
+    /// strip.
     fn bars(&self, strips: usize, strip_rows: u32) -> Bars {
         match &self.view.walls {
             None => Bars::Lines(Buckets::new(
@@ -375,6 +386,25 @@ impl Picture {
                     },
                     |run| self.wall_shape(run).rows(),
                 ),
+                posts: self.post_width.map(|size| {
+                    let (columns, rows) = (
+                        self.view.maze.grid().width(),
+                        self.view.maze.grid().height(),
+                    );
+                    Buckets::new(
+                        strips,
+                        strip_rows,
+                        self.height,
+                        |emit| {
+                            for j in 0..=rows {
+                                for i in 0..=columns {
+                                    emit([i, j]);
+                                }
+                            }
+                        },
+                        |&corner| self.post_shape(corner, size).rows(),
+                    )
+                }),
                 goal: Buckets::new(
                     strips,
                     strip_rows,
@@ -407,7 +437,7 @@ impl Picture {
                 );
                 markers(strip);
             }
-            Bars::Walls { runs, goal } => {
+            Bars::Walls { runs, posts, goal } => {
                 goal.visit(k, top, Shape::rows, |shape| strip.paint(shape, GOAL));
                 markers(strip);
                 runs.visit(
@@ -418,6 +448,16 @@ impl Picture {
                         strip.paint(&self.wall_shape(run), WALL);
                     },
                 );
+                if let (Some(posts), Some(size)) = (posts, self.post_width) {
+                    posts.visit(
+                        k,
+                        top,
+                        |&corner| self.post_shape(corner, size).rows(),
+                        |&corner| {
+                            strip.paint(&self.post_shape(corner, size), WALL);
+                        },
+                    );
+                }
             }
         }
     }
@@ -490,9 +530,10 @@ impl Picture {
 enum Bars {
     /// A line maze's green runs.
     Lines(Buckets<Run>),
-    /// A wall maze's walls and its tinted goal cells.
+    /// A wall maze's walls, its posts (if any) and its tinted goal cells.
     Walls {
         runs: Buckets<WallRun>,
+        posts: Option<Buckets<[u32; 2]>>,
         goal: Buckets<Shape>,
     },
 }
@@ -878,6 +919,39 @@ mod tests {
         let (x, y) = (ox + f64::from(on_path.x), oy + f64::from(on_path.y));
         let (r, _, b) = pixel(Point2::new(x, y));
         assert!(r >= 230 && b <= 40, "{:?}", pixel(Point2::new(x, y)));
+    }
+
+    #[test]
+    fn posts_stand_dark_at_every_lattice_corner() {
+        let grid = Grid::new(6, 4).unwrap();
+        let mut with_posts = build_layout(&GenerateSpec::course(grid, Algorithm::Prim, 3)).unwrap();
+        let mut without = with_posts.clone();
+        let maze = crate::layout::passages::decode(grid, &with_posts.passages).unwrap();
+        let options = |posts| WallOptions {
+            length: 0.8,
+            posts,
+            ..WallOptions::default()
+        };
+        into_walls(&mut with_posts, &maze, &options(Some(0.2)), true).unwrap();
+        into_walls(&mut without, &maze, &options(None), true).unwrap();
+        let posts = render(&with_posts, &RenderOptions::default());
+        let bare = render(&without, &RenderOptions::default());
+        let [ox, oy] = with_posts.grid.origin;
+        let markers = [with_posts.start.cell, with_posts.end.cell];
+        for j in 0..=4u32 {
+            for i in 0..=6u32 {
+                // 0.08 m north-east of the corner: inside its 0.2 m post, off the 0.05 m walls
+                let (x, y) = (ox + f64::from(i) - 0.42, oy + f64::from(j) - 0.42);
+                assert_eq!(
+                    at(&posts, &with_posts, x, y),
+                    DARK,
+                    "post at corner ({i},{j})"
+                );
+                if !markers.contains(&[i, j]) {
+                    assert_ne!(at(&bare, &without, x, y), DARK, "no post at ({i},{j})");
+                }
+            }
+        }
     }
 
     #[test]

@@ -17,7 +17,7 @@ use super::figure::{
     END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
     ScaleBar, WALL, for_each_run,
 };
-use super::walls::{WallRun, Walls, for_each_wall_run};
+use super::walls::{WallRun, Walls, for_each_wall_run, post_rect};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
 use crate::maze::Cell;
@@ -209,7 +209,36 @@ fn wall_runs(
         |run: WallRun| rect(out, run.rect(c, walls.thickness)),
         |_| progress.inc(1),
     )?;
+    if let Some(size) = walls.post {
+        posts(out, view, c, size)?;
+    }
     out.write_all(b"</g>\n")
+}
+
+/// The post at every lattice corner: one square tiled by a pattern of the cell's period
+/// over the lattice, not one element per post (a 4096x4096 maze has 16.8 million).
+fn posts(out: &mut impl Write, view: &MazeView, c: f64, size: f64) -> io::Result<()> {
+    let grid = view.maze.grid();
+    let [x0, y0, ..] = post_rect([0, 0], c, size);
+    let [.., x1, y1] = post_rect([grid.width(), grid.height()], c, size);
+    writeln!(
+        out,
+        r#"<pattern id="posts" patternUnits="userSpaceOnUse" x="{}" y="{}" width="{}" height="{}"><rect width="{}" height="{}"/></pattern>"#,
+        num(x0),
+        num(y0),
+        num(c),
+        num(c),
+        num(size),
+        num(size)
+    )?;
+    writeln!(
+        out,
+        r#"<rect fill="url(#posts)" x="{}" y="{}" width="{}" height="{}"/>"#,
+        num(x0),
+        num(y0),
+        num(x1 - x0),
+        num(y1 - y0)
+    )
 }
 
 /// The goal region's tinted cells, if any.
@@ -333,6 +362,41 @@ mod tests {
             .split("</g>")
             .next()
             .unwrap()
+    }
+
+    #[test]
+    fn posts_are_one_pattern_over_the_lattice_in_the_wall_group() {
+        let mut layout = wall_layout(6, 4, 3, 30.0, "none");
+        let maze =
+            crate::layout::passages::decode(Grid::new(6, 4).unwrap(), &layout.passages).unwrap();
+        let bare = svg_of(&layout, &RenderOptions::default());
+        assert!(!bare.contains("<pattern"));
+        let options = crate::layout::walls::WallOptions {
+            length: 0.8,
+            posts: Some(0.2),
+            ..Default::default()
+        };
+        crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
+        let svg = svg_of(&layout, &RenderOptions::default());
+        let walls = svg
+            .split(&format!("<g fill=\"{WALL}\">"))
+            .nth(1)
+            .unwrap()
+            .split("</g>")
+            .next()
+            .unwrap();
+        // a 0.2 m square repeated every cell from the south-west corner's post...
+        assert!(walls.contains(
+            r#"<pattern id="posts" patternUnits="userSpaceOnUse" x="-0.6" y="-0.6" width="1" height="1"><rect width="0.2" height="0.2"/></pattern>"#
+        ), "{walls}");
+        // ...over the lattice, the north-east corner's post included: 7 x 5 posts
+        assert!(
+            walls.contains(
+                r#"<rect fill="url(#posts)" x="-0.6" y="-0.6" width="6.2" height="4.2"/>"#
+            ),
+            "{walls}"
+        );
+        assert_eq!(layout.posts.len(), 7 * 5);
     }
 
     #[test]

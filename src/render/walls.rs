@@ -7,8 +7,9 @@
 //! ([`crate::layout::walls::is_closed`]), corner to corner, the template's thickness across.
 //! So a run of closed sides is one bar from its first lattice corner to its last: where
 //! two runs meet at a right angle, the picture (like the cuboids) leaves a notch
-//! `thickness / 2` square at the outer corner. A post at a lattice corner would be one more
-//! square per corner, drawn with the bars.
+//! `thickness / 2` square at the outer corner. A maze with posts has one more square, the
+//! post's, at every lattice corner (validation proves one stands at each), drawn with the
+//! bars: walls and posts together cover each closed side corner to corner.
 
 use anyhow::{Result, anyhow};
 
@@ -45,6 +46,14 @@ impl WallRun {
             WallAxis::AlongY => [across - half, lo, across + half, hi],
         }
     }
+}
+
+/// The square of the post at lattice corner `[i, j]` in the maze frame, `[x0, y0, x1, y1]`,
+/// for cells of side `cell` and posts `size` wide.
+pub(super) fn post_rect([i, j]: [u32; 2], cell: f64, size: f64) -> [f64; 4] {
+    let corner = |k: u32| (f64::from(k) - 0.5) * cell;
+    let (x, y, half) = (corner(i), corner(j), size / 2.0);
+    [x - half, y - half, x + half, y + half]
 }
 
 /// The outer sides a wall maze leaves open, as (axis, line, side) in lattice terms,
@@ -181,6 +190,8 @@ pub(super) struct Walls {
     pub open: OpenSides,
     /// The goal region's cells but the start and end (their markers cover them), tinted.
     pub goal: Vec<Cell>,
+    /// The side of the post at every lattice corner, if the maze has posts.
+    pub post: Option<f64>,
 }
 
 impl Walls {
@@ -204,6 +215,7 @@ impl Walls {
             thickness: spec.thickness,
             open: OpenSides::of(maze, &spec.openings),
             goal,
+            post: layout.post.as_ref().map(|post| post.size),
         }))
     }
 }

@@ -43,7 +43,7 @@ fn legacy_cli_apply_replace_clear() {
         .args(["clear", "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("removed 159 maze line(s): Line0"));
+        .stdout(predicate::str::contains("removed 159 maze copies: Line0"));
     bin()
         .args(["clear", "--port", &port])
         .assert()
@@ -146,7 +146,7 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
         .args(["clear", "--port", &s2.port()])
         .assert()
         .success()
-        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+        .stdout(predicate::str::contains("removed 159 maze copies"));
     bin()
         .args(["serve", "--scene", "/nonexistent/scene.json"])
         .assert()

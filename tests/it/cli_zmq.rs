@@ -90,7 +90,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
         .args(["clear", "--api", "zmq", "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+        .stdout(predicate::str::contains("removed 159 maze copies"));
 }
 
 #[test]
@@ -146,7 +146,7 @@ fn zmq_cli_both_apis_share_one_scene() {
         .args(["clear", "--api", "zmq", "--port", &zmq])
         .assert()
         .success()
-        .stdout(predicate::str::contains("removed 159 maze line(s)"));
+        .stdout(predicate::str::contains("removed 159 maze copies"));
     bin()
         .args(["clear", "--port", &legacy])
         .assert()
