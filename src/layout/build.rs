@@ -181,8 +181,8 @@ impl Planned {
 pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
     let grid = maze.grid();
     let geometry = spec.check_on(grid)?;
-    let (start, end) = resolve(&maze, spec.start, spec.end)?;
-    let metrics = Metrics::measure(&maze, grid.index(start), grid.index(end))
+    let (start, end, from_start) = resolve(&maze, spec.start, spec.end)?;
+    let metrics = Metrics::measure_from(&maze, &from_start, grid.index(end))
         .ok_or_else(|| format!("end {end} cannot be reached from start {start}"))?;
     let floor = floor_for(grid, &geometry, spec.floor)?;
     let head = Layout {
