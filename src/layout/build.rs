@@ -160,9 +160,10 @@ impl Planned {
 
     /// The segments, in layout order: passage by passage, each passage's copies in turn.
     pub fn segments(&self) -> impl Iterator<Item = Pose> + '_ {
+        let placer = self.geometry.passage_placer(&self.offsets);
         self.maze
             .passages()
-            .flat_map(|(cell, dir)| self.geometry.passage_segments(cell, dir, &self.offsets))
+            .flat_map(move |(cell, dir)| placer.segments(cell, dir))
     }
 
     /// The whole layout, segments and all.
