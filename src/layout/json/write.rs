@@ -5,19 +5,13 @@
 //! to exist in memory.
 
 use std::io::{self, Write};
-use std::sync::mpsc;
-use std::thread;
 
 use serde::Serialize;
 
+use super::parallel;
 use super::pretty::ShallowPretty;
 use crate::layout::geometry::{round_half_away, round_um};
 use crate::layout::{Layout, Pose};
-
-/// Segments handed from thread to thread at a time (about 4 MB of text).
-const BATCH: usize = 1 << 16;
-/// Batches waiting between two threads, at most.
-const QUEUE: usize = 4;
 
 /// How the serialized head ends when `segments` is empty: the writer splices the segments in
 /// before the `]`. `segments` is the last field of [`Layout`], so this is always the tail.
@@ -32,9 +26,9 @@ pub fn write_layout<W: Write>(layout: &Layout, writer: W) -> io::Result<()> {
 /// ones in `head.segments` are ignored): what [`write_layout`] writes for the whole layout.
 /// `segments` is consumed as it is written, so a generator can compute them on the fly.
 ///
-/// Three threads share the work, so a big layout is written at disk speed: one takes the
-/// segments from the iterator (computing them, for a generator), one formats them, and
-/// this one writes the text.
+/// Threads share the work, so a big layout is written at disk speed: one takes the
+/// segments from the iterator (computing them, for a generator), others format them, and
+/// this one writes the text (see [`parallel`]).
 pub fn write_layout_parts<W: Write>(
     head: &Layout,
     segments: impl IntoIterator<Item = Pose, IntoIter: Send>,
@@ -44,39 +38,7 @@ pub fn write_layout_parts<W: Write>(
     writer.write_all(&prefix[..prefix.len() - EMPTY_SEGMENTS_TAIL.len()])?;
     writer.write_all(b"\"segments\": [")?;
     let segments = segments.into_iter();
-    let any = thread::scope(|scope| -> io::Result<bool> {
-        let (poses_out, poses_in) = mpsc::sync_channel::<Vec<Pose>>(QUEUE);
-        let (text_out, text_in) = mpsc::sync_channel::<Vec<u8>>(QUEUE);
-        scope.spawn(move || {
-            let mut segments = segments.peekable();
-            while segments.peek().is_some() {
-                let batch: Vec<Pose> = segments.by_ref().take(BATCH).collect();
-                if poses_out.send(batch).is_err() {
-                    return; // the writer stopped
-                }
-            }
-        });
-        scope.spawn(move || {
-            let mut first = true;
-            for batch in poses_in {
-                let mut text = Vec::with_capacity(batch.len() * 64);
-                for pose in &batch {
-                    text.extend_from_slice(if first { b"\n    " } else { b",\n    " });
-                    write_pose(&mut text, pose);
-                    first = false;
-                }
-                if text_out.send(text).is_err() {
-                    return;
-                }
-            }
-        });
-        let mut any = false;
-        for text in text_in {
-            writer.write_all(&text)?;
-            any = true;
-        }
-        Ok(any)
-    })?;
+    let any = parallel::write_segments(segments, &mut writer, write_batch)?;
     writer.write_all(if any { b"\n  ]\n}\n" } else { b"]\n}\n" })?;
     writer.flush()
 }
@@ -93,6 +55,19 @@ fn head_without_segments(head: &Layout) -> io::Result<Vec<u8>> {
         "segments is the last field"
     );
     Ok(bytes)
+}
+
+/// A batch of segments, as serde writes them inside the segment list: each on its own
+/// line, after a comma unless it is the very first of the list.
+fn write_batch(text: &mut Vec<u8>, batch: &[Pose], first: bool) {
+    for (i, pose) in batch.iter().enumerate() {
+        text.extend_from_slice(if first && i == 0 {
+            b"\n    "
+        } else {
+            b",\n    "
+        });
+        write_pose(text, pose);
+    }
 }
 
 /// One segment, as serde writes a [`Pose`] inside the segment list.
