@@ -60,27 +60,64 @@ fn head_without_segments(head: &Layout) -> io::Result<Vec<u8>> {
 /// A batch of segments, as serde writes them inside the segment list: each on its own
 /// line, after a comma unless it is the very first of the list.
 fn write_batch(text: &mut Vec<u8>, batch: &[Pose], first: bool) {
+    // Values repeat: one height and a heading per direction in a generated layout, and
+    // along a row of an unturned maze three values of y. Those are formatted once.
+    let (mut ys, mut heights, mut headings) = (Recent::new(), Recent::new(), Recent::new());
     for (i, pose) in batch.iter().enumerate() {
         text.extend_from_slice(if first && i == 0 {
             b"\n    "
         } else {
             b",\n    "
         });
-        write_pose(text, pose);
+        text.extend_from_slice(b"{\"x\": ");
+        write_um(text, pose.x);
+        text.extend_from_slice(b", \"y\": ");
+        ys.write(text, pose.y);
+        text.extend_from_slice(b", \"z\": ");
+        heights.write(text, pose.z);
+        text.extend_from_slice(b", \"yaw\": ");
+        headings.write(text, pose.yaw);
+        text.push(b'}');
     }
 }
 
-/// One segment, as serde writes a [`Pose`] inside the segment list.
-fn write_pose(line: &mut Vec<u8>, pose: &Pose) {
-    line.extend_from_slice(b"{\"x\": ");
-    write_um(line, pose.x);
-    line.extend_from_slice(b", \"y\": ");
-    write_um(line, pose.y);
-    line.extend_from_slice(b", \"z\": ");
-    write_um(line, pose.z);
-    line.extend_from_slice(b", \"yaw\": ");
-    write_um(line, pose.yaw);
-    line.push(b'}');
+/// The texts of the last [`RECENT`] distinct values [`write_um`] wrote for one field.
+struct Recent {
+    /// Value (as bits), text and its length; replaced oldest first.
+    texts: [(u64, [u8; TEXT], usize); RECENT],
+    next: usize,
+}
+
+/// Values a [`Recent`] keeps.
+const RECENT: usize = 4;
+/// Longest text [`write_um`] writes (zmij's longest, `-1.2345678901234567e-308`).
+const TEXT: usize = 24;
+
+impl Recent {
+    fn new() -> Self {
+        // No value is NaN with these bits and length 0: a slot that never matches.
+        Self {
+            texts: [(f64::NAN.to_bits(), [0; TEXT], 0); RECENT],
+            next: 0,
+        }
+    }
+
+    /// Writes `value` as [`write_um`] does, from memory when it was among the last.
+    #[inline]
+    fn write(&mut self, out: &mut Vec<u8>, value: f64) {
+        let bits = value.to_bits();
+        if let Some((_, text, len)) = self.texts.iter().find(|t| t.0 == bits && t.2 > 0) {
+            return out.extend_from_slice(&text[..*len]);
+        }
+        let at = out.len();
+        write_um(out, value);
+        let written = &out[at..];
+        let slot = &mut self.texts[self.next];
+        slot.0 = bits;
+        slot.1[..written.len()].copy_from_slice(written);
+        slot.2 = written.len();
+        self.next = (self.next + 1) % RECENT;
+    }
 }
 
 /// A number rounded to the micrometre in its shortest form; `null` when not finite, as
@@ -97,24 +134,37 @@ fn write_um(out: &mut Vec<u8>, value: f64) {
                 .as_bytes(),
         );
     }
-    if micrometres < 0.0 {
-        out.push(b'-');
-    }
-    let micrometres = micrometres.abs() as u64;
-    let (whole, mut fraction) = (micrometres / 1_000_000, micrometres % 1_000_000);
-    out.extend_from_slice(itoa::Buffer::new().format(whole).as_bytes());
-    out.push(b'.');
+    // Digits from the right into a buffer, copied out at once: `-`, the metres, `.` and
+    // the six micrometre places without trailing zeros (one kept).
+    let mut buffer = [0u8; 24];
+    let mut at = buffer.len();
+    let mut put = |byte: u8| {
+        at -= 1;
+        buffer[at] = byte;
+    };
+    let magnitude = micrometres.abs() as u64;
+    let (mut whole, mut fraction) = (magnitude / 1_000_000, magnitude % 1_000_000);
     let mut places = 6;
     while places > 1 && fraction % 10 == 0 {
         fraction /= 10;
         places -= 1;
     }
-    let mut digits = [b'0'; 6];
-    for slot in digits[..places].iter_mut().rev() {
-        *slot = b'0' + (fraction % 10) as u8;
+    for _ in 0..places {
+        put(b'0' + (fraction % 10) as u8);
         fraction /= 10;
     }
-    out.extend_from_slice(&digits[..places]);
+    put(b'.');
+    loop {
+        put(b'0' + (whole % 10) as u8);
+        whole /= 10;
+        if whole == 0 {
+            break;
+        }
+    }
+    if micrometres < 0.0 {
+        put(b'-');
+    }
+    out.extend_from_slice(&buffer[at..]);
 }
 
 /// `true` when a value of `micrometres` (a whole number) is written as `[-]int.frac`, its
@@ -154,6 +204,9 @@ mod tests {
         {
             layout.segments[i].x = v;
             layout.segments[i].yaw = -v;
+            // Heights are remembered by value: each awkward one twice, apart.
+            layout.segments[i].z = v;
+            layout.segments[i + 10].z = v;
         }
         let mut ours = Vec::new();
         write_layout(&layout, &mut ours).unwrap();
