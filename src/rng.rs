@@ -107,11 +107,29 @@ impl MazeRng {
     /// overlap instead of stalling one by one. Draws and swaps happen in exactly the
     /// plain algorithm's order, so the result is the same.
     pub fn shuffle<T>(&mut self, items: &mut [T]) {
+        self.shuffle_back(items, items.len().saturating_sub(1));
+    }
+
+    /// The first `steps` steps of [`shuffle`](Self::shuffle): afterwards the last `steps`
+    /// items are where the whole shuffle leaves them, and shuffling the items before them
+    /// (with this function or `shuffle`) finishes exactly the same shuffle. So a caller can
+    /// hand out the finished tail while the head is still being shuffled.
+    ///
+    /// # Panics
+    /// If `steps` is `items.len()` or more (the first item is never a step of its own),
+    /// unless both are 0.
+    pub fn shuffle_back<T>(&mut self, items: &mut [T], steps: usize) {
         const BATCH: usize = 64;
+        assert!(
+            steps < items.len() || steps == 0,
+            "{steps} shuffle steps on {} items",
+            items.len()
+        );
         let mut picks = [0usize; BATCH];
         let mut last = items.len().saturating_sub(1);
-        while last >= 1 {
-            let count = BATCH.min(last);
+        let end = last - steps;
+        while last > end {
+            let count = BATCH.min(last - end);
             for (step, pick) in picks[..count].iter_mut().enumerate() {
                 *pick = self.index(last - step + 1);
             }
@@ -194,6 +212,26 @@ mod tests {
             }
             assert_eq!(items, expected, "len {len}");
             assert_eq!(rng.next_u32(), reference.next_u32());
+        }
+    }
+
+    #[test]
+    fn a_shuffle_finished_in_pieces_is_the_same_shuffle() {
+        for (len, piece) in [(2, 1), (100, 1), (100, 7), (1000, 64), (1000, 999)] {
+            let mut whole: Vec<u32> = (0..len).collect();
+            let mut rng = MazeRng::from_seed(5);
+            rng.shuffle(&mut whole);
+            let mut pieces: Vec<u32> = (0..len).collect();
+            let mut again = MazeRng::from_seed(5);
+            let mut rest = &mut pieces[..];
+            while rest.len() > piece {
+                again.shuffle_back(rest, piece);
+                let at = rest.len() - piece;
+                rest = &mut rest[..at];
+            }
+            again.shuffle(rest);
+            assert_eq!(pieces, whole, "len {len}, pieces of {piece}");
+            assert_eq!(again.next_u32(), rng.next_u32());
         }
     }
 

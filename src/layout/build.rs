@@ -160,9 +160,10 @@ impl Planned {
 
     /// The segments, in layout order: passage by passage, each passage's copies in turn.
     pub fn segments(&self) -> impl Iterator<Item = Pose> + '_ {
+        let placer = self.geometry.passage_placer(&self.offsets);
         self.maze
             .passages()
-            .flat_map(|(cell, dir)| self.geometry.passage_segments(cell, dir, &self.offsets))
+            .flat_map(move |(cell, dir)| placer.segments(cell, dir))
     }
 
     /// This layout drawn with walls instead of lines: `draw` turns the head into a wall
@@ -193,8 +194,8 @@ impl Planned {
 pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
     let grid = maze.grid();
     let geometry = spec.check_on(grid)?;
-    let (start, end) = resolve(&maze, spec.start, spec.end)?;
-    let metrics = Metrics::measure(&maze, grid.index(start), grid.index(end))
+    let (start, end, from_start) = resolve(&maze, spec.start, spec.end)?;
+    let metrics = Metrics::measure_from(&maze, &from_start, grid.index(end))
         .ok_or_else(|| format!("end {end} cannot be reached from start {start}"))?;
     let floor = floor_for(grid, &geometry, spec.floor)?;
     let head = Layout {

@@ -3,7 +3,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::maze::analysis::{diameter_ends, farthest_from};
+use crate::maze::analysis::{Distances, diameter_ends};
 use crate::maze::{Cell, Grid, Maze};
 
 /// A grid corner, by compass name (north is +y).
@@ -129,12 +129,14 @@ pub fn check(grid: Grid, start: EndpointSpec, end: EndpointSpec) -> Result<(), S
     Ok(())
 }
 
-/// Resolves the start and end specs on `maze` to cells, or says why they don't fit.
+/// Resolves the start and end specs on `maze` to cells, or says why they don't fit; with
+/// the breadth-first distances from the start, which a layout's metrics need too (see
+/// [`Metrics::measure_from`](crate::maze::Metrics::measure_from)).
 pub fn resolve(
     maze: &Maze,
     start: EndpointSpec,
     end: EndpointSpec,
-) -> Result<(Cell, Cell), String> {
+) -> Result<(Cell, Cell, Distances), String> {
     let grid = maze.grid();
     check(grid, start, end)?;
     let fixed = |spec: EndpointSpec, which: &str| -> Result<Option<Cell>, String> {
@@ -157,18 +159,24 @@ pub fn resolve(
         }
         EndpointSpec::FarthestPair => {
             let (a, b, _) = diameter_ends(maze);
-            return Ok((grid.cell(a.min(b)), grid.cell(a.max(b))));
+            let (start, end) = (a.min(b), a.max(b));
+            return Ok((
+                grid.cell(start),
+                grid.cell(end),
+                Distances::from(maze, start),
+            ));
         }
         spec => fixed(spec, "start")?.expect("cell or corner"),
     };
+    let from_start = Distances::from(maze, grid.index(start_cell));
     let end_cell = match end {
         EndpointSpec::FarthestPair => {
             return Err("--end farthest-pair is not a thing: use --start farthest-pair".into());
         }
-        EndpointSpec::Farthest => grid.cell(farthest_from(maze, grid.index(start_cell)).0),
+        EndpointSpec::Farthest => grid.cell(from_start.farthest().0),
         spec => fixed(spec, "end")?.expect("cell or corner"),
     };
-    Ok((start_cell, end_cell))
+    Ok((start_cell, end_cell, from_start))
 }
 
 #[cfg(test)]
@@ -191,16 +199,19 @@ mod tests {
     #[test]
     fn farthest_end_is_farthest() {
         let maze = generate(Grid::new(9, 9).unwrap(), Algorithm::Dfs, 42);
-        let (s, e) = resolve(
+        let (s, e, from_s) = resolve(
             &maze,
             EndpointSpec::Corner(Corner::SouthWest),
             EndpointSpec::Farthest,
         )
         .unwrap();
+        assert_eq!(from_s, Distances::from(&maze, 0));
         assert_eq!(s, Cell::new(0, 0));
         let dist = distances_from(&maze, 0);
         assert_eq!(dist[maze.grid().index(e)], *dist.iter().max().unwrap());
-        let (a, b) = resolve(&maze, EndpointSpec::FarthestPair, EndpointSpec::Farthest).unwrap();
+        let (a, b, from_a) =
+            resolve(&maze, EndpointSpec::FarthestPair, EndpointSpec::Farthest).unwrap();
+        assert_eq!(from_a, Distances::from(&maze, maze.grid().index(a)));
         let from_a = distances_from(&maze, maze.grid().index(a));
         let diameter = (0..81)
             .map(|i| *distances_from(&maze, i).iter().max().unwrap())

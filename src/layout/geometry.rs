@@ -139,27 +139,19 @@ impl Geometry {
         (0..n).map(|k| first + step * k as f64).collect()
     }
 
-    /// Floor poses of the segments that draw the passage from `cell` towards `dir`
-    /// (east or north).
-    pub fn passage_segments<'a>(
-        &self,
-        cell: Cell,
-        dir: Direction,
-        offsets: &'a [f64],
-    ) -> impl Iterator<Item = Pose> + use<'a> {
-        let iso = self.maze_to_floor();
-        let start = self.local_centre(cell);
-        let (axis, local_yaw) = match dir {
-            Direction::East => (Vector2::new(1.0, 0.0), 0.0),
-            Direction::North => (Vector2::new(0.0, 1.0), PI / 2.0),
-            Direction::West => (Vector2::new(-1.0, 0.0), 0.0),
-            Direction::South => (Vector2::new(0.0, -1.0), PI / 2.0),
-        };
-        let (z, yaw) = (self.line_z, local_yaw + self.rotation);
-        offsets.iter().map(move |&t| {
-            let p = iso * (start + axis * t);
-            Pose::rounded(p.x, p.y, z, yaw)
-        })
+    /// Places the segments of passages with these `offsets` (see
+    /// [`segment_offsets`](Self::segment_offsets)).
+    pub fn passage_placer<'a>(&self, offsets: &'a [f64]) -> PassagePlacer<'a> {
+        let rounded_yaw =
+            |local_yaw: f64| Pose::rounded(0.0, 0.0, 0.0, local_yaw + self.rotation).yaw;
+        PassagePlacer {
+            iso: self.maze_to_floor(),
+            cell_size: self.cell_size,
+            z: round_um(self.line_z),
+            yaw_along_x: rounded_yaw(0.0),
+            yaw_along_y: rounded_yaw(PI / 2.0),
+            offsets,
+        }
     }
 
     /// The floor-frame corners of the rectangle the grid covers (cell edges, not centres).
@@ -174,6 +166,45 @@ impl Geometry {
             iso * Point2::new(max_x, max_y),
             iso * Point2::new(-h, max_y),
         ]
+    }
+}
+
+/// Places the segments of passages ([`Geometry::passage_placer`]): the maze-to-floor
+/// isometry (a sine and a cosine), the segments' height and their two headings, each
+/// rounded once, so a segment costs one point transform and two roundings.
+#[derive(Debug, Clone, Copy)]
+pub struct PassagePlacer<'a> {
+    iso: Isometry2<f64>,
+    cell_size: f64,
+    z: f64,
+    yaw_along_x: f64,
+    yaw_along_y: f64,
+    offsets: &'a [f64],
+}
+
+impl<'a> PassagePlacer<'a> {
+    /// Floor poses of the segments that draw the passage from `cell` towards `dir`, as
+    /// [`Pose::rounded`] makes them.
+    pub fn segments(self, cell: Cell, dir: Direction) -> impl Iterator<Item = Pose> + use<'a> {
+        let start = Point2::new(
+            f64::from(cell.x) * self.cell_size,
+            f64::from(cell.y) * self.cell_size,
+        );
+        let (axis, yaw) = match dir {
+            Direction::East => (Vector2::new(1.0, 0.0), self.yaw_along_x),
+            Direction::North => (Vector2::new(0.0, 1.0), self.yaw_along_y),
+            Direction::West => (Vector2::new(-1.0, 0.0), self.yaw_along_x),
+            Direction::South => (Vector2::new(0.0, -1.0), self.yaw_along_y),
+        };
+        self.offsets.iter().map(move |&t| {
+            let p = self.iso * (start + axis * t);
+            Pose {
+                x: round_um(p.x),
+                y: round_um(p.y),
+                z: self.z,
+                yaw,
+            }
+        })
     }
 }
 
@@ -195,8 +226,25 @@ pub fn normalize_angle(angle: f64) -> f64 {
 /// `value` rounded to the micrometre (or microradian), with -0 made 0: the only
 /// precision a layout stores.
 pub fn round_um(value: f64) -> f64 {
-    let r = (value * 1e6).round() / 1e6;
+    let r = round_half_away(value * 1e6) / 1e6;
     if r == 0.0 { 0.0 } else { r }
+}
+
+/// `x.round()` (half away from zero), exactly, without the libm call that `f64::round`
+/// is on baseline x86-64: the fraction `x - trunc(x)` is exact below 2^52.
+pub(crate) fn round_half_away(x: f64) -> f64 {
+    if x.is_nan() || x.abs() >= 4.5e15 {
+        return x.round();
+    }
+    let whole = (x as i64 as f64).copysign(x);
+    let fraction = x - whole;
+    if fraction >= 0.5 {
+        whole + 1.0
+    } else if fraction <= -0.5 {
+        whole - 1.0
+    } else {
+        whole
+    }
 }
 
 impl Pose {
@@ -243,12 +291,14 @@ mod tests {
         let offsets = g.segment_offsets();
         assert!((offsets[0] - 0.25).abs() < 1e-12 && (offsets[1] - 0.75).abs() < 1e-12);
         let east: Vec<Pose> = g
-            .passage_segments(Cell::new(0, 0), Direction::East, &offsets)
+            .passage_placer(&offsets)
+            .segments(Cell::new(0, 0), Direction::East)
             .collect();
         assert_eq!(east[0], Pose::rounded(-3.75, -4.0, 0.001, 0.0));
         assert_eq!(east[1], Pose::rounded(-3.25, -4.0, 0.001, 0.0));
         let north: Vec<Pose> = g
-            .passage_segments(Cell::new(8, 8), Direction::South, &offsets)
+            .passage_placer(&offsets)
+            .segments(Cell::new(8, 8), Direction::South)
             .collect();
         assert_eq!(north[0].x, 4.0);
         assert_eq!(north[0].y, 3.75);
@@ -278,6 +328,30 @@ mod tests {
             (c.x - -1.0).abs() < 1e-12 && (c.y - -0.0).abs() < 1e-12,
             "{c}"
         );
+    }
+
+    #[test]
+    fn rounding_half_away_is_f64_round() {
+        for x in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            -2.5,
+            0.499_999_999_999_999_94,
+            1e15 + 0.5,
+            4.6e15,
+            -7.5e15,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            -1_234.499_999,
+            1_234.500_000_1,
+        ] {
+            assert_eq!(round_half_away(x).to_bits(), x.round().to_bits(), "{x}");
+        }
     }
 
     #[test]

@@ -13,48 +13,101 @@ use super::model::Maze;
 pub const UNREACHED: u32 = u32::MAX;
 
 /// Steps from `start` to every cell (breadth-first), [`UNREACHED`] where there is no path.
-/// A plain queue over the distance array (which doubles as the visited set): the one
-/// traversal every layout is measured with several times, so it is kept lean rather than
-/// run through petgraph's `Bfs` and a second neighbour scan.
 pub fn distances_from(maze: &Maze, start: usize) -> Vec<u32> {
-    let mut dist = vec![UNREACHED; maze.grid().cell_count()];
-    dist[start] = 0;
-    let mut queue = Vec::with_capacity(maze.grid().cell_count());
-    queue.push(start as u32);
-    let mut next = 0;
-    while let Some(&node) = queue.get(next) {
-        next += 1;
-        let step = dist[node as usize] + 1;
-        for neighbour in maze.neighbors(node) {
-            let d = &mut dist[neighbour as usize];
-            if *d == UNREACHED {
-                *d = step;
-                queue.push(neighbour);
+    Distances::from(maze, start).steps
+}
+
+/// Steps from one cell to every cell, kept so that the next question about the same
+/// start (the farthest cell, a path, the diameter) does not search the maze again: on a
+/// big maze each search is most of a second.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Distances {
+    source: usize,
+    steps: Vec<u32>,
+}
+
+impl Distances {
+    /// Breadth-first from `source`: a plain queue over the distance array (which doubles
+    /// as the visited set), the one traversal every layout is measured with, so kept lean
+    /// rather than run through petgraph's `Bfs` and a second neighbour scan.
+    pub fn from(maze: &Maze, source: usize) -> Self {
+        let mut steps = vec![UNREACHED; maze.grid().cell_count()];
+        steps[source] = 0;
+        let mut queue = Vec::with_capacity(maze.grid().cell_count());
+        queue.push(source as u32);
+        let mut next = 0;
+        while let Some(&node) = queue.get(next) {
+            next += 1;
+            let step = steps[node as usize] + 1;
+            for neighbour in maze.neighbors(node) {
+                let d = &mut steps[neighbour as usize];
+                if *d == UNREACHED {
+                    *d = step;
+                    queue.push(neighbour);
+                }
             }
         }
+        Self { source, steps }
     }
-    dist
+
+    /// The farthest cell (lowest index among equals) and its distance.
+    pub fn farthest(&self) -> (usize, u32) {
+        let mut best = (0, 0);
+        for (index, &d) in self.steps.iter().enumerate() {
+            if d != UNREACHED && d > best.1 {
+                best = (index, d);
+            }
+        }
+        best
+    }
+
+    /// `true` if every cell can be reached.
+    pub fn reach_all(&self) -> bool {
+        !self.steps.contains(&UNREACHED)
+    }
+
+    /// The cells of a shortest path from the source to `end`, both included; `None` if
+    /// `end` cannot be reached.
+    pub fn path_to(&self, maze: &Maze, end: usize) -> Option<Vec<usize>> {
+        let dist = &self.steps;
+        if dist[end] == UNREACHED {
+            return None;
+        }
+        let mut path = vec![end];
+        let mut here = end;
+        while here != self.source {
+            // Lowest-index predecessor, so the chosen path is deterministic.
+            here = maze
+                .neighbors(here as u32)
+                .map(|n| n as usize)
+                .filter(|&n| dist[n] + 1 == dist[here])
+                .min()
+                .expect("a reached cell has a predecessor");
+            path.push(here);
+        }
+        path.reverse();
+        Some(path)
+    }
 }
 
 /// The cell farthest from `start` along the maze (lowest index among equals) and its distance.
 pub fn farthest_from(maze: &Maze, start: usize) -> (usize, u32) {
-    farthest_in(&distances_from(maze, start))
-}
-
-fn farthest_in(dist: &[u32]) -> (usize, u32) {
-    let mut best = (0, 0);
-    for (index, &d) in dist.iter().enumerate() {
-        if d != UNREACHED && d > best.1 {
-            best = (index, d);
-        }
-    }
-    best
+    Distances::from(maze, start).farthest()
 }
 
 /// Both ends of the maze's diameter by two breadth-first sweeps, and its length in steps.
 /// Exact for a perfect maze (a tree); a lower bound when the maze has loops.
 pub fn diameter_ends(maze: &Maze) -> (usize, usize, u32) {
-    let (a, _) = farthest_from(maze, 0);
+    diameter_ends_from(maze, &Distances::from(maze, 0))
+}
+
+/// [`diameter_ends`] with the first sweep (from cell 0) already done.
+fn diameter_ends_from(maze: &Maze, from_zero: &Distances) -> (usize, usize, u32) {
+    debug_assert_eq!(
+        from_zero.source, 0,
+        "the diameter's first sweep starts at cell 0"
+    );
+    let (a, _) = from_zero.farthest();
     let (b, length) = farthest_from(maze, a);
     (a, b, length)
 }
@@ -62,24 +115,7 @@ pub fn diameter_ends(maze: &Maze) -> (usize, usize, u32) {
 /// The cells of a shortest path from `start` to `end`, both included; `None` if `end`
 /// cannot be reached.
 pub fn shortest_path(maze: &Maze, start: usize, end: usize) -> Option<Vec<usize>> {
-    let dist = distances_from(maze, start);
-    if dist[end] == UNREACHED {
-        return None;
-    }
-    let mut path = vec![end];
-    let mut here = end;
-    while here != start {
-        // Lowest-index predecessor, so the chosen path is deterministic.
-        here = maze
-            .neighbors(here as u32)
-            .map(|n| n as usize)
-            .filter(|&n| dist[n] + 1 == dist[here])
-            .min()
-            .expect("a reached cell has a predecessor");
-        path.push(here);
-    }
-    path.reverse();
-    Some(path)
+    Distances::from(maze, start).path_to(maze, end)
 }
 
 /// Connected pieces of the maze (1 for a maze in which every cell can be reached).
@@ -124,9 +160,20 @@ pub struct Metrics {
 impl Metrics {
     /// Measures `maze` for the route `start` to `end`; `None` if `end` is unreachable.
     pub fn measure(maze: &Maze, start: usize, end: usize) -> Option<Self> {
-        // Three breadth-first sweeps, the diameter's two beside the solution's.
-        let (path, (_, _, diameter)) =
-            rayon::join(|| shortest_path(maze, start, end), || diameter_ends(maze));
+        Self::measure_from(maze, &Distances::from(maze, start), end)
+    }
+
+    /// [`measure`](Self::measure) from the start's distances, already searched (to find
+    /// the end, say): the solution needs no further search, and the diameter one more
+    /// when the start is cell 0, where the diameter's first sweep begins.
+    pub fn measure_from(maze: &Maze, from_start: &Distances, end: usize) -> Option<Self> {
+        let (path, (_, _, diameter)) = rayon::join(
+            || from_start.path_to(maze, end),
+            || match from_start.source {
+                0 => diameter_ends_from(maze, from_start),
+                _ => diameter_ends(maze),
+            },
+        );
         let path = path?;
         let grid = maze.grid();
         let mut dead_ends = 0;
@@ -161,7 +208,11 @@ impl Metrics {
         Some(Self {
             cells: grid.cell_count() as u64,
             passages: maze.passage_count() as u64,
-            loops: loop_count(maze) as u64,
+            // Reaching every cell from the start means one piece: no component search.
+            loops: match from_start.reach_all() {
+                true => maze.passage_count() + 1 - grid.cell_count(),
+                false => loop_count(maze),
+            } as u64,
             solution_cells: path.len() as u64,
             solution_turns: turns,
             decision_points: decision_points as u64,

@@ -97,6 +97,26 @@ impl Maze {
         self.open[next] |= dir.opposite().bit();
     }
 
+    /// [`carve`](Self::carve) for a caller that knows the passage stays on the grid
+    /// (checked in debug builds only): the neighbour is found without the division that
+    /// finds a cell's column, which shows when a generator carves millions of passages.
+    #[inline]
+    pub(crate) fn carve_inside(&mut self, index: usize, dir: Direction) {
+        debug_assert!(
+            self.grid.step_index(index, dir).is_some(),
+            "carve leaves the grid"
+        );
+        let width = self.grid.width() as usize;
+        let next = match dir {
+            Direction::East => index + 1,
+            Direction::North => index + width,
+            Direction::West => index - 1,
+            Direction::South => index - width,
+        };
+        self.open[index] |= dir.bit();
+        self.open[next] |= dir.opposite().bit();
+    }
+
     /// Opens the passage between two neighbouring cells, given by index.
     ///
     /// # Panics

@@ -6,6 +6,7 @@
 //! line by line. Segments stream in both directions ([`write_layout_parts`],
 //! [`read_layout_with`]), so no step needs a big layout whole in memory.
 
+mod parallel;
 mod pretty;
 mod read;
 mod scan;

@@ -5,19 +5,13 @@
 //! to exist in memory.
 
 use std::io::{self, Write};
-use std::sync::mpsc;
-use std::thread;
 
 use serde::Serialize;
 
+use super::parallel;
 use super::pretty::ShallowPretty;
-use crate::layout::geometry::round_um;
+use crate::layout::geometry::{round_half_away, round_um};
 use crate::layout::{Layout, Pose};
-
-/// Segments handed from thread to thread at a time (about 4 MB of text).
-const BATCH: usize = 1 << 16;
-/// Batches waiting between two threads, at most.
-const QUEUE: usize = 4;
 
 /// The empty segment list in the serialized head, a top-level field (indented once): the
 /// writer splices the segments in between its brackets. Fields after it (a wall layout's
@@ -33,9 +27,9 @@ pub fn write_layout<W: Write>(layout: &Layout, writer: W) -> io::Result<()> {
 /// ones in `head.segments` are ignored): what [`write_layout`] writes for the whole layout.
 /// `segments` is consumed as it is written, so a generator can compute them on the fly.
 ///
-/// Three threads share the work, so a big layout is written at disk speed: one takes the
-/// segments from the iterator (computing them, for a generator), one formats them, and
-/// this one writes the text.
+/// Threads share the work, so a big layout is written at disk speed: one takes the
+/// segments from the iterator (computing them, for a generator), others format them, and
+/// this one writes the text (see [`parallel`]).
 pub fn write_layout_parts<W: Write>(
     head: &Layout,
     segments: impl IntoIterator<Item = Pose, IntoIter: Send>,
@@ -44,39 +38,7 @@ pub fn write_layout_parts<W: Write>(
     let (before, after) = head_around_segments(head)?;
     writer.write_all(&before)?;
     let segments = segments.into_iter();
-    let any = thread::scope(|scope| -> io::Result<bool> {
-        let (poses_out, poses_in) = mpsc::sync_channel::<Vec<Pose>>(QUEUE);
-        let (text_out, text_in) = mpsc::sync_channel::<Vec<u8>>(QUEUE);
-        scope.spawn(move || {
-            let mut segments = segments.peekable();
-            while segments.peek().is_some() {
-                let batch: Vec<Pose> = segments.by_ref().take(BATCH).collect();
-                if poses_out.send(batch).is_err() {
-                    return; // the writer stopped
-                }
-            }
-        });
-        scope.spawn(move || {
-            let mut first = true;
-            for batch in poses_in {
-                let mut text = Vec::with_capacity(batch.len() * 64);
-                for pose in &batch {
-                    text.extend_from_slice(if first { b"\n    " } else { b",\n    " });
-                    write_pose(&mut text, pose);
-                    first = false;
-                }
-                if text_out.send(text).is_err() {
-                    return;
-                }
-            }
-        });
-        let mut any = false;
-        for text in text_in {
-            writer.write_all(&text)?;
-            any = true;
-        }
-        Ok(any)
-    })?;
+    let any = parallel::write_segments(segments, &mut writer, write_batch)?;
     writer.write_all(if any { b"\n  ]" } else { b"]" })?;
     writer.write_all(&after)?;
     writer.write_all(b"\n")?;
@@ -99,17 +61,67 @@ fn head_around_segments(head: &Layout) -> io::Result<(Vec<u8>, Vec<u8>)> {
     Ok((bytes, after))
 }
 
-/// One segment, as serde writes a [`Pose`] inside the segment list.
-fn write_pose(line: &mut Vec<u8>, pose: &Pose) {
-    line.extend_from_slice(b"{\"x\": ");
-    write_um(line, pose.x);
-    line.extend_from_slice(b", \"y\": ");
-    write_um(line, pose.y);
-    line.extend_from_slice(b", \"z\": ");
-    write_um(line, pose.z);
-    line.extend_from_slice(b", \"yaw\": ");
-    write_um(line, pose.yaw);
-    line.push(b'}');
+/// A batch of segments, as serde writes them inside the segment list: each on its own
+/// line, after a comma unless it is the very first of the list.
+fn write_batch(text: &mut Vec<u8>, batch: &[Pose], first: bool) {
+    // Values repeat: one height and a heading per direction in a generated layout, and
+    // along a row of an unturned maze three values of y. Those are formatted once.
+    let (mut ys, mut heights, mut headings) = (Recent::new(), Recent::new(), Recent::new());
+    for (i, pose) in batch.iter().enumerate() {
+        text.extend_from_slice(if first && i == 0 {
+            b"\n    "
+        } else {
+            b",\n    "
+        });
+        text.extend_from_slice(b"{\"x\": ");
+        write_um(text, pose.x);
+        text.extend_from_slice(b", \"y\": ");
+        ys.write(text, pose.y);
+        text.extend_from_slice(b", \"z\": ");
+        heights.write(text, pose.z);
+        text.extend_from_slice(b", \"yaw\": ");
+        headings.write(text, pose.yaw);
+        text.push(b'}');
+    }
+}
+
+/// The texts of the last [`RECENT`] distinct values [`write_um`] wrote for one field.
+struct Recent {
+    /// Value (as bits), text and its length; replaced oldest first.
+    texts: [(u64, [u8; TEXT], usize); RECENT],
+    next: usize,
+}
+
+/// Values a [`Recent`] keeps.
+const RECENT: usize = 4;
+/// Longest text [`write_um`] writes (zmij's longest, `-1.2345678901234567e-308`).
+const TEXT: usize = 24;
+
+impl Recent {
+    fn new() -> Self {
+        // No value is NaN with these bits and length 0: a slot that never matches.
+        Self {
+            texts: [(f64::NAN.to_bits(), [0; TEXT], 0); RECENT],
+            next: 0,
+        }
+    }
+
+    /// Writes `value` as [`write_um`] does, from memory when it was among the last.
+    #[inline]
+    fn write(&mut self, out: &mut Vec<u8>, value: f64) {
+        let bits = value.to_bits();
+        if let Some((_, text, len)) = self.texts.iter().find(|t| t.0 == bits && t.2 > 0) {
+            return out.extend_from_slice(&text[..*len]);
+        }
+        let at = out.len();
+        write_um(out, value);
+        let written = &out[at..];
+        let slot = &mut self.texts[self.next];
+        slot.0 = bits;
+        slot.1[..written.len()].copy_from_slice(written);
+        slot.2 = written.len();
+        self.next = (self.next + 1) % RECENT;
+    }
 }
 
 /// A number rounded to the micrometre in its shortest form; `null` when not finite, as
@@ -126,41 +138,37 @@ fn write_um(out: &mut Vec<u8>, value: f64) {
                 .as_bytes(),
         );
     }
-    if micrometres < 0.0 {
-        out.push(b'-');
-    }
-    let micrometres = micrometres.abs() as u64;
-    let (whole, mut fraction) = (micrometres / 1_000_000, micrometres % 1_000_000);
-    out.extend_from_slice(itoa::Buffer::new().format(whole).as_bytes());
-    out.push(b'.');
+    // Digits from the right into a buffer, copied out at once: `-`, the metres, `.` and
+    // the six micrometre places without trailing zeros (one kept).
+    let mut buffer = [0u8; 24];
+    let mut at = buffer.len();
+    let mut put = |byte: u8| {
+        at -= 1;
+        buffer[at] = byte;
+    };
+    let magnitude = micrometres.abs() as u64;
+    let (mut whole, mut fraction) = (magnitude / 1_000_000, magnitude % 1_000_000);
     let mut places = 6;
     while places > 1 && fraction % 10 == 0 {
         fraction /= 10;
         places -= 1;
     }
-    let mut digits = [b'0'; 6];
-    for slot in digits[..places].iter_mut().rev() {
-        *slot = b'0' + (fraction % 10) as u8;
+    for _ in 0..places {
+        put(b'0' + (fraction % 10) as u8);
         fraction /= 10;
     }
-    out.extend_from_slice(&digits[..places]);
-}
-
-/// `x.round()` (half away from zero), exactly, without the libm call that `f64::round`
-/// is on baseline x86-64: the fraction `x - trunc(x)` is exact below 2^52.
-fn round_half_away(x: f64) -> f64 {
-    if x.is_nan() || x.abs() >= 4.5e15 {
-        return x.round();
+    put(b'.');
+    loop {
+        put(b'0' + (whole % 10) as u8);
+        whole /= 10;
+        if whole == 0 {
+            break;
+        }
     }
-    let whole = (x as i64 as f64).copysign(x);
-    let fraction = x - whole;
-    if fraction >= 0.5 {
-        whole + 1.0
-    } else if fraction <= -0.5 {
-        whole - 1.0
-    } else {
-        whole
+    if micrometres < 0.0 {
+        put(b'-');
     }
+    out.extend_from_slice(&buffer[at..]);
 }
 
 /// `true` when a value of `micrometres` (a whole number) is written as `[-]int.frac`, its
@@ -200,6 +208,9 @@ mod tests {
         {
             layout.segments[i].x = v;
             layout.segments[i].yaw = -v;
+            // Heights are remembered by value: each awkward one twice, apart.
+            layout.segments[i].z = v;
+            layout.segments[i + 10].z = v;
         }
         let mut ours = Vec::new();
         write_layout(&layout, &mut ours).unwrap();
@@ -230,30 +241,6 @@ mod tests {
             x ^= x >> 7;
             x ^= x << 17;
             check((x % 20_000_000_000_001) as i64 - 10_000_000_000_000);
-        }
-    }
-
-    #[test]
-    fn rounding_half_away_is_f64_round() {
-        for x in [
-            0.0,
-            -0.0,
-            0.5,
-            -0.5,
-            1.5,
-            2.5,
-            -2.5,
-            0.499_999_999_999_999_94,
-            1e15 + 0.5,
-            4.6e15,
-            -7.5e15,
-            1e300,
-            f64::NAN,
-            f64::INFINITY,
-            -1_234.499_999,
-            1_234.500_000_1,
-        ] {
-            assert_eq!(round_half_away(x).to_bits(), x.round().to_bits(), "{x}");
         }
     }
 

@@ -3,9 +3,13 @@
 //! one) is replaced so; a device, FIFO, socket or symbolic link (`/dev/null`, `/dev/stdout`,
 //! a named pipe, a link into another folder) is written through, never replaced.
 
+mod syncing;
+
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+
+use syncing::SyncingFile;
 
 /// Writes what `write` produces to `path`: atomically if `path` is a regular file or does
 /// not exist, straight into it otherwise (see the module docs).
@@ -34,14 +38,15 @@ fn write_through(
     out.flush()
 }
 
-/// Writes a temporary sibling, flushes it to disk and renames it over `path`.
+/// Writes a temporary sibling, flushes it to disk (while writing, see [`SyncingFile`]) and
+/// renames it over `path`.
 fn write_replacing(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> io::Result<()> {
     let temp = temporary_sibling(path)?;
     let result = (|| -> io::Result<()> {
-        let mut file = io::BufWriter::new(fs::File::create(&temp)?);
+        let mut file = io::BufWriter::new(SyncingFile::new(fs::File::create(&temp)?));
         write(&mut file)?;
         file.into_inner().map_err(|e| e.into_error())?.sync_all()?;
         fs::rename(&temp, path)
