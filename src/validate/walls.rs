@@ -19,7 +19,7 @@ use crate::layout::walls::{
     WallAxis, cells_beside, check_template, is_closed, lattice, on_floor, opening_side,
     post_on_floor,
 };
-use crate::layout::{Layout, PostSpec, Style, WallSpec};
+use crate::layout::{Layout, Pose, PostSpec, Style, WallSpec};
 use crate::maze::{Grid, Maze};
 
 /// Position tolerance in the maze frame (as for line segments).
@@ -154,6 +154,39 @@ pub(super) fn check_walls(
     }
 }
 
+/// Checks what every wall and post pose must be, adding problems at `location`: finite,
+/// its yaw in range, its centre at half of `height` (`rule` says so in the message).
+/// `false` when a coordinate is not a number and nothing more can be checked.
+fn stands_on_floor(
+    location: &str,
+    pose: &Pose,
+    height: f64,
+    rule: &str,
+    problems: &mut Problems,
+) -> bool {
+    if ![pose.x, pose.y, pose.z, pose.yaw]
+        .iter()
+        .all(|v| v.is_finite())
+    {
+        problems.add(location, "has a coordinate that is not a finite number");
+        return false;
+    }
+    if let Some(v) = limits::check_range(&format!("{location}.yaw"), pose.yaw, limits::YAW) {
+        problems.add(v.name, v.message);
+    }
+    if (pose.z - height / 2.0).abs() > 2.0 * limits::ROUNDING {
+        problems.add(
+            format!("{location}.z"),
+            format!(
+                "{} m is not half of wall.height {} m: {rule}",
+                show(pose.z),
+                show(height)
+            ),
+        );
+    }
+    true
+}
+
 /// Checks the posts of `post`: one at every lattice corner of `grid`, standing on the
 /// floor at half the walls' height, square to the maze, none doubled, none elsewhere.
 fn check_posts(
@@ -166,7 +199,6 @@ fn check_posts(
 ) {
     let to_maze = geometry.maze_to_floor().inverse();
     let c = geometry.cell_size;
-    let z = spec.height / 2.0;
     let tolerance = limits::floor_tolerance(geometry, grid);
     let columns = grid.width() as usize + 1;
     // the post found at each lattice corner, corner (i, j) at j * columns + i (`NONE`: no
@@ -175,25 +207,14 @@ fn check_posts(
     let mut at_corner: Vec<u32> = vec![NONE; columns * (grid.height() as usize + 1)];
     for (index, pose) in layout.posts.iter().enumerate() {
         let location = format!("posts[{index}]");
-        if ![pose.x, pose.y, pose.z, pose.yaw]
-            .iter()
-            .all(|v| v.is_finite())
-        {
-            problems.add(location, "has a coordinate that is not a finite number");
+        if !stands_on_floor(
+            &location,
+            pose,
+            spec.height,
+            "every post stands on the floor, as high as the walls",
+            problems,
+        ) {
             continue;
-        }
-        if let Some(v) = limits::check_range(&format!("{location}.yaw"), pose.yaw, limits::YAW) {
-            problems.add(v.name, v.message);
-        }
-        if (pose.z - z).abs() > 2.0 * limits::ROUNDING {
-            problems.add(
-                format!("{location}.z"),
-                format!(
-                    "{} m is not half of wall.height {} m: every post stands on the floor, as high as the walls",
-                    show(pose.z),
-                    show(spec.height)
-                ),
-            );
         }
         // a square turned a quarter is the same square
         if (2.0 * (pose.yaw - geometry.rotation)).sin().abs() > 2.0 * YAW_TOLERANCE {
@@ -293,29 +314,17 @@ fn place_walls(
     let grid = maze.grid();
     let to_maze = geometry.maze_to_floor().inverse();
     let c = geometry.cell_size;
-    let z = spec.height / 2.0;
     let mut lines: BTreeMap<(WallAxis, u32), Vec<Span>> = BTreeMap::new();
     for (index, pose) in layout.walls.iter().enumerate() {
         let location = format!("walls[{index}]");
-        if ![pose.x, pose.y, pose.z, pose.yaw]
-            .iter()
-            .all(|v| v.is_finite())
-        {
-            problems.add(location, "has a coordinate that is not a finite number");
+        if !stands_on_floor(
+            &location,
+            pose,
+            spec.height,
+            "every wall stands on the floor",
+            problems,
+        ) {
             continue;
-        }
-        if let Some(v) = limits::check_range(&format!("{location}.yaw"), pose.yaw, limits::YAW) {
-            problems.add(v.name, v.message);
-        }
-        if (pose.z - z).abs() > 2.0 * limits::ROUNDING {
-            problems.add(
-                format!("{location}.z"),
-                format!(
-                    "{} m is not half of wall.height {} m: every wall stands on the floor",
-                    show(pose.z),
-                    show(spec.height)
-                ),
-            );
         }
         let local = to_maze * Point2::new(pose.x, pose.y);
         let yaw = normalize_angle(pose.yaw - geometry.rotation);
