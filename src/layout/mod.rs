@@ -12,6 +12,7 @@ pub mod json;
 pub mod limits;
 pub mod micromouse;
 pub mod passages;
+pub mod runs;
 pub mod walls;
 
 use std::collections::BTreeMap;

@@ -4,8 +4,6 @@
 
 use std::fmt;
 
-use crate::maze::{Direction, Maze};
-
 /// An opaque sRGB colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Colour(pub [u8; 3]);
@@ -39,100 +37,6 @@ pub(super) const SOLUTION_OPACITY: f64 = 0.8;
 pub(super) const PAPER: Colour = Colour([0xff, 0xff, 0xff]);
 /// The scale bar's outline and label.
 pub(super) const INK: Colour = Colour([0x00, 0x00, 0x00]);
-
-/// Which way a run goes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Axis {
-    /// Along a row (the maze's x): open east passages.
-    Row,
-    /// Along a column (the maze's y): open north passages.
-    Column,
-}
-
-/// A run: a maximal chain of open east passages along a row, or of open north passages
-/// up a column, from cell `first` to cell `last` on grid line `line`.
-///
-/// Its picture is one rectangle ([`Run::rect`]) from `width / 2` before the first cell's
-/// centre to `width / 2` past the last one's, `width` across. That is exactly the
-/// picture of the layout's segments: a renderer is only given layouts that passed
-/// [`crate::validate::checked`], which proves that on every grid line the union of the
-/// segments equals the union of the passage intervals `[k c - w/2, (k + 1) c + w/2]`
-/// (within 10 um), and a run is a maximal union of touching passage intervals. A cell with
-/// no passage (a 1 x 1 maze) lies in no run and draws nothing, as it has no segment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Run {
-    /// Row or column.
-    pub axis: Axis,
-    /// The row's y or the column's x, in cells.
-    pub line: u32,
-    /// The first cell along the line.
-    pub first: u32,
-    /// The last cell along the line (after `first`).
-    pub last: u32,
-}
-
-impl Run {
-    /// Its rectangle in the maze frame, `[x0, y0, x1, y1]`, for cells of side `cell` and
-    /// lines `width` wide.
-    pub fn rect(&self, cell: f64, width: f64) -> [f64; 4] {
-        let half = width / 2.0;
-        let across = f64::from(self.line) * cell;
-        let lo = f64::from(self.first) * cell - half;
-        let hi = f64::from(self.last) * cell + half;
-        match self.axis {
-            Axis::Row => [lo, across - half, hi, across + half],
-            Axis::Column => [across - half, lo, across + half, hi],
-        }
-    }
-}
-
-/// Calls `emit` for every run of `maze` and `row_done` after each row, in one pass over the
-/// cells, south row first: row `y` yields its east runs and the north runs that end on it.
-/// Stops at the first error `emit` returns.
-pub(super) fn for_each_run<E>(
-    maze: &Maze,
-    mut emit: impl FnMut(Run) -> Result<(), E>,
-    mut row_done: impl FnMut(u32),
-) -> Result<(), E> {
-    const NONE: u32 = u32::MAX;
-    let (east, north) = (Direction::East.bit(), Direction::North.bit());
-    let width = maze.grid().width() as usize;
-    // The row each column's open run started on, NONE when no run is open.
-    let mut column_starts = vec![NONE; width];
-    for (y, masks) in (0u32..).zip(maze.masks().chunks_exact(width)) {
-        let mut row_start = NONE;
-        for ((x, &mask), column_start) in (0u32..).zip(masks).zip(&mut column_starts) {
-            if mask & east != 0 {
-                if row_start == NONE {
-                    row_start = x;
-                }
-            } else if row_start != NONE {
-                emit(Run {
-                    axis: Axis::Row,
-                    line: y,
-                    first: row_start,
-                    last: x,
-                })?;
-                row_start = NONE;
-            }
-            if mask & north != 0 {
-                if *column_start == NONE {
-                    *column_start = y;
-                }
-            } else if *column_start != NONE {
-                emit(Run {
-                    axis: Axis::Column,
-                    line: x,
-                    first: *column_start,
-                    last: y,
-                })?;
-                *column_start = NONE;
-            }
-        }
-        row_done(y);
-    }
-    Ok(())
-}
 
 /// Most lines of the metre grid along one axis: beyond, they are thinned out.
 const MAX_GRID_LINES: f64 = 200.0;
@@ -278,53 +182,8 @@ fn glyph_strokes(ch: char) -> Vec<(f64, f64, f64, f64)> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
+mod tests {
     use super::*;
-    use crate::generate::{Algorithm, generate};
-    use crate::maze::{Cell, Grid};
-
-    /// Runs counted straight from the passages: a run starts at every open passage
-    /// whose cell has no open passage behind it.
-    pub(in crate::render) fn count_runs(maze: &Maze) -> usize {
-        maze.passages()
-            .filter(|&(cell, dir)| {
-                let behind = match dir {
-                    Direction::East if cell.x > 0 => Cell::new(cell.x - 1, cell.y),
-                    Direction::North if cell.y > 0 => Cell::new(cell.x, cell.y - 1),
-                    _ => return true,
-                };
-                !maze.is_open(maze.grid().index(behind), dir)
-            })
-            .count()
-    }
-
-    #[test]
-    fn runs_cover_every_passage_once_and_are_maximal() {
-        for (w, h, algorithm) in [(1, 1, Algorithm::Dfs), (7, 5, Algorithm::Prim)] {
-            let maze = generate(Grid::new(w, h).unwrap(), algorithm, 3);
-            let mut runs = Vec::new();
-            let mut rows = 0;
-            let Ok(()) = for_each_run::<std::convert::Infallible>(
-                &maze,
-                |run| {
-                    runs.push(run);
-                    Ok(())
-                },
-                |_| rows += 1,
-            );
-            assert_eq!(rows, h);
-            assert_eq!(runs.len(), count_runs(&maze));
-            let covered: u32 = runs.iter().map(|r| r.last - r.first).sum();
-            assert_eq!(covered as usize, maze.passage_count());
-        }
-        let run = Run {
-            axis: Axis::Column,
-            line: 2,
-            first: 1,
-            last: 3,
-        };
-        assert_eq!(run.rect(1.0, 0.1), [1.95, 0.95, 2.05, 3.05]);
-    }
 
     #[test]
     fn the_metre_grid_thins_out_on_huge_floors() {

@@ -2,7 +2,7 @@
 //!
 //! Renderers stream: they write the picture into an [`io::Write`] as they draw it, so a
 //! 4096 x 4096 maze never exists as one string or one image in memory. They draw the
-//! green lines ([`figure::Run`]) and the walls ([`walls::WallRun`]) from the layout's
+//! green lines ([`crate::layout::runs::Run`]) and the walls ([`crate::layout::runs::WallRun`]) from the layout's
 //! passages, never from its `segments` or `walls`.
 
 mod ascii;
@@ -193,7 +193,7 @@ mod tests {
 
     #[test]
     fn renderers_never_read_the_walls() {
-        let layout = walls::tests::wall_layout(6, 5, 7, 0.3, "start");
+        let layout = crate::layout::runs::tests::wall_layout(6, 5, 7, 0.3, "start");
         let mut bare = layout.clone();
         bare.walls.clear();
         let options = RenderOptions { solution: true };

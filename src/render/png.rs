@@ -16,12 +16,12 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 
 use super::figure::{
-    Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY,
-    START, ScaleBar, WALL, for_each_run,
+    Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, SOLUTION, SOLUTION_OPACITY, START,
+    ScaleBar, WALL,
 };
-use super::walls::{WallRun, for_each_wall_run, post_rect};
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
+use crate::layout::runs::{Run, WallRun, for_each_run, for_each_wall_run, post_rect};
 use crate::maze::Cell;
 
 /// Pixels per metre when the floor is small enough: the course's 10 m floor is 800 x 800.
@@ -704,10 +704,10 @@ mod tests {
 
     use super::*;
     use crate::generate::Algorithm;
+    use crate::layout::runs::tests::wall_layout;
     use crate::layout::walls::{WallAxis, WallOptions, into_walls, is_closed, lattice};
     use crate::layout::{GenerateSpec, build_layout};
     use crate::maze::{Direction, Grid};
-    use crate::render::walls::tests::wall_layout;
 
     /// A decoded PNG: width, height and RGB pixels.
     struct Image {

@@ -14,12 +14,13 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 
 use super::figure::{
-    END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, Run, SOLUTION, SOLUTION_OPACITY, START,
-    ScaleBar, WALL, for_each_run,
+    END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, SOLUTION, SOLUTION_OPACITY, START,
+    ScaleBar, WALL,
 };
-use super::walls::{WallRun, Walls, for_each_wall_run, post_rect};
+use super::walls::Walls;
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
+use crate::layout::runs::{Run, WallRun, for_each_run, for_each_wall_run, post_rect};
 use crate::maze::Cell;
 
 /// Pixels per metre of the picture's nominal size.
@@ -340,12 +341,12 @@ mod tests {
     use super::*;
     use crate::generate::Algorithm;
     use crate::layout::Side;
+    use crate::layout::runs::tests::count_runs;
+    use crate::layout::runs::tests::{count_wall_runs, wall_layout};
     use crate::layout::{GenerateSpec, build_layout};
     use crate::maze::Direction;
     use crate::maze::Grid;
     use crate::render::figure::Colour;
-    use crate::render::figure::tests::count_runs;
-    use crate::render::walls::tests::{count_wall_runs, wall_layout};
 
     fn svg_of(layout: &Layout, options: &RenderOptions) -> String {
         let mut bytes = Vec::new();
