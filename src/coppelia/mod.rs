@@ -6,6 +6,7 @@
 //! [`frame`]. Values are those of CoppeliaSim's `simConst` tables (the same in the legacy
 //! remote API's `sim_*` names and the ZeroMQ API's `sim.*` names).
 
+pub mod cost;
 pub mod frame;
 
 /// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.

@@ -13,7 +13,7 @@ pub mod svg;
 use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
 pub use clock::{Clock, ZmqPacer, ZmqPacing};
-pub use cost::{CostModel, Timing};
+pub use cost::{Charge, CostModel, Op, Served, Timing};
 pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
 
 /// The program version we report (CoppeliaSim 4.5.1).
@@ -43,6 +43,9 @@ pub struct Simulator {
     saved: Option<Scene>,
     /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
     pub int_signals: std::collections::BTreeMap<String, i32>,
+    /// When `Some`, the servers append what each request made the simulator do
+    /// ([`cost::Charge`]), so a run against an instant emulator can be priced afterwards.
+    pub ledger: Option<Vec<Charge>>,
 }
 
 impl Simulator {
@@ -54,6 +57,24 @@ impl Simulator {
             state: SimState::Stopped,
             saved: None,
             int_signals: Default::default(),
+            ledger: None,
+        }
+    }
+
+    /// A charge for `ops` served now (before they change the idle rate or the state).
+    pub fn charge(&self, served: Served, ops: Vec<Op>) -> Charge {
+        Charge {
+            served,
+            idle_fps: self.idle_fps,
+            state: self.state,
+            ops,
+        }
+    }
+
+    /// Appends a served request's work to [`Simulator::ledger`] if it is kept.
+    pub fn record(&mut self, charge: &Charge) {
+        if let Some(ledger) = &mut self.ledger {
+            ledger.push(charge.clone());
         }
     }
 

@@ -1,8 +1,6 @@
 //! What each command does to the simulator: [`execute`] one stored command in a pass, its
 //! modeled server work ([`cost`]), and the group data of `simxGetObjectGroupData`.
 
-use std::time::Duration;
-
 use crate::coppelia::frame::rotation_from_euler;
 use crate::coppelia::{HANDLE_ALL, HANDLE_PARENT, HANDLE_WORLD};
 use crate::legacy::command::{
@@ -10,7 +8,8 @@ use crate::legacy::command::{
     encode_handle_list, group,
 };
 use crate::legacy::wire::Block;
-use crate::sim::{CostModel, Simulator};
+use crate::sim::cost::{self, Op};
+use crate::sim::Simulator;
 
 fn f32x3(v: [f64; 3]) -> Vec<u8> {
     v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
@@ -20,28 +19,25 @@ fn widen(v: [f32; 3]) -> [f64; 3] {
     [v[0] as f64, v[1] as f64, v[2] as f64]
 }
 
-/// The server work a real CoppeliaSim 4.5.1 does for one command, from the scene as it is
-/// before the command (`crate::sim::cost`; spec "Drawing cost on the server (legacy API,
-/// idle fps 0)"): a paste costs per copy, a set-parent grows with the new parent's children
-/// and the parentless objects, positions and orientations cost a constant.
-/// Commands the spec has no figure for cost nothing.
-pub(super) fn cost(sim: &Simulator, block: &Block, model: &CostModel) -> Duration {
+/// The work a real CoppeliaSim 4.5.1 does for one command, from the scene as it is before
+/// the command (`crate::coppelia::cost`, spec "Costs that grow with the scene"): a paste grows
+/// with the objects in the scene (repeated handles are pasted once: the plugin selects them,
+/// simExtRemoteApi@coppeliasim-v4.5.1-rev4 `simxCmd.cpp:1891-1921`), a set-parent with the
+/// new parent's children and the parentless objects, a removal with the objects in the scene;
+/// a position or orientation is half a pose. Other commands do no work the spec has a figure
+/// for (their pass still takes the pass floor).
+pub(super) fn ops(sim: &Simulator, block: &Block) -> Vec<Op> {
     let scene = &sim.scene;
-    match Command::from_block(block) {
-        Some(Command::CopyPaste(hs)) => {
-            let mut unique = hs;
-            unique.sort_unstable();
-            unique.dedup();
-            model.legacy_paste(unique.len())
-        }
+    let work = match Command::from_block(block) {
+        Some(Command::CopyPaste(hs)) => cost::paste(scene, &hs),
         Some(Command::SetObjectParent { parent, .. }) => {
-            let parent = (parent != HANDLE_WORLD).then_some(parent);
-            model.legacy_set_parent(scene.child_count(parent), scene.child_count(None))
+            cost::set_parent(scene, (parent != HANDLE_WORLD).then_some(parent))
         }
-        Some(Command::SetPosition { .. }) => model.set_position,
-        Some(Command::SetOrientation { .. }) => model.set_orientation,
-        _ => Duration::ZERO,
-    }
+        Some(Command::SetPosition { .. } | Command::SetOrientation { .. }) => cost::pose(scene, true),
+        Some(Command::RemoveObject(h)) => cost::remove(scene, &[h]),
+        _ => return vec![],
+    };
+    vec![Op::LegacyCommand, work]
 }
 
 /// Executes one command; returns (success, reply pure data).
@@ -342,14 +338,19 @@ mod tests {
     }
 
     #[test]
-    fn drawing_commands_cost_what_the_model_says_from_the_scene_counts() {
+    fn drawing_commands_do_the_work_the_model_prices_from_the_scene_counts() {
         let (sim, maze, line) = sim();
-        let m = CostModel::measured();
         let block = |c: Command| c.to_block(opmode::BLOCKING);
         // 5 objects; pasting `line` twice is one copy
         assert_eq!(
-            cost(&sim, &block(Command::CopyPaste(vec![line, line])), &m),
-            m.legacy_paste(1)
+            ops(&sim, &block(Command::CopyPaste(vec![line, line]))),
+            [
+                Op::LegacyCommand,
+                Op::Paste {
+                    copies: 1,
+                    objects: 5
+                }
+            ]
         );
         // `Maze` has one child (`Line`); 4 objects are parentless
         let to_maze = Command::SetObjectParent {
@@ -357,15 +358,36 @@ mod tests {
             parent: maze,
             keep_in_place: true,
         };
-        assert_eq!(cost(&sim, &block(to_maze), &m), m.legacy_set_parent(1, 4));
+        assert_eq!(
+            ops(&sim, &block(to_maze)),
+            [
+                Op::LegacyCommand,
+                Op::SetParent {
+                    children: 1,
+                    parentless: 4
+                }
+            ]
+        );
         let at = Command::SetPosition {
             handle: line,
             relative_to: HANDLE_WORLD,
             xyz: [0.0; 3],
         };
-        assert_eq!(cost(&sim, &block(at), &m), m.set_position);
-        let free = Command::GetIntParam(0);
-        assert_eq!(cost(&sim, &block(free), &m), Duration::ZERO);
+        assert_eq!(
+            ops(&sim, &block(at)),
+            [Op::LegacyCommand, Op::HalfPose { objects: 5 }]
+        );
+        assert_eq!(
+            ops(&sim, &block(Command::RemoveObject(line))),
+            [
+                Op::LegacyCommand,
+                Op::Remove {
+                    count: 1,
+                    objects: 5
+                }
+            ]
+        );
+        assert!(ops(&sim, &block(Command::GetIntParam(0))).is_empty());
     }
 
     #[test]

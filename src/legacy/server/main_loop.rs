@@ -8,22 +8,24 @@
 //! discontinued. Their results wait in the output buffer for the next reply.
 //!
 //! With realistic [`Timing`](crate::sim::Timing), a pass also takes the modeled server work of
-//! the commands it executed ([`super::execute::cost`], `crate::sim::cost`), at least
+//! the commands it executed ([`super::execute::ops`] priced by `crate::coppelia::cost`), at least
 //! [`CostModel::legacy_pass_floor`](crate::sim::CostModel::legacy_pass_floor) at idle fps 0
 //! (`../shared/spec/real-coppeliasim-4.5.1.md`, "Pacing": a legacy blocking call at idle fps 0
 //! takes 9–10 ms): its results are held back until then, replies meanwhile carry none (message
 //! ID -1, as while no pass happened), and the next pass waits for it. A big pass checks the
-//! stop flag between commands, so the server stops promptly even in the middle of one.
+//! stop flag between commands, so the server stops promptly even in the middle of one. Every
+//! pass that executed commands is also appended to the simulator's ledger when it keeps one
+//! ([`crate::sim::Simulator::ledger`]), whatever the timing.
 
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::Shared;
-use super::execute::{cost, execute};
+use super::execute::{execute, ops};
 use crate::legacy::command::opmode;
 use crate::legacy::wire::{Block, Message, MessageHeader, server_state, status};
-use crate::sim::{SimState, Simulator, Timing};
+use crate::sim::{Served, SimState, Simulator, Timing};
 
 /// Reply header `scene_id`: the low 16 bits of CoppeliaSim's `sim_intparam_scene_unique_id`;
 /// the emulated scene never changes identity, so any fixed value does.
@@ -155,9 +157,10 @@ impl Core {
         self.stale = header;
         let now = Instant::now();
         let sim_time = self.sim_time_ms;
+        // the pass is charged in the state it began in (before its commands change it)
+        let mut charge = self.sim.charge(Served::LegacyPass, vec![]);
         let sim = &mut self.sim;
         let mut results = Vec::new();
-        let mut work = Duration::ZERO;
         self.input.retain_mut(|s| {
             if stop.load(Ordering::Relaxed) {
                 return true;
@@ -183,9 +186,7 @@ impl Core {
                 return true;
             }
             s.last_exec = Some(now);
-            if let Some(model) = &timing.costs {
-                work += cost(sim, &s.block, model);
-            }
+            charge.ops.extend(ops(sim, &s.block));
             let (ok, data) = execute(sim, &s.block);
             reply.status = if ok { 0 } else { status::REMOTE_ERROR };
             reply.data = data;
@@ -197,15 +198,11 @@ impl Core {
         }
         let executed = !results.is_empty();
         self.output = results;
-        match &timing.costs {
-            Some(m) if executed && self.idle_spinning() => work.max(m.legacy_pass_floor),
-            _ => work,
+        if !executed {
+            return Duration::ZERO;
         }
-    }
-
-    /// Whether the main loop passes without sleeping (stopped or paused at idle fps 0).
-    fn idle_spinning(&self) -> bool {
-        self.sim.state != SimState::Running && self.sim.idle_fps <= 0
+        self.sim.record(&charge);
+        timing.cost(|m| charge.work(m))
     }
 }
 
@@ -299,7 +296,7 @@ mod tests {
     use super::*;
     use crate::coppelia::HANDLE_WORLD;
     use crate::legacy::command::{Command, id, read_i32};
-    use crate::sim::Scene;
+    use crate::sim::{Op, Scene};
 
     const STEP: Duration = Duration::from_millis(50);
 
@@ -495,10 +492,16 @@ mod tests {
         core.receive(&header(0), vec![paste, set_x(line, 1.0)]);
         let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
         // at idle fps 0 a pass lasts at least the floor (spec "Pacing": 9–10 ms)
-        assert_eq!(
-            work,
-            (m.legacy_paste(1) + m.set_position).max(m.legacy_pass_floor)
-        );
+        let pasted = m.ops(&[
+            Op::LegacyCommand,
+            Op::Paste {
+                copies: 1,
+                objects: 5,
+            },
+            Op::LegacyCommand,
+            Op::HalfPose { objects: 6 },
+        ]);
+        assert_eq!(work, pasted.max(m.legacy_pass_floor));
         core.busy_until = Some(Instant::now() + Duration::from_secs(60));
         let r = core.receive(&header(1), vec![]);
         assert_eq!(
@@ -517,7 +520,30 @@ mod tests {
         core.sim.idle_fps = 8;
         core.receive(&header(3), vec![set_x(line, 2.0)]);
         let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
-        assert_eq!(work, m.set_position);
+        assert_eq!(
+            work,
+            m.ops(&[Op::LegacyCommand, Op::HalfPose { objects: 6 }])
+        );
+    }
+
+    #[test]
+    fn passes_that_executed_commands_are_recorded_in_the_ledger_when_kept() {
+        let mut core = core();
+        let line = core.sim.scene.resolve("Line").unwrap();
+        instant_pass(&mut core);
+        core.receive(&header(0), vec![set_x(line, 1.0)]);
+        instant_pass(&mut core);
+        assert_eq!(core.sim.ledger, None, "not kept by default");
+        core.sim.ledger = Some(vec![]);
+        core.receive(&header(1), vec![set_x(line, 2.0), set_x(line, 3.0)]);
+        instant_pass(&mut core);
+        core.receive(&header(2), vec![]);
+        instant_pass(&mut core); // executes nothing: not recorded
+        let ledger = core.sim.ledger.take().unwrap();
+        assert_eq!(ledger.len(), 1);
+        assert_eq!(ledger[0].served, Served::LegacyPass);
+        assert_eq!(ledger[0].idle_fps, 0);
+        assert_eq!(ledger[0].ops.len(), 2, "one set-x, replaced in the input list");
     }
 
     #[test]

@@ -3,9 +3,11 @@
 //! One REP socket, one thread. The add-on serves requests from CoppeliaSim's main loop, timed
 //! by [`ZmqPacer::serve_at`]: protocol 1 (4.5.1) one request per pass, protocol 2 (4.6+) also
 //! at once within the busy window of a pass that served one; at idle fps 0 at once. With
-//! realistic [`Timing`], each call then takes its modeled cost (`crate::sim::cost`: about
-//! 0.45 ms, bulk copy, removal and tree queries by their size, `../shared/spec/
-//! real-coppeliasim-4.5.1.md` "Pacing" and "ZeroMQ costs at idle fps 0") before its reply.
+//! realistic [`Timing`], each call then takes its modeled cost (`crate::coppelia::cost`: about
+//! 0.45 ms a call, plus the simulator's own work for pastes, re-parenting and removals, which
+//! grows with the objects in the scene; `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing",
+//! "ZeroMQ costs at idle fps 0" and "Costs that grow with the scene") before its reply, and
+//! is appended to the simulator's ledger when it keeps one.
 //! This module is the transport (socket, request and reply maps of either protocol generation,
 //! protocol-2 results held back behind `_*wait*_`); the functions themselves are in the
 //! `functions` registry.
@@ -22,7 +24,8 @@ use std::time::{Duration, Instant};
 
 use ciborium::Value;
 
-use crate::sim::{Clock, SimState, Simulator, Timing, ZmqPacer, ZmqPacing};
+use crate::sim::cost::{self, Op};
+use crate::sim::{Charge, Clock, Served, SimState, Simulator, Timing, ZmqPacer, ZmqPacing};
 use crate::zmq_api::cbor;
 use crate::zmq_api::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
 use functions::{Extras, Outcome};
@@ -264,7 +267,15 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         // the modeled cost is what a call takes end to end on a real simulator (the spec's
         // 0.45 ms was timed by a client): the emulator's own processing and its loopback
         // round trip count towards it
-        let (reply, work) = handle(state, &bytes);
+        let (reply, ops) = handle(state, &bytes);
+        let charge = Charge {
+            served: Served::ZmqCall,
+            idle_fps: fps,
+            state: sim_state,
+            ops,
+        };
+        state.host.with_sim(&mut |s| s.record(&charge));
+        let work = state.config.timing.cost(|m| charge.work(m));
         if !sleep_until(
             at.max(arrived) + work.saturating_sub(LOOPBACK_ROUND_TRIP),
             stop,
@@ -277,11 +288,11 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
     }
 }
 
-/// Answers one request (bytes in, reply map out) and says how long a real CoppeliaSim would
-/// have worked on it ([`ServerConfig::timing`]).
-fn handle(state: &mut State, bytes: &[u8]) -> (Value, Duration) {
+/// Answers one request (bytes in, reply map out) and says what work a real CoppeliaSim would
+/// have done for it.
+fn handle(state: &mut State, bytes: &[u8]) -> (Value, Vec<Op>) {
     let protocol = state.config.protocol;
-    let base = state.config.timing.cost(|m| m.zmq_call);
+    let base = vec![Op::ZmqCall];
     let req = match cbor::decode(bytes).and_then(|v| Request::from_value(&v)) {
         Ok(r) => r,
         Err(e) => {
@@ -320,26 +331,40 @@ fn handle(state: &mut State, bytes: &[u8]) -> (Value, Duration) {
     }
 }
 
-/// The modeled cost of a call to `func` with `args` that ended in `outcome`
-/// (`crate::sim::cost`, spec "ZeroMQ costs at idle fps 0" and "Pacing").
-fn call_cost(timing: &Timing, func: &str, args: &[Value], outcome: &Outcome) -> Duration {
-    let listed = || match args.first() {
-        Some(Value::Array(v)) => v.len(),
-        _ => 1,
+/// The work a call to `func` with `args` makes a real CoppeliaSim 4.5.1 do, from the scene
+/// before the call (`crate::coppelia::cost`: spec "Pacing", "ZeroMQ costs at idle fps 0",
+/// "Costs that grow with the scene"): the call itself, and a paste, re-parenting or removal
+/// by the objects it walks, a pose by its constant. `sim.getObjectsInTree` is priced after
+/// the call ([`tree_ops`]).
+fn call_ops(sim: &Simulator, func: &str, args: &[Value]) -> Vec<Op> {
+    let scene = &sim.scene;
+    let listed = || args.first().and_then(cbor::handles).unwrap_or_default();
+    let int_arg = |i: usize| args.get(i).and_then(cbor::int32);
+    let work = match func {
+        "sim.copyPasteObjects" => cost::paste(scene, &listed()),
+        "sim.removeObjects" => cost::remove(scene, &listed()),
+        "sim.removeObject" => cost::remove(scene, &int_arg(0).into_iter().collect::<Vec<_>>()),
+        "sim.setObjectParent" => {
+            let parent = int_arg(1).filter(|&p| p != crate::coppelia::HANDLE_WORLD);
+            return vec![Op::ZmqSet, cost::set_parent(scene, parent)];
+        }
+        "sim.setObjectPose" => return vec![Op::ZmqSet, cost::pose(scene, false)],
+        "sim.setObjectPosition" | "sim.setObjectOrientation" => cost::pose(scene, true),
+        _ => return vec![Op::ZmqCall],
     };
-    timing.cost(|m| match func {
-        "sim.copyPasteObjects" => m.zmq_copy_paste(listed()),
-        "sim.removeObjects" => m.zmq_remove(listed()),
-        "sim.setObjectParent" | "sim.setObjectPose" => m.zmq_set,
-        "sim.getObjectsInTree" => match outcome {
-            Outcome::Ret(v) => match v.first() {
-                Some(Value::Array(hs)) => m.zmq_objects_in_tree(hs.len()),
-                _ => m.zmq_call,
-            },
-            _ => m.zmq_call,
+    vec![Op::ZmqCall, work]
+}
+
+/// `sim.getObjectsInTree`'s work: the call, and per handle it returned (spec "ZeroMQ costs").
+fn tree_ops(outcome: &Outcome) -> Vec<Op> {
+    let handles = match outcome {
+        Outcome::Ret(v) => match v.first() {
+            Some(Value::Array(hs)) => hs.len(),
+            _ => 0,
         },
-        _ => m.zmq_call,
-    })
+        _ => 0,
+    };
+    vec![Op::ZmqTree { handles }]
 }
 
 /// Calls the requested function and turns its outcome into the reply of `protocol`
@@ -349,13 +374,17 @@ fn outcome_reply(
     protocol: Protocol,
     req: &Request,
     uuid: Option<String>,
-) -> (Value, Duration) {
+) -> (Value, Vec<Op>) {
     let mut outcome = Outcome::Ret(vec![]);
+    let mut work = vec![];
     let extras = &mut state.extras;
-    state
-        .host
-        .with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
-    let work = call_cost(&state.config.timing, &req.func, &req.args, &outcome);
+    state.host.with_sim(&mut |s| {
+        work = call_ops(s, &req.func, &req.args);
+        outcome = functions::call(s, extras, protocol, &req.func, &req.args);
+    });
+    if req.func == "sim.getObjectsInTree" {
+        work = tree_ops(&outcome);
+    }
     let reply = match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
         Outcome::Err(e) => {
@@ -377,6 +406,7 @@ fn outcome_reply(
 
 #[cfg(test)]
 mod tests {
+    use crate::zmq_api::cbor::int;
     use std::io::Write;
 
     use super::*;
@@ -441,28 +471,78 @@ mod tests {
     }
 
     #[test]
-    fn calls_cost_what_the_model_says_and_nothing_when_instant() {
-        let m = crate::sim::CostModel::measured();
-        let real = Timing::realistic();
-        let handles = |n: usize| vec![Value::Array(vec![cbor::int(1); n])];
-        let ok = Outcome::Ret(vec![]);
+    fn calls_do_the_work_the_model_prices_from_the_scene_before_them() {
+        let sim = Simulator::new(Scene::course(), 0);
+        let (maze, line) = (
+            sim.scene.resolve("Maze").unwrap(),
+            sim.scene.resolve("Line").unwrap(),
+        );
+        let handles = |hs: &[i32]| vec![Value::Array(hs.iter().map(|h| int((*h).into())).collect())];
         assert_eq!(
-            call_cost(&real, "sim.copyPasteObjects", &handles(2000), &ok),
-            m.zmq_copy_paste(2000)
+            call_ops(&sim, "sim.copyPasteObjects", &handles(&[line, line])),
+            [
+                Op::ZmqCall,
+                Op::Paste {
+                    copies: 1,
+                    objects: 5
+                }
+            ]
         );
         assert_eq!(
-            call_cost(&real, "sim.removeObjects", &handles(500), &ok),
-            m.zmq_remove(500)
+            call_ops(&sim, "sim.removeObjects", &handles(&[line, 99])),
+            [
+                Op::ZmqCall,
+                Op::Remove {
+                    count: 1,
+                    objects: 5
+                }
+            ]
         );
-        let tree = Outcome::Ret(vec![Value::Array(vec![cbor::int(1); 500])]);
+        let to_maze = vec![int(line.into()), int(maze.into()), Value::Bool(false)];
         assert_eq!(
-            call_cost(&real, "sim.getObjectsInTree", &[], &tree),
-            m.zmq_objects_in_tree(500)
+            call_ops(&sim, "sim.setObjectParent", &to_maze),
+            [
+                Op::ZmqSet,
+                Op::SetParent {
+                    children: 0,
+                    parentless: 5
+                }
+            ]
         );
-        assert_eq!(call_cost(&real, "sim.getObject", &[], &ok), m.zmq_call);
         assert_eq!(
-            call_cost(&Timing::instant(), "sim.copyPasteObjects", &handles(9), &ok),
-            Duration::ZERO
+            call_ops(&sim, "sim.setObjectPose", &[]),
+            [Op::ZmqSet, Op::Pose { objects: 5 }]
+        );
+        assert_eq!(call_ops(&sim, "sim.getObject", &[]), [Op::ZmqCall]);
+        let tree = Outcome::Ret(vec![Value::Array(vec![int(1); 500])]);
+        assert_eq!(tree_ops(&tree), [Op::ZmqTree { handles: 500 }]);
+    }
+
+    #[test]
+    fn served_calls_are_recorded_in_the_ledger_when_kept() {
+        let mut sim = Simulator::new(Scene::course(), 0);
+        sim.ledger = Some(vec![]);
+        let config = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            protocol: Protocol::V1,
+            ..Default::default()
+        };
+        let s = spawn(config, sim).unwrap();
+        let line = s.with_sim(|sim| sim.scene.resolve("Line").unwrap());
+        let list = vec![Value::Array(vec![int(line.into()); 3]), int(0)];
+        assert!(call(s.local_addr(), "sim.copyPasteObjects", list).is_some());
+        let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
+        s.shutdown();
+        assert_eq!(ledger.len(), 1);
+        assert_eq!(
+            ledger[0].ops,
+            [
+                Op::ZmqCall,
+                Op::Paste {
+                    copies: 1,
+                    objects: 5
+                }
+            ]
         );
     }
 }

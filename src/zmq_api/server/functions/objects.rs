@@ -1,6 +1,8 @@
 //! The object tree: finding objects by path, their aliases, types and parents, copying and
 //! removing them.
 
+use std::collections::HashMap;
+
 use ciborium::Value;
 
 use super::{Args, Ctx, Outcome, nothing, ret};
@@ -58,12 +60,38 @@ pub(super) fn get_object_type(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome
     ret(vec![int(o.kind.code().into())])
 }
 
-/// `sim.copyPasteObjects(handles, options)`: the handles of the copies.
+/// `sim.copyPasteObjects(handles, options)`: one handle per handle given. Each distinct
+/// handle is pasted once; a repetition answers the handle of the first object in the scene
+/// that is neither a copy nor an original still to be answered, as CoppeliaSim 4.5.1 does: it
+/// finds each copy by the copy string it carries, and clears the original's after answering
+/// it, so a repetition matches the first object with an empty copy string
+/// (coppeliaSimLib@coppeliasim-v4.5.1-rev4 `simInternal.cpp:6450-6460, 6508-6523`; spec "Costs
+/// that grow with the scene": `copyPasteObjects([Line, Line, Line, Line])` gave `[5, 0, 0, 0]`,
+/// 0 being `Floor`'s handle). If no such object exists the handle given is answered.
 pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let hs = a.handles(0)?;
-    let new = ctx.sim.scene.copy_paste(&hs).map_err(|_| a.no_object())?;
+    let scene = &mut ctx.sim.scene;
+    // objects in the scene's order, before the copies (which come after them all)
+    let before: Vec<i32> = scene.objects().map(|o| o.handle).collect();
+    let new = scene.copy_paste(&hs).map_err(|_| a.no_object())?;
+    let first_at: HashMap<i32, usize> = hs
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(i, &h)| (h, i))
+        .collect();
+    let mut copies = new.into_iter();
+    let answers = hs.iter().enumerate().map(|(i, &h)| {
+        if first_at[&h] == i {
+            copies.next().unwrap_or(h)
+        } else {
+            // originals first given after `i` still carry their copy string
+            let cleared = |o: &i32| first_at.get(o).is_none_or(|&j| j <= i);
+            before.iter().copied().find(cleared).unwrap_or(h)
+        }
+    });
     ret(vec![Value::Array(
-        new.into_iter().map(|h| int(h.into())).collect(),
+        answers.map(|h| int(h.into())).collect(),
     )])
 }
 
@@ -173,6 +201,35 @@ mod tests {
         assert!(!roots.contains(&line) && roots.contains(&maze));
         assert_eq!(tree(&mut sim, HANDLE_SCENE, 0).len(), 5);
         assert_eq!(tree(&mut sim, maze, 2), vec![maze, line]);
+    }
+
+    #[test]
+    fn a_repeated_handle_is_pasted_once_and_answered_by_the_first_object() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let (floor, line) = (
+            sim.scene.resolve("Floor").unwrap(),
+            sim.scene.resolve("Line").unwrap(),
+        );
+        let paste = |sim: &mut Simulator, hs: &[i32]| {
+            let list = Value::Array(hs.iter().map(|h| int((*h).into())).collect());
+            cbor::handles(&ret1(run(sim, "sim.copyPasteObjects", vec![list, int(0)]))).unwrap()
+        };
+        // spec: copyPasteObjects([Line, Line, Line, Line]) gave [5, 0, 0, 0] (0: Floor)
+        let got = paste(&mut sim, &[line; 4]);
+        assert_eq!(got[1..], [floor; 3]);
+        assert_eq!(sim.scene.len(), 6, "one copy");
+        assert_eq!(sim.scene.get(got[0]).unwrap().name, "Line0");
+        // Floor repeated after Line: Floor's copy string is cleared once it is answered,
+        // Line's too, so the repetitions answer Floor itself
+        let got = paste(&mut sim, &[floor, line, floor]);
+        assert_eq!(got.len(), 3);
+        assert_eq!(got[2], floor);
+        assert_eq!(sim.scene.len(), 8, "two copies");
+        // Floor given again after a repetition of Line: Floor still carries its copy
+        // string when Line's repetition is answered, so the next object (Maze) is
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let got = paste(&mut sim, &[line, line, floor]);
+        assert_eq!(got[1], maze);
     }
 
     #[test]

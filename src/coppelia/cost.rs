@@ -1,0 +1,304 @@
+//! What a real CoppeliaSim 4.5.1 spends on scene operations: a pure model, shared by the
+//! emulator (which sleeps what it says) and the clients (which size requests and warn about
+//! slow draws with it). Every figure cites `../shared/spec/real-coppeliasim-4.5.1.md` (the spec
+//! folder beside this repository).
+//!
+//! # The simulator's own work ("Costs that grow with the scene")
+//!
+//! Timed inside the simulator (idle fps 0, course scene plus n copies of `Line`):
+//!
+//! | n | paste all n | `setObjectParent` of all n | set the pose of all n | `removeObjects` of all n |
+//! |---|---|---|---|---|
+//! | 1,000 | 0.185 s | 0.068 s | 0.003 s | 0.059 s |
+//! | 4,000 | 2.41 s | 1.42 s | 0.024 s | 1.14 s |
+//! | 8,000 | 10.1 s | 5.32 s | 0.044 s | 4.11 s |
+//! | 20,000 | 65.7 s | 42.7 s | 0.16 s | 36.3 s |
+//!
+//! Pasting one object costs time in proportion to the objects already in the scene (each
+//! copy's lowest free `Line<N>` name, and `copyPasteObjects` finding each copy by a walk over
+//! every object: coppeliaSimLib@coppeliasim-v4.5.1-rev4 `simInternal.cpp:6508-6523`); the n
+//! copies are pasted into scenes of 0..n objects, so the total is about
+//! [`CostModel::paste_per_object`] · n²/2 (spec: "about 1.6e-7·n²").
+//! Removing one object likewise ([`CostModel::remove_per_object`], total about
+//! 7e-8·n²). Re-parenting one object walks the new parent's children and the parentless
+//! objects (coppeliaSimLib `sceneObjectContainer.cpp:1110-1157`); while n pasted copies go under
+//! `Maze` one by one, those two add up to n, so the total is
+//! [`CostModel::parent_per_object`] · n² (spec: "about 1e-7·n²"). A pose costs a few
+//! microseconds (the spec's "about 8 µs" is the 20,000 column; its table gives 3 µs a pose
+//! among 1,000 copies, 6 among 4,000), modelled as [`CostModel::pose`] plus a little per
+//! object ([`CostModel::pose_per_thousand_objects`]). The constants are fitted so that every cell of
+//! the table is within a factor 0.75..1.33 (unit tests below).
+//!
+//! # What each request adds ("Pacing", "ZeroMQ costs at idle fps 0")
+//!
+//! A ZeroMQ call at idle fps 0 takes about 0.45 ms end to end ([`CostModel::zmq_call`]);
+//! `sim.setObjectParent` / `sim.setObjectPose` 0.33–0.45 ms ([`CostModel::zmq_set`]);
+//! `sim.getObjectsInTree(Maze, -1, 3)` 0.3 ms, 0.9 ms with 500 children. A legacy main-loop
+//! pass that executed commands takes at least 9–10 ms at idle fps 0
+//! ([`CostModel::legacy_pass_floor`]), and each drawing command a little more than the
+//! simulator's own work ([`CostModel::legacy_command`], fitted to "Drawing cost on the
+//! server (legacy API, idle fps 0)" and the legacy rows of the "through vrep-maze" table).
+
+use std::time::Duration;
+
+/// One piece of work a CoppeliaSim request makes the simulator do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Op {
+    /// `copies` distinct objects pasted into a scene of `objects` objects.
+    Paste {
+        /// Copies made (repeated handles are pasted once).
+        copies: usize,
+        /// Objects in the scene before the paste.
+        objects: usize,
+    },
+    /// One object re-parented under a parent with `children` children, `parentless` objects
+    /// in the scene (both before the change).
+    SetParent {
+        /// Children of the new parent.
+        children: usize,
+        /// Objects without parent.
+        parentless: usize,
+    },
+    /// One pose set (position and orientation) in a scene of `objects` objects.
+    Pose {
+        /// Objects in the scene.
+        objects: usize,
+    },
+    /// Half a pose: the legacy API sets the position and the orientation by two commands.
+    HalfPose {
+        /// Objects in the scene.
+        objects: usize,
+    },
+    /// `count` objects removed from a scene of `objects` objects.
+    Remove {
+        /// Objects removed (ones that existed).
+        count: usize,
+        /// Objects in the scene before the removal.
+        objects: usize,
+    },
+    /// One ZeroMQ call (its transport and the add-on's dispatch).
+    ZmqCall,
+    /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose` call, its own work aside.
+    ZmqSet,
+    /// One ZeroMQ `sim.getObjectsInTree` call returning `handles` handles.
+    ZmqTree {
+        /// Handles returned.
+        handles: usize,
+    },
+    /// One legacy drawing command (paste, set-parent, set-position, set-orientation,
+    /// remove), its own work aside.
+    LegacyCommand,
+}
+
+/// The constants of the model (see the module documentation for the fit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CostModel {
+    /// Pasting one copy, per object already in the scene.
+    pub paste_per_object: Duration,
+    /// Re-parenting one object, per child of the new parent and per parentless object.
+    pub parent_per_object: Duration,
+    /// Removing one object, per object in the scene.
+    pub remove_per_object: Duration,
+    /// Setting one pose, besides [`CostModel::pose_per_object`] (spec "Costs that grow with
+    /// the scene": 3 µs a pose among 1,000 copies, 8 µs among 20,000).
+    pub pose: Duration,
+    /// Setting one pose, per thousand objects in the scene.
+    pub pose_per_thousand_objects: Duration,
+    /// One legacy drawing command besides the simulator's own work.
+    pub legacy_command: Duration,
+    /// The least time a legacy main-loop pass that executed commands takes at idle fps 0
+    /// (spec "Pacing": a legacy blocking call at idle fps 0 takes 9–10 ms).
+    pub legacy_pass_floor: Duration,
+    /// One ZeroMQ call at idle fps 0 (spec "Pacing": about 0.45 ms).
+    pub zmq_call: Duration,
+    /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose` (spec "ZeroMQ costs at idle
+    /// fps 0": 0.33–0.45 ms per call, the middle of that range).
+    pub zmq_set: Duration,
+    /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
+    pub zmq_tree: Duration,
+    /// ... and per handle returned (0.9 ms with 500 children).
+    pub zmq_tree_per_handle: Duration,
+}
+
+impl Default for CostModel {
+    fn default() -> Self {
+        CostModel::measured()
+    }
+}
+
+/// Σ_{i<k} (m + sign·i) objects: what `k` operations walk when the scene starts at `m`
+/// objects and grows (sign 1) or shrinks (sign -1) by one with each.
+fn walked(k: usize, m: usize, grows: bool) -> f64 {
+    let (k, m) = (k as f64, m as f64);
+    let series = k * (k - 1.0) / 2.0;
+    if grows {
+        k * m + series
+    } else {
+        (k * m - series).max(0.0)
+    }
+}
+
+impl CostModel {
+    /// The fit to the spec's tables (module documentation).
+    pub fn measured() -> CostModel {
+        CostModel {
+            paste_per_object: Duration::from_nanos(320),
+            parent_per_object: Duration::from_nanos(85),
+            remove_per_object: Duration::from_nanos(144),
+            pose: Duration::from_nanos(3600),
+            pose_per_thousand_objects: Duration::from_nanos(260),
+            legacy_command: Duration::from_micros(100),
+            legacy_pass_floor: Duration::from_millis(9),
+            zmq_call: Duration::from_micros(450),
+            zmq_set: Duration::from_micros(390),
+            zmq_tree: Duration::from_micros(300),
+            zmq_tree_per_handle: Duration::from_nanos(1200),
+        }
+    }
+
+    /// The time one piece of work takes.
+    pub fn op(&self, op: &Op) -> Duration {
+        let per = |d: Duration, objects: f64| Duration::from_secs_f64(d.as_secs_f64() * objects);
+        match *op {
+            Op::Paste { copies, objects } => {
+                per(self.paste_per_object, walked(copies, objects, true))
+            }
+            Op::SetParent {
+                children,
+                parentless,
+            } => per(self.parent_per_object, (children + parentless) as f64),
+            Op::Pose { objects } => {
+                self.pose + per(self.pose_per_thousand_objects, objects as f64 / 1000.0)
+            }
+            Op::HalfPose { objects } => self.op(&Op::Pose { objects }) / 2,
+            Op::Remove { count, objects } => {
+                per(self.remove_per_object, walked(count, objects, false))
+            }
+            Op::ZmqCall => self.zmq_call,
+            Op::ZmqSet => self.zmq_set,
+            Op::ZmqTree { handles } => self.zmq_tree + per(self.zmq_tree_per_handle, handles as f64),
+            Op::LegacyCommand => self.legacy_command,
+        }
+    }
+
+    /// The time a list of work takes.
+    pub fn ops(&self, ops: &[Op]) -> Duration {
+        ops.iter().map(|o| self.op(o)).sum()
+    }
+
+    /// The time a legacy main-loop pass that executed `ops` takes: their work, and at least
+    /// [`CostModel::legacy_pass_floor`] when the loop spins (stopped at idle fps 0).
+    pub fn legacy_pass(&self, ops: &[Op], spinning: bool) -> Duration {
+        let work = self.ops(ops);
+        if spinning {
+            work.max(self.legacy_pass_floor)
+        } else {
+            work
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A factor of `want` within 0.75..1.33, or a message saying by how much it is not.
+    fn within(what: &str, got: Duration, want: f64) {
+        let ratio = got.as_secs_f64() / want;
+        assert!(
+            (0.75..=1.33).contains(&ratio),
+            "{what}: modelled {:.3} s vs {want} s measured (x{ratio:.2})",
+            got.as_secs_f64()
+        );
+    }
+
+    /// The course scene: Floor, Maze, Line, Start, End.
+    const COURSE: usize = 5;
+
+    /// Pasting n copies of `Line` in doubling rounds of `copyPasteObjects` (the template,
+    /// then every copy so far) into the course scene, as the spec's experiment did.
+    fn paste_all(m: &CostModel, n: usize) -> Duration {
+        let (mut have, mut t) = (1, Duration::ZERO);
+        while have < n + 1 {
+            let copies = have.min(n + 1 - have);
+            t += m.op(&Op::Paste {
+                copies,
+                objects: COURSE - 1 + have,
+            });
+            have += copies;
+        }
+        t
+    }
+
+    /// Re-parenting the n pasted (parentless) copies to `Maze` one by one.
+    fn parent_all(m: &CostModel, n: usize) -> Duration {
+        (0..n)
+            .map(|k| {
+                m.op(&Op::SetParent {
+                    children: k,
+                    parentless: COURSE - 1 + n - k,
+                })
+            })
+            .sum()
+    }
+
+    #[test]
+    fn every_cell_of_the_in_simulator_table_is_reproduced() {
+        let m = CostModel::measured();
+        // spec "Costs that grow with the scene": n, paste, set parent, pose, remove
+        let table = [
+            (1_000, 0.185, 0.068, 0.003, 0.059),
+            (4_000, 2.41, 1.42, 0.024, 1.14),
+            (8_000, 10.1, 5.32, 0.044, 4.11),
+            (20_000, 65.7, 42.7, 0.16, 36.3),
+        ];
+        for (n, paste, parent, pose, remove) in table {
+            within(&format!("paste {n}"), paste_all(&m, n), paste);
+            within(&format!("set parent {n}"), parent_all(&m, n), parent);
+            let objects = COURSE + n;
+            within(&format!("pose {n}"), m.op(&Op::Pose { objects }) * n as u32, pose);
+            let removed = m.op(&Op::Remove {
+                count: n,
+                objects: COURSE + n,
+            });
+            within(&format!("remove {n}"), removed, remove);
+        }
+    }
+
+    #[test]
+    fn scene_work_grows_with_the_objects_walked() {
+        let m = CostModel::measured();
+        let paste = |copies, objects| m.op(&Op::Paste { copies, objects });
+        assert_eq!(paste(0, 100), Duration::ZERO);
+        // one copy into 1,000 objects walks 1,000; two walk 1,000 + 1,001
+        assert_eq!(paste(1, 1000), m.paste_per_object * 1000);
+        assert_eq!(paste(2, 1000), m.paste_per_object * 2001);
+        let remove = |count, objects| m.op(&Op::Remove { count, objects });
+        assert_eq!(remove(2, 1000), m.remove_per_object * 1999);
+        // removing objects that are not there walks nothing
+        assert_eq!(remove(3, 0), Duration::ZERO);
+        let parent = m.op(&Op::SetParent {
+            children: 3,
+            parentless: 4,
+        });
+        assert_eq!(parent, m.parent_per_object * 7);
+        let pose = |objects| m.op(&Op::Pose { objects });
+        let half = m.op(&Op::HalfPose { objects: 10 }) * 2;
+        assert!(half.abs_diff(pose(10)) <= Duration::from_nanos(1));
+        assert!(pose(20_000) > pose(1_000));
+    }
+
+    #[test]
+    fn per_request_costs_follow_the_pacing_and_zeromq_tables() {
+        let m = CostModel::measured();
+        let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+        // spec "Pacing": one call about 0.45 ms; a legacy call at idle fps 0 9–10 ms
+        assert!((ms(m.op(&Op::ZmqCall)) - 0.45).abs() < 0.01);
+        assert!((0.33..=0.45).contains(&ms(m.op(&Op::ZmqSet))));
+        assert_eq!(m.legacy_pass(&[], true), Duration::from_millis(9));
+        assert_eq!(m.legacy_pass(&[Op::LegacyCommand], false), m.legacy_command);
+        // spec "ZeroMQ costs": getObjectsInTree 0.3 ms, 0.9 ms with 500 children
+        assert!((ms(m.op(&Op::ZmqTree { handles: 0 })) - 0.3).abs() < 0.01);
+        assert!((ms(m.op(&Op::ZmqTree { handles: 500 })) - 0.9).abs() < 0.01);
+    }
+}
