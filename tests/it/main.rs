@@ -9,6 +9,7 @@ mod cli_fuzz;
 mod cli_legacy;
 mod cli_zmq;
 mod connect;
+mod costs;
 mod ctrl_c;
 mod draw;
 mod generation_gate;

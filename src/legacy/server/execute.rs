@@ -8,8 +8,8 @@ use crate::legacy::command::{
     encode_handle_list, group,
 };
 use crate::legacy::wire::Block;
-use crate::sim::cost::{self, Op};
 use crate::sim::Simulator;
+use crate::sim::cost::{self, Op};
 
 fn f32x3(v: [f64; 3]) -> Vec<u8> {
     v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
@@ -33,7 +33,9 @@ pub(super) fn ops(sim: &Simulator, block: &Block) -> Vec<Op> {
         Some(Command::SetObjectParent { parent, .. }) => {
             cost::set_parent(scene, (parent != HANDLE_WORLD).then_some(parent))
         }
-        Some(Command::SetPosition { .. } | Command::SetOrientation { .. }) => cost::pose(scene, true),
+        Some(Command::SetPosition { .. } | Command::SetOrientation { .. }) => {
+            cost::pose(scene, true)
+        }
         Some(Command::RemoveObject(h)) => cost::remove(scene, &[h]),
         _ => return vec![],
     };

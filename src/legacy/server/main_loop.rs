@@ -543,7 +543,11 @@ mod tests {
         assert_eq!(ledger.len(), 1);
         assert_eq!(ledger[0].served, Served::LegacyPass);
         assert_eq!(ledger[0].idle_fps, 0);
-        assert_eq!(ledger[0].ops.len(), 2, "one set-x, replaced in the input list");
+        assert_eq!(
+            ledger[0].ops.len(),
+            2,
+            "one set-x, replaced in the input list"
+        );
     }
 
     #[test]

@@ -335,7 +335,7 @@ fn handle(state: &mut State, bytes: &[u8]) -> (Value, Vec<Op>) {
 /// before the call (`crate::coppelia::cost`: spec "Pacing", "ZeroMQ costs at idle fps 0",
 /// "Costs that grow with the scene"): the call itself, and a paste, re-parenting or removal
 /// by the objects it walks, a pose by its constant. `sim.getObjectsInTree` is priced after
-/// the call ([`tree_ops`]).
+/// the call ([`tree_ops`]); serving any call adds [`Op::ZmqServe`] for the scene after it.
 fn call_ops(sim: &Simulator, func: &str, args: &[Value]) -> Vec<Op> {
     let scene = &sim.scene;
     let listed = || args.first().and_then(cbor::handles).unwrap_or_default();
@@ -381,10 +381,13 @@ fn outcome_reply(
     state.host.with_sim(&mut |s| {
         work = call_ops(s, &req.func, &req.args);
         outcome = functions::call(s, extras, protocol, &req.func, &req.args);
+        if req.func == "sim.getObjectsInTree" {
+            work = tree_ops(&outcome);
+        }
+        work.push(Op::ZmqServe {
+            objects: s.scene.len(),
+        });
     });
-    if req.func == "sim.getObjectsInTree" {
-        work = tree_ops(&outcome);
-    }
     let reply = match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
         Outcome::Err(e) => {
@@ -477,7 +480,8 @@ mod tests {
             sim.scene.resolve("Maze").unwrap(),
             sim.scene.resolve("Line").unwrap(),
         );
-        let handles = |hs: &[i32]| vec![Value::Array(hs.iter().map(|h| int((*h).into())).collect())];
+        let handles =
+            |hs: &[i32]| vec![Value::Array(hs.iter().map(|h| int((*h).into())).collect())];
         assert_eq!(
             call_ops(&sim, "sim.copyPasteObjects", &handles(&[line, line])),
             [
@@ -541,7 +545,8 @@ mod tests {
                 Op::Paste {
                     copies: 1,
                     objects: 5
-                }
+                },
+                Op::ZmqServe { objects: 6 }
             ]
         );
     }

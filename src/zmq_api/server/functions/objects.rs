@@ -74,12 +74,7 @@ pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outc
     // objects in the scene's order, before the copies (which come after them all)
     let before: Vec<i32> = scene.objects().map(|o| o.handle).collect();
     let new = scene.copy_paste(&hs).map_err(|_| a.no_object())?;
-    let first_at: HashMap<i32, usize> = hs
-        .iter()
-        .enumerate()
-        .rev()
-        .map(|(i, &h)| (h, i))
-        .collect();
+    let first_at: HashMap<i32, usize> = hs.iter().enumerate().rev().map(|(i, &h)| (h, i)).collect();
     let mut copies = new.into_iter();
     let answers = hs.iter().enumerate().map(|(i, &h)| {
         if first_at[&h] == i {
@@ -90,9 +85,7 @@ pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outc
             before.iter().copied().find(cleared).unwrap_or(h)
         }
     });
-    ret(vec![Value::Array(
-        answers.map(|h| int(h.into())).collect(),
-    )])
+    ret(vec![Value::Array(answers.map(|h| int(h.into())).collect())])
 }
 
 /// `sim.removeObjects(handles)`: removes those that exist. A handle already removed (or
