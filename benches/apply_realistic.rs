@@ -1,14 +1,18 @@
 //! Benchmark: `apply` against the emulator's realistic model of CoppeliaSim 4.5.1
-//! (`Timing::realistic()`: one ZeroMQ request per main-loop pass, per-call and per-object
-//! server costs, legacy per-line costs growing with the scene; every figure cites
-//! `../shared/spec/real-coppeliasim-4.5.1.md`), beside the targets of the "draw like the real
-//! CoppeliaSim needs" issue and what the previous client measured on a real 4.5.1. The
-//! user's idle rate is CoppeliaSim's default, 8 fps, in every case.
+//! (`Timing::realistic()`: one ZeroMQ request per main-loop pass, pasting, re-parenting and
+//! removing growing with the objects in the scene; every figure cites
+//! `../shared/spec/real-coppeliasim-4.5.1.md`), for every row of issue 18's table, beside
+//! what a real CoppeliaSim 4.5.1 took for the same step (spec "Costs that grow with the
+//! scene"). The user's idle rate is CoppeliaSim's default, 8 fps. Each row's earlier mazes
+//! are drawn on an instant emulator first (not timed); only its own step sleeps.
 //!
-//!     cargo bench --bench apply_realistic              # the issue's cases
-//!     cargo bench --bench apply_realistic -- --200     # also legacy 200x200 (many minutes)
+//!     cargo bench --bench apply_realistic                 # issue 18's rows (about 5 minutes)
+//!     cargo bench --bench apply_realistic -- --first-draws  # also the first draws of issue 11
 //!
-//! "x target" is target / time: above 1 the target is met.
+//! "emulated" is the wall time against the realistic emulator; "ledger" the same step priced
+//! from the emulator's ledger of the simulator's work (`vrep_maze::sim::cost::price_all`,
+//! what the unit tests check); "x real" is emulated / real. Each row takes a draw mode
+//! ([`Mode`]), so other modes are rows of the same table.
 
 use std::time::{Duration, Instant};
 
@@ -18,58 +22,90 @@ use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::{Scene, Simulator, Timing};
+use vrep_maze::sim::cost::price_all;
+use vrep_maze::sim::{Clock, CostModel, Scene, Simulator, Timing};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
-fn drawing(n: u64, seed: u64) -> Drawing {
-    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
+/// The `n` x `n` course maze of the spec's runs (Prim, seed 42: 160, 1,798, 7,198 and 19,998
+/// lines for 9, 30, 60, 100).
+fn drawing(n: u64) -> Drawing {
+    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, 42);
     Drawing::try_from(&build_layout(&spec).unwrap()).unwrap()
 }
 
-/// What one apply cost.
-struct Cost {
-    wall: Duration,
-    requests: usize,
-    lines: usize,
+/// How a maze is drawn.
+#[derive(Debug, Clone, Copy)]
+enum Mode {
+    /// One copy of the template per line (`--draw copies`, the default).
+    Copies,
 }
 
-/// The emulated server of one API, realistic, at the default idle rate.
+impl Mode {
+    /// Every mode, each a row of the table.
+    const ALL: [Mode; 1] = [Mode::Copies];
+
+    fn name(self) -> &'static str {
+        match self {
+            Mode::Copies => "copies",
+        }
+    }
+
+    /// Draws `d` over `backend` in this mode.
+    fn apply(self, backend: &mut dyn Backend, d: &Drawing) -> draw::ApplyReport {
+        match self {
+            Mode::Copies => draw::apply(backend, d, &ApplyOptions::default(), &mut |_| {}),
+        }
+        .unwrap()
+    }
+}
+
+/// Which API a step uses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Api {
+    Legacy,
+    Zmq,
+}
+
+const TIMEOUT: Duration = Duration::from_secs(120);
+
+/// A running emulated server over a simulator.
 enum Server {
     Legacy(legacy::ServerHandle),
     Zmq(zmq_api::ServerHandle),
 }
 
 impl Server {
-    fn start(zmq: bool) -> Server {
-        let sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
-        if zmq {
-            let cfg = zmq_api::ServerConfig {
-                listen: "127.0.0.1:0".parse().unwrap(),
-                protocol: Protocol::V1,
-                timing: Timing::realistic(),
-                ..Default::default()
-            };
-            Server::Zmq(zmq_api::spawn(cfg, sim).unwrap())
-        } else {
-            let cfg = legacy::ServerConfig {
-                listen: "127.0.0.1:0".parse().unwrap(),
-                timing: Timing::realistic(),
-                ..Default::default()
-            };
-            Server::Legacy(legacy::spawn(cfg, sim).unwrap())
+    fn start(api: Api, sim: Simulator, timing: Timing) -> Server {
+        match api {
+            Api::Legacy => {
+                let cfg = legacy::ServerConfig {
+                    listen: "127.0.0.1:0".parse().unwrap(),
+                    timing,
+                    ..Default::default()
+                };
+                Server::Legacy(legacy::spawn(cfg, sim).unwrap())
+            }
+            Api::Zmq => {
+                let cfg = zmq_api::ServerConfig {
+                    listen: "127.0.0.1:0".parse().unwrap(),
+                    protocol: Protocol::V1,
+                    timing,
+                    ..Default::default()
+                };
+                Server::Zmq(zmq_api::spawn(cfg, sim).unwrap())
+            }
         }
     }
 
     fn connect(&self) -> Box<dyn Backend> {
-        let timeout = Duration::from_secs(60);
         match self {
             Server::Legacy(s) => Box::new(
-                LegacyBackend::connect("127.0.0.1", s.local_addr().port(), timeout).unwrap(),
+                LegacyBackend::connect("127.0.0.1", s.local_addr().port(), TIMEOUT).unwrap(),
             ),
             Server::Zmq(s) => Box::new(
                 ZmqBackend::connect(&ClientOptions {
                     port: s.local_addr().port(),
-                    timeout,
+                    timeout: TIMEOUT,
                     ..Default::default()
                 })
                 .unwrap(),
@@ -77,90 +113,140 @@ impl Server {
         }
     }
 
-    fn apply(&self, d: &Drawing) -> Cost {
+    /// Draws `d` in `mode`; returns the wall time and the round trips.
+    fn apply(&self, mode: Mode, d: &Drawing) -> (Duration, usize) {
         let mut b = self.connect();
         let t = Instant::now();
-        let r = draw::apply(b.as_mut(), d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+        let report = mode.apply(b.as_mut(), d);
         let wall = t.elapsed();
         b.close().unwrap();
-        Cost {
-            wall,
-            requests: r.round_trips,
-            lines: d.lines.len(),
-        }
+        (wall, report.round_trips)
     }
 
-    fn shutdown(self) {
+    /// Stops the server and gives its simulator back.
+    fn stop(self) -> Simulator {
         match self {
-            Server::Legacy(s) => drop(s.shutdown()),
-            Server::Zmq(s) => s.shutdown(),
+            Server::Legacy(s) => s.shutdown(),
+            Server::Zmq(s) => {
+                let sim = s.with_sim(|sim| sim.clone());
+                s.shutdown();
+                sim
+            }
         }
     }
 }
 
-fn row(case: &str, cost: &Cost, target: Option<f64>, before: &str) {
-    let secs = cost.wall.as_secs_f64();
-    let (target, ratio) = match target {
-        Some(t) => (format!("<= {t} s"), format!("{:.2}x", t / secs)),
-        None => ("completes".into(), "-".into()),
+/// One row of the table: mazes drawn first (API, size), then the timed step.
+struct Row {
+    step: &'static str,
+    before: &'static [(Api, u64)],
+    api: Api,
+    n: u64,
+    /// Seconds a real CoppeliaSim 4.5.1 took (copies mode), from the spec.
+    real: Option<f64>,
+}
+
+/// Issue 18's table (spec "Costs that grow with the scene", through vrep-maze).
+const ISSUE_18: &[Row] = &[
+    Row {
+        step: "legacy: replace 60x60 by 100x100",
+        before: &[(Api::Legacy, 60)],
+        api: Api::Legacy,
+        n: 100,
+        real: Some(62.1),
+    },
+    Row {
+        step: "ZeroMQ: replace 9x9 by 100x100",
+        before: &[(Api::Legacy, 9)],
+        api: Api::Zmq,
+        n: 100,
+        real: Some(139.8),
+    },
+    Row {
+        step: "ZeroMQ: replace 100x100 by 9x9",
+        before: &[(Api::Legacy, 100)],
+        api: Api::Zmq,
+        n: 9,
+        real: Some(29.5),
+    },
+    Row {
+        step: "ZeroMQ: replace 100x100 by 30x30",
+        before: &[(Api::Legacy, 100)],
+        api: Api::Zmq,
+        n: 30,
+        real: Some(32.4),
+    },
+];
+
+/// Issue 11's first draws into the course scene.
+const FIRST_DRAWS: &[Row] = &[
+    Row {
+        step: "legacy: first draw 9x9",
+        before: &[],
+        api: Api::Legacy,
+        n: 9,
+        real: Some(0.92),
+    },
+    Row {
+        step: "legacy: first draw 60x60",
+        before: &[],
+        api: Api::Legacy,
+        n: 60,
+        real: None,
+    },
+    Row {
+        step: "ZeroMQ: first draw 30x30",
+        before: &[],
+        api: Api::Zmq,
+        n: 30,
+        real: Some(7.2),
+    },
+];
+
+/// Sets the row's scene up on an instant emulator, then times its step on a realistic one.
+fn run(row: &Row, mode: Mode) {
+    let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+    for &(api, n) in row.before {
+        let s = Server::start(api, sim, Timing::instant());
+        s.apply(Mode::Copies, &drawing(n));
+        sim = s.stop();
+    }
+    sim.idle_fps = DEFAULT_IDLE_FPS;
+    sim.ledger = Some(vec![]);
+    let s = Server::start(row.api, sim, Timing::realistic());
+    let (wall, requests) = s.apply(mode, &drawing(row.n));
+    let ledger = s.stop().ledger.unwrap_or_default();
+    let priced = price_all(&Clock::default(), &CostModel::measured(), &ledger);
+    let secs = wall.as_secs_f64();
+    let (real, ratio) = match row.real {
+        Some(r) => (format!("{r:.2}"), format!("{:.2}", secs / r)),
+        None => ("-".into(), "-".into()),
     };
     println!(
-        "{case:<34} {:>7} {:>9} {:>9.2} | {target:>10} {ratio:>8} | {before}",
-        cost.lines, cost.requests, secs
+        "{:<34} {:<7} {:>9} {:>10.2} {:>8.2} {:>8} {:>7}",
+        row.step,
+        mode.name(),
+        requests,
+        secs,
+        priced.as_secs_f64(),
+        real,
+        ratio
     );
 }
 
 fn main() {
-    let with_200 = std::env::args().any(|a| a == "--200");
+    let first_draws = std::env::args().any(|a| a == "--first-draws");
     println!(
-        "{:<34} {:>7} {:>9} {:>9} | {:>10} {:>8} | real 4.5.1, previous client",
-        "case (user idle fps 8)", "lines", "requests", "time s", "target", "x target"
+        "{:<34} {:<7} {:>9} {:>10} {:>8} {:>8} {:>7}",
+        "step (user idle fps 8)", "mode", "requests", "emulated", "ledger", "real", "x real"
     );
-    for (n, target, before) in [
-        (9u64, None, "0.35 s, 7 round trips"),
-        (30, None, "1.54 s, 6 round trips"),
-        (60, None, "11.1 s, 6 round trips"),
-        (100, Some(45.0), "fails: no reply within 60 s"),
-    ] {
-        let s = Server::start(false);
-        row(
-            &format!("legacy first draw {n}x{n}"),
-            &s.apply(&drawing(n, 42)),
-            target,
-            before,
-        );
-        s.shutdown();
+    let mut rows: Vec<&Row> = ISSUE_18.iter().collect();
+    if first_draws {
+        rows.extend(FIRST_DRAWS);
     }
-    if with_200 {
-        let s = Server::start(false);
-        row(
-            "legacy first draw 200x200",
-            &s.apply(&drawing(200, 42)),
-            None,
-            "-",
-        );
-        s.shutdown();
+    for row in rows {
+        for mode in Mode::ALL {
+            run(row, mode);
+        }
     }
-    let s = Server::start(true);
-    row(
-        "zmq first draw 30x30",
-        &s.apply(&drawing(30, 42)),
-        Some(2.5),
-        "7.2 s, 5,468 calls",
-    );
-    row(
-        "zmq replace 30x30 -> 9x9",
-        &s.apply(&drawing(9, 42)),
-        Some(1.5),
-        "228 s, 2,155 calls",
-    );
-    s.shutdown();
-    let s = Server::start(true);
-    row(
-        "zmq first draw 100x100",
-        &s.apply(&drawing(100, 42)),
-        Some(25.0),
-        "-",
-    );
-    s.shutdown();
 }

@@ -179,8 +179,16 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         drawing.copies() as u64,
         Unit::Items(what),
     );
+    let api = backend.remote_api();
+    let dry_run = args.dry_run;
     let mut progress = |stage: Stage| match stage {
         Stage::Surveyed => bar.set_message("reading the scene"),
+        Stage::Planned(work) => {
+            let warning = api.and_then(|api| draw::estimate::slow_draw_warning(api, &work));
+            if let Some(line) = warning.filter(|_| !bars.quiet() && !dry_run) {
+                bar.suspend(|| eprintln!("{line}"));
+            }
+        }
         Stage::Pasting { .. } => bar.set_message(format!("pasting {what}")),
         Stage::Placing { done, .. } => {
             bar.set_message(format!("placing {what}"));

@@ -25,6 +25,7 @@ pub enum Unit {
 #[derive(Debug, Clone, Copy)]
 pub struct Progress {
     shown: bool,
+    quiet: bool,
 }
 
 impl Progress {
@@ -32,7 +33,13 @@ impl Progress {
     pub fn new(quiet: bool) -> Self {
         Self {
             shown: !quiet && std::io::stderr().is_terminal(),
+            quiet,
         }
+    }
+
+    /// Whether `--quiet` asked for silence: advisories (not errors) are not printed either.
+    pub fn quiet(self) -> bool {
+        self.quiet
     }
 
     /// A bar of `len` units for the step `what` ("reading maze.json"), appearing after

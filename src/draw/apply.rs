@@ -62,6 +62,8 @@ pub enum Stage {
         /// Lines (or walls and posts) in the drawing.
         total: usize,
     },
+    /// The work planned, before any change: [`super::estimate::copies_draw`] prices it.
+    Planned(super::estimate::CopiesWork),
     /// Reading back.
     Verifying,
 }
@@ -230,6 +232,15 @@ fn apply_claimed(
         report.pasted += part.plan.paste;
     }
     report.removed += foreign.len();
+    let kept: usize = parts.iter().map(|part| part.plan.reuse.len()).sum();
+    progress(Stage::Planned(super::estimate::CopiesWork {
+        objects: survey.objects.len(),
+        removed: report.removed,
+        placed: kept + usize::from(drawing.template_drawn()) + 2,
+        pasted: report.pasted,
+        kept_children: kept,
+        blocks_per_round: opts.paste_blocks_per_round,
+    }));
     if !opts.dry_run {
         let mut run = Drawer {
             scene,

@@ -9,6 +9,7 @@
 
 pub mod apply;
 pub mod clear;
+pub mod estimate;
 pub mod lease;
 pub mod plan;
 pub mod verify;
@@ -322,6 +323,11 @@ pub trait Backend {
     }
     /// One line naming the API, where it answered and, if known, the simulator's version.
     fn describe(&self) -> String;
+    /// Which remote API this is, for [`estimate::copies_draw`]; `None` for a backend that is
+    /// neither (nothing is estimated).
+    fn remote_api(&self) -> Option<estimate::RemoteApi> {
+        None
+    }
     /// Ends the connection the way the official client does, so the simulator is ready for
     /// the next client at once. Dropping a backend closes it too, ignoring errors.
     fn close(&mut self) -> Result<(), BackendError> {

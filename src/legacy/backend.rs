@@ -126,18 +126,6 @@ fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, BackendError> {
         .collect())
 }
 
-/// Server time one request may take: well within any reply timeout, and short enough that a
-/// progress bar moves every couple of seconds.
-const REQUEST_SECONDS: f64 = 1.5;
-/// The server's time per pasted and placed line, and its growth per object in the scene
-/// (re-parenting rebuilds the new parent's child order and walks the parentless objects):
-/// fitted to `../shared/spec/real-coppeliasim-4.5.1.md`, "Drawing cost on the server"
-/// (30x30: 1.54 s, 60x60: 11.1 s; 100x100 over 60 s in one request).
-const SECONDS_PER_LINE: f64 = 0.65e-3;
-/// See [`SECONDS_PER_LINE`] (an upper bound: `Maze`'s children plus the parentless objects
-/// are at most the objects in the scene).
-const SECONDS_PER_LINE_PER_OBJECT: f64 = 127e-9;
-
 impl Backend for LegacyBackend {
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
         let r = self.call(&[
@@ -158,9 +146,10 @@ impl Backend for LegacyBackend {
         Ok(IdleRates { current, saved })
     }
 
+    /// Sized by the shared cost model (`crate::coppelia::cost`: pasting and re-parenting
+    /// grow with the objects in the scene).
     fn lines_per_request(&self, objects_in_scene: usize) -> usize {
-        let per_line = SECONDS_PER_LINE + SECONDS_PER_LINE_PER_OBJECT * objects_in_scene as f64;
-        (REQUEST_SECONDS / per_line) as usize
+        crate::draw::estimate::legacy_lines_per_request(objects_in_scene)
     }
 
     fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
@@ -312,6 +301,10 @@ impl Backend for LegacyBackend {
 
     fn round_trips(&self) -> usize {
         self.client.as_ref().map(Client::round_trips).unwrap_or(0)
+    }
+
+    fn remote_api(&self) -> Option<crate::draw::estimate::RemoteApi> {
+        Some(crate::draw::estimate::RemoteApi::Legacy)
     }
 
     fn describe(&self) -> String {

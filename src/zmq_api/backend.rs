@@ -449,6 +449,9 @@ impl ZmqBackend {
     }
 }
 
+/// The most copies one paste round makes over ZeroMQ (see `lines_per_request`).
+const ZMQ_PASTE_ROUND: usize = 1000;
+
 impl Backend for ZmqBackend {
     fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
         let mut handles = Vec::with_capacity(names.len());
@@ -621,6 +624,19 @@ impl Backend for ZmqBackend {
 
     fn round_trips(&self) -> usize {
         self.client.stats().round_trips as usize
+    }
+
+    /// Each call is its own request, but a paste round's copies stay parentless until they
+    /// are re-parented one by one, and CoppeliaSim 4.5.1 walks every parentless object on
+    /// each such re-parenting (coppeliaSimLib@coppeliasim-v4.5.1-rev4
+    /// `sceneObjectContainer.cpp:1133, 1146, 1281-1306`): rounds of at most
+    /// [`ZMQ_PASTE_ROUND`] copies keep that walk short (the pastes cost the same).
+    fn lines_per_request(&self, _objects_in_scene: usize) -> usize {
+        ZMQ_PASTE_ROUND
+    }
+
+    fn remote_api(&self) -> Option<crate::draw::estimate::RemoteApi> {
+        Some(crate::draw::estimate::RemoteApi::Zmq)
     }
 
     fn describe(&self) -> String {

@@ -155,3 +155,50 @@ fn the_zeromq_draw_of_a_100x100_over_a_9x9_is_reproduced() {
     );
     both.shutdown();
 }
+
+/// `apply` of a 60x60 into the course scene (about 13 s on a real 4.5.1 by the model) warns
+/// once on standard error, with the modelled seconds, and suggests `--draw mesh`; `-q`
+/// silences it, and a 9x9 (under a second) draws without it.
+#[test]
+fn apply_warns_before_a_slow_copies_draw_unless_quiet() {
+    use predicates::prelude::*;
+
+    use crate::support::bin;
+    use crate::support::cli::Serve;
+
+    let dir = tempfile::tempdir().unwrap();
+    let path = |n: &str| dir.path().join(format!("{n}.json")).display().to_string();
+    for (n, size) in [("small", "9x9"), ("big", "60x60")] {
+        bin()
+            .args(["generate", "--seed", "42", "--size", size, "-o", &path(n)])
+            .assert()
+            .success();
+    }
+    let serve = |extra: &[&str]| {
+        let mut args = vec!["--listen", "127.0.0.1:0", "--timing", "instant"];
+        args.extend(extra);
+        Serve::start(&args, 1)
+    };
+    let warning = predicate::str::is_match(
+        r"(?m)^warning: drawing this maze as copies takes about \d+ s on a real CoppeliaSim 4\.5\.1 .*--draw mesh",
+    )
+    .unwrap();
+    let s = serve(&[]);
+    bin()
+        .args(["apply", &path("small"), "--port", &s.port()])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("warning").not());
+    bin()
+        .args(["apply", &path("big"), "--port", &s.port()])
+        .assert()
+        .success()
+        .stderr(warning.count(1));
+    drop(s);
+    let s = serve(&[]);
+    bin()
+        .args(["-q", "apply", &path("big"), "--port", &s.port()])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("warning").not());
+}
