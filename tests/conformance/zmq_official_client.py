@@ -103,6 +103,10 @@ try:
     check("a pasted copy has no parent", sim.getObjectParent(copy) == -1)
     more = sim.copyPasteObjects([line, copy], 0)
     check("pasting two objects at once", len(more) == 2 and sim.getObjectAlias(more[1], 1) == "/Line[3]", more)
+    repeated = sim.copyPasteObjects([line, line, line, line], 0)
+    check("a repeated handle is pasted once, each repetition answers the first object (4.5.1: [5, 0, 0, 0])",
+          len(repeated) == 4 and repeated[0] > line and repeated[1:] == [floor] * 3, repeated)
+    sim.removeObjects([repeated[0]])
 
     sim.setObjectPosition(copy, [1.0, 2.0, 0.001], sim.handle_world)
     check("setObjectPosition, 4.6+ order (h, pos, rel)", close(sim.getObjectPosition(copy, sim.handle_world), [1, 2, 0.001]))
