@@ -5,6 +5,7 @@ use std::time::Duration;
 
 use anyhow::Context;
 
+use super::stdout::outln;
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
 
@@ -84,7 +85,7 @@ impl ConnectArgs {
             self.connect_timeout,
         )?;
         if self.api != Api::Legacy {
-            println!("using the {}", connected.description);
+            outln!("using the {}", connected.description)?;
         }
         Ok(connected.backend)
     }
@@ -167,7 +168,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         let created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
-            println!("created {}", created.join(", "));
+            outln!("created {}", created.join(", "))?;
         }
     }
     let what = match (drawing.style, drawing.posts.is_empty()) {
@@ -219,20 +220,20 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         authoring
             .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
-        println!("saved the scene to {path} (on the simulator's machine)");
+        outln!("saved the scene to {path} (on the simulator's machine)")?;
     }
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        outln!("stopped the simulation first")?;
     }
-    println!("{report}");
+    outln!("{report}")?;
     if !report.dry_run {
         let noun = match (drawing.style, drawing.posts.is_empty()) {
             (crate::layout::Style::Lines, _) => "line",
             (crate::layout::Style::Walls, true) => "wall",
             (crate::layout::Style::Walls, false) => "wall, post",
         };
-        println!("verified: every {noun}, start and end in place");
+        outln!("verified: every {noun}, start and end in place")?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

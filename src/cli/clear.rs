@@ -1,5 +1,6 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
+use super::stdout::outln;
 use super::apply::ConnectArgs;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use crate::draw::{self, ClearOptions, DrawError};
@@ -42,7 +43,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let report = result?;
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        outln!("stopped the simulation first")?;
     }
     let verb = if args.dry_run {
         "would remove"
@@ -56,12 +57,12 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         String::new()
     };
     if let Some(fps) = report.restored_idle_fps {
-        println!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)");
+        outln!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)")?;
     }
     if report.removed.is_empty() {
-        println!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene");
+        outln!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;
     } else {
-        println!(
+        outln!(
             "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
             if report.removed.len() == 1 {
@@ -70,7 +71,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
                 "ies"
             },
             shown.join(", ")
-        );
+        )?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -13,10 +13,14 @@ mod output;
 mod progress;
 mod render;
 mod serve;
+mod stdout;
 mod validate;
 mod values;
 
+pub use stdout::note_closed_stdout;
+
 use std::ffi::OsString;
+use std::io::Write;
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -104,6 +108,13 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     };
     match run(cli) {
         Ok(code) => code,
+        Err(error) if error.chain().any(|cause| cause.is::<stdout::PipeClosed>()) => {
+            ExitCode::SUCCESS
+        }
+        Err(error) if error.chain().any(|cause| cause.is::<interrupt::Interrupted>()) => {
+            eprintln!("{}", one_line(&error));
+            ExitCode::from(interrupt::INTERRUPTED_EXIT_CODE)
+        }
         Err(error) => {
             eprintln!("error: {}", one_line(&error));
             for detail in details(&error) {
@@ -121,8 +132,9 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     }
 }
 
-/// Help and version go to standard output as clap prints them; a usage error becomes one
-/// `error:` line (clap's first), its tips `hint:` lines, and exit code 2.
+/// Help and version go to standard output as clap prints them (a write error is one
+/// `error:` line and exit code 1, a closed pipe exit 0); a usage error becomes one `error:`
+/// line (clap's first), its tips `hint:` lines, and exit code 2.
 fn report_usage(error: &clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     if matches!(
@@ -131,7 +143,19 @@ fn report_usage(error: &clap::Error) -> ExitCode {
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
     ) {
-        let _ = error.print();
+        let printed = if error.use_stderr() {
+            error.print().map_err(anyhow::Error::new)
+        } else {
+            stdout::write_stdout(|_| error.print())
+        };
+        match printed {
+            Ok(()) => {}
+            Err(e) if e.is::<stdout::PipeClosed>() => return ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {}", one_line(&e));
+                return ExitCode::FAILURE;
+            }
+        }
         return if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
             ExitCode::from(USAGE_EXIT_CODE)
         } else {
@@ -151,9 +175,11 @@ fn report_usage(error: &clap::Error) -> ExitCode {
 }
 
 /// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run
-/// quietly with success, as `rg | head` does. Rust's print macros (and clap_complete) panic
-/// on a closed pipe; this panic hook recognises that one panic and exits 0 instead of
-/// printing a backtrace. Every other panic goes to the default hook.
+/// quietly with success, as `rg | head` does. Commands print through [`stdout::outln!`],
+/// which returns errors; should a Rust print macro still fail somewhere (a progress line on
+/// a full standard error), this panic hook exits 0 for a closed pipe and 1 for any other
+/// write error, with one line instead of a backtrace. Every other panic goes to the
+/// default hook.
 fn end_quietly_on_broken_pipe() {
     let default = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -165,6 +191,10 @@ fn end_quietly_on_broken_pipe() {
             .unwrap_or("");
         if message.contains("Broken pipe") || message.contains("BrokenPipe") {
             std::process::exit(0);
+        }
+        if let Some(why) = message.strip_prefix("failed printing to ") {
+            let _ = writeln!(std::io::stderr(), "error: cannot write to {why}");
+            std::process::exit(1);
         }
         default(info);
     }));

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 
 use super::ensure_usage;
+use super::stdout::outln;
 
 use std::sync::Arc;
 
@@ -181,17 +182,17 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         format!("cannot listen on {addr} (port in use? try --listen 127.0.0.1:0)")
     };
     let zmq_line = |s: &zmq_api::ServerHandle| {
-        println!(
+        outln!(
             "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
             args.protocol,
             s.local_addr(),
             args.idle_fps
-        );
+        )
     };
     match args.api {
         ServeApi::Zmq => {
             let server = zmq_api::spawn(zmq_config, sim).with_context(|| in_use(zmq_listen))?;
-            zmq_line(&server);
+            zmq_line(&server)?;
             let _ = rx.recv();
             let n = server.with_sim(|s| s.scene.len());
             server.shutdown();
@@ -199,16 +200,16 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         }
         ServeApi::Legacy | ServeApi::Both => {
             let server = spawn(config, sim).with_context(|| in_use(legacy_listen))?;
-            println!(
+            outln!(
                 "vrep-maze serve: legacy remote API on {} (idle fps {})",
                 server.local_addr(),
                 args.idle_fps
-            );
+            )?;
             let server = Arc::new(server);
             let zmq = if args.api == ServeApi::Both {
                 let z = zmq_api::spawn_shared(zmq_config, server.clone())
                     .with_context(|| in_use(zmq_listen))?;
-                zmq_line(&z);
+                zmq_line(&z)?;
                 Some(z)
             } else {
                 None

@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
+use super::stdout::outln;
 use super::progress::{Progress, Unit};
 use crate::layout::json::{Background, ReadError, read_from};
 use crate::layout::{Layout, Style};
@@ -42,9 +43,9 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
         let segments = validator.segments();
         match validator.finish().into_result() {
             Ok(metrics) => {
-                println!("OK {name}: {}", describe(&layout, segments));
+                outln!("OK {name}: {}", describe(&layout, segments))?;
                 if let Some(metrics) = &metrics {
-                    print_metrics(metrics);
+                    print_metrics(metrics)?;
                 }
             }
             Err(invalid) => {
@@ -108,21 +109,21 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
 }
 
 /// The metrics, a few to a line.
-pub fn print_metrics(m: &Metrics) {
-    println!(
+pub fn print_metrics(m: &Metrics) -> Result<()> {
+    outln!(
         "  cells {}, passages {}, loops {}",
         m.cells, m.passages, m.loops
-    );
-    println!(
+    )?;
+    outln!(
         "  solution {} cells, {} turns, {} decision points",
         m.solution_cells, m.solution_turns, m.decision_points
-    );
-    println!(
+    )?;
+    outln!(
         "  dead ends {} ({:.1}%), junctions {}, straights {}",
         m.dead_ends,
         m.dead_end_percent(),
         m.junctions,
         m.straights
-    );
-    println!("  diameter {} cells", m.diameter_cells);
+    )?;
+    outln!("  diameter {} cells", m.diameter_cells)
 }
