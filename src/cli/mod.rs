@@ -8,6 +8,7 @@ mod connect;
 mod demo;
 mod generate;
 mod import;
+mod input;
 mod interrupt;
 mod output;
 mod progress;

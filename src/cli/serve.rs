@@ -103,6 +103,9 @@ pub enum Naming {
     Hash,
 }
 
+/// The most bytes of a `--scene` file.
+const MAX_SCENE_BYTES: usize = 1 << 30;
+
 /// Runs the server until Ctrl-C / SIGTERM.
 pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut scene = match args.scene.as_str() {
@@ -110,8 +113,13 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         "course-walls" => Scene::course_walls(),
         "empty" => Scene::empty(),
         file => {
-            let text = std::fs::read_to_string(file)
-                .with_context(|| format!("cannot read scene file {file}"))?;
+            let text = super::input::read_text(
+                std::path::Path::new(file),
+                MAX_SCENE_BYTES,
+                "a scene file",
+                "a scene is read whole, so its size is bounded",
+            )
+            .with_context(|| format!("cannot read scene file {file}"))?;
             Scene::from_json(&text).with_context(|| format!("scene file {file}"))?
         }
     };
