@@ -5,9 +5,9 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use super::stdout::outln;
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
+use super::stdout::outln;
 
 use super::connect::{Api, connect};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
@@ -77,12 +77,22 @@ impl ConnectArgs {
     /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
     /// answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
+        self.connect_until(None)
+    }
+
+    /// [`ConnectArgs::connect`], ending the connection wait at once when `stop` is set
+    /// (Ctrl-C) with [`super::interrupt::Interrupted`].
+    pub fn connect_until(
+        &self,
+        stop: Option<&std::sync::atomic::AtomicBool>,
+    ) -> anyhow::Result<Box<dyn Backend>> {
         let connected = connect(
             self.api,
             &self.host,
             self.port,
             self.timeout,
             self.connect_timeout,
+            stop,
         )?;
         if self.api != Api::Legacy {
             outln!("using the {}", connected.description)?;
@@ -154,7 +164,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     );
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
-    let mut backend = args.scene.connect()?;
+    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
     if interrupt.requested() {
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));

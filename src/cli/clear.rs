@@ -1,8 +1,8 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
-use super::stdout::outln;
 use super::apply::ConnectArgs;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::stdout::outln;
 use crate::draw::{self, ClearOptions, DrawError};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
@@ -26,7 +26,7 @@ pub struct ClearArgs {
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let interrupt = Interrupt::install()?;
-    let mut backend = args.scene.connect()?;
+    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
     let opts = ClearOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,

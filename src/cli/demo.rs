@@ -58,7 +58,8 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
     }
     outln!(
         "(S start, E end, . solution; `vrep-maze generate --seed {} --algo {} -o maze.json` writes this layout)",
-        args.seed, args.algo
+        args.seed,
+        args.algo
     )?;
     draw_into_emulator(&layout)?;
     Ok(ExitCode::SUCCESS)
@@ -90,9 +91,7 @@ fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
         "\nDrawn into an emulated CoppeliaSim (`vrep-maze serve`, legacy remote API, idle fps {DEFAULT_IDLE_FPS}):"
     )?;
     outln!("  {report}")?;
-    outln!(
-        "  verified: the scene holds {lines} green lines, Start and End where the layout says"
-    )?;
+    outln!("  verified: the scene holds {lines} green lines, Start and End where the layout says")?;
     outln!("(with CoppeliaSim running: `vrep-maze apply maze.json`, see the README)")?;
     Ok(())
 }

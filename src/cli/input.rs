@@ -35,10 +35,7 @@ pub(crate) fn read_text(path: &Path, limit: usize, what: &str, why: &str) -> Res
             );
         }
         if bytes.len() > limit {
-            bail!(
-                "{name}: more than {} MiB: not {what} ({why})",
-                limit >> 20
-            );
+            bail!("{name}: more than {} MiB: not {what} ({why})", limit >> 20);
         }
         if read == 0 {
             break;
@@ -63,7 +60,8 @@ mod tests {
         std::fs::write(&binary, b"ab\0cd").unwrap();
         let e = read_text(&binary, 1 << 20, "a drawing", "-").unwrap_err();
         assert!(
-            e.to_string().contains("NUL byte at offset 2): not a drawing"),
+            e.to_string()
+                .contains("NUL byte at offset 2): not a drawing"),
             "{e}"
         );
         let big = dir.path().join("big");
@@ -72,6 +70,9 @@ mod tests {
         assert!(e.to_string().contains("more than 2 MiB"), "{e}");
         let text = dir.path().join("t");
         std::fs::write(&text, "+--+\n").unwrap();
-        assert_eq!(read_text(&text, 1 << 20, "a drawing", "-").unwrap(), "+--+\n");
+        assert_eq!(
+            read_text(&text, 1 << 20, "a drawing", "-").unwrap(),
+            "+--+\n"
+        );
     }
 }

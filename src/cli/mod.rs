@@ -14,6 +14,7 @@ mod output;
 mod progress;
 mod render;
 mod serve;
+mod session_marker;
 mod stdout;
 mod validate;
 mod values;
@@ -112,7 +113,11 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
         Err(error) if error.chain().any(|cause| cause.is::<stdout::PipeClosed>()) => {
             ExitCode::SUCCESS
         }
-        Err(error) if error.chain().any(|cause| cause.is::<interrupt::Interrupted>()) => {
+        Err(error)
+            if error
+                .chain()
+                .any(|cause| cause.is::<interrupt::Interrupted>()) =>
+        {
             eprintln!("{}", one_line(&error));
             ExitCode::from(interrupt::INTERRUPTED_EXIT_CODE)
         }

@@ -7,8 +7,8 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
-use super::stdout::outln;
 use super::progress::{Progress, Unit};
+use super::stdout::outln;
 use crate::layout::json::{Background, ReadError, read_from};
 use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
@@ -112,11 +112,15 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
 pub fn print_metrics(m: &Metrics) -> Result<()> {
     outln!(
         "  cells {}, passages {}, loops {}",
-        m.cells, m.passages, m.loops
+        m.cells,
+        m.passages,
+        m.loops
     )?;
     outln!(
         "  solution {} cells, {} turns, {} decision points",
-        m.solution_cells, m.solution_turns, m.decision_points
+        m.solution_cells,
+        m.solution_turns,
+        m.decision_points
     )?;
     outln!(
         "  dead ends {} ({:.1}%), junctions {}, straights {}",

@@ -50,6 +50,14 @@ pub enum ClientError {
         /// Address tried.
         addr: String,
     },
+    /// The caller stopped the connection wait (its `retrying` callback said so: Ctrl-C).
+    #[error("stopped waiting to connect to {addr} after {waited:.1} s")]
+    Stopped {
+        /// Address tried.
+        addr: String,
+        /// How long we had retried.
+        waited: f64,
+    },
     /// The server did not answer in time.
     #[error(
         "no reply from the simulator within {0:.1} s (simulation paused in a dialog, or not a legacy remote API server?)"
@@ -142,16 +150,17 @@ impl Client {
         addr: impl ToSocketAddrs + std::fmt::Display,
         opts: ClientOptions,
     ) -> Result<Client, ClientError> {
-        Client::connect_with(addr, opts, &mut |_| {})
+        Client::connect_with(addr, opts, &mut |_| true)
     }
 
     /// [`Client::connect`], calling `retrying` after each failed attempt that will be
     /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after
-    /// a client left abruptly).
+    /// a client left abruptly); when it returns `false` the wait ends with
+    /// [`ClientError::Stopped`].
     pub fn connect_with(
         addr: impl ToSocketAddrs + std::fmt::Display,
         opts: ClientOptions,
-        retrying: &mut dyn FnMut(&Retrying<'_>),
+        retrying: &mut dyn FnMut(&Retrying<'_>) -> bool,
     ) -> Result<Client, ClientError> {
         let started = Instant::now();
         let name = addr.to_string();
@@ -229,11 +238,17 @@ impl Client {
             if waited + opts.retry_interval >= opts.connect_timeout {
                 return Err(fail(last));
             }
-            retrying(&Retrying {
+            let go_on = retrying(&Retrying {
                 waited,
                 left: opts.connect_timeout - waited,
                 why: &last,
             });
+            if !go_on {
+                return Err(ClientError::Stopped {
+                    addr: name.clone(),
+                    waited: waited.as_secs_f64(),
+                });
+            }
             std::thread::sleep(opts.retry_interval);
         }
     }
@@ -503,7 +518,8 @@ mod tests {
         let mut lefts = vec![];
         let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |r| {
             assert!(!r.why.is_empty());
-            lefts.push(r.left)
+            lefts.push(r.left);
+            true
         })
         .err()
         .unwrap();
@@ -513,6 +529,28 @@ mod tests {
         let text = e.to_string();
         assert!(text.contains("about a minute"), "{text}");
         assert!(!text.contains("few seconds"), "{text}");
+    }
+
+    #[test]
+    fn the_caller_stops_the_connection_wait() {
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let opts = ClientOptions {
+            connect_timeout: Duration::from_secs(60),
+            ..Default::default()
+        };
+        let mut calls = 0;
+        let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |_| {
+            calls += 1;
+            calls < 3
+        })
+        .err()
+        .unwrap();
+        assert!(matches!(e, ClientError::Stopped { .. }), "{e}");
+        assert_eq!(calls, 3);
     }
 
     #[test]
