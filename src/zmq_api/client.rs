@@ -562,6 +562,31 @@ mod tests {
     }
 
     #[test]
+    fn a_server_gone_during_a_call_fails_it_and_every_later_call_at_once() {
+        let context = zmq::Context::new();
+        let server = context.socket(zmq::REP).unwrap();
+        server.bind("tcp://127.0.0.1:0").unwrap();
+        let endpoint = server.get_last_endpoint().unwrap().unwrap();
+        let port = endpoint.rsplit(':').next().unwrap().parse().unwrap();
+        let mut client = Client::open(&ClientOptions {
+            port,
+            timeout: Duration::from_millis(300),
+            ..Default::default()
+        })
+        .unwrap();
+        // the server ends: nothing listens on its port any more
+        drop(server);
+        drop(context);
+        let first = client.call("sim.getInt32Param", vec![]).unwrap_err();
+        assert!(matches!(first, ZmqError::Gone { .. }), "{first}");
+        assert!(first.to_string().contains("nothing listens there any more"));
+        let rounds = client.stats().round_trips;
+        let later = client.call("sim.setInt32Param", vec![]).unwrap_err();
+        assert!(matches!(later, ZmqError::Gone { .. }), "{later}");
+        assert_eq!(client.stats().round_trips, rounds, "no request was sent");
+    }
+
+    #[test]
     fn a_zmtp_signature_is_a_greeting_and_anything_else_is_named() {
         let signature = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
         assert_eq!(
