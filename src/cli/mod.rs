@@ -6,6 +6,7 @@ mod clear;
 mod completions;
 mod connect;
 mod demo;
+mod escape;
 mod generate;
 mod import;
 mod input;
@@ -104,9 +105,10 @@ pub fn main() -> ExitCode {
 /// code for programs that embed it (the Python package's `vrep-maze` command).
 pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     end_quietly_on_broken_pipe();
-    let cli = match Cli::try_parse_from(args) {
+    let args: Vec<OsString> = args.into_iter().collect();
+    let cli = match Cli::try_parse_from(&args) {
         Ok(cli) => cli,
-        Err(e) => return report_usage(&e),
+        Err(e) => return report_usage(&e, &args),
     };
     match run(cli) {
         Ok(code) => code,
@@ -127,7 +129,7 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
                 eprintln!("  {detail}");
             }
             for hint in hints(&error) {
-                eprintln!("  hint: {}", shorten(&hint));
+                eprintln!("  hint: {}", shorten(&escape::escaped(&hint)));
             }
             if error.chain().any(|cause| cause.is::<UsageError>()) {
                 ExitCode::from(USAGE_EXIT_CODE)
@@ -140,8 +142,9 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
 
 /// Help and version go to standard output as clap prints them (a write error is one
 /// `error:` line and exit code 1, a closed pipe exit 0); a usage error becomes one `error:`
-/// line (clap's first), its tips `hint:` lines, and exit code 2.
-fn report_usage(error: &clap::Error) -> ExitCode {
+/// line (clap's first), its tips `hint:` lines, and exit code 2. The command line's
+/// arguments (`args`) that clap echoes are shown with their control characters escaped.
+fn report_usage(error: &clap::Error, args: &[OsString]) -> ExitCode {
     use clap::error::ErrorKind;
     if matches!(
         error.kind(),
@@ -168,7 +171,17 @@ fn report_usage(error: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         };
     }
-    let text = error.render().to_string();
+    // clap echoes arguments with their control characters, or some of them: the same
+    // command line with them escaped fails the same way and echoes them as escapes
+    let escaped: Vec<String> = args
+        .iter()
+        .map(|arg| escape::escaped(&arg.to_string_lossy()).into_owned())
+        .collect();
+    let again = Cli::try_parse_from(&escaped)
+        .err()
+        .filter(|again| again.kind() == error.kind());
+    let shown = again.as_ref().unwrap_or(error);
+    let text = shown.render().to_string();
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if let Some(first) = lines.next() {
         eprintln!("{}", shorten(first));
@@ -231,7 +244,7 @@ const MAX_CAUSE_CHARS: usize = 400;
 pub fn one_line(error: &anyhow::Error) -> String {
     let mut line = String::new();
     for cause in error.chain() {
-        let text = shorten(&cause.to_string().replace('\n', " "));
+        let text = shorten(&escape::escaped(&cause.to_string()));
         if line.contains(&text) {
             continue;
         }
@@ -259,7 +272,7 @@ pub fn details(error: &anyhow::Error) -> Vec<String> {
         .chain()
         .filter_map(|cause| cause.downcast_ref::<crate::validate::Invalid>())
         .flat_map(|invalid| invalid.shown())
-        .map(|line| shorten(&line))
+        .map(|line| shorten(&escape::escaped(&line)))
         .collect()
 }
 

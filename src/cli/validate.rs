@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
+use super::escape::escaped;
 use super::progress::{Progress, Unit};
 use super::stdout::outln;
 use crate::layout::json::{Background, ReadError, read_from};
@@ -30,11 +31,12 @@ pub struct ValidateArgs {
 pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
     let mut all_ok = true;
     for path in &args.files {
-        let name = path.display();
+        let name = path.display().to_string();
+        let name = escaped(&name);
         let (layout, validator) = match read_checking(path, progress) {
             Ok(read) => read,
             Err(e) => {
-                eprintln!("error: {e}");
+                eprintln!("error: {}", escaped(&e.to_string()));
                 all_ok = false;
                 continue;
             }
@@ -51,7 +53,7 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
             Err(invalid) => {
                 all_ok = false;
                 for line in invalid.shown() {
-                    eprintln!("error: {name}: {line}");
+                    eprintln!("error: {name}: {}", escaped(&line));
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
             }
@@ -94,7 +96,7 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
         "{}x{} {} seed {}, {}",
         layout.grid.columns,
         layout.grid.rows,
-        layout.generator.algorithm,
+        escaped(&layout.generator.algorithm),
         layout.generator.seed,
         match layout.style {
             Style::Lines => format!("{segments} segments"),
