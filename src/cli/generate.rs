@@ -17,6 +17,7 @@ use crate::layout::build::{Planned, plan_layout};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
 use crate::layout::json::write_layout_parts;
+use crate::layout::limits;
 use crate::layout::micromouse::{self, Preset};
 use crate::layout::walls::{self, Openings, WallOptions};
 use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Style};
@@ -177,7 +178,7 @@ impl StyleArgs {
         }
         let d = WallOptions::default();
         let thickness = self.wall_thickness.unwrap_or(d.thickness);
-        let posts = self.posts(thickness)?;
+        let posts = self.posts(thickness, cell_size)?;
         let length = match posts {
             Some(size) => walls::length_between_posts(cell_size, size),
             None => d.length,
@@ -192,12 +193,34 @@ impl StyleArgs {
     }
 
     /// The side of the posts asked for (`--post-size`, else `thickness`), `None` without
-    /// `--posts`; a size without `--posts` is refused.
-    fn posts(&self, thickness: f64) -> Result<Option<f64>> {
+    /// `--posts`; a size without `--posts` is refused, and so is one that leaves the walls
+    /// between posts on cells of `cell_size` (when their length is not given) too short:
+    /// the message names the option the user gave (`--post-size` or `--wall-thickness`),
+    /// not the wall length derived from it.
+    fn posts(&self, thickness: f64, cell_size: f64) -> Result<Option<f64>> {
         if !self.posts && self.post_size.is_some() {
             return Err(usage(
                 "--post-size shapes posts: add --posts (the maze has no posts)",
             ));
+        }
+        let size = self.post_size.unwrap_or(thickness);
+        if self.posts
+            && self.wall_length.is_none()
+            && limits::LENGTH.contains(size)
+            && limits::LENGTH.contains(cell_size)
+            && walls::length_between_posts(cell_size, size) < limits::LENGTH.min
+        {
+            let given = if self.post_size.is_some() {
+                "--post-size"
+            } else {
+                "--wall-thickness (the posts' side unless --post-size is given)"
+            };
+            return Err(usage(format!(
+                "{given} {} m leaves no room for the walls between the posts on {} m cells: at most {} m",
+                limits::show(size),
+                limits::show(cell_size),
+                limits::show(cell_size - limits::LENGTH.min)
+            )));
         }
         Ok(self.posts.then(|| self.post_size.unwrap_or(thickness)))
     }
@@ -218,7 +241,7 @@ impl GenerateArgs {
 fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
     if let Some(preset) = style.preset {
         let spec = preset.spec(spec.clone(), origin);
-        let posts = style.posts(preset.walls(None).thickness)?;
+        let posts = style.posts(preset.walls(None).thickness, spec.geometry.cell_size)?;
         return micromouse::plan(preset, &spec, posts).map_err(usage);
     }
     let walls = style.walls(spec.geometry.cell_size)?;
