@@ -289,6 +289,12 @@ fn legacy(
             format!("port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"),
             vec![],
         ),
+        not @ ClientError::NotLegacy { .. } => connect_error(
+            not.to_string(),
+            vec![format!(
+                "check --port: CoppeliaSim serves the legacy remote API on {LEGACY_PORT} unless its remoteApiConnections.txt says otherwise"
+            )],
+        ),
         busy @ ClientError::Busy { .. } => connect_error(
             busy.to_string(),
             vec![

@@ -50,6 +50,15 @@ pub enum ClientError {
         /// Address tried.
         addr: String,
     },
+    /// The port answers, but not as a legacy remote API server does (an HTTP server, bytes
+    /// that are no legacy packet).
+    #[error("{addr} is not a CoppeliaSim legacy remote API server: {what}")]
+    NotLegacy {
+        /// Address tried.
+        addr: String,
+        /// What it did instead.
+        what: String,
+    },
     /// The caller stopped the connection wait (its `retrying` callback said so: Ctrl-C).
     #[error("stopped waiting to connect to {addr} after {waited:.1} s")]
     Stopped {
@@ -211,10 +220,19 @@ impl Client {
                         match client.exchange(vec![]) {
                             Ok(_) => return Ok(client),
                             Err(ClientError::Timeout(_)) => {
+                                // a web server waits for a request's end before it answers
+                                if answers_in_http(a, wait) {
+                                    return Err(not_legacy_http(&name));
+                                }
                                 return Err(ClientError::Busy {
                                     addr: name.clone(),
                                     waited: wait.as_secs_f64(),
                                 });
+                            }
+                            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
+                                if marker == u16::from_le_bytes(*b"HT") =>
+                            {
+                                return Err(not_legacy_http(&name));
                             }
                             Err(
                                 e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
@@ -227,6 +245,12 @@ impl Client {
                                 if client.greeted_in_zmtp(marker) =>
                             {
                                 return Err(ClientError::ZeroMqPeer { addr: name.clone() });
+                            }
+                            Err(ClientError::Wire(e)) => {
+                                return Err(ClientError::NotLegacy {
+                                    addr: name.clone(),
+                                    what: e.to_string(),
+                                });
                             }
                             Err(e) => return Err(e),
                         }
@@ -427,6 +451,30 @@ impl Client {
         let _ = self.stream.shutdown(Shutdown::Both);
         r
     }
+}
+
+/// [`ClientError::NotLegacy`] for a peer that answers in HTTP.
+fn not_legacy_http(addr: &str) -> ClientError {
+    ClientError::NotLegacy {
+        addr: addr.to_string(),
+        what: "it answers in HTTP (a web server?)".into(),
+    }
+}
+
+/// Whether the peer at `addr` answers an HTTP request (on a connection of its own) within
+/// `wait` with an HTTP status line. Asked only of a peer that did not answer a legacy
+/// message: a legacy server ignores the request (and the connection closes).
+fn answers_in_http(addr: &SocketAddr, wait: Duration) -> bool {
+    use std::io::{Read, Write};
+    let wait = wait.min(Duration::from_secs(1));
+    let Ok(mut stream) = TcpStream::connect_timeout(addr, wait) else {
+        return false;
+    };
+    let mut start = [0u8; 5];
+    stream.set_read_timeout(Some(wait)).is_ok()
+        && stream.write_all(b"HEAD / HTTP/1.0\r\n\r\n").is_ok()
+        && stream.read_exact(&mut start).is_ok()
+        && &start == b"HTTP/"
 }
 
 /// How long to look for a ZeroMQ greeting after a connection that took `connected_in` (about

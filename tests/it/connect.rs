@@ -357,3 +357,59 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
         "{stderr}"
     );
 }
+
+/// A web server on a loopback port: it answers each connection with an HTTP 400, at once
+/// when `eager`, else only once a request's header has ended (as most do).
+fn web_server(eager: bool) -> String {
+    use std::io::{Read, Write};
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = listener.local_addr().unwrap().port().to_string();
+    std::thread::spawn(move || {
+        for stream in listener.incoming().take(20) {
+            let Ok(mut stream) = stream else { return };
+            std::thread::spawn(move || {
+                let mut got = Vec::new();
+                let mut buf = [0u8; 512];
+                while !eager && !got.windows(4).any(|w| w == b"\r\n\r\n") {
+                    match stream.read(&mut buf) {
+                        Ok(0) | Err(_) => return,
+                        Ok(n) => got.extend_from_slice(&buf[..n]),
+                    }
+                }
+                if eager {
+                    let _ = stream.read(&mut buf);
+                }
+                let _ = stream.write_all(b"HTTP/1.1 400 Bad Request\r\n\r\n");
+            });
+        }
+    });
+    port
+}
+
+#[test]
+fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    for eager in [true, false] {
+        let port = web_server(eager);
+        let (code, stderr, _) = run(&[
+            "apply",
+            &m,
+            "--port",
+            &port,
+            "--timeout",
+            "1",
+            "--connect-timeout",
+            "3",
+        ]);
+        assert_eq!(code, Some(1), "{stderr}");
+        assert_clear_error(&stderr);
+        assert!(
+            stderr.contains(&format!(
+                "127.0.0.1:{port} is not a CoppeliaSim legacy remote API server: it answers in HTTP"
+            )),
+            "eager {eager}: {stderr}"
+        );
+        assert!(!stderr.contains("another client"), "{stderr}");
+    }
+}
