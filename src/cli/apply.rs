@@ -23,8 +23,8 @@ pub struct ConnectArgs {
     /// 4.11), or `auto` (try legacy on 19997, then ZeroMQ on 23000; prints which was used).
     #[arg(long, value_enum, default_value = "legacy")]
     pub api: Api,
-    /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq].
-    #[arg(long, allow_negative_numbers = true)]
+    /// Port of the remote API server, 1..65535 [default: 19997 for legacy, 23000 for zmq].
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     pub port: Option<u16>,
     /// The floor: every layout coordinate is relative to it.
     #[arg(long, default_value = "Floor")]
@@ -86,6 +86,20 @@ impl ConnectArgs {
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Box<dyn Backend>> {
+        for (option, name) in [
+            ("--floor", &self.floor),
+            ("--parent", &self.parent),
+            ("--line", &self.line),
+            ("--wall", &self.wall),
+            ("--post", &self.post),
+            ("--start", &self.start),
+            ("--end", &self.end),
+        ] {
+            ensure_usage!(
+                !name.trim().is_empty(),
+                "{option} needs the name of an object in the scene, not an empty one"
+            );
+        }
         let connected = connect(
             self.api,
             &self.host,
@@ -157,6 +171,12 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         dry_run: args.dry_run,
         ..Default::default()
     };
+    ensure_usage!(
+        args.save_scene
+            .as_deref()
+            .is_none_or(|path| !path.trim().is_empty()),
+        "--save-scene needs the path of a scene file (on the simulator's machine, e.g. /tmp/maze.ttt), not an empty one"
+    );
     let zmq_only = args.create_missing || args.save_scene.is_some();
     ensure_usage!(
         !zmq_only || args.scene.api != Api::Legacy,
