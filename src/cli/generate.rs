@@ -88,10 +88,11 @@ pub struct MazeArgs {
     /// Height of the Start and End markers, metres: 0.000001..0.05, above the lines.
     #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub marker_z: f64,
-    /// Floor position x,y of cell (0,0)'s centre, each -5000..5000 [default: the maze centred on the floor origin].
+    /// Floor position x,y of cell (0,0)'s centre before any --rotation, each -5000..5000 [default: the maze centred on the floor origin].
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
     pub origin: Option<[f64; 2]>,
-    /// Rotation of the maze about the floor's z axis, degrees counter-clockwise: any finite angle.
+    /// Rotation of the maze about its own centre (a vertical axis through the middle of its
+    /// cells, which stays where --origin puts it), degrees counter-clockwise: any finite angle.
     #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub rotation: f64,
     /// Floor size XxY in metres the maze must fit, each side 0.001..10000 [default: 10x10, grown in 5 m panels to fit].
@@ -240,7 +241,8 @@ impl GenerateArgs {
 /// computed.
 fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
     if let Some(preset) = style.preset {
-        let spec = preset.spec(spec.clone(), origin);
+        let mut spec = preset.spec(spec.clone(), origin);
+        spec.geometry = spec.geometry.turned_about_centre(spec.grid);
         let posts = style.posts(preset.walls(None).thickness, spec.geometry.cell_size)?;
         return micromouse::plan(preset, &spec, posts).map_err(usage);
     }
@@ -297,7 +299,8 @@ impl MazeArgs {
                 line_width: self.line_width,
                 line_z: self.line_z,
                 marker_z: self.marker_z,
-            },
+            }
+            .turned_about_centre(grid),
             floor: self.floor_size.map_or(FloorSize::Auto, FloorSize::Fixed),
         };
         spec.check().map_err(usage)?;
