@@ -107,7 +107,7 @@ pub fn run(
 ) -> Result<Outcome, String> {
     if out_dir.exists() && !out_dir.is_dir() {
         return Err(format!(
-            "{}: is a file, not a directory (--out-dir names the directory that gets the layouts and manifest.jsonl)",
+            "{}: exists and is not a directory (--out-dir names the directory that gets the layouts and manifest.jsonl)",
             out_dir.display()
         ));
     }

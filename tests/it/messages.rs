@@ -163,7 +163,7 @@ fn batch_refuses_repeated_seeds_and_names_an_out_dir_that_is_a_file() {
     std::fs::write(&file, "x").unwrap();
     let (code, stderr) = run(&["batch", "--seeds", "1", "--out-dir", file.to_str().unwrap()]);
     assert_eq!(code, Some(1), "{stderr}");
-    assert!(stderr.contains("is a file, not a directory"), "{stderr}");
+    assert!(stderr.contains("exists and is not a directory"), "{stderr}");
     assert!(!stderr.contains("os error"), "{stderr}");
 }
 

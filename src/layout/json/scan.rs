@@ -233,6 +233,12 @@ impl<R: Read> Source<R> {
                 shown_byte(byte)
             ));
         }
+        if !started && read >= MAX_ELEMENT_BYTES {
+            return refuse(format!(
+                "more than {} KiB of white space and no `{{`: a layout is a JSON object (is this a layout file?)",
+                MAX_ELEMENT_BYTES >> 10
+            ));
+        }
         if read >= MAX_FIELDS_BYTES {
             return refuse(format!(
                 "more than {} MiB outside the segment list: no layout holds that much (is this a layout file?)",
