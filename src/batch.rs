@@ -105,6 +105,12 @@ pub fn run(
     tick: &(dyn Fn() + Sync),
     stop: &AtomicBool,
 ) -> Result<Outcome, String> {
+    if out_dir.exists() && !out_dir.is_dir() {
+        return Err(format!(
+            "{}: exists and is not a directory (--out-dir names the directory that gets the layouts and manifest.jsonl)",
+            out_dir.display()
+        ));
+    }
     fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let stale_removed =
         remove_stale_temporaries(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
@@ -222,6 +228,14 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
         }
         seeds.extend(from..=to);
     }
+    let mut sorted = seeds.clone();
+    sorted.sort_unstable();
+    if let Some(twice) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(format!(
+            "seed {} comes twice in '{text}': each seed makes one file, list it once",
+            twice[0]
+        ));
+    }
     Ok(seeds)
 }
 
@@ -236,6 +250,10 @@ mod tests {
         assert_eq!(parse_seeds("0..3"), Ok(vec![0, 1, 2]));
         assert_eq!(parse_seeds("0..=3"), Ok(vec![0, 1, 2, 3]));
         assert_eq!(parse_seeds("7, 9..11"), Ok(vec![7, 9, 10]));
+        for twice in ["1,1", "0..10,5", "3..=4,4..6"] {
+            let e = parse_seeds(twice).unwrap_err();
+            assert!(e.contains("comes twice"), "{twice}: {e}");
+        }
         for bad in ["", "a", "3..3", "5..=2", "0..=18446744073709551615", "1..x"] {
             assert!(parse_seeds(bad).is_err(), "{bad}");
         }

@@ -39,14 +39,36 @@ fn write_through(
 }
 
 /// Writes a temporary sibling, flushes it to disk (while writing, see [`SyncingFile`]) and
-/// renames it over `path`.
+/// renames it over `path`. A file that is replaced must be one the user could write in
+/// place (else the OS's "permission denied", nothing written), and its replacement gets
+/// its mode, owner and group; where the owner or group cannot be given (another user's
+/// file that the user may write), the file is written in place instead, so it keeps them.
 fn write_replacing(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> io::Result<()> {
+    let replaced = match fs::metadata(path) {
+        Ok(meta) => {
+            // opening for writing asks the OS exactly what writing in place would
+            fs::OpenOptions::new().write(true).open(path)?;
+            Some(meta)
+        }
+        Err(_) => None,
+    };
     let temp = temporary_sibling(path)?;
+    let mut write = Some(write);
     let result = (|| -> io::Result<()> {
-        let mut file = io::BufWriter::new(SyncingFile::new(fs::File::create(&temp)?));
+        let file = fs::File::create(&temp)?;
+        if let Some(meta) = &replaced
+            && !keeps_owner(&file, meta)
+        {
+            return Err(io::Error::other(OwnerNotKept));
+        }
+        if let Some(meta) = &replaced {
+            file.set_permissions(meta.permissions())?;
+        }
+        let mut file = io::BufWriter::new(SyncingFile::new(file));
+        let write = write.take().expect("written once");
         write(&mut file)?;
         file.into_inner().map_err(|e| e.into_error())?.sync_all()?;
         fs::rename(&temp, path)
@@ -54,7 +76,38 @@ fn write_replacing(
     if result.is_err() {
         let _ = fs::remove_file(&temp);
     }
-    result
+    match (result, write) {
+        (Err(e), Some(write)) if e.get_ref().is_some_and(|inner| inner.is::<OwnerNotKept>()) => {
+            write_through(path, write)
+        }
+        (result, _) => result,
+    }
+}
+
+/// The replacement of another user's file could not be given its owner or group.
+#[derive(Debug, thiserror::Error)]
+#[error("the replaced file's owner or group cannot be kept")]
+struct OwnerNotKept;
+
+/// Gives `file` the owner and group of `meta` (the file it replaces); `false` where the OS
+/// does not permit it (only root may give a file away).
+fn keeps_owner(file: &fs::File, meta: &fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let Ok(ours) = file.metadata() else {
+            return false;
+        };
+        if (ours.uid(), ours.gid()) == (meta.uid(), meta.gid()) {
+            return true;
+        }
+        std::os::unix::fs::fchown(file, Some(meta.uid()), Some(meta.gid())).is_ok()
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (file, meta);
+        true
+    }
 }
 
 /// `dir/.name.tmp-<pid>-<thread>`: unique per process and thread, hidden, beside the target

@@ -7,6 +7,7 @@ use anyhow::Context;
 
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
+use super::stdout::outln;
 
 use super::connect::{Api, connect};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
@@ -22,8 +23,8 @@ pub struct ConnectArgs {
     /// 4.11), or `auto` (try legacy on 19997, then ZeroMQ on 23000; prints which was used).
     #[arg(long, value_enum, default_value = "legacy")]
     pub api: Api,
-    /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq].
-    #[arg(long, allow_negative_numbers = true)]
+    /// Port of the remote API server, 1..65535 [default: 19997 for legacy, 23000 for zmq].
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     pub port: Option<u16>,
     /// The floor: every layout coordinate is relative to it.
     #[arg(long, default_value = "Floor")]
@@ -76,15 +77,39 @@ impl ConnectArgs {
     /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
     /// answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
+        self.connect_until(None)
+    }
+
+    /// [`ConnectArgs::connect`], ending the connection wait at once when `stop` is set
+    /// (Ctrl-C) with [`super::interrupt::Interrupted`].
+    pub fn connect_until(
+        &self,
+        stop: Option<&std::sync::atomic::AtomicBool>,
+    ) -> anyhow::Result<Box<dyn Backend>> {
+        for (option, name) in [
+            ("--floor", &self.floor),
+            ("--parent", &self.parent),
+            ("--line", &self.line),
+            ("--wall", &self.wall),
+            ("--post", &self.post),
+            ("--start", &self.start),
+            ("--end", &self.end),
+        ] {
+            ensure_usage!(
+                !name.trim().is_empty(),
+                "{option} needs the name of an object in the scene, not an empty one"
+            );
+        }
         let connected = connect(
             self.api,
             &self.host,
             self.port,
             self.timeout,
             self.connect_timeout,
+            stop,
         )?;
         if self.api != Api::Legacy {
-            println!("using the {}", connected.description);
+            outln!("using the {}", connected.description)?;
         }
         Ok(connected.backend)
     }
@@ -146,6 +171,12 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         dry_run: args.dry_run,
         ..Default::default()
     };
+    ensure_usage!(
+        args.save_scene
+            .as_deref()
+            .is_none_or(|path| !path.trim().is_empty()),
+        "--save-scene needs the path of a scene file (on the simulator's machine, e.g. /tmp/maze.ttt), not an empty one"
+    );
     let zmq_only = args.create_missing || args.save_scene.is_some();
     ensure_usage!(
         !zmq_only || args.scene.api != Api::Legacy,
@@ -153,7 +184,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     );
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
-    let mut backend = args.scene.connect()?;
+    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
     if interrupt.requested() {
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
@@ -167,7 +198,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         let created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
-            println!("created {}", created.join(", "));
+            outln!("created {}", created.join(", "))?;
         }
     }
     let what = match (drawing.style, drawing.posts.is_empty()) {
@@ -227,20 +258,20 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         authoring
             .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
-        println!("saved the scene to {path} (on the simulator's machine)");
+        outln!("saved the scene to {path} (on the simulator's machine)")?;
     }
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        outln!("stopped the simulation first")?;
     }
-    println!("{report}");
+    outln!("{report}")?;
     if !report.dry_run {
         let noun = match (drawing.style, drawing.posts.is_empty()) {
             (crate::layout::Style::Lines, _) => "line",
             (crate::layout::Style::Walls, true) => "wall",
             (crate::layout::Style::Walls, false) => "wall, post",
         };
-        println!("verified: every {noun}, start and end in place");
+        outln!("verified: every {noun}, start and end in place")?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

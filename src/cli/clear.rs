@@ -2,6 +2,7 @@
 
 use super::apply::ConnectArgs;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::stdout::outln;
 use crate::draw::{self, ClearOptions, DrawError};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
@@ -25,7 +26,7 @@ pub struct ClearArgs {
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let interrupt = Interrupt::install()?;
-    let mut backend = args.scene.connect()?;
+    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
     let opts = ClearOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
@@ -42,7 +43,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let report = result?;
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        outln!("stopped the simulation first")?;
     }
     let verb = if args.dry_run {
         "would remove"
@@ -56,12 +57,12 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         String::new()
     };
     if let Some(fps) = report.restored_idle_fps {
-        println!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)");
+        outln!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)")?;
     }
     if report.removed.is_empty() {
-        println!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene");
+        outln!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;
     } else {
-        println!(
+        outln!(
             "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
             if report.removed.len() == 1 {
@@ -70,7 +71,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
                 "ies"
             },
             shown.join(", ")
-        );
+        )?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

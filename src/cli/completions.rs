@@ -1,6 +1,5 @@
 //! `vrep-maze completions`: shell completion scripts.
 
-use std::io;
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -8,6 +7,7 @@ use clap::{Args, CommandFactory};
 use clap_complete::Shell;
 
 use super::Cli;
+use super::stdout::write_stdout;
 
 /// Options of `completions`.
 #[derive(Debug, Args)]
@@ -21,11 +21,8 @@ pub struct CompletionsArgs {
 
 /// Runs `completions`: prints the script for the shell.
 pub fn run(args: CompletionsArgs) -> Result<ExitCode> {
-    clap_complete::generate(
-        args.shell,
-        &mut Cli::command(),
-        "vrep-maze",
-        &mut io::stdout(),
-    );
+    let mut script = Vec::new();
+    clap_complete::generate(args.shell, &mut Cli::command(), "vrep-maze", &mut script);
+    write_stdout(|out| out.write_all(&script))?;
     Ok(ExitCode::SUCCESS)
 }

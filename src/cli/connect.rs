@@ -2,20 +2,27 @@
 //! ZeroMQ (port 23000), or auto (try legacy briefly, then ZeroMQ, and say which answered).
 //!
 //! What is tried is said at once on standard error (standard output stays for reports).
-//! The legacy API's connect wait is long by default: a real CoppeliaSim 4.5.1 refuses every
-//! connection on its legacy port for about a minute after a client left abruptly (spec
-//! `real-coppeliasim-4.5.1.md`, "Connections"); on a terminal the wait shows a countdown.
+//! A real CoppeliaSim 4.5.1 refuses every connection on its legacy port for about a minute
+//! after a client left abruptly (spec `real-coppeliasim-4.5.1.md`, "Connections"). The
+//! legacy connect wait outlasts that minute only when the refusal can be the cause: when an
+//! earlier run of this tool left its session here abruptly ([`SessionMarker`]); then a
+//! countdown shows on a terminal. Otherwise a port where nothing listens is said so within
+//! [`NOTHING_LISTENS_AFTER`] and the wait ends after [`LEGACY_CONNECT_TIMEOUT`]. Ctrl-C
+//! ends any wait at once.
 //! A failure is one error line and `hint:` lines ([`ConnectError::hints`]), and a port that
 //! speaks the other API is named as such.
 
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use anyhow::Context;
 
 use super::ensure_usage;
 
+use super::interrupt::Interrupted;
 use super::one_line;
+use super::session_marker::SessionMarker;
 use crate::draw::Backend;
 use crate::legacy::client::Retrying;
 use crate::legacy::{self, ClientError, LegacyBackend};
@@ -37,9 +44,14 @@ pub const LEGACY_PORT: u16 = 19997;
 /// The ZeroMQ remote API's default port.
 pub const ZMQ_PORT: u16 = 23000;
 
-/// Default connect wait of the legacy API: longer than the minute (62–65 s measured) for
-/// which CoppeliaSim refuses connections after a client left abruptly.
-pub const LEGACY_CONNECT_TIMEOUT: Duration = Duration::from_secs(75);
+/// Connect wait of the legacy API when an earlier run left its session abruptly: longer
+/// than the minute (62–65 s measured) for which CoppeliaSim then refuses connections.
+pub const LEGACY_REFUSAL_WAIT: Duration = Duration::from_secs(75);
+/// Default connect wait of the legacy API otherwise: a simulator that is starting opens
+/// its port within it.
+pub const LEGACY_CONNECT_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long refused connections go on before the wait says that nothing listens.
+const NOTHING_LISTENS_AFTER: Duration = Duration::from_secs(2);
 /// Default connect wait of the ZeroMQ API (it has no such refusal: a refused connection
 /// fails at once; this bounds an unanswered TCP connection and the ZeroMQ greeting).
 pub const ZMQ_CONNECT_TIMEOUT: Duration = Duration::from_secs(10);
@@ -77,21 +89,25 @@ pub struct Connected {
 
 /// Connects as `api` says. `port` overrides the API's default (not allowed with auto);
 /// `timeout` bounds each reply; `connect_timeout` the connection [default:
-/// [`LEGACY_CONNECT_TIMEOUT`] or [`ZMQ_CONNECT_TIMEOUT`]].
+/// [`LEGACY_CONNECT_TIMEOUT`] (or [`LEGACY_REFUSAL_WAIT`] when an earlier run left
+/// abruptly) or [`ZMQ_CONNECT_TIMEOUT`]]. Once `stop` is set (Ctrl-C) the legacy wait ends
+/// with [`Interrupted`].
 pub fn connect(
     api: Api,
     host: &str,
     port: Option<u16>,
     timeout: Duration,
     connect_timeout: Option<Duration>,
+    stop: Option<&AtomicBool>,
 ) -> anyhow::Result<Connected> {
     match api {
         Api::Legacy => legacy(
             host,
             port.unwrap_or(LEGACY_PORT),
             timeout,
-            connect_timeout.unwrap_or(LEGACY_CONNECT_TIMEOUT),
+            connect_timeout,
             true,
+            stop,
         ),
         Api::Zmq => zmq(
             host,
@@ -104,9 +120,18 @@ pub fn connect(
                 port.is_none(),
                 "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
             );
-            let wait = connect_timeout.map_or(AUTO_LEGACY_WAIT, |t| t.min(AUTO_LEGACY_WAIT));
-            let legacy_err = match legacy(host, LEGACY_PORT, timeout, wait, false) {
+            let refusal = SessionMarker::for_address(host, LEGACY_PORT)
+                .left_abruptly()
+                .is_some();
+            let wait = match connect_timeout {
+                Some(t) => t.min(AUTO_LEGACY_WAIT),
+                // the refusal can be the cause: wait it out on the legacy port
+                None if refusal => LEGACY_REFUSAL_WAIT,
+                None => AUTO_LEGACY_WAIT,
+            };
+            let legacy_err = match legacy(host, LEGACY_PORT, timeout, Some(wait), false, stop) {
                 Ok(c) => return Ok(c),
+                Err(e) if e.is::<Interrupted>() => return Err(e),
                 Err(e) => e,
             };
             eprintln!(
@@ -124,8 +149,9 @@ pub fn connect(
                     vec![
                         "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into(),
                         format!(
-                            "after a client leaves abruptly, CoppeliaSim refuses every legacy connection for about a minute; auto tries the legacy port for only {} s: --api legacy waits that minute out",
-                            seconds(wait)
+                            "after a client leaves abruptly, CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
+                            seconds(wait),
+                            LEGACY_REFUSAL_WAIT.as_secs()
                         ),
                     ],
                 )
@@ -157,29 +183,73 @@ fn legacy(
     host: &str,
     port: u16,
     timeout: Duration,
-    connect_timeout: Duration,
+    connect_timeout: Option<Duration>,
     probe_zmq: bool,
+    stop: Option<&AtomicBool>,
 ) -> anyhow::Result<Connected> {
     let addr = socket_addr(host, port);
+    let marker = SessionMarker::for_address(host, port);
+    let earlier = marker.left_abruptly();
+    let connect_timeout = connect_timeout.unwrap_or(if earlier.is_some() {
+        LEGACY_REFUSAL_WAIT
+    } else {
+        LEGACY_CONNECT_TIMEOUT
+    });
     eprintln!("connecting to CoppeliaSim's legacy remote API at {addr} ...");
+    if let Some(earlier) = earlier {
+        eprintln!(
+            "an earlier vrep-maze run (process {}) left its session at {addr} abruptly; CoppeliaSim then refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
+            earlier.pid,
+            seconds(connect_timeout)
+        );
+    }
     let opts = legacy::ClientOptions {
         connect_timeout,
         reply_timeout: timeout,
         ..Default::default()
     };
     let mut countdown = Countdown::default();
-    let result = legacy::Client::connect_with(addr.as_str(), opts, &mut |r| countdown.retrying(r));
+    let mut said_nothing_listens = false;
+    let result = legacy::Client::connect_with(addr.as_str(), opts, &mut |r| {
+        if stop.is_some_and(|s| s.load(Ordering::SeqCst)) {
+            return false;
+        }
+        if earlier.is_some() {
+            countdown.retrying(r);
+        } else if !said_nothing_listens && r.waited >= NOTHING_LISTENS_AFTER {
+            said_nothing_listens = true;
+            eprintln!(
+                "nothing listens on {addr} ({}){}; trying until {} s",
+                r.why,
+                if probe_zmq && port != ZMQ_PORT && !accepts_tcp(host, ZMQ_PORT) {
+                    format!(", nor on the ZeroMQ port {ZMQ_PORT}")
+                } else {
+                    String::new()
+                },
+                seconds(connect_timeout)
+            );
+        }
+        true
+    });
     countdown.done();
     let error = match result {
         Ok(client) => {
+            marker.opened();
+            let closed = marker.clone();
+            let backend =
+                LegacyBackend::new(client, timeout).on_clean_close(move || closed.closed());
             return Ok(Connected {
-                backend: Box::new(LegacyBackend::new(client, timeout)),
+                backend: Box::new(backend),
                 description: format!("legacy remote API at {addr}"),
             });
         }
         Err(e) => e,
     };
     Err(match error {
+        ClientError::Stopped { waited, .. } => anyhow::Error::new(Interrupted(format!(
+            "while connecting to {addr} (after {} s): nothing was changed",
+            seconds(Duration::from_secs_f64(waited))
+        ))),
         ClientError::Connect { why, waited, .. } => {
             if waited + 0.5 < connect_timeout.as_secs_f64() {
                 // only a name that does not resolve fails before the deadline
@@ -188,22 +258,19 @@ fn legacy(
                     vec!["check --host: a name this machine resolves, or an IP address".into()],
                 ));
             }
-            let mut hints = vec![
-                format!(
-                    "is CoppeliaSim running with the legacy remote API on port {port}? (CoppeliaSim up to 4.10 starts it on {LEGACY_PORT})"
-                ),
-                format!(
-                    "after a client leaves abruptly (Ctrl-C, a crash) CoppeliaSim refuses every connection on its legacy port for about a minute: wait, then run again{}",
-                    if connect_timeout < LEGACY_CONNECT_TIMEOUT {
-                        format!(
-                            ", or pass --connect-timeout {} to wait it out",
-                            LEGACY_CONNECT_TIMEOUT.as_secs()
-                        )
-                    } else {
-                        String::new()
-                    }
-                ),
-            ];
+            if earlier.is_some() {
+                // the minute is over: the refusal is not the cause any more
+                marker.closed();
+            }
+            let mut hints = vec![format!(
+                "is CoppeliaSim running with the legacy remote API on port {port}? (CoppeliaSim up to 4.10 starts it on {LEGACY_PORT})"
+            )];
+            if connect_timeout < LEGACY_REFUSAL_WAIT {
+                hints.push(format!(
+                    "after a client leaves abruptly (Ctrl-C, a crash) CoppeliaSim refuses every connection on its legacy port for about a minute; if another program left so, pass --connect-timeout {} to wait it out",
+                    LEGACY_REFUSAL_WAIT.as_secs()
+                ));
+            }
             if probe_zmq && port != ZMQ_PORT && zmq_answers(host, ZMQ_PORT) {
                 hints.push(format!(
                     "the ZeroMQ remote API answers on {}: try --api zmq",
@@ -222,6 +289,12 @@ fn legacy(
             format!("port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"),
             vec![],
         ),
+        not @ ClientError::NotLegacy { .. } => connect_error(
+            not.to_string(),
+            vec![format!(
+                "check --port: CoppeliaSim serves the legacy remote API on {LEGACY_PORT} unless its remoteApiConnections.txt says otherwise"
+            )],
+        ),
         busy @ ClientError::Busy { .. } => connect_error(
             busy.to_string(),
             vec![
@@ -231,6 +304,16 @@ fn legacy(
         ),
         other => anyhow::Error::new(other).context(format!("legacy remote API at {addr}")),
     })
+}
+
+/// Whether anything accepts a TCP connection on `host:port` within [`PROBE_TIMEOUT`].
+fn accepts_tcp(host: &str, port: u16) -> bool {
+    use std::net::ToSocketAddrs;
+    (host.trim_matches(['[', ']']), port)
+        .to_socket_addrs()
+        .into_iter()
+        .flatten()
+        .any(|a| std::net::TcpStream::connect_timeout(&a, PROBE_TIMEOUT).is_ok())
 }
 
 fn zmq(
@@ -371,7 +454,7 @@ mod tests {
 
     #[test]
     fn seconds_read_as_written_and_addresses_bracket_ipv6() {
-        assert_eq!(seconds(LEGACY_CONNECT_TIMEOUT), "75");
+        assert_eq!(seconds(LEGACY_REFUSAL_WAIT), "75");
         assert_eq!(seconds(Duration::from_millis(300)), "0.3");
         assert_eq!(seconds(AUTO_LEGACY_WAIT), "1.5");
         assert_eq!(socket_addr("::1", 19997), "[::1]:19997");

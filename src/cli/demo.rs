@@ -10,6 +10,7 @@ use std::time::Duration;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 
+use super::stdout::outln;
 use super::validate::{describe, print_metrics};
 use crate::coppelia::DEFAULT_IDLE_FPS;
 use crate::draw::{self, ApplyOptions, Drawing, ObjectNames};
@@ -50,15 +51,16 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
         );
     }
     let picture = Format::Ascii.render_to_vec(&layout, &RenderOptions { solution: true })?;
-    println!("{}", String::from_utf8_lossy(&picture).trim_end());
-    println!("OK {}", describe(&layout, layout.segments.len()));
+    outln!("{}", String::from_utf8_lossy(&picture).trim_end())?;
+    outln!("OK {}", describe(&layout, layout.segments.len()))?;
     if let Some(metrics) = &report.metrics {
-        print_metrics(metrics);
+        print_metrics(metrics)?;
     }
-    println!(
+    outln!(
         "(S start, E end, . solution; `vrep-maze generate --seed {} --algo {} -o maze.json` writes this layout)",
-        args.seed, args.algo
-    );
+        args.seed,
+        args.algo
+    )?;
     draw_into_emulator(&layout)?;
     Ok(ExitCode::SUCCESS)
 }
@@ -85,13 +87,11 @@ fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
     let lines = server.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count());
     server.shutdown();
     let report = result?;
-    println!(
+    outln!(
         "\nDrawn into an emulated CoppeliaSim (`vrep-maze serve`, legacy remote API, idle fps {DEFAULT_IDLE_FPS}):"
-    );
-    println!("  {report}");
-    println!(
-        "  verified: the scene holds {lines} green lines, Start and End where the layout says"
-    );
-    println!("(with CoppeliaSim running: `vrep-maze apply maze.json`, see the README)");
+    )?;
+    outln!("  {report}")?;
+    outln!("  verified: the scene holds {lines} green lines, Start and End where the layout says")?;
+    outln!("(with CoppeliaSim running: `vrep-maze apply maze.json`, see the README)")?;
     Ok(())
 }

@@ -17,6 +17,7 @@ use crate::layout::build::{Planned, plan_layout};
 use crate::layout::endpoints::ENDPOINT_HELP;
 use crate::layout::geometry::course;
 use crate::layout::json::write_layout_parts;
+use crate::layout::limits;
 use crate::layout::micromouse::{self, Preset};
 use crate::layout::walls::{self, Openings, WallOptions};
 use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Style};
@@ -87,10 +88,11 @@ pub struct MazeArgs {
     /// Height of the Start and End markers, metres: 0.000001..0.05, above the lines.
     #[arg(long, default_value_t = course::MARKER_Z, value_parser = parse_finite, allow_hyphen_values = true)]
     pub marker_z: f64,
-    /// Floor position x,y of cell (0,0)'s centre, each -5000..5000 [default: the maze centred on the floor origin].
+    /// Floor position x,y of cell (0,0)'s centre before any --rotation, each -5000..5000 [default: the maze centred on the floor origin].
     #[arg(long, value_parser = parse_point, allow_hyphen_values = true)]
     pub origin: Option<[f64; 2]>,
-    /// Rotation of the maze about the floor's z axis, degrees counter-clockwise: any finite angle.
+    /// Rotation of the maze about its own centre (a vertical axis through the middle of its
+    /// cells, which stays where --origin puts it), degrees counter-clockwise: any finite angle.
     #[arg(long, default_value_t = 0.0, value_parser = parse_finite, allow_hyphen_values = true)]
     pub rotation: f64,
     /// Floor size XxY in metres the maze must fit, each side 0.001..10000 [default: 10x10, grown in 5 m panels to fit].
@@ -177,7 +179,7 @@ impl StyleArgs {
         }
         let d = WallOptions::default();
         let thickness = self.wall_thickness.unwrap_or(d.thickness);
-        let posts = self.posts(thickness)?;
+        let posts = self.posts(thickness, cell_size)?;
         let length = match posts {
             Some(size) => walls::length_between_posts(cell_size, size),
             None => d.length,
@@ -192,12 +194,34 @@ impl StyleArgs {
     }
 
     /// The side of the posts asked for (`--post-size`, else `thickness`), `None` without
-    /// `--posts`; a size without `--posts` is refused.
-    fn posts(&self, thickness: f64) -> Result<Option<f64>> {
+    /// `--posts`; a size without `--posts` is refused, and so is one that leaves the walls
+    /// between posts on cells of `cell_size` (when their length is not given) too short:
+    /// the message names the option the user gave (`--post-size` or `--wall-thickness`),
+    /// not the wall length derived from it.
+    fn posts(&self, thickness: f64, cell_size: f64) -> Result<Option<f64>> {
         if !self.posts && self.post_size.is_some() {
             return Err(usage(
                 "--post-size shapes posts: add --posts (the maze has no posts)",
             ));
+        }
+        let size = self.post_size.unwrap_or(thickness);
+        if self.posts
+            && self.wall_length.is_none()
+            && limits::LENGTH.contains(size)
+            && limits::LENGTH.contains(cell_size)
+            && walls::length_between_posts(cell_size, size) < limits::LENGTH.min
+        {
+            let given = if self.post_size.is_some() {
+                "--post-size"
+            } else {
+                "--wall-thickness (the posts' side unless --post-size is given)"
+            };
+            return Err(usage(format!(
+                "{given} {} m leaves no room for the walls between the posts on {} m cells: at most {} m",
+                limits::show(size),
+                limits::show(cell_size),
+                limits::show(cell_size - limits::LENGTH.min)
+            )));
         }
         Ok(self.posts.then(|| self.post_size.unwrap_or(thickness)))
     }
@@ -217,8 +241,9 @@ impl GenerateArgs {
 /// computed.
 fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Result<Planned> {
     if let Some(preset) = style.preset {
-        let spec = preset.spec(spec.clone(), origin);
-        let posts = style.posts(preset.walls(None).thickness)?;
+        let mut spec = preset.spec(spec.clone(), origin);
+        spec.geometry = spec.geometry.turned_about_centre(spec.grid);
+        let posts = style.posts(preset.walls(None).thickness, spec.geometry.cell_size)?;
         return micromouse::plan(preset, &spec, posts).map_err(usage);
     }
     let walls = style.walls(spec.geometry.cell_size)?;
@@ -274,7 +299,8 @@ impl MazeArgs {
                 line_width: self.line_width,
                 line_z: self.line_z,
                 marker_z: self.marker_z,
-            },
+            }
+            .turned_about_centre(grid),
             floor: self.floor_size.map_or(FloorSize::Auto, FloorSize::Fixed),
         };
         spec.check().map_err(usage)?;

@@ -4,9 +4,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 
+use super::input::read_text;
 use super::output::write_output;
 use super::values::parse_metres;
 use crate::layout::import::{ImportOptions, import};
@@ -33,10 +34,19 @@ pub struct ImportArgs {
     pub output: Option<PathBuf>,
 }
 
+/// The most bytes of a drawing: twice what our ASCII render of the largest grid
+/// (4096x4096: 8193 lines of 16386 characters) takes.
+const MAX_DRAWING_BYTES: usize = 256 << 20;
+
 /// Runs `import`.
 pub fn run(args: ImportArgs) -> Result<ExitCode> {
     let name = args.file.display().to_string();
-    let text = std::fs::read_to_string(&args.file).with_context(|| format!("reading {name}"))?;
+    let text = read_text(
+        &args.file,
+        MAX_DRAWING_BYTES,
+        "a text drawing of a maze",
+        "our drawing of the largest grid, 4096x4096, takes about 134 MB",
+    )?;
     let options = ImportOptions {
         cell_size: args.cell_size,
         style: if args.lines {

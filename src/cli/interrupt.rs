@@ -11,6 +11,13 @@ use anyhow::{Context, Result};
 /// Exit code of a run ended by an interrupt (128 + SIGINT, as shells report it).
 pub const INTERRUPTED_EXIT_CODE: u8 = 130;
 
+/// A run stopped by an interrupt before it changed anything (while it waited for a
+/// connection): the command line prints it as one line and exits with
+/// [`INTERRUPTED_EXIT_CODE`].
+#[derive(Debug, thiserror::Error)]
+#[error("interrupted {0}")]
+pub struct Interrupted(pub String);
+
 /// Set once the user has asked to stop.
 #[derive(Debug, Clone)]
 pub struct Interrupt(Arc<AtomicBool>);

@@ -6,17 +6,24 @@ mod clear;
 mod completions;
 mod connect;
 mod demo;
+mod escape;
 mod generate;
 mod import;
+mod input;
 mod interrupt;
 mod output;
 mod progress;
 mod render;
 mod serve;
+mod session_marker;
+mod stdout;
 mod validate;
 mod values;
 
+pub use stdout::note_closed_stdout;
+
 use std::ffi::OsString;
+use std::io::Write;
 use std::process::ExitCode;
 
 use anyhow::Result;
@@ -98,19 +105,31 @@ pub fn main() -> ExitCode {
 /// code for programs that embed it (the Python package's `vrep-maze` command).
 pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     end_quietly_on_broken_pipe();
-    let cli = match Cli::try_parse_from(args) {
+    let args: Vec<OsString> = args.into_iter().collect();
+    let cli = match Cli::try_parse_from(&args) {
         Ok(cli) => cli,
-        Err(e) => return report_usage(&e),
+        Err(e) => return report_usage(&e, &args),
     };
     match run(cli) {
         Ok(code) => code,
+        Err(error) if error.chain().any(|cause| cause.is::<stdout::PipeClosed>()) => {
+            ExitCode::SUCCESS
+        }
+        Err(error)
+            if error
+                .chain()
+                .any(|cause| cause.is::<interrupt::Interrupted>()) =>
+        {
+            eprintln!("{}", one_line(&error));
+            ExitCode::from(interrupt::INTERRUPTED_EXIT_CODE)
+        }
         Err(error) => {
             eprintln!("error: {}", one_line(&error));
             for detail in details(&error) {
                 eprintln!("  {detail}");
             }
             for hint in hints(&error) {
-                eprintln!("  hint: {}", shorten(&hint));
+                eprintln!("  hint: {}", shorten(&escape::escaped(&hint)));
             }
             if error.chain().any(|cause| cause.is::<UsageError>()) {
                 ExitCode::from(USAGE_EXIT_CODE)
@@ -121,9 +140,11 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
     }
 }
 
-/// Help and version go to standard output as clap prints them; a usage error becomes one
-/// `error:` line (clap's first), its tips `hint:` lines, and exit code 2.
-fn report_usage(error: &clap::Error) -> ExitCode {
+/// Help and version go to standard output as clap prints them (a write error is one
+/// `error:` line and exit code 1, a closed pipe exit 0); a usage error becomes one `error:`
+/// line (clap's first), its tips `hint:` lines, and exit code 2. The command line's
+/// arguments (`args`) that clap echoes are shown with their control characters escaped.
+fn report_usage(error: &clap::Error, args: &[OsString]) -> ExitCode {
     use clap::error::ErrorKind;
     if matches!(
         error.kind(),
@@ -131,14 +152,36 @@ fn report_usage(error: &clap::Error) -> ExitCode {
             | ErrorKind::DisplayVersion
             | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
     ) {
-        let _ = error.print();
+        let printed = if error.use_stderr() {
+            error.print().map_err(anyhow::Error::new)
+        } else {
+            stdout::write_stdout(|_| error.print())
+        };
+        match printed {
+            Ok(()) => {}
+            Err(e) if e.is::<stdout::PipeClosed>() => return ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {}", one_line(&e));
+                return ExitCode::FAILURE;
+            }
+        }
         return if error.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
             ExitCode::from(USAGE_EXIT_CODE)
         } else {
             ExitCode::SUCCESS
         };
     }
-    let text = error.render().to_string();
+    // clap echoes arguments with their control characters, or some of them: the same
+    // command line with them escaped fails the same way and echoes them as escapes
+    let escaped: Vec<String> = args
+        .iter()
+        .map(|arg| escape::escaped(&arg.to_string_lossy()).into_owned())
+        .collect();
+    let again = Cli::try_parse_from(&escaped)
+        .err()
+        .filter(|again| again.kind() == error.kind());
+    let shown = again.as_ref().unwrap_or(error);
+    let text = shown.render().to_string();
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if let Some(first) = lines.next() {
         eprintln!("{}", shorten(first));
@@ -151,9 +194,11 @@ fn report_usage(error: &clap::Error) -> ExitCode {
 }
 
 /// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run
-/// quietly with success, as `rg | head` does. Rust's print macros (and clap_complete) panic
-/// on a closed pipe; this panic hook recognises that one panic and exits 0 instead of
-/// printing a backtrace. Every other panic goes to the default hook.
+/// quietly with success, as `rg | head` does. Commands print through [`stdout::outln!`],
+/// which returns errors; should a Rust print macro still fail somewhere (a progress line on
+/// a full standard error), this panic hook exits 0 for a closed pipe and 1 for any other
+/// write error, with one line instead of a backtrace. Every other panic goes to the
+/// default hook.
 fn end_quietly_on_broken_pipe() {
     let default = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
@@ -165,6 +210,10 @@ fn end_quietly_on_broken_pipe() {
             .unwrap_or("");
         if message.contains("Broken pipe") || message.contains("BrokenPipe") {
             std::process::exit(0);
+        }
+        if let Some(why) = message.strip_prefix("failed printing to ") {
+            let _ = writeln!(std::io::stderr(), "error: cannot write to {why}");
+            std::process::exit(1);
         }
         default(info);
     }));
@@ -195,7 +244,7 @@ const MAX_CAUSE_CHARS: usize = 400;
 pub fn one_line(error: &anyhow::Error) -> String {
     let mut line = String::new();
     for cause in error.chain() {
-        let text = shorten(&cause.to_string().replace('\n', " "));
+        let text = shorten(&escape::escaped(&cause.to_string()));
         if line.contains(&text) {
             continue;
         }
@@ -223,7 +272,7 @@ pub fn details(error: &anyhow::Error) -> Vec<String> {
         .chain()
         .filter_map(|cause| cause.downcast_ref::<crate::validate::Invalid>())
         .flat_map(|invalid| invalid.shown())
-        .map(|line| shorten(&line))
+        .map(|line| shorten(&escape::escaped(&line)))
         .collect()
 }
 

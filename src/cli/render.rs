@@ -116,6 +116,8 @@ fn choose_format(
     }
 }
 /// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
+/// The most bytes of a scene dump read whole.
+const MAX_SCENE_DUMP_BYTES: usize = 1 << 30;
 /// Bytes read from the start of a file to tell a scene dump from a layout.
 const SNIFF: u64 = 4096;
 
@@ -133,9 +135,12 @@ fn scene_dump(args: &RenderArgs) -> Result<Option<crate::sim::Scene>> {
     {
         return Ok(None);
     }
-    let Ok(text) = std::fs::read_to_string(&args.file) else {
-        return Ok(None);
-    };
+    let text = super::input::read_text(
+        &args.file,
+        MAX_SCENE_DUMP_BYTES,
+        "a scene dump",
+        "a dump is read whole, so its size is bounded",
+    )?;
     let scene =
         crate::sim::Scene::from_json(&text).with_context(|| format!("{}", args.file.display()))?;
     Ok(Some(scene))

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 
 use super::ensure_usage;
+use super::stdout::outln;
 
 use std::sync::Arc;
 
@@ -102,6 +103,9 @@ pub enum Naming {
     Hash,
 }
 
+/// The most bytes of a `--scene` file.
+const MAX_SCENE_BYTES: usize = 1 << 30;
+
 /// Runs the server until Ctrl-C / SIGTERM.
 pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     let mut scene = match args.scene.as_str() {
@@ -109,8 +113,13 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         "course-walls" => Scene::course_walls(),
         "empty" => Scene::empty(),
         file => {
-            let text = std::fs::read_to_string(file)
-                .with_context(|| format!("cannot read scene file {file}"))?;
+            let text = super::input::read_text(
+                std::path::Path::new(file),
+                MAX_SCENE_BYTES,
+                "a scene file",
+                "a scene is read whole, so its size is bounded",
+            )
+            .with_context(|| format!("cannot read scene file {file}"))?;
             Scene::from_json(&text).with_context(|| format!("scene file {file}"))?
         }
     };
@@ -181,17 +190,17 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         format!("cannot listen on {addr} (port in use? try --listen 127.0.0.1:0)")
     };
     let zmq_line = |s: &zmq_api::ServerHandle| {
-        println!(
+        outln!(
             "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
             args.protocol,
             s.local_addr(),
             args.idle_fps
-        );
+        )
     };
     match args.api {
         ServeApi::Zmq => {
             let server = zmq_api::spawn(zmq_config, sim).with_context(|| in_use(zmq_listen))?;
-            zmq_line(&server);
+            zmq_line(&server)?;
             let _ = rx.recv();
             let n = server.with_sim(|s| s.scene.len());
             server.shutdown();
@@ -199,16 +208,16 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         }
         ServeApi::Legacy | ServeApi::Both => {
             let server = spawn(config, sim).with_context(|| in_use(legacy_listen))?;
-            println!(
+            outln!(
                 "vrep-maze serve: legacy remote API on {} (idle fps {})",
                 server.local_addr(),
                 args.idle_fps
-            );
+            )?;
             let server = Arc::new(server);
             let zmq = if args.api == ServeApi::Both {
                 let z = zmq_api::spawn_shared(zmq_config, server.clone())
                     .with_context(|| in_use(zmq_listen))?;
-                zmq_line(&z);
+                zmq_line(&z)?;
                 Some(z)
             } else {
                 None

@@ -7,7 +7,9 @@ use std::process::ExitCode;
 use anyhow::Result;
 use clap::Args;
 
+use super::escape::escaped;
 use super::progress::{Progress, Unit};
+use super::stdout::outln;
 use crate::layout::json::{Background, ReadError, read_from};
 use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
@@ -29,11 +31,12 @@ pub struct ValidateArgs {
 pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
     let mut all_ok = true;
     for path in &args.files {
-        let name = path.display();
+        let name = path.display().to_string();
+        let name = escaped(&name);
         let (layout, validator) = match read_checking(path, progress) {
             Ok(read) => read,
             Err(e) => {
-                eprintln!("error: {e}");
+                eprintln!("error: {}", escaped(&e.to_string()));
                 all_ok = false;
                 continue;
             }
@@ -42,15 +45,15 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
         let segments = validator.segments();
         match validator.finish().into_result() {
             Ok(metrics) => {
-                println!("OK {name}: {}", describe(&layout, segments));
+                outln!("OK {name}: {}", describe(&layout, segments))?;
                 if let Some(metrics) = &metrics {
-                    print_metrics(metrics);
+                    print_metrics(metrics)?;
                 }
             }
             Err(invalid) => {
                 all_ok = false;
                 for line in invalid.shown() {
-                    eprintln!("error: {name}: {line}");
+                    eprintln!("error: {name}: {}", escaped(&line));
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
             }
@@ -93,7 +96,7 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
         "{}x{} {} seed {}, {}",
         layout.grid.columns,
         layout.grid.rows,
-        layout.generator.algorithm,
+        escaped(&layout.generator.algorithm),
         layout.generator.seed,
         match layout.style {
             Style::Lines => format!("{segments} segments"),
@@ -108,21 +111,25 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
 }
 
 /// The metrics, a few to a line.
-pub fn print_metrics(m: &Metrics) {
-    println!(
+pub fn print_metrics(m: &Metrics) -> Result<()> {
+    outln!(
         "  cells {}, passages {}, loops {}",
-        m.cells, m.passages, m.loops
-    );
-    println!(
+        m.cells,
+        m.passages,
+        m.loops
+    )?;
+    outln!(
         "  solution {} cells, {} turns, {} decision points",
-        m.solution_cells, m.solution_turns, m.decision_points
-    );
-    println!(
+        m.solution_cells,
+        m.solution_turns,
+        m.decision_points
+    )?;
+    outln!(
         "  dead ends {} ({:.1}%), junctions {}, straights {}",
         m.dead_ends,
         m.dead_end_percent(),
         m.junctions,
         m.straights
-    );
-    println!("  diameter {} cells", m.diameter_cells);
+    )?;
+    outln!("  diameter {} cells", m.diameter_cells)
 }

@@ -439,6 +439,10 @@ impl DrawError {
             DrawError::SimulationRunning => {
                 vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
             }
+            // a copy set where it belongs yet read back as NaN hangs from a broken pose
+            DrawError::Verify(problems) if problems.iter().any(|p| p.contains("NaN")) => vec![
+                "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
+            ],
             DrawError::Verify(_) => {
                 vec!["run the same command again: it repairs what differs".into()]
             }

@@ -73,6 +73,27 @@ impl Geometry {
         [half(grid.width()), half(grid.height())]
     }
 
+    /// This geometry turned about the centre of `grid`: its `origin` is read as where cell
+    /// (0, 0)'s centre lies before the turn, and moved so that the maze's centre (the middle
+    /// of its cells) stays where the unturned maze has it. What `--rotation` does: on the
+    /// course, `--rotation 90` turns the maze in place and it still fits the 10 m floor.
+    /// Without a rotation the geometry is returned unchanged.
+    pub fn turned_about_centre(mut self, grid: Grid) -> Self {
+        if self.rotation == 0.0 {
+            return self;
+        }
+        let centre = Vector2::new(
+            f64::from(grid.width() - 1) * self.cell_size / 2.0,
+            f64::from(grid.height() - 1) * self.cell_size / 2.0,
+        );
+        let turned = nalgebra::Rotation2::new(self.rotation) * centre;
+        self.origin = [
+            self.origin[0] + centre.x - turned.x,
+            self.origin[1] + centre.y - turned.y,
+        ];
+        self
+    }
+
     /// This geometry as a layout stores it: every length rounded to the micrometre and
     /// the rotation, folded into -2pi..2pi when beyond a full turn, to the microradian.
     /// Layouts are computed from these values, so what `validate` recomputes from the
@@ -315,6 +336,29 @@ mod tests {
         assert_eq!(g.segments_per_passage(), 2); // exactly 1.1 / 0.55
         g.line_length = 2.0;
         assert_eq!(g.segment_offsets(), vec![0.5]);
+    }
+
+    #[test]
+    fn a_turn_keeps_the_maze_centre_in_place() {
+        let grid = Grid::new(9, 5).unwrap();
+        let plain = Geometry::course(grid);
+        assert_eq!(plain.clone().turned_about_centre(grid), plain);
+        let centre = |g: &Geometry| {
+            let a = g.cell_centre(Cell::new(0, 0));
+            let b = g.cell_centre(Cell::new(8, 4));
+            ((a.x + b.x) / 2.0, (a.y + b.y) / 2.0)
+        };
+        for degrees in [90.0f64, 45.0, -30.0, 180.0] {
+            let mut g = Geometry::course(grid);
+            g.rotation = degrees.to_radians();
+            let turned = g.turned_about_centre(grid);
+            let (x, y) = centre(&turned);
+            let (x0, y0) = centre(&plain);
+            assert!(
+                (x - x0).abs() < 1e-12 && (y - y0).abs() < 1e-12,
+                "{degrees}"
+            );
+        }
     }
 
     #[test]

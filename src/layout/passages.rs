@@ -40,22 +40,31 @@ pub fn decode(grid: Grid, rows: &[String]) -> Result<Maze, String> {
     }
     let mut masks = Vec::with_capacity(grid.cell_count());
     for (y, row) in rows.iter().enumerate() {
-        if row.len() != grid.width() as usize {
+        // a character that is no digit is named first: a multi-byte one (a Unicode digit)
+        // is not a length problem
+        let digits = row
+            .chars()
+            .enumerate()
+            .map(|(x, ch)| {
+                ch.to_digit(16)
+                    .filter(|_| !ch.is_ascii_uppercase())
+                    .ok_or_else(|| {
+                        format!(
+                            "passages[{y}] column {x}: '{}' (U+{:04X}) is not a hex digit 0-9a-f",
+                            ch.escape_debug(),
+                            u32::from(ch)
+                        )
+                    })
+            })
+            .collect::<Result<Vec<u32>, String>>()?;
+        if digits.len() != grid.width() as usize {
             return Err(format!(
                 "passages[{y}] has {} characters but grid.columns is {}",
-                row.chars().count(),
+                digits.len(),
                 grid.width()
             ));
         }
-        for (x, ch) in row.chars().enumerate() {
-            let digit = ch
-                .to_digit(16)
-                .filter(|_| !ch.is_ascii_uppercase())
-                .ok_or_else(|| {
-                    format!("passages[{y}] column {x}: '{ch}' is not a hex digit 0-9a-f")
-                })?;
-            masks.push(digit as u8);
-        }
+        masks.extend(digits.into_iter().map(|d| d as u8));
     }
     Maze::from_masks(grid, masks).map_err(|e| format!("passages: {e}"))
 }
@@ -97,6 +106,13 @@ mod tests {
                 .unwrap_err()
                 .contains("2 rows")
         );
+        let arabic_three = decode(grid, &rows(&["1\u{663}"])).unwrap_err();
+        assert!(
+            arabic_three.contains("column 1: '\u{663}' (U+0663) is not a hex digit"),
+            "{arabic_three}"
+        );
+        let nul = decode(grid, &rows(&["\u{0}1"])).unwrap_err();
+        assert!(nul.contains("'\\0' (U+0000)"), "{nul}");
         assert!(check_encoding("bits").is_err());
         assert!(check_encoding(ENCODING).is_ok());
     }

@@ -19,6 +19,9 @@ pub struct LegacyBackend {
     timeout: Duration,
     /// `host:port` as the user gave it, for [`Backend::describe`].
     addr: String,
+    /// Run once the connection is closed cleanly (the simulator acknowledged the kill
+    /// command), not when it ended any other way.
+    on_clean_close: Option<Box<dyn FnOnce() + Send>>,
 }
 
 impl From<ClientError> for BackendError {
@@ -50,6 +53,7 @@ impl LegacyBackend {
             client: Some(client),
             timeout,
             addr,
+            on_clean_close: None,
         })
     }
 
@@ -59,7 +63,28 @@ impl LegacyBackend {
             client: Some(client),
             timeout,
             addr: "a connected client".into(),
+            on_clean_close: None,
         }
+    }
+
+    /// Runs `then` once the connection is closed cleanly, by [`Backend::close`] or by
+    /// dropping the backend: the simulator then takes its next client at once (a client
+    /// that leaves any other way makes CoppeliaSim refuse connections for about a minute).
+    pub fn on_clean_close(mut self, then: impl FnOnce() + Send + 'static) -> LegacyBackend {
+        self.on_clean_close = Some(Box::new(then));
+        self
+    }
+
+    /// Closes the client, if still open, and runs the clean-close action if it closed so.
+    fn close_client(&mut self) -> Result<(), ClientError> {
+        let Some(client) = self.client.take() else {
+            return Ok(());
+        };
+        client.close()?;
+        if let Some(then) = self.on_clean_close.take() {
+            then();
+        }
+        Ok(())
     }
 
     fn client(&mut self) -> Result<&mut Client, BackendError> {
@@ -75,9 +100,7 @@ impl LegacyBackend {
 
 impl Drop for LegacyBackend {
     fn drop(&mut self) {
-        if let Some(c) = self.client.take() {
-            let _ = c.close();
-        }
+        let _ = self.close_client();
     }
 }
 
@@ -313,9 +336,6 @@ impl Backend for LegacyBackend {
 
     /// Sends the kill command (as `simxFinish` does) and closes the socket.
     fn close(&mut self) -> Result<(), BackendError> {
-        match self.client.take() {
-            Some(c) => Ok(c.close()?),
-            None => Ok(()),
-        }
+        Ok(self.close_client()?)
     }
 }

@@ -50,6 +50,23 @@ pub enum ClientError {
         /// Address tried.
         addr: String,
     },
+    /// The port answers, but not as a legacy remote API server does (an HTTP server, bytes
+    /// that are no legacy packet).
+    #[error("{addr} is not a CoppeliaSim legacy remote API server: {what}")]
+    NotLegacy {
+        /// Address tried.
+        addr: String,
+        /// What it did instead.
+        what: String,
+    },
+    /// The caller stopped the connection wait (its `retrying` callback said so: Ctrl-C).
+    #[error("stopped waiting to connect to {addr} after {waited:.1} s")]
+    Stopped {
+        /// Address tried.
+        addr: String,
+        /// How long we had retried.
+        waited: f64,
+    },
     /// The server did not answer in time.
     #[error(
         "no reply from the simulator within {0:.1} s (simulation paused in a dialog, or not a legacy remote API server?)"
@@ -142,16 +159,17 @@ impl Client {
         addr: impl ToSocketAddrs + std::fmt::Display,
         opts: ClientOptions,
     ) -> Result<Client, ClientError> {
-        Client::connect_with(addr, opts, &mut |_| {})
+        Client::connect_with(addr, opts, &mut |_| true)
     }
 
     /// [`Client::connect`], calling `retrying` after each failed attempt that will be
     /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after
-    /// a client left abruptly).
+    /// a client left abruptly); when it returns `false` the wait ends with
+    /// [`ClientError::Stopped`].
     pub fn connect_with(
         addr: impl ToSocketAddrs + std::fmt::Display,
         opts: ClientOptions,
-        retrying: &mut dyn FnMut(&Retrying<'_>),
+        retrying: &mut dyn FnMut(&Retrying<'_>) -> bool,
     ) -> Result<Client, ClientError> {
         let started = Instant::now();
         let name = addr.to_string();
@@ -202,10 +220,19 @@ impl Client {
                         match client.exchange(vec![]) {
                             Ok(_) => return Ok(client),
                             Err(ClientError::Timeout(_)) => {
+                                // a web server waits for a request's end before it answers
+                                if answers_in_http(a, wait) {
+                                    return Err(not_legacy_http(&name));
+                                }
                                 return Err(ClientError::Busy {
                                     addr: name.clone(),
                                     waited: wait.as_secs_f64(),
                                 });
+                            }
+                            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
+                                if marker == u16::from_le_bytes(*b"HT") =>
+                            {
+                                return Err(not_legacy_http(&name));
                             }
                             Err(
                                 e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
@@ -219,6 +246,12 @@ impl Client {
                             {
                                 return Err(ClientError::ZeroMqPeer { addr: name.clone() });
                             }
+                            Err(ClientError::Wire(e)) => {
+                                return Err(ClientError::NotLegacy {
+                                    addr: name.clone(),
+                                    what: e.to_string(),
+                                });
+                            }
                             Err(e) => return Err(e),
                         }
                     }
@@ -229,11 +262,17 @@ impl Client {
             if waited + opts.retry_interval >= opts.connect_timeout {
                 return Err(fail(last));
             }
-            retrying(&Retrying {
+            let go_on = retrying(&Retrying {
                 waited,
                 left: opts.connect_timeout - waited,
                 why: &last,
             });
+            if !go_on {
+                return Err(ClientError::Stopped {
+                    addr: name.clone(),
+                    waited: waited.as_secs_f64(),
+                });
+            }
             std::thread::sleep(opts.retry_interval);
         }
     }
@@ -414,6 +453,30 @@ impl Client {
     }
 }
 
+/// [`ClientError::NotLegacy`] for a peer that answers in HTTP.
+fn not_legacy_http(addr: &str) -> ClientError {
+    ClientError::NotLegacy {
+        addr: addr.to_string(),
+        what: "it answers in HTTP (a web server?)".into(),
+    }
+}
+
+/// Whether the peer at `addr` answers an HTTP request (on a connection of its own) within
+/// `wait` with an HTTP status line. Asked only of a peer that did not answer a legacy
+/// message: a legacy server ignores the request (and the connection closes).
+fn answers_in_http(addr: &SocketAddr, wait: Duration) -> bool {
+    use std::io::{Read, Write};
+    let wait = wait.min(Duration::from_secs(1));
+    let Ok(mut stream) = TcpStream::connect_timeout(addr, wait) else {
+        return false;
+    };
+    let mut start = [0u8; 5];
+    stream.set_read_timeout(Some(wait)).is_ok()
+        && stream.write_all(b"HEAD / HTTP/1.0\r\n\r\n").is_ok()
+        && stream.read_exact(&mut start).is_ok()
+        && &start == b"HTTP/"
+}
+
 /// How long to look for a ZeroMQ greeting after a connection that took `connected_in` (about
 /// one round trip): a few round trips, at least 15 ms, at most 300 ms.
 fn greeting_wait(connected_in: Duration) -> Duration {
@@ -503,7 +566,8 @@ mod tests {
         let mut lefts = vec![];
         let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |r| {
             assert!(!r.why.is_empty());
-            lefts.push(r.left)
+            lefts.push(r.left);
+            true
         })
         .err()
         .unwrap();
@@ -513,6 +577,28 @@ mod tests {
         let text = e.to_string();
         assert!(text.contains("about a minute"), "{text}");
         assert!(!text.contains("few seconds"), "{text}");
+    }
+
+    #[test]
+    fn the_caller_stops_the_connection_wait() {
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .unwrap()
+            .local_addr()
+            .unwrap()
+            .port();
+        let opts = ClientOptions {
+            connect_timeout: Duration::from_secs(60),
+            ..Default::default()
+        };
+        let mut calls = 0;
+        let e = Client::connect_with(format!("127.0.0.1:{port}"), opts, &mut |_| {
+            calls += 1;
+            calls < 3
+        })
+        .err()
+        .unwrap();
+        assert!(matches!(e, ClientError::Stopped { .. }), "{e}");
+        assert_eq!(calls, 3);
     }
 
     #[test]

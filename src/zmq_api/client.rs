@@ -17,6 +17,9 @@ use super::message::{END, EXECUTED, Protocol, Reply, Request, parse_reply};
 /// (libzmq sends it from its I/O thread, however busy the simulator is).
 const GREETING_WAIT: Duration = Duration::from_secs(2);
 
+/// How long the look at a silent server's port waits for its TCP connection.
+const STILL_LISTENS_WAIT: Duration = Duration::from_secs(1);
+
 /// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
 const MAX_TURNS: usize = 10_000;
 
@@ -47,6 +50,19 @@ pub enum ZmqError {
         "{func}: no reply from {endpoint} within {secs:.1} s (is it a ZeroMQ remote API server? is the simulator busy in a dialog?)"
     )]
     Timeout {
+        /// Function being called.
+        func: String,
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// Timeout in seconds.
+        secs: f64,
+    },
+    /// No reply in time, and nothing accepts connections on the endpoint any more: the
+    /// simulator ended (or was killed). Every later call of the client fails so at once.
+    #[error(
+        "{func}: no reply from {endpoint} within {secs:.1} s, and nothing listens there any more: the simulator closed or was killed"
+    )]
+    Gone {
         /// Function being called.
         func: String,
         /// `tcp://host:port`.
@@ -144,6 +160,10 @@ pub struct Client {
     uuid: String,
     protocol: Option<Protocol>,
     stats: ClientStats,
+    /// The server's address, to look whether it still listens after a timeout.
+    address: Option<std::net::SocketAddr>,
+    /// Set once a timeout found nothing listening any more: later calls fail at once.
+    gone: bool,
 }
 
 impl std::fmt::Debug for Client {
@@ -211,6 +231,7 @@ impl Client {
             .unwrap_or(options.timeout.min(Duration::from_secs(3)));
         let mut last = String::from("no address");
         let mut connected_in = Duration::ZERO;
+        let mut address = None;
         let stream = addrs
             .iter()
             .find_map(|a| {
@@ -218,6 +239,7 @@ impl Client {
                 match TcpStream::connect_timeout(a, wait) {
                     Ok(s) => {
                         connected_in = attempt.elapsed();
+                        address = Some(*a);
                         Some(s)
                     }
                     Err(e) => {
@@ -245,6 +267,8 @@ impl Client {
             uuid: new_uuid(),
             protocol: options.protocol,
             stats: ClientStats::default(),
+            address,
+            gone: false,
         })
     }
 
@@ -270,37 +294,80 @@ impl Client {
         }
     }
 
-    /// One round trip; a timeout replaces the socket.
+    /// One round trip; a timeout replaces the socket. A signal that interrupts the wait
+    /// (Ctrl-C, whose handler sets a flag the caller checks between calls) does not end it:
+    /// the wait goes on until the reply or the timeout. After a timeout, a server that no
+    /// longer accepts connections is [`ZmqError::Gone`], for this call and every later one.
     fn round_trip(&mut self, func: &str, request: &Request) -> Result<Value, ZmqError> {
-        self.stats.round_trips += 1;
-        let transport = |source| ZmqError::Transport {
-            endpoint: self.endpoint.clone(),
-            error: source,
-        };
-        let timeout = |c: &Client| ZmqError::Timeout {
+        let gone = |c: &Client| ZmqError::Gone {
             func: func.to_string(),
             endpoint: c.endpoint.clone(),
             secs: c.timeout.as_secs_f64(),
         };
-        match self.socket.send(request.encode(), 0) {
-            Ok(()) => {}
-            Err(zmq::Error::EAGAIN) => {
-                self.reset()?;
-                return Err(timeout(self));
-            }
-            Err(e) => return Err(transport(e)),
+        if self.gone {
+            return Err(gone(self));
         }
-        let bytes = match self.socket.recv_bytes(0) {
-            Ok(b) => b,
-            Err(zmq::Error::EAGAIN) => {
-                self.reset()?;
-                return Err(timeout(self));
+        self.stats.round_trips += 1;
+        let transport = |c: &Client, source| ZmqError::Transport {
+            endpoint: c.endpoint.clone(),
+            error: source,
+        };
+        let deadline = std::time::Instant::now() + self.timeout;
+        let sent = loop {
+            match self.socket.send(request.encode(), 0) {
+                Err(zmq::Error::EINTR) if std::time::Instant::now() < deadline => {}
+                other => break other,
             }
-            Err(e) => return Err(transport(e)),
+        };
+        let received = match sent {
+            Ok(()) => self.receive(deadline),
+            Err(e) => Err(e),
+        };
+        let bytes = match received {
+            Ok(b) => b,
+            Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
+                self.reset()?;
+                if !self.still_listens() {
+                    self.gone = true;
+                    return Err(gone(self));
+                }
+                return Err(ZmqError::Timeout {
+                    func: func.to_string(),
+                    endpoint: self.endpoint.clone(),
+                    secs: self.timeout.as_secs_f64(),
+                });
+            }
+            Err(e) => return Err(transport(self, e)),
         };
         cbor::decode(&bytes).map_err(|CborError(detail)| ZmqError::Malformed {
             func: func.to_string(),
             detail,
+        })
+    }
+
+    /// The reply, waited for until `deadline` (`EAGAIN` then), through interrupted waits.
+    fn receive(&mut self, deadline: std::time::Instant) -> Result<Vec<u8>, zmq::Error> {
+        loop {
+            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            if left.is_zero() {
+                return Err(zmq::Error::EAGAIN);
+            }
+            let ms = i64::try_from(left.as_millis()).unwrap_or(i64::MAX).max(1);
+            match self.socket.poll(zmq::POLLIN, ms) {
+                Ok(0) | Err(zmq::Error::EINTR) => {}
+                Ok(_) => match self.socket.recv_bytes(zmq::DONTWAIT) {
+                    Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {}
+                    other => return other,
+                },
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Whether the server still accepts TCP connections (a quick look, after a timeout).
+    fn still_listens(&self) -> bool {
+        self.address.is_none_or(|a| {
+            TcpStream::connect_timeout(&a, STILL_LISTENS_WAIT.min(self.timeout)).is_ok()
         })
     }
 
@@ -373,7 +440,7 @@ impl Client {
     }
 
     fn end(&mut self) {
-        if self.protocol == Some(Protocol::V2) {
+        if self.protocol == Some(Protocol::V2) && !self.gone {
             let _ = self.socket.set_rcvtimeo(200);
             let _ = self.socket.set_sndtimeo(200);
             let req = self.request(END, vec![]);
@@ -492,6 +559,31 @@ mod tests {
         );
         t.join().unwrap();
         r
+    }
+
+    #[test]
+    fn a_server_gone_during_a_call_fails_it_and_every_later_call_at_once() {
+        let context = zmq::Context::new();
+        let server = context.socket(zmq::REP).unwrap();
+        server.bind("tcp://127.0.0.1:0").unwrap();
+        let endpoint = server.get_last_endpoint().unwrap().unwrap();
+        let port = endpoint.rsplit(':').next().unwrap().parse().unwrap();
+        let mut client = Client::open(&ClientOptions {
+            port,
+            timeout: Duration::from_millis(300),
+            ..Default::default()
+        })
+        .unwrap();
+        // the server ends: nothing listens on its port any more
+        drop(server);
+        drop(context);
+        let first = client.call("sim.getInt32Param", vec![]).unwrap_err();
+        assert!(matches!(first, ZmqError::Gone { .. }), "{first}");
+        assert!(first.to_string().contains("nothing listens there any more"));
+        let rounds = client.stats().round_trips;
+        let later = client.call("sim.setInt32Param", vec![]).unwrap_err();
+        assert!(matches!(later, ZmqError::Gone { .. }), "{later}");
+        assert_eq!(client.stats().round_trips, rounds, "no request was sent");
     }
 
     #[test]

@@ -343,3 +343,227 @@ fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
         "the draws never reached a success path"
     );
 }
+
+/// Where standard output goes in [`outputs_that_cannot_be_written_and_inputs_that_never_end`].
+#[derive(Debug, Clone, Copy)]
+enum Sink {
+    /// `> /dev/full`: every write fails (ENOSPC).
+    Full,
+    /// `>&-`: closed.
+    Closed,
+    /// A pipe whose reader has gone (`| head -c0`): the run ends quietly, exit 0.
+    GonePipe,
+}
+
+/// Runs `vrep-maze args` with standard output at `sink` and no input; exit code and stderr.
+fn run_into(args: &[String], sink: Sink) -> (Option<i32>, String) {
+    use std::process::{Command, Stdio};
+    let bin = assert_cmd::cargo::cargo_bin("vrep-maze");
+    let mut command = Command::new(&bin);
+    command
+        .args(args)
+        .stdin(Stdio::null())
+        .stderr(Stdio::piped());
+    match sink {
+        Sink::Full => {
+            command.stdout(std::fs::File::create("/dev/full").unwrap());
+        }
+        // the shell's `>&-`: the child starts with descriptor 1 closed
+        Sink::Closed => {
+            let mut shell = Command::new("sh");
+            shell
+                .arg("-c")
+                .arg("exec \"$0\" \"$@\" >&-")
+                .arg(&bin)
+                .args(args)
+                .stdin(Stdio::null())
+                .stderr(Stdio::piped());
+            command = shell;
+        }
+        Sink::GonePipe => {
+            command.stdout(Stdio::piped());
+        }
+    }
+    let mut child = command.spawn().unwrap();
+    // a reader that leaves at once: the pipe's read end is closed before anything is read
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Runs `vrep-maze args` reading from `/dev/zero`-like endless `input` on standard input
+/// (written until the command stops reading); exit code and stderr.
+fn run_endless(args: &[&str], input: &'static [u8], head: &'static [u8]) -> (Option<i32>, String) {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(assert_cmd::cargo::cargo_bin("vrep-maze"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        let _ = stdin.write_all(head);
+        let block = input.repeat((1 << 16) / input.len().max(1) + 1);
+        // endless for the reader: at most 4 GiB, far beyond every bound it has
+        for _ in 0..(4usize << 30) / block.len() {
+            if stdin.write_all(&block).is_err() {
+                return;
+            }
+        }
+    });
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn outputs_that_cannot_be_written_and_inputs_that_never_end() {
+    let dir = TempDir::new().unwrap();
+    let golden = concat!(env!("CARGO_MANIFEST_DIR"), "/mazes/kruskal-9x9-seed42.json");
+    let drawing = concat!(env!("CARGO_MANIFEST_DIR"), "/mazes/drawn-4x4.txt");
+    // every command that writes to standard output, and writers of files
+    let to_stdout: Vec<Vec<String>> = [
+        vec!["validate", golden],
+        vec!["render", golden],
+        vec!["render", golden, "--format", "svg"],
+        vec!["generate", "--seed", "1"],
+        vec!["generate", "--style", "walls", "--seed", "2"],
+        vec!["import", drawing],
+        vec!["completions", "bash"],
+        vec!["completions", "fish"],
+        vec!["demo"],
+        vec!["--help"],
+        vec!["--version"],
+        vec!["generate", "--help"],
+        vec!["apply", "--help"],
+    ]
+    .into_iter()
+    .map(|a| a.into_iter().map(String::from).collect())
+    .collect();
+    let mut rng = MazeRng::from_seed(0xF011);
+    let mut cases = 0;
+    for args in &to_stdout {
+        for sink in [Sink::Full, Sink::Closed, Sink::GonePipe] {
+            let (code, stderr) = run_into(args, sink);
+            cases += 1;
+            assert!(!stderr.contains("panicked"), "{args:?} {sink:?}: {stderr}");
+            match sink {
+                Sink::GonePipe => assert_eq!(code, Some(0), "{args:?} {sink:?}: {stderr}"),
+                Sink::Full | Sink::Closed => {
+                    assert_eq!(code, Some(1), "{args:?} {sink:?}: {stderr}");
+                    let errors: Vec<&str> =
+                        stderr.lines().filter(|l| l.starts_with("error:")).collect();
+                    assert_eq!(errors.len(), 1, "{args:?} {sink:?}: {stderr}");
+                    assert!(
+                        errors[0].contains("cannot write to standard output"),
+                        "{args:?} {sink:?}: {stderr}"
+                    );
+                }
+            }
+        }
+    }
+    // files that cannot be written: a full device, a place that takes no file, a missing
+    // folder, a folder; a random writer each time
+    let places = ["/dev/full", "/proc/vrep-maze.svg", "/nonexistent/m.svg"];
+    for place in places.iter().chain([&dir.path().to_str().unwrap()]) {
+        for _ in 0..3 {
+            let writers: [Vec<&str>; 4] = [
+                vec!["generate", "--seed", "3", "-o", place],
+                vec!["render", golden, "-o", place, "--format", "svg"],
+                vec!["import", drawing, "-o", place],
+                vec!["batch", "--seeds", "1..3", "--out-dir", place],
+            ];
+            // a folder is where batch writes: the others only
+            let usable = if place.starts_with('/') && Path::new(place).is_dir() {
+                3
+            } else {
+                4
+            };
+            let args = &writers[rng.index(usable)];
+            let output = bin().args(args).output().unwrap();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            cases += 1;
+            assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+            assert_eq!(
+                stderr.lines().filter(|l| l.starts_with("error:")).count(),
+                1,
+                "{args:?}: {stderr}"
+            );
+            assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+        }
+    }
+    // inputs that never end: files and standard input, for every reader
+    for reader in [
+        vec!["validate"],
+        vec!["render"],
+        vec!["import"],
+        vec!["apply", "--port", "9", "--connect-timeout", "0.5"],
+    ] {
+        let (code, stderr) = {
+            let output = bin().args(&reader).arg("/dev/zero").output().unwrap();
+            (
+                output.status.code(),
+                String::from_utf8_lossy(&output.stderr).into_owned(),
+            )
+        };
+        cases += 1;
+        assert_eq!(code, Some(1), "{reader:?} /dev/zero: {stderr}");
+        assert!(
+            stderr.contains("NUL") || stderr.contains("0x00"),
+            "{reader:?} /dev/zero: {stderr}"
+        );
+        if reader[0] == "import" {
+            continue;
+        }
+        let mut with_stdin = reader.clone();
+        with_stdin.push("-");
+        let layout_head: &'static [u8] = Box::leak(
+            std::fs::read_to_string(golden)
+                .unwrap()
+                .split("\"segments\": [")
+                .next()
+                .map(|head| format!("{head}\"segments\": [\n"))
+                .unwrap()
+                .into_bytes()
+                .into_boxed_slice(),
+        );
+        for (head, endless, says) in [
+            (&b""[..], &b"\0"[..], "control character 0x00"),
+            (&b""[..], &b" "[..], "KiB of white space"),
+            (
+                layout_head,
+                &b"{\"x\": 0.25, \"y\": 0, \"z\": 0.001, \"yaw\": 0},\n"[..],
+                "segments: no layout of this grid holds more",
+            ),
+            (layout_head, &b"\0"[..], "KiB"),
+        ] {
+            let (code, stderr) = run_endless(&with_stdin, endless, head);
+            cases += 1;
+            assert_eq!(
+                code,
+                Some(1),
+                "{with_stdin:?} endless {endless:?}: {stderr}"
+            );
+            assert!(
+                stderr.contains(says),
+                "{with_stdin:?} endless {endless:?}: {stderr}"
+            );
+            assert!(!stderr.contains("panicked"), "{stderr}");
+        }
+    }
+    // an endless string reads 64 MiB before it is refused: once is enough
+    let (code, stderr) = run_endless(&["validate", "-"], b"a", b"{\"a\": \"");
+    cases += 1;
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("more than 64 MiB"), "{stderr}");
+    eprintln!("cli fuzz, unwritable outputs and endless inputs: {cases} cases");
+}

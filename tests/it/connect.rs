@@ -208,9 +208,208 @@ fn a_refused_legacy_connection_is_retried_without_a_countdown_off_a_terminal() {
     ]);
     assert_eq!(code, Some(0), "{stderr}");
     assert!(took < Duration::from_secs(25), "{took:?}");
+    let mut lines = stderr.lines();
     assert_eq!(
-        stderr.trim_end(),
-        format!("connecting to CoppeliaSim's legacy remote API at 127.0.0.1:{port} ..."),
-        "only the first line when stderr is not a terminal"
+        lines.next(),
+        Some(
+            format!("connecting to CoppeliaSim's legacy remote API at 127.0.0.1:{port} ...")
+                .as_str()
+        ),
     );
+    // no countdown when stderr is not a terminal: at most the one notice of a refusal
+    // that goes on (the server's 2 s may outlast the notice's)
+    for line in lines {
+        assert!(line.starts_with("nothing listens on "), "{stderr}");
+    }
+}
+
+/// `vrep-maze args` with its session markers in `markers` (a directory of its own).
+fn command_with_markers(markers: &std::path::Path, args: &[&str]) -> Command {
+    let mut command = Command::cargo_bin("vrep-maze").unwrap();
+    command.env("XDG_RUNTIME_DIR", markers).args(args);
+    command
+}
+
+/// The session marker of the legacy API at `127.0.0.1:port` in `markers`.
+fn marker(markers: &std::path::Path, port: &str) -> std::path::PathBuf {
+    markers.join(format!("vrep-maze-legacy-127.0.0.1-{port}.open"))
+}
+
+#[test]
+fn with_no_simulator_the_wait_says_nothing_listens_and_ends_at_the_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    let port = free_port();
+    let out = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains(&format!(
+            "nothing listens on 127.0.0.1:{port} (Connection refused"
+        )),
+        "{stderr}"
+    );
+    assert!(stderr.contains("trying until 10 s"), "{stderr}");
+    assert!(stderr.contains("within 10 s"), "{stderr}");
+    assert!(!stderr.contains("earlier vrep-maze run"), "{stderr}");
+    assert!(stderr.contains("--connect-timeout 75"), "{stderr}");
+}
+
+#[test]
+fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    let port = free_port();
+    // an earlier run (a process id no system runs) left its session open
+    std::fs::write(marker(dir.path(), &port), "4194305\n").unwrap();
+    let mut child = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut said = String::new();
+    for _ in 0..2 {
+        stderr.read_line(&mut said).unwrap();
+    }
+    assert!(
+        said.contains("an earlier vrep-maze run (process 4194305) left its session")
+            && said.contains("waiting up to 75 s"),
+        "{said}"
+    );
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
+    let code = child.wait().unwrap().code();
+    assert_eq!(code, Some(130), "{said}{rest}");
+    assert!(
+        rest.contains(&format!("interrupted while connecting to 127.0.0.1:{port}")),
+        "{rest}"
+    );
+}
+
+#[test]
+fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "4", "prim");
+    // serve's realistic model: paced by the idle rate, the one-minute refusal after a
+    // client left abruptly
+    let s = Serve::start(&["--listen", "127.0.0.1:0"], 1);
+    let port = s.port();
+    let out = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!marker(dir.path(), &port).exists(), "closed cleanly");
+    // a run killed while connected leaves its marker
+    let big = dir.path().join("big.json");
+    bin()
+        .args(["generate", "--seed", "1", "--size", "40x40", "-o"])
+        .arg(&big)
+        .assert()
+        .success();
+    let mut child = command_with_markers(
+        dir.path(),
+        &["apply", big.to_str().unwrap(), "--port", &port],
+    )
+    .stdout(Stdio::null())
+    .stderr(Stdio::null())
+    .spawn()
+    .unwrap();
+    let marked = (0..400).any(|_| {
+        std::thread::sleep(Duration::from_millis(25));
+        marker(dir.path(), &port).exists()
+    });
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(marked, "no marker while connected");
+    let pid = std::fs::read_to_string(marker(dir.path(), &port)).unwrap();
+    assert_eq!(pid.trim(), child.id().to_string());
+    let out = command_with_markers(
+        dir.path(),
+        &[
+            "clear",
+            "--port",
+            &port,
+            "--dry-run",
+            "--connect-timeout",
+            "1",
+        ],
+    )
+    .output()
+    .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "an earlier vrep-maze run (process {}) left its session at 127.0.0.1:{port} abruptly",
+            child.id()
+        )),
+        "{stderr}"
+    );
+}
+
+/// A web server on a loopback port: it answers each connection with an HTTP 400, at once
+/// when `eager`, else only once a request's header has ended (as most do).
+fn web_server(eager: bool) -> String {
+    use std::io::{Read, Write};
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = listener.local_addr().unwrap().port().to_string();
+    std::thread::spawn(move || {
+        for stream in listener.incoming().take(20) {
+            let Ok(mut stream) = stream else { return };
+            std::thread::spawn(move || {
+                let mut got = Vec::new();
+                let mut buf = [0u8; 512];
+                while !eager && !got.windows(4).any(|w| w == b"\r\n\r\n") {
+                    match stream.read(&mut buf) {
+                        Ok(0) | Err(_) => return,
+                        Ok(n) => got.extend_from_slice(&buf[..n]),
+                    }
+                }
+                if eager {
+                    let _ = stream.read(&mut buf);
+                }
+                let _ = stream.write_all(b"HTTP/1.1 400 Bad Request\r\n\r\n");
+            });
+        }
+    });
+    port
+}
+
+#[test]
+fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    for eager in [true, false] {
+        let port = web_server(eager);
+        let (code, stderr, _) = run(&[
+            "apply",
+            &m,
+            "--port",
+            &port,
+            "--timeout",
+            "1",
+            "--connect-timeout",
+            "3",
+        ]);
+        assert_eq!(code, Some(1), "{stderr}");
+        assert_clear_error(&stderr);
+        assert!(
+            stderr.contains(&format!(
+                "127.0.0.1:{port} is not a CoppeliaSim legacy remote API server: it answers in HTTP"
+            )),
+            "eager {eager}: {stderr}"
+        );
+        assert!(!stderr.contains("another client"), "{stderr}");
+    }
 }

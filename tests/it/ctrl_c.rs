@@ -10,6 +10,8 @@ use std::time::{Duration, Instant};
 use assert_cmd::cargo::CommandCargoExt;
 use tempfile::TempDir;
 
+use crate::support::backend::{Kind, TIMEOUT};
+use crate::support::backend_tests;
 use crate::support::bin;
 use crate::support::cli::Serve;
 
@@ -88,4 +90,126 @@ fn ctrl_c_at_any_point_leaves_a_scene_the_next_apply_repairs_at_once() {
             .success();
     }
     assert!(interrupted >= 2, "only {interrupted} runs were interrupted");
+}
+
+/// `serve` arguments and `apply` arguments for `kind`.
+fn serve_and_apply_args(kind: Kind) -> (Vec<&'static str>, Vec<&'static str>) {
+    match kind {
+        Kind::Legacy => (vec!["--listen", "127.0.0.1:0"], vec![]),
+        Kind::Zmq1 => (
+            vec!["--api", "zmq", "--protocol", "1", "--listen", "127.0.0.1:0"],
+            vec!["--api", "zmq"],
+        ),
+        Kind::Zmq2 => (
+            vec!["--api", "zmq", "--protocol", "2", "--listen", "127.0.0.1:0"],
+            vec!["--api", "zmq"],
+        ),
+    }
+}
+
+backend_tests!(
+    ctrl_c_always_exits_130_with_the_idle_rate_restored,
+    a_server_killed_mid_apply_is_named_as_gone,
+);
+
+/// Wherever Ctrl-C lands in an apply (paced by serve's realistic idle rate, 8 fps), the run
+/// ends with exit 130 (or 0 if it had finished), never with an error: a signal that
+/// interrupts a wait for a reply is not a failure. The user's idle rate is back after it.
+fn ctrl_c_always_exits_130_with_the_idle_rate_restored(kind: Kind) {
+    let dir = TempDir::new().unwrap();
+    let layout = dir.path().join("m.json");
+    bin()
+        .args(["generate", "--seed", "2", "--size", "30x30", "-o"])
+        .arg(&layout)
+        .assert()
+        .success();
+    let (serve_args, apply_args) = serve_and_apply_args(kind);
+    let serve = Serve::start(&serve_args, 1);
+    let port = serve.port();
+    let mut interrupted = 0;
+    for delay_ms in [100u64, 300, 600, 900, 1200, 1600] {
+        let apply = Command::cargo_bin("vrep-maze")
+            .unwrap()
+            .args(["apply", layout.to_str().unwrap(), "--port", &port])
+            .args(&apply_args)
+            .env("XDG_RUNTIME_DIR", dir.path())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        interrupt(apply.id());
+        let out = apply.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        match out.status.code() {
+            Some(130) => interrupted += 1,
+            Some(0) => {}
+            other => panic!("{}, {delay_ms} ms: exit {other:?}: {stderr}", kind.name()),
+        }
+        let mut scene = kind.connect(serve.ports[0], TIMEOUT).unwrap();
+        let rates = scene.idle_rates().unwrap();
+        assert_eq!(
+            (rates.current, rates.saved),
+            (8, None),
+            "{}, {delay_ms} ms: {stderr}",
+            kind.name()
+        );
+        scene.close().unwrap();
+        drop(scene);
+        bin()
+            .args(["clear", "--port", &port, "--timeout", "5"])
+            .args(&apply_args)
+            .env("XDG_RUNTIME_DIR", dir.path())
+            .assert()
+            .success();
+    }
+    assert!(
+        interrupted >= 2,
+        "{}: only {interrupted} runs were interrupted",
+        kind.name()
+    );
+}
+
+/// A simulator killed while apply waits for a reply: apply fails with one line that says
+/// the simulator is gone (after one `--timeout`, not one per call still to make).
+fn a_server_killed_mid_apply_is_named_as_gone(kind: Kind) {
+    let dir = TempDir::new().unwrap();
+    let layout = dir.path().join("m.json");
+    bin()
+        .args(["generate", "--seed", "3", "--size", "40x40", "-o"])
+        .arg(&layout)
+        .assert()
+        .success();
+    let (serve_args, apply_args) = serve_and_apply_args(kind);
+    let mut serve = Serve::start(&serve_args, 1);
+    let port = serve.port();
+    let apply = Command::cargo_bin("vrep-maze")
+        .unwrap()
+        .args(["apply", layout.to_str().unwrap(), "--port", &port])
+        .args(["--timeout", "2"])
+        .args(&apply_args)
+        .env("XDG_RUNTIME_DIR", dir.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(800));
+    serve.child.kill().unwrap();
+    serve.child.wait().unwrap();
+    let out = apply.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if out.status.success() {
+        return; // it finished before the kill: nothing to see on this machine
+    }
+    assert_eq!(out.status.code(), Some(1), "{}: {stderr}", kind.name());
+    let errors: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("error: "))
+        .collect();
+    assert_eq!(errors.len(), 1, "{}: {stderr}", kind.name());
+    let gone = match kind {
+        Kind::Legacy => "closed the connection",
+        Kind::Zmq1 | Kind::Zmq2 => "nothing listens there any more",
+    };
+    assert!(errors[0].contains(gone), "{}: {stderr}", kind.name());
 }

@@ -396,11 +396,13 @@ fn every_rotation_validates() {
     for degrees in ["90", "180", "-90", "270", "33.3", "1e308", "-1e308", "720"] {
         accepted(&["--rotation", degrees, "--seed", "5", "--size", "12x7"]);
     }
-    accepted(&[
+    // the maze turns about its centre, which stays where --origin puts it (here the floor
+    // origin): a 25 m maze turned half a turn still fits a 25 m floor
+    let text = accepted(&[
         "--rotation",
         "180",
         "--origin",
-        "12,12",
+        "-12,-12",
         "--size",
         "25x25",
         "--floor-size",
@@ -408,8 +410,18 @@ fn every_rotation_validates() {
         "--seed",
         "1",
     ]);
-    let text = accepted(&["--rotation", "180", "--seed", "1"]);
-    assert!(text.contains("\"size\": [25.0, 25.0]"), "{text}");
+    assert!(text.contains("\"origin\": [12.0, 12.0]"), "{text}");
+    // on the course, a quarter or half turn keeps the 10 m floor; 45 degrees needs 12.73 m
+    for degrees in ["90", "180", "-90"] {
+        let text = accepted(&["--rotation", degrees, "--seed", "1"]);
+        assert!(text.contains("\"size\": [10.0, 10.0]"), "{degrees}: {text}");
+    }
+    let text = accepted(&["--rotation", "45", "--seed", "1"]);
+    assert!(text.contains("\"size\": [15.0, 15.0]"), "{text}");
+    refused(
+        &["--rotation", "45", "--floor-size", "12x12", "--seed", "1"],
+        "the maze needs a floor of 12.728 m x 12.728 m",
+    );
 }
 
 #[test]

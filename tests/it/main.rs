@@ -19,6 +19,8 @@ mod interrupt;
 mod layering;
 mod legacy_client_server;
 mod legacy_draw;
+mod messages;
+mod permissions;
 mod properties;
 mod schema;
 mod texture;

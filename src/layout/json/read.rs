@@ -20,7 +20,8 @@ use std::thread;
 use serde::de::{self, Deserializer, IgnoredAny, MapAccess, Visitor};
 
 use super::ReadError;
-use super::scan::{Element, Position, ScanError, Source};
+use super::scan::{Element, MAX_FIELDS_BYTES, Position, ScanError, Source};
+use crate::layout::limits::{MAX_SEGMENTS, MAX_SEGMENTS_PER_PASSAGE};
 use crate::layout::{
     Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, PostSpec, Style,
     VERSION, WallSpec,
@@ -138,7 +139,7 @@ pub fn read_from<S: SegmentSink>(
     };
     let mut source = Source::new(reader);
     let mut head = Vec::new();
-    if !source.head(&mut head).map_err(io_error)? {
+    if !source.head(&mut head).map_err(scan_error)? {
         // No segment list to stream: serde reads (or refuses) the whole document.
         let fields = parse_fields(&head, name)?;
         return finish(fields, Vec::new(), name, sink_for);
@@ -152,8 +153,10 @@ pub fn read_from<S: SegmentSink>(
     }
     // An empty list (a wall layout's) waits for the fields after it, which may be the
     // wall layout's own.
-    let mut segments = if early.complete() && !source.list_is_empty().map_err(io_error)? {
+    let mut most = MAX_SEGMENTS;
+    let mut segments = if early.complete() && !source.list_is_empty().map_err(scan_error)? {
         let layout = early.into_layout(name)?;
+        most = most_segments(&layout.grid);
         Segments::Streaming(sink_for(&layout), Box::new(layout))
     } else {
         Segments::Kept(Vec::new(), sink_for)
@@ -161,6 +164,12 @@ pub fn read_from<S: SegmentSink>(
     let mut index = 0;
     let breaks = source
         .elements(|element, at| {
+            if index as u64 >= most {
+                return Err(ScanError::Syntax(
+                    at,
+                    format!("more than {most} segments: no layout of this grid holds more"),
+                ));
+            }
             let pose = match element {
                 Element::Segment(pose) => pose,
                 Element::Other(bytes) => parse_segment(bytes, at)?,
@@ -174,7 +183,9 @@ pub fn read_from<S: SegmentSink>(
         })
         .map_err(scan_error)?;
     let mut tail = Vec::new();
-    source.rest(&mut tail).map_err(io_error)?;
+    source
+        .rest(&mut tail, MAX_FIELDS_BYTES.saturating_sub(head.len()))
+        .map_err(scan_error)?;
     if let Segments::Streaming(..) = &segments
         && tail.trim_ascii() == b"}"
     {
@@ -206,6 +217,15 @@ pub fn read_from<S: SegmentSink>(
         }
         Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
     }
+}
+
+/// The most segments a layout of `grid` may hold: every passage drawn with the most
+/// copies one may take, and never more than [`MAX_SEGMENTS`] (a bound on what is read).
+fn most_segments(grid: &GridSpec) -> u64 {
+    let passages = 2 * u64::from(grid.columns) * u64::from(grid.rows);
+    passages
+        .saturating_mul(MAX_SEGMENTS_PER_PASSAGE as u64)
+        .min(MAX_SEGMENTS)
 }
 
 /// A wall layout's own fields (style, wall template, walls, post template, posts).

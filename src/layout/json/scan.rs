@@ -11,6 +11,25 @@ use crate::layout::Pose;
 /// Bytes read at a time.
 const CHUNK: usize = 1 << 20;
 
+/// The most bytes of a layout outside its segment list (the head before it and the tail
+/// after it): 64 MiB, four times what the largest grid's fields take (a 4096x4096 grid's
+/// passages are 4096 rows of 4096 digits, 17 MB written), so an endless or huge input
+/// that is no layout (`/dev/zero`, a log) fails after a bounded read.
+pub(super) const MAX_FIELDS_BYTES: usize = 64 << 20;
+/// The most bytes one element of the segment list may take, with the white space before
+/// the next one: 64 KiB, hundreds of times what a segment spelled out with its four
+/// numbers takes.
+pub(super) const MAX_ELEMENT_BYTES: usize = 64 << 10;
+
+/// `` `{` `` for a printable ASCII byte, `byte 0x00` for any other.
+pub(super) fn shown_byte(byte: u8) -> String {
+    if byte.is_ascii_graphic() {
+        format!("`{}`", byte as char)
+    } else {
+        format!("byte 0x{byte:02x}")
+    }
+}
+
 /// Where a byte lies, as serde_json counts: 1-based line and column.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Position {
@@ -133,7 +152,9 @@ impl<R: Read> Source<R> {
     /// Copies bytes into the head up to the value of the top-level `"segments"` key. When
     /// that value is an array, its `[` is consumed and the result is `true`; otherwise the
     /// whole input is the head.
-    pub fn head(&mut self, head: &mut Vec<u8>) -> io::Result<bool> {
+    /// Fails at once on bytes no JSON holds (a control character, a byte order mark, a
+    /// first byte other than `{`), and after [`MAX_FIELDS_BYTES`].
+    pub fn head(&mut self, head: &mut Vec<u8>) -> Result<bool, ScanError> {
         let mut depth = 0usize;
         let mut in_string = false;
         let mut escaped = false;
@@ -141,7 +162,10 @@ impl<R: Read> Source<R> {
         let mut expect_key = false;
         let mut segments_next = false;
         let mut last_key_was_segments = false;
+        let mut started = false;
         while let Some(byte) = self.peek()? {
+            self.check_byte(byte, head.len(), started)?;
+            started |= !byte.is_ascii_whitespace();
             if segments_next && !matches!(byte, b' ' | b'\n' | b'\r' | b'\t') {
                 segments_next = false;
                 if byte == b'[' {
@@ -187,6 +211,41 @@ impl<R: Read> Source<R> {
             }
         }
         Ok(false)
+    }
+
+    /// Refuses `byte`, the next one after `read` bytes of the head (`started` once one was
+    /// not white space), if no layout can hold it there.
+    fn check_byte(&self, byte: u8, read: usize, started: bool) -> Result<(), ScanError> {
+        let refuse = |message: String| Err(ScanError::Syntax(self.position(), message));
+        if byte < 0x20 && !matches!(byte, b' ' | b'\n' | b'\r' | b'\t') {
+            return refuse(format!(
+                "control character 0x{byte:02x}: JSON holds none outside escapes (is this a layout file?)"
+            ));
+        }
+        if !started && !byte.is_ascii_whitespace() && byte != b'{' {
+            if byte == 0xEF {
+                return refuse(
+                    "the file starts with a UTF-8 byte order mark (EF BB BF), which JSON does not allow: save it without one".into(),
+                );
+            }
+            return refuse(format!(
+                "expected `{{` (a layout is a JSON object), found {}",
+                shown_byte(byte)
+            ));
+        }
+        if !started && read >= MAX_ELEMENT_BYTES {
+            return refuse(format!(
+                "more than {} KiB of white space and no `{{`: a layout is a JSON object (is this a layout file?)",
+                MAX_ELEMENT_BYTES >> 10
+            ));
+        }
+        if read >= MAX_FIELDS_BYTES {
+            return refuse(format!(
+                "more than {} MiB outside the segment list: no layout holds that much (is this a layout file?)",
+                MAX_FIELDS_BYTES >> 20
+            ));
+        }
+        Ok(())
     }
 
     /// Hands each element of the segment list (after its `[`) to `each` with its position,
@@ -240,13 +299,14 @@ impl<R: Read> Source<R> {
 
     /// Whether the segment list (its `[` consumed by [`head`](Self::head)) has no element:
     /// only whitespace before its `]`. Consumes that whitespace.
-    pub fn list_is_empty(&mut self) -> io::Result<bool> {
+    pub fn list_is_empty(&mut self) -> Result<bool, ScanError> {
         self.skip_space()?;
         Ok(self.peek()? == Some(b']'))
     }
 
-    /// Consumes whitespace.
-    fn skip_space(&mut self) -> io::Result<()> {
+    /// Consumes whitespace, at most [`MAX_ELEMENT_BYTES`] of it.
+    fn skip_space(&mut self) -> Result<(), ScanError> {
+        let mut skipped = 0;
         loop {
             let rest = &self.buffer[self.at..];
             let space = rest
@@ -255,6 +315,16 @@ impl<R: Read> Source<R> {
                 .unwrap_or(rest.len());
             self.consumed(self.at, self.at + space);
             self.at += space;
+            skipped += space;
+            if skipped > MAX_ELEMENT_BYTES {
+                return Err(ScanError::Syntax(
+                    self.position(),
+                    format!(
+                        "more than {} KiB of white space in the segment list (is this a layout file?)",
+                        MAX_ELEMENT_BYTES >> 10
+                    ),
+                ));
+            }
             if self.at < self.buffer.len() || !self.fill()? {
                 return Ok(());
             }
@@ -313,6 +383,15 @@ impl<R: Read> Source<R> {
                 return Ok((self.at + trimmed, None));
             }
             scanned = rest.len();
+            if scanned > MAX_ELEMENT_BYTES {
+                return Err(ScanError::Syntax(
+                    self.position(),
+                    format!(
+                        "a segment longer than {} KiB: no layout holds one (is this a layout file?)",
+                        MAX_ELEMENT_BYTES >> 10
+                    ),
+                ));
+            }
             if !self.fill()? {
                 return Err(ScanError::Syntax(
                     self.position_of(self.buffer.len()),
@@ -322,11 +401,20 @@ impl<R: Read> Source<R> {
         }
     }
 
-    /// Everything left.
-    pub fn rest(&mut self, tail: &mut Vec<u8>) -> io::Result<()> {
+    /// Everything left, at most `limit` bytes of it.
+    pub fn rest(&mut self, tail: &mut Vec<u8>, limit: usize) -> Result<(), ScanError> {
         loop {
             tail.extend_from_slice(&self.buffer[self.at..]);
             self.at = self.buffer.len();
+            if tail.len() > limit {
+                return Err(ScanError::Syntax(
+                    self.position(),
+                    format!(
+                        "more than {} MiB outside the segment list: no layout holds that much (is this a layout file?)",
+                        MAX_FIELDS_BYTES >> 20
+                    ),
+                ));
+            }
             if !self.fill()? {
                 return Ok(());
             }
