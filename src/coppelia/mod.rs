@@ -7,6 +7,7 @@
 //! remote API's `sim_*` names and the ZeroMQ API's `sim.*` names).
 
 pub mod frame;
+pub mod xml;
 
 /// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.
 pub const HANDLE_WORLD: i32 = -1;
