@@ -41,6 +41,12 @@ pub mod id {
     pub const GET_OBJECT_HANDLE: u16 = 0x3001;
     /// `simx_cmd_get_object_quaternion`.
     pub const GET_OBJECT_QUATERNION: u16 = 0x2801;
+    /// `simx_cmd_load_model`.
+    pub const LOAD_MODEL: u16 = 0x3003;
+    /// `simx_cmd_transfer_file`.
+    pub const TRANSFER_FILE: u16 = 0x3004;
+    /// `simx_cmd_erase_file`.
+    pub const ERASE_FILE: u16 = 0x3006;
     /// `simx_cmd_clear_integer_signal`.
     pub const CLEAR_INTEGER_SIGNAL: u16 = 0x300E;
     /// `simx_cmd_get_integer_signal`.
@@ -200,9 +206,27 @@ pub enum Command {
     SetIntSignal(String, i32),
     /// `simxClearIntegerSignal(name)`.
     ClearIntSignal(String),
+    /// `simxLoadModel(path, 0)`: loads a model file on the server's machine (names starting
+    /// with [`TEMP_FILE_PREFIX`] are in the server's folder for transferred files); reply
+    /// the model base's handle.
+    LoadModel(String),
+    /// `simxTransferFile`: writes `data` to the file `name` in the server's folder for
+    /// transferred files.
+    TransferFile {
+        /// The file's name on the server (no folder).
+        name: String,
+        /// The file's bytes.
+        data: Vec<u8>,
+    },
+    /// `simxEraseFile(name)`: removes a file the client transferred.
+    EraseFile(String),
     /// The kill block `simxFinish` sends.
     KillConnection,
 }
+
+/// Server-side file names starting with this are in the server's folder for transferred
+/// files (simExtRemoteApi `simxCmd.cpp`, `simx_cmd_load_model`).
+pub const TEMP_FILE_PREFIX: &str = "REMOTE_API_TEMPFILE_";
 
 fn cstr(s: &str) -> Vec<u8> {
     let mut b: Vec<u8> = s.bytes().filter(|&c| c != 0).collect();
@@ -256,6 +280,9 @@ impl Command {
             GetIntSignal(_) => id::GET_INTEGER_SIGNAL,
             SetIntSignal(..) => id::SET_INTEGER_SIGNAL,
             ClearIntSignal(_) => id::CLEAR_INTEGER_SIGNAL,
+            LoadModel(_) => id::LOAD_MODEL,
+            TransferFile { .. } => id::TRANSFER_FILE,
+            EraseFile(_) => id::ERASE_FILE,
             KillConnection => id::KILL_CONNECTION,
         }
     }
@@ -265,9 +292,12 @@ impl Command {
     pub fn to_block(&self, opmode: u32) -> Block {
         use Command::*;
         let (id_data, data, status) = match self {
-            GetObjectHandle(name) | GetIntSignal(name) | ClearIntSignal(name) => {
-                (cstr(name), vec![], 0)
-            }
+            GetObjectHandle(name)
+            | GetIntSignal(name)
+            | ClearIntSignal(name)
+            | LoadModel(name)
+            | EraseFile(name) => (cstr(name), vec![], 0),
+            TransferFile { name, data } => (cstr(name), data.clone(), 0),
             SetIntSignal(name, v) => (cstr(name), i32s(&[*v]), 0),
             GetObjects(t) => (i32s(&[*t]), vec![], 0),
             GetObjectGroupData {
@@ -344,6 +374,12 @@ impl Command {
             id::GET_INTEGER_SIGNAL => Command::GetIntSignal(name(b)?),
             id::SET_INTEGER_SIGNAL => Command::SetIntSignal(name(b)?, dn(0)?),
             id::CLEAR_INTEGER_SIGNAL => Command::ClearIntSignal(name(b)?),
+            id::LOAD_MODEL => Command::LoadModel(name(b)?),
+            id::TRANSFER_FILE => Command::TransferFile {
+                name: name(b)?,
+                data: b.data.clone(),
+            },
+            id::ERASE_FILE => Command::EraseFile(name(b)?),
             id::GET_OBJECTS => Command::GetObjects(idn(0)?),
             id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData {
                 object_type: idn(0)?,
@@ -542,6 +578,12 @@ mod tests {
             Command::GetIntSignal("s".into()),
             Command::SetIntSignal("vrep-maze".into(), 8),
             Command::ClearIntSignal("x".into()),
+            Command::LoadModel("/tmp/m.simmodel.xml".into()),
+            Command::TransferFile {
+                name: "REMOTE_API_TEMPFILE_1.simmodel.xml".into(),
+                data: b"<CoppeliaSim/>".to_vec(),
+            },
+            Command::EraseFile("REMOTE_API_TEMPFILE_1.simmodel.xml".into()),
             Command::KillConnection,
         ];
         for c in all {
@@ -557,6 +599,64 @@ mod tests {
         }
         .to_block(0);
         assert_eq!(sp.data, [7, 0, 0, 0, 0]);
+    }
+
+    fn hex(s: &str) -> Vec<u8> {
+        s.split_whitespace()
+            .map(|b| u8::from_str_radix(b, 16).unwrap())
+            .collect()
+    }
+
+    /// The message bytes of one blocking command in message 7, client time 0x12345 (the
+    /// layout of the spec's section 13 examples; sections 5.1, 5.2 and 12.22 for these IDs).
+    fn on_the_wire(c: &Command) -> Vec<u8> {
+        use crate::legacy::wire::{MAX_PACKET_SIZE, Message, MessageHeader, packetize};
+        let m = Message {
+            header: MessageHeader {
+                message_id: 7,
+                client_time: 0x12345,
+                ..Default::default()
+            },
+            blocks: vec![c.to_block(opmode::BLOCKING)],
+        };
+        packetize(&m.encode(), MAX_PACKET_SIZE)
+    }
+
+    #[test]
+    fn vectors_load_model_transfer_file_erase_file() {
+        // simxLoadModel("m.simmodel.xml", 0, blocking): 1-string class, ID = the path,
+        // no pure data; block 26 + 15 = 0x29 bytes, off0 = 15, cmd 0x00013003.
+        let load = hex(
+            "01 00 3b 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             29 00 00 00 29 00 00 00 0f 00 00 00 00 00 03 30 01 00 00 00 00 00 00 00 00 00
+             6d 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00",
+        );
+        assert_eq!(
+            on_the_wire(&Command::LoadModel("m.simmodel.xml".into())),
+            load
+        );
+        // simxTransferFile(.., "f.simmodel.xml", blocking) of the 4 bytes "<x/>": ID = the
+        // server-side name, pure data = the file; block 26 + 15 + 4 = 0x2d bytes.
+        let transfer = hex(
+            "01 00 3f 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             2d 00 00 00 2d 00 00 00 0f 00 00 00 00 00 04 30 01 00 00 00 00 00 00 00 00 00
+             66 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00 3c 78 2f 3e",
+        );
+        let file = Command::TransferFile {
+            name: "f.simmodel.xml".into(),
+            data: b"<x/>".to_vec(),
+        };
+        assert_eq!(on_the_wire(&file), transfer);
+        // simxEraseFile("f.simmodel.xml", blocking): cmd 0x00013006.
+        let erase = hex(
+            "01 00 3b 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             29 00 00 00 29 00 00 00 0f 00 00 00 00 00 06 30 01 00 00 00 00 00 00 00 00 00
+             66 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00",
+        );
+        assert_eq!(
+            on_the_wire(&Command::EraseFile("f.simmodel.xml".into())),
+            erase
+        );
     }
 
     #[test]

@@ -7,6 +7,8 @@
 pub mod clock;
 pub mod cost;
 mod index;
+pub mod model;
+pub mod model_cost;
 pub mod scene;
 pub mod svg;
 
@@ -43,6 +45,9 @@ pub struct Simulator {
     saved: Option<Scene>,
     /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
     pub int_signals: std::collections::BTreeMap<String, i32>,
+    /// Where files sent with `simxTransferFile` go (CoppeliaSim's
+    /// `sim_stringparam_remoteapi_temp_file_dir`); the system's temporary folder by default.
+    pub temp_dir: std::path::PathBuf,
 }
 
 impl Simulator {
@@ -54,6 +59,7 @@ impl Simulator {
             state: SimState::Stopped,
             saved: None,
             int_signals: Default::default(),
+            temp_dir: std::env::temp_dir(),
         }
     }
 

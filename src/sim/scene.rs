@@ -353,6 +353,18 @@ impl Scene {
         handle
     }
 
+    /// Adds an object as a loaded model's object is added: its alias kept, its name the alias
+    /// if no object has that name, else the name a pasted copy of it would get.
+    pub fn add_loaded(&mut self, alias: &str, o: NewObject) -> i32 {
+        let name = match self.index.named(alias) {
+            None => alias.to_string(),
+            Some(_) => self.copy_name(alias),
+        };
+        let handle = self.add(&name, o);
+        self.rename(handle, None, Some(alias.to_string()));
+        handle
+    }
+
     /// The object with this handle.
     pub fn get(&self, handle: i32) -> Result<&Object, SimError> {
         self.objects
