@@ -321,7 +321,7 @@ fn shape(node: &Node, at: &Path) -> Result<Shape, XmlError> {
     };
     let vat = dat.child("vertices");
     let flat: Vec<f32> = numbers(vertices_node, &vat)?;
-    if flat.len() % 3 != 0 || flat.iter().any(|v| !v.is_finite()) {
+    if !flat.len().is_multiple_of(3) || flat.iter().any(|v| !v.is_finite()) {
         return Err(vat.bad("not a list of finite x y z triples"));
     }
     let vertices: Vec<[f32; 3]> = flat
@@ -333,7 +333,7 @@ fn shape(node: &Node, at: &Path) -> Result<Shape, XmlError> {
         .collect();
     let (indices_node, iat) = required(data, &dat, "indices")?;
     let indices: Vec<u32> = numbers(indices_node, &iat)?;
-    if indices.len() % 3 != 0 {
+    if !indices.len().is_multiple_of(3) {
         return Err(iat.bad("not a multiple of three"));
     }
     if let Some(i) = indices.iter().find(|&&i| i as usize >= vertices.len()) {
