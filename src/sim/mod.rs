@@ -9,6 +9,7 @@ pub mod cost;
 mod index;
 pub mod mesh;
 pub mod scene;
+pub mod shape_cost;
 pub mod svg;
 
 use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
