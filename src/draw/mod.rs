@@ -10,6 +10,7 @@
 pub mod apply;
 pub mod clear;
 pub mod lease;
+pub mod mesh;
 pub mod plan;
 pub mod verify;
 
@@ -336,6 +337,10 @@ pub trait Backend {
     /// What this backend can do beyond drawing, if anything (the ZeroMQ API can create
     /// objects and save the scene; the legacy API cannot).
     fn authoring(&mut self) -> Option<&mut dyn Authoring> {
+        None
+    }
+    /// Drawing a maze as mesh shapes ([`mesh::MeshDrawing`]), if this backend can.
+    fn meshes(&mut self) -> Option<&mut dyn mesh::MeshDrawing> {
         None
     }
 }

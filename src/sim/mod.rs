@@ -7,15 +7,18 @@
 pub mod clock;
 pub mod cost;
 mod index;
+pub mod mesh;
 pub mod model;
 pub mod model_cost;
 pub mod scene;
+pub mod shape_cost;
 pub mod svg;
 
 use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
 pub use clock::{Clock, ZmqPacer, ZmqPacing};
 pub use cost::{CostModel, Timing};
+pub use mesh::{Mesh, MeshError};
 pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
 
 /// The program version we report (CoppeliaSim 4.5.1).

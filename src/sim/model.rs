@@ -6,6 +6,7 @@ use crate::coppelia::frame::euler_from_rotation;
 use crate::coppelia::xml::{Body, Document, FileKind};
 use nalgebra::{Quaternion, UnitQuaternion};
 
+use super::mesh::Mesh;
 use super::{NewObject, ObjectType, Scene, SimError};
 
 /// What loading a model added.
@@ -33,6 +34,7 @@ pub fn load(scene: &mut Scene, doc: &Document) -> Result<Loaded, SimError> {
     };
     let mut handles = Vec::with_capacity(doc.objects.len());
     let mut triangles = 0;
+    let mut meshes = Vec::new();
     for o in &doc.objects {
         let [w, x, y, z] = o.quaternion;
         let rotation = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
@@ -48,7 +50,7 @@ pub fn load(scene: &mut Scene, doc: &Document) -> Result<Loaded, SimError> {
                 )
             }
         };
-        handles.push(scene.add_loaded(
+        let handle = scene.add_loaded(
             &o.alias,
             NewObject {
                 kind,
@@ -58,7 +60,16 @@ pub fn load(scene: &mut Scene, doc: &Document) -> Result<Loaded, SimError> {
                 size,
                 colour: colour.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8),
             },
-        ));
+        );
+        if let Body::Shape(s) = &o.body
+            && s.mesh.triangles() > 0
+        {
+            meshes.push((handle, scene_mesh(&s.mesh)));
+        }
+        handles.push(handle);
+    }
+    for (handle, mesh) in meshes {
+        scene.set_mesh(handle, mesh)?;
     }
     for (o, &handle) in doc.objects.iter().zip(&handles) {
         let Some(parent) = o.parent else { continue };
@@ -73,6 +84,15 @@ pub fn load(scene: &mut Scene, doc: &Document) -> Result<Loaded, SimError> {
         handles,
         triangles,
     })
+}
+
+/// The file's triangles as the scene keeps them (relative to the shape's frame, as loaded:
+/// a loaded mesh is not merged as a created one is).
+fn scene_mesh(m: &crate::coppelia::xml::Mesh) -> Mesh {
+    Mesh {
+        vertices: m.vertices.iter().flatten().copied().collect(),
+        indices: m.indices.iter().map(|&i| i as i32).collect(),
+    }
 }
 
 #[cfg(test)]
@@ -97,6 +117,10 @@ mod tests {
         );
         assert_eq!((o.kind, o.colour), (ObjectType::Shape, [0, 255, 0]));
         assert!((o.size[0] - 1.4).abs() < 1e-6 && (o.size[1] - 1.1).abs() < 1e-6);
+        let mesh = o.mesh.as_ref().expect("the loaded triangles are kept");
+        assert_eq!(mesh.indices.len(), 12);
+        let (lo, hi) = o.bounding_box();
+        assert!((lo[0] + 0.35).abs() < 1e-6 && (hi[1] - 1.05).abs() < 1e-6);
         // A second load keeps the alias and names the object as a paste would.
         let again = load(&mut scene, &doc).unwrap();
         assert_eq!(scene.get(again.base).unwrap().name, "MazeMesh0");

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::index::Index;
+use super::mesh::Mesh;
 use crate::coppelia::frame::{Frame, frame, position_euler};
 use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
 
@@ -85,9 +86,32 @@ pub struct Object {
     pub size: [f64; 3],
     /// Colour as RGB bytes.
     pub colour: [u8; 3],
+    /// A shape's triangles relative to its frame, when they are not the primitive its
+    /// `size` makes ([`Mesh::primitive`]): meshes created or loaded, merged groups.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<Mesh>,
 }
 
 impl Object {
+    /// A shape's triangles relative to its frame: its own mesh, or the primitive of its
+    /// size (a plane when the z size is 0, else a cuboid). `None` for a dummy.
+    pub fn shape_mesh(&self) -> Option<std::borrow::Cow<'_, Mesh>> {
+        match (self.kind, &self.mesh) {
+            (ObjectType::Dummy, _) => None,
+            (ObjectType::Shape, Some(m)) => Some(std::borrow::Cow::Borrowed(m)),
+            (ObjectType::Shape, None) => Some(std::borrow::Cow::Owned(Mesh::primitive(self.size))),
+        }
+    }
+
+    /// The bounding box relative to the object's frame, min and max corners: its mesh's,
+    /// or `size` centred on the frame.
+    pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
+        match &self.mesh {
+            Some(m) => m.bounds(),
+            None => (self.size.map(|s| -s / 2.0), self.size.map(|s| s / 2.0)),
+        }
+    }
+
     /// The local frame (relative to the parent).
     pub fn local(&self) -> Frame {
         frame(self.position, self.orientation)
@@ -308,6 +332,11 @@ impl Scene {
                     return Err(bad(o, format!("{field}[{i}] is not a finite number")));
                 }
             }
+            if let Some(m) = &o.mesh
+                && let Err(e) = Mesh::new(m.vertices.clone(), m.indices.clone())
+            {
+                return Err(bad(o, format!("mesh: {e}")));
+            }
             if let Some(i) = o.size.iter().position(|v| *v < 0.0) {
                 return Err(bad(o, format!("size[{i}] is negative")));
             }
@@ -349,6 +378,7 @@ impl Scene {
             orientation: o.orientation,
             size: o.size,
             colour: o.colour,
+            mesh: None,
         });
         handle
     }
@@ -363,6 +393,19 @@ impl Scene {
         let handle = self.add(&name, o);
         self.rename(handle, None, Some(alias.to_string()));
         handle
+    }
+
+    /// Gives the shape `handle` the triangles `mesh` (relative to its frame) and, as its
+    /// size, the extent of their bounding box.
+    pub fn set_mesh(&mut self, handle: i32, mesh: Mesh) -> Result<(), SimError> {
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        let (min, max) = mesh.bounds();
+        o.size = [0, 1, 2].map(|k| (max[k] - min[k]).max(0.0));
+        o.mesh = Some(mesh);
+        Ok(())
     }
 
     /// The object with this handle.

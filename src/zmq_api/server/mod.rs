@@ -342,6 +342,37 @@ fn call_cost(timing: &Timing, func: &str, args: &[Value], outcome: &Outcome) -> 
     })
 }
 
+/// The modeled work of mesh shapes beyond a call's own cost (`crate::sim::shape_cost`): a
+/// created mesh by its triangles, a merge by the triangles of the shape it made.
+fn shape_work(state: &mut State, func: &str, args: &[Value], outcome: &Outcome) -> Duration {
+    use crate::sim::shape_cost;
+    let Outcome::Ret(values) = outcome else {
+        return Duration::ZERO;
+    };
+    match func {
+        "sim.createMeshShape" => match args.get(3) {
+            Some(Value::Array(indices)) => shape_cost::create_mesh(indices.len() / 3),
+            _ => Duration::ZERO,
+        },
+        "sim.groupShapes" => {
+            let Some(h) = values.first().and_then(cbor::int32) else {
+                return Duration::ZERO;
+            };
+            let mut triangles = 0;
+            state.host.with_sim(&mut |s| {
+                triangles = s
+                    .scene
+                    .get(h)
+                    .ok()
+                    .and_then(|o| o.shape_mesh().map(|m| m.triangles()))
+                    .unwrap_or(0);
+            });
+            shape_cost::merge_shapes(triangles)
+        }
+        _ => Duration::ZERO,
+    }
+}
+
 /// Calls the requested function and turns its outcome into the reply of `protocol`
 /// (protocol 2: a deferred result is parked under the request's uuid, answered `_*wait*_`).
 fn outcome_reply(
@@ -355,7 +386,10 @@ fn outcome_reply(
     state
         .host
         .with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
-    let work = call_cost(&state.config.timing, &req.func, &req.args, &outcome);
+    let mut work = call_cost(&state.config.timing, &req.func, &req.args, &outcome);
+    if state.config.timing.costs.is_some() {
+        work += shape_work(state, &req.func, &req.args, &outcome);
+    }
     let reply = match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
         Outcome::Err(e) => {
