@@ -29,6 +29,8 @@ use crate::draw::{
     ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
 
+mod mesh;
+
 impl From<ZmqError> for BackendError {
     fn from(e: ZmqError) -> BackendError {
         match e {
@@ -644,6 +646,10 @@ impl Backend for ZmqBackend {
     }
 
     fn lease(&mut self) -> Option<&mut dyn Lease> {
+        Some(self)
+    }
+
+    fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
     }
 }
