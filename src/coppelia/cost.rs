@@ -95,6 +95,23 @@ pub enum Op {
     /// One legacy drawing command (paste, set-parent, set-position, set-orientation,
     /// remove), its own work aside.
     LegacyCommand,
+    /// `sim.createMeshShape` of a mesh of `triangles` triangles ([`super::shape_cost`]).
+    CreateMesh {
+        /// Triangles of the mesh.
+        triangles: usize,
+    },
+    /// `sim.groupShapes` merging shapes of `triangles` triangles in all
+    /// ([`super::shape_cost`]).
+    MergeShapes {
+        /// Triangles of the merged shape.
+        triangles: usize,
+    },
+    /// Loading an XML model of `triangles` triangles (`simxLoadModel`, `sim.loadModel`;
+    /// [`super::model_cost`]).
+    LoadModel {
+        /// Triangles of the model's meshes.
+        triangles: usize,
+    },
 }
 
 /// The constants of the model (see the module documentation for the fit).
@@ -199,6 +216,9 @@ impl CostModel {
                 self.zmq_tree + per(self.zmq_tree_per_handle, handles as f64)
             }
             Op::LegacyCommand => self.legacy_command,
+            Op::CreateMesh { triangles } => super::shape_cost::create_mesh(triangles),
+            Op::MergeShapes { triangles } => super::shape_cost::merge_shapes(triangles),
+            Op::LoadModel { triangles } => super::model_cost::model_load(triangles),
         }
     }
 

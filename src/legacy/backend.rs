@@ -7,11 +7,13 @@ use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
 use crate::coppelia::{
-    DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION,
+    DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
 use crate::draw::{
-    Backend, BackendError, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
+    Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
+
+mod mesh;
 
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
 pub struct LegacyBackend {
@@ -22,6 +24,9 @@ pub struct LegacyBackend {
     /// Run once the connection is closed cleanly (the simulator acknowledged the kill
     /// command), not when it ended any other way.
     on_clean_close: Option<Box<dyn FnOnce() + Send>>,
+    /// The simulator runs on this machine (a loopback host): mesh models are loaded from a
+    /// temporary file by its path instead of being sent with `simxTransferFile`.
+    local: bool,
 }
 
 impl From<ClientError> for BackendError {
@@ -49,21 +54,28 @@ impl LegacyBackend {
             format!("{host}:{port}")
         };
         let client = Client::connect(&addr, opts)?;
+        let local = host.eq_ignore_ascii_case("localhost")
+            || host
+                .trim_matches(['[', ']'])
+                .parse::<std::net::IpAddr>()
+                .is_ok_and(|ip| ip.is_loopback());
         Ok(LegacyBackend {
             client: Some(client),
             timeout,
             addr,
             on_clean_close: None,
+            local,
         })
     }
 
-    /// Wraps a connected client.
+    /// Wraps a connected client to a simulator on this machine.
     pub fn new(client: Client, timeout: Duration) -> LegacyBackend {
         LegacyBackend {
             client: Some(client),
             timeout,
             addr: "a connected client".into(),
             on_clean_close: None,
+            local: true,
         }
     }
 
@@ -85,6 +97,13 @@ impl LegacyBackend {
             then();
         }
         Ok(())
+    }
+
+    /// Sends mesh models with `simxTransferFile` as for a simulator on another machine,
+    /// even when it is on this one.
+    pub fn transferring_models(mut self) -> LegacyBackend {
+        self.local = false;
+        self
     }
 
     fn client(&mut self) -> Result<&mut Client, BackendError> {
@@ -205,6 +224,37 @@ impl Backend for LegacyBackend {
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         let r = self.call(&group_commands())?;
         parse_objects(&r)
+    }
+
+    fn bounding_boxes(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
+        let cmds: Vec<Command> = handles
+            .iter()
+            .flat_map(|&handle| {
+                (0..6).map(move |k| Command::GetObjectFloatParam {
+                    handle,
+                    param: OBJFLOATPARAM_BBOX + k,
+                })
+            })
+            .collect();
+        let r = self.call(&cmds)?;
+        Ok(r.chunks(6)
+            .map(|six| {
+                let v: Option<Vec<f64>> = six
+                    .iter()
+                    .map(|r| {
+                        let b = r.data.get(..4).filter(|_| !r.remote_error)?;
+                        Some(f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64)
+                    })
+                    .collect();
+                v.map(|v| BoundingBox {
+                    min: [v[0], v[1], v[2]],
+                    max: [v[3], v[4], v[5]],
+                })
+            })
+            .collect())
     }
 
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
@@ -335,6 +385,10 @@ impl Backend for LegacyBackend {
     }
 
     /// Sends the kill command (as `simxFinish` does) and closes the socket.
+    fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
+        Some(self)
+    }
+
     fn close(&mut self) -> Result<(), BackendError> {
         Ok(self.close_client()?)
     }

@@ -31,6 +31,8 @@ pub mod id {
     pub const GET_OBJECTS: u16 = 0x102A;
     /// `simx_cmd_copy_paste_objects`.
     pub const COPY_PASTE_OBJECTS: u16 = 0x102E;
+    /// `simx_cmd_get_object_float_parameter`.
+    pub const GET_OBJECT_FLOAT_PARAMETER: u16 = 0x2007;
     /// `simx_cmd_get_object_group_data`.
     pub const GET_OBJECT_GROUP_DATA: u16 = 0x200C;
     /// `simx_cmd_get_object_orientation2`.
@@ -41,6 +43,12 @@ pub mod id {
     pub const GET_OBJECT_HANDLE: u16 = 0x3001;
     /// `simx_cmd_get_object_quaternion`.
     pub const GET_OBJECT_QUATERNION: u16 = 0x2801;
+    /// `simx_cmd_load_model`.
+    pub const LOAD_MODEL: u16 = 0x3003;
+    /// `simx_cmd_transfer_file`.
+    pub const TRANSFER_FILE: u16 = 0x3004;
+    /// `simx_cmd_erase_file`.
+    pub const ERASE_FILE: u16 = 0x3006;
     /// `simx_cmd_clear_integer_signal`.
     pub const CLEAR_INTEGER_SIGNAL: u16 = 0x300E;
     /// `simx_cmd_get_integer_signal`.
@@ -186,6 +194,14 @@ pub enum Command {
         /// Frame of the reply (as for [`Command::SetPosition`]).
         relative_to: i32,
     },
+    /// `simxGetObjectFloatParameter(handle, param)`: reply one f32 (e.g. the bounding box,
+    /// [`crate::coppelia::OBJFLOATPARAM_BBOX`]).
+    GetObjectFloatParam {
+        /// The object asked about.
+        handle: i32,
+        /// The parameter ID (`sim_objfloatparam_*`).
+        param: i32,
+    },
     /// `simxRemoveObject(handle)`.
     RemoveObject(i32),
     /// `simxGetIntegerParameter(param)`.
@@ -200,9 +216,27 @@ pub enum Command {
     SetIntSignal(String, i32),
     /// `simxClearIntegerSignal(name)`.
     ClearIntSignal(String),
+    /// `simxLoadModel(path, 0)`: loads a model file on the server's machine (names starting
+    /// with [`TEMP_FILE_PREFIX`] are in the server's folder for transferred files); reply
+    /// the model base's handle.
+    LoadModel(String),
+    /// `simxTransferFile`: writes `data` to the file `name` in the server's folder for
+    /// transferred files.
+    TransferFile {
+        /// The file's name on the server (no folder).
+        name: String,
+        /// The file's bytes.
+        data: Vec<u8>,
+    },
+    /// `simxEraseFile(name)`: removes a file the client transferred.
+    EraseFile(String),
     /// The kill block `simxFinish` sends.
     KillConnection,
 }
+
+/// Server-side file names starting with this are in the server's folder for transferred
+/// files (simExtRemoteApi `simxCmd.cpp`, `simx_cmd_load_model`).
+pub const TEMP_FILE_PREFIX: &str = "REMOTE_API_TEMPFILE_";
 
 fn cstr(s: &str) -> Vec<u8> {
     let mut b: Vec<u8> = s.bytes().filter(|&c| c != 0).collect();
@@ -249,6 +283,7 @@ impl Command {
             SetOrientation { .. } => id::SET_OBJECT_ORIENTATION,
             GetOrientation { .. } => id::GET_OBJECT_ORIENTATION,
             GetQuaternion { .. } => id::GET_OBJECT_QUATERNION,
+            GetObjectFloatParam { .. } => id::GET_OBJECT_FLOAT_PARAMETER,
             RemoveObject(_) => id::REMOVE_OBJECT,
             GetIntParam(_) => id::GET_INTEGER_PARAMETER,
             SetIntParam(..) => id::SET_INTEGER_PARAMETER,
@@ -256,6 +291,9 @@ impl Command {
             GetIntSignal(_) => id::GET_INTEGER_SIGNAL,
             SetIntSignal(..) => id::SET_INTEGER_SIGNAL,
             ClearIntSignal(_) => id::CLEAR_INTEGER_SIGNAL,
+            LoadModel(_) => id::LOAD_MODEL,
+            TransferFile { .. } => id::TRANSFER_FILE,
+            EraseFile(_) => id::ERASE_FILE,
             KillConnection => id::KILL_CONNECTION,
         }
     }
@@ -265,9 +303,12 @@ impl Command {
     pub fn to_block(&self, opmode: u32) -> Block {
         use Command::*;
         let (id_data, data, status) = match self {
-            GetObjectHandle(name) | GetIntSignal(name) | ClearIntSignal(name) => {
-                (cstr(name), vec![], 0)
-            }
+            GetObjectHandle(name)
+            | GetIntSignal(name)
+            | ClearIntSignal(name)
+            | LoadModel(name)
+            | EraseFile(name) => (cstr(name), vec![], 0),
+            TransferFile { name, data } => (cstr(name), data.clone(), 0),
             SetIntSignal(name, v) => (cstr(name), i32s(&[*v]), 0),
             GetObjects(t) => (i32s(&[*t]), vec![], 0),
             GetObjectGroupData {
@@ -311,6 +352,7 @@ impl Command {
                 handle,
                 relative_to,
             } => (i32s(&[*handle, *relative_to]), vec![], 0),
+            GetObjectFloatParam { handle, param } => (i32s(&[*handle, *param]), vec![], 0),
             SetIntParam(p, v) => (i32s(&[*p]), i32s(&[*v]), 0),
             Simulation(c) => (i32s(&[*c as i32]), vec![], 0),
             KillConnection => (vec![], i32s(&[0]), 0),
@@ -344,6 +386,12 @@ impl Command {
             id::GET_INTEGER_SIGNAL => Command::GetIntSignal(name(b)?),
             id::SET_INTEGER_SIGNAL => Command::SetIntSignal(name(b)?, dn(0)?),
             id::CLEAR_INTEGER_SIGNAL => Command::ClearIntSignal(name(b)?),
+            id::LOAD_MODEL => Command::LoadModel(name(b)?),
+            id::TRANSFER_FILE => Command::TransferFile {
+                name: name(b)?,
+                data: b.data.clone(),
+            },
+            id::ERASE_FILE => Command::EraseFile(name(b)?),
             id::GET_OBJECTS => Command::GetObjects(idn(0)?),
             id::GET_OBJECT_GROUP_DATA => Command::GetObjectGroupData {
                 object_type: idn(0)?,
@@ -390,6 +438,10 @@ impl Command {
             id::GET_OBJECT_ORIENTATION_OLD => Command::GetOrientation {
                 handle: idn(0)?,
                 relative_to: dn(0)?,
+            },
+            id::GET_OBJECT_FLOAT_PARAMETER => Command::GetObjectFloatParam {
+                handle: idn(0)?,
+                param: idn(1)?,
             },
             id::REMOVE_OBJECT => Command::RemoveObject(idn(0)?),
             id::GET_INTEGER_PARAMETER => Command::GetIntParam(idn(0)?),
@@ -536,12 +588,22 @@ mod tests {
                 relative_to: -1,
             },
             Command::RemoveObject(9),
+            Command::GetObjectFloatParam {
+                handle: 16,
+                param: 18,
+            },
             Command::GetIntParam(26),
             Command::SetIntParam(26, 0),
             Command::Simulation(SimControl::Stop),
             Command::GetIntSignal("s".into()),
             Command::SetIntSignal("vrep-maze".into(), 8),
             Command::ClearIntSignal("x".into()),
+            Command::LoadModel("/tmp/m.simmodel.xml".into()),
+            Command::TransferFile {
+                name: "REMOTE_API_TEMPFILE_1.simmodel.xml".into(),
+                data: b"<CoppeliaSim/>".to_vec(),
+            },
+            Command::EraseFile("REMOTE_API_TEMPFILE_1.simmodel.xml".into()),
             Command::KillConnection,
         ];
         for c in all {
@@ -557,6 +619,109 @@ mod tests {
         }
         .to_block(0);
         assert_eq!(sp.data, [7, 0, 0, 0, 0]);
+    }
+
+    fn hex(s: &str) -> Vec<u8> {
+        s.split_whitespace()
+            .map(|b| u8::from_str_radix(b, 16).unwrap())
+            .collect()
+    }
+
+    /// The message bytes of one blocking command in message 7, client time 0x12345 (the
+    /// layout of the spec's section 13 examples; sections 5.1, 5.2 and 12.22 for these IDs).
+    fn on_the_wire(c: &Command) -> Vec<u8> {
+        use crate::legacy::wire::{MAX_PACKET_SIZE, Message, MessageHeader, packetize};
+        let m = Message {
+            header: MessageHeader {
+                message_id: 7,
+                client_time: 0x12345,
+                ..Default::default()
+            },
+            blocks: vec![c.to_block(opmode::BLOCKING)],
+        };
+        packetize(&m.encode(), MAX_PACKET_SIZE)
+    }
+
+    #[test]
+    fn vectors_load_model_transfer_file_erase_file() {
+        // simxLoadModel("m.simmodel.xml", 0, blocking): 1-string class, ID = the path,
+        // no pure data; block 26 + 15 = 0x29 bytes, off0 = 15, cmd 0x00013003.
+        let load = hex(
+            "01 00 3b 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             29 00 00 00 29 00 00 00 0f 00 00 00 00 00 03 30 01 00 00 00 00 00 00 00 00 00
+             6d 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00",
+        );
+        assert_eq!(
+            on_the_wire(&Command::LoadModel("m.simmodel.xml".into())),
+            load
+        );
+        // simxTransferFile(.., "f.simmodel.xml", blocking) of the 4 bytes "<x/>": ID = the
+        // server-side name, pure data = the file; block 26 + 15 + 4 = 0x2d bytes.
+        let transfer = hex(
+            "01 00 3f 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             2d 00 00 00 2d 00 00 00 0f 00 00 00 00 00 04 30 01 00 00 00 00 00 00 00 00 00
+             66 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00 3c 78 2f 3e",
+        );
+        let file = Command::TransferFile {
+            name: "f.simmodel.xml".into(),
+            data: b"<x/>".to_vec(),
+        };
+        assert_eq!(on_the_wire(&file), transfer);
+        // simxEraseFile("f.simmodel.xml", blocking): cmd 0x00013006.
+        let erase = hex(
+            "01 00 3b 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             29 00 00 00 29 00 00 00 0f 00 00 00 00 00 06 30 01 00 00 00 00 00 00 00 00 00
+             66 2e 73 69 6d 6d 6f 64 65 6c 2e 78 6d 6c 00",
+        );
+        assert_eq!(
+            on_the_wire(&Command::EraseFile("f.simmodel.xml".into())),
+            erase
+        );
+    }
+
+    /// `simxGetObjectFloatParameter(16, 15 = bounding box min x, blocking)` as the C client
+    /// sends it (spec 12.15 in the block layout of section 13: ID = handle, parameter), and
+    /// the reply block carrying -0.3.
+    #[test]
+    fn vector_get_object_float_parameter() {
+        use super::super::wire::{Message, MessageHeader};
+        let hex = |s: &str| -> Vec<u8> {
+            s.split_whitespace()
+                .map(|b| u8::from_str_radix(b, 16).unwrap())
+                .collect()
+        };
+        let request = Command::GetObjectFloatParam {
+            handle: 16,
+            param: 15,
+        }
+        .to_block(opmode::BLOCKING);
+        let bytes = Message {
+            header: MessageHeader::default(),
+            blocks: vec![request.clone()],
+        }
+        .encode();
+        let want = hex("22 00 00 00 22 00 00 00 08 00 00 00 00 00 07 20 01 00 00 00
+             00 00 00 00 00 00 10 00 00 00 0f 00 00 00");
+        assert_eq!(&bytes[18..], &want[..]);
+        assert_eq!(
+            Command::from_block(&request),
+            Some(Command::GetObjectFloatParam {
+                handle: 16,
+                param: 15
+            })
+        );
+        let reply = super::super::wire::Block {
+            data: (-0.3f32).to_le_bytes().to_vec(),
+            ..request
+        };
+        let bytes = Message {
+            header: MessageHeader::default(),
+            blocks: vec![reply],
+        }
+        .encode();
+        let want = hex("26 00 00 00 26 00 00 00 08 00 00 00 00 00 07 20 01 00 00 00
+             00 00 00 00 00 00 10 00 00 00 0f 00 00 00 9a 99 99 be");
+        assert_eq!(&bytes[18..], &want[..]);
     }
 
     #[test]

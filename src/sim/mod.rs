@@ -7,6 +7,8 @@
 pub mod clock;
 pub mod cost;
 mod index;
+pub mod mesh;
+pub mod model;
 pub mod scene;
 pub mod svg;
 
@@ -14,6 +16,7 @@ use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
 pub use clock::{Clock, ZmqPacer, ZmqPacing};
 pub use cost::{Charge, CostModel, Op, Served, Timing};
+pub use mesh::{Mesh, MeshError};
 pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
 
 /// The program version we report (CoppeliaSim 4.5.1).
@@ -46,6 +49,9 @@ pub struct Simulator {
     /// When `Some`, the servers append what each request made the simulator do
     /// ([`cost::Charge`]), so a run against an instant emulator can be priced afterwards.
     pub ledger: Option<Vec<Charge>>,
+    /// Where files sent with `simxTransferFile` go (CoppeliaSim's
+    /// `sim_stringparam_remoteapi_temp_file_dir`); the system's temporary folder by default.
+    pub temp_dir: std::path::PathBuf,
 }
 
 impl Simulator {
@@ -58,6 +64,7 @@ impl Simulator {
             saved: None,
             int_signals: Default::default(),
             ledger: None,
+            temp_dir: std::env::temp_dir(),
         }
     }
 

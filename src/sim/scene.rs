@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::index::Index;
+use super::mesh::Mesh;
 use crate::coppelia::frame::{Frame, frame, position_euler};
 use crate::coppelia::{HANDLE_PARENT, HANDLE_WORLD};
 
@@ -85,12 +86,51 @@ pub struct Object {
     pub size: [f64; 3],
     /// Colour as RGB bytes.
     pub colour: [u8; 3],
+    /// A shape's triangles relative to its frame, when they are not the primitive its
+    /// `size` makes ([`Mesh::primitive`]): meshes created or loaded, merged groups.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<Mesh>,
 }
 
 impl Object {
+    /// A shape's triangles relative to its frame: its own mesh, or the primitive of its
+    /// size (a plane when the z size is 0, else a cuboid). `None` for a dummy.
+    pub fn shape_mesh(&self) -> Option<std::borrow::Cow<'_, Mesh>> {
+        match (self.kind, &self.mesh) {
+            (ObjectType::Dummy, _) => None,
+            (ObjectType::Shape, Some(m)) => Some(std::borrow::Cow::Borrowed(m)),
+            (ObjectType::Shape, None) => Some(std::borrow::Cow::Owned(Mesh::primitive(self.size))),
+        }
+    }
+
+    /// The bounding box relative to the object's frame, min and max corners: its mesh's,
+    /// or `size` centred on the frame.
+    pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
+        match &self.mesh {
+            Some(m) => m.bounds(),
+            None => (self.size.map(|s| -s / 2.0), self.size.map(|s| s / 2.0)),
+        }
+    }
+
     /// The local frame (relative to the parent).
     pub fn local(&self) -> Frame {
         frame(self.position, self.orientation)
+    }
+
+    /// Object float parameter `param` as `sim.getObjectFloatParam` gives it, `None` for one
+    /// the emulator does not model. 15..20 are the bounding box in the object's own frame
+    /// (min x, y, z, then max x, y, z): a mesh's box ([`Object::bounding_box`], which need not
+    /// be centred on its frame), else the size centred on the object: the course's `Line` plane
+    /// gives -0.3, -0.05, 0, 0.3, 0.05, 0 (`../shared/spec/real-coppeliasim-4.5.1.md`).
+    pub fn float_param(&self, param: i32) -> Option<f64> {
+        let k = usize::try_from(param.checked_sub(crate::coppelia::OBJFLOATPARAM_BBOX)?).ok()?;
+        let (min, max) = self.bounding_box();
+        // `+ 0.0` turns the -0 of an empty extent into 0, as CoppeliaSim answers
+        match k {
+            0..=2 => Some(min[k] + 0.0),
+            3..=5 => Some(max[k - 3] + 0.0),
+            _ => None,
+        }
     }
 }
 
@@ -308,6 +348,11 @@ impl Scene {
                     return Err(bad(o, format!("{field}[{i}] is not a finite number")));
                 }
             }
+            if let Some(m) = &o.mesh
+                && let Err(e) = Mesh::new(m.vertices.clone(), m.indices.clone())
+            {
+                return Err(bad(o, format!("mesh: {e}")));
+            }
             if let Some(i) = o.size.iter().position(|v| *v < 0.0) {
                 return Err(bad(o, format!("size[{i}] is negative")));
             }
@@ -349,8 +394,34 @@ impl Scene {
             orientation: o.orientation,
             size: o.size,
             colour: o.colour,
+            mesh: None,
         });
         handle
+    }
+
+    /// Adds an object as a loaded model's object is added: its alias kept, its name the alias
+    /// if no object has that name, else the name a pasted copy of it would get.
+    pub fn add_loaded(&mut self, alias: &str, o: NewObject) -> i32 {
+        let name = match self.index.named(alias) {
+            None => alias.to_string(),
+            Some(_) => self.copy_name(alias),
+        };
+        let handle = self.add(&name, o);
+        self.rename(handle, None, Some(alias.to_string()));
+        handle
+    }
+
+    /// Gives the shape `handle` the triangles `mesh` (relative to its frame) and, as its
+    /// size, the extent of their bounding box.
+    pub fn set_mesh(&mut self, handle: i32, mesh: Mesh) -> Result<(), SimError> {
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        let (min, max) = mesh.bounds();
+        o.size = [0, 1, 2].map(|k| (max[k] - min[k]).max(0.0));
+        o.mesh = Some(mesh);
+        Ok(())
     }
 
     /// The object with this handle.

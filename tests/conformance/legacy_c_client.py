@@ -55,7 +55,13 @@ sig = {
     "simxPauseCommunication": (I, [I, U]),
     "simxGetIntegerSignal": (I, [I, C.c_char_p, C.POINTER(I), I]),
     "simxSetIntegerSignal": (I, [I, C.c_char_p, I, I]),
+    "simxTransferFile": (I, [I, C.c_char_p, C.c_char_p, I, I]),
+    "simxLoadModel": (I, [I, C.c_char_p, U, C.POINTER(I), I]),
+    "simxEraseFile": (I, [I, C.c_char_p, I]),
+    "simxGetObjectFloatParameter": (I, [I, I, I, C.POINTER(F), I]),
 }
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MESH_MODEL = os.path.join(ROOT, "tests", "coppeliasim-xml", "mesh-two-rects-4.5.1.simmodel.xml")
 for name, (res, args) in sig.items():
     f = getattr(lib, name)
     f.restype, f.argtypes = res, args
@@ -101,10 +107,10 @@ def free_port():
     return p
 
 
-def start_server(port, dump, trace=None):
+def start_server(port, dump, trace=None, env=None):
     extra = ["--trace"] if trace else []
     p = subprocess.Popen([BIN, "serve", "--listen", f"127.0.0.1:{port}", "--idle-fps", "8", "--dump", dump] + extra,
-                         stdout=subprocess.PIPE, stderr=trace, text=True)
+                         stdout=subprocess.PIPE, stderr=trace, text=True, env=env)
     line = p.stdout.readline()
     if "legacy remote API on" not in line:
         raise SystemExit(f"serve did not start: {line!r}")
@@ -209,6 +215,14 @@ def main():
         run_apply(port)
     finally:
         stop(server)
+    port = free_port()
+    server_tmp = tempfile.mkdtemp()
+    server = start_server(port, os.path.join(tempfile.mkdtemp(), "scene3.json"),
+                          env=dict(os.environ, TMPDIR=server_tmp))
+    try:
+        run_models(port, server_tmp)
+    finally:
+        stop(server)
     print(f"legacy-conformance: {passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
 
@@ -249,6 +263,18 @@ def run(port, dump, server):
         rc, h = handle(cid, bad)
         # the server replies -1 with the error bit; the C client leaves the output untouched on error
         check(f"unknown name {bad!r} gives return code 8, output not written", rc == REMOTE and h == 12345, (rc, h))
+
+    # bounding box: float parameters 15..20 (spec 12.15; real 4.5.1: Line gives -0.3, -0.05, 0, 0.3, 0.05, 0)
+    bbox = []
+    for param in range(15, 21):
+        f = F(12345)
+        rc = lib.simxGetObjectFloatParameter(cid, hs["Line"], param, C.byref(f), BLOCKING)
+        bbox.append((rc, f.value))
+    check("simxGetObjectFloatParameter(Line, 15..20) is the bounding box",
+          all(rc == OK for rc, _ in bbox) and near([v for _, v in bbox], [-0.3, -0.05, 0, 0.3, 0.05, 0]), bbox)
+    f = F(12345)
+    rc = lib.simxGetObjectFloatParameter(cid, 987654, 15, C.byref(f), BLOCKING)
+    check("simxGetObjectFloatParameter of an unknown object: return code 8", rc == REMOTE, rc)
 
     # always-ok commands and failing group data (spec 12.2, 12.10-12.12, 14.11)
     p = I(99)
@@ -577,6 +603,43 @@ def run_apply(port):
     v = I(-1)
     lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
     check("after clear the idle rate is 8 again", v.value == 8, v.value)
+    lib.simxFinish(cid)
+
+
+def run_models(port, server_tmp):
+    """simxTransferFile, simxLoadModel and simxEraseFile with a model a real 4.5.1 wrote."""
+    cid = c_connect(port)
+    name = b"REMOTE_API_TEMPFILE_77.simmodel.xml"
+    rc = lib.simxTransferFile(cid, MESH_MODEL.encode(), name, 5000, BLOCKING)
+    sent = os.path.join(server_tmp, name.decode())
+    with open(MESH_MODEL, "rb") as f:
+        same = os.path.exists(sent) and open(sent, "rb").read() == f.read()
+    check("simxTransferFile writes the file into the server's folder for transferred files",
+          rc == OK and same, rc)
+    base = I(-1)
+    rc = lib.simxLoadModel(cid, name, 0, C.byref(base), BLOCKING)
+    rc2, h = handle(cid, "MazeMesh")
+    check("simxLoadModel of the transferred XML model gives its base, the shape MazeMesh",
+          rc == OK and rc2 == OK and h == base.value and base.value >= 0, (rc, rc2, h, base.value))
+    objs = scene_lines(cid)
+    rc, types = group(cid, 1)
+    kind = dict(zip(types["handles"], types["ints"])).get(base.value)
+    check("the loaded mesh is a shape (type 0) without parent, at the file's pose",
+          kind == 0 and objs.get(base.value, ("", -2))[:2] == ("MazeMesh", -1)
+          and near(objs[base.value][2:5], [0, 0, 0]), (kind, objs.get(base.value)))
+    rc = lib.simxEraseFile(cid, name, BLOCKING)
+    check("simxEraseFile removes the transferred file", rc == OK and not os.path.exists(sent), rc)
+    rc = lib.simxEraseFile(cid, name, BLOCKING)
+    check("erasing it again gives return code 8", rc == REMOTE, rc)
+    rc = lib.simxLoadModel(cid, MESH_MODEL.encode(), 0, C.byref(base), BLOCKING)
+    rc2, h = handle(cid, "MazeMesh0")
+    check("simxLoadModel(path on the server's machine, 0) loads it again, named MazeMesh0",
+          rc == OK and rc2 == OK and h == base.value, (rc, rc2, h, base.value))
+    rc = lib.simxLoadModel(cid, MESH_MODEL.encode(), 1, C.byref(base), BLOCKING)
+    check("simxLoadModel(option 1) fails with return code 8: the official client sends the file as .ttm",
+          rc == REMOTE, rc)
+    rc = lib.simxLoadModel(cid, b"/nonexistent/m.simmodel.xml", 0, C.byref(base), BLOCKING)
+    check("simxLoadModel of a missing file gives return code 8", rc == REMOTE, rc)
     lib.simxFinish(cid)
 
 

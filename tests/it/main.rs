@@ -19,6 +19,7 @@ mod interrupt;
 mod layering;
 mod legacy_client_server;
 mod legacy_draw;
+mod mesh_draw;
 mod messages;
 mod permissions;
 mod properties;

@@ -3,13 +3,16 @@
 
 use crate::coppelia::frame::rotation_from_euler;
 use crate::coppelia::{HANDLE_ALL, HANDLE_PARENT, HANDLE_WORLD};
+use std::path::PathBuf;
+
 use crate::legacy::command::{
     ALL_OBJECTS, Command, FIRST_OBJECT_TYPE, GroupData, LAST_OBJECT_TYPE, SimControl,
-    encode_handle_list, group,
+    TEMP_FILE_PREFIX, encode_handle_list, group,
 };
 use crate::legacy::wire::Block;
 use crate::sim::Simulator;
 use crate::sim::cost::{self, Op};
+use crate::sim::model::{self, Loaded};
 
 fn f32x3(v: [f64; 3]) -> Vec<u8> {
     v.iter().flat_map(|x| (*x as f32).to_le_bytes()).collect()
@@ -40,6 +43,59 @@ pub(super) fn ops(sim: &Simulator, block: &Block) -> Vec<Op> {
         _ => return vec![],
     };
     vec![Op::LegacyCommand, work]
+}
+
+/// Executes one command; returns (success, reply pure data, the work it made the simulator
+/// do). The work is [`ops`] from the scene before the command, plus for `simxLoadModel` the
+/// loading of what the file turned out to hold ([`Op::LoadModel`]).
+pub(super) fn execute_with_ops(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>, Vec<Op>) {
+    let mut work = ops(sim, block);
+    if let Some(Command::LoadModel(path)) = Command::from_block(block) {
+        let (ok, data, triangles) = load_model(sim, &path);
+        work.push(Op::LoadModel { triangles });
+        return (ok, data, work);
+    }
+    let (ok, data) = execute(sim, block);
+    (ok, data, work)
+}
+
+/// Where a file name of a load, transfer or erase command is on the server's machine: names
+/// starting with [`TEMP_FILE_PREFIX`] (and every transferred or erased file) in the folder
+/// for transferred files, other paths as given. A transferred or erased name must be a plain
+/// file name.
+fn server_path(sim: &Simulator, name: &str, transferred: bool) -> Option<PathBuf> {
+    let plain = !name.is_empty() && !name.contains(['/', '\\']) && name != "..";
+    if transferred || name.starts_with(TEMP_FILE_PREFIX) {
+        plain.then(|| sim.temp_dir.join(name))
+    } else {
+        Some(PathBuf::from(name))
+    }
+}
+
+/// `simxLoadModel(path, 0)`: (success, the base handle or -1, triangles loaded). Like
+/// CoppeliaSim, the reader is chosen by the ending: only `.simmodel.xml` files are read (a
+/// `.ttm` is CoppeliaSim's binary format, which the emulator does not read; spec "One object
+/// instead of thousands": an XML model sent under a `.ttm` name failed with return code 8).
+fn load_model(sim: &mut Simulator, path: &str) -> (bool, Vec<u8>, usize) {
+    let failed = (false, (-1i32).to_le_bytes().to_vec(), 0);
+    let Some(file) = server_path(sim, path, false) else {
+        return failed;
+    };
+    if !path.ends_with(crate::coppelia::xml::FileKind::Model.extension()) {
+        return failed;
+    }
+    let Ok(text) = std::fs::read_to_string(&file) else {
+        return failed;
+    };
+    let Ok(doc) = crate::coppelia::xml::read(&text) else {
+        return failed;
+    };
+    match model::load(&mut sim.scene, &doc) {
+        Ok(Loaded {
+            base, triangles, ..
+        }) => (true, base.to_le_bytes().to_vec(), triangles),
+        Err(_) => failed,
+    }
 }
 
 /// Executes one command; returns (success, reply pure data).
@@ -142,6 +198,13 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             }
             Err(_) => (false, vec![]),
         },
+        Command::GetObjectFloatParam { handle, param } => {
+            // failure when the simulator call fails (unknown object or parameter), spec 12.15
+            match scene.get(handle).ok().and_then(|o| o.float_param(param)) {
+                Some(v) => (true, (v as f32).to_le_bytes().to_vec()),
+                None => (false, vec![]),
+            }
+        }
         Command::RemoveObject(h) => (scene.remove(h).is_ok(), vec![]),
         Command::GetIntParam(p) => match sim.int_param(p) {
             Some(v) => (true, i32le(v)),
@@ -171,6 +234,20 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
                 sim.int_signals.remove(&name);
             }
             (true, vec![])
+        }
+        Command::LoadModel(path) => {
+            let (ok, data, _) = load_model(sim, &path);
+            (ok, data)
+        }
+        Command::TransferFile { name, data } => {
+            let written = server_path(sim, &name, true)
+                .is_some_and(|file| std::fs::write(file, &data).is_ok());
+            (written, vec![])
+        }
+        Command::EraseFile(name) => {
+            let erased = server_path(sim, &name, true)
+                .is_some_and(|file| std::fs::remove_file(file).is_ok());
+            (erased, vec![])
         }
         Command::KillConnection => (true, vec![]),
     }
@@ -262,6 +339,33 @@ mod tests {
 
     fn floats(v: &[f64]) -> Vec<f32> {
         v.iter().map(|x| *x as f32).collect()
+    }
+
+    /// Parameters 15..20 of the course `Line` are its bounding box as the real 4.5.1 gives
+    /// it; an unknown parameter or object fails.
+    #[test]
+    fn float_parameters_15_to_20_are_the_bounding_box() {
+        let (mut sim, _, line) = sim();
+        let got: Vec<f32> = (15..=20)
+            .map(|param| {
+                let data = run(
+                    &mut sim,
+                    Command::GetObjectFloatParam {
+                        handle: line,
+                        param,
+                    },
+                )
+                .expect("a bounding-box parameter");
+                f32::from_le_bytes(data[..4].try_into().unwrap())
+            })
+            .collect();
+        assert_eq!(got, [-0.3, -0.05, 0.0, 0.3, 0.05, 0.0]);
+        for (handle, param) in [(line, 14), (line, 21), (9999, 15)] {
+            assert_eq!(
+                run(&mut sim, Command::GetObjectFloatParam { handle, param }),
+                None
+            );
+        }
     }
 
     #[test]
@@ -390,6 +494,81 @@ mod tests {
             ]
         );
         assert!(ops(&sim, &block(Command::GetIntParam(0))).is_empty());
+    }
+
+    #[test]
+    fn a_transferred_model_loads_by_its_temporary_name_and_is_erased() {
+        let (mut sim, _, _) = sim();
+        let dir = tempfile::tempdir().unwrap();
+        sim.temp_dir = dir.path().to_path_buf();
+        let text = include_str!("../../../tests/coppeliasim-xml/mesh-two-rects-4.5.1.simmodel.xml");
+        let name = "REMOTE_API_TEMPFILE_42.simmodel.xml";
+        let sent = Command::TransferFile {
+            name: name.into(),
+            data: text.as_bytes().to_vec(),
+        };
+        assert!(run(&mut sim, sent).is_some());
+        assert_eq!(
+            std::fs::read_to_string(dir.path().join(name)).unwrap(),
+            text
+        );
+        let before = sim.scene.len();
+        let load = Command::LoadModel(name.into()).to_block(opmode::BLOCKING);
+        let (ok, data, work) = execute_with_ops(&mut sim, &load);
+        assert!(ok);
+        let base = read_i32(&data, 0).unwrap();
+        assert_eq!(sim.scene.get(base).unwrap().alias, "MazeMesh");
+        assert_eq!(sim.scene.len(), before + 1);
+        assert_eq!(
+            work,
+            [Op::LoadModel { triangles: 4 }],
+            "two rectangles: four triangles"
+        );
+        assert!(run(&mut sim, Command::EraseFile(name.into())).is_some());
+        assert!(!dir.path().join(name).exists());
+        assert!(run(&mut sim, Command::EraseFile(name.into())).is_none());
+        assert!(run(&mut sim, Command::LoadModel(name.into())).is_none());
+    }
+
+    #[test]
+    fn loads_and_transfers_that_cannot_work_fail_and_add_nothing() {
+        let (mut sim, _, _) = sim();
+        let dir = tempfile::tempdir().unwrap();
+        sim.temp_dir = dir.path().to_path_buf();
+        let text = include_str!("../../../tests/coppeliasim-xml/mesh-two-rects-4.5.1.simmodel.xml");
+        // The official client's temporary name for option 1 ends in .ttm: not read as XML.
+        let ttm = dir.path().join("REMOTE_API_TEMPFILE_1234.ttm");
+        std::fs::write(&ttm, text).unwrap();
+        let xml_path = dir.path().join("m.simmodel.xml");
+        std::fs::write(&xml_path, "<CoppeliaSim><filetype>exhaustiveModel").unwrap();
+        let scene = dir.path().join("s.simmodel.xml");
+        std::fs::write(
+            &scene,
+            include_str!("../../../tests/coppeliasim-xml/course-4.5.1.simscene.xml"),
+        )
+        .unwrap();
+        let before = sim.scene.len();
+        for path in [
+            "REMOTE_API_TEMPFILE_1234.ttm".to_string(),
+            xml_path.display().to_string(),
+            scene.display().to_string(),
+            dir.path()
+                .join("missing.simmodel.xml")
+                .display()
+                .to_string(),
+        ] {
+            let (ok, data) = execute(&mut sim, &Command::LoadModel(path.clone()).to_block(0));
+            assert!(!ok, "{path}");
+            assert_eq!(read_i32(&data, 0), Some(-1));
+        }
+        assert_eq!(sim.scene.len(), before);
+        for name in ["../escape.simmodel.xml", "a/b", ""] {
+            let sent = Command::TransferFile {
+                name: name.into(),
+                data: vec![1],
+            };
+            assert!(run(&mut sim, sent).is_none(), "{name}");
+        }
     }
 
     #[test]

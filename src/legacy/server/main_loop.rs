@@ -8,7 +8,7 @@
 //! discontinued. Their results wait in the output buffer for the next reply.
 //!
 //! With realistic [`Timing`](crate::sim::Timing), a pass also takes the modeled server work of
-//! the commands it executed ([`super::execute::ops`] priced by `crate::coppelia::cost`), at least
+//! the commands it executed ([`super::execute::execute_with_ops`] priced by `crate::coppelia::cost`), at least
 //! [`CostModel::legacy_pass_floor`](crate::sim::CostModel::legacy_pass_floor) at idle fps 0
 //! (`../shared/spec/real-coppeliasim-4.5.1.md`, "Pacing": a legacy blocking call at idle fps 0
 //! takes 9–10 ms): its results are held back until then, replies meanwhile carry none (message
@@ -22,7 +22,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use super::Shared;
-use super::execute::{execute, ops};
+use super::execute::execute_with_ops;
 use crate::legacy::command::opmode;
 use crate::legacy::wire::{Block, Message, MessageHeader, server_state, status};
 use crate::sim::{Served, SimState, Simulator, Timing};
@@ -186,8 +186,8 @@ impl Core {
                 return true;
             }
             s.last_exec = Some(now);
-            charge.ops.extend(ops(sim, &s.block));
-            let (ok, data) = execute(sim, &s.block);
+            let (ok, data, ops) = execute_with_ops(sim, &s.block);
+            charge.ops.extend(ops);
             reply.status = if ok { 0 } else { status::REMOTE_ERROR };
             reply.data = data;
             results.push(reply);

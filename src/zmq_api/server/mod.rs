@@ -367,6 +367,29 @@ fn tree_ops(outcome: &Outcome) -> Vec<Op> {
     vec![Op::ZmqTree { handles }]
 }
 
+/// The work of mesh shapes beyond a call's own cost (`crate::coppelia::shape_cost`), from
+/// the scene after the call: a created mesh by its triangles, a merge by the triangles of
+/// the shape it made.
+fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> Option<Op> {
+    let Outcome::Ret(values) = outcome else {
+        return None;
+    };
+    match func {
+        "sim.createMeshShape" => match args.get(3) {
+            Some(Value::Array(indices)) => Some(Op::CreateMesh {
+                triangles: indices.len() / 3,
+            }),
+            _ => None,
+        },
+        "sim.groupShapes" => {
+            let h = values.first().and_then(cbor::int32)?;
+            let triangles = sim.scene.get(h).ok()?.shape_mesh()?.triangles();
+            Some(Op::MergeShapes { triangles })
+        }
+        _ => None,
+    }
+}
+
 /// Calls the requested function and turns its outcome into the reply of `protocol`
 /// (protocol 2: a deferred result is parked under the request's uuid, answered `_*wait*_`).
 fn outcome_reply(
@@ -384,6 +407,7 @@ fn outcome_reply(
         if req.func == "sim.getObjectsInTree" {
             work = tree_ops(&outcome);
         }
+        work.extend(shape_ops(s, &req.func, &req.args, &outcome));
         work.push(Op::ZmqServe {
             objects: s.scene.len(),
         });

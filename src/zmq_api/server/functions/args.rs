@@ -78,6 +78,26 @@ impl<'a> Args<'a> {
             .ok_or_else(|| self.bad(i, "a table of handles"))
     }
 
+    /// Argument `i` as a table of numbers (a mesh's vertices), each as `f32`.
+    pub(super) fn floats(&self, i: usize) -> Result<Vec<f32>, String> {
+        self.get(i)
+            .and_then(cbor::array)
+            .and_then(|v| {
+                v.iter()
+                    .map(|x| cbor::number(x).map(|f| f as f32))
+                    .collect()
+            })
+            .ok_or_else(|| self.bad(i, "a table of numbers"))
+    }
+
+    /// Argument `i` as a table of 32-bit integers (a mesh's indices).
+    pub(super) fn ints(&self, i: usize) -> Result<Vec<i32>, String> {
+        self.get(i)
+            .and_then(cbor::array)
+            .and_then(|v| v.iter().map(cbor::int32).collect())
+            .ok_or_else(|| self.bad(i, "a table of integers"))
+    }
+
     /// Whether argument `i` is a table (tells the 4.6+ argument order from the 4.5 one).
     pub(super) fn is_table(&self, i: usize) -> bool {
         matches!(self.get(i), Some(Value::Array(_)))

@@ -4,7 +4,8 @@
 //!
 //! Handlers live in one unit per family: [`objects`] (finding, copying, removing, parenting),
 //! [`poses`] (positions, orientations, poses), [`state`] (simulation state, integer parameters
-//! and signals) and [`authoring`] (creating, naming and dressing objects, saving the scene).
+//! and signals), [`authoring`] (creating, naming and dressing objects, saving the scene) and
+//! [`shapes`] (mesh shapes: creating, reading back, merging).
 //! Argument orders of both CoppeliaSim generations are accepted where they differ
 //! (`sim.setObjectPosition(h, rel, pos)` up to 4.5, `(h, pos, rel)` from 4.6). Objects'
 //! special properties and shape parameters live in [`Extras`], beside the protocol-neutral scene.
@@ -14,6 +15,7 @@ mod authoring;
 mod constants;
 mod objects;
 mod poses;
+mod shapes;
 mod state;
 
 use std::collections::HashMap;
@@ -96,6 +98,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getObjectAlias", objects::get_object_alias),
     ("sim.setObjectAlias", authoring::set_object_alias),
     ("sim.getObjectType", objects::get_object_type),
+    ("sim.getObjectFloatParam", objects::get_object_float_param),
     ("sim.copyPasteObjects", objects::copy_paste_objects),
     ("sim.removeObjects", objects::remove_objects),
     ("sim.removeObject", objects::remove_object),
@@ -134,6 +137,10 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.setObjectInt32Param", authoring::set_object_int32_param),
     ("sim.getObjectInt32Param", authoring::get_object_int32_param),
     ("sim.saveScene", authoring::save_scene),
+    ("sim.createMeshShape", shapes::create_mesh_shape),
+    ("sim.getShapeMesh", shapes::get_shape_mesh),
+    ("sim.getShapeBB", shapes::get_shape_bb),
+    ("sim.groupShapes", shapes::group_shapes),
 ];
 
 /// Calls one function. `func` is the full dotted name (`sim.getObject`); a name the registry
