@@ -93,6 +93,9 @@ try:
     ok, msg = raises(lambda: sim.getObject("/Nope"), "does not exist")
     check("getObject of a missing path is an error", ok, msg)
     check("getObject with noError gives -1", sim.getObject("/Nope", {"noError": True}) == -1)
+    bbox = [sim.getObjectFloatParam(line, p) for p in range(15, 21)]
+    check("getObjectFloatParam(Line, 15..20) is the bounding box",
+          all(abs(a - b) < 1e-6 for a, b in zip(bbox, [-0.3, -0.05, 0, 0.3, 0.05, 0])), bbox)
 
     copies = sim.copyPasteObjects([line], 0)
     check("copyPasteObjects returns a list of new handles", isinstance(copies, list) and len(copies) == 1 and copies[0] > line, copies)
