@@ -1,7 +1,9 @@
 //! Pure drawing decisions: which objects belong to an earlier maze, and what to paste,
 //! reuse and remove.
 
-use super::{Handles, ObjectInfo, Pose};
+use std::collections::HashMap;
+
+use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
@@ -38,6 +40,73 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
             .strip_prefix(hash_base.unwrap_or(template))
             .and_then(|r| r.strip_prefix('#'))
             .is_some_and(digits)
+}
+
+/// Object type codes by handle, as a survey read them ([`super::Survey::kinds`]).
+pub type Kinds = HashMap<i32, i32>;
+
+/// `true` if `o` is a copy of the template named `template` whose type code is
+/// `template_kind`: named in its family (`Line0`, `Line#0`, `/Line[1]`, [`is_copy_name`])
+/// and, where both types are known, of the template's type (a dummy or a cuboid named
+/// `Line3` is no copy of the `Line` plane). The one test of what a drawing may reuse, move
+/// or remove: anything else is the user's.
+pub fn is_copy_of(
+    o: &ObjectInfo,
+    template: &str,
+    template_kind: Option<i32>,
+    kinds: &Kinds,
+) -> bool {
+    is_copy_name(&o.name, template)
+        && match (kinds.get(&o.handle), template_kind) {
+            (Some(kind), Some(template_kind)) => *kind == template_kind,
+            _ => true,
+        }
+}
+
+/// The objects of a survey sorted into those a drawing may consider and those it must
+/// leave alone ([`sort_out`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sorted {
+    /// Every object but the user's under the maze dummy or at the scene root: the named
+    /// objects, the templates' copies, and objects elsewhere in the scene.
+    pub objects: Vec<ObjectInfo>,
+    /// Names of the user's objects that a drawing could have mistaken for its own: the maze
+    /// dummy's children that are no copy of a template, and root objects named like a copy
+    /// but of another type. Left alone, and named in reports.
+    pub strangers: Vec<String>,
+}
+
+/// Sorts `objects` ([`Sorted`]): an object that is a child of the maze dummy or has no
+/// parent, is not one of the handles of `h`, not named as one of `templates` (line, wall,
+/// post) and no copy of any of them ([`is_copy_of`]) is the user's.
+pub fn sort_out(objects: &[ObjectInfo], h: &Handles, templates: &[&str], kinds: &Kinds) -> Sorted {
+    let named = [h.floor, h.parent, h.line, h.start, h.end];
+    let kind_of = |name: &str| {
+        objects
+            .iter()
+            .find(|o| o.name == name)
+            .and_then(|o| kinds.get(&o.handle).copied())
+    };
+    let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, kind_of(t))).collect();
+    let mut sorted = Sorted {
+        objects: Vec::with_capacity(objects.len()),
+        strangers: Vec::new(),
+    };
+    for o in objects {
+        let under_maze = o.parent == Some(h.parent);
+        let ours = !(under_maze || o.parent.is_none())
+            || named.contains(&o.handle)
+            || Some(o.handle) == h.post
+            || families
+                .iter()
+                .any(|(t, kind)| o.name == *t || is_copy_of(o, t, *kind, kinds));
+        if ours {
+            sorted.objects.push(o.clone());
+        } else if under_maze || families.iter().any(|(t, _)| is_copy_name(&o.name, t)) {
+            sorted.strangers.push(o.name.clone());
+        }
+    }
+    sorted
 }
 
 /// `true` if `o` is one of the `foreign` templates or named like a copy of one.
@@ -167,6 +236,151 @@ pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Opti
             p[0], p[1], p[2], e[2], e[0], e[1], want.x, want.y, want.z, want.yaw
         ))
     }
+}
+
+/// Tolerance on sizes (metres): a template's bounding box may differ from the layout's
+/// size by this much. CoppeliaSim keeps sizes in single precision (about 1e-7 relative: 0.1
+/// micrometre on a metre) and its object dialogs set sizes in millimetres, so half a
+/// millimetre is far above the simulator's noise and far below what a camera sees.
+pub const SIZE_TOLERANCE: f64 = 5e-4;
+
+/// What [`check_sizes`] found: refusals (the drawing would not be the layout) and warnings.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SizeCheck {
+    /// One line per template that contradicts the layout, with what to change.
+    pub refusals: Vec<String>,
+    /// Markers larger than a cell, sizes that could not be read.
+    pub warnings: Vec<String>,
+}
+
+/// `true` if two lengths are equal within [`SIZE_TOLERANCE`] (never with a NaN).
+fn same_size(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SIZE_TOLERANCE
+}
+
+/// A length for messages: metres with at most 4 decimals (`0.6`, `0.05`).
+fn metres(v: f64) -> String {
+    format!("{}", (v * 1e4).round() / 1e4)
+}
+
+/// `a x b [x c]` metres.
+fn extents(v: &[f64]) -> String {
+    v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
+}
+
+/// Compares the bounding boxes of the scene's template (`template`: `Line`, or `Wall` in a
+/// wall maze), post template, start and end markers with the sizes `drawing` was generated
+/// for. A template drawn from ([`Drawing::lines`] or [`Drawing::posts`] not empty) must have
+/// the layout's extents within [`SIZE_TOLERANCE`] (a line template its length along x and
+/// width along y; a wall and a post template all three, except that a wall between posts
+/// may be as long as a cell side, its ends hidden in the posts), else it is refused with the
+/// options to generate with or the size to give the template. A marker wider than a cell is
+/// a warning (it hides the neighbouring cells), as is a size the simulator did not give.
+pub fn check_sizes(
+    drawing: &Drawing,
+    names: &ObjectNames,
+    template: Option<BoundingBox>,
+    post: Option<BoundingBox>,
+    start: Option<BoundingBox>,
+    end: Option<BoundingBox>,
+) -> SizeCheck {
+    let mut check = SizeCheck::default();
+    let sizes = &drawing.sizes;
+    let differs = |scene: &[f64], layout: &[f64]| {
+        scene
+            .iter()
+            .zip(layout)
+            // NaN is never the same size
+            .any(|(s, l)| !same_size(*s, *l))
+    };
+    let unread = |name: &str, check: &mut SizeCheck| {
+        check.warnings.push(format!(
+            "the simulator did not give the size of `{name}`: not compared with the layout"
+        ));
+    };
+    let template_name = names.template(drawing.style);
+    // a line maze's template is its first line, a wall maze's is copied for every wall
+    if !drawing.lines.is_empty() {
+        match (template, drawing.style, sizes.wall) {
+            (None, ..) => unread(template_name, &mut check),
+            (Some(b), super::Style::Lines, _) => {
+                let have = b.size();
+                if differs(&have[..2], &sizes.line) {
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: generate with --line-length {} --line-width {}, or resize `{template_name}` to {} m",
+                        extents(&have[..2]),
+                        metres(sizes.line[0]),
+                        metres(sizes.line[1]),
+                        metres(have[0]),
+                        metres(have[1]),
+                        extents(&sizes.line)
+                    ));
+                }
+            }
+            (Some(b), super::Style::Walls, Some(wall)) => {
+                let have = b.size();
+                // between posts a wall may reach into them, up to their centres (a whole
+                // cell side): its ends are hidden inside the posts
+                let longest = if drawing.posts.is_empty() {
+                    wall[0]
+                } else {
+                    sizes.cell.max(wall[0])
+                };
+                let length_ok =
+                    have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
+                if !length_ok || differs(&have[1..], &wall[1..]) {
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): generate with --wall-length {} --wall-thickness {} --wall-height {}, or resize `{template_name}` to {} m",
+                        extents(&have),
+                        extents(&wall),
+                        metres(have[0]),
+                        metres(have[1]),
+                        metres(have[2]),
+                        extents(&wall)
+                    ));
+                }
+            }
+            (Some(_), super::Style::Walls, None) => {}
+        }
+    }
+    if let (Some(want), false) = (sizes.post, drawing.posts.is_empty()) {
+        match post {
+            None => unread(&names.post, &mut check),
+            Some(b) => {
+                let have = b.size();
+                if differs(&have, &want) {
+                    check.refusals.push(format!(
+                        "the scene's `{}` is {} m but the layout's posts are {} m: generate with --post-size {} (and --wall-height {}), or resize `{}` to {} m",
+                        names.post,
+                        extents(&have),
+                        extents(&want),
+                        metres(have[0].max(have[1])),
+                        metres(have[2]),
+                        names.post,
+                        extents(&want)
+                    ));
+                }
+            }
+        }
+    }
+    for (name, b) in [(&names.start, start), (&names.end, end)] {
+        match b {
+            None => unread(name, &mut check),
+            Some(b) => {
+                let have = b.size();
+                if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
+                    check.warnings.push(format!(
+                        "the scene's `{name}` is {} m but the cells are {} m: it covers the neighbouring cells; resize `{name}` to at most {} x {} m",
+                        extents(&have[..2]),
+                        metres(sizes.cell),
+                        metres(sizes.cell),
+                        metres(sizes.cell)
+                    ));
+                }
+            }
+        }
+    }
+    check
 }
 
 #[cfg(test)]

@@ -22,6 +22,7 @@ mod properties;
 mod schema;
 mod texture;
 mod trust;
+mod trust_draw;
 mod validate;
 mod walls;
 mod zmq_client_server;
