@@ -242,6 +242,18 @@ fn apply_claimed(
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
     // its posts unless this maze has posts too
     let foreign = foreign_copies(objects, &h, &names.foreign(style, posts));
+    if !drawing.template_drawn() {
+        let floor = objects
+            .iter()
+            .find(|o| o.handle == h.floor)
+            .map(world_frame)
+            .unwrap_or_default();
+        let mut templates = vec![(names.template(style), h.line)];
+        templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
+        report.warnings.extend(plan::templates_on_the_maze(
+            drawing, objects, &floor, &templates,
+        ));
+    }
     for part in &parts {
         report.reused += part.plan.reuse.len();
         report.removed += part.plan.remove.len();

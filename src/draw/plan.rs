@@ -383,6 +383,41 @@ pub fn check_sizes(
     check
 }
 
+/// Warnings for the templates a wall maze copies (`templates`: name and handle) that stand
+/// on the maze: within half a cell of the area its walls and posts cover, at or above the
+/// floor. They stay where the scene has them, so there they show as walls the layout does
+/// not have.
+pub fn templates_on_the_maze(
+    drawing: &Drawing,
+    objects: &[ObjectInfo],
+    floor: &Frame,
+    templates: &[(&str, i32)],
+) -> Vec<String> {
+    let poses = drawing.lines.iter().chain(&drawing.posts);
+    let margin = drawing.sizes.cell / 2.0;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in poses {
+        lo = [lo[0].min(p.x - margin), lo[1].min(p.y - margin)];
+        hi = [hi[0].max(p.x + margin), hi[1].max(p.y + margin)];
+    }
+    templates
+        .iter()
+        .filter_map(|(name, handle)| {
+            let o = objects.iter().find(|o| o.handle == *handle)?;
+            let (p, _) = relative_pose(floor, o);
+            let inside = (lo[0]..=hi[0]).contains(&p[0])
+                && (lo[1]..=hi[1]).contains(&p[1])
+                && p[2] >= 0.0;
+            inside.then(|| {
+                format!(
+                    "the template `{name}` stands on the maze at ({:.3}, {:.3}): it shows as a wall the layout does not have; move it off the maze (e.g. beside the floor)",
+                    p[0], p[1]
+                )
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -477,6 +512,44 @@ mod tests {
         );
         assert_eq!(foreign_copies(&objects, &h, &["Post"]), vec![12, 13]);
         assert_eq!(foreign_copies(&objects, &h, &["Line"]), vec![8]);
+    }
+
+    #[test]
+    fn only_copies_of_a_template_by_name_and_type_are_the_mazes() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+            post: None,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "MySensor", Some(2)),
+            obj(8, "Line1", Some(2)),
+            obj(9, "/Line[2]", None),
+            obj(10, "Line3", None),
+            obj(11, "Camera", None),
+            obj(12, "Wall0", Some(2)),
+            obj(13, "Other", Some(1)),
+        ];
+        // 0 shape, 4 dummy: Line1 and the root Line3 are dummies
+        let kinds: Kinds = [(3, 0), (6, 0), (7, 4), (8, 4), (9, 0), (10, 4), (12, 0)]
+            .into_iter()
+            .collect();
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &kinds);
+        let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
+        assert_eq!(kept, vec![1, 2, 3, 4, 5, 6, 9, 12, 13]);
+        assert_eq!(sorted.strangers, vec!["MySensor", "Line1", "Line3"]);
+        // a type nobody read: the name decides
+        let sorted = sort_out(&objects, &h, &["Line"], &Kinds::new());
+        assert_eq!(sorted.strangers, vec!["MySensor", "Wall0"]);
     }
 
     #[test]

@@ -24,7 +24,38 @@ backend_tests!(
     a_one_cell_maze_puts_the_template_below_the_floor,
     a_maze_without_a_record_of_home_hides_the_template_on_clear,
     a_wall_maze_sends_the_line_template_home,
+    a_wall_template_standing_on_the_maze_is_a_warning,
 );
+
+/// Class 4 for wall mazes: the `Wall` and `Post` templates stay where the scene has them,
+/// so one standing on the maze shows as an extra wall: a warning names it.
+fn a_wall_template_standing_on_the_maze_is_a_warning(kind: Kind) {
+    let k = kind.name();
+    let dir = TempDir::new().unwrap();
+    let s = kind.serve(Scene::course_walls(), 0);
+    let mut b = s.connect();
+    let walls = generated(&dir, "walls.json", &["--style", "walls", "--size", "3x3"]);
+    let r = apply(&mut *b, &walls).unwrap();
+    assert!(
+        r.warnings.is_empty(),
+        "{k}: the course Wall stands beside the floor: {:?}",
+        r.warnings
+    );
+    s.with_sim(|sim| {
+        let wall = sim.scene.resolve("Wall").unwrap();
+        sim.scene
+            .set_position(wall, HANDLE_WORLD, [0.5, 0.5, 0.1])
+            .unwrap();
+    });
+    let r = apply(&mut *b, &walls).unwrap();
+    assert!(
+        r.warnings.len() == 1 && r.warnings[0].contains("`Wall` stands on the maze"),
+        "{k}: {:?}",
+        r.warnings
+    );
+    drop(b);
+    s.shutdown();
+}
 
 /// An object of `kind` and `size` named `name`, under `parent` at (x, y, z).
 fn object(kind: ObjectType, parent: Option<i32>, at: [f64; 3], size: [f64; 3]) -> NewObject {
