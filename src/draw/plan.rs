@@ -552,6 +552,90 @@ mod tests {
         assert_eq!(sorted.strangers, vec!["MySensor", "Wall0"]);
     }
 
+    /// A bounding box of `size`, centred.
+    fn bbox(size: [f64; 3]) -> Option<BoundingBox> {
+        Some(BoundingBox {
+            min: size.map(|v| -v / 2.0),
+            max: size.map(|v| v / 2.0),
+        })
+    }
+
+    fn course_drawing() -> Drawing {
+        let layout = crate::layout::build_layout(&crate::layout::GenerateSpec::course(
+            crate::maze::Grid::new(3, 3).unwrap(),
+            crate::generate::Algorithm::Prim,
+            1,
+        ))
+        .unwrap();
+        Drawing::try_from(&layout).unwrap()
+    }
+
+    #[test]
+    fn sizes_within_half_a_millimetre_fit_and_others_are_refused_with_the_fix() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        let marker = bbox([1.0, 1.0, 0.0]);
+        let check = |line: [f64; 3]| check_sizes(&d, &names, bbox(line), None, marker, marker);
+        assert_eq!(check([0.6, 0.1, 0.0]), SizeCheck::default());
+        // single precision and millimetre dialogs: within 0.5 mm is the same size
+        assert_eq!(
+            check([0.6 + 4.9e-4, 0.1 - 4.9e-4, 0.0]),
+            SizeCheck::default()
+        );
+        let refused = check([0.6 + 6e-4, 0.1, 0.0]);
+        assert_eq!(refused.refusals.len(), 1, "{refused:?}");
+        let refused = check([0.3, 0.05, 0.0]).refusals.join("");
+        assert!(
+            refused.contains("`Line` is 0.3 x 0.05 m")
+                && refused.contains("generate with --line-length 0.3 --line-width 0.05")
+                && refused.contains("resize `Line` to 0.6 x 0.1 m"),
+            "{refused}"
+        );
+        assert_eq!(
+            check([f64::NAN, 0.1, 0.0]).refusals.len(),
+            1,
+            "NaN never fits"
+        );
+        // a marker wider than a cell is a warning; a size not read is said
+        let wide = check_sizes(
+            &d,
+            &names,
+            bbox([0.6, 0.1, 0.0]),
+            None,
+            bbox([1.2, 1.0, 0.0]),
+            None,
+        );
+        assert!(wide.refusals.is_empty());
+        assert_eq!(wide.warnings.len(), 2, "{wide:?}");
+        assert!(wide.warnings[0].contains("`Start` is 1.2 x 1 m but the cells are 1 m"));
+        assert!(wide.warnings[1].contains("did not give the size of `End`"));
+    }
+
+    #[test]
+    fn one_name_in_two_roles_is_refused_naming_both() {
+        assert!(ObjectNames::default().check_roles().is_ok());
+        let names = ObjectNames {
+            end: "/Floor".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.contains("`Floor` and `/Floor`") && e.contains("(--floor)") && e.contains("(--end)"),
+            "{e}"
+        );
+        let names = ObjectNames {
+            post: "Line".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "`Line` would be both the line template (--line) and the post template (--post)"
+            ),
+            "{e}"
+        );
+    }
+
     #[test]
     fn plan_reuses_pastes_removes() {
         assert_eq!(
