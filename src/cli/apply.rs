@@ -199,6 +199,8 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
     );
+    // two roles on one object: refused at once, before connecting
+    opts.names.check_roles()?;
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
     let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
@@ -264,6 +266,9 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
     let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
     if let Some(path) = &args.save_scene
         && !args.dry_run
     {
@@ -375,6 +380,9 @@ fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exi
         println!("stopped the simulation first");
     }
     println!("{report}");
+    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
+        println!("{line}");
+    }
     if !report.dry_run {
         println!("verified: every mesh read back, start and end in place");
     }

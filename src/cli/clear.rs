@@ -25,6 +25,7 @@ pub struct ClearArgs {
 
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
+    args.scene.names().check_roles()?;
     let interrupt = Interrupt::install()?;
     let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
     let opts = ClearOptions {
@@ -58,6 +59,12 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     };
     if let Some(fps) = report.restored_idle_fps {
         outln!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)")?;
+    }
+    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
+        println!("{line}");
+    }
+    if let Some(line) = &report.template {
+        println!("{line}");
     }
     if report.removed.is_empty() {
         outln!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;

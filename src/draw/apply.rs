@@ -8,6 +8,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
@@ -99,6 +100,12 @@ pub struct ApplyReport {
     pub stopped_simulation: bool,
     /// Dry run: nothing was changed.
     pub dry_run: bool,
+    /// What the user should know: markers larger than a cell, sizes not read
+    /// ([`plan::check_sizes`]).
+    pub warnings: Vec<String>,
+    /// The user's objects under the maze dummy (and root objects named like copies of a
+    /// template but of another type): left alone ([`plan::sort_out`]).
+    pub left_alone: Vec<String>,
 }
 
 impl std::fmt::Display for ApplyReport {
@@ -148,6 +155,8 @@ pub fn apply(
     opts: &ApplyOptions,
     progress: &mut dyn FnMut(Stage),
 ) -> Result<ApplyReport, DrawError> {
+    // two roles on one object: refused before anything is sent
+    opts.names.check_roles()?;
     let started = Instant::now();
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
@@ -203,12 +212,17 @@ fn apply_claimed(
     let posts = !drawing.posts.is_empty();
     let survey = scene.survey(&names.survey(style))?;
     let h = resolve_handles(names, style, &survey, posts)?;
+    let sizes = sizes_of(scene, drawing, names, &h)?;
+    if !sizes.refusals.is_empty() {
+        return Err(DrawError::Sizes(sizes.refusals));
+    }
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
         style,
         lines: drawing.lines.len(),
         posts: drawing.posts.len(),
         dry_run: opts.dry_run,
+        warnings: sizes.warnings,
         ..Default::default()
     };
     if survey.simulation_running {
@@ -220,10 +234,14 @@ fn apply_claimed(
             report.stopped_simulation = true;
         }
     }
+    // only the templates' copies are the maze's: the user's objects stay as they are
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
+    report.left_alone = sorted.strangers;
+    let objects = &sorted.objects;
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
     let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    let mut existing = maze_lines(&survey.objects, &h, names.template(style), &others);
+    let mut existing = maze_lines(objects, &h, names.template(style), &others);
     existing.retain(|x| !meshes.contains(x));
     let copies_needed = drawing
         .lines
@@ -236,7 +254,7 @@ fn apply_claimed(
         plan: plan::plan(&existing, copies_needed),
     }];
     if let Some(template) = h.post.filter(|_| posts) {
-        let existing = foreign_copies(&survey.objects, &h, &[&names.post]);
+        let existing = foreign_copies(objects, &h, &[&names.post]);
         parts.push(Part {
             template,
             template_drawn: false,
@@ -246,9 +264,21 @@ fn apply_claimed(
     }
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
     // its posts unless this maze has posts too
-    let mut foreign = foreign_copies(&survey.objects, &h, &names.foreign(style, posts));
+    let mut foreign = foreign_copies(objects, &h, &names.foreign(style, posts));
     foreign.retain(|x| !meshes.contains(x));
     foreign.extend(meshes);
+    if !drawing.template_drawn() {
+        let floor = objects
+            .iter()
+            .find(|o| o.handle == h.floor)
+            .map(world_frame)
+            .unwrap_or_default();
+        let mut templates = vec![(names.template(style), h.line)];
+        templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
+        report.warnings.extend(plan::templates_on_the_maze(
+            drawing, objects, &floor, &templates,
+        ));
+    }
     for part in &parts {
         report.reused += part.plan.reuse.len();
         report.removed += part.plan.remove.len();
@@ -265,6 +295,17 @@ fn apply_claimed(
         blocks_per_round: opts.paste_blocks_per_round,
     }));
     if !opts.dry_run {
+        let line_template = survey.handles.get(5).copied().flatten();
+        keep_home(
+            scene,
+            drawing,
+            &h,
+            objects,
+            !existing.is_empty(),
+            line_template,
+            names,
+            &mut report,
+        )?;
         let mut run = Drawer {
             scene,
             drawing,
@@ -275,10 +316,93 @@ fn apply_claimed(
             report: &mut report,
             objects_in_scene: survey.objects.len(),
             placed: 0,
+            kinds: &survey.kinds,
         };
-        run.draw(&survey.objects, &parts, &foreign)?;
+        run.draw(objects, &parts, &foreign)?;
     }
     Ok(report)
+}
+
+/// Keeps the line template's home ([`home`]) before a drawing moves it: a line maze
+/// records where the template stands now, unless a record of it exists; if earlier copies
+/// exist without a record (a maze drawn by an older version), the template already lies on
+/// a line, so its home is taken to be below the floor (said in a warning). A wall maze
+/// puts a line template that has a record (the first line of a line maze it replaces)
+/// back home and deletes the record.
+#[allow(clippy::too_many_arguments)]
+fn keep_home(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    earlier_maze: bool,
+    line_template: Option<i32>,
+    names: &ObjectNames,
+    report: &mut ApplyReport,
+) -> Result<(), DrawError> {
+    let record = home::read(scene)?;
+    let floor = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+        .unwrap_or_default();
+    if !drawing.template_drawn() {
+        if let Some(home) = record.filter(|r| Some(r.handle) == line_template) {
+            scene.edit(&[home.edit(h.floor)])?;
+            home::forget(scene)?;
+        }
+        return Ok(());
+    }
+    if record.is_some_and(|r| r.handle == h.line) {
+        return Ok(());
+    }
+    let Some(template) = objects.iter().find(|o| o.handle == h.line) else {
+        return Ok(());
+    };
+    let (position, orientation) = plan::relative_pose(&floor, template);
+    let home = if earlier_maze {
+        report.warnings.push(format!(
+            "no record of where `{}` stood before the first apply (a maze drawn by an older vrep-maze): `clear` will put it below the floor, out of sight",
+            names.line
+        ));
+        let hidden = home::Home::hidden(position[0], position[1]);
+        home::Home {
+            handle: h.line,
+            position: crate::draw::position(&hidden),
+            orientation: crate::draw::euler(&hidden),
+        }
+    } else {
+        home::Home {
+            handle: h.line,
+            position,
+            orientation,
+        }
+    };
+    home::write(scene, &home)?;
+    Ok(())
+}
+
+/// Reads the bounding boxes of the template, post template (if the drawing has posts), start
+/// and end in one request (legacy) and compares them with the drawing's sizes.
+pub(crate) fn sizes_of(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+    h: &Handles,
+) -> Result<plan::SizeCheck, DrawError> {
+    let post = h.post.filter(|_| !drawing.posts.is_empty());
+    let mut asked = vec![h.line, h.start, h.end];
+    asked.extend(post);
+    let boxes = scene.bounding_boxes(&asked)?;
+    let get = |k: usize| boxes.get(k).copied().flatten();
+    Ok(plan::check_sizes(
+        drawing,
+        names,
+        get(0),
+        post.and_then(|_| get(3)),
+        get(1),
+        get(2),
+    ))
 }
 
 /// One template's copies in a drawing: the style's (lines or walls), or the posts.
@@ -306,6 +430,8 @@ struct Drawer<'a, 'p> {
     objects_in_scene: usize,
     /// Lines whose place has been sent (or found right).
     placed: usize,
+    /// Type codes the survey read ([`plan::sort_out`]).
+    kinds: &'a plan::Kinds,
 }
 
 impl Drawer<'_, '_> {
@@ -352,13 +478,9 @@ impl Drawer<'_, '_> {
                 placed_now += 1;
             }
             if part.poses.is_empty() && part.template_drawn {
-                // no segment (a 1-cell maze): hide the template under Start rather than
-                // leave it lying
-                let hidden = Pose {
-                    z: (drawing.start.z - 0.001).max(0.0),
-                    yaw: drawing.start.yaw,
-                    ..drawing.start
-                };
+                // no segment (a 1-cell maze): the template goes below the floor, out of
+                // every camera's sight, rather than lie on the maze
+                let hidden = home::Home::hidden(drawing.start.x, drawing.start.y);
                 let t = part.template;
                 self.place(&mut edits, known(t), &floor, t, &hidden, None);
             }
@@ -429,6 +551,7 @@ impl Drawer<'_, '_> {
             self.scene.objects()?
         };
         self.claim.check(self.scene, "while verifying")?;
+        let after = plan::sort_out(&after, h, &self.opts.names.templates(), self.kinds).objects;
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());
             drawn.get(p).map_or(&[][..], |d| &d[..poses.min(d.len())])

@@ -7,9 +7,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::apply::raised;
+use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{foreign_copies, maze_lines};
-use super::{Backend, DrawError, Edit, ObjectNames, Style, resolve_handles};
+use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
+use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
 
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -22,6 +23,64 @@ pub struct ClearReport {
     pub restored_idle_fps: Option<i32>,
     /// The simulation was running and [`ClearOptions::stop_simulation`] stopped it first.
     pub stopped_simulation: bool,
+    /// The user's objects under the maze dummy: left alone ([`plan::sort_out`]).
+    pub left_alone: Vec<String>,
+    /// Where the line template went (one line), if it moved: back home, or below the floor
+    /// when its home was never recorded ([`home`]).
+    pub template: Option<String>,
+}
+
+/// Puts the line template back where it stood before the first `apply` ([`home`]) and
+/// deletes the record. Without a record, a template that `drawn` says was the first line
+/// of a maze (drawn by an older version) goes below the floor, out of sight. Says what it
+/// did (or, with `dry_run`, would do).
+fn send_home(
+    scene: &mut dyn Backend,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    drawn: bool,
+    names: &ObjectNames,
+    dry_run: bool,
+) -> Result<Option<String>, DrawError> {
+    let verb = if dry_run { "would put" } else { "put" };
+    let template = &names.line;
+    if let Some(home) = home::read(scene)?.filter(|r| r.handle == h.line) {
+        if !dry_run {
+            scene.edit(&[home.edit(h.floor)])?;
+            home::forget(scene)?;
+        }
+        return Ok(Some(format!(
+            "{verb} `{template}` back where it stood before the first apply"
+        )));
+    }
+    let floor = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+        .unwrap_or_default();
+    let Some((position, _)) = objects
+        .iter()
+        .find(|o| o.handle == h.line)
+        .map(|o| relative_pose(&floor, o))
+    else {
+        return Ok(None);
+    };
+    if !drawn || position[2] < 0.0 {
+        return Ok(None);
+    }
+    let hidden = home::Home::hidden(position[0], position[1]);
+    if !dry_run {
+        scene.edit(&[Edit::SetPose {
+            handle: h.line,
+            relative_to: h.floor,
+            position: crate::draw::position(&hidden),
+            orientation: crate::draw::euler(&hidden),
+        }])?;
+    }
+    Ok(Some(format!(
+        "no record of where `{template}` stood before the first apply (a maze drawn by an older vrep-maze): {verb} it below the floor at ({:.3}, {:.3}), out of sight; move it where you want it",
+        position[0], position[1]
+    )))
 }
 
 /// How [`clear`] runs.
@@ -41,6 +100,7 @@ pub struct ClearOptions {
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
 /// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
 pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
+    opts.names.check_roles()?;
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
     let (mut report, rates) = raised(scene, opts.dry_run, |scene| {
@@ -81,16 +141,18 @@ fn clear_claimed(
             stopped_simulation = true;
         }
     }
+    // only the templates' copies are the maze's: the user's objects stay as they are
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
     let others = names.others(style);
-    let mut doomed = maze_lines(&survey.objects, &h, names.template(style), &others);
-    doomed.extend(foreign_copies(&survey.objects, &h, &others));
-    // a mesh maze (`--draw mesh`): its holder and meshes
+    let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
+    doomed.extend(foreign_copies(&sorted.objects, &h, &others));
+    // a mesh maze (`--draw mesh`): its holder and meshes, ours by name
     for m in super::mesh::leftovers(scene, names, &h, &survey.objects)? {
         if !doomed.contains(&m) {
             doomed.push(m);
         }
     }
-    let names_by_handle: HashMap<i32, &str> = survey
+    let names_by_handle: HashMap<i32, &str> = sorted
         .objects
         .iter()
         .map(|o| (o.handle, o.name.as_str()))
@@ -121,10 +183,24 @@ fn clear_claimed(
             scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
         }
     }
+    let template = if style == Style::Lines {
+        send_home(
+            scene,
+            &h,
+            &sorted.objects,
+            !doomed.is_empty(),
+            names,
+            dry_run,
+        )?
+    } else {
+        None
+    };
     Ok(ClearReport {
+        template,
         removed,
         round_trips: 0,
         restored_idle_fps: None,
         stopped_simulation,
+        left_alone: sorted.strangers,
     })
 }

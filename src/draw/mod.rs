@@ -10,6 +10,7 @@
 pub mod apply;
 pub mod clear;
 pub mod estimate;
+pub mod home;
 pub mod lease;
 pub mod mesh;
 pub mod plan;
@@ -50,6 +51,23 @@ pub struct Drawing {
     pub start: Pose,
     /// Pose of the end marker.
     pub end: Pose,
+    /// The sizes the layout was generated for, which the templates and markers must have.
+    pub sizes: Sizes,
+}
+
+/// The sizes a layout was generated for ([`plan::check_sizes`] compares the scene's
+/// templates and markers with them).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Sizes {
+    /// Side of a cell, metres.
+    pub cell: f64,
+    /// Line template: length (x) and width (y), metres.
+    pub line: [f64; 2],
+    /// Wall template of a wall maze: length (x), thickness (y), height (z), metres.
+    pub wall: Option<[f64; 3]>,
+    /// Post template of a wall maze with posts: x, y, z, metres.
+    pub post: Option<[f64; 3]>,
 }
 
 /// Names of the scene objects a drawing needs.
@@ -104,6 +122,11 @@ impl ObjectNames {
         self.for_style(Style::Lines)
     }
 
+    /// Every template: line, wall, post ([`plan::sort_out`] keeps their copies).
+    pub fn templates(&self) -> [&str; 3] {
+        [&self.line, &self.wall, &self.post]
+    }
+
     /// The template `style` copies.
     pub fn template(&self, style: Style) -> &str {
         match style {
@@ -151,6 +174,51 @@ impl ObjectNames {
         names
     }
 
+    /// Every role with the option that names its object and that name: floor, parent,
+    /// line, wall, post, start, end.
+    pub fn roles(&self) -> [(&'static str, &str); 7] {
+        [
+            ("the floor (--floor)", &self.floor),
+            ("the maze dummy (--parent)", &self.parent),
+            ("the line template (--line)", &self.line),
+            ("the wall template (--wall)", &self.wall),
+            ("the post template (--post)", &self.post),
+            ("the start marker (--start)", &self.start),
+            ("the end marker (--end)", &self.end),
+        ]
+    }
+
+    /// The roles of [`ObjectNames::survey`]'s names, in its order.
+    fn survey_roles(&self, style: Style) -> [&'static str; 7] {
+        let [floor, parent, line, wall, post, start, end] = self.roles().map(|(r, _)| r);
+        match style {
+            Style::Lines => [floor, parent, line, start, end, wall, post],
+            Style::Walls => [floor, parent, wall, start, end, line, post],
+        }
+    }
+
+    /// Refuses two roles given one name (`Maze` and `/Maze` are one name: a ZeroMQ path
+    /// of the scene root): one object cannot be the floor and the maze dummy, a template
+    /// and a marker, ... Pure, so it is checked before anything is sent.
+    pub fn check_roles(&self) -> Result<(), DrawError> {
+        let roles = self.roles();
+        let key = |n: &str| n.strip_prefix('/').unwrap_or(n).to_string();
+        for (i, (first, a)) in roles.iter().enumerate() {
+            if let Some((second, b)) = roles[i + 1..].iter().find(|(_, b)| key(a) == key(b)) {
+                return Err(DrawError::SameObject {
+                    names: if a == b {
+                        format!("`{a}`")
+                    } else {
+                        format!("`{a}` and `{b}`")
+                    },
+                    first,
+                    second,
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// What a missing object is and how to create it (one line).
     pub fn how_to_create(&self, name: &str) -> String {
         let role = if name == self.floor {
@@ -175,6 +243,27 @@ impl ObjectNames {
 /// Where [`ObjectNames::survey`] puts the post template: after floor, parent, template,
 /// start, end and the other style's template.
 pub const POST_IN_SURVEY: usize = 6;
+
+/// "left alone: N object(s) of yours under `Maze` that are no copies of a template: a, b,
+/// ..." naming at most the first few, for the reports of `apply` and `clear` (`None` when
+/// there are none).
+pub fn left_alone_line(left_alone: &[String], parent: &str) -> Option<String> {
+    const NAMED: usize = 8;
+    if left_alone.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = left_alone.iter().take(NAMED).map(String::as_str).collect();
+    let more = if left_alone.len() > NAMED {
+        format!(", ... ({} more)", left_alone.len() - NAMED)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "left alone: {} object(s) under `{parent}` or at the scene root that are no copies of a template (not the maze's): {}{more}",
+        left_alone.len(),
+        shown.join(", ")
+    ))
+}
 
 /// Name of the integer signal in which `apply` records the user's idle rate while it runs.
 pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
@@ -219,7 +308,8 @@ pub struct ObjectInfo {
 }
 
 /// An object's bounding box in its own frame (`sim_objfloatparam_objbbox_*`, parameters
-/// 15..20), as a simulator reports it (single precision).
+/// 15..20), as a simulator reports it: single precision, so compare sizes with
+/// [`plan::SIZE_TOLERANCE`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoundingBox {
     /// Minimum x, y, z.
@@ -246,6 +336,10 @@ pub struct Survey {
     pub objects: Vec<ObjectInfo>,
     /// Simulation not stopped.
     pub simulation_running: bool,
+    /// Object type codes (`sim_object_*_type`: 0 shape, 4 dummy, ...) by handle, of the
+    /// objects a backend read the type of: at least the named ones and those of
+    /// [`Survey::objects`] that may be copies of a template ([`plan::Kinds`]).
+    pub kinds: std::collections::HashMap<i32, i32>,
 }
 
 /// The idle rate now and the user's rate recorded by an interrupted run.
@@ -325,6 +419,10 @@ pub trait Backend {
     /// for all, ZeroMQ one call per parameter and object.
     fn bounding_boxes(&mut self, handles: &[i32])
     -> Result<Vec<Option<BoundingBox>>, BackendError>;
+    /// Reads the integer signals `names` (`None`: not set), legacy in one request.
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError>;
+    /// Sets (`Some`) or clears (`None`) integer signals in order, legacy in one request.
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError>;
     /// Copy-pastes each group; returns the new handles of each group.
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError>;
     /// Applies edits in order.
@@ -423,6 +521,22 @@ pub enum DrawError {
         /// How to create each, one line per name.
         hints: Vec<String>,
     },
+    /// Two roles name one object ([`ObjectNames::check_roles`], or two names the scene
+    /// resolves to one handle): refused before any edit.
+    #[error("{names} would be both {first} and {second}: one object cannot play two roles")]
+    SameObject {
+        /// The name, or the two names of the one object.
+        names: String,
+        /// The first role, with its option.
+        first: &'static str,
+        /// The second role, with its option.
+        second: &'static str,
+    },
+    /// The scene's templates are not the size the layout was generated for
+    /// ([`plan::check_sizes`]): refused before any edit, one line per template with what
+    /// to change.
+    #[error("the scene's templates do not fit the layout: {}", .0.join("; "))]
+    Sizes(Vec<String>),
     /// The simulation runs; edits would be lost when it stops.
     #[error("the simulation is running: changes made now would be discarded when it stops")]
     SimulationRunning,
@@ -470,6 +584,12 @@ impl DrawError {
             DrawError::Verify(problems) if problems.iter().any(|p| p.contains("NaN")) => vec![
                 "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
             ],
+            DrawError::Sizes(_) => vec![
+                "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
+            ],
+            DrawError::SameObject { .. } => vec![
+                "give each role its own object: pass the right name to one of the two options (see --help for the defaults)".into(),
+            ],
             DrawError::Verify(_) => {
                 vec!["run the same command again: it repairs what differs".into()]
             }
@@ -495,6 +615,24 @@ pub fn resolve_handles(
     survey: &Survey,
     posts: bool,
 ) -> Result<Handles, DrawError> {
+    names.check_roles()?;
+    let roles = names.survey_roles(style);
+    let asked = names.survey(style);
+    for (i, h) in survey.handles.iter().enumerate() {
+        let Some(h) = h else { continue };
+        if let Some(j) = survey.handles[i + 1..]
+            .iter()
+            .position(|other| *other == Some(*h))
+            .map(|k| i + 1 + k)
+            && let (Some(first), Some(second)) = (roles.get(i), roles.get(j))
+        {
+            return Err(DrawError::SameObject {
+                names: format!("`{}` and `{}`", asked[i], asked[j]),
+                first,
+                second,
+            });
+        }
+    }
     let post = survey.handles.get(POST_IN_SURVEY).copied().flatten();
     let mut missing: Vec<String> = names
         .for_style(style)
@@ -536,12 +674,26 @@ impl TryFrom<&crate::layout::Layout> for Drawing {
             Style::Lines => layout.segments.clone(),
             Style::Walls => layout.walls.clone(),
         };
+        let wall = layout
+            .wall
+            .as_ref()
+            .map(|w| [w.length, w.thickness, w.height]);
         Ok(Drawing {
             style: layout.style,
             lines,
             posts: layout.posts.clone(),
             start: layout.start.pose,
             end: layout.end.pose,
+            sizes: Sizes {
+                cell: layout.grid.cell_size,
+                line: [layout.line.length, layout.line.width],
+                wall,
+                post: layout
+                    .post
+                    .as_ref()
+                    .zip(wall)
+                    .map(|(p, w)| [p.size, p.size, w[2]]),
+            },
         })
     }
 }

@@ -1,7 +1,9 @@
 //! Pure drawing decisions: which objects belong to an earlier maze, and what to paste,
 //! reuse and remove.
 
-use super::{Handles, ObjectInfo, Pose};
+use std::collections::HashMap;
+
+use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
@@ -38,6 +40,74 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
             .strip_prefix(hash_base.unwrap_or(template))
             .and_then(|r| r.strip_prefix('#'))
             .is_some_and(digits)
+}
+
+/// Object type codes by handle, as a survey read them ([`super::Survey::kinds`]).
+pub type Kinds = HashMap<i32, i32>;
+
+/// `true` if `o` is a copy of the template named `template` whose type code is
+/// `template_kind`: named in its family (`Line0`, `Line#0`, `/Line[1]`, [`is_copy_name`])
+/// and, where both types are known, of the template's type (a dummy or a cuboid named
+/// `Line3` is no copy of the `Line` plane). The one test of what a drawing may reuse, move
+/// or remove: anything else is the user's.
+pub fn is_copy_of(
+    o: &ObjectInfo,
+    template: &str,
+    template_kind: Option<i32>,
+    kinds: &Kinds,
+) -> bool {
+    is_copy_name(&o.name, template)
+        && match (kinds.get(&o.handle), template_kind) {
+            (Some(kind), Some(template_kind)) => *kind == template_kind,
+            _ => true,
+        }
+}
+
+/// The objects of a survey sorted into those a drawing may consider and those it must
+/// leave alone ([`sort_out`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sorted {
+    /// Every object but the user's under the maze dummy or at the scene root: the named
+    /// objects, the templates' copies, and objects elsewhere in the scene.
+    pub objects: Vec<ObjectInfo>,
+    /// Names of the user's objects that a drawing could have mistaken for its own: the maze
+    /// dummy's children that are no copy of a template, and root objects named like a copy
+    /// but of another type. Left alone, and named in reports.
+    pub strangers: Vec<String>,
+}
+
+/// Sorts `objects` ([`Sorted`]): an object that is a child of the maze dummy or has no
+/// parent, is not one of the handles of `h`, not named as one of `templates` (line, wall,
+/// post) and no copy of any of them ([`is_copy_of`]) is the user's.
+pub fn sort_out(objects: &[ObjectInfo], h: &Handles, templates: &[&str], kinds: &Kinds) -> Sorted {
+    let named = [h.floor, h.parent, h.line, h.start, h.end];
+    let kind_of = |name: &str| {
+        objects
+            .iter()
+            .find(|o| o.name == name)
+            .and_then(|o| kinds.get(&o.handle).copied())
+    };
+    let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, kind_of(t))).collect();
+    let mut sorted = Sorted {
+        objects: Vec::with_capacity(objects.len()),
+        strangers: Vec::new(),
+    };
+    for o in objects {
+        let under_maze = o.parent == Some(h.parent);
+        let ours = !(under_maze || o.parent.is_none())
+            || named.contains(&o.handle)
+            || Some(o.handle) == h.post
+            || (under_maze && o.name.rsplit('/').next() == Some(super::mesh::HOLDER))
+            || families
+                .iter()
+                .any(|(t, kind)| o.name == *t || is_copy_of(o, t, *kind, kinds));
+        if ours {
+            sorted.objects.push(o.clone());
+        } else if under_maze || families.iter().any(|(t, _)| is_copy_name(&o.name, t)) {
+            sorted.strangers.push(o.name.clone());
+        }
+    }
+    sorted
 }
 
 /// `true` if `o` is one of the `foreign` templates or named like a copy of one.
@@ -169,6 +239,186 @@ pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Opti
     }
 }
 
+/// Tolerance on sizes (metres): a template's bounding box may differ from the layout's
+/// size by this much. CoppeliaSim keeps sizes in single precision (about 1e-7 relative: 0.1
+/// micrometre on a metre) and its object dialogs set sizes in millimetres, so half a
+/// millimetre is far above the simulator's noise and far below what a camera sees.
+pub const SIZE_TOLERANCE: f64 = 5e-4;
+
+/// What [`check_sizes`] found: refusals (the drawing would not be the layout) and warnings.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SizeCheck {
+    /// One line per template that contradicts the layout, with what to change.
+    pub refusals: Vec<String>,
+    /// Markers larger than a cell, sizes that could not be read.
+    pub warnings: Vec<String>,
+}
+
+/// `true` if two lengths are equal within [`SIZE_TOLERANCE`] (never with a NaN).
+fn same_size(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SIZE_TOLERANCE
+}
+
+/// A length for messages: metres with at most 4 decimals (`0.6`, `0.05`).
+fn metres(v: f64) -> String {
+    format!("{}", (v * 1e4).round() / 1e4)
+}
+
+/// `a x b [x c]` metres.
+fn extents(v: &[f64]) -> String {
+    v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
+}
+
+/// Compares the bounding boxes of the scene's template (`template`: `Line`, or `Wall` in a
+/// wall maze), post template, start and end markers with the sizes `drawing` was generated
+/// for. A template drawn from ([`Drawing::lines`] or [`Drawing::posts`] not empty) must have
+/// the layout's extents within [`SIZE_TOLERANCE`] (a line template its length along x and
+/// width along y; a wall and a post template all three, except that a wall between posts
+/// may be as long as a cell side, its ends hidden in the posts), else it is refused with the
+/// options to generate with or the size to give the template. A marker wider than a cell is
+/// a warning (it hides the neighbouring cells), as is a size the simulator did not give.
+pub fn check_sizes(
+    drawing: &Drawing,
+    names: &ObjectNames,
+    template: Option<BoundingBox>,
+    post: Option<BoundingBox>,
+    start: Option<BoundingBox>,
+    end: Option<BoundingBox>,
+) -> SizeCheck {
+    let mut check = SizeCheck::default();
+    let sizes = &drawing.sizes;
+    let differs = |scene: &[f64], layout: &[f64]| {
+        scene
+            .iter()
+            .zip(layout)
+            // NaN is never the same size
+            .any(|(s, l)| !same_size(*s, *l))
+    };
+    let unread = |name: &str, check: &mut SizeCheck| {
+        check.warnings.push(format!(
+            "the simulator did not give the size of `{name}`: not compared with the layout"
+        ));
+    };
+    let template_name = names.template(drawing.style);
+    // a line maze's template is its first line, a wall maze's is copied for every wall
+    if !drawing.lines.is_empty() {
+        match (template, drawing.style, sizes.wall) {
+            (None, ..) => unread(template_name, &mut check),
+            (Some(b), super::Style::Lines, _) => {
+                let have = b.size();
+                if differs(&have[..2], &sizes.line) {
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: generate with --line-length {} --line-width {}, or resize `{template_name}` to {} m",
+                        extents(&have[..2]),
+                        metres(sizes.line[0]),
+                        metres(sizes.line[1]),
+                        metres(have[0]),
+                        metres(have[1]),
+                        extents(&sizes.line)
+                    ));
+                }
+            }
+            (Some(b), super::Style::Walls, Some(wall)) => {
+                let have = b.size();
+                // between posts a wall may reach into them, up to their centres (a whole
+                // cell side): its ends are hidden inside the posts
+                let longest = if drawing.posts.is_empty() {
+                    wall[0]
+                } else {
+                    sizes.cell.max(wall[0])
+                };
+                let length_ok =
+                    have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
+                if !length_ok || differs(&have[1..], &wall[1..]) {
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): generate with --wall-length {} --wall-thickness {} --wall-height {}, or resize `{template_name}` to {} m",
+                        extents(&have),
+                        extents(&wall),
+                        metres(have[0]),
+                        metres(have[1]),
+                        metres(have[2]),
+                        extents(&wall)
+                    ));
+                }
+            }
+            (Some(_), super::Style::Walls, None) => {}
+        }
+    }
+    if let (Some(want), false) = (sizes.post, drawing.posts.is_empty()) {
+        match post {
+            None => unread(&names.post, &mut check),
+            Some(b) => {
+                let have = b.size();
+                if differs(&have, &want) {
+                    check.refusals.push(format!(
+                        "the scene's `{}` is {} m but the layout's posts are {} m: generate with --post-size {} (and --wall-height {}), or resize `{}` to {} m",
+                        names.post,
+                        extents(&have),
+                        extents(&want),
+                        metres(have[0].max(have[1])),
+                        metres(have[2]),
+                        names.post,
+                        extents(&want)
+                    ));
+                }
+            }
+        }
+    }
+    for (name, b) in [(&names.start, start), (&names.end, end)] {
+        match b {
+            None => unread(name, &mut check),
+            Some(b) => {
+                let have = b.size();
+                if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
+                    check.warnings.push(format!(
+                        "the scene's `{name}` is {} m but the cells are {} m: it covers the neighbouring cells; resize `{name}` to at most {} x {} m",
+                        extents(&have[..2]),
+                        metres(sizes.cell),
+                        metres(sizes.cell),
+                        metres(sizes.cell)
+                    ));
+                }
+            }
+        }
+    }
+    check
+}
+
+/// Warnings for the templates a wall maze copies (`templates`: name and handle) that stand
+/// on the maze: within half a cell of the area its walls and posts cover, at or above the
+/// floor. They stay where the scene has them, so there they show as walls the layout does
+/// not have.
+pub fn templates_on_the_maze(
+    drawing: &Drawing,
+    objects: &[ObjectInfo],
+    floor: &Frame,
+    templates: &[(&str, i32)],
+) -> Vec<String> {
+    let poses = drawing.lines.iter().chain(&drawing.posts);
+    let margin = drawing.sizes.cell / 2.0;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in poses {
+        lo = [lo[0].min(p.x - margin), lo[1].min(p.y - margin)];
+        hi = [hi[0].max(p.x + margin), hi[1].max(p.y + margin)];
+    }
+    templates
+        .iter()
+        .filter_map(|(name, handle)| {
+            let o = objects.iter().find(|o| o.handle == *handle)?;
+            let (p, _) = relative_pose(floor, o);
+            let inside = (lo[0]..=hi[0]).contains(&p[0])
+                && (lo[1]..=hi[1]).contains(&p[1])
+                && p[2] >= 0.0;
+            inside.then(|| {
+                format!(
+                    "the template `{name}` stands on the maze at ({:.3}, {:.3}): it shows as a wall the layout does not have; move it off the maze (e.g. beside the floor)",
+                    p[0], p[1]
+                )
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -263,6 +513,128 @@ mod tests {
         );
         assert_eq!(foreign_copies(&objects, &h, &["Post"]), vec![12, 13]);
         assert_eq!(foreign_copies(&objects, &h, &["Line"]), vec![8]);
+    }
+
+    #[test]
+    fn only_copies_of_a_template_by_name_and_type_are_the_mazes() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+            post: None,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "MySensor", Some(2)),
+            obj(8, "Line1", Some(2)),
+            obj(9, "/Line[2]", None),
+            obj(10, "Line3", None),
+            obj(11, "Camera", None),
+            obj(12, "Wall0", Some(2)),
+            obj(13, "Other", Some(1)),
+        ];
+        // 0 shape, 4 dummy: Line1 and the root Line3 are dummies
+        let kinds: Kinds = [(3, 0), (6, 0), (7, 4), (8, 4), (9, 0), (10, 4), (12, 0)]
+            .into_iter()
+            .collect();
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &kinds);
+        let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
+        assert_eq!(kept, vec![1, 2, 3, 4, 5, 6, 9, 12, 13]);
+        assert_eq!(sorted.strangers, vec!["MySensor", "Line1", "Line3"]);
+        // a type nobody read: the name decides
+        let sorted = sort_out(&objects, &h, &["Line"], &Kinds::new());
+        assert_eq!(sorted.strangers, vec!["MySensor", "Wall0"]);
+    }
+
+    /// A bounding box of `size`, centred.
+    fn bbox(size: [f64; 3]) -> Option<BoundingBox> {
+        Some(BoundingBox {
+            min: size.map(|v| -v / 2.0),
+            max: size.map(|v| v / 2.0),
+        })
+    }
+
+    fn course_drawing() -> Drawing {
+        let layout = crate::layout::build_layout(&crate::layout::GenerateSpec::course(
+            crate::maze::Grid::new(3, 3).unwrap(),
+            crate::generate::Algorithm::Prim,
+            1,
+        ))
+        .unwrap();
+        Drawing::try_from(&layout).unwrap()
+    }
+
+    #[test]
+    fn sizes_within_half_a_millimetre_fit_and_others_are_refused_with_the_fix() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        let marker = bbox([1.0, 1.0, 0.0]);
+        let check = |line: [f64; 3]| check_sizes(&d, &names, bbox(line), None, marker, marker);
+        assert_eq!(check([0.6, 0.1, 0.0]), SizeCheck::default());
+        // single precision and millimetre dialogs: within 0.5 mm is the same size
+        assert_eq!(
+            check([0.6 + 4.9e-4, 0.1 - 4.9e-4, 0.0]),
+            SizeCheck::default()
+        );
+        let refused = check([0.6 + 6e-4, 0.1, 0.0]);
+        assert_eq!(refused.refusals.len(), 1, "{refused:?}");
+        let refused = check([0.3, 0.05, 0.0]).refusals.join("");
+        assert!(
+            refused.contains("`Line` is 0.3 x 0.05 m")
+                && refused.contains("generate with --line-length 0.3 --line-width 0.05")
+                && refused.contains("resize `Line` to 0.6 x 0.1 m"),
+            "{refused}"
+        );
+        assert_eq!(
+            check([f64::NAN, 0.1, 0.0]).refusals.len(),
+            1,
+            "NaN never fits"
+        );
+        // a marker wider than a cell is a warning; a size not read is said
+        let wide = check_sizes(
+            &d,
+            &names,
+            bbox([0.6, 0.1, 0.0]),
+            None,
+            bbox([1.2, 1.0, 0.0]),
+            None,
+        );
+        assert!(wide.refusals.is_empty());
+        assert_eq!(wide.warnings.len(), 2, "{wide:?}");
+        assert!(wide.warnings[0].contains("`Start` is 1.2 x 1 m but the cells are 1 m"));
+        assert!(wide.warnings[1].contains("did not give the size of `End`"));
+    }
+
+    #[test]
+    fn one_name_in_two_roles_is_refused_naming_both() {
+        assert!(ObjectNames::default().check_roles().is_ok());
+        let names = ObjectNames {
+            end: "/Floor".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.contains("`Floor` and `/Floor`") && e.contains("(--floor)") && e.contains("(--end)"),
+            "{e}"
+        );
+        let names = ObjectNames {
+            post: "Line".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "`Line` would be both the line template (--line) and the post template (--post)"
+            ),
+            "{e}"
+        );
     }
 
     #[test]

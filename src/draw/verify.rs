@@ -4,7 +4,7 @@
 use std::collections::{HashMap, HashSet};
 
 use super::apply::raised;
-use super::plan::{foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
+use super::plan::{self, foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
 use super::{
     Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style, resolve_handles,
 };
@@ -161,6 +161,7 @@ pub fn verify(
     drawing: &Drawing,
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
+    names.check_roles()?;
     raised(scene, false, |scene| verify_raised(scene, drawing, names)).map(|(ok, _)| ok)
 }
 
@@ -174,8 +175,19 @@ fn verify_raised(
     let with_posts = !drawing.posts.is_empty();
     let survey = scene.survey(&names.survey(style))?;
     let h = resolve_handles(names, style, &survey, with_posts)?;
-    // every pose as the scene holds it now, not as a backend remembers setting it
-    let objects = &scene.objects_from_scene()?;
+    let sizes = super::apply::sizes_of(scene, drawing, names, &h)?;
+    if !sizes.refusals.is_empty() {
+        return Err(DrawError::Sizes(sizes.refusals));
+    }
+    // every pose as the scene holds it now, not as a backend remembers setting it; the
+    // user's objects are no maze lines
+    let objects = &plan::sort_out(
+        &scene.objects_from_scene()?,
+        &h,
+        &names.templates(),
+        &survey.kinds,
+    )
+    .objects;
     let floor = objects
         .iter()
         .find(|o| o.handle == h.floor)

@@ -124,11 +124,13 @@ impl Drop for LegacyBackend {
 }
 
 fn group_commands() -> [Command; 3] {
-    [group::NAMES, group::PARENTS, group::ABSOLUTE_POSES].map(|data_type| {
-        Command::GetObjectGroupData {
-            object_type: ALL_OBJECTS,
-            data_type,
-        }
+    group_data_commands([group::NAMES, group::PARENTS, group::ABSOLUTE_POSES])
+}
+
+fn group_data_commands<const N: usize>(data_types: [i32; N]) -> [Command; N] {
+    data_types.map(|data_type| Command::GetObjectGroupData {
+        object_type: ALL_OBJECTS,
+        data_type,
     })
 }
 
@@ -200,8 +202,20 @@ impl Backend for LegacyBackend {
             .map(|n| Command::GetObjectHandle(n.to_string()))
             .collect();
         cmds.extend(group_commands());
+        cmds.extend(group_data_commands([group::TYPES]));
         let r = self.call(&cmds)?;
         let k = names.len();
+        let types = &r[k + 3];
+        let kinds = match GroupData::decode(&types.data) {
+            Some(g) if !types.remote_error && g.ints.len() == g.handles.len() => {
+                g.handles.into_iter().zip(g.ints).collect()
+            }
+            _ => {
+                return Err(BackendError::Transport(
+                    "malformed group data reply (types)".into(),
+                ));
+            }
+        };
         let handles = r[..k]
             .iter()
             .map(|r| {
@@ -212,12 +226,13 @@ impl Backend for LegacyBackend {
                 }
             })
             .collect();
-        let objects = parse_objects(&r[k..])?;
+        let objects = parse_objects(&r[k..k + 3])?;
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
         Ok(Survey {
             handles,
             objects,
             simulation_running,
+            kinds,
         })
     }
 
@@ -255,6 +270,33 @@ impl Backend for LegacyBackend {
                 })
             })
             .collect())
+    }
+
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        let cmds: Vec<Command> = names
+            .iter()
+            .map(|n| Command::GetIntSignal(n.to_string()))
+            .collect();
+        // a signal that does not exist is reported as an error
+        Ok(self
+            .call(&cmds)?
+            .iter()
+            .map(|r| (!r.remote_error).then(|| read_i32(&r.data, 0)).flatten())
+            .collect())
+    }
+
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
+        let cmds: Vec<Command> = signals
+            .iter()
+            .map(|(name, value)| match value {
+                Some(v) => Command::SetIntSignal(name.to_string(), *v),
+                None => Command::ClearIntSignal(name.to_string()),
+            })
+            .collect();
+        if self.call(&cmds)?.iter().any(|r| r.remote_error) {
+            return Err(BackendError::Remote("setting integer signals".into()));
+        }
+        Ok(())
     }
 
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {

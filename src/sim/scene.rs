@@ -424,6 +424,16 @@ impl Scene {
         Ok(())
     }
 
+    /// Resizes an object (its bounding box; e.g. a template the user scaled).
+    pub fn set_size(&mut self, handle: i32, size: [f64; 3]) -> Result<(), SimError> {
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        o.size = size;
+        Ok(())
+    }
+
     /// The object with this handle.
     pub fn get(&self, handle: i32) -> Result<&Object, SimError> {
         self.objects

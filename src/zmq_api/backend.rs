@@ -19,11 +19,10 @@ use crate::coppelia::frame::{
 };
 use crate::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
-    INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_PLANE,
-    SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED, SPECIAL_COLLIDABLE,
-    SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
+    INTPARAM_PROGRAM_VERSION, OBJECT_SHAPE_TYPE, OBJFLOATPARAM_BBOX, PRIMITIVESHAPE_CUBOID,
+    PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED,
+    SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
-use crate::draw::plan::is_copy_name;
 use crate::draw::{
     Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, LEASE_SIGNAL, Lease,
     ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
@@ -78,6 +77,9 @@ pub struct ZmqBackend {
     /// batching, so reading a line costs as much as placing it; a pose the simulator
     /// acknowledged setting is not read back.
     poses: HashMap<i32, WorldPose>,
+    /// Alias and type code of objects this connection read or pasted, by handle (an
+    /// object's alias and type do not change while a run draws).
+    traits: HashMap<i32, (String, i32)>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -132,6 +134,7 @@ impl ZmqBackend {
             known: Known::default(),
             timeout,
             poses: HashMap::new(),
+            traits: HashMap::new(),
         })
     }
 
@@ -250,76 +253,101 @@ impl ZmqBackend {
         })
     }
 
+    /// The alias and type code of `handle`: remembered (read before, or a copy this
+    /// connection pasted), else read (`kind`, if given, is the type already known).
+    fn traits(&mut self, handle: i32, kind: Option<i32>) -> Result<(String, i32), BackendError> {
+        if let Some(t) = self.traits.get(&handle) {
+            return Ok(t.clone());
+        }
+        let alias = self
+            .client
+            .call1("sim.getObjectAlias", vec![int(handle.into()), int(-1)])?;
+        let alias = cbor::text(&alias).unwrap_or_default().to_string();
+        let kind = match kind {
+            Some(k) => k,
+            None => self
+                .client
+                .call_int("sim.getObjectType", vec![int(handle.into())])?,
+        };
+        self.traits.insert(handle, (alias.clone(), kind));
+        Ok((alias, kind))
+    }
+
     /// The named objects (read), the maze dummy's children and root copies of the templates
-    /// found (their poses as `poses` says).
-    fn collect(&mut self, poses: LinePoses) -> Result<Vec<ObjectInfo>, BackendError> {
+    /// found (their poses as `poses` says), with the type codes of all of them. A child
+    /// carrying a template's alias is named as a copy of it (`/Line[k]`), any other by its
+    /// alias, so that only the templates' copies are taken for the maze's.
+    fn collect(
+        &mut self,
+        poses: LinePoses,
+    ) -> Result<(Vec<ObjectInfo>, HashMap<i32, i32>), BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
+        let mut kinds = HashMap::new();
         for (name, h) in &known.named {
             out.push(self.info(*h, name.clone(), None)?);
+            kinds.insert(*h, self.traits(*h, None)?.1);
         }
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
+        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
+            .chain(known.foreign_aliases.iter().map(String::as_str))
+            .collect();
+        let mut numbered = vec![0; templates.len()];
+        let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
+            Some(t) => {
+                numbered[t] += 1;
+                format!("/{alias}[{}]", numbered[t])
+            }
+            None => alias.to_string(),
+        };
         if let Some(parent) = known.parent {
-            // options 3: first-level children only, without the dummy itself
-            let mut foreign = 0;
+            // options 3: first-level children only, without the dummy itself; the shapes
+            // among them in one call, so only the other children's types are asked
+            let shapes: HashSet<i32> = self
+                .client
+                .call1(
+                    "sim.getObjectsInTree",
+                    vec![int(parent.into()), int(OBJECT_SHAPE_TYPE.into()), int(3)],
+                )
+                .ok()
+                .as_ref()
+                .and_then(cbor::handles)
+                .unwrap_or_default()
+                .into_iter()
+                .collect();
             for h in self.handles_in(parent, 3)? {
                 if seen.insert(h) {
-                    let mut name = format!("object {h}");
-                    if !known.foreign_aliases.is_empty() {
-                        // one call per child, only in a scene that holds another style's
-                        // template: is this a copy of it?
-                        let alias = self
-                            .client
-                            .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
-                        if let Some(a) = cbor::text(&alias)
-                            && known.foreign_aliases.iter().any(|f| f == a)
-                        {
-                            foreign += 1;
-                            name = format!("/{a}[{foreign}]");
-                        }
-                    }
+                    let shape = shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
+                    let (alias, kind) = self.traits(h, shape)?;
+                    kinds.insert(h, kind);
+                    let name = copy_name(&alias);
                     out.push(self.line_info(h, name, Some(parent), poses)?);
                 }
             }
         }
         // root objects carrying a template's alias: copies left parentless by an interrupted
         // run (of this style's template, or of another found in the scene, which a drawing
-        // removes or, for posts, reuses). They are copies whatever their path looks like, so
-        // a path that is not `/Line[n]` (the template elsewhere than at the root) gets that
-        // form.
-        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
-            .chain(known.foreign_aliases.iter().map(String::as_str))
-            .collect();
-        let mut strays = vec![0; templates.len()];
+        // removes or, for posts, reuses). They are named `/Line[k]` whatever their path.
         for h in self.handles_in(HANDLE_SCENE, 2)? {
             if seen.contains(&h) {
                 continue;
             }
-            let alias = self
-                .client
-                .call1("sim.getObjectAlias", vec![int(h.into()), int(-1)])?;
-            let Some(t) = cbor::text(&alias).and_then(|a| templates.iter().position(|t| *t == a))
-            else {
+            let (alias, kind) = self.traits(h, None)?;
+            if !templates.contains(&alias.as_str()) {
                 continue;
-            };
+            }
             let parent = self
                 .client
                 .call_int("sim.getObjectParent", vec![int(h.into())])?;
             if parent >= 0 {
                 continue; // not a root object after all
             }
-            strays[t] += 1;
-            let path = self
-                .client
-                .call1("sim.getObjectAlias", vec![int(h.into()), int(1)])?;
-            let name = match cbor::text(&path) {
-                Some(p) if is_copy_name(p, templates[t]) => p.to_string(),
-                _ => format!("/{}[{}]", templates[t], strays[t]),
-            };
             seen.insert(h);
+            kinds.insert(h, kind);
+            let name = copy_name(&alias);
             out.push(self.line_info(h, name, None, poses)?);
         }
-        Ok(out)
+        Ok((out, kinds))
     }
 
     /// Records the world pose an acknowledged `sim.setObjectPose` gave `handle`.
@@ -481,15 +509,16 @@ impl Backend for ZmqBackend {
                 .unwrap_or_default(),
         };
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let objects = if handles.iter().take(5).all(Option::is_some) {
+        let (objects, kinds) = if handles.iter().take(5).all(Option::is_some) {
             self.collect(LinePoses::Known)?
         } else {
-            vec![]
+            Default::default()
         };
         Ok(Survey {
             handles,
             objects,
             simulation_running: state != SIMULATION_STOPPED,
+            kinds,
         })
     }
 
@@ -502,11 +531,11 @@ impl Backend for ZmqBackend {
     }
 
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
-        self.collect(LinePoses::Read)
+        Ok(self.collect(LinePoses::Read)?.0)
     }
 
     fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
-        self.collect(LinePoses::Fresh)
+        Ok(self.collect(LinePoses::Fresh)?.0)
     }
 
     fn bounding_boxes(
@@ -542,6 +571,26 @@ impl Backend for ZmqBackend {
         Ok(out)
     }
 
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        let mut out = Vec::with_capacity(names.len());
+        for name in names {
+            let values = self.call("sim.getInt32Signal", vec![Value::Text(name.to_string())])?;
+            out.push(values.first().and_then(cbor::int32));
+        }
+        Ok(out)
+    }
+
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
+        for (name, value) in signals {
+            let name = Value::Text(name.to_string());
+            match value {
+                Some(v) => self.call("sim.setInt32Signal", vec![name, int((*v).into())])?,
+                None => self.call("sim.clearInt32Signal", vec![name])?,
+            };
+        }
+        Ok(())
+    }
+
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         let mut out = Vec::with_capacity(groups.len());
         for g in groups {
@@ -550,7 +599,15 @@ impl Backend for ZmqBackend {
                 .client
                 .call1("sim.copyPasteObjects", vec![list, int(0)])?;
             match cbor::handles(&v) {
-                Some(new) if new.len() == g.len() => out.push(new),
+                Some(new) if new.len() == g.len() => {
+                    // a copy has its original's alias and type
+                    for (source, copy) in g.iter().zip(&new) {
+                        if let Some(t) = self.traits.get(source).cloned() {
+                            self.traits.insert(*copy, t);
+                        }
+                    }
+                    out.push(new)
+                }
                 _ => {
                     return Err(BackendError::Remote(format!(
                         "copy-paste of {} object(s) returned {}",

@@ -3,6 +3,9 @@
 //! files) and mutated layout files. Whatever the input: no panic (exit 101), a short error
 //! (a few KB at most), one of the documented exit codes, and no invalid layout accepted
 //! (a zero exit from `validate`, `render`, `apply` or `generate` means the layout is valid).
+//! The scene holds objects that are not the maze's (a dummy, a cuboid, a plane and a dummy
+//! named like a copy under `Maze`): every `apply` and `clear` leaves them where they were,
+//! and a successful one names them.
 //! The draws are seeded, so a failure repeats.
 
 use std::path::{Path, PathBuf};
@@ -168,7 +171,10 @@ fn arguments(
         "apply" | "clear" => &[
             ("--timeout", &["0.3", "0", "-1", "1e308", "nan"]),
             ("--api", &["legacy", "zmq", "auto", "bogus"]),
-            ("--line", &["Line", "Nope", ""]),
+            ("--line", &["Line", "Nope", "", "Maze", "MySensor", "Line9"]),
+            ("--parent", &["Maze", "Floor", "Box"]),
+            ("--wall", &["Wall", "Line", "Box"]),
+            ("--start", &["Start", "End", "BigPlane"]),
             ("--dry-run", &[]),
             ("--stop-simulation", &[]),
         ],
@@ -226,6 +232,27 @@ fn arguments(
     (args, layout)
 }
 
+/// Handle, name, parent and world pose of each of the `names` in the scene served at `port`.
+fn users_objects(port: &str, names: &[&str]) -> Vec<vrep_maze::draw::ObjectInfo> {
+    let mut b = vrep_maze::legacy::LegacyBackend::connect(
+        "127.0.0.1",
+        port.parse().unwrap(),
+        Duration::from_secs(5),
+    )
+    .unwrap();
+    let objects = vrep_maze::draw::Backend::objects(&mut b).unwrap();
+    names
+        .iter()
+        .map(|n| {
+            let o = objects
+                .iter()
+                .find(|o| o.name == *n)
+                .unwrap_or_else(|| panic!("{n} is still in the scene"));
+            o.clone()
+        })
+        .collect()
+}
+
 /// `true` if `path` reads as a layout that `validate` accepts.
 fn valid(path: &str) -> bool {
     read_layout(Path::new(path)).is_ok_and(|l| validate(&l).is_ok())
@@ -251,8 +278,23 @@ fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
                 .to_string(),
         );
     }
-    let serve = Serve::start(&["--listen", "127.0.0.1:0", "--idle-fps", "0"], 1);
+    let (scene, users) = crate::trust_draw::scene_with_the_users_objects();
+    let scene_file = dir.path().join("scene.json");
+    std::fs::write(&scene_file, scene.to_json().to_string()).unwrap();
+    let scene_arg = scene_file.display().to_string();
+    let serve = Serve::start(
+        &[
+            "--listen",
+            "127.0.0.1:0",
+            "--idle-fps",
+            "0",
+            "--scene",
+            &scene_arg,
+        ],
+        1,
+    );
     let port = serve.port();
+    let users_before = users_objects(&port, &users);
     let commands = [
         "generate",
         "validate",
@@ -297,6 +339,17 @@ fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
         if code != Some(0) {
             continue;
         }
+        if matches!(command, "apply" | "clear") && !args.iter().any(|a| a == "--parent") {
+            let stdout = String::from_utf8_lossy(&out.stdout);
+            assert!(
+                stdout.contains("left alone")
+                    && users
+                        .iter()
+                        .filter(|u| !args.iter().any(|a| a == *u))
+                        .all(|u| stdout.contains(u)),
+                "{shown:?}: the user's objects are named\n{stdout}"
+            );
+        }
         match command {
             "validate" | "render" | "apply" => {
                 if let Some(path) = layout.filter(|p| p != "-") {
@@ -336,6 +389,11 @@ fn no_input_makes_the_command_line_panic_flood_or_accept_an_invalid_layout() {
     eprintln!(
         "cli fuzz: {runs} runs: {} exit 0, {} exit 1, {} exit 2; {accepted_layouts} accepted layouts checked",
         codes[0], codes[1], codes[2]
+    );
+    assert_eq!(
+        users_objects(&port, &users),
+        users_before,
+        "the user's objects under Maze never moved, changed parent or went"
     );
     assert!(runs >= 100, "only {runs} runs in the time budget");
     assert!(

@@ -227,6 +227,12 @@ impl Backend for FailingEdits {
     ) -> Result<Vec<Option<draw::BoundingBox>>, BackendError> {
         self.0.bounding_boxes(handles)
     }
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        self.0.int_signals(names)
+    }
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
+        self.0.set_int_signals(signals)
+    }
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         self.0.copy_paste(groups)
     }

@@ -26,6 +26,7 @@ mod properties;
 mod schema;
 mod texture;
 mod trust;
+mod trust_draw;
 mod validate;
 mod walls;
 mod zmq_client_server;

@@ -75,8 +75,9 @@ fn a_non_finite_pose_never_verifies_and_apply_repairs_it(kind: Kind) {
     s.shutdown();
 }
 
-/// Something under `Maze` that the drawing does not account for fails verification, with
-/// a count, whatever its name.
+/// A copy of the template under `Maze` that the drawing does not account for fails
+/// verification, with a count (an object of another name is the user's and left alone:
+/// `trust_draw`).
 fn an_extra_object_under_the_maze_never_verifies(kind: Kind) {
     let s = kind.serve(Scene::course(), 0);
     let d = drawing(3, 3);
@@ -85,7 +86,7 @@ fn an_extra_object_under_the_maze_never_verifies(kind: Kind) {
     s.with_sim(|sim| {
         let maze = sim.scene.resolve("Maze").unwrap();
         sim.scene.add(
-            "Intruder",
+            "Line77",
             NewObject {
                 kind: ObjectType::Shape,
                 parent: Some(maze),

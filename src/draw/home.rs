@@ -1,0 +1,135 @@
+//! Where the line template stood before the first `apply`: a line maze draws its template
+//! as the first line, so `clear` puts it back there. The pose is kept in the scene (integer
+//! signals, which both APIs read and write and which survive between runs), as the
+//! template's handle and its pose in the floor frame in micrometres and microradians.
+
+use super::{Backend, BackendError, Pose};
+
+/// The integer signals of the record: the template's handle, then x, y, z (micrometres) and
+/// the three Euler angles (microradians) in the floor frame.
+pub const HOME_SIGNALS: [&str; 7] = [
+    "vrep-maze.template_home.handle",
+    "vrep-maze.template_home.x_um",
+    "vrep-maze.template_home.y_um",
+    "vrep-maze.template_home.z_um",
+    "vrep-maze.template_home.alpha_urad",
+    "vrep-maze.template_home.beta_urad",
+    "vrep-maze.template_home.gamma_urad",
+];
+
+/// How far below the floor a template no line needs is put (metres): under an opaque floor,
+/// out of every camera above it.
+pub const HIDDEN_DEPTH: f64 = 0.1;
+
+/// The template's pose before the first `apply`, in the floor frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Home {
+    /// The template it is the home of.
+    pub handle: i32,
+    /// Position, metres.
+    pub position: [f64; 3],
+    /// CoppeliaSim Euler angles, radians.
+    pub orientation: [f64; 3],
+}
+
+impl Home {
+    /// The signal values (`None` when a number does not fit: such a pose is not recorded).
+    fn encode(&self) -> Option<[i32; 7]> {
+        let fixed = |v: f64| {
+            let scaled = (v * 1e6).round();
+            (scaled.is_finite() && scaled.abs() < i32::MAX as f64).then_some(scaled as i32)
+        };
+        let p = self.position.map(fixed);
+        let e = self.orientation.map(fixed);
+        Some([self.handle, p[0]?, p[1]?, p[2]?, e[0]?, e[1]?, e[2]?])
+    }
+
+    /// The record from the signal values, `None` unless all are set.
+    fn decode(values: &[Option<i32>]) -> Option<Home> {
+        let v: Vec<i32> = values.iter().copied().collect::<Option<_>>()?;
+        let real = |k: usize| v[k] as f64 / 1e6;
+        (v.len() == HOME_SIGNALS.len()).then(|| Home {
+            handle: v[0],
+            position: [real(1), real(2), real(3)],
+            orientation: [real(4), real(5), real(6)],
+        })
+    }
+
+    /// The edit that puts the template back home (pose relative to `floor`).
+    pub fn edit(&self, floor: i32) -> super::Edit {
+        super::Edit::SetPose {
+            handle: self.handle,
+            relative_to: floor,
+            position: self.position,
+            orientation: self.orientation,
+        }
+    }
+
+    /// A pose below the floor under (`x`, `y`) of the floor frame ([`HIDDEN_DEPTH`]).
+    pub fn hidden(x: f64, y: f64) -> Pose {
+        Pose {
+            x,
+            y,
+            z: -HIDDEN_DEPTH,
+            yaw: 0.0,
+        }
+    }
+}
+
+/// Reads the record; `None` if there is none (never recorded, or cleared).
+pub fn read(scene: &mut dyn Backend) -> Result<Option<Home>, BackendError> {
+    Ok(Home::decode(&scene.int_signals(&HOME_SIGNALS)?))
+}
+
+/// Records `home` (nothing if its pose is not finite or out of range).
+pub fn write(scene: &mut dyn Backend, home: &Home) -> Result<(), BackendError> {
+    let Some(values) = home.encode() else {
+        return Ok(());
+    };
+    let signals: Vec<(&str, Option<i32>)> = HOME_SIGNALS
+        .iter()
+        .zip(values)
+        .map(|(n, v)| (*n, Some(v)))
+        .collect();
+    scene.set_int_signals(&signals)
+}
+
+/// Deletes the record.
+pub fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
+    let signals: Vec<(&str, Option<i32>)> = HOME_SIGNALS.iter().map(|n| (*n, None)).collect();
+    scene.set_int_signals(&signals)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_round_trips_to_the_micrometre() {
+        let home = Home {
+            handle: 12,
+            position: [0.0, -5.5, 0.001],
+            orientation: [0.0, 0.0, -std::f64::consts::FRAC_PI_2],
+        };
+        let values = home.encode().unwrap().map(Some);
+        let back = Home::decode(&values).unwrap();
+        assert_eq!(back.handle, 12);
+        for k in 0..3 {
+            assert!((back.position[k] - home.position[k]).abs() <= 5e-7);
+            assert!((back.orientation[k] - home.orientation[k]).abs() <= 5e-7);
+        }
+        let mut partial = values;
+        partial[3] = None;
+        assert_eq!(Home::decode(&partial), None);
+        let far = Home {
+            position: [3000.0, 0.0, 0.0],
+            ..home
+        };
+        assert_eq!(far.encode(), None);
+        let nan = Home {
+            orientation: [f64::NAN, 0.0, 0.0],
+            ..home
+        };
+        assert_eq!(nan.encode(), None);
+    }
+}
