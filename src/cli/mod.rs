@@ -13,6 +13,7 @@ mod output;
 mod progress;
 mod render;
 mod serve;
+mod solve;
 mod validate;
 mod values;
 
@@ -48,6 +49,8 @@ pub enum Command {
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
+    /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
+    Solve(solve::SolveArgs),
     /// Generate a dataset: one layout per seed plus a manifest, on all cores.
     Batch(batch::BatchArgs),
     /// Print a shell completion script (bash, zsh, fish, ...).
@@ -141,13 +144,27 @@ fn report_usage(error: &clap::Error) -> ExitCode {
     let text = error.render().to_string();
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if let Some(first) = lines.next() {
-        eprintln!("{}", shorten(first));
+        eprintln!("{}{}", shorten(first), missing_arguments(error));
     }
     for tip in lines.filter_map(|l| l.strip_prefix("tip:")) {
         eprintln!("  hint:{}", shorten(tip));
     }
     eprintln!("  hint: `--help` lists every option, with examples");
     ExitCode::from(USAGE_EXIT_CODE)
+}
+
+/// The arguments a `MissingRequiredArgument` error names (" <FILE>, --seeds <SEEDS>"), to
+/// follow clap's first line ("... were not provided:"), which names none; empty otherwise.
+fn missing_arguments(error: &clap::Error) -> String {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if error.kind() != ErrorKind::MissingRequiredArgument {
+        return String::new();
+    }
+    match error.get(ContextKind::InvalidArg) {
+        Some(ContextValue::Strings(names)) => format!(" {}", names.join(", ")),
+        Some(ContextValue::String(name)) => format!(" {name}"),
+        _ => String::new(),
+    }
 }
 
 /// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run
@@ -177,6 +194,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
+        Command::Solve(args) => solve::run(args, progress, cli.quiet),
         Command::Batch(args) => batch::run(args, progress),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),

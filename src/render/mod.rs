@@ -18,8 +18,8 @@ use std::str::FromStr;
 use anyhow::{Result, anyhow};
 use indicatif::ProgressBar;
 
+use crate::layout::solution::path_cells;
 use crate::layout::{Layout, passages};
-use crate::maze::analysis::shortest_path;
 use crate::maze::{Cell, Grid, Maze};
 
 pub use ascii::Ascii;
@@ -143,13 +143,9 @@ impl MazeView {
             }
         }
         let solution = if options.solution {
-            shortest_path(&maze, grid.index(start), grid.index(end))
-                .ok_or_else(|| {
-                    anyhow!("end {end} cannot be reached from start {start}: no solution to draw")
-                })?
-                .into_iter()
-                .map(|i| grid.cell(i))
-                .collect()
+            path_cells(&maze, start, end).ok_or_else(|| {
+                anyhow!("end {end} cannot be reached from start {start}: no solution to draw")
+            })?
         } else {
             Vec::new()
         };

@@ -20,6 +20,7 @@ mod legacy_client_server;
 mod legacy_draw;
 mod properties;
 mod schema;
+mod solve;
 mod texture;
 mod trust;
 mod validate;
