@@ -8,8 +8,10 @@ use anyhow::Context;
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
 
-use super::connect::{Api, connect};
+use super::connect::{Api, Connected, connect};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::reports::{ApplyJson, REPORT_VERSION};
+use super::say::{self, say};
 use crate::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
@@ -76,6 +78,11 @@ impl ConnectArgs {
     /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
     /// answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
+        Ok(self.connect_described()?.backend)
+    }
+
+    /// [`ConnectArgs::connect`], keeping the description of what answered (for `--json`).
+    pub fn connect_described(&self) -> anyhow::Result<Connected> {
         let connected = connect(
             self.api,
             &self.host,
@@ -84,9 +91,9 @@ impl ConnectArgs {
             self.connect_timeout,
         )?;
         if self.api != Api::Legacy {
-            println!("using the {}", connected.description);
+            say(format!("using the {}", connected.description));
         }
-        Ok(connected.backend)
+        Ok(connected)
     }
 }
 
@@ -133,10 +140,14 @@ pub struct ApplyArgs {
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
     #[arg(long, value_name = "PATH")]
     pub save_scene: Option<String>,
+    /// Print one JSON document on standard output (schema/apply-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `apply`.
 pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
+    say::set_json(args.json);
     let layout = crate::layout::read_layout(&args.layout)?;
     let drawing = Drawing::try_from(&layout)
         .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
@@ -153,21 +164,25 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     );
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
-    let mut backend = args.scene.connect()?;
+    let Connected {
+        mut backend,
+        description: connection,
+    } = args.scene.connect_described()?;
     if interrupt.requested() {
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
+    let mut created = Vec::new();
     if args.create_missing && !args.dry_run {
         let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = draw::create_missing_for(authoring, &opts.names, &layout)
+        created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
-            println!("created {}", created.join(", "));
+            say(format!("created {}", created.join(", ")));
         }
     }
     let what = match (drawing.style, drawing.posts.is_empty()) {
@@ -219,20 +234,45 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         authoring
             .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
-        println!("saved the scene to {path} (on the simulator's machine)");
+        say(format!(
+            "saved the scene to {path} (on the simulator's machine)"
+        ));
     }
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        say("stopped the simulation first");
     }
-    println!("{report}");
+    say(&report);
     if !report.dry_run {
         let noun = match (drawing.style, drawing.posts.is_empty()) {
             (crate::layout::Style::Lines, _) => "line",
             (crate::layout::Style::Walls, true) => "wall",
             (crate::layout::Style::Walls, false) => "wall, post",
         };
-        println!("verified: every {noun}, start and end in place");
+        say(format!("verified: every {noun}, start and end in place"));
+    }
+    if args.json {
+        say::document(&ApplyJson {
+            format: "vrep-maze/apply".into(),
+            version: REPORT_VERSION,
+            layout: args.layout.display().to_string(),
+            connection,
+            style: report.style,
+            lines: report.lines,
+            posts: report.posts,
+            reused: report.reused,
+            pasted: report.pasted,
+            removed: report.removed,
+            unchanged: report.unchanged,
+            edits: report.edits,
+            round_trips: report.round_trips,
+            seconds: report.elapsed.as_secs_f64(),
+            stopped_simulation: report.stopped_simulation,
+            dry_run: report.dry_run,
+            verified: !report.dry_run,
+            created,
+            saved_scene: args.save_scene.filter(|_| !args.dry_run),
+        })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -10,6 +10,8 @@ use clap::Args;
 use super::generate::LayoutArgs;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::progress::{Progress, Unit};
+use super::reports::{BatchReport, REPORT_VERSION};
+use super::say::{self, note};
 use crate::batch::{self, Filter, parse_seeds};
 use crate::layout::build::Planned;
 
@@ -35,6 +37,9 @@ pub struct BatchArgs {
     /// Keep only mazes with at most this percentage of dead ends.
     #[arg(long, value_parser = super::values::parse_percent, allow_negative_numbers = true)]
     pub max_dead_ends: Option<f64>,
+    /// Print one JSON document on standard output (schema/batch-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// The seeds of a batch (one option value, many seeds).
@@ -44,6 +49,7 @@ pub struct SeedList(pub Vec<u64>);
 /// Runs `batch`. Ctrl-C (or SIGTERM, SIGHUP) finishes the mazes in flight, writes the
 /// manifest of every maze made, says how to resume and exits 130.
 pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
+    say::set_json(args.json);
     // Every option is checked once, before any maze is made.
     args.layout.check()?;
     let seeds = args.seeds.0;
@@ -72,12 +78,26 @@ pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
     .map_err(|e| anyhow!(e))?;
     progress.finish_and_clear();
     if outcome.stale_removed > 0 {
-        eprintln!(
+        note(format!(
             "removed {} temporary file(s) left by an earlier, killed run",
             outcome.stale_removed
-        );
+        ));
     }
-    eprintln!(
+    if args.json {
+        say::document(&BatchReport {
+            format: "vrep-maze/batch".into(),
+            version: REPORT_VERSION,
+            seeds: seeds.len(),
+            written: outcome.written,
+            unchanged: outcome.unchanged,
+            filtered: outcome.filtered,
+            skipped: outcome.skipped,
+            stale_removed: outcome.stale_removed,
+            manifest: outcome.manifest.display().to_string(),
+            interrupted: interrupt.requested(),
+        })?;
+    }
+    note(format!(
         "{} mazes: {} written, {} unchanged, {} refused by the filter, in {:.2} s; manifest {}",
         seeds.len() - outcome.skipped,
         outcome.written,
@@ -85,7 +105,7 @@ pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
         outcome.filtered,
         started.elapsed().as_secs_f64(),
         outcome.manifest.display()
-    );
+    ));
     if interrupt.requested() {
         eprintln!(
             "interrupted: {} of {} seeds not made; run the same command again to finish (mazes already written are kept)",

@@ -1,7 +1,10 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
 use super::apply::ConnectArgs;
+use super::connect::Connected;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::reports::{ClearJson, REPORT_VERSION};
+use super::say::{self, say};
 use crate::draw::{self, ClearOptions, DrawError};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
@@ -20,12 +23,19 @@ pub struct ClearArgs {
     /// Only list what would be removed.
     #[arg(long)]
     pub dry_run: bool,
+    /// Print one JSON document on standard output (schema/clear-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
+    say::set_json(args.json);
     let interrupt = Interrupt::install()?;
-    let mut backend = args.scene.connect()?;
+    let Connected {
+        mut backend,
+        description: connection,
+    } = args.scene.connect_described()?;
     let opts = ClearOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
@@ -42,7 +52,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let report = result?;
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        say("stopped the simulation first");
     }
     let verb = if args.dry_run {
         "would remove"
@@ -56,12 +66,14 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         String::new()
     };
     if let Some(fps) = report.restored_idle_fps {
-        println!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)");
+        say(format!(
+            "restored the idle rate to {fps} fps (an interrupted apply had left it at 0)"
+        ));
     }
     if report.removed.is_empty() {
-        println!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene");
+        say("nothing to remove: no copies (lines, walls, posts) under Maze in the scene");
     } else {
-        println!(
+        say(format!(
             "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
             if report.removed.len() == 1 {
@@ -70,7 +82,19 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
                 "ies"
             },
             shown.join(", ")
-        );
+        ));
+    }
+    if args.json {
+        say::document(&ClearJson {
+            format: "vrep-maze/clear".into(),
+            version: REPORT_VERSION,
+            connection,
+            removed: report.removed,
+            round_trips: report.round_trips,
+            restored_idle_fps: report.restored_idle_fps,
+            stopped_simulation: report.stopped_simulation,
+            dry_run: args.dry_run,
+        })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -161,7 +161,9 @@ fn legacy(
     probe_zmq: bool,
 ) -> anyhow::Result<Connected> {
     let addr = socket_addr(host, port);
-    eprintln!("connecting to CoppeliaSim's legacy remote API at {addr} ...");
+    super::say::note(format!(
+        "connecting to CoppeliaSim's legacy remote API at {addr} ..."
+    ));
     let opts = legacy::ClientOptions {
         connect_timeout,
         reply_timeout: timeout,
@@ -240,7 +242,9 @@ fn zmq(
     connect_timeout: Duration,
 ) -> anyhow::Result<Connected> {
     let addr = socket_addr(host, port);
-    eprintln!("connecting to CoppeliaSim's ZeroMQ remote API at {addr} ...");
+    super::say::note(format!(
+        "connecting to CoppeliaSim's ZeroMQ remote API at {addr} ..."
+    ));
     let options = zmq_api::ClientOptions {
         host: host.to_string(),
         port,

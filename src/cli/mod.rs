@@ -12,6 +12,8 @@ mod interrupt;
 mod output;
 mod progress;
 mod render;
+pub mod reports;
+mod say;
 mod serve;
 mod solve;
 mod validate;
@@ -189,12 +191,13 @@ fn end_quietly_on_broken_pipe() {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     let progress = progress::Progress::new(cli.quiet);
+    say::set_modes(cli.quiet, false);
     match cli.command {
         Command::Generate(args) => generate::run(args, progress),
         Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
-        Command::Solve(args) => solve::run(args, progress, cli.quiet),
+        Command::Solve(args) => solve::run(args, progress),
         Command::Batch(args) => batch::run(args, progress),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),

@@ -10,6 +10,7 @@ use clap::{Args, ValueEnum};
 
 use super::output::write_output;
 use super::progress::Progress;
+use super::say::{self, note};
 use super::validate::read_checking;
 use crate::layout::geometry::round_um;
 use crate::layout::passages;
@@ -38,6 +39,9 @@ pub struct SolveArgs {
     /// Write here instead of standard output.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// The same as --format json (schema/solve-v1.schema.json), as every command's --json.
+    #[arg(long, conflicts_with = "format")]
+    pub json: bool,
 }
 
 /// What `solve` writes.
@@ -58,7 +62,8 @@ fn parse_cell(s: &str) -> Result<Cell, String> {
 }
 
 /// Runs `solve`.
-pub fn run(args: SolveArgs, progress: Progress, quiet: bool) -> Result<ExitCode> {
+pub fn run(args: SolveArgs, progress: Progress) -> Result<ExitCode> {
+    say::set_json(args.json);
     let name = args.file.display().to_string();
     let (layout, validator) = read_checking(&args.file, progress)?;
     validator
@@ -92,10 +97,8 @@ pub fn run(args: SolveArgs, progress: Progress, quiet: bool) -> Result<ExitCode>
         }
         SolveFormat::Csv => write_csv(&report.solution, speed, w),
     })?;
-    if let Some(path) = args.output.as_deref().filter(|p| p.as_os_str() != "-")
-        && !quiet
-    {
-        eprintln!("wrote {}: {summary}", path.display());
+    if let Some(path) = args.output.as_deref().filter(|p| p.as_os_str() != "-") {
+        note(format!("wrote {}: {summary}", path.display()));
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -8,6 +8,8 @@ use anyhow::Result;
 use clap::Args;
 
 use super::progress::{Progress, Unit};
+use super::reports::{MazeSummary, REPORT_VERSION, ValidateReport, ValidatedFile};
+use super::say::{self, say};
 use crate::layout::json::{Background, ReadError, read_from};
 use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
@@ -22,39 +24,67 @@ pub struct ValidateArgs {
     /// Layout files to check (`-` reads standard input).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+    /// Print one JSON document on standard output (schema/validate-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `validate`: exit 0 only if every file is valid. Each file is read once, its
 /// segments checked as they stream in.
 pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
-    let mut all_ok = true;
+    say::set_json(args.json);
+    let mut files = Vec::with_capacity(args.files.len());
     for path in &args.files {
         let name = path.display();
+        let mut entry = ValidatedFile {
+            file: name.to_string(),
+            valid: false,
+            error: None,
+            maze: None,
+            metrics: None,
+            problems: Vec::new(),
+            problem_count: 0,
+        };
         let (layout, validator) = match read_checking(path, progress) {
             Ok(read) => read,
             Err(e) => {
                 eprintln!("error: {e}");
-                all_ok = false;
+                entry.error = Some(e.to_string());
+                files.push(entry);
                 continue;
             }
         };
         let validator = validator.finish();
         let segments = validator.segments();
+        entry.maze = Some(MazeSummary::of(&layout, segments));
         match validator.finish().into_result() {
             Ok(metrics) => {
-                println!("OK {name}: {}", describe(&layout, segments));
+                say(format!("OK {name}: {}", describe(&layout, segments)));
                 if let Some(metrics) = &metrics {
                     print_metrics(metrics);
                 }
+                entry.valid = true;
+                entry.metrics = metrics;
             }
             Err(invalid) => {
-                all_ok = false;
                 for line in invalid.shown() {
                     eprintln!("error: {name}: {line}");
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
+                entry.problems = invalid.problems.iter().map(|p| p.to_string()).collect();
+                entry.problem_count = invalid.count();
             }
         }
+        files.push(entry);
+    }
+    let all_ok = files.iter().all(|f| f.valid);
+    if args.json {
+        say::document(&ValidateReport {
+            format: "vrep-maze/validate".into(),
+            version: REPORT_VERSION,
+            valid: all_ok,
+            files,
+        })?;
     }
     Ok(if all_ok {
         ExitCode::SUCCESS
@@ -109,20 +139,20 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
 
 /// The metrics, a few to a line.
 pub fn print_metrics(m: &Metrics) {
-    println!(
+    say(format!(
         "  cells {}, passages {}, loops {}",
         m.cells, m.passages, m.loops
-    );
-    println!(
+    ));
+    say(format!(
         "  solution {} cells, {} turns, {} decision points",
         m.solution_cells, m.solution_turns, m.decision_points
-    );
-    println!(
+    ));
+    say(format!(
         "  dead ends {} ({:.1}%), junctions {}, straights {}",
         m.dead_ends,
         m.dead_end_percent(),
         m.junctions,
         m.straights
-    );
-    println!("  diameter {} cells", m.diameter_cells);
+    ));
+    say(format!("  diameter {} cells", m.diameter_cells));
 }
