@@ -252,7 +252,10 @@ impl Layout {
         solution: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let format = choose_format(format, path.as_deref())?;
-        let options = RenderOptions { solution };
+        let options = RenderOptions {
+            solution,
+            ..Default::default()
+        };
         let layout = &self.layout;
         let bytes = py
             .detach(|| format.render_to_vec(layout, &options))

@@ -49,7 +49,13 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
             report.problems[0]
         );
     }
-    let picture = Format::Ascii.render_to_vec(&layout, &RenderOptions { solution: true })?;
+    let picture = Format::Ascii.render_to_vec(
+        &layout,
+        &RenderOptions {
+            solution: true,
+            ..Default::default()
+        },
+    )?;
     println!("{}", String::from_utf8_lossy(&picture).trim_end());
     println!("OK {}", describe(&layout, layout.segments.len()));
     if let Some(metrics) = &report.metrics {

@@ -19,6 +19,7 @@ mod layering;
 mod legacy_client_server;
 mod legacy_draw;
 mod properties;
+mod render_controls;
 mod schema;
 mod solve;
 mod texture;
