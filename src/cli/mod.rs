@@ -8,6 +8,7 @@ mod connect;
 mod demo;
 mod generate;
 mod import;
+mod inspect;
 mod interrupt;
 mod output;
 mod progress;
@@ -63,6 +64,8 @@ pub enum Command {
     Apply(apply::ApplyArgs),
     /// Remove a drawn maze from CoppeliaSim (the templates stay).
     Clear(clear::ClearArgs),
+    /// Show what a CoppeliaSim scene holds now (and whether it matches a layout), changing nothing.
+    Inspect(inspect::InspectArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -203,6 +206,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Demo(args) => demo::run(args),
         Command::Apply(args) => apply::run(args, progress),
         Command::Clear(args) => clear::run(args),
+        Command::Inspect(args) => inspect::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }

@@ -175,6 +175,86 @@ pub struct ClearJson {
     pub dry_run: bool,
 }
 
+/// What `vrep-maze inspect --json` prints (`schema/inspect-v1.schema.json`).
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct InspectReport {
+    /// Always `"vrep-maze/inspect"`.
+    pub format: String,
+    /// Report version: 1.
+    pub version: u32,
+    /// Which API answered, where (and over ZeroMQ the simulator's version).
+    pub connection: String,
+    /// The simulation is not stopped.
+    pub simulation_running: bool,
+    /// The idle rate now (`sim_intparam_idle_fps`).
+    pub idle_fps: i32,
+    /// The user's idle rate recorded by an `apply` that was interrupted (the idle rate is
+    /// then its 0; `clear` restores it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub saved_idle_fps: Option<i32>,
+    /// The named objects: floor, maze dummy, templates, markers.
+    pub objects: Vec<SceneObject>,
+    /// The maze drawn.
+    pub maze: DrawnMaze,
+    /// With `--layout`: whether the drawing matches it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layout: Option<LayoutMatch>,
+}
+
+/// One of the objects vrep-maze uses, as found in the scene.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct SceneObject {
+    /// What it is for: floor, maze dummy, line template, wall template, post template,
+    /// start marker, end marker.
+    pub role: String,
+    /// Its name (the command line's `--floor`, `--line`, ...).
+    pub name: String,
+    /// It is in the scene.
+    pub present: bool,
+    /// Its handle in this scene.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub handle: Option<i32>,
+    /// Position, metres: in the floor's frame (the floor's own in the world's), when read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 3]>,
+    /// CoppeliaSim Euler angles, radians, in the same frame (yaw last), when read.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<[f64; 3]>,
+}
+
+/// The copies under the maze dummy.
+#[derive(Debug, Clone, Default, Serialize, JsonSchema)]
+pub struct DrawnMaze {
+    /// Copies of the line template under the maze dummy.
+    pub lines: usize,
+    /// Copies of the wall template under the maze dummy.
+    pub walls: usize,
+    /// Copies of the post template under the maze dummy.
+    pub posts: usize,
+    /// lines or walls when the copies are one style's; absent when there are none, or both.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub style: Option<Style>,
+    /// Children of the maze dummy whose names the API did not read (ZeroMQ, in a scene
+    /// without another style's template): counted as copies of the template drawn, as
+    /// `apply` treats them.
+    pub names_unread: usize,
+    /// Copies of a template outside the maze dummy (left by an interrupted run).
+    pub stray_copies: Vec<String>,
+    /// Objects under the maze dummy that vrep-maze did not draw.
+    pub not_ours: Vec<String>,
+}
+
+/// Whether the drawing in the scene is a layout's.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct LayoutMatch {
+    /// The layout file compared.
+    pub file: String,
+    /// Every copy, start and end in place and nothing else drawn.
+    pub matches: bool,
+    /// What differs (as `apply`'s verification says it).
+    pub differences: Vec<String>,
+}
+
 /// Every report's schema file name (under `schema/`) and its JSON Schema.
 pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
     vec![
@@ -186,5 +266,9 @@ pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
         ("solve-v1.schema.json", schemars::schema_for!(SolveReport)),
         ("apply-v1.schema.json", schemars::schema_for!(ApplyJson)),
         ("clear-v1.schema.json", schemars::schema_for!(ClearJson)),
+        (
+            "inspect-v1.schema.json",
+            schemars::schema_for!(InspectReport),
+        ),
     ]
 }

@@ -14,6 +14,7 @@ mod draw;
 mod generation_gate;
 mod generators;
 mod golden;
+mod inspect;
 mod interrupt;
 mod layering;
 mod legacy_client_server;
