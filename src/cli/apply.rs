@@ -20,11 +20,12 @@ pub struct ConnectArgs {
     /// Host running CoppeliaSim (dotted IPv4 or a name).
     #[arg(long, default_value = "127.0.0.1")]
     pub host: String,
-    /// Remote API: `legacy` (CoppeliaSim up to 4.10), `zmq` (4.3 and later, the only one from
-    /// 4.11), or `auto` (try legacy on 19997, then ZeroMQ on 23000; prints which was used).
-    #[arg(long, value_enum, default_value = "legacy")]
+    /// Remote API: `auto` (try legacy on 19997, then ZeroMQ on 23000; says which answered),
+    /// `legacy` (CoppeliaSim up to 4.10) or `zmq` (4.3 and later, the only one from 4.11).
+    #[arg(long, value_enum, default_value = "auto")]
     pub api: Api,
-    /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq].
+    /// Port of the remote API server [default: 19997 for legacy, 23000 for zmq; auto tries
+    /// both APIs on a port given].
     #[arg(long, allow_negative_numbers = true)]
     pub port: Option<u16>,
     /// The floor: every layout coordinate is relative to it.
@@ -205,6 +206,18 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     };
     let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
     bar.finish_and_clear();
+    // over ZeroMQ the missing objects can be made: say so first
+    let can_create = backend.authoring().is_some() && !args.create_missing;
+    let result = result.map_err(|e| match e {
+        DrawError::Missing { names, mut hints } if can_create => {
+            hints.insert(
+                0,
+                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the course's sizes and colours".into(),
+            );
+            DrawError::Missing { names, hints }
+        }
+        e => e,
+    });
     if let Err(DrawError::Interrupted { placed, total }) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal

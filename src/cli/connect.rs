@@ -13,8 +13,6 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use super::ensure_usage;
-
 use super::one_line;
 use crate::draw::Backend;
 use crate::legacy::client::Retrying;
@@ -75,7 +73,7 @@ pub struct Connected {
     pub description: String,
 }
 
-/// Connects as `api` says. `port` overrides the API's default (not allowed with auto);
+/// Connects as `api` says. `port` overrides the API's default (auto tries both APIs on it);
 /// `timeout` bounds each reply; `connect_timeout` the connection [default:
 /// [`LEGACY_CONNECT_TIMEOUT`] or [`ZMQ_CONNECT_TIMEOUT`]].
 pub fn connect(
@@ -100,24 +98,22 @@ pub fn connect(
             connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
         ),
         Api::Auto => {
-            ensure_usage!(
-                port.is_none(),
-                "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
-            );
+            // with --port, both APIs are tried on that port
+            let (legacy_port, zmq_port) = port.map_or((LEGACY_PORT, ZMQ_PORT), |p| (p, p));
             let wait = connect_timeout.map_or(AUTO_LEGACY_WAIT, |t| t.min(AUTO_LEGACY_WAIT));
-            let legacy_err = match legacy(host, LEGACY_PORT, timeout, wait, false) {
+            let legacy_err = match legacy(host, legacy_port, timeout, wait, false) {
                 Ok(c) => return Ok(c),
                 Err(e) => e,
             };
-            eprintln!(
+            super::say::note(format!(
                 "the legacy remote API did not answer at {}; trying the ZeroMQ one",
-                socket_addr(host, LEGACY_PORT)
-            );
+                socket_addr(host, legacy_port)
+            ));
             let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
-            zmq(host, ZMQ_PORT, timeout, zmq_wait).map_err(|zmq_err| {
+            zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
                 connect_error(
                     format!(
-                        "no CoppeliaSim remote API answered on {host}: legacy port {LEGACY_PORT}: {}; ZeroMQ port {ZMQ_PORT}: {}",
+                        "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
                         one_line(&legacy_err),
                         one_line(&zmq_err)
                     ),

@@ -37,6 +37,10 @@ pub struct ImportArgs {
 pub fn run(args: ImportArgs) -> Result<ExitCode> {
     let name = args.file.display().to_string();
     let text = std::fs::read_to_string(&args.file).with_context(|| format!("reading {name}"))?;
+    anyhow::ensure!(
+        !(text.trim_start().starts_with('{') && text.contains(crate::layout::FORMAT)),
+        "{name} is a layout (JSON) already, not a maze drawn as text: use it as it is (vrep-maze render {name} draws it as text)"
+    );
     let options = ImportOptions {
         cell_size: args.cell_size,
         style: if args.lines {
