@@ -1,7 +1,6 @@
 //! The first hour of a new user (issue 21): what the command line says when something is
 //! missing or wrong, and what it says it did.
 
-use predicates::prelude::*;
 use predicates::str::contains;
 
 use crate::support::bin;
