@@ -8,6 +8,7 @@ mod cli;
 mod cli_fuzz;
 mod cli_legacy;
 mod cli_zmq;
+mod completion;
 mod connect;
 mod ctrl_c;
 mod draw;
