@@ -187,7 +187,7 @@ pub fn apply(
         .is_some_and(|v| v.get_name() == "legacy");
     if (args.create_missing || args.save_scene.is_some()) && legacy {
         return Err(PyValueError::new_err(
-            "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes",
+            "create_missing=True and save_scene need the ZeroMQ remote API (api=\"zmq\"): the legacy API cannot create objects or save scenes",
         ));
     }
     let stop = Stop::default();
