@@ -15,7 +15,7 @@ use serde::Serialize;
 
 use crate::atomic_file::{remove_stale_temporaries, write_atomically};
 use crate::layout::json::to_string;
-use crate::layout::{GenerateSpec, build_layout};
+use crate::layout::{GenerateSpec, Layout, build_layout};
 use crate::maze::Metrics;
 
 /// The most seeds one batch takes.
@@ -105,6 +105,30 @@ pub fn run(
     tick: &(dyn Fn() + Sync),
     stop: &AtomicBool,
 ) -> Result<Outcome, String> {
+    let make = |seed| {
+        let spec = GenerateSpec {
+            seed,
+            ..template.clone()
+        };
+        let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+        Ok((layout, file_name(&spec)))
+    };
+    run_with(&make, seeds, filter, out_dir, tick, stop)
+}
+
+/// Makes a layout and names its file for a seed: what a batch of any style needs.
+pub type Maker<'a> = dyn Fn(u64) -> Result<(Layout, String), String> + Sync + 'a;
+
+/// [`run`] for layouts of any kind: `make` gives the layout of a seed and its file name
+/// (relative to `out_dir`); every layout passes the gate before it is written.
+pub fn run_with(
+    make: &Maker<'_>,
+    seeds: &[u64],
+    filter: Filter,
+    out_dir: &Path,
+    tick: &(dyn Fn() + Sync),
+    stop: &AtomicBool,
+) -> Result<Outcome, String> {
     if out_dir.exists() && !out_dir.is_dir() {
         return Err(format!(
             "{}: exists and is not a directory (--out-dir names the directory that gets the layouts and manifest.jsonl)",
@@ -120,7 +144,7 @@ pub fn run(
             if stop.load(Ordering::SeqCst) {
                 return Ok(Made::Skipped);
             }
-            let result = make_one(template, seed, filter, out_dir);
+            let result = make_one(make, seed, filter, out_dir);
             tick();
             result
         })
@@ -150,17 +174,8 @@ pub fn run(
     Ok(outcome)
 }
 
-fn make_one(
-    template: &GenerateSpec,
-    seed: u64,
-    filter: Filter,
-    out_dir: &Path,
-) -> Result<Made, String> {
-    let spec = GenerateSpec {
-        seed,
-        ..template.clone()
-    };
-    let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+fn make_one(make: &Maker<'_>, seed: u64, filter: Filter, out_dir: &Path) -> Result<Made, String> {
+    let (layout, file) = make(seed)?;
     // the gate every layout passes before anything is done with it
     crate::validate::checked(&layout).map_err(|e| {
         let first = e
@@ -173,7 +188,6 @@ fn make_one(
     if !filter.accepts(&layout.metrics) {
         return Ok(Made::Filtered);
     }
-    let file = file_name(&spec);
     let path = out_dir.join(&file);
     let text = to_string(&layout);
     let entry = ManifestEntry {

@@ -1,6 +1,7 @@
 //! `batch`: many mazes, one per seed, as `vrep-maze batch` makes them, yielded as layouts.
 
 use std::collections::VecDeque;
+use std::sync::Arc;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -8,13 +9,17 @@ use pyo3::types::{PyDict, PyInt, PyRange, PyString};
 use rayon::prelude::*;
 use vrep_maze::batch::Filter;
 use vrep_maze::cli::Command;
-use vrep_maze::layout::{self as library, GenerateSpec, build_layout};
+use vrep_maze::cli::one_line;
+use vrep_maze::layout::{self as library, build::Planned};
 use vrep_maze::validate::checked;
 
 use crate::errors;
 use crate::layout::Layout;
 use crate::options;
 use crate::worker::{self, OnSignal};
+
+/// Makes the layout of one seed.
+type Maker = Arc<dyn Fn(u64) -> Result<library::Layout, String> + Send + Sync>;
 
 /// Mazes made per core at a time: enough to keep every core busy, few enough that a
 /// script which stops early has not waited for many more.
@@ -25,8 +30,8 @@ const PER_CORE: usize = 4;
 /// with the same options.
 #[pyclass(module = "vrep_maze")]
 pub struct Batch {
-    /// The maze options (its seed is replaced).
-    template: GenerateSpec,
+    /// Makes the layout of one seed, as `vrep-maze batch` does (any style).
+    make: Maker,
     /// Every seed, in order.
     seeds: Vec<u64>,
     /// The index of the next seed to make.
@@ -57,8 +62,8 @@ impl Batch {
                 .min(self.next + PER_CORE * rayon::current_num_threads());
             let seeds = self.seeds[self.next..end].to_vec();
             self.next = end;
-            let (template, filter) = (self.template.clone(), self.filter);
-            let made = worker::run(py, move || make(&template, &seeds, filter), OnSignal::Raise)?;
+            let (maker, filter) = (self.make.clone(), self.filter);
+            let made = worker::run(py, move || make(&*maker, &seeds, filter), OnSignal::Raise)?;
             self.ready = made.map_err(PyValueError::new_err)?.into();
         }
     }
@@ -72,18 +77,14 @@ impl Batch {
 /// The layouts of `seeds` that `filter` keeps, made in parallel, in seed order; each passes
 /// the gate first, as in `vrep-maze batch`.
 fn make(
-    template: &GenerateSpec,
+    maker: &(dyn Fn(u64) -> Result<library::Layout, String> + Send + Sync),
     seeds: &[u64],
     filter: Filter,
 ) -> Result<Vec<library::Layout>, String> {
     let made: Vec<Option<library::Layout>> = seeds
         .par_iter()
         .map(|&seed| {
-            let spec = GenerateSpec {
-                seed,
-                ..template.clone()
-            };
-            let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+            let layout = maker(seed).map_err(|e| format!("seed {seed}: {e}"))?;
             checked(&layout).map_err(|e| format!("seed {seed}: {e}"))?;
             Ok(filter.accepts(&layout.metrics).then_some(layout))
         })
@@ -117,9 +118,18 @@ pub fn batch(
     let Command::Batch(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err("batch parsed as another command"));
     };
-    let template = args.maze.spec(0).map_err(|e| errors::from_anyhow(py, &e))?;
+    args.layout
+        .check()
+        .map_err(|e| errors::from_anyhow(py, &e))?;
+    let options = args.layout;
+    let make: Maker = Arc::new(move |seed| {
+        options
+            .plan(seed)
+            .map(Planned::into_layout)
+            .map_err(|e| one_line(&e))
+    });
     Ok(Batch {
-        template,
+        make,
         seeds: args.seeds.0,
         next: 0,
         filter: Filter {

@@ -153,8 +153,8 @@ fn run_drawing<T: Send + 'static, R>(
 
 /// Draws `layout` into CoppeliaSim as `vrep-maze apply` does and verifies it.
 ///
-/// Every option of `apply` is a keyword: `api="legacy"` (port 19997, the default),
-/// `"zmq"` (port 23000) or `"auto"`; `host="127.0.0.1"`; `port`; the scene's object names
+/// Every option of `apply` is a keyword: `api="auto"` (the default: port 19997 with the
+/// legacy API, else 23000 with ZeroMQ), `"legacy"` or `"zmq"`; `host="127.0.0.1"`; `port`; the scene's object names
 /// `floor="Floor"`, `parent="Maze"`, `line="Line"`, `start="Start"`, `end="End"`;
 /// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `dry_run`,
 /// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
@@ -187,7 +187,7 @@ pub fn apply(
         .is_some_and(|v| v.get_name() == "legacy");
     if (args.create_missing || args.save_scene.is_some()) && legacy {
         return Err(PyValueError::new_err(
-            "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes",
+            "create_missing=True and save_scene need the ZeroMQ remote API (api=\"zmq\"): the legacy API cannot create objects or save scenes",
         ));
     }
     let stop = Stop::default();

@@ -39,8 +39,8 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
     if let Some(invalid) = error.chain().find_map(|c| c.downcast_ref::<Invalid>()) {
         return invalid_error(py, &one_line(error), invalid);
     }
-    let hints = hints(error);
-    let mut text = one_line(error);
+    let hints: Vec<String> = hints(error).iter().map(|h| python_names(h)).collect();
+    let mut text = python_names(&one_line(error));
     for detail in details(error) {
         text.push_str("\n  ");
         text.push_str(&detail);
@@ -102,4 +102,70 @@ fn with_attributes(
         Ok(()) => err,
         Err(e) => e,
     }
+}
+
+/// `text` with the command line's option names as the keywords Python takes:
+/// `invalid value 'prims' for '--algo <ALGO>'` becomes `invalid value algo='prims'`,
+/// `'--size <SIZE>'` becomes `size`, and a bare `--connect-timeout` `connect_timeout`
+/// (`--create-missing`, a flag, `create_missing=True`).
+pub fn python_names(text: &str) -> String {
+    let keyword = |option: &str| option.trim_start_matches("--").replace('-', "_");
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("'--") {
+        let Some(len) = rest[at + 1..].find('\'') else {
+            break;
+        };
+        let quoted = &rest[at + 1..at + 1 + len];
+        let name = keyword(quoted.split_whitespace().next().unwrap_or(quoted));
+        let before = &rest[..at];
+        // "invalid value 'X' for '--opt <V>'" reads "invalid value opt='X'"
+        match before
+            .strip_suffix(" for ")
+            .and_then(|b| b.rsplit_once("invalid value "))
+        {
+            Some((head, value)) => out.push_str(&format!("{head}invalid value {name}={value}")),
+            None => {
+                out.push_str(before);
+                out.push_str(&name);
+            }
+        }
+        rest = &rest[at + 1 + len + 1..];
+    }
+    out.push_str(rest);
+    bare_options(&out)
+}
+
+/// Bare `--option` words as Python keywords: `option` (`option=True` for a flag).
+fn bare_options(text: &str) -> String {
+    use clap::CommandFactory;
+    let cli = vrep_maze::cli::Cli::command();
+    let flag = |long: &str| {
+        cli.get_subcommands()
+            .flat_map(|s| s.get_arguments())
+            .chain(cli.get_arguments())
+            .find(|a| a.get_long() == Some(long))
+            .is_some_and(|a| !a.get_action().takes_values())
+    };
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("--") {
+        let starts_word = at == 0 || !rest[..at].ends_with(|c: char| c.is_alphanumeric());
+        let name_len = rest[at + 2..]
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+            .unwrap_or(rest.len() - at - 2);
+        let long = &rest[at + 2..at + 2 + name_len];
+        out.push_str(&rest[..at]);
+        if starts_word && !long.is_empty() && long.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            out.push_str(&long.replace('-', "_"));
+            if flag(long) {
+                out.push_str("=True");
+            }
+        } else {
+            out.push_str(&rest[at..at + 2 + name_len]);
+        }
+        rest = &rest[at + 2 + name_len..];
+    }
+    out.push_str(rest);
+    out
 }

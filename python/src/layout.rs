@@ -12,6 +12,7 @@ use pyo3::types::{PyBytes, PyDict, PyString};
 use vrep_maze::atomic_file::write_atomically;
 use vrep_maze::cli::Command;
 use vrep_maze::layout::json::{parse_layout, to_string};
+use vrep_maze::layout::solution::solve;
 use vrep_maze::layout::{self as library, Pose, Style, build::Planned, passages, read_layout};
 use vrep_maze::maze::analysis::shortest_path;
 use vrep_maze::maze::{Cell, Direction, Grid, Maze};
@@ -183,6 +184,31 @@ impl Layout {
             .collect())
     }
 
+    /// The solution as floor waypoints, as `vrep-maze solve` writes them: a NumPy `float64`
+    /// array of shape `(n, 4)`, one row `(x, y, yaw, distance)` per waypoint (metres and
+    /// radians in the floor's frame; `distance` along the path from the first). A cell where
+    /// the path turns has two rows, the heading on arrival and on leaving. `start=(x, y)`
+    /// starts from another cell than the layout's start.
+    #[pyo3(signature = (*, start=None))]
+    fn waypoints<'py>(
+        &self,
+        py: Python<'py>,
+        start: Option<(u32, u32)>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let from = start.map(|(x, y)| Cell::new(x, y));
+        let solved = py
+            .detach(|| solve(&self.layout, &self.maze, from))
+            .map_err(|e| PyValueError::new_err(e.replace("from cell", "start")))?;
+        let flat: Vec<f64> = solved
+            .waypoints
+            .iter()
+            .flat_map(|w| [w.x, w.y, w.yaw, w.distance])
+            .collect();
+        let array = Array2::from_shape_vec((solved.waypoints.len(), 4), flat)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        Ok(PyArray2::from_owned_array(py, array))
+    }
+
     /// The copies of `Line` to draw, a NumPy `float64` array of shape `(n, 4)`: one row
     /// `(x, y, z, yaw)` per segment in the floor's frame (metres, radians), the template
     /// first. Made in one allocation, not one object per segment.
@@ -226,7 +252,10 @@ impl Layout {
         solution: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let format = choose_format(format, path.as_deref())?;
-        let options = RenderOptions { solution };
+        let options = RenderOptions {
+            solution,
+            ..Default::default()
+        };
         let layout = &self.layout;
         let bytes = py
             .detach(|| format.render_to_vec(layout, &options))

@@ -3,6 +3,7 @@
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -23,6 +24,16 @@ def command() -> str:
 def run_cli(*args, **kwargs) -> subprocess.CompletedProcess:
     """Runs the package's `vrep-maze` command; output captured as bytes."""
     return subprocess.run([command(), *map(str, args)], capture_output=True, timeout=120, **kwargs)
+
+
+def in_python_names(message: str) -> str:
+    """A command-line message as the Python API words it: `'--algo <ALGO>'` is `algo`,
+    `invalid value 'x' for '--algo <ALGO>'` is `invalid value algo='x'`, `--size` is `size`."""
+    keyword = lambda option: option.replace("-", "_")
+    message = re.sub(r"invalid value ('[^']*') for '--([a-z-]+)(?: <[A-Z_]+>)?'",
+                     lambda m: f"invalid value {keyword(m[2])}={m[1]}", message)
+    message = re.sub(r"'--([a-z-]+)(?: <[A-Z_]+>)?'", lambda m: keyword(m[1]), message)
+    return re.sub(r"(?<![\w-])--([a-z][a-z-]*)", lambda m: keyword(m[1]), message)
 
 
 def cli_error(*args) -> str:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import vrep_maze
-from conftest import MAZES, cli_error, golden_cases, imported_goldens, run_cli
+from conftest import MAZES, cli_error, golden_cases, imported_goldens, in_python_names, run_cli
 
 
 @pytest.mark.parametrize("path, options", golden_cases())
@@ -63,7 +63,8 @@ def test_geometry_keywords_mean_what_the_options_mean():
 def test_a_refused_value_raises_value_error_with_the_commands_message(keywords, args):
     with pytest.raises(ValueError) as raised:
         vrep_maze.generate(**keywords)
-    assert str(raised.value) == cli_error("generate", *args)
+    assert str(raised.value) == in_python_names(cli_error("generate", *args))
+    assert "--" not in str(raised.value)
 
 
 def test_python_type_errors_are_type_errors():
@@ -135,11 +136,12 @@ def test_batch_filters_like_the_command():
                for s in keep)
     with pytest.raises(ValueError) as raised:
         vrep_maze.batch(range(3), max_dead_ends=150)
-    assert str(raised.value) == cli_error("batch", "--seeds", "0..3", "--out-dir", ".",
-                                          "--max-dead-ends", "150")
+    assert str(raised.value) == in_python_names(cli_error(
+        "batch", "--seeds", "0..3", "--out-dir", ".", "--max-dead-ends", "150"))
     with pytest.raises(ValueError) as raised:
         vrep_maze.batch("5..2")
-    assert str(raised.value) == cli_error("batch", "--seeds", "5..2", "--out-dir", ".")
+    assert str(raised.value) == in_python_names(
+        cli_error("batch", "--seeds", "5..2", "--out-dir", "."))
 
 
 def test_help_says_what_the_options_are():
@@ -170,4 +172,34 @@ def test_a_wall_maze_has_walls_and_no_segments():
 def test_wall_options_without_walls_are_refused_as_the_command_refuses_them():
     with pytest.raises(ValueError) as raised:
         vrep_maze.generate(seed=1, wall_height=0.3)
-    assert str(raised.value) == cli_error("generate", "--seed", 1, "--wall-height", 0.3)
+    assert str(raised.value) == in_python_names(
+        cli_error("generate", "--seed", 1, "--wall-height", 0.3))
+
+
+def test_waypoints_are_what_solve_writes(tmp_path):
+    layout = vrep_maze.generate(seed=42, algo="prim", braid=0.5)
+    waypoints = layout.waypoints()
+    assert waypoints.dtype == np.float64 and waypoints.shape[1] == 4
+    path = layout.solution()
+    turns = layout.metrics["solution_turns"]
+    assert waypoints.shape[0] == len(path) + turns
+    assert waypoints[-1, 3] == len(path) - 1  # 1 m cells: metres along the path
+    file = tmp_path / "m.json"
+    layout.save(file)
+    report = json.loads(run_cli("solve", file).stdout)
+    expected = [[w["x"], w["y"], w["yaw"], w["distance"]] for w in report["waypoints"]]
+    assert waypoints.tolist() == expected
+    other = layout.waypoints(start=(8, 8))
+    assert other[0].tolist()[:2] == [4.0, 4.0] and other[0, 3] == 0.0  # cell (8,8) of 1 m cells
+    assert other[-1].tolist()[:2] == waypoints[-1].tolist()[:2]
+    with pytest.raises(ValueError, match="off the 9x9 grid"):
+        layout.waypoints(start=(9, 9))
+
+
+def test_batch_makes_every_style():
+    made = list(vrep_maze.batch(range(2), style="walls", posts=True, size=(5, 4)))
+    assert [m.style for m in made] == ["walls", "walls"]
+    assert made[1] == vrep_maze.generate(seed=1, style="walls", posts=True, size=(5, 4))
+    assert len(made[0].posts) > 0
+    mice = list(vrep_maze.batch([3], preset="micromouse"))
+    assert mice[0].size == (16, 16)

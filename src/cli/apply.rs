@@ -7,10 +7,11 @@ use anyhow::Context;
 
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
-use super::stdout::outln;
 
-use super::connect::{Api, connect};
+use super::connect::{Api, Connected, connect};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::reports::{ApplyJson, REPORT_VERSION};
+use super::say::{self, say};
 use crate::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
@@ -19,9 +20,9 @@ pub struct ConnectArgs {
     /// Host running CoppeliaSim (dotted IPv4 or a name).
     #[arg(long, default_value = "127.0.0.1")]
     pub host: String,
-    /// Remote API: `legacy` (CoppeliaSim up to 4.10), `zmq` (4.3 and later, the only one from
-    /// 4.11), or `auto` (try legacy on 19997, then ZeroMQ on 23000; prints which was used).
-    #[arg(long, value_enum, default_value = "legacy")]
+    /// Remote API: `auto` (try legacy on 19997, then ZeroMQ on 23000; says which answered),
+    /// `legacy` (CoppeliaSim up to 4.10) or `zmq` (4.3 and later, the only one from 4.11).
+    #[arg(long, value_enum, default_value = "auto")]
     pub api: Api,
     /// Port of the remote API server, 1..65535 [default: 19997 for legacy, 23000 for zmq].
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
@@ -77,15 +78,16 @@ impl ConnectArgs {
     /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
     /// answered.
     pub fn connect(&self) -> anyhow::Result<Box<dyn Backend>> {
-        self.connect_until(None)
+        Ok(self.connect_until(None)?.backend)
     }
 
-    /// [`ConnectArgs::connect`], ending the connection wait at once when `stop` is set
-    /// (Ctrl-C) with [`super::interrupt::Interrupted`].
+    /// [`ConnectArgs::connect`], keeping the description of what answered (for `--json`),
+    /// ending the connection wait at once when `stop` is set (Ctrl-C) with
+    /// [`super::interrupt::Interrupted`].
     pub fn connect_until(
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
-    ) -> anyhow::Result<Box<dyn Backend>> {
+    ) -> anyhow::Result<Connected> {
         for (option, name) in [
             ("--floor", &self.floor),
             ("--parent", &self.parent),
@@ -109,9 +111,9 @@ impl ConnectArgs {
             stop,
         )?;
         if self.api != Api::Legacy {
-            outln!("using the {}", connected.description)?;
+            say(format!("using the {}", connected.description))?;
         }
-        Ok(connected.backend)
+        Ok(connected)
     }
 }
 
@@ -163,6 +165,9 @@ pub struct ApplyArgs {
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
     #[arg(long, value_name = "PATH")]
     pub save_scene: Option<String>,
+    /// Print one JSON document on standard output (schema/apply-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// How `apply` draws a maze (`--draw`).
@@ -176,6 +181,7 @@ pub enum DrawMode {
 
 /// Runs `apply`.
 pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
+    say::set_json(args.json);
     if args.draw == DrawMode::Mesh {
         return run_mesh(args, bars);
     }
@@ -203,21 +209,25 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     opts.names.check_roles()?;
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
-    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
+    let Connected {
+        mut backend,
+        description: connection,
+    } = args.scene.connect_until(Some(interrupt.flag()))?;
     if interrupt.requested() {
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
+    let mut created = Vec::new();
     if args.create_missing && !args.dry_run {
         let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = draw::create_missing_for(authoring, &opts.names, &layout)
+        created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
-            outln!("created {}", created.join(", "))?;
+            say(format!("created {}", created.join(", ")))?;
         }
     }
     let what = match (drawing.style, drawing.posts.is_empty()) {
@@ -248,6 +258,18 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     };
     let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
     bar.finish_and_clear();
+    // over ZeroMQ the missing objects can be made: say so first
+    let can_create = backend.authoring().is_some() && !args.create_missing;
+    let result = result.map_err(|e| match e {
+        DrawError::Missing { names, mut hints } if can_create => {
+            hints.insert(
+                0,
+                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the course's sizes and colours".into(),
+            );
+            DrawError::Missing { names, hints }
+        }
+        e => e,
+    });
     if let Err(DrawError::Interrupted { placed, total }) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
@@ -280,20 +302,48 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         authoring
             .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
-        outln!("saved the scene to {path} (on the simulator's machine)")?;
+        say(format!(
+            "saved the scene to {path} (on the simulator's machine)"
+        ))?;
     }
     let _ = backend.close();
     if report.stopped_simulation {
-        outln!("stopped the simulation first")?;
+        say("stopped the simulation first")?;
     }
-    outln!("{report}")?;
+    say(&report)?;
+    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
+        say(line)?;
+    }
     if !report.dry_run {
         let noun = match (drawing.style, drawing.posts.is_empty()) {
             (crate::layout::Style::Lines, _) => "line",
             (crate::layout::Style::Walls, true) => "wall",
             (crate::layout::Style::Walls, false) => "wall, post",
         };
-        outln!("verified: every {noun}, start and end in place")?;
+        say(format!("verified: every {noun}, start and end in place"))?;
+    }
+    if args.json {
+        say::document(&ApplyJson {
+            format: "vrep-maze/apply".into(),
+            version: REPORT_VERSION,
+            layout: args.layout.display().to_string(),
+            connection,
+            style: report.style,
+            lines: report.lines,
+            posts: report.posts,
+            reused: report.reused,
+            pasted: report.pasted,
+            removed: report.removed,
+            unchanged: report.unchanged,
+            edits: report.edits,
+            round_trips: report.round_trips,
+            seconds: report.elapsed.as_secs_f64(),
+            stopped_simulation: report.stopped_simulation,
+            dry_run: report.dry_run,
+            verified: !report.dry_run,
+            created,
+            saved_scene: args.save_scene.filter(|_| !args.dry_run),
+        })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }
@@ -325,7 +375,7 @@ fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exi
         let created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
-            println!("created {}", created.join(", "));
+            say(format!("created {}", created.join(", ")))?;
         }
     }
     let what = match maze.style {
@@ -373,18 +423,20 @@ fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exi
         authoring
             .save_scene(path)
             .with_context(|| format!("saving the scene to {path}"))?;
-        println!("saved the scene to {path} (on the simulator's machine)");
+        say(format!(
+            "saved the scene to {path} (on the simulator's machine)"
+        ))?;
     }
     let _ = backend.close();
     if report.stopped_simulation {
-        println!("stopped the simulation first");
+        say("stopped the simulation first")?;
     }
-    println!("{report}");
+    say(&report)?;
     if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
-        println!("{line}");
+        say(line)?;
     }
     if !report.dry_run {
-        println!("verified: every mesh read back, start and end in place");
+        say("verified: every mesh read back, start and end in place")?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -1,8 +1,10 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
 use super::apply::ConnectArgs;
+use super::connect::Connected;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
-use super::stdout::outln;
+use super::reports::{ClearJson, REPORT_VERSION};
+use super::say::{self, say};
 use crate::draw::{self, ClearOptions, DrawError};
 
 /// Remove every maze line (children of the maze dummy other than the templates, and stray
@@ -21,13 +23,20 @@ pub struct ClearArgs {
     /// Only list what would be removed.
     #[arg(long)]
     pub dry_run: bool,
+    /// Print one JSON document on standard output (schema/clear-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
+    say::set_json(args.json);
     args.scene.names().check_roles()?;
     let interrupt = Interrupt::install()?;
-    let mut backend = args.scene.connect_until(Some(interrupt.flag()))?;
+    let Connected {
+        mut backend,
+        description: connection,
+    } = args.scene.connect_until(Some(interrupt.flag()))?;
     let opts = ClearOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
@@ -44,7 +53,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     let report = result?;
     let _ = backend.close();
     if report.stopped_simulation {
-        outln!("stopped the simulation first")?;
+        say("stopped the simulation first")?;
     }
     let verb = if args.dry_run {
         "would remove"
@@ -58,18 +67,20 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         String::new()
     };
     if let Some(fps) = report.restored_idle_fps {
-        outln!("restored the idle rate to {fps} fps (an interrupted apply had left it at 0)")?;
+        say(format!(
+            "restored the idle rate to {fps} fps (an interrupted apply had left it at 0)"
+        ))?;
     }
     if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
-        println!("{line}");
+        say(line)?;
     }
     if let Some(line) = &report.template {
-        println!("{line}");
+        say(line)?;
     }
     if report.removed.is_empty() {
-        outln!("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;
+        say("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;
     } else {
-        outln!(
+        say(format!(
             "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
             if report.removed.len() == 1 {
@@ -78,7 +89,19 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
                 "ies"
             },
             shown.join(", ")
-        )?;
+        ))?;
+    }
+    if args.json {
+        say::document(&ClearJson {
+            format: "vrep-maze/clear".into(),
+            version: REPORT_VERSION,
+            connection,
+            removed: report.removed,
+            round_trips: report.round_trips,
+            restored_idle_fps: report.restored_idle_fps,
+            stopped_simulation: report.stopped_simulation,
+            dry_run: args.dry_run,
+        })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -18,8 +18,6 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use super::ensure_usage;
-
 use super::interrupt::Interrupted;
 use super::one_line;
 use super::session_marker::SessionMarker;
@@ -87,7 +85,7 @@ pub struct Connected {
     pub description: String,
 }
 
-/// Connects as `api` says. `port` overrides the API's default (not allowed with auto);
+/// Connects as `api` says. `port` overrides the API's default (auto tries both APIs on it);
 /// `timeout` bounds each reply; `connect_timeout` the connection [default:
 /// [`LEGACY_CONNECT_TIMEOUT`] (or [`LEGACY_REFUSAL_WAIT`] when an earlier run left
 /// abruptly) or [`ZMQ_CONNECT_TIMEOUT`]]. Once `stop` is set (Ctrl-C) the legacy wait ends
@@ -116,11 +114,9 @@ pub fn connect(
             connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
         ),
         Api::Auto => {
-            ensure_usage!(
-                port.is_none(),
-                "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
-            );
-            let refusal = SessionMarker::for_address(host, LEGACY_PORT)
+            // with --port, both APIs are tried on that port
+            let (legacy_port, zmq_port) = port.map_or((LEGACY_PORT, ZMQ_PORT), |p| (p, p));
+            let refusal = SessionMarker::for_address(host, legacy_port)
                 .left_abruptly()
                 .is_some();
             let wait = match connect_timeout {
@@ -129,20 +125,20 @@ pub fn connect(
                 None if refusal => LEGACY_REFUSAL_WAIT,
                 None => AUTO_LEGACY_WAIT,
             };
-            let legacy_err = match legacy(host, LEGACY_PORT, timeout, Some(wait), false, stop) {
+            let legacy_err = match legacy(host, legacy_port, timeout, Some(wait), false, stop) {
                 Ok(c) => return Ok(c),
                 Err(e) if e.is::<Interrupted>() => return Err(e),
                 Err(e) => e,
             };
-            eprintln!(
+            super::say::note(format!(
                 "the legacy remote API did not answer at {}; trying the ZeroMQ one",
-                socket_addr(host, LEGACY_PORT)
-            );
+                socket_addr(host, legacy_port)
+            ));
             let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
-            zmq(host, ZMQ_PORT, timeout, zmq_wait).map_err(|zmq_err| {
+            zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
                 connect_error(
                     format!(
-                        "no CoppeliaSim remote API answered on {host}: legacy port {LEGACY_PORT}: {}; ZeroMQ port {ZMQ_PORT}: {}",
+                        "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
                         one_line(&legacy_err),
                         one_line(&zmq_err)
                     ),
@@ -195,7 +191,9 @@ fn legacy(
     } else {
         LEGACY_CONNECT_TIMEOUT
     });
-    eprintln!("connecting to CoppeliaSim's legacy remote API at {addr} ...");
+    super::say::note(format!(
+        "connecting to CoppeliaSim's legacy remote API at {addr} ..."
+    ));
     if let Some(earlier) = earlier {
         eprintln!(
             "an earlier vrep-maze run (process {}) left its session at {addr} abruptly; CoppeliaSim then refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
@@ -323,7 +321,9 @@ fn zmq(
     connect_timeout: Duration,
 ) -> anyhow::Result<Connected> {
     let addr = socket_addr(host, port);
-    eprintln!("connecting to CoppeliaSim's ZeroMQ remote API at {addr} ...");
+    super::say::note(format!(
+        "connecting to CoppeliaSim's ZeroMQ remote API at {addr} ..."
+    ));
     let options = zmq_api::ClientOptions {
         host: host.to_string(),
         port,

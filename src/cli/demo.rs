@@ -50,7 +50,13 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
             report.problems[0]
         );
     }
-    let picture = Format::Ascii.render_to_vec(&layout, &RenderOptions { solution: true })?;
+    let picture = Format::Ascii.render_to_vec(
+        &layout,
+        &RenderOptions {
+            solution: true,
+            ..Default::default()
+        },
+    )?;
     outln!("{}", String::from_utf8_lossy(&picture).trim_end())?;
     outln!("OK {}", describe(&layout, layout.segments.len()))?;
     if let Some(metrics) = &report.metrics {

@@ -34,15 +34,68 @@ pub struct GenerateArgs {
     /// layout (and printed), so the maze can be made again.
     #[arg(long, allow_hyphen_values = true)]
     pub seed: Option<u64>,
+    /// What maze to make and how it is drawn.
+    #[command(flatten)]
+    pub layout: LayoutArgs,
+    /// Write the layout here (atomically) instead of standard output.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+/// Every option of `generate` but the seed and the output: what maze to make and how it is
+/// drawn. `batch` flattens the same struct, so the two commands cannot drift apart.
+#[derive(Debug, Args)]
+pub struct LayoutArgs {
     /// What maze to make.
     #[command(flatten)]
     pub maze: MazeArgs,
     /// How the maze is drawn.
     #[command(flatten)]
     pub style: StyleArgs,
-    /// Write the layout here (atomically) instead of standard output.
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
+}
+
+impl LayoutArgs {
+    /// The layout these options describe for `seed`, its segments (if lines) still to be
+    /// computed.
+    pub fn plan(&self, seed: u64) -> Result<Planned> {
+        let spec = self.maze.spec(seed)?;
+        plan(&spec, &self.style, self.maze.origin)
+    }
+
+    /// Every option checked, as [`LayoutArgs::plan`] checks them, without making a maze
+    /// (what is left to refuse depends on the maze: its start and end).
+    pub fn check(&self) -> Result<()> {
+        let spec = self.maze.spec(0)?;
+        match self.style.preset {
+            Some(preset) => {
+                let cell_size = preset.spec(spec, self.maze.origin).geometry.cell_size;
+                self.style
+                    .posts(preset.walls(None).thickness, cell_size)
+                    .map(drop)
+            }
+            None => self.style.walls(spec.geometry.cell_size).map(drop),
+        }
+    }
+
+    /// The file `batch` writes the maze of `seed` to: `<algo>-<W>x<H>[-braid<P>]-seed<N>`,
+    /// then `-walls` (and `-posts`) for a wall maze, or `<algo>-<preset>[-posts]-seed<N>`
+    /// for a preset; `.json`.
+    pub fn file_name(&self, seed: u64) -> Result<String> {
+        let spec = self.maze.spec(seed)?;
+        let posts = if self.style.posts { "-posts" } else { "" };
+        if let Some(preset) = self.style.preset {
+            return Ok(format!(
+                "{}-{}{posts}-seed{seed}.json",
+                spec.algorithm.name(),
+                preset.name()
+            ));
+        }
+        let name = crate::batch::file_name(&spec);
+        Ok(match self.style.style {
+            Style::Lines => name,
+            Style::Walls => format!("{}-walls{posts}.json", name.trim_end_matches(".json")),
+        })
+    }
 }
 
 /// The maze options `generate` and `batch` share: everything but the seed.
@@ -232,8 +285,7 @@ impl GenerateArgs {
     /// segments (if lines) still to be computed: what `generate` writes, for programs that
     /// embed the command line (the Python package's `generate`).
     pub fn plan(&self, seed: u64) -> Result<Planned> {
-        let spec = self.maze.spec(seed)?;
-        plan(&spec, &self.style, self.maze.origin)
+        self.layout.plan(seed)
     }
 }
 
@@ -315,7 +367,7 @@ const BAR_STEP: usize = 1 << 16;
 pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     let drawn = args.seed.is_none();
     // Check every option before drawing a seed, so a refused run prints nothing else.
-    let grid = args.maze.spec(0)?.grid;
+    let grid = args.layout.maze.spec(0)?.grid;
     let seed = args.seed.unwrap_or_else(os_seed);
     // Options are checked; what is left to refuse depends on them too (start and end).
     let spinner = progress.spinner(format!("generating a {grid} maze"));

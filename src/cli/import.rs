@@ -47,6 +47,10 @@ pub fn run(args: ImportArgs) -> Result<ExitCode> {
         "a text drawing of a maze",
         "our drawing of the largest grid, 4096x4096, takes about 134 MB",
     )?;
+    anyhow::ensure!(
+        !(text.trim_start().starts_with('{') && text.contains(crate::layout::FORMAT)),
+        "{name} is a layout (JSON) already, not a maze drawn as text: use it as it is (vrep-maze render {name} draws it as text)"
+    );
     let options = ImportOptions {
         cell_size: args.cell_size,
         style: if args.lines {

@@ -11,12 +11,16 @@ mod export;
 mod generate;
 mod import;
 mod input;
+mod inspect;
 mod interrupt;
 mod output;
 mod progress;
 mod render;
+pub mod reports;
+mod say;
 mod serve;
 mod session_marker;
+mod solve;
 mod stdout;
 mod validate;
 mod values;
@@ -58,6 +62,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Write a layout as a CoppeliaSim XML model (.simmodel.xml) or scene (.simscene.xml).
     Export(export::ExportArgs),
+    /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
+    Solve(solve::SolveArgs),
     /// Generate a dataset: one layout per seed plus a manifest, on all cores.
     Batch(batch::BatchArgs),
     /// Print a shell completion script (bash, zsh, fish, ...).
@@ -68,6 +74,8 @@ pub enum Command {
     Apply(apply::ApplyArgs),
     /// Remove a drawn maze from CoppeliaSim (the templates stay).
     Clear(clear::ClearArgs),
+    /// Show what a CoppeliaSim scene holds now (and whether it matches a layout), changing nothing.
+    Inspect(inspect::InspectArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -187,13 +195,27 @@ fn report_usage(error: &clap::Error, args: &[OsString]) -> ExitCode {
     let text = shown.render().to_string();
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if let Some(first) = lines.next() {
-        eprintln!("{}", shorten(first));
+        eprintln!("{}{}", shorten(first), missing_arguments(error));
     }
     for tip in lines.filter_map(|l| l.strip_prefix("tip:")) {
         eprintln!("  hint:{}", shorten(tip));
     }
     eprintln!("  hint: `--help` lists every option, with examples");
     ExitCode::from(USAGE_EXIT_CODE)
+}
+
+/// The arguments a `MissingRequiredArgument` error names (" <FILE>, --seeds <SEEDS>"), to
+/// follow clap's first line ("... were not provided:"), which names none; empty otherwise.
+fn missing_arguments(error: &clap::Error) -> String {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if error.kind() != ErrorKind::MissingRequiredArgument {
+        return String::new();
+    }
+    match error.get(ContextKind::InvalidArg) {
+        Some(ContextValue::Strings(names)) => format!(" {}", names.join(", ")),
+        Some(ContextValue::String(name)) => format!(" {name}"),
+        _ => String::new(),
+    }
 }
 
 /// A reader that closes our output early (`vrep-maze validate *.json | head -1`) ends the run
@@ -224,17 +246,20 @@ fn end_quietly_on_broken_pipe() {
 
 fn run(cli: Cli) -> Result<ExitCode> {
     let progress = progress::Progress::new(cli.quiet);
+    say::set_modes(cli.quiet, false);
     match cli.command {
         Command::Generate(args) => generate::run(args, progress),
         Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
         Command::Export(args) => export::run(args),
+        Command::Solve(args) => solve::run(args, progress),
         Command::Batch(args) => batch::run(args, progress),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Apply(args) => apply::run(args, progress),
         Command::Clear(args) => clear::run(args),
+        Command::Inspect(args) => inspect::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }

@@ -9,9 +9,11 @@ use clap::Args;
 
 use super::output::write_output;
 use super::progress::{Progress, Unit};
-use super::validate::read_checking;
+use super::say::note;
+use super::validate::{describe, read_checking};
+use super::values::parse_metres;
 use super::{ensure_usage, usage};
-use crate::render::{Format, RenderOptions};
+use crate::render::{Format, RenderOptions, Scale};
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -30,6 +32,17 @@ pub struct RenderArgs {
     /// Write the picture here instead of standard output.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// SVG and PNG: show only the maze (its bounding box, walls and lines included), not the
+    /// whole floor.
+    #[arg(long)]
+    pub crop: bool,
+    /// SVG and PNG: pixels a metre [default: 40 for SVG, 80 for PNG (less on a floor over
+    /// 204.8 m); a PNG is at most 16384 px a side].
+    #[arg(long, value_name = "PX", value_parser = parse_metres)]
+    pub px_per_m: Option<f64>,
+    /// SVG and PNG: the picture this many pixels wide (the height follows).
+    #[arg(long, value_name = "PX", conflicts_with = "px_per_m", value_parser = clap::value_parser!(u32).range(1..=16384))]
+    pub width: Option<u32>,
 }
 
 /// Runs `render`.
@@ -54,13 +67,24 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     // Read once: the segments are validated as they stream past and then dropped; the
     // picture is drawn from the passages, which validation proved they cover exactly.
     let (layout, validator) = read_checking(&args.file, bars)?;
+    let validator = validator.finish();
+    let segments = validator.segments();
     validator
-        .finish()
         .finish()
         .into_result()
         .with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
+    ensure_usage!(
+        format != Format::Ascii || (!args.crop && args.px_per_m.is_none() && args.width.is_none()),
+        "--crop, --px-per-m and --width shape SVG and PNG pictures, not ASCII (give --format svg|png or -o FILE.svg|.png)"
+    );
     let options = RenderOptions {
         solution: args.solution,
+        crop: args.crop,
+        scale: match (args.px_per_m, args.width) {
+            (Some(px), _) => Scale::PxPerMetre(px),
+            (_, Some(width)) => Scale::Width(width),
+            _ => Scale::Default,
+        },
     };
     // Each renderer sets the length: maze rows, or pixel rows for PNG.
     let progress = bars.bar("rendering", 0, Unit::Items("rows"));
@@ -83,6 +107,13 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
         return Err(e.context(format!("{}", args.file.display())));
     }
     written?;
+    if let Some(path) = output {
+        note(format!(
+            "wrote {}: {format} of {}",
+            path.display(),
+            describe(&layout, segments)
+        ));
+    }
     Ok(ExitCode::SUCCESS)
 }
 

@@ -9,7 +9,8 @@ use clap::Args;
 
 use super::escape::escaped;
 use super::progress::{Progress, Unit};
-use super::stdout::outln;
+use super::reports::{MazeSummary, REPORT_VERSION, ValidateReport, ValidatedFile};
+use super::say::{self, say};
 use crate::layout::json::{Background, ReadError, read_from};
 use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
@@ -24,40 +25,68 @@ pub struct ValidateArgs {
     /// Layout files to check (`-` reads standard input).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+    /// Print one JSON document on standard output (schema/validate-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Runs `validate`: exit 0 only if every file is valid. Each file is read once, its
 /// segments checked as they stream in.
 pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
-    let mut all_ok = true;
+    say::set_json(args.json);
+    let mut files = Vec::with_capacity(args.files.len());
     for path in &args.files {
         let name = path.display().to_string();
         let name = escaped(&name);
+        let mut entry = ValidatedFile {
+            file: path.display().to_string(),
+            valid: false,
+            error: None,
+            maze: None,
+            metrics: None,
+            problems: Vec::new(),
+            problem_count: 0,
+        };
         let (layout, validator) = match read_checking(path, progress) {
             Ok(read) => read,
             Err(e) => {
                 eprintln!("error: {}", escaped(&e.to_string()));
-                all_ok = false;
+                entry.error = Some(e.to_string());
+                files.push(entry);
                 continue;
             }
         };
         let validator = validator.finish();
         let segments = validator.segments();
+        entry.maze = Some(MazeSummary::of(&layout, segments));
         match validator.finish().into_result() {
             Ok(metrics) => {
-                outln!("OK {name}: {}", describe(&layout, segments))?;
+                say(format!("OK {name}: {}", describe(&layout, segments)))?;
                 if let Some(metrics) = &metrics {
                     print_metrics(metrics)?;
                 }
+                entry.valid = true;
+                entry.metrics = metrics;
             }
             Err(invalid) => {
-                all_ok = false;
                 for line in invalid.shown() {
                     eprintln!("error: {name}: {}", escaped(&line));
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
+                entry.problems = invalid.problems.iter().map(|p| p.to_string()).collect();
+                entry.problem_count = invalid.count();
             }
         }
+        files.push(entry);
+    }
+    let all_ok = files.iter().all(|f| f.valid);
+    if args.json {
+        say::document(&ValidateReport {
+            format: "vrep-maze/validate".into(),
+            version: REPORT_VERSION,
+            valid: all_ok,
+            files,
+        })?;
     }
     Ok(if all_ok {
         ExitCode::SUCCESS
@@ -112,24 +141,20 @@ pub fn describe(layout: &Layout, segments: usize) -> String {
 
 /// The metrics, a few to a line.
 pub fn print_metrics(m: &Metrics) -> Result<()> {
-    outln!(
+    say(format!(
         "  cells {}, passages {}, loops {}",
-        m.cells,
-        m.passages,
-        m.loops
-    )?;
-    outln!(
+        m.cells, m.passages, m.loops
+    ))?;
+    say(format!(
         "  solution {} cells, {} turns, {} decision points",
-        m.solution_cells,
-        m.solution_turns,
-        m.decision_points
-    )?;
-    outln!(
+        m.solution_cells, m.solution_turns, m.decision_points
+    ))?;
+    say(format!(
         "  dead ends {} ({:.1}%), junctions {}, straights {}",
         m.dead_ends,
         m.dead_end_percent(),
         m.junctions,
         m.straights
-    )?;
-    outln!("  diameter {} cells", m.diameter_cells)
+    ))?;
+    say(format!("  diameter {} cells", m.diameter_cells))
 }

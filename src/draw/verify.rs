@@ -165,6 +165,16 @@ pub fn verify(
     raised(scene, false, |scene| verify_raised(scene, drawing, names)).map(|(ok, _)| ok)
 }
 
+/// [`verify`] without raising the idle rate: only reads, so a scene is left exactly as it
+/// was (`vrep-maze inspect`); at a low idle rate each read waits for a main-loop pass.
+pub fn verify_read_only(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    verify_raised(scene, drawing, names)
+}
+
 /// [`verify`] with the idle rate raised.
 fn verify_raised(
     scene: &mut dyn Backend,

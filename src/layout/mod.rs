@@ -13,6 +13,7 @@ pub mod limits;
 pub mod micromouse;
 pub mod passages;
 pub mod runs;
+pub mod solution;
 pub mod walls;
 
 use std::collections::BTreeMap;

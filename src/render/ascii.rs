@@ -119,7 +119,10 @@ mod tests {
         Ascii
             .render(
                 &layout,
-                &RenderOptions { solution: true },
+                &RenderOptions {
+                    solution: true,
+                    ..Default::default()
+                },
                 &mut bytes,
                 &ProgressBar::hidden(),
             )
@@ -148,7 +151,13 @@ mod tests {
         };
         crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
         let picture = crate::render::Format::Ascii
-            .render_to_vec(&layout, &RenderOptions { solution: false })
+            .render_to_vec(
+                &layout,
+                &RenderOptions {
+                    solution: false,
+                    ..Default::default()
+                },
+            )
             .unwrap();
         let text = String::from_utf8(picture).unwrap();
         let lines: Vec<&str> = text.lines().collect();

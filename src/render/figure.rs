@@ -97,19 +97,27 @@ pub(super) struct ScaleBar {
 
 impl ScaleBar {
     /// The bar for a floor of `size` (x, y) metres.
+    #[cfg(test)]
     pub fn for_floor(size: [f64; 2]) -> Self {
         let [fx, fy] = size;
+        Self::for_window([-fx / 2.0, -fy / 2.0, fx / 2.0, fy / 2.0])
+    }
+
+    /// The bar in the south-west corner of a picture of the floor's `[x0, y0, x1, y1]`.
+    pub fn for_window([x0, y0, x1, _]: [f64; 4]) -> Self {
+        let width = x1 - x0;
+        // At least a metre (the label writes whole metres), even on a picture under 5 m.
         let length = [
             1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0,
         ]
         .into_iter()
-        .take_while(|&l| l <= fx / 5.0)
+        .take_while(|&l| l <= width / 5.0)
         .last()
         .unwrap_or(1.0);
         let unit = length / 10.0;
         Self {
-            x: -fx / 2.0 + unit,
-            y: -fy / 2.0 + unit,
+            x: x0 + unit,
+            y: y0 + unit,
             length,
             unit,
         }

@@ -18,19 +18,91 @@ use std::str::FromStr;
 use anyhow::{Result, anyhow};
 use indicatif::ProgressBar;
 
+use crate::layout::solution::path_cells;
 use crate::layout::{Layout, passages};
-use crate::maze::analysis::shortest_path;
 use crate::maze::{Cell, Grid, Maze};
 
 pub use ascii::Ascii;
 pub use png::Png;
 pub use svg::Svg;
 
-/// What to draw besides the maze.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+/// What to draw besides the maze, and which part of the floor at what scale (SVG and PNG).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct RenderOptions {
     /// Overlay the shortest path from start to end.
     pub solution: bool,
+    /// Show only the maze's bounding box (what is drawn, grid and walls), not the whole floor.
+    pub crop: bool,
+    /// The picture's scale [default: the format's own].
+    pub scale: Scale,
+}
+
+/// How large an SVG or PNG picture is.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub enum Scale {
+    /// The format's own: SVG 40 px a metre, PNG 80 (less on a floor over 204.8 m).
+    #[default]
+    Default,
+    /// This many pixels a metre.
+    PxPerMetre(f64),
+    /// The picture this many pixels wide.
+    Width(u32),
+}
+
+impl Scale {
+    /// Pixels a metre for a picture of a window `width` metres wide; `default` for
+    /// [`Scale::Default`].
+    pub fn px_per_metre(self, width: f64, default: f64) -> f64 {
+        match self {
+            Scale::Default => default,
+            Scale::PxPerMetre(px) => px,
+            Scale::Width(px) => f64::from(px) / width,
+        }
+    }
+}
+
+/// The part of the floor a picture shows, `[x0, y0, x1, y1]` in floor metres: the whole
+/// floor, or with [`RenderOptions::crop`] the maze's bounding box.
+fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
+    let [fx, fy] = layout.floor.size;
+    if !options.crop {
+        return [-fx / 2.0, -fy / 2.0, fx / 2.0, fy / 2.0];
+    }
+    let c = layout.grid.cell_size;
+    let (w, h) = (f64::from(layout.grid.columns), f64::from(layout.grid.rows));
+    // What is drawn beyond the cells' outer edges: half a line, wall or post.
+    let reach = [
+        Some(layout.line.width),
+        layout.wall.as_ref().map(|w| w.thickness),
+        layout.post.as_ref().map(|p| p.size),
+    ]
+    .into_iter()
+    .flatten()
+    .fold(0.0, f64::max)
+        / 2.0;
+    let (sin, cos) = layout.grid.rotation.sin_cos();
+    let [ox, oy] = layout.grid.origin;
+    let mut bounds = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for (x, y) in [
+        (-c / 2.0 - reach, -c / 2.0 - reach),
+        ((w - 0.5) * c + reach, -c / 2.0 - reach),
+        ((w - 0.5) * c + reach, (h - 0.5) * c + reach),
+        (-c / 2.0 - reach, (h - 0.5) * c + reach),
+    ] {
+        let (px, py) = (ox + x * cos - y * sin, oy + x * sin + y * cos);
+        bounds = [
+            bounds[0].min(px),
+            bounds[1].min(py),
+            bounds[2].max(px),
+            bounds[3].max(py),
+        ];
+    }
+    bounds
 }
 
 /// Turns a layout into one picture format.
@@ -143,13 +215,9 @@ impl MazeView {
             }
         }
         let solution = if options.solution {
-            shortest_path(&maze, grid.index(start), grid.index(end))
-                .ok_or_else(|| {
-                    anyhow!("end {end} cannot be reached from start {start}: no solution to draw")
-                })?
-                .into_iter()
-                .map(|i| grid.cell(i))
-                .collect()
+            path_cells(&maze, start, end).ok_or_else(|| {
+                anyhow!("end {end} cannot be reached from start {start}: no solution to draw")
+            })?
         } else {
             Vec::new()
         };
@@ -183,7 +251,10 @@ mod tests {
         let layout = build_layout(&spec).unwrap();
         let mut bare = layout.clone();
         bare.segments.clear();
-        let options = RenderOptions { solution: true };
+        let options = RenderOptions {
+            solution: true,
+            ..Default::default()
+        };
         for format in Format::ALL {
             let picture = render(format, &layout, &options);
             assert!(!picture.is_empty());
@@ -196,7 +267,10 @@ mod tests {
         let layout = crate::layout::runs::tests::wall_layout(6, 5, 7, 0.3, "start");
         let mut bare = layout.clone();
         bare.walls.clear();
-        let options = RenderOptions { solution: true };
+        let options = RenderOptions {
+            solution: true,
+            ..Default::default()
+        };
         for format in Format::ALL {
             let picture = render(format, &layout, &options);
             assert!(!picture.is_empty());

@@ -237,17 +237,28 @@ impl Picture {
     fn of(layout: &Layout, options: &RenderOptions) -> Result<Self> {
         let view = MazeView::of(layout, options)?;
         let [fx, fy] = layout.floor.size;
-        let scale = PX_PER_METRE.min(MAX_SIDE / fx.max(fy));
+        let window = super::window(layout, options);
+        let [wx0, wy0, wx1, wy1] = window;
+        let (wx, wy) = (wx1 - wx0, wy1 - wy0);
+        let scale = options
+            .scale
+            .px_per_metre(wx, PX_PER_METRE.min(MAX_SIDE / wx.max(wy)));
+        let too_big = wx.max(wy) * scale - 1e-6;
+        anyhow::ensure!(
+            too_big <= MAX_SIDE,
+            "the picture would be {} px on its longest side; a PNG is at most {MAX_SIDE} px (use a smaller --px-per-m or --width)",
+            too_big.ceil()
+        );
         // The epsilon keeps an exact fit (16384.000000001) from adding a pixel.
         let side = |metres: f64| ((metres * scale - 1e-6).ceil().clamp(1.0, MAX_SIDE)) as u32;
-        let (width, height) = (side(fx), side(fy));
+        let (width, height) = (side(wx), side(wy));
         let floor = Affine {
             xx: scale,
             xy: 0.0,
-            x0: fx / 2.0 * scale,
+            x0: -wx0 * scale,
             yx: 0.0,
             yy: -scale,
-            y0: fy / 2.0 * scale,
+            y0: wy1 * scale,
         };
         let (sin, cos) = layout.grid.rotation.sin_cos();
         let origin = floor.apply(layout.grid.origin[0], layout.grid.origin[1]);
@@ -293,7 +304,7 @@ impl Picture {
                 Shape::Disc(p, r) => Shape::Disc(maze_frame.apply(p.x, p.y), r * scale),
             })
             .collect();
-        let bar = ScaleBar::for_floor(layout.floor.size);
+        let bar = ScaleBar::for_window(window);
         let outline = visible(bar.outline_width()) / 2.0;
         let (x1, y1) = (bar.x + bar.length, bar.y + bar.unit);
         let mut scale_bar = vec![
@@ -772,7 +783,13 @@ mod tests {
     #[test]
     fn the_png_shows_the_pure_colours_and_the_solution() {
         let layout = course(9, Algorithm::Dfs, 0.0);
-        let image = render(&layout, &RenderOptions { solution: true });
+        let image = render(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        );
         assert_eq!((image.width, image.height), (800, 800));
         let pixel = |x: f64, y: f64| at(&image, &layout, x, y);
         let start = &layout.start.pose;
@@ -781,7 +798,14 @@ mod tests {
         assert_eq!(pixel(end.x + 0.3, end.y - 0.3), (255, 0, 0));
         // Cell corners lie off every line and metre line.
         assert_eq!(pixel(0.5, 0.5), (180, 180, 180));
-        let view = MazeView::of(&layout, &RenderOptions { solution: true }).unwrap();
+        let view = MazeView::of(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         let [ox, oy] = layout.grid.origin;
         let off_path = view
             .maze
@@ -872,7 +896,13 @@ mod tests {
         // the cell north of the end, or south on the top row
         let beside = [end[0], end[1] + 1 - 2 * u32::from(end[1] + 1 == 5)];
         layout.end.region = vec![end, beside];
-        let image = render(&layout, &RenderOptions { solution: true });
+        let image = render(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        );
         let pixel = |p: Point2<f64>| at(&image, &layout, p.x, p.y);
         let start = &layout.start.pose;
         assert_eq!(
@@ -889,7 +919,14 @@ mod tests {
         assert_eq!(pixel(goal), (0xe6, 0xa0, 0xa0));
         // inside a cell, off the walls and the metre grid
         assert_eq!(pixel(Point2::new(ox + 2.3, oy + 1.3)), LIGHT);
-        let view = MazeView::of(&layout, &RenderOptions { solution: true }).unwrap();
+        let view = MazeView::of(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         let opening = layout.wall.as_ref().unwrap().openings[0];
         let mut closed = 0;
         for axis in [WallAxis::AlongX, WallAxis::AlongY] {
@@ -1036,7 +1073,10 @@ mod tests {
         walls.end.region = vec![walls.end.cell, [3, 2], [3, 3]];
         for layout in lines.into_iter().chain([walls]) {
             let degrees = layout.grid.rotation.to_degrees();
-            let options = RenderOptions { solution: true };
+            let options = RenderOptions {
+                solution: true,
+                ..Default::default()
+            };
             let whole = decode(&encode(&layout, &options, usize::MAX));
             for strip_rows in [1, 7] {
                 let strips = decode(&encode(&layout, &options, strip_rows));

@@ -95,7 +95,7 @@ impl Renderer for Svg {
         let view = MazeView::of(layout, options)?;
         progress.set_length(u64::from(layout.grid.rows));
         let mut out = BufWriter::with_capacity(1 << 16, out);
-        write_svg(&mut out, layout, &view, progress)?;
+        write_svg(&mut out, layout, &view, options, progress)?;
         out.flush()?;
         Ok(())
     }
@@ -105,18 +105,23 @@ fn write_svg(
     out: &mut impl Write,
     layout: &Layout,
     view: &MazeView,
+    options: &RenderOptions,
     progress: &ProgressBar,
 ) -> io::Result<()> {
+    let window = super::window(layout, options);
     let [fx, fy] = layout.floor.size;
+    let [x0, y0, x1, y1] = window;
+    let (wx, wy) = (x1 - x0, y1 - y0);
+    let scale = options.scale.px_per_metre(wx, SCALE);
     writeln!(
         out,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" viewBox="{} {} {} {}">"#,
-        num(fx * SCALE),
-        num(fy * SCALE),
-        num(-fx / 2.0),
-        num(-fy / 2.0),
-        num(fx),
-        num(fy)
+        num(wx * scale),
+        num(wy * scale),
+        num(x0),
+        num(-y1),
+        num(wx),
+        num(wy)
     )?;
     writeln!(
         out,
@@ -174,7 +179,7 @@ fn write_svg(
         )?;
     }
     out.write_all(b"</g>\n")?;
-    scale_bar(out, &ScaleBar::for_floor(layout.floor.size))?;
+    scale_bar(out, &ScaleBar::for_window(window))?;
     out.write_all(b"</g>\n</svg>\n")
 }
 
@@ -408,7 +413,13 @@ mod tests {
             42,
         ))
         .unwrap();
-        let svg = svg_of(&layout, &RenderOptions { solution: true });
+        let svg = svg_of(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        );
         assert!(svg.starts_with("<svg "));
         assert!(svg.ends_with("</svg>\n"));
         let view = MazeView::of(&layout, &RenderOptions::default()).unwrap();
@@ -472,7 +483,13 @@ mod tests {
     fn a_wall_maze_draws_one_rect_per_wall_run_and_none_across_a_passage() {
         let mut layout = wall_layout(8, 6, 5, 30.0, "start");
         layout.end.region = vec![layout.end.cell, [4, 3], [4, 4]];
-        let svg = svg_of(&layout, &RenderOptions { solution: true });
+        let svg = svg_of(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        );
         assert!(svg.contains(r#" rotate(30)">"#), "the maze frame turns");
         assert!(
             !svg.contains(&format!("<g fill=\"{LINE}\">")),
@@ -559,7 +576,13 @@ mod tests {
             1,
         ))
         .unwrap();
-        let svg = svg_of(&layout, &RenderOptions { solution: true });
+        let svg = svg_of(
+            &layout,
+            &RenderOptions {
+                solution: true,
+                ..Default::default()
+            },
+        );
         assert_eq!(line_elements(&svg).matches('<').count(), 0);
     }
 

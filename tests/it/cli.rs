@@ -452,3 +452,62 @@ fn export_of_a_layout_that_fails_validation_writes_nothing() {
         "the old file stays"
     );
 }
+
+#[test]
+fn batch_makes_every_style_byte_for_byte_as_generate_does() {
+    let dir = TempDir::new().unwrap();
+    for (sub, args, file) in [
+        (
+            "w",
+            &[
+                "--style",
+                "walls",
+                "--posts",
+                "--size",
+                "5x4",
+                "--openings",
+                "start",
+            ][..],
+            "dfs-5x4-seed1-walls-posts.json",
+        ),
+        (
+            "m",
+            &["--preset", "micromouse-half", "--algo", "prim"][..],
+            "prim-micromouse-half-seed1.json",
+        ),
+        (
+            "l",
+            &["--size", "6x6", "--braid", "0.5"][..],
+            "dfs-6x6-braid0.5-seed1.json",
+        ),
+    ] {
+        let out = dir.path().join(sub);
+        bin()
+            .args(["batch", "--seeds", "0..3", "--out-dir"])
+            .arg(&out)
+            .args(args)
+            .assert()
+            .success()
+            .stderr(contains("3 mazes: 3 written"));
+        let made = fs::read(out.join(file)).unwrap();
+        let generated = bin()
+            .args(["generate", "--seed", "1"])
+            .args(args)
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        assert!(made == generated, "{file}");
+    }
+    bin()
+        .args(["batch", "--seeds", "0..3", "--posts", "--out-dir"])
+        .arg(dir.path().join("x"))
+        .assert()
+        .code(2)
+        .stderr(contains("--posts shapes walls"));
+    assert!(
+        !dir.path().join("x").exists(),
+        "a refused batch makes nothing"
+    );
+}

@@ -159,7 +159,7 @@ fn zmq_cli_errors_are_one_clear_line() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "3");
     bin()
-        .args(["apply", &m, "--create-missing"])
+        .args(["apply", &m, "--create-missing", "--api", "legacy"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
@@ -170,8 +170,9 @@ fn zmq_cli_errors_are_one_clear_line() {
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "--port needs --api legacy or --api zmq",
-        ));
+            "no CoppeliaSim remote API answered on 127.0.0.1: legacy port 1: ",
+        ))
+        .stderr(predicate::str::contains("; ZeroMQ port 1: "));
     let free = std::net::TcpListener::bind("127.0.0.1:0")
         .unwrap()
         .local_addr()
@@ -254,6 +255,7 @@ fn zmq_cli_serve_dumps_the_scene_on_sigterm() {
 /// when those ports are not in that state on this machine.
 #[test]
 fn zmq_cli_auto_falls_back_to_the_zeromq_port() {
+    let _ports = crate::support::cli::DEFAULT_PORTS.lock();
     if std::net::TcpStream::connect("127.0.0.1:19997").is_ok() {
         eprintln!("something listens on 19997; skipped");
         return;

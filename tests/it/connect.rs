@@ -83,7 +83,16 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let (code, stderr, took) = run(&["apply", &m, "--port", &port, "--connect-timeout", "1"]);
+    let (code, stderr, took) = run(&[
+        "apply",
+        &m,
+        "--api",
+        "legacy",
+        "--port",
+        &port,
+        "--connect-timeout",
+        "1",
+    ]);
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
@@ -100,7 +109,15 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     assert!(stderr.contains("for about a minute"), "{stderr}");
     assert!(stderr.contains("--connect-timeout 75"), "{stderr}");
     // `clear` connects the same way; over ZeroMQ a refused port fails at once
-    let (code, stderr, took) = run(&["clear", "--port", &port, "--connect-timeout", "0.5"]);
+    let (code, stderr, took) = run(&[
+        "clear",
+        "--api",
+        "legacy",
+        "--port",
+        &port,
+        "--connect-timeout",
+        "0.5",
+    ]);
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
@@ -125,7 +142,7 @@ fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
         1,
     );
     let port = s.port();
-    let (code, stderr, took) = run(&["apply", &m, "--port", &port]);
+    let (code, stderr, took) = run(&["apply", &m, "--api", "legacy", "--port", &port]);
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(5), "{took:?}: {stderr}");
     assert_clear_error(&stderr);
@@ -200,6 +217,8 @@ fn a_refused_legacy_connection_is_retried_without_a_countdown_off_a_terminal() {
     let (code, stderr, took) = run(&[
         "apply",
         &m,
+        "--api",
+        "legacy",
         "--port",
         &port,
         "--dry-run",

@@ -299,8 +299,16 @@ fn parse_segment(bytes: &[u8], at: Position) -> Result<Pose, ScanError> {
     })
 }
 
-/// A syntax error at a position.
+/// A syntax error at a position; at the very start, the file is no JSON at all.
 fn syntax(name: &str, at: Position, message: String) -> ReadError {
+    let message = if (at.line, at.column) == (1, 1) {
+        format!(
+            "not a layout: expected JSON (`{{\"format\": \"{}\", ...}}`): {message}",
+            super::super::FORMAT
+        )
+    } else {
+        message
+    };
     ReadError::Syntax {
         path: name.to_string(),
         line: at.line,
@@ -323,11 +331,12 @@ fn parse_fields(bytes: &[u8], name: &str) -> Result<Fields, ReadError> {
     deserializer
         .deserialize_map(FieldsVisitor)
         .and_then(|fields| deserializer.end().map(|()| fields))
-        .map_err(|e| ReadError::Syntax {
-            path: name.to_string(),
-            line: e.line(),
-            column: e.column(),
-            message: super::strip_position(&e.to_string()),
+        .map_err(|e| {
+            let at = Position {
+                line: e.line(),
+                column: e.column(),
+            };
+            syntax(name, at, super::strip_position(&e.to_string()))
         })
 }
 

@@ -6,6 +6,9 @@ use std::process::{Child, Command, Stdio};
 
 use assert_cmd::cargo::CommandCargoExt;
 
+/// Held by a test that uses the default ports (19997, 23000), so no two of them meet there.
+pub static DEFAULT_PORTS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// The `vrep-maze` binary under test.
 pub fn bin() -> assert_cmd::Command {
     assert_cmd::Command::cargo_bin("vrep-maze").expect("binary built")

@@ -1,0 +1,320 @@
+//! `vrep-maze inspect`: what is in a CoppeliaSim scene now, without changing it.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+
+use super::apply::ConnectArgs;
+use super::connect::{Connected, connect};
+use super::reports::{DrawnMaze, InspectReport, LayoutMatch, REPORT_VERSION, SceneObject};
+use super::say::{self, say};
+use crate::coppelia::frame::Frame;
+use crate::draw::plan::{is_copy_name, relative_pose, world_frame};
+use crate::draw::verify::verify_read_only;
+use crate::draw::{Backend, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
+use crate::layout::Style;
+
+/// Show what the scene holds (API, version, simulation state, idle rate, the templates and
+/// markers, the maze drawn, objects under the maze dummy that are not ours) and, given a
+/// layout, whether the drawing matches it. Only reads: the scene is left exactly as it was.
+#[derive(Debug, clap::Args)]
+#[command(
+    after_help = "Examples:\n  vrep-maze inspect\n  vrep-maze inspect --layout maze.json\n  vrep-maze inspect --api zmq --json"
+)]
+pub struct InspectArgs {
+    /// Connection and object names.
+    #[command(flatten)]
+    pub scene: ConnectArgs,
+    /// Compare the drawn maze with this layout (exit 1 if it differs).
+    #[arg(long, value_name = "FILE")]
+    pub layout: Option<PathBuf>,
+    /// Print one JSON document on standard output (schema/inspect-v1.schema.json).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `inspect`.
+pub fn run(args: InspectArgs) -> Result<ExitCode> {
+    say::set_json(args.json);
+    // A layout that cannot be drawn is refused before connecting.
+    let wanted = match &args.layout {
+        Some(path) => {
+            let layout = crate::layout::read_layout(path)?;
+            let drawing = Drawing::try_from(&layout)
+                .with_context(|| format!("{}: cannot be compared", path.display()))?;
+            Some((path.display().to_string(), drawing))
+        }
+        None => None,
+    };
+    let names = args.scene.names();
+    let c = &args.scene;
+    let Connected {
+        mut backend,
+        description,
+    } = connect(c.api, &c.host, c.port, c.timeout, c.connect_timeout, None)?;
+    let report = inspect(backend.as_mut(), &names, description, wanted.as_ref());
+    let _ = backend.close();
+    let report = report?;
+    if args.json {
+        say::document(&report)?;
+    } else {
+        show(&report)?;
+    }
+    let differs = report.layout.as_ref().is_some_and(|l| !l.matches);
+    Ok(if differs {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Reads the scene through `scene` (reads only).
+fn inspect(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    connection: String,
+    wanted: Option<&(String, Drawing)>,
+) -> Result<InspectReport> {
+    let rates = scene.idle_rates()?;
+    let (survey, surveyed) = survey(scene, names)?;
+    let objects = &survey.objects;
+    let handle = |name: &str| {
+        let names = [
+            &names.floor,
+            &names.parent,
+            &names.line,
+            &names.start,
+            &names.end,
+            &names.wall,
+            &names.post,
+        ];
+        // the order of `ObjectNames::survey(Style::Lines)`
+        let index = names.iter().position(|n| *n == name)?;
+        survey.handles.get(index).copied().flatten()
+    };
+    let by_handle = |h: i32| objects.iter().find(|o| o.handle == h);
+    let floor = handle(&names.floor).and_then(by_handle).map(world_frame);
+    let roles = [
+        ("floor", &names.floor),
+        ("maze dummy", &names.parent),
+        ("line template", &names.line),
+        ("wall template", &names.wall),
+        ("post template", &names.post),
+        ("start marker", &names.start),
+        ("end marker", &names.end),
+    ];
+    let templates = roles
+        .iter()
+        .map(|(role, name)| {
+            let h = handle(name);
+            let object = h.and_then(by_handle);
+            scene_object(role, name, h, object, floor.as_ref())
+        })
+        .collect();
+    let parent = handle(&names.parent);
+    let ours: Vec<Option<i32>> = [
+        &names.floor,
+        &names.line,
+        &names.wall,
+        &names.post,
+        &names.start,
+        &names.end,
+    ]
+    .iter()
+    .map(|n| handle(n))
+    .collect();
+    let mut maze = DrawnMaze::default();
+    for o in objects {
+        let under_maze = parent.is_some() && o.parent == parent;
+        let copy_of = |template: &str| is_copy_name(&o.name, template);
+        // ZeroMQ reads no names of the maze dummy's children unless another style's template
+        // is in the scene; drawing treats them as copies of the surveyed template
+        let unread = o
+            .name
+            .strip_prefix("object ")
+            .is_some_and(|n| n.parse::<i32>().is_ok());
+        if unread && under_maze {
+            maze.names_unread += 1;
+        }
+        let count = if copy_of(&names.line) || unread && surveyed == Style::Lines {
+            Some(&mut maze.lines)
+        } else if copy_of(&names.wall) || unread && surveyed == Style::Walls {
+            Some(&mut maze.walls)
+        } else if copy_of(&names.post) {
+            Some(&mut maze.posts)
+        } else {
+            None
+        };
+        match count {
+            Some(n) if under_maze => *n += 1,
+            Some(_) if o.parent.is_none() => maze.stray_copies.push(o.name.clone()),
+            None if under_maze && !ours.contains(&Some(o.handle)) => {
+                maze.not_ours.push(o.name.clone())
+            }
+            _ => {}
+        }
+    }
+    maze.style = match (maze.lines, maze.walls) {
+        (0, 0) => None,
+        (_, 0) => Some(Style::Lines),
+        (0, _) => Some(Style::Walls),
+        _ => None,
+    };
+    let layout = match wanted {
+        None => None,
+        Some((file, drawing)) => Some(match verify_read_only(scene, drawing, names) {
+            Ok(()) => LayoutMatch {
+                file: file.clone(),
+                matches: true,
+                differences: Vec::new(),
+            },
+            Err(DrawError::Verify(differences)) => LayoutMatch {
+                file: file.clone(),
+                matches: false,
+                differences,
+            },
+            Err(DrawError::Missing { names, .. }) => LayoutMatch {
+                file: file.clone(),
+                matches: false,
+                differences: vec![format!("missing in the scene: {}", names.join(", "))],
+            },
+            Err(e) => return Err(anyhow::Error::new(e).context(format!("comparing {file}"))),
+        }),
+    };
+    Ok(InspectReport {
+        format: "vrep-maze/inspect".into(),
+        version: REPORT_VERSION,
+        connection,
+        simulation_running: survey.simulation_running,
+        idle_fps: rates.current,
+        saved_idle_fps: rates.saved,
+        objects: templates,
+        maze,
+        layout,
+    })
+}
+
+/// The survey of every name; a scene without the line template (a wall scene) is listed
+/// through the wall template, since a backend lists objects only when the first five exist.
+fn survey(scene: &mut dyn Backend, names: &ObjectNames) -> Result<(Survey, Style), DrawError> {
+    let lines = scene.survey(&names.survey(Style::Lines))?;
+    if lines.handles[2].is_some() || lines.handles[5].is_none() {
+        return Ok((lines, Style::Lines));
+    }
+    // floor, parent, wall, start, end, line, post: back into the lines order
+    let walls = scene.survey(&names.survey(Style::Walls))?;
+    let h = &walls.handles;
+    let survey = Survey {
+        handles: vec![h[0], h[1], h[5], h[3], h[4], h[2], h[6]],
+        ..walls
+    };
+    Ok((survey, Style::Walls))
+}
+
+/// One named object as the report shows it: its pose in the floor's frame (the floor's own
+/// in the world's).
+fn scene_object(
+    role: &str,
+    name: &str,
+    handle: Option<i32>,
+    object: Option<&ObjectInfo>,
+    floor: Option<&Frame>,
+) -> SceneObject {
+    let pose = object.map(|o| match floor {
+        Some(floor) if role != "floor" => relative_pose(floor, o),
+        _ => (o.position, o.orientation),
+    });
+    // to the micrometre, without a negative zero
+    let round = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
+    SceneObject {
+        role: role.into(),
+        name: name.into(),
+        present: handle.is_some(),
+        handle,
+        position: pose.map(|(p, _)| p.map(round)),
+        orientation: pose.map(|(_, e)| e.map(round)),
+    }
+}
+
+/// The report for a person.
+fn show(r: &InspectReport) -> anyhow::Result<()> {
+    say(format!("connected to the {}", r.connection))?;
+    let saved = r
+        .saved_idle_fps
+        .map(|s| format!(" (an interrupted apply left it so; your rate was {s} fps: vrep-maze clear restores it)"))
+        .unwrap_or_default();
+    say(format!(
+        "simulation {}; idle rate {} fps{saved}",
+        if r.simulation_running {
+            "running"
+        } else {
+            "stopped"
+        },
+        r.idle_fps
+    ))?;
+    for o in &r.objects {
+        match (o.position, o.orientation) {
+            (Some(p), Some(e)) => say(format!(
+                "  {:<14} {:<8} at {}, {}, {} m, yaw {} rad{}",
+                o.role,
+                o.name,
+                p[0],
+                p[1],
+                p[2],
+                e[2],
+                if o.role == "floor" {
+                    " (world)"
+                } else {
+                    " (floor frame)"
+                }
+            ))?,
+            _ if o.present => say(format!("  {:<14} {:<8} present", o.role, o.name))?,
+            _ => say(format!("  {:<14} {:<8} missing", o.role, o.name))?,
+        }
+    }
+    let m = &r.maze;
+    let kind = match m.style {
+        Some(Style::Lines) => " (a line maze)",
+        Some(Style::Walls) => " (a wall maze)",
+        None if m.lines + m.walls > 0 => " (lines and walls: two mazes mixed)",
+        None => "",
+    };
+    say(format!(
+        "drawn: {} line copies, {} wall copies, {} post copies{kind}",
+        m.lines, m.walls, m.posts
+    ))?;
+    if m.names_unread > 0 {
+        say(format!(
+            "  ({} of them counted by position in the tree: this API read no names of the maze dummy's children, and apply treats them as copies)",
+            m.names_unread
+        ))?;
+    }
+    if !m.stray_copies.is_empty() {
+        say(format!(
+            "stray copies outside the maze dummy: {}",
+            m.stray_copies.join(", ")
+        ))?;
+    }
+    if !m.not_ours.is_empty() {
+        say(format!(
+            "under the maze dummy but not ours: {}",
+            m.not_ours.join(", ")
+        ))?;
+    }
+    if let Some(l) = &r.layout {
+        if l.matches {
+            say(format!("{}: the scene matches it", l.file))?;
+        } else {
+            say(format!(
+                "{}: the scene differs in {} way(s):",
+                l.file,
+                l.differences.len()
+            ))?;
+            for d in &l.differences {
+                say(format!("  {d}"))?;
+            }
+        }
+    }
+    Ok(())
+}

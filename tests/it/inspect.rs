@@ -1,0 +1,175 @@
+//! `vrep-maze inspect`: what the scene holds, over every API, and never a write.
+
+use serde_json::Value;
+use vrep_maze::sim::{NewObject, ObjectType, Scene};
+
+use crate::support::backend::{Kind, Server};
+use crate::support::bin;
+use crate::support::cli::generate;
+
+/// Everything the emulator holds that a client could change: the scene (objects, names,
+/// parents, poses), the idle rate, the simulation state and the signals.
+fn state(server: &Server) -> String {
+    server.with_sim(|sim| {
+        format!(
+            "{} {} {:?} {:?}",
+            sim.scene.to_json(),
+            sim.idle_fps,
+            sim.state,
+            sim.int_signals
+        )
+    })
+}
+
+fn api_args(kind: Kind, server: &Server) -> Vec<String> {
+    let api = if kind == Kind::Legacy {
+        "legacy"
+    } else {
+        "zmq"
+    };
+    vec![
+        "--api".into(),
+        api.into(),
+        "--port".into(),
+        server.addr().port().to_string(),
+    ]
+}
+
+/// `inspect --json` plus `extra`, expecting exit `code`.
+fn inspect(kind: Kind, server: &Server, extra: &[&str], code: i32) -> Value {
+    let out = bin()
+        .arg("inspect")
+        .args(api_args(kind, server))
+        .arg("--json")
+        .args(extra)
+        .assert()
+        .code(code)
+        .get_output()
+        .stdout
+        .clone();
+    serde_json::from_str(&String::from_utf8(out).unwrap()).unwrap()
+}
+
+#[test]
+fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawn = generate(dir.path(), "42", "prim");
+    let other = generate(dir.path(), "7", "dfs");
+    for kind in Kind::ALL {
+        let server = kind.serve(Scene::course(), 0);
+        bin()
+            .args(["-q", "apply", &drawn])
+            .args(api_args(kind, &server))
+            .assert()
+            .success();
+        // an object of the user's under the maze dummy
+        server.with_sim(|sim| {
+            let maze = sim
+                .scene
+                .objects()
+                .find(|o| o.alias == "Maze")
+                .unwrap()
+                .handle;
+            sim.scene.add(
+                "Camera",
+                NewObject {
+                    kind: ObjectType::Dummy,
+                    parent: Some(maze),
+                    position: [0.0; 3],
+                    orientation: [0.0; 3],
+                    size: [0.01; 3],
+                    colour: [0; 3],
+                },
+            );
+        });
+        let before = state(&server);
+        let report = inspect(kind, &server, &["--layout", &drawn], 1);
+        let name = kind.name();
+        assert_eq!(state(&server), before, "{name}: inspect changed the scene");
+        assert_eq!(report["simulation_running"], false, "{name}");
+        assert_eq!(report["idle_fps"], 0, "{name}");
+        let line = report["objects"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|o| o["role"] == "line template")
+            .unwrap();
+        assert_eq!(
+            line["position"],
+            serde_json::json!([-3.75, -4.0, 0.001]),
+            "{name}"
+        );
+        let wall = report["objects"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|o| o["role"] == "wall template")
+            .unwrap();
+        assert_eq!(wall["present"], false);
+        // the user's object is one more child of the dummy: the layout no longer matches
+        let layout = &report["layout"];
+        assert_eq!(layout["matches"], false, "{name}: {layout}");
+        let maze = &report["maze"];
+        if kind == Kind::Legacy {
+            assert_eq!(maze["lines"], 159, "{name}: {maze}");
+            assert_eq!(maze["not_ours"], serde_json::json!(["Camera"]), "{name}");
+        } else {
+            // ZeroMQ reads no child names: every child counts as a copy, as apply treats it
+            assert_eq!(maze["lines"], 160, "{name}: {maze}");
+            assert_eq!(maze["names_unread"], 160, "{name}");
+        }
+        // without the user's object the drawing matches; another layout does not
+        server.with_sim(|sim| {
+            let camera = sim
+                .scene
+                .objects()
+                .find(|o| o.alias == "Camera")
+                .unwrap()
+                .handle;
+            sim.scene.remove(camera).unwrap();
+        });
+        let before = state(&server);
+        let matching = inspect(kind, &server, &["--layout", &drawn], 0);
+        assert_eq!(matching["layout"]["matches"], true, "{name}: {matching}");
+        let differing = inspect(kind, &server, &["--layout", &other], 1);
+        assert!(differing["layout"]["differences"].as_array().unwrap().len() > 1);
+        assert_eq!(state(&server), before, "{name}: inspect changed the scene");
+        server.shutdown();
+    }
+}
+
+#[test]
+fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() {
+    let server = Kind::Legacy.serve(Scene::course_walls(), 0);
+    let report = inspect(Kind::Legacy, &server, &[], 0);
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let schema: Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("schema/inspect-v1.schema.json")).unwrap(),
+    )
+    .unwrap();
+    let validator = jsonschema::validator_for(&schema).unwrap();
+    let errors: Vec<String> = validator
+        .iter_errors(&report)
+        .map(|e| e.to_string())
+        .collect();
+    assert!(errors.is_empty(), "{errors:?}");
+    let text = bin()
+        .arg("inspect")
+        .args(api_args(Kind::Legacy, &server))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(text).unwrap();
+    assert!(text.contains("wall template  Wall"), "{text}");
+    assert!(
+        text.contains("simulation stopped; idle rate 0 fps"),
+        "{text}"
+    );
+    assert!(
+        text.contains("drawn: 0 line copies, 0 wall copies"),
+        "{text}"
+    );
+    server.shutdown();
+}

@@ -1,0 +1,97 @@
+//! The README's "In 30 seconds" section, followed word for word against `vrep-maze serve`.
+
+use std::net::TcpStream;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use assert_cmd::cargo::CommandCargoExt;
+
+use crate::support::cli::DEFAULT_PORTS;
+
+/// The command lines of the section's first `sh` block, comments dropped.
+fn thirty_seconds() -> Vec<String> {
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let section = readme
+        .split("## In 30 seconds")
+        .nth(1)
+        .expect("the README has an 'In 30 seconds' section");
+    let block = section
+        .split("```sh\n")
+        .nth(1)
+        .and_then(|b| b.split("```").next())
+        .expect("a sh block");
+    block
+        .lines()
+        .map(|l| l.split(" #").next().unwrap().trim().to_string())
+        .filter(|l| !l.is_empty())
+        .collect()
+}
+
+/// A background process, killed at the end.
+struct Background(Child);
+
+impl Drop for Background {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn the_thirty_second_path_works_word_for_word() {
+    let _ports = DEFAULT_PORTS.lock();
+    if TcpStream::connect("127.0.0.1:19997").is_ok() {
+        panic!("something already listens on 127.0.0.1:19997: the README's path needs that port");
+    }
+    let lines = thirty_seconds();
+    assert_eq!(
+        lines.first().map(String::as_str),
+        Some("cargo install --path ."),
+        "the path starts by installing (this test runs the binary cargo built instead)"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let mut background = Vec::new();
+    let mut outputs = Vec::new();
+    for line in &lines[1..] {
+        let (line, in_background) = match line.strip_suffix('&') {
+            Some(l) => (l.trim(), true),
+            None => (line.as_str(), false),
+        };
+        let words: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(words[0], "vrep-maze", "{line}");
+        let mut command = Command::cargo_bin("vrep-maze").unwrap();
+        command.args(&words[1..]).current_dir(dir.path());
+        if in_background {
+            let child = command.stdout(Stdio::null()).spawn().unwrap();
+            background.push(Background(child));
+            // bounded: until the emulator listens, at most 10 s
+            let listening = (0..100).any(|_| {
+                std::thread::sleep(Duration::from_millis(100));
+                TcpStream::connect("127.0.0.1:19997").is_ok()
+            });
+            assert!(listening, "`{line}` does not listen on 19997");
+            continue;
+        }
+        let out = command.output().unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+        assert!(
+            out.status.success(),
+            "`{line}` failed: {}\n{stdout}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        outputs.push((line.to_string(), stdout));
+    }
+    let said = |command: &str| {
+        outputs
+            .iter()
+            .find(|(l, _)| l.starts_with(command))
+            .map(|(_, out)| out.as_str())
+            .unwrap_or_else(|| panic!("the path has no `{command}`"))
+    };
+    assert!(said("vrep-maze apply").contains("verified"));
+    let picture = said("vrep-maze render");
+    assert!(picture.contains('S') && picture.contains('E') && picture.contains('.'));
+    assert!(dir.path().join("maze.json").exists());
+}

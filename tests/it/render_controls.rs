@@ -1,0 +1,144 @@
+//! `render --crop`, `--px-per-m` and `--width`; without them the pictures are byte for byte
+//! what `render` wrote before these options existed (`tests/fixtures/render/`, made by the
+//! previous build).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use predicates::str::contains;
+
+use crate::support::bin;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn render(layout: &str, file: &str, extra: &[&str]) -> Vec<u8> {
+    let dir = tempfile::tempdir().unwrap();
+    let out: PathBuf = dir.path().join(file);
+    bin()
+        .arg("render")
+        .arg(root().join("mazes").join(layout))
+        .args(extra)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success()
+        .stderr(contains(format!("wrote {}", out.display())));
+    fs::read(out).unwrap()
+}
+
+/// A PNG's width and height, from its header.
+fn png_size(png: &[u8]) -> (u32, u32) {
+    let word = |at: usize| u32::from_be_bytes(png[at..at + 4].try_into().unwrap());
+    assert_eq!(&png[12..16], b"IHDR");
+    (word(16), word(20))
+}
+
+/// An SVG's `width`, `height` and `viewBox` numbers.
+fn svg_frame(svg: &[u8]) -> Vec<f64> {
+    let text = String::from_utf8_lossy(svg);
+    let head = text.lines().next().unwrap();
+    let value = |name: &str| {
+        let start = head.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+        head[start..].split('"').next().unwrap().to_string()
+    };
+    [value("width"), value("height"), value("viewBox")]
+        .join(" ")
+        .split(' ')
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn by_default_the_pictures_are_what_they_were() {
+    let fixtures = root().join("tests/fixtures/render");
+    for (layout, file, fixture) in [
+        (
+            "dfs-9x9-seed42.json",
+            "m.svg",
+            "dfs-9x9-seed42-solution.svg",
+        ),
+        (
+            "dfs-9x9-seed42.json",
+            "m.png",
+            "dfs-9x9-seed42-solution.png",
+        ),
+        (
+            "dfs-9x9-seed42-walls.json",
+            "m.png",
+            "dfs-9x9-seed42-walls-solution.png",
+        ),
+    ] {
+        let made = render(layout, file, &["--solution"]);
+        assert!(
+            made == fs::read(fixtures.join(fixture)).unwrap(),
+            "{fixture}"
+        );
+        // the default scale asked for explicitly gives the same bytes
+        let px = if file.ends_with("svg") { "40" } else { "80" };
+        let explicit = render(layout, file, &["--solution", "--px-per-m", px]);
+        assert!(made == explicit, "{fixture} at --px-per-m {px}");
+    }
+}
+
+#[test]
+fn crop_shows_the_maze_only() {
+    // 16 cells of 0.18 m and walls 0.012 m thick: 2.892 m at 80 px/m
+    let whole = render("dfs-micromouse-seed42.json", "m.png", &[]);
+    let cropped = render("dfs-micromouse-seed42.json", "m.png", &["--crop"]);
+    assert_eq!(png_size(&whole), (800, 800));
+    assert_eq!(png_size(&cropped), (232, 232));
+    let wide = render(
+        "dfs-micromouse-seed42.json",
+        "m.png",
+        &["--crop", "--width", "800"],
+    );
+    assert_eq!(png_size(&wide), (800, 800));
+    // the 9x9 course maze with 0.1 m lines: 9.1 m, centred on the floor
+    let svg = render(
+        "dfs-9x9-seed42.json",
+        "m.svg",
+        &["--crop", "--px-per-m", "100"],
+    );
+    let frame = svg_frame(&svg);
+    let expected = [910.0, 910.0, -4.55, -4.55, 9.1, 9.1];
+    for (got, want) in frame.iter().zip(expected) {
+        assert!((got - want).abs() < 1e-3, "{frame:?}");
+    }
+}
+
+#[test]
+fn sizes_out_of_range_and_ascii_are_refused() {
+    let layout = root().join("mazes/dfs-9x9-seed42.json");
+    let dir = tempfile::tempdir().unwrap();
+    bin()
+        .arg("render")
+        .arg(&layout)
+        .args(["--px-per-m", "5000", "-o"])
+        .arg(dir.path().join("m.png"))
+        .assert()
+        .code(1)
+        .stderr(contains("at most 16384 px"));
+    bin()
+        .arg("render")
+        .arg(&layout)
+        .arg("--crop")
+        .assert()
+        .code(2)
+        .stderr(contains("not ASCII"));
+    bin()
+        .arg("render")
+        .arg(&layout)
+        .args(["--width", "0", "--format", "svg"])
+        .assert()
+        .code(2);
+    bin()
+        .arg("render")
+        .arg(&layout)
+        .args(["--width", "10", "--px-per-m", "3", "--format", "svg"])
+        .assert()
+        .code(2)
+        .stderr(contains("cannot be used with"));
+    assert!(!dir.path().join("m.png").exists());
+}
