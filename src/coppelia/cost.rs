@@ -141,10 +141,12 @@ pub struct CostModel {
     /// Serving one ZeroMQ call, per thousand objects in the scene. Not measured directly:
     /// the residue of the spec's "ZeroMQ: replace 9x9 by 100x100 (19,838 pasted, 40,107
     /// calls)", 139.8 s, once the simulator's own work (pasting, re-parenting, poses, all
-    /// timed inside it) and 0.45 ms a call are taken off: about 29 s over 40,107 calls served
-    /// in scenes of 10,000 objects on average. Each call is served in a main-loop pass, and a
-    /// pass's own upkeep growing with the scene would explain it; the legacy API, which serves
-    /// a whole request in one pass, shows no such residue.
+    /// timed inside it) and 0.45 ms a call are taken off: about 28 s over 40,107 calls, most
+    /// of them served among 15,000 to 20,000 objects (that run's client pasted its last
+    /// 15,000 copies in one round, then re-parented and placed them one call each). Each
+    /// call is served in a main-loop pass, and a pass's own upkeep growing with the scene
+    /// would explain it (a hypothesis: no measurement isolates it); the legacy API, which
+    /// serves a whole request in one pass, shows no such residue.
     pub zmq_call_per_thousand_objects: Duration,
     /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
     pub zmq_tree: Duration,
