@@ -86,6 +86,10 @@ impl ConnectArgs {
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Box<dyn Backend>> {
+        ensure_usage!(
+            !self.host.trim().is_empty(),
+            "--host needs a host name or an IP address, not an empty one"
+        );
         for (option, name) in [
             ("--floor", &self.floor),
             ("--parent", &self.parent),

@@ -36,6 +36,14 @@ pub enum ZmqError {
         /// OS error.
         why: String,
     },
+    /// The host name does not resolve to an address.
+    #[error("cannot connect to {endpoint}: {why}: no address for that host name")]
+    Resolve {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// The resolver's error.
+        why: String,
+    },
     /// The port accepts TCP connections but the peer does not greet in ZeroMQ's ZMTP (a
     /// ZeroMQ peer sends its 10-byte signature, 0xFF ... 0x7F, as soon as it is connected).
     #[error("{endpoint} does not speak ZeroMQ: {detail}")]
@@ -224,7 +232,10 @@ impl Client {
         };
         let addrs: Vec<_> = (host, options.port)
             .to_socket_addrs()
-            .map_err(|e| connect_err(e.to_string()))?
+            .map_err(|e| ZmqError::Resolve {
+                endpoint: endpoint.clone(),
+                why: e.to_string(),
+            })?
             .collect();
         let wait = options
             .connect_timeout
