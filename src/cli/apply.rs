@@ -50,9 +50,9 @@ pub struct ConnectArgs {
     /// The end marker (a 1 m x 1 m red plane).
     #[arg(long, default_value = "End")]
     pub end: String,
-    /// Seconds to keep trying to connect [default: 75 for legacy: CoppeliaSim refuses every
-    /// connection for about a minute after a client left abruptly; 10 for zmq; auto tries
-    /// legacy for at most 1.5] (more than 0, at most a day).
+    /// Seconds to keep trying to connect [default: 10; 75 for legacy when an earlier run
+    /// left its session abruptly, since CoppeliaSim then refuses every connection for about
+    /// a minute; auto tries legacy for at most 1.5 unless so] (more than 0, at most a day).
     #[arg(long, value_name = "SECS", value_parser = parse_timeout, allow_negative_numbers = true)]
     pub connect_timeout: Option<Duration>,
     /// Seconds to wait for each reply (more than 0, at most a day).
@@ -88,6 +88,10 @@ impl ConnectArgs {
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
+        ensure_usage!(
+            !self.host.trim().is_empty(),
+            "--host needs a host name or an IP address, not an empty one"
+        );
         for (option, name) in [
             ("--floor", &self.floor),
             ("--parent", &self.parent),

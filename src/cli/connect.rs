@@ -351,6 +351,12 @@ fn zmq(
             });
         }
         Err(e @ ZmqError::Connect { .. }) => return Err(anyhow::Error::new(e)),
+        Err(e @ ZmqError::Resolve { .. }) => {
+            return Err(connect_error(
+                e.to_string(),
+                vec!["check --host: a name this machine resolves, or an IP address".into()],
+            ));
+        }
         Err(e) => {
             return Err(anyhow::Error::new(e).context(format!("ZeroMQ remote API at {addr}")));
         }

@@ -17,6 +17,9 @@ use super::message::{END, EXECUTED, Protocol, Reply, Request, parse_reply};
 /// (libzmq sends it from its I/O thread, however busy the simulator is).
 const GREETING_WAIT: Duration = Duration::from_secs(2);
 
+/// The longest wait for a reply after a call timed out, until a reply comes again.
+const AFTER_TIMEOUT_WAIT: Duration = Duration::from_secs(1);
+
 /// How long the look at a silent server's port waits for its TCP connection.
 const STILL_LISTENS_WAIT: Duration = Duration::from_secs(1);
 
@@ -34,6 +37,14 @@ pub enum ZmqError {
         /// `tcp://host:port`.
         endpoint: String,
         /// OS error.
+        why: String,
+    },
+    /// The host name does not resolve to an address.
+    #[error("cannot connect to {endpoint}: {why}: no address for that host name")]
+    Resolve {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// The resolver's error.
         why: String,
     },
     /// The port accepts TCP connections but the peer does not greet in ZeroMQ's ZMTP (a
@@ -164,6 +175,10 @@ pub struct Client {
     address: Option<std::net::SocketAddr>,
     /// Set once a timeout found nothing listening any more: later calls fail at once.
     gone: bool,
+    /// Set by a timeout, cleared by the next reply: while set, calls wait at most
+    /// [`AFTER_TIMEOUT_WAIT`], so the clean-up after a silent server (restoring the idle
+    /// rate, the goodbye) does not multiply the wait the user asked for.
+    timed_out: bool,
 }
 
 impl std::fmt::Debug for Client {
@@ -224,7 +239,10 @@ impl Client {
         };
         let addrs: Vec<_> = (host, options.port)
             .to_socket_addrs()
-            .map_err(|e| connect_err(e.to_string()))?
+            .map_err(|e| ZmqError::Resolve {
+                endpoint: endpoint.clone(),
+                why: e.to_string(),
+            })?
             .collect();
         let wait = options
             .connect_timeout
@@ -269,6 +287,7 @@ impl Client {
             stats: ClientStats::default(),
             address,
             gone: false,
+            timed_out: false,
         })
     }
 
@@ -312,7 +331,12 @@ impl Client {
             endpoint: c.endpoint.clone(),
             error: source,
         };
-        let deadline = std::time::Instant::now() + self.timeout;
+        let wait = if self.timed_out {
+            self.timeout.min(AFTER_TIMEOUT_WAIT)
+        } else {
+            self.timeout
+        };
+        let deadline = std::time::Instant::now() + wait;
         let sent = loop {
             match self.socket.send(request.encode(), 0) {
                 Err(zmq::Error::EINTR) if std::time::Instant::now() < deadline => {}
@@ -324,8 +348,12 @@ impl Client {
             Err(e) => Err(e),
         };
         let bytes = match received {
-            Ok(b) => b,
+            Ok(b) => {
+                self.timed_out = false;
+                b
+            }
             Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
+                self.timed_out = true;
                 self.reset()?;
                 if !self.still_listens() {
                     self.gone = true;
@@ -334,7 +362,7 @@ impl Client {
                 return Err(ZmqError::Timeout {
                     func: func.to_string(),
                     endpoint: self.endpoint.clone(),
-                    secs: self.timeout.as_secs_f64(),
+                    secs: wait.as_secs_f64(),
                 });
             }
             Err(e) => return Err(transport(self, e)),
@@ -584,6 +612,29 @@ mod tests {
         let later = client.call("sim.setInt32Param", vec![]).unwrap_err();
         assert!(matches!(later, ZmqError::Gone { .. }), "{later}");
         assert_eq!(client.stats().round_trips, rounds, "no request was sent");
+    }
+
+    #[test]
+    fn after_a_timeout_the_clean_up_calls_wait_briefly() {
+        // a server that takes requests and never answers (a frozen simulator)
+        let context = zmq::Context::new();
+        let server = context.socket(zmq::ROUTER).unwrap();
+        server.bind("tcp://127.0.0.1:0").unwrap();
+        let endpoint = server.get_last_endpoint().unwrap().unwrap();
+        let port = endpoint.rsplit(':').next().unwrap().parse().unwrap();
+        let mut client = Client::open(&ClientOptions {
+            port,
+            timeout: Duration::from_millis(1500),
+            ..Default::default()
+        })
+        .unwrap();
+        let secs = |e: ZmqError| match e {
+            ZmqError::Timeout { secs, .. } => secs,
+            other => panic!("{other}"),
+        };
+        assert_eq!(secs(client.call("sim.a", vec![]).unwrap_err()), 1.5);
+        assert_eq!(secs(client.call("sim.b", vec![]).unwrap_err()), 1.0);
+        drop(server);
     }
 
     #[test]

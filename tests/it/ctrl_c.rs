@@ -144,6 +144,9 @@ fn ctrl_c_always_exits_130_with_the_idle_rate_restored(kind: Kind) {
         match out.status.code() {
             Some(130) => interrupted += 1,
             Some(0) => {}
+            // on a loaded machine the signal can land before apply has read its layout and
+            // installed its handler: the default action ends it, before anything changed
+            None if std::os::unix::process::ExitStatusExt::signal(&out.status) == Some(2) => {}
             other => panic!("{}, {delay_ms} ms: exit {other:?}: {stderr}", kind.name()),
         }
         let mut scene = kind.connect(serve.ports[0], TIMEOUT).unwrap();

@@ -133,6 +133,7 @@ fn impossible_connection_options_are_refused_before_connecting() {
         ),
         (&["--line", ""][..], "--line needs the name"),
         (&["--parent", " "][..], "--parent needs the name"),
+        (&["--host", ""][..], "--host needs a host name"),
     ] {
         let (code, stderr) = run(&[&["apply", m.as_str()][..], args].concat());
         assert_eq!(code, Some(2), "{args:?}: {stderr}");
