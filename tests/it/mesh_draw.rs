@@ -37,6 +37,7 @@ mesh_backend_tests!(
     line_maze_draws_verifies_keeps_replaces_and_clears,
     wall_maze_with_posts_draws_boxes_that_copies_replace,
     verify_finds_a_changed_mesh_and_a_stray_copy,
+    ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored,
 );
 
 fn no_progress(_: draw::Stage) {}
@@ -303,4 +304,28 @@ fn meshes_of_every_golden_line_layout_cover_exactly_the_copies() {
         checked += 1;
     }
     assert!(checked >= 15, "{checked} golden line layouts");
+}
+
+fn ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored(kind: Kind) {
+    use std::sync::Arc;
+    use std::sync::atomic::AtomicBool;
+    let s = kind.serve(Scene::course(), 8);
+    let mut b = s.connect();
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Prim, 20, 20, 1)).unwrap();
+    let opts = ApplyOptions {
+        interrupt: Some(Arc::new(AtomicBool::new(true))),
+        ..Default::default()
+    };
+    let result = mesh::apply(&mut *b, &m, &opts, &mut no_progress);
+    assert!(
+        matches!(result, Err(DrawError::Interrupted { placed: 0, total }) if total == m.pieces()),
+        "{result:?}"
+    );
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    assert!(meshes(&s).is_empty(), "nothing created after the interrupt");
+    // the same apply again finishes the maze
+    apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(meshes(&s).len(), m.meshes.len());
+    b.close().unwrap();
+    s.shutdown();
 }
