@@ -67,6 +67,7 @@ class Layout:
 class ApplyReport:
     lines: int
     posts: int
+    meshes: int
     reused: int
     pasted: int
     removed: int
@@ -159,6 +160,7 @@ def apply(
     dry_run: bool = False,
     create_missing: bool = False,
     save_scene: Optional[str] = None,
+    draw: Optional[Literal["copies", "mesh"]] = None,
 ) -> ApplyReport: ...
 def clear(
     api: Optional[Api] = None,
