@@ -386,6 +386,17 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
             let triangles = sim.scene.get(h).ok()?.shape_mesh()?.triangles();
             Some(Op::MergeShapes { triangles })
         }
+        // a loaded model by the triangles under its base (`crate::coppelia::model_cost`)
+        "sim.loadModel" => {
+            let base = values.first().and_then(cbor::int32)?;
+            let triangles = sim
+                .scene
+                .subtree(base)
+                .into_iter()
+                .filter_map(|h| sim.scene.get(h).ok()?.mesh.as_ref().map(|m| m.triangles()))
+                .sum();
+            Some(Op::LoadModel { triangles })
+        }
         _ => None,
     }
 }
