@@ -20,6 +20,7 @@ pub mod batch;
 pub mod cli;
 pub mod coppelia;
 pub mod draw;
+pub mod export;
 pub mod generate;
 pub mod layout;
 pub mod legacy;
