@@ -6,6 +6,7 @@ mod clear;
 mod completions;
 mod connect;
 mod demo;
+mod export;
 mod generate;
 mod import;
 mod interrupt;
@@ -48,6 +49,8 @@ pub enum Command {
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
+    /// Write a layout as a CoppeliaSim XML model (.simmodel.xml) or scene (.simscene.xml).
+    Export(export::ExportArgs),
     /// Generate a dataset: one layout per seed plus a manifest, on all cores.
     Batch(batch::BatchArgs),
     /// Print a shell completion script (bash, zsh, fish, ...).
@@ -177,6 +180,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Import(args) => import::run(args),
         Command::Validate(args) => validate::run(args, progress),
         Command::Render(args) => render::run(args, progress),
+        Command::Export(args) => export::run(args),
         Command::Batch(args) => batch::run(args, progress),
         Command::Completions(args) => completions::run(args),
         Command::Demo(args) => demo::run(args),

@@ -25,6 +25,11 @@ pub const INTPARAM_IDLE_FPS: i32 = 26;
 /// CoppeliaSim's default idle rate (`sim_intparam_idle_fps` of a fresh instance).
 pub const DEFAULT_IDLE_FPS: i32 = 8;
 
+/// `sim_objfloatparam_objbbox_min_x`: the first of the six object float parameters 15..20
+/// that give an object's bounding box in its own frame: min x, min y, min z, max x, max y,
+/// max z (`sim.getObjectFloatParam`, legacy `simxGetObjectFloatParameter`).
+pub const OBJFLOATPARAM_BBOX: i32 = 15;
+
 /// `sim.shapeintparam_static`: 1 = the shape is not dynamic.
 pub const SHAPEINTPARAM_STATIC: i32 = 3003;
 /// `sim.shapeintparam_respondable`: 1 = the shape collides in the physics engine.

@@ -75,6 +75,10 @@ pub struct ApplyReport {
     pub lines: usize,
     /// Posts drawn (a wall maze with posts), else 0.
     pub posts: usize,
+    /// Mesh mode (`--draw mesh`): the meshes the maze is drawn as (then `lines` and `posts`
+    /// count rectangles and boxes, `reused` meshes kept, `pasted` meshes created); 0 in
+    /// copies mode.
+    pub meshes: usize,
     /// Earlier copies reused.
     pub reused: usize,
     /// Copies pasted.
@@ -103,6 +107,20 @@ impl std::fmt::Display for ApplyReport {
         } else {
             String::new()
         };
+        if self.meshes > 0 {
+            return write!(
+                f,
+                "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created, {} object(s) removed; {} round trip(s), {:.2} s",
+                self.lines,
+                self.style.name().trim_end_matches('s'),
+                self.meshes,
+                self.reused,
+                self.pasted,
+                self.removed,
+                self.round_trips,
+                self.elapsed.as_secs_f64()
+            );
+        }
         write!(
             f,
             "{verb} {} {}{posts}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
@@ -201,7 +219,10 @@ fn apply_claimed(
         }
     }
     let others = names.others(style);
-    let existing = maze_lines(&survey.objects, &h, names.template(style), &others);
+    // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
+    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    let mut existing = maze_lines(&survey.objects, &h, names.template(style), &others);
+    existing.retain(|x| !meshes.contains(x));
     let copies_needed = drawing
         .lines
         .len()
@@ -223,7 +244,9 @@ fn apply_claimed(
     }
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
     // its posts unless this maze has posts too
-    let foreign = foreign_copies(&survey.objects, &h, &names.foreign(style, posts));
+    let mut foreign = foreign_copies(&survey.objects, &h, &names.foreign(style, posts));
+    foreign.retain(|x| !meshes.contains(x));
+    foreign.extend(meshes);
     for part in &parts {
         report.reused += part.plan.reuse.len();
         report.removed += part.plan.remove.len();

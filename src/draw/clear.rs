@@ -84,6 +84,12 @@ fn clear_claimed(
     let others = names.others(style);
     let mut doomed = maze_lines(&survey.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&survey.objects, &h, &others));
+    // a mesh maze (`--draw mesh`): its holder and meshes
+    for m in super::mesh::leftovers(scene, names, &h, &survey.objects)? {
+        if !doomed.contains(&m) {
+            doomed.push(m);
+        }
+    }
     let names_by_handle: HashMap<i32, &str> = survey
         .objects
         .iter()
@@ -91,7 +97,11 @@ fn clear_claimed(
         .collect();
     let removed = doomed
         .iter()
-        .filter_map(|d| names_by_handle.get(d).map(|n| n.to_string()))
+        .map(|d| {
+            names_by_handle
+                .get(d)
+                .map_or_else(|| format!("object {d}"), |n| n.to_string())
+        })
         .collect();
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)

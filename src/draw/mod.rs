@@ -217,6 +217,23 @@ pub struct ObjectInfo {
     pub orientation: [f64; 3],
 }
 
+/// An object's bounding box in its own frame (`sim_objfloatparam_objbbox_*`, parameters
+/// 15..20), as a simulator reports it (single precision).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundingBox {
+    /// Minimum x, y, z.
+    pub min: [f64; 3],
+    /// Maximum x, y, z.
+    pub max: [f64; 3],
+}
+
+impl BoundingBox {
+    /// Extent along x, y and z (a plane has z = 0).
+    pub fn size(&self) -> [f64; 3] {
+        [0, 1, 2].map(|k| self.max[k] - self.min[k])
+    }
+}
+
 /// Everything [`apply()`] needs to know first, in one round trip.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Survey {
@@ -302,6 +319,11 @@ pub trait Backend {
     fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         self.objects()
     }
+    /// The bounding boxes of `handles` ([`BoundingBox`]), in the same order, `None` for an
+    /// object that has none (gone, or a simulator that does not say): legacy in one request
+    /// for all, ZeroMQ one call per parameter and object.
+    fn bounding_boxes(&mut self, handles: &[i32])
+    -> Result<Vec<Option<BoundingBox>>, BackendError>;
     /// Copy-pastes each group; returns the new handles of each group.
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError>;
     /// Applies edits in order.

@@ -1,10 +1,21 @@
 //! A layout as a file another program loads, one file per format, chosen by the output's
-//! ending ([`Format::from_path`]): the robot simulators' own formats, MuJoCo MJCF
-//! ([`mjcf`]), Gazebo SDF ([`sdf`]), URDF ([`urdf`]) and Webots ([`webots`]), all written
-//! from the same boxes ([`solids`], from the mesh geometry).
+//! ending ([`Format::from_path`]). Today CoppeliaSim's own XML: a model to drag into any scene
+//! ([`simmodel`]) and a complete scene ([`simscene`]), both loadable without any remote API
+//! (CoppeliaSim 4.11 has no legacy API). Both draw the maze as meshes
+//! ([`crate::draw::mesh::geometry`]: one rectangle per run of lines, boxes for walls and
+//! posts), written by [`crate::coppelia::xml::write`], the writer the legacy mesh drawing uses.
+//!
+//! The robot simulators' own formats, MuJoCo MJCF ([`mjcf`]), Gazebo SDF ([`sdf`]), URDF
+//! ([`urdf`]) and Webots ([`webots`]), are written from one set of boxes ([`solids`]: a box
+//! per wall run, post, run of lines and marker, from the same mesh geometry).
+//!
+//! A new format is a file here with its `document` function and a [`Format`] variant with its
+//! arms in `ALL`, `file_endings` and [`export`].
 
 mod mjcf;
 mod sdf;
+mod simmodel;
+mod simscene;
 mod solids;
 mod urdf;
 mod webots;
@@ -19,24 +30,41 @@ use solids::Solids;
 /// The formats `export` writes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
-    /// MuJoCo MJCF (`.mjcf`, `.mujoco.xml`): box geoms in a body welded to the world.
+    /// CoppeliaSim XML model (`.simmodel.xml`): the `Maze` dummy as model base holding the
+    /// meshes.
+    CoppeliaModel,
+    /// CoppeliaSim XML scene (`.simscene.xml`): Floor, Maze with the meshes, Start, End (and
+    /// the Line template of a line maze, so `apply` can draw into it).
+    CoppeliaScene,
+    /// MuJoCo MJCF (`.mjcf`, `.mujoco.xml`): the floor plane, box geoms in a body welded to
+    /// the world, `start` and `end` sites.
     Mjcf,
     /// Gazebo SDFormat world (`.sdf`, `.world`): a ground plane and the maze as one static
     /// model.
     Sdf,
-    /// URDF (`.urdf`): one link fixed to the world, a collision and a visual box per wall run.
+    /// URDF (`.urdf`): one link fixed to the world, a collision and a visual box per wall run
+    /// and post.
     Urdf,
-    /// Webots world (`.wbt`): the maze as one static solid.
+    /// Webots world (`.wbt`): the floor and the maze as one static solid.
     Webots,
 }
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 4] = [Format::Mjcf, Format::Sdf, Format::Urdf, Format::Webots];
+    pub const ALL: [Format; 6] = [
+        Format::CoppeliaModel,
+        Format::CoppeliaScene,
+        Format::Mjcf,
+        Format::Sdf,
+        Format::Urdf,
+        Format::Webots,
+    ];
 
     /// The file name endings that choose it.
-    pub const fn endings(self) -> &'static [&'static str] {
+    pub const fn file_endings(self) -> &'static [&'static str] {
         match self {
+            Format::CoppeliaModel => &[".simmodel.xml"],
+            Format::CoppeliaScene => &[".simscene.xml"],
             Format::Mjcf => &[".mjcf", ".mujoco.xml"],
             Format::Sdf => &[".sdf", ".world"],
             Format::Urdf => &[".urdf"],
@@ -48,17 +76,17 @@ impl Format {
     pub fn from_path(path: &Path) -> Option<Format> {
         let name = path.file_name()?.to_str()?.to_ascii_lowercase();
         Format::ALL.into_iter().find(|f| {
-            f.endings()
+            f.file_endings()
                 .iter()
                 .any(|e| name.ends_with(e) && name.len() > e.len())
         })
     }
 
-    /// The endings of every format, for messages: `.mjcf, .mujoco.xml, .sdf, ...`.
-    pub fn all_endings() -> String {
+    /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`.
+    pub fn endings() -> String {
         Format::ALL
             .iter()
-            .flat_map(|f| f.endings())
+            .flat_map(|f| f.file_endings())
             .copied()
             .collect::<Vec<_>>()
             .join(", ")
@@ -69,58 +97,17 @@ impl Format {
 /// (checked here, before anything is written).
 pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> anyhow::Result<()> {
     let maze = MeshMaze::try_from(layout)?;
-    let solids = Solids::new(layout, &maze);
     let text = match format {
-        Format::Mjcf => mjcf::document(&solids),
-        Format::Sdf => sdf::document(&solids),
-        Format::Urdf => urdf::document(&solids),
-        Format::Webots => webots::document(&solids),
+        Format::CoppeliaModel => crate::coppelia::xml::write(&simmodel::document(&maze)),
+        Format::CoppeliaScene => crate::coppelia::xml::write(&simscene::document(layout, &maze)),
+        Format::Mjcf => mjcf::document(&Solids::new(layout, &maze)),
+        Format::Sdf => sdf::document(&Solids::new(layout, &maze)),
+        Format::Urdf => urdf::document(&Solids::new(layout, &maze)),
+        Format::Webots => webots::document(&Solids::new(layout, &maze)),
     };
     out.write_all(text.as_bytes())?;
     Ok(())
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use solids::tests::{line_layout, post_layout};
-
-    #[test]
-    fn endings_choose_formats() {
-        for (name, format) in [
-            ("m.mjcf", Some(Format::Mjcf)),
-            ("m.MuJoCo.XML", Some(Format::Mjcf)),
-            ("m.sdf", Some(Format::Sdf)),
-            ("dir/m.world", Some(Format::Sdf)),
-            ("m.urdf", Some(Format::Urdf)),
-            ("m.wbt", Some(Format::Webots)),
-            ("m.xml", None),
-            (".urdf", None),
-            ("m.png", None),
-        ] {
-            assert_eq!(Format::from_path(Path::new(name)), format, "{name}");
-        }
-        assert_eq!(
-            Format::all_endings(),
-            ".mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt"
-        );
-    }
-
-    #[test]
-    fn same_layout_same_bytes_and_invalid_layouts_write_nothing() {
-        for layout in [line_layout(17.0), post_layout(-40.0)] {
-            for format in Format::ALL {
-                let (mut a, mut b) = (Vec::new(), Vec::new());
-                export(format, &layout, &mut a).unwrap();
-                export(format, &layout.clone(), &mut b).unwrap();
-                assert_eq!(a, b);
-                assert!(!a.is_empty());
-            }
-        }
-        let mut bad = post_layout(0.0);
-        bad.grid.cell_size = -1.0;
-        let mut out = Vec::new();
-        assert!(export(Format::Sdf, &bad, &mut out).is_err());
-        assert!(out.is_empty());
-    }
-}
+mod tests;

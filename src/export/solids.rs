@@ -250,7 +250,7 @@ pub(crate) mod tests {
         assert_eq!(num(0.1 + 0.2), "0.3");
         assert_eq!(num(-1e-12), "0");
         assert_eq!(num(2.0), "2");
-        assert_eq!(num(-0.5235987756), "-0.523598776");
+        assert_eq!(num(-1.2345678915), "-1.234567892");
         assert_eq!(nums(&[1.0, 0.5, 0.0]), "1 0.5 0");
         assert_eq!(xml_escape("a<&>\"b"), "a&lt;&amp;&gt;&quot;b");
     }

@@ -1,7 +1,9 @@
 //! A maze as a URDF robot (`.urdf`): one link `maze`, fixed to the `world` link (Gazebo's
 //! way of making a model static), with one collision and one visual box per wall run and per
 //! post, or one visual-only thin box per run of lines, the visuals `start` and `end`, and the
-//! floor as a visual-only slab just below z = 0 (a simulator brings its own ground).
+//! floor as a visual-only slab just below z = 0 (a simulator brings its own ground). The link
+//! has a nominal inertial (1 kg, unit inertia): Gazebo's URDF reader (libsdformat) drops a
+//! link without one, and being fixed to the world it never moves.
 //!
 //! Every `<origin>` is `xyz` in the world (the floor frame) and `rpy` radians.
 
@@ -28,6 +30,15 @@ pub(super) fn document(s: &Solids) -> String {
     line(&mut out, format_args!("    <child link=\"maze\"/>"));
     line(&mut out, format_args!("  </joint>"));
     line(&mut out, format_args!("  <link name=\"maze\">"));
+    line(&mut out, format_args!("    <inertial>"));
+    line(&mut out, format_args!("      <mass value=\"1\"/>"));
+    line(
+        &mut out,
+        format_args!(
+            "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>"
+        ),
+    );
+    line(&mut out, format_args!("    </inertial>"));
     let floor = Slab {
         name: "floor".to_string(),
         part: super::solids::Part::Marker,

@@ -7,10 +7,10 @@ use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
 use crate::coppelia::{
-    DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION,
+    DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
 use crate::draw::{
-    Backend, BackendError, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
+    Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
 
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
@@ -193,6 +193,37 @@ impl Backend for LegacyBackend {
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         let r = self.call(&group_commands())?;
         parse_objects(&r)
+    }
+
+    fn bounding_boxes(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
+        let cmds: Vec<Command> = handles
+            .iter()
+            .flat_map(|&handle| {
+                (0..6).map(move |k| Command::GetObjectFloatParam {
+                    handle,
+                    param: OBJFLOATPARAM_BBOX + k,
+                })
+            })
+            .collect();
+        let r = self.call(&cmds)?;
+        Ok(r.chunks(6)
+            .map(|six| {
+                let v: Option<Vec<f64>> = six
+                    .iter()
+                    .map(|r| {
+                        let b = r.data.get(..4).filter(|_| !r.remote_error)?;
+                        Some(f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64)
+                    })
+                    .collect();
+                v.map(|v| BoundingBox {
+                    min: [v[0], v[1], v[2]],
+                    max: [v[3], v[4], v[5]],
+                })
+            })
+            .collect())
     }
 
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {

@@ -31,6 +31,8 @@ pub mod id {
     pub const GET_OBJECTS: u16 = 0x102A;
     /// `simx_cmd_copy_paste_objects`.
     pub const COPY_PASTE_OBJECTS: u16 = 0x102E;
+    /// `simx_cmd_get_object_float_parameter`.
+    pub const GET_OBJECT_FLOAT_PARAMETER: u16 = 0x2007;
     /// `simx_cmd_get_object_group_data`.
     pub const GET_OBJECT_GROUP_DATA: u16 = 0x200C;
     /// `simx_cmd_get_object_orientation2`.
@@ -192,6 +194,14 @@ pub enum Command {
         /// Frame of the reply (as for [`Command::SetPosition`]).
         relative_to: i32,
     },
+    /// `simxGetObjectFloatParameter(handle, param)`: reply one f32 (e.g. the bounding box,
+    /// [`crate::coppelia::OBJFLOATPARAM_BBOX`]).
+    GetObjectFloatParam {
+        /// The object asked about.
+        handle: i32,
+        /// The parameter ID (`sim_objfloatparam_*`).
+        param: i32,
+    },
     /// `simxRemoveObject(handle)`.
     RemoveObject(i32),
     /// `simxGetIntegerParameter(param)`.
@@ -273,6 +283,7 @@ impl Command {
             SetOrientation { .. } => id::SET_OBJECT_ORIENTATION,
             GetOrientation { .. } => id::GET_OBJECT_ORIENTATION,
             GetQuaternion { .. } => id::GET_OBJECT_QUATERNION,
+            GetObjectFloatParam { .. } => id::GET_OBJECT_FLOAT_PARAMETER,
             RemoveObject(_) => id::REMOVE_OBJECT,
             GetIntParam(_) => id::GET_INTEGER_PARAMETER,
             SetIntParam(..) => id::SET_INTEGER_PARAMETER,
@@ -341,6 +352,7 @@ impl Command {
                 handle,
                 relative_to,
             } => (i32s(&[*handle, *relative_to]), vec![], 0),
+            GetObjectFloatParam { handle, param } => (i32s(&[*handle, *param]), vec![], 0),
             SetIntParam(p, v) => (i32s(&[*p]), i32s(&[*v]), 0),
             Simulation(c) => (i32s(&[*c as i32]), vec![], 0),
             KillConnection => (vec![], i32s(&[0]), 0),
@@ -426,6 +438,10 @@ impl Command {
             id::GET_OBJECT_ORIENTATION_OLD => Command::GetOrientation {
                 handle: idn(0)?,
                 relative_to: dn(0)?,
+            },
+            id::GET_OBJECT_FLOAT_PARAMETER => Command::GetObjectFloatParam {
+                handle: idn(0)?,
+                param: idn(1)?,
             },
             id::REMOVE_OBJECT => Command::RemoveObject(idn(0)?),
             id::GET_INTEGER_PARAMETER => Command::GetIntParam(idn(0)?),
@@ -572,6 +588,10 @@ mod tests {
                 relative_to: -1,
             },
             Command::RemoveObject(9),
+            Command::GetObjectFloatParam {
+                handle: 16,
+                param: 18,
+            },
             Command::GetIntParam(26),
             Command::SetIntParam(26, 0),
             Command::Simulation(SimControl::Stop),
@@ -657,6 +677,51 @@ mod tests {
             on_the_wire(&Command::EraseFile("f.simmodel.xml".into())),
             erase
         );
+    }
+
+    /// `simxGetObjectFloatParameter(16, 15 = bounding box min x, blocking)` as the C client
+    /// sends it (spec 12.15 in the block layout of section 13: ID = handle, parameter), and
+    /// the reply block carrying -0.3.
+    #[test]
+    fn vector_get_object_float_parameter() {
+        use super::super::wire::{Message, MessageHeader};
+        let hex = |s: &str| -> Vec<u8> {
+            s.split_whitespace()
+                .map(|b| u8::from_str_radix(b, 16).unwrap())
+                .collect()
+        };
+        let request = Command::GetObjectFloatParam {
+            handle: 16,
+            param: 15,
+        }
+        .to_block(opmode::BLOCKING);
+        let bytes = Message {
+            header: MessageHeader::default(),
+            blocks: vec![request.clone()],
+        }
+        .encode();
+        let want = hex("22 00 00 00 22 00 00 00 08 00 00 00 00 00 07 20 01 00 00 00
+             00 00 00 00 00 00 10 00 00 00 0f 00 00 00");
+        assert_eq!(&bytes[18..], &want[..]);
+        assert_eq!(
+            Command::from_block(&request),
+            Some(Command::GetObjectFloatParam {
+                handle: 16,
+                param: 15
+            })
+        );
+        let reply = super::super::wire::Block {
+            data: (-0.3f32).to_le_bytes().to_vec(),
+            ..request
+        };
+        let bytes = Message {
+            header: MessageHeader::default(),
+            blocks: vec![reply],
+        }
+        .encode();
+        let want = hex("26 00 00 00 26 00 00 00 08 00 00 00 00 00 07 20 01 00 00 00
+             00 00 00 00 00 00 10 00 00 00 0f 00 00 00 9a 99 99 be");
+        assert_eq!(&bytes[18..], &want[..]);
     }
 
     #[test]

@@ -19,15 +19,17 @@ use crate::coppelia::frame::{
 };
 use crate::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, INTPARAM_IDLE_FPS,
-    INTPARAM_PROGRAM_VERSION, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_PLANE,
+    INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_PLANE,
     SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED, SPECIAL_COLLIDABLE,
     SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan::is_copy_name;
 use crate::draw::{
-    Authoring, Backend, BackendError, Edit, IdleRates, LEASE_SIGNAL, Lease, ObjectInfo,
-    ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
+    Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, LEASE_SIGNAL, Lease,
+    ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
+
+mod mesh;
 
 impl From<ZmqError> for BackendError {
     fn from(e: ZmqError) -> BackendError {
@@ -504,6 +506,39 @@ impl Backend for ZmqBackend {
         self.collect(LinePoses::Fresh)
     }
 
+    fn bounding_boxes(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
+        let mut out = Vec::with_capacity(handles.len());
+        for &h in handles {
+            let mut v = [0.0; 6];
+            let mut known = true;
+            for (k, slot) in v.iter_mut().enumerate() {
+                let param = OBJFLOATPARAM_BBOX + k as i32;
+                match self.call(
+                    "sim.getObjectFloatParam",
+                    vec![int(h.into()), int(param.into())],
+                ) {
+                    Ok(r) => match r.first().and_then(cbor::number) {
+                        Some(x) => *slot = x,
+                        None => known = false,
+                    },
+                    Err(BackendError::Remote(_)) => known = false,
+                    Err(e) => return Err(e),
+                }
+                if !known {
+                    break;
+                }
+            }
+            out.push(known.then(|| BoundingBox {
+                min: [v[0], v[1], v[2]],
+                max: [v[3], v[4], v[5]],
+            }));
+        }
+        Ok(out)
+    }
+
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         let mut out = Vec::with_capacity(groups.len());
         for g in groups {
@@ -644,6 +679,10 @@ impl Backend for ZmqBackend {
     }
 
     fn lease(&mut self) -> Option<&mut dyn Lease> {
+        Some(self)
+    }
+
+    fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
     }
 }

@@ -58,6 +58,7 @@ sig = {
     "simxTransferFile": (I, [I, C.c_char_p, C.c_char_p, I, I]),
     "simxLoadModel": (I, [I, C.c_char_p, U, C.POINTER(I), I]),
     "simxEraseFile": (I, [I, C.c_char_p, I]),
+    "simxGetObjectFloatParameter": (I, [I, I, I, C.POINTER(F), I]),
 }
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MESH_MODEL = os.path.join(ROOT, "tests", "coppeliasim-xml", "mesh-two-rects-4.5.1.simmodel.xml")
@@ -262,6 +263,18 @@ def run(port, dump, server):
         rc, h = handle(cid, bad)
         # the server replies -1 with the error bit; the C client leaves the output untouched on error
         check(f"unknown name {bad!r} gives return code 8, output not written", rc == REMOTE and h == 12345, (rc, h))
+
+    # bounding box: float parameters 15..20 (spec 12.15; real 4.5.1: Line gives -0.3, -0.05, 0, 0.3, 0.05, 0)
+    bbox = []
+    for param in range(15, 21):
+        f = F(12345)
+        rc = lib.simxGetObjectFloatParameter(cid, hs["Line"], param, C.byref(f), BLOCKING)
+        bbox.append((rc, f.value))
+    check("simxGetObjectFloatParameter(Line, 15..20) is the bounding box",
+          all(rc == OK for rc, _ in bbox) and near([v for _, v in bbox], [-0.3, -0.05, 0, 0.3, 0.05, 0]), bbox)
+    f = F(12345)
+    rc = lib.simxGetObjectFloatParameter(cid, 987654, 15, C.byref(f), BLOCKING)
+    check("simxGetObjectFloatParameter of an unknown object: return code 8", rc == REMOTE, rc)
 
     # always-ok commands and failing group data (spec 12.2, 12.10-12.12, 14.11)
     p = I(99)

@@ -93,6 +93,9 @@ try:
     ok, msg = raises(lambda: sim.getObject("/Nope"), "does not exist")
     check("getObject of a missing path is an error", ok, msg)
     check("getObject with noError gives -1", sim.getObject("/Nope", {"noError": True}) == -1)
+    bbox = [sim.getObjectFloatParam(line, p) for p in range(15, 21)]
+    check("getObjectFloatParam(Line, 15..20) is the bounding box",
+          all(abs(a - b) < 1e-6 for a, b in zip(bbox, [-0.3, -0.05, 0, 0.3, 0.05, 0])), bbox)
 
     copies = sim.copyPasteObjects([line], 0)
     check("copyPasteObjects returns a list of new handles", isinstance(copies, list) and len(copies) == 1 and copies[0] > line, copies)
@@ -212,6 +215,37 @@ try:
         e = sim.getObjectOrientation(h, floor)
         got.append((round(p[0], 3), round(p[1], 3), round(e[2] % math.pi, 3)))
     check("every segment has a line in place (read with the official client)", sorted(got) == want)
+
+    # mesh shapes (spec real-coppeliasim-4.5.1.md, "One object instead of thousands")
+    verts = [0, 0, 0, 0.5, 0, 0, 0.5, 0.1, 0, 0, 0.1, 0, 0.5, 0, 0, 1, 0, 0, 1, 0.1, 0, 0.5, 0.1, 0]
+    mesh = sim.createMeshShape(0, 0.349, verts, [0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7])
+    check("createMeshShape returns a handle at the world origin", isinstance(mesh, int) and close(sim.getObjectPosition(mesh, -1), [0, 0, 0]))
+    sim.setShapeColor(mesh, "", 0, [0.0, 1.0, 0.0])
+    check("getShapeColor of a mesh", close(sim.getShapeColor(mesh, "", 0)[1], [0, 1, 0]))
+    check("getShapeBB of two rectangles is 1 x 0.1 x 0", close(sim.getShapeBB(mesh), [1.0, 0.1, 0.0]))
+    sim.setObjectPosition(mesh, [2.0, 0.0, 0.0], -1)
+    v, i, n = sim.getShapeMesh(mesh)
+    check("getShapeMesh: relative to the shape, duplicates merged", len(v) == 18 and len(i) == 12 and len(n) == 36 and max(v[0::3]) <= 1.0, (len(v), len(i)))
+    lv, li, _ = sim.getShapeMesh(line)
+    check("getShapeMesh of the Line template: its 0.6 x 0.1 plane", len(lv) == 12 and len(li) == 6 and close([max(lv[0::3]), max(lv[1::3])], [0.3, 0.05]), lv)
+    ok, msg = raises(lambda: sim.createMeshShape(0, 0.0, [0, 0, 0], [0, 1, 2]), "invalid")
+    check("createMeshShape with bad vertices is an error", ok, msg)
+    merged = sim.groupShapes([mesh, sim.createMeshShape(0, 0.0, verts, [0, 1, 2])], True)
+    check("groupShapes merges into one shape", sim.getObjectType(merged) == 0 and len(sim.getShapeMesh(merged)[1]) == 15)
+    sim.removeObjects([merged])
+
+    # our `apply --draw mesh` over ZeroMQ, read back with the official client
+    r = subprocess.run([BIN, "apply", "--api", "zmq", "--port", str(port), "--draw", "mesh", layout], capture_output=True, text=True)
+    check("vrep-maze apply --draw mesh", r.returncode == 0 and "verified" in r.stdout, r.stdout + r.stderr)
+    holder = sim.getObject("/Maze/MazeMeshes")
+    meshes = sim.getObjectsInTree(holder, sim.handle_all, 3)
+    names = [sim.getObjectAlias(h) for h in meshes]
+    check("one mesh under Maze/MazeMeshes, named with its fingerprint", len(meshes) == 1 and names[0].startswith("MazeMesh_l_"), names)
+    check("the copies are gone", sim.getObjectsInTree(maze, sim.handle_all, 3) == [holder])
+    mv, mi, _ = sim.getShapeMesh(meshes[0])
+    check("the mesh is green and holds two triangles per run", close(sim.getShapeColor(meshes[0], "", 0)[1], [0, 1, 0]) and len(mi) % 6 == 0 and len(mi) > 0)
+    r = subprocess.run([BIN, "clear", "--api", "zmq", "--port", str(port)], capture_output=True, text=True)
+    check("vrep-maze clear removes the mesh maze", r.returncode == 0 and sim.getObject("/Maze/MazeMeshes", {"noError": True}) == -1, r.stdout + r.stderr)
 finally:
     stop(proc)
 

@@ -392,3 +392,63 @@ fn help_examples_that_make_files_make_them() {
     }
     assert!(ran >= 12, "only {ran} examples found");
 }
+
+#[test]
+fn export_writes_coppeliasim_models_and_scenes_chosen_by_the_ending() {
+    let dir = TempDir::new().unwrap();
+    let maze = generate_to(&dir, "m.json", &["--seed", "5", "--size", "4x3"]);
+    for (name, filetype) in [
+        ("m.simmodel.xml", "exhaustiveModel"),
+        ("m.simscene.xml", "exhaustiveScene"),
+    ] {
+        let out = dir.path().join(name);
+        bin()
+            .arg("export")
+            .arg(&maze)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .success();
+        let text = fs::read_to_string(&out).unwrap();
+        assert!(text.contains(&format!("<filetype>{filetype}</filetype>")));
+        assert!(text.contains("<alias>MazeMesh_l_"), "{name}");
+    }
+    let unknown = dir.path().join("m.ttm");
+    bin()
+        .arg("export")
+        .arg(&maze)
+        .arg("-o")
+        .arg(&unknown)
+        .assert()
+        .code(2)
+        .stderr(contains(".simmodel.xml, .simscene.xml"));
+    assert!(!unknown.exists());
+}
+
+#[test]
+fn export_of_a_layout_that_fails_validation_writes_nothing() {
+    let dir = TempDir::new().unwrap();
+    let maze = generate_to(&dir, "m.json", &["--seed", "5", "--size", "4x3"]);
+    let text = fs::read_to_string(&maze).unwrap();
+    let broken = dir.path().join("broken.json");
+    fs::write(
+        &broken,
+        text.replacen("\"cell_size\": 1.0", "\"cell_size\": 0.01", 1),
+    )
+    .unwrap();
+    let out = dir.path().join("m.simmodel.xml");
+    fs::write(&out, "old").unwrap();
+    bin()
+        .arg("export")
+        .arg(&broken)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(contains("nothing was exported"));
+    assert_eq!(
+        fs::read_to_string(&out).unwrap(),
+        "old",
+        "the old file stays"
+    );
+}

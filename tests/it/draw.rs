@@ -21,7 +21,40 @@ backend_tests!(
     idle_rate_is_restored_after_a_remote_error,
     apply_in_a_moved_floor_with_templates_under_maze,
     template_inside_the_maze_dummy_is_kept_and_reused,
+    bounding_boxes_are_read_as_the_simulator_gives_them,
 );
+
+/// The bounding boxes of the course objects (float parameters 15..20), in the order asked,
+/// and none for an object that does not exist.
+fn bounding_boxes_are_read_as_the_simulator_gives_them(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 0);
+    let mut b = s.connect();
+    let survey = b.survey(&["Line", "Start", "Maze", "Wall"]).unwrap();
+    let mut handles: Vec<i32> = survey.handles.iter().map(|h| h.unwrap()).collect();
+    handles.push(987_654);
+    let boxes = b.bounding_boxes(&handles).unwrap();
+    let sizes: Vec<Option<[f64; 3]>> = boxes.iter().map(|b| b.map(|b| b.size())).collect();
+    let want = [
+        [0.6, 0.1, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.01; 3],
+        [1.0, 0.05, 0.2],
+    ];
+    assert_eq!(sizes.len(), 5);
+    for (got, want) in sizes.iter().zip(want) {
+        let got = got.unwrap_or_else(|| panic!("{}: no box", kind.name()));
+        assert!(
+            got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-6),
+            "{}: {got:?} != {want:?}",
+            kind.name()
+        );
+    }
+    let line = boxes[0].unwrap();
+    assert!((line.min[0] + 0.3).abs() < 1e-6 && (line.max[1] - 0.05).abs() < 1e-6);
+    assert_eq!(sizes[4], None, "{}", kind.name());
+    drop(b);
+    s.shutdown();
+}
 
 fn no_progress(_: draw::Stage) {}
 
@@ -187,6 +220,12 @@ impl Backend for FailingEdits {
     }
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
         self.0.objects()
+    }
+    fn bounding_boxes(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Vec<Option<draw::BoundingBox>>, BackendError> {
+        self.0.bounding_boxes(handles)
     }
     fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
         self.0.copy_paste(groups)

@@ -18,6 +18,7 @@ mod interrupt;
 mod layering;
 mod legacy_client_server;
 mod legacy_draw;
+mod mesh_draw;
 mod properties;
 mod schema;
 mod texture;

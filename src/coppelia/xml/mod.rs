@@ -158,6 +158,88 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// A mesh from flat `x, y, z` floats and three indices per triangle (as the drawing
+    /// code keeps them); `None` when the counts do not make triples or an index names no
+    /// vertex.
+    pub fn from_flat(vertices: &[f32], indices: &[i32]) -> Option<Mesh> {
+        let count = vertices.len() / 3;
+        if !vertices.len().is_multiple_of(3) || !indices.len().is_multiple_of(3) {
+            return None;
+        }
+        let indices = indices
+            .iter()
+            .map(|&i| u32::try_from(i).ok().filter(|&i| (i as usize) < count))
+            .collect::<Option<Vec<u32>>>()?;
+        Some(Mesh {
+            vertices: vertices
+                .chunks_exact(3)
+                .map(|v| [v[0], v[1], v[2]])
+                .collect(),
+            indices,
+        })
+    }
+}
+
+/// The identity rotation as a file quaternion `[w, x, y, z]`.
+pub const IDENTITY: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
+
+/// The rotation by `yaw` radians about z as a file quaternion `[w, x, y, z]`.
+pub fn yaw_quaternion(yaw: f64) -> [f64; 4] {
+    [(yaw / 2.0).cos(), 0.0, 0.0, (yaw / 2.0).sin()]
+}
+
+impl XmlObject {
+    /// A dummy of `size` and `colour` on its parent's frame, no special properties (as
+    /// CoppeliaSim makes them), not a model base.
+    pub fn dummy(
+        handle: i32,
+        parent: Option<i32>,
+        alias: &str,
+        size: f64,
+        colour: [f32; 3],
+    ) -> XmlObject {
+        XmlObject {
+            handle,
+            parent,
+            alias: alias.to_string(),
+            position: [0.0; 3],
+            quaternion: IDENTITY,
+            model_base: false,
+            special: 0,
+            body: Body::Dummy(Dummy { size, colour }),
+        }
+    }
+
+    /// A static mesh shape on its parent's frame (its vertices are in that frame), with
+    /// `special` properties, respondable or not.
+    pub fn static_mesh(
+        handle: i32,
+        parent: Option<i32>,
+        alias: &str,
+        mesh: Mesh,
+        look: ([f32; 3], i32),
+        respondable: bool,
+    ) -> XmlObject {
+        XmlObject {
+            handle,
+            parent,
+            alias: alias.to_string(),
+            position: [0.0; 3],
+            quaternion: IDENTITY,
+            model_base: false,
+            special: look.1,
+            body: Body::Shape(Shape {
+                mesh,
+                colour: look.0,
+                primitive: Primitive::None,
+                is_static: true,
+                respondable,
+            }),
+        }
+    }
+}
+
 /// Why a file could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum XmlError {
@@ -178,4 +260,4 @@ pub enum XmlError {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use super::{Body, Document, Dummy, FileKind, Mesh, Primitive, Shape, XmlObject};
+use super::{Body, Document, Dummy, FileKind, IDENTITY, Mesh, Primitive, Shape, XmlObject};
 use crate::coppelia::{
     SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
@@ -131,8 +131,6 @@ fn sci(v: f64) -> String {
         None => rust, // inf, NaN: never in a document we build
     }
 }
-
-const IDENTITY: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
 
 /// The model's pose and size for its thumbnail: the box around every shape, in the frame of
 /// the model base's parent (what the reference models show: the Line plane's own box, the

@@ -9,8 +9,11 @@
 //! reading the name of every copy. Each mesh's name carries a fingerprint of what it holds
 //! ([`geometry::mesh_name`]): a re-apply keeps the meshes whose fingerprint it would draw.
 
+pub mod compare;
+pub mod draw;
 pub mod geometry;
 
+pub use draw::{apply, leftovers, verify};
 pub use geometry::{
     MAX_TRIANGLES, MESH_PREFIX, MazeMesh, MeshKind, MeshMaze, Piece, mesh_name, parse_mesh_name,
 };

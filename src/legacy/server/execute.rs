@@ -205,6 +205,13 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             }
             Err(_) => (false, vec![]),
         },
+        Command::GetObjectFloatParam { handle, param } => {
+            // failure when the simulator call fails (unknown object or parameter), spec 12.15
+            match scene.get(handle).ok().and_then(|o| o.float_param(param)) {
+                Some(v) => (true, (v as f32).to_le_bytes().to_vec()),
+                None => (false, vec![]),
+            }
+        }
         Command::RemoveObject(h) => (scene.remove(h).is_ok(), vec![]),
         Command::GetIntParam(p) => match sim.int_param(p) {
             Some(v) => (true, i32le(v)),
@@ -339,6 +346,33 @@ mod tests {
 
     fn floats(v: &[f64]) -> Vec<f32> {
         v.iter().map(|x| *x as f32).collect()
+    }
+
+    /// Parameters 15..20 of the course `Line` are its bounding box as the real 4.5.1 gives
+    /// it; an unknown parameter or object fails.
+    #[test]
+    fn float_parameters_15_to_20_are_the_bounding_box() {
+        let (mut sim, _, line) = sim();
+        let got: Vec<f32> = (15..=20)
+            .map(|param| {
+                let data = run(
+                    &mut sim,
+                    Command::GetObjectFloatParam {
+                        handle: line,
+                        param,
+                    },
+                )
+                .expect("a bounding-box parameter");
+                f32::from_le_bytes(data[..4].try_into().unwrap())
+            })
+            .collect();
+        assert_eq!(got, [-0.3, -0.05, 0.0, 0.3, 0.05, 0.0]);
+        for (handle, param) in [(line, 14), (line, 21), (9999, 15)] {
+            assert_eq!(
+                run(&mut sim, Command::GetObjectFloatParam { handle, param }),
+                None
+            );
+        }
     }
 
     #[test]

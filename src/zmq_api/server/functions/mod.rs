@@ -98,6 +98,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getObjectAlias", objects::get_object_alias),
     ("sim.setObjectAlias", authoring::set_object_alias),
     ("sim.getObjectType", objects::get_object_type),
+    ("sim.getObjectFloatParam", objects::get_object_float_param),
     ("sim.copyPasteObjects", objects::copy_paste_objects),
     ("sim.removeObjects", objects::remove_objects),
     ("sim.removeObject", objects::remove_object),

@@ -58,6 +58,18 @@ pub(super) fn get_object_type(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome
     ret(vec![int(o.kind.code().into())])
 }
 
+/// `sim.getObjectFloatParam(h, param)`: parameters 15..20 are the bounding box in the
+/// object's frame (`../shared/spec/real-coppeliasim-4.5.1.md`: the course `Line` gives -0.3,
+/// -0.05, 0, 0.3, 0.05, 0). Other parameters are not modelled and fail.
+pub(super) fn get_object_float_param(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let (h, param) = (a.int(0)?, a.int(1)?);
+    let o = ctx.sim.scene.get(h).map_err(|_| a.no_object())?;
+    match o.float_param(param) {
+        Some(v) => ret(vec![Value::Float(v)]),
+        None => Err(format!("in {}: unknown parameter {param}", a.func)),
+    }
+}
+
 /// `sim.copyPasteObjects(handles, options)`: the handles of the copies.
 pub(super) fn copy_paste_objects(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let hs = a.handles(0)?;
@@ -173,6 +185,36 @@ mod tests {
         assert!(!roots.contains(&line) && roots.contains(&maze));
         assert_eq!(tree(&mut sim, HANDLE_SCENE, 0).len(), 5);
         assert_eq!(tree(&mut sim, maze, 2), vec![maze, line]);
+    }
+
+    #[test]
+    fn float_params_15_to_20_are_the_bounding_box() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let line = sim.scene.resolve("Line").unwrap();
+        let got: Vec<Value> = (15..=20)
+            .map(|p| {
+                ret1(run(
+                    &mut sim,
+                    "sim.getObjectFloatParam",
+                    vec![int(line.into()), int(p.into())],
+                ))
+            })
+            .collect();
+        let want: Vec<Value> = [-0.3, -0.05, 0.0, 0.3, 0.05, 0.0]
+            .into_iter()
+            .map(Value::Float)
+            .collect();
+        assert_eq!(got, want);
+        for (h, p) in [(line, 21), (9999, 15)] {
+            assert!(matches!(
+                run(
+                    &mut sim,
+                    "sim.getObjectFloatParam",
+                    vec![int(h.into()), int(p.into())]
+                ),
+                Outcome::Err(_)
+            ));
+        }
     }
 
     #[test]

@@ -1,0 +1,54 @@
+//! `vrep-maze export`: a layout as a file another program loads: CoppeliaSim XML, MuJoCo
+//! MJCF, Gazebo SDF, URDF or a Webots world.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::Args;
+
+use super::output::write_output;
+use super::usage;
+use crate::export::{Format, export};
+
+/// Options of `export`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots"
+)]
+pub struct ExportArgs {
+    /// The layout file (`-` reads standard input).
+    pub file: PathBuf,
+    /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model),
+    /// .simscene.xml (CoppeliaSim scene), .mjcf or .mujoco.xml (MuJoCo), .sdf or .world
+    /// (Gazebo), .urdf, .wbt (Webots).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Runs `export`: the layout is read and validated completely before anything is written,
+/// and the file is replaced atomically.
+pub fn run(args: ExportArgs) -> Result<ExitCode> {
+    let format = Format::from_path(&args.output).ok_or_else(|| {
+        let bare_xml = args
+            .output
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        usage(format!(
+            "{}: {}export writes {} files (the ending chooses the format)",
+            args.output.display(),
+            if bare_xml {
+                "a bare .xml is ambiguous; "
+            } else {
+                ""
+            },
+            Format::endings()
+        ))
+    })?;
+    let layout = crate::layout::read_layout(&args.file)?;
+    let mut text = Vec::new();
+    export(format, &layout, &mut text)
+        .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
+    write_output(Some(&args.output), |w| w.write_all(&text))?;
+    Ok(ExitCode::SUCCESS)
+}

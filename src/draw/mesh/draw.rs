@@ -1,0 +1,514 @@
+//! `apply --draw mesh`, and its `verify`: draw a [`MeshMaze`] (keep the meshes in place by
+//! fingerprint, create the missing ones, remove everything else of an earlier maze, copies
+//! included), place the template and markers, check; and read a drawn mesh maze back.
+
+use std::collections::{HashMap, HashSet};
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+use super::compare::{bounds, mesh_differences};
+use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
+use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
+use crate::draw::apply::{ApplyOptions, ApplyReport, Stage, raised};
+use crate::draw::lease::{Claim, claimed};
+use crate::draw::plan::{foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::{
+    Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
+    resolve_handles,
+};
+
+/// Meshes created per request to [`MeshDrawing::create`], between two checks for Ctrl-C and
+/// for another run (about 4,000 rectangles: 1 to 2 s on CoppeliaSim 4.5.1).
+const MESHES_PER_CREATE: usize = 8;
+
+/// The mesh capability of `scene`, or the error that says this API has none.
+fn port(scene: &mut dyn Backend) -> Result<&mut dyn MeshDrawing, DrawError> {
+    let api = scene.describe();
+    scene.meshes().ok_or_else(|| {
+        DrawError::Backend(BackendError::Remote(format!(
+            "--draw mesh is not available over this API ({api})"
+        )))
+    })
+}
+
+/// The holder of an earlier mesh maze and everything under it, found through the backend's
+/// mesh capability or, without one, among `objects` (the holder by its name under the maze
+/// dummy, the meshes as its children): what a copies-mode draw or a clear removes. Never
+/// the templates.
+pub fn leftovers(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    h: &Handles,
+    objects: &[ObjectInfo],
+) -> Result<Vec<i32>, DrawError> {
+    let found = match scene.meshes() {
+        Some(port) => port.find(names, h.parent)?,
+        None => {
+            let holder = objects
+                .iter()
+                .find(|o| o.parent == Some(h.parent) && o.name.rsplit('/').next() == Some(HOLDER));
+            FoundMeshes {
+                holder: holder.map(|o| o.handle),
+                meshes: holder
+                    .map(|holder| {
+                        objects
+                            .iter()
+                            .filter(|o| o.parent == Some(holder.handle))
+                            .map(|o| super::FoundMesh {
+                                handle: o.handle,
+                                name: o.name.clone(),
+                                parent: o.parent,
+                            })
+                            .collect()
+                    })
+                    .unwrap_or_default(),
+            }
+        }
+    };
+    let templates = h.templates();
+    Ok(found
+        .all_handles()
+        .into_iter()
+        .filter(|x| !templates.contains(x) && Some(*x) != h.post && *x != h.floor)
+        .collect())
+}
+
+/// Draws `maze` as meshes into `scene`, as [`crate::draw::apply()`] draws copies: the idle rate
+/// raised, the scene claimed, Ctrl-C honoured between requests, the result checked (names,
+/// parents, the template's and markers' poses; [`verify`] reads the meshes back).
+pub fn apply(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<ApplyReport, DrawError> {
+    let started = Instant::now();
+    let rt0 = scene.round_trips();
+    let (mut report, _) = raised(scene, opts.dry_run, |scene| {
+        claimed(scene, opts.dry_run, |scene, claim| {
+            apply_claimed(scene, maze, opts, progress, claim)
+        })
+    })?;
+    report.round_trips = scene.round_trips() - rt0;
+    report.elapsed = started.elapsed();
+    Ok(report)
+}
+
+/// Pieces of `kind` in `maze`.
+fn pieces_of(maze: &MeshMaze, kinds: &[MeshKind]) -> usize {
+    maze.meshes
+        .iter()
+        .filter(|m| kinds.contains(&m.kind))
+        .map(|m| m.pieces.len())
+        .sum()
+}
+
+/// The special properties a mesh of `kind` gets: the template's, renderable (the robot's
+/// camera sees it) and, for walls and posts, detectable by proximity sensors.
+fn special(kind: MeshKind, look: &Look) -> i32 {
+    let extra = if kind.respondable() {
+        SPECIAL_DETECTABLE
+    } else {
+        0
+    };
+    look.special | SPECIAL_RENDERABLE | extra
+}
+
+fn apply_claimed(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+    claim: &Claim,
+) -> Result<ApplyReport, DrawError> {
+    let (style, names) = (maze.style, &opts.names);
+    let survey = scene.survey(&names.survey(style))?;
+    let h = resolve_handles(names, style, &survey, false)?;
+    progress(Stage::Surveyed);
+    let mut report = ApplyReport {
+        style,
+        lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
+        posts: pieces_of(maze, &[MeshKind::Posts]),
+        meshes: maze.meshes.len(),
+        dry_run: opts.dry_run,
+        ..Default::default()
+    };
+    if survey.simulation_running {
+        if !opts.stop_simulation {
+            return Err(DrawError::SimulationRunning);
+        }
+        if !opts.dry_run {
+            scene.stop_simulation()?;
+            report.stopped_simulation = true;
+        }
+    }
+    let found = port(scene)?.find(names, h.parent)?;
+    // an earlier maze's copies of any template go, and so does anything else under the
+    // maze dummy but the holder and the templates
+    let others = names.others(style);
+    let mut doomed: Vec<i32> = maze_lines(&survey.objects, &h, names.template(style), &others)
+        .into_iter()
+        .chain(foreign_copies(&survey.objects, &h, &others))
+        .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
+        .collect();
+    let wanted: HashMap<String, usize> = maze
+        .meshes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.name(), i))
+        .collect();
+    let mut have: Vec<Option<i32>> = vec![None; maze.meshes.len()];
+    for m in &found.meshes {
+        match wanted.get(&m.name) {
+            Some(&i) if have[i].is_none() && m.parent == found.holder => have[i] = Some(m.handle),
+            _ => doomed.push(m.handle),
+        }
+    }
+    let missing: Vec<usize> = (0..maze.meshes.len())
+        .filter(|&i| have[i].is_none())
+        .collect();
+    report.reused = maze.meshes.len() - missing.len();
+    report.pasted = missing.len();
+    report.removed = doomed.len();
+    report.unchanged = report.reused;
+    if opts.dry_run {
+        return Ok(report);
+    }
+    let checkpoint = |scene: &mut dyn Backend, placed: usize, phase| {
+        if opts
+            .interrupt
+            .as_ref()
+            .is_some_and(|flag| flag.load(Ordering::SeqCst))
+        {
+            return Err(DrawError::Interrupted {
+                placed,
+                total: maze.pieces(),
+            });
+        }
+        claim.check(scene, phase)
+    };
+    let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+    for chunk in doomed.chunks(per_request) {
+        checkpoint(scene, 0, "while removing the earlier maze")?;
+        let removals: Vec<Edit> = chunk.iter().map(|&d| Edit::Remove(d)).collect();
+        scene.edit(&removals)?;
+        report.edits += removals.len();
+    }
+    let template_look = port(scene)?.look(h.line)?;
+    let post_look = match h.post.filter(|_| report.posts > 0) {
+        Some(p) => port(scene)?.look(p)?,
+        None => template_look,
+    };
+    let mut place = MeshPlace {
+        parent: h.parent,
+        holder: found.holder,
+        floor: h.floor,
+    };
+    let mut placed = report.unchanged_pieces(maze, &have);
+    let total = maze.pieces();
+    progress(Stage::Placing {
+        done: placed,
+        total,
+    });
+    for batch in missing.chunks(MESHES_PER_CREATE) {
+        checkpoint(scene, placed, "while creating the meshes")?;
+        let names: Vec<String> = batch.iter().map(|&i| maze.meshes[i].name()).collect();
+        let new: Vec<NewMesh<'_>> = batch
+            .iter()
+            .zip(&names)
+            .map(|(&i, name)| {
+                let m = &maze.meshes[i];
+                let look = if m.kind == MeshKind::Posts {
+                    post_look
+                } else {
+                    template_look
+                };
+                NewMesh {
+                    name,
+                    vertices: &m.vertices,
+                    indices: &m.indices,
+                    look: Look {
+                        colour: look.colour,
+                        special: special(m.kind, &look),
+                    },
+                    respondable: m.kind.respondable(),
+                }
+            })
+            .collect();
+        let (holder, handles) = port(scene)?.create(&place, &new)?;
+        place.holder = Some(holder);
+        for (&i, handle) in batch.iter().zip(handles) {
+            have[i] = Some(handle);
+            placed += maze.meshes[i].pieces.len();
+        }
+        progress(Stage::Placing {
+            done: placed,
+            total,
+        });
+    }
+    // the template lies on the first line (or under Start), the markers on their cells
+    let by_handle: HashMap<i32, &ObjectInfo> =
+        survey.objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = by_handle
+        .get(&h.floor)
+        .map(|o| world_frame(o))
+        .unwrap_or_default();
+    let mut edits = Vec::new();
+    for (handle, want) in markers(maze, &h) {
+        let in_place = by_handle
+            .get(&handle)
+            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
+        if !in_place {
+            edits.push(Edit::SetPose {
+                handle,
+                relative_to: h.floor,
+                position: crate::draw::position(&want),
+                orientation: crate::draw::euler(&want),
+            });
+        }
+    }
+    checkpoint(scene, placed, "while placing the markers")?;
+    scene.edit(&edits)?;
+    report.edits += edits.len();
+    progress(Stage::Verifying);
+    claim.check(scene, "before verifying")?;
+    // the meshes by name, those created now read back (those kept carry the fingerprint of
+    // what they hold); the template's and markers' poses are the ones just set, acknowledged
+    let after = port(scene)?.find(names, h.parent)?;
+    let mut problems = name_problems(maze, &after);
+    let created: HashSet<i32> = missing.iter().filter_map(|&i| have[i]).collect();
+    let looks = (template_look, post_look);
+    problems.extend(mesh_problems(
+        scene,
+        maze,
+        &after,
+        Some(&created),
+        &floor,
+        looks,
+    )?);
+    claim.check(scene, "while verifying")?;
+    if problems.is_empty() {
+        Ok(report)
+    } else {
+        Err(DrawError::Verify(problems))
+    }
+}
+
+impl ApplyReport {
+    /// Pieces held by the meshes kept.
+    fn unchanged_pieces(&self, maze: &MeshMaze, have: &[Option<i32>]) -> usize {
+        maze.meshes
+            .iter()
+            .zip(have)
+            .filter(|(_, h)| h.is_some())
+            .map(|(m, _)| m.pieces.len())
+            .sum()
+    }
+}
+
+/// Where the template (a line maze's: on the first line, or under `Start` when there is
+/// none) and the markers go.
+fn markers(maze: &MeshMaze, h: &Handles) -> Vec<(i32, Pose)> {
+    let mut out = Vec::new();
+    if maze.style == Style::Lines {
+        let hidden = Pose {
+            z: (maze.start.z - 0.001).max(0.0),
+            ..maze.start
+        };
+        out.push((h.line, maze.template.unwrap_or(hidden)));
+    }
+    out.push((h.start, maze.start));
+    out.push((h.end, maze.end));
+    out
+}
+
+/// What differs between the meshes `found` and those of `maze`, by name and parent.
+fn name_problems(maze: &MeshMaze, found: &FoundMeshes) -> Vec<String> {
+    let wanted: HashSet<String> = maze.meshes.iter().map(|m| m.name()).collect();
+    let mut problems = Vec::new();
+    let mut seen = HashSet::new();
+    let mut stray = Vec::new();
+    for m in &found.meshes {
+        if wanted.contains(&m.name) && seen.insert(m.name.clone()) {
+            if m.parent != found.holder {
+                problems.push(format!("mesh `{}` is not a child of `{HOLDER}`", m.name));
+            }
+        } else {
+            stray.push(m.name.as_str());
+        }
+    }
+    let missing = wanted.iter().filter(|n| !seen.contains(*n)).count();
+    if missing > 0 {
+        problems.push(format!("{missing} of {} mesh(es) missing", wanted.len()));
+    }
+    if !stray.is_empty() {
+        problems.push(format!(
+            "{} stray object(s) under `{HOLDER}`: {}",
+            stray.len(),
+            stray.iter().take(5).copied().collect::<Vec<_>>().join(", ")
+        ));
+    }
+    problems
+}
+
+/// The template's and markers' pose differences.
+fn marker_problems(maze: &MeshMaze, h: &Handles, objects: &[ObjectInfo]) -> Vec<String> {
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = by_handle
+        .get(&h.floor)
+        .map(|o| world_frame(o))
+        .unwrap_or_default();
+    markers(maze, h)
+        .into_iter()
+        .filter_map(|(handle, want)| {
+            let what = if handle == h.start {
+                "start"
+            } else if handle == h.end {
+                "end"
+            } else {
+                "the line template"
+            };
+            match by_handle.get(&handle) {
+                None => Some(format!("{what} is missing")),
+                Some(o) => pose_differences(&floor, o, &want).map(|d| format!("{what} {d}")),
+            }
+        })
+        .collect()
+}
+
+/// Reads a mesh maze back and compares it with `maze`: every mesh by name (its fingerprint)
+/// under the holder, its triangles (where the API reads them, within
+/// [`super::compare::VERTEX_TOLERANCE`]) or its bounding box, its frame on the Floor's, its
+/// colour the template's; nothing else under the holder or the maze dummy but the templates;
+/// the template and markers in place.
+pub fn verify(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    raised(scene, false, |scene| verify_raised(scene, maze, names)).map(|(ok, _)| ok)
+}
+
+fn verify_raised(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    let style = maze.style;
+    let survey = scene.survey(&names.survey(style))?;
+    let h = resolve_handles(names, style, &survey, false)?;
+    let objects = scene.objects_from_scene()?;
+    let found = port(scene)?.find(names, h.parent)?;
+    let mut problems = name_problems(maze, &found);
+    let others = names.others(style);
+    let stray: Vec<String> = maze_lines(&objects, &h, names.template(style), &others)
+        .into_iter()
+        .chain(foreign_copies(&objects, &h, &others))
+        .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
+        .filter_map(|x| objects.iter().find(|o| o.handle == x))
+        .map(|o| o.name.clone())
+        .collect();
+    if !stray.is_empty() {
+        problems.push(format!(
+            "{} stray maze object(s) beside the meshes: {}",
+            stray.len(),
+            stray.iter().take(5).cloned().collect::<Vec<_>>().join(", ")
+        ));
+    }
+    let floor = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+        .unwrap_or_default();
+    let template_look = port(scene)?.look(h.line)?;
+    let post_look = match h
+        .post
+        .filter(|_| maze.meshes.iter().any(|m| m.kind == MeshKind::Posts))
+    {
+        Some(p) => port(scene)?.look(p)?,
+        None => template_look,
+    };
+    let looks = (template_look, post_look);
+    problems.extend(mesh_problems(scene, maze, &found, None, &floor, looks)?);
+    problems.extend(marker_problems(maze, &h, &objects));
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(DrawError::Verify(problems))
+    }
+}
+
+/// Reads back the meshes of `maze` that `found` holds (with `only`, those among them) and
+/// compares each with what was drawn: its frame on the `floor`, its triangles or bounding
+/// box, its colour the template's (`looks`: the style's template, the post template).
+fn mesh_problems(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    found: &FoundMeshes,
+    only: Option<&HashSet<i32>>,
+    floor: &crate::coppelia::frame::Frame,
+    (template_look, post_look): (Look, Look),
+) -> Result<Vec<String>, DrawError> {
+    let mut problems = Vec::new();
+    let by_name: HashMap<&str, i32> = found
+        .meshes
+        .iter()
+        .filter(|m| only.is_none_or(|only| only.contains(&m.handle)))
+        .map(|m| (m.name.as_str(), m.handle))
+        .collect();
+    let on_floor = Pose {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+        yaw: 0.0,
+    };
+    for mesh in &maze.meshes {
+        let name = mesh.name();
+        let Some(&handle) = by_name.get(name.as_str()) else {
+            continue;
+        };
+        let back = port(scene)?.read(handle)?;
+        let info = ObjectInfo {
+            handle,
+            name: name.clone(),
+            parent: None,
+            position: back.pose.0,
+            orientation: back.pose.1,
+        };
+        if let Some(d) = pose_differences(floor, &info, &on_floor) {
+            problems.push(format!("mesh `{name}`'s frame is not the floor's: {d}"));
+        }
+        if let (Some(v), Some(i)) = (&back.vertices, &back.indices)
+            && let Some(d) = mesh_differences(mesh, v, i)
+        {
+            problems.push(format!("mesh `{name}` {d}"));
+        }
+        if let Some((min, max)) = back.bounding_box {
+            let (want_min, want_max) = bounds(mesh);
+            let off = min
+                .iter()
+                .chain(&max)
+                .zip(want_min.iter().chain(&want_max))
+                .any(|(a, b)| (a - b).abs() > super::compare::VERTEX_TOLERANCE);
+            if off {
+                problems.push(format!(
+                    "mesh `{name}`'s bounding box is {min:?}..{max:?}, expected {want_min:?}..{want_max:?}"
+                ));
+            }
+        }
+        let look = if mesh.kind == MeshKind::Posts {
+            post_look
+        } else {
+            template_look
+        };
+        if let Some(c) = back.colour
+            && c.iter().zip(look.colour).any(|(a, b)| (a - b).abs() > 0.01)
+        {
+            problems.push(format!(
+                "mesh `{name}` is coloured {c:?}, the template {:?}",
+                look.colour
+            ));
+        }
+    }
+    Ok(problems)
+}

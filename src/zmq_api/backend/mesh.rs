@@ -1,0 +1,202 @@
+//! [`MeshDrawing`] over the ZeroMQ remote API: `sim.createMeshShape` per mesh, dressed and
+//! named with a few calls each, read back with `sim.getShapeMesh`.
+
+use ciborium::Value;
+
+use super::{ZmqBackend, object_path};
+use crate::coppelia::{
+    COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
+};
+use crate::draw::mesh::{
+    FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
+};
+use crate::draw::{BackendError, ObjectNames};
+use crate::zmq_api::cbor::{self, float_array, int};
+
+/// Shading angle of the meshes (CoppeliaSim's usual 20 degrees; flat faces show no edge).
+const SHADING_ANGLE: f64 = 0.349;
+
+/// Positions within this of the origin, and angles within this of zero, are the identity.
+const IDENTITY: f64 = 1e-9;
+
+impl ZmqBackend {
+    /// Whether the floor's world pose, as last read, is the world frame: a new mesh (at the
+    /// world origin) is then on the floor already and needs no pose call.
+    fn floor_is_world(&self, floor: i32) -> bool {
+        self.poses
+            .get(&floor)
+            .is_some_and(|(p, e)| p.iter().chain(e).all(|x| x.abs() <= IDENTITY))
+    }
+
+    fn text_call(&mut self, func: &str, h: i32, param: i32) -> Result<String, BackendError> {
+        let v = self
+            .client
+            .call1(func, vec![int(h.into()), int(param.into())])?;
+        cbor::text(&v).map(str::to_string).ok_or_else(|| {
+            BackendError::Transport(format!("{func} of {h}: not a text: {}", cbor::describe(&v)))
+        })
+    }
+
+    /// Puts a new object's frame on the floor's (unless it is there, the world's) and under
+    /// `parent`, keeping it in place.
+    fn settle(&mut self, h: i32, floor: i32, parent: i32) -> Result<(), BackendError> {
+        if !self.floor_is_world(floor) {
+            self.set_pose(h, floor, [0.0; 3], [0.0; 3])?;
+        }
+        self.call(
+            "sim.setObjectParent",
+            vec![int(h.into()), int(parent.into()), Value::Bool(true)],
+        )?;
+        Ok(())
+    }
+}
+
+impl MeshDrawing for ZmqBackend {
+    fn look(&mut self, template: i32) -> Result<Look, BackendError> {
+        let values = self.call(
+            "sim.getShapeColor",
+            vec![
+                int(template.into()),
+                Value::Text(String::new()),
+                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+            ],
+        )?;
+        let colour = values.get(1).and_then(cbor::numbers::<3>).ok_or_else(|| {
+            BackendError::Transport(format!(
+                "sim.getShapeColor of {template}: no colour in {values:?}"
+            ))
+        })?;
+        let special = self
+            .client
+            .call_int("sim.getObjectSpecialProperty", vec![int(template.into())])?;
+        Ok(Look { colour, special })
+    }
+
+    fn find(&mut self, names: &ObjectNames, _parent: i32) -> Result<FoundMeshes, BackendError> {
+        let path = format!("{}/{HOLDER}", object_path(&names.parent));
+        let Some(holder) = self.handle_of(&path)? else {
+            return Ok(FoundMeshes::default());
+        };
+        let mut meshes = Vec::new();
+        // options 1: everything under the holder, without the holder itself
+        for h in self.handles_in(holder, 1)? {
+            let name = self.text_call("sim.getObjectAlias", h, -1)?;
+            let parent = self
+                .client
+                .call_int("sim.getObjectParent", vec![int(h.into())])?;
+            meshes.push(FoundMesh {
+                handle: h,
+                name,
+                parent: (parent >= 0).then_some(parent),
+            });
+        }
+        Ok(FoundMeshes {
+            holder: Some(holder),
+            meshes,
+        })
+    }
+
+    fn create(
+        &mut self,
+        place: &MeshPlace,
+        meshes: &[NewMesh<'_>],
+    ) -> Result<(i32, Vec<i32>), BackendError> {
+        let holder = match place.holder {
+            Some(h) => h,
+            None => {
+                let h = self
+                    .client
+                    .call_int("sim.createDummy", vec![Value::Float(0.01)])?;
+                self.call(
+                    "sim.setObjectAlias",
+                    vec![int(h.into()), Value::Text(HOLDER.into())],
+                )?;
+                self.settle(h, place.floor, place.parent)?;
+                h
+            }
+        };
+        let mut created = Vec::with_capacity(meshes.len());
+        for mesh in meshes {
+            let vertices: Vec<f64> = mesh.vertices.iter().map(|&v| f64::from(v)).collect();
+            let indices = Value::Array(mesh.indices.iter().map(|&i| int(i.into())).collect());
+            let h = self.client.call_int(
+                "sim.createMeshShape",
+                vec![
+                    int(0),
+                    Value::Float(SHADING_ANGLE),
+                    float_array(&vertices),
+                    indices,
+                ],
+            )?;
+            let hv = || int(h.into());
+            self.call(
+                "sim.setShapeColor",
+                vec![
+                    hv(),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                    float_array(&mesh.look.colour),
+                ],
+            )?;
+            self.call(
+                "sim.setObjectSpecialProperty",
+                vec![hv(), int(mesh.look.special.into())],
+            )?;
+            for (param, on) in [
+                (SHAPEINTPARAM_STATIC, true),
+                (SHAPEINTPARAM_RESPONDABLE, mesh.respondable),
+            ] {
+                self.call(
+                    "sim.setObjectInt32Param",
+                    vec![hv(), int(param.into()), int(i64::from(on))],
+                )?;
+            }
+            self.call(
+                "sim.setObjectAlias",
+                vec![hv(), Value::Text(mesh.name.into())],
+            )?;
+            self.settle(h, place.floor, holder)?;
+            created.push(h);
+        }
+        Ok((holder, created))
+    }
+
+    fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
+        let values = self.call("sim.getShapeMesh", vec![int(handle.into())])?;
+        let floats = |v: Option<&Value>| -> Option<Vec<f32>> {
+            cbor::array(v?)?
+                .iter()
+                .map(|x| cbor::number(x).map(|f| f as f32))
+                .collect()
+        };
+        let vertices = floats(values.first());
+        let indices = values
+            .get(1)
+            .and_then(cbor::array)
+            .and_then(|v| v.iter().map(cbor::int32).collect::<Option<Vec<i32>>>());
+        if vertices.is_none() || indices.is_none() {
+            return Err(BackendError::Transport(format!(
+                "sim.getShapeMesh of {handle}: not vertices and indices"
+            )));
+        }
+        let colour = self
+            .call(
+                "sim.getShapeColor",
+                vec![
+                    int(handle.into()),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                ],
+            )?
+            .get(1)
+            .and_then(cbor::numbers::<3>);
+        let pose = self.world_pose(handle)?;
+        Ok(MeshReadback {
+            vertices,
+            indices,
+            bounding_box: None,
+            colour,
+            pose,
+        })
+    }
+}

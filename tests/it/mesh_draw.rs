@@ -1,0 +1,306 @@
+//! `apply --draw mesh`: the maze as a few mesh shapes, drawn, verified, replaced by copies
+//! and back, cleared, for each API that can draw meshes; and the meshes of every golden line
+//! layout cover exactly the cells' passages.
+
+use vrep_maze::draw::mesh::{self, HOLDER, MeshMaze, parse_mesh_name};
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
+use vrep_maze::generate::Algorithm;
+use vrep_maze::layout::walls::{WallOptions, into_walls, length_between_posts};
+use vrep_maze::layout::{Layout, passages, read_layout};
+use vrep_maze::maze::Grid;
+use vrep_maze::sim::{Mesh, Scene};
+
+use crate::support::backend::{Kind, Server};
+use crate::support::layouts::course_layout;
+
+/// One test per API that draws meshes for each scenario (the legacy API's comes with its
+/// XML model loader: add `#[test] fn legacy() { super::$scenario(Kind::Legacy) }`).
+macro_rules! mesh_backend_tests {
+    ($($scenario:ident),+ $(,)?) => {$(
+        mod $scenario {
+            use crate::support::backend::Kind;
+
+            #[test]
+            fn zmq1() {
+                super::$scenario(Kind::Zmq1)
+            }
+
+            #[test]
+            fn zmq2() {
+                super::$scenario(Kind::Zmq2)
+            }
+        }
+    )+};
+}
+
+mesh_backend_tests!(
+    line_maze_draws_verifies_keeps_replaces_and_clears,
+    wall_maze_with_posts_draws_boxes_that_copies_replace,
+    verify_finds_a_changed_mesh_and_a_stray_copy,
+);
+
+fn no_progress(_: draw::Stage) {}
+
+fn apply_mesh(b: &mut Box<dyn Backend>, m: &MeshMaze) -> Result<draw::ApplyReport, DrawError> {
+    mesh::apply(&mut **b, m, &ApplyOptions::default(), &mut no_progress)
+}
+
+fn apply_copies(b: &mut Box<dyn Backend>, layout: &Layout) -> draw::ApplyReport {
+    let d = Drawing::try_from(layout).unwrap();
+    draw::apply(&mut **b, &d, &ApplyOptions::default(), &mut no_progress).unwrap()
+}
+
+fn verify_mesh(b: &mut Box<dyn Backend>, m: &MeshMaze) -> Result<(), DrawError> {
+    mesh::verify(&mut **b, m, &ObjectNames::default())
+}
+
+/// The meshes of ours in the scene: (name, parent's alias, colour).
+fn meshes(s: &Server) -> Vec<(String, String, [u8; 3])> {
+    s.with_sim(|sim| {
+        sim.scene
+            .objects()
+            .filter(|o| parse_mesh_name(&o.alias).is_some())
+            .map(|o| {
+                let parent = o
+                    .parent
+                    .map(|p| sim.scene.get(p).unwrap().alias.clone())
+                    .unwrap_or_default();
+                (o.alias.clone(), parent, o.colour)
+            })
+            .collect()
+    })
+}
+
+/// Objects under `Maze` (all depths), the holder included.
+fn under_maze(s: &Server) -> usize {
+    s.with_sim(|sim| {
+        let maze = sim.scene.resolve("Maze").unwrap();
+        sim.scene.subtree(maze).len() - 1
+    })
+}
+
+fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let mut b = s.connect();
+    let layout = course_layout(Algorithm::Prim, 9, 9, 42);
+    let m = MeshMaze::try_from(&layout).unwrap();
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(
+        (r.meshes, r.pasted, r.reused, r.removed),
+        (1, 1, 0, 0),
+        "{r}"
+    );
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    let found = meshes(&s);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].1, HOLDER);
+    assert_eq!(found[0].2, [0, 255, 0], "coloured like the template");
+    verify_mesh(&mut b, &m).unwrap();
+    // the mesh holds the runs' rectangles, in the Floor frame
+    let (triangles, bottom) = s.with_sim(|sim| {
+        let o = sim
+            .scene
+            .objects()
+            .find(|o| parse_mesh_name(&o.alias).is_some())
+            .unwrap();
+        let mesh: &Mesh = o.mesh.as_ref().unwrap();
+        (mesh.triangles(), o.bounding_box().0[2])
+    });
+    assert_eq!(triangles, m.pieces() * 2);
+    assert!((bottom - 0.001).abs() < 1e-6);
+    // the same layout again: found in place, nothing created
+    let again = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(
+        (again.pasted, again.reused, again.removed),
+        (0, 1, 0),
+        "{again}"
+    );
+    // copies replace the meshes, and meshes the copies
+    let copies = apply_copies(&mut b, &layout);
+    assert_eq!(copies.pasted, 159, "{copies}");
+    assert!(meshes(&s).is_empty());
+    assert_eq!(under_maze(&s), 159, "the copies only: no holder left");
+    let other = MeshMaze::try_from(&course_layout(Algorithm::Prim, 9, 9, 7)).unwrap();
+    let r = apply_mesh(&mut b, &other).unwrap();
+    assert_eq!(r.removed, 159, "{r}");
+    assert_eq!(s.line_count(), 1, "only the template is left of the copies");
+    assert_eq!(under_maze(&s), 2, "the holder and one mesh");
+    // another mesh maze replaces this one
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!((r.pasted, r.removed), (1, 1), "{r}");
+    assert!(matches!(
+        verify_mesh(&mut b, &other),
+        Err(DrawError::Verify(_))
+    ));
+    let c = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+    assert_eq!(c.removed.len(), 2, "{:?}", c.removed);
+    assert_eq!(under_maze(&s), 0);
+    assert!(meshes(&s).is_empty());
+    b.close().unwrap();
+    s.shutdown();
+}
+
+/// The course maze of `seed` with walls and posts.
+fn post_layout(n: u64, seed: u64) -> Layout {
+    let mut layout = course_layout(Algorithm::Prim, n, n, seed);
+    let grid = Grid::new(n, n).unwrap();
+    let maze = passages::decode(grid, &layout.passages).unwrap();
+    let options = WallOptions {
+        length: length_between_posts(1.0, 0.05),
+        posts: Some(0.05),
+        ..WallOptions::default()
+    };
+    into_walls(&mut layout, &maze, &options, true).unwrap();
+    layout
+}
+
+fn wall_maze_with_posts_draws_boxes_that_copies_replace(kind: Kind) {
+    let s = kind.serve(Scene::course_walls(), 8);
+    let mut b = s.connect();
+    let layout = post_layout(9, 3);
+    let m = MeshMaze::try_from(&layout).unwrap();
+    // 100 posts of 12 triangles need two meshes besides the walls'
+    assert_eq!(
+        m.meshes
+            .iter()
+            .filter(|x| x.kind == mesh::MeshKind::Posts)
+            .count(),
+        2
+    );
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(
+        (r.meshes, r.pasted, r.posts),
+        (m.meshes.len(), m.meshes.len(), 100),
+        "{r}"
+    );
+    verify_mesh(&mut b, &m).unwrap();
+    let found = meshes(&s);
+    assert!(
+        found
+            .iter()
+            .all(|(_, parent, colour)| parent == HOLDER && *colour == [77, 77, 77])
+    );
+    // respondable and static, like the templates
+    s.with_sim(|sim| {
+        let o = sim
+            .scene
+            .objects()
+            .find(|o| parse_mesh_name(&o.alias).is_some())
+            .unwrap();
+        let (min, max) = o.bounding_box();
+        assert!(
+            (max[2] - min[2] - 0.2).abs() < 1e-6,
+            "boxes as high as the walls"
+        );
+    });
+    let copies = apply_copies(&mut b, &layout);
+    assert!(copies.pasted > 100, "{copies}");
+    assert!(meshes(&s).is_empty());
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(r.removed, copies.pasted, "{r}");
+    let c = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
+    assert_eq!(c.removed.len(), m.meshes.len() + 1);
+    assert_eq!(under_maze(&s), 0);
+    b.close().unwrap();
+    s.shutdown();
+}
+
+fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let mut b = s.connect();
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Dfs, 6, 5, 1)).unwrap();
+    apply_mesh(&mut b, &m).unwrap();
+    s.with_sim(|sim| {
+        let h = sim
+            .scene
+            .objects()
+            .find(|o| parse_mesh_name(&o.alias).is_some())
+            .unwrap()
+            .handle;
+        let mut mesh = sim.scene.get(h).unwrap().mesh.clone().unwrap();
+        mesh.vertices[0] += 0.01;
+        sim.scene.set_mesh(h, mesh).unwrap();
+    });
+    let Err(DrawError::Verify(problems)) = verify_mesh(&mut b, &m) else {
+        panic!("a moved vertex went unnoticed")
+    };
+    assert!(
+        problems.iter().any(|p| p.contains("no vertex")),
+        "{problems:?}"
+    );
+    // the next apply does not notice (the name still says what it holds) but a stray copy
+    // of the template under Maze is removed
+    s.with_sim(|sim| {
+        let line = sim.scene.resolve("Line").unwrap();
+        let maze = sim.scene.resolve("Maze").unwrap();
+        let copy = sim.scene.copy_paste(&[line]).unwrap()[0];
+        sim.scene.set_parent(copy, Some(maze), true).unwrap();
+    });
+    let Err(DrawError::Verify(problems)) = verify_mesh(&mut b, &m) else {
+        panic!("a stray copy went unnoticed")
+    };
+    assert!(problems.iter().any(|p| p.contains("stray")), "{problems:?}");
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(r.removed, 1, "{r}");
+    assert_eq!(s.line_count(), 1);
+    b.close().unwrap();
+    s.shutdown();
+}
+
+/// Cells of 1 cm covered by the rectangles `rects` (floor-frame corners, axis-aligned),
+/// counted by their centres.
+fn raster(rects: impl Iterator<Item = [[f64; 2]; 4]>) -> std::collections::HashSet<(i64, i64)> {
+    let mut cells = std::collections::HashSet::new();
+    for corners in rects {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for [x, y] in corners {
+            (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+        }
+        // centres of 1 cm cells strictly inside (a rectangle's edges lie on whole cm here)
+        let first = |v: f64| (v * 100.0 - 1e-6).ceil() as i64;
+        let last = |v: f64| (v * 100.0 + 1e-6).floor() as i64;
+        for i in first(x0 - 0.005 + 1e-9)..=last(x1 - 0.005) {
+            for j in first(y0 - 0.005 + 1e-9)..=last(y1 - 0.005) {
+                cells.insert((i, j));
+            }
+        }
+    }
+    cells
+}
+
+#[test]
+fn meshes_of_every_golden_line_layout_cover_exactly_the_copies() {
+    let mut checked = 0;
+    for entry in std::fs::read_dir("mazes").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "json") {
+            continue;
+        }
+        let layout = read_layout(&path).unwrap();
+        if layout.style != vrep_maze::layout::Style::Lines || layout.grid.rotation != 0.0 {
+            continue;
+        }
+        let m = MeshMaze::try_from(&layout).unwrap();
+        let by_mesh = raster(m.meshes.iter().flat_map(|x| &x.pieces).map(|p| p.corners));
+        let (l, w) = (layout.line.length / 2.0, layout.line.width / 2.0);
+        let by_copies = raster(layout.segments.iter().map(|s| {
+            let (c, si) = (s.yaw.cos().round(), s.yaw.sin().round());
+            let (dx, dy) = (l * c.abs() + w * si.abs(), l * si.abs() + w * c.abs());
+            [
+                [s.x - dx, s.y - dy],
+                [s.x + dx, s.y - dy],
+                [s.x + dx, s.y + dy],
+                [s.x - dx, s.y + dy],
+            ]
+        }));
+        assert_eq!(by_mesh.len(), by_copies.len(), "{}", path.display());
+        assert!(
+            by_mesh == by_copies,
+            "{}: the meshes cover other cells",
+            path.display()
+        );
+        assert!(!by_mesh.is_empty() || layout.segments.is_empty());
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked} golden line layouts");
+}
