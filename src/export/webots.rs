@@ -1,7 +1,8 @@
 //! A maze as a Webots world (`.wbt`, Webots R2023b, ENU axes, z up): a background and its
 //! light, the floor as a `Solid` plane, and the maze as one `Solid` without `physics`
 //! (static) named `maze`: its children are one `Pose` with a box `Shape` per wall run, post
-//! or run of lines, and the marker solids `start` and `end`; its `boundingObject` holds the
+//! or run of lines (`DEF wall_0`, `DEF line_3`, ... for a supervisor to find), and the marker
+//! solids `start` and `end`; its `boundingObject` holds the
 //! walls' and posts' boxes only, so lines and markers collide with nothing.
 //!
 //! Translations are metres, rotations axis-angle `0 0 1 yaw` in radians. No Webots parser
@@ -59,7 +60,8 @@ pub(super) fn document(s: &Solids) -> String {
         line(
             &mut out,
             format_args!(
-                "    Pose {{ {} children [ Shape {{ appearance {} geometry Box {{ size {} }} }} ] }}",
+                "    DEF {} Pose {{ {} children [ Shape {{ appearance {} geometry Box {{ size {} }} }} ] }}",
+                b.name,
                 placement(b),
                 look(&b.rgb),
                 nums(&b.size)

@@ -11,6 +11,7 @@ mod cli_zmq;
 mod connect;
 mod ctrl_c;
 mod draw;
+mod export_robots;
 mod generation_gate;
 mod generators;
 mod golden;
