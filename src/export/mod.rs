@@ -82,6 +82,24 @@ impl Format {
         })
     }
 
+    /// Why `path` names no format, in one line: a bare `.xml` is ambiguous (CoppeliaSim or
+    /// MuJoCo), anything else unknown; both list every ending.
+    pub fn refusal(path: &Path) -> String {
+        let bare_xml = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        format!(
+            "{}: {}export writes {} files (the ending chooses the format)",
+            path.display(),
+            if bare_xml {
+                "a bare .xml is ambiguous; "
+            } else {
+                ""
+            },
+            Format::endings()
+        )
+    }
+
     /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`.
     pub fn endings() -> String {
         Format::ALL
