@@ -24,7 +24,7 @@ pub(super) enum Part {
     Post,
     /// A maximal straight run of lines, painted on the floor: visual only.
     Line,
-    /// The `Start` or `End` marker: visual only.
+    /// The `Start` or `End` marker (or URDF's floor slab): visual only.
     Marker,
 }
 
