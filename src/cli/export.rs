@@ -29,22 +29,8 @@ pub struct ExportArgs {
 /// Runs `export`: the layout is read and validated completely before anything is written,
 /// and the file is replaced atomically.
 pub fn run(args: ExportArgs) -> Result<ExitCode> {
-    let format = Format::from_path(&args.output).ok_or_else(|| {
-        let bare_xml = args
-            .output
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-        usage(format!(
-            "{}: {}export writes {} files (the ending chooses the format)",
-            args.output.display(),
-            if bare_xml {
-                "a bare .xml is ambiguous; "
-            } else {
-                ""
-            },
-            Format::endings()
-        ))
-    })?;
+    let format =
+        Format::from_path(&args.output).ok_or_else(|| usage(Format::refusal(&args.output)))?;
     let layout = crate::layout::read_layout(&args.file)?;
     let mut text = Vec::new();
     export(format, &layout, &mut text)

@@ -13,12 +13,17 @@ use crate::draw::{
     Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
 
+mod mesh;
+
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
 pub struct LegacyBackend {
     client: Option<Client>,
     timeout: Duration,
     /// `host:port` as the user gave it, for [`Backend::describe`].
     addr: String,
+    /// The simulator runs on this machine (a loopback host): mesh models are loaded from a
+    /// temporary file by its path instead of being sent with `simxTransferFile`.
+    local: bool,
 }
 
 impl From<ClientError> for BackendError {
@@ -46,20 +51,34 @@ impl LegacyBackend {
             format!("{host}:{port}")
         };
         let client = Client::connect(&addr, opts)?;
+        let local = host.eq_ignore_ascii_case("localhost")
+            || host
+                .trim_matches(['[', ']'])
+                .parse::<std::net::IpAddr>()
+                .is_ok_and(|ip| ip.is_loopback());
         Ok(LegacyBackend {
             client: Some(client),
             timeout,
             addr,
+            local,
         })
     }
 
-    /// Wraps a connected client.
+    /// Wraps a connected client to a simulator on this machine.
     pub fn new(client: Client, timeout: Duration) -> LegacyBackend {
         LegacyBackend {
             client: Some(client),
             timeout,
             addr: "a connected client".into(),
+            local: true,
         }
+    }
+
+    /// Sends mesh models with `simxTransferFile` as for a simulator on another machine,
+    /// even when it is on this one.
+    pub fn transferring_models(mut self) -> LegacyBackend {
+        self.local = false;
+        self
     }
 
     fn client(&mut self) -> Result<&mut Client, BackendError> {
@@ -350,6 +369,10 @@ impl Backend for LegacyBackend {
     }
 
     /// Sends the kill command (as `simxFinish` does) and closes the socket.
+    fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
+        Some(self)
+    }
+
     fn close(&mut self) -> Result<(), BackendError> {
         match self.client.take() {
             Some(c) => Ok(c.close()?),

@@ -119,14 +119,16 @@ impl Object {
 
     /// Object float parameter `param` as `sim.getObjectFloatParam` gives it, `None` for one
     /// the emulator does not model. 15..20 are the bounding box in the object's own frame
-    /// (min x, y, z, then max x, y, z), centred on the object: the course's `Line` plane
+    /// (min x, y, z, then max x, y, z): a mesh's box ([`Object::bounding_box`], which need not
+    /// be centred on its frame), else the size centred on the object: the course's `Line` plane
     /// gives -0.3, -0.05, 0, 0.3, 0.05, 0 (`../shared/spec/real-coppeliasim-4.5.1.md`).
     pub fn float_param(&self, param: i32) -> Option<f64> {
         let k = usize::try_from(param.checked_sub(crate::coppelia::OBJFLOATPARAM_BBOX)?).ok()?;
-        let half = self.size.get(k % 3)? / 2.0;
+        let (min, max) = self.bounding_box();
+        // `+ 0.0` turns the -0 of an empty extent into 0, as CoppeliaSim answers
         match k {
-            0..=2 => Some(if half == 0.0 { 0.0 } else { -half }),
-            3..=5 => Some(half),
+            0..=2 => Some(min[k] + 0.0),
+            3..=5 => Some(max[k - 3] + 0.0),
             _ => None,
         }
     }

@@ -246,6 +246,23 @@ try:
     check("the mesh is green and holds two triangles per run", close(sim.getShapeColor(meshes[0], "", 0)[1], [0, 1, 0]) and len(mi) % 6 == 0 and len(mi) > 0)
     r = subprocess.run([BIN, "clear", "--api", "zmq", "--port", str(port)], capture_output=True, text=True)
     check("vrep-maze clear removes the mesh maze", r.returncode == 0 and sim.getObject("/Maze/MazeMeshes", {"noError": True}) == -1, r.stdout + r.stderr)
+    # XML models: a model base saved and loaded back; a model a real 4.5.1 wrote loads too
+    model_path = os.path.join(tempfile.mkdtemp(), "line.simmodel.xml")
+    line = sim.getObject("/Line")
+    ok, msg = raises(lambda: sim.saveModel(line, model_path), "model base")
+    check("saveModel of an object that is no model base is an error", ok, msg)
+    sim.setModelProperty(line, 0)
+    sim.saveModel(line, model_path)
+    check("setModelProperty(h, 0) + saveModel write an XML model", os.path.exists(model_path) and "<filetype>exhaustiveModel</filetype>" in open(model_path).read())
+    copy = sim.loadModel(model_path)
+    check("loadModel gives the base of a copy, alias Line, with the plane's mesh",
+          sim.getObjectAlias(copy, 0) == "Line" and copy != line and len(sim.getShapeMesh(copy)[1]) == 6)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    ref = sim.loadModel(os.path.join(root, "tests", "coppeliasim-xml", "mesh-two-rects-4.5.1.simmodel.xml"))
+    check("loadModel of the two-rectangle model a real 4.5.1 wrote: green, 1.4 x 1.1",
+          close(sim.getShapeColor(ref, "", 0)[1], [0, 1, 0]) and close(sim.getShapeBB(ref), [1.4, 1.1, 0.0]))
+    ok, msg = raises(lambda: sim.loadModel(os.path.join(root, "m.ttm")), "XML models only")
+    check("loadModel of a .ttm is an error (the emulator reads XML models only)", ok, msg)
 finally:
     stop(proc)
 

@@ -13,12 +13,17 @@ use vrep_maze::sim::{Mesh, Scene};
 use crate::support::backend::{Kind, Server};
 use crate::support::layouts::course_layout;
 
-/// One test per API that draws meshes for each scenario (the legacy API's comes with its
-/// XML model loader: add `#[test] fn legacy() { super::$scenario(Kind::Legacy) }`).
+/// One test per API that draws meshes for each scenario (the legacy API through an XML
+/// model loaded from a temporary file, ZeroMQ protocols 1 and 2).
 macro_rules! mesh_backend_tests {
     ($($scenario:ident),+ $(,)?) => {$(
         mod $scenario {
             use crate::support::backend::Kind;
+
+            #[test]
+            fn legacy() {
+                super::$scenario(Kind::Legacy)
+            }
 
             #[test]
             fn zmq1() {
@@ -217,17 +222,22 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
             .find(|o| parse_mesh_name(&o.alias).is_some())
             .unwrap()
             .handle;
+        // every x moved by 1 cm: ZeroMQ reads the vertices, the legacy API the box
         let mut mesh = sim.scene.get(h).unwrap().mesh.clone().unwrap();
-        mesh.vertices[0] += 0.01;
+        for v in mesh.vertices.iter_mut().step_by(3) {
+            *v += 0.01;
+        }
         sim.scene.set_mesh(h, mesh).unwrap();
     });
     let Err(DrawError::Verify(problems)) = verify_mesh(&mut b, &m) else {
-        panic!("a moved vertex went unnoticed")
+        panic!("moved vertices went unnoticed")
     };
-    assert!(
-        problems.iter().any(|p| p.contains("no vertex")),
-        "{problems:?}"
-    );
+    let wanted = if kind == Kind::Legacy {
+        "bounding box"
+    } else {
+        "no vertex"
+    };
+    assert!(problems.iter().any(|p| p.contains(wanted)), "{problems:?}");
     // the next apply does not notice (the name still says what it holds) but a stray copy
     // of the template under Maze is removed
     s.with_sim(|sim| {
@@ -303,4 +313,32 @@ fn meshes_of_every_golden_line_layout_cover_exactly_the_copies() {
         checked += 1;
     }
     assert!(checked >= 15, "{checked} golden line layouts");
+}
+
+/// To a simulator on another machine the legacy mesh model is sent with `simxTransferFile`
+/// under a `REMOTE_API_TEMPFILE_` name ending in `.simmodel.xml`, loaded and erased: the
+/// maze draws and verifies, and the server's folder keeps no file.
+#[test]
+fn legacy_sends_the_mesh_model_with_transfer_file_to_a_remote_simulator() {
+    let s = Kind::Legacy.serve(Scene::course(), 0);
+    let dir = tempfile::tempdir().unwrap();
+    s.with_sim(|sim| sim.temp_dir = dir.path().to_path_buf());
+    let timeout = std::time::Duration::from_secs(10);
+    let mut b: Box<dyn Backend> = Box::new(
+        vrep_maze::legacy::LegacyBackend::connect("127.0.0.1", s.addr().port(), timeout)
+            .unwrap()
+            .transferring_models(),
+    );
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Prim, 9, 9, 42)).unwrap();
+    let r = apply_mesh(&mut b, &m).unwrap();
+    assert_eq!((r.meshes, r.pasted), (1, 1), "{r}");
+    verify_mesh(&mut b, &m).unwrap();
+    assert_eq!(meshes(&s).len(), 1);
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "the transferred model is erased"
+    );
+    b.close().unwrap();
+    s.shutdown();
 }

@@ -369,6 +369,22 @@ fn shape_work(state: &mut State, func: &str, args: &[Value], outcome: &Outcome) 
             });
             shape_cost::merge_shapes(triangles)
         }
+        // a loaded model by the triangles under its base (`crate::sim::model_cost`)
+        "sim.loadModel" => {
+            let Some(base) = values.first().and_then(cbor::int32) else {
+                return Duration::ZERO;
+            };
+            let mut triangles = 0;
+            state.host.with_sim(&mut |s| {
+                triangles = s
+                    .scene
+                    .subtree(base)
+                    .into_iter()
+                    .filter_map(|h| s.scene.get(h).ok()?.mesh.as_ref().map(|m| m.triangles()))
+                    .sum();
+            });
+            crate::sim::model_cost::model_load(triangles)
+        }
         _ => Duration::ZERO,
     }
 }

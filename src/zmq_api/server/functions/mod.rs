@@ -5,7 +5,8 @@
 //! Handlers live in one unit per family: [`objects`] (finding, copying, removing, parenting),
 //! [`poses`] (positions, orientations, poses), [`state`] (simulation state, integer parameters
 //! and signals), [`authoring`] (creating, naming and dressing objects, saving the scene) and
-//! [`shapes`] (mesh shapes: creating, reading back, merging).
+//! [`shapes`] (mesh shapes: creating, reading back, merging) and [`models`] (model bases,
+//! saving and loading XML models).
 //! Argument orders of both CoppeliaSim generations are accepted where they differ
 //! (`sim.setObjectPosition(h, rel, pos)` up to 4.5, `(h, pos, rel)` from 4.6). Objects'
 //! special properties and shape parameters live in [`Extras`], beside the protocol-neutral scene.
@@ -13,6 +14,7 @@
 mod args;
 mod authoring;
 mod constants;
+mod models;
 mod objects;
 mod poses;
 mod shapes;
@@ -40,6 +42,8 @@ pub(super) struct Extras {
     special: HashMap<i32, i32>,
     /// Shape parameters set by `sim.setObjectInt32Param`, per (handle, parameter).
     shape_params: HashMap<(i32, i32), i32>,
+    /// Model properties set by `sim.setModelProperty` (or a loaded model base), per handle.
+    model_property: HashMap<i32, i32>,
 }
 
 impl Extras {
@@ -141,6 +145,10 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getShapeMesh", shapes::get_shape_mesh),
     ("sim.getShapeBB", shapes::get_shape_bb),
     ("sim.groupShapes", shapes::group_shapes),
+    ("sim.setModelProperty", models::set_model_property),
+    ("sim.getModelProperty", models::get_model_property),
+    ("sim.saveModel", models::save_model),
+    ("sim.loadModel", models::load_model),
 ];
 
 /// Calls one function. `func` is the full dotted name (`sim.getObject`); a name the registry
