@@ -99,7 +99,7 @@ fn model_document(ctx: &Ctx<'_>, base: i32) -> Result<Document, crate::sim::SimE
                     colour,
                     primitive: match (&o.mesh, o.size[2]) {
                         (Some(_), _) => Primitive::None,
-                        (None, z) if z == 0.0 => Primitive::Plane([o.size[0], o.size[1], 0.0001]),
+                        (None, 0.0) => Primitive::Plane([o.size[0], o.size[1], 0.0001]),
                         (None, _) => Primitive::Cuboid(o.size),
                     },
                     is_static: param(SHAPEINTPARAM_STATIC),
