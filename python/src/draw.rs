@@ -30,6 +30,9 @@ pub struct ApplyReport {
     lines: usize,
     /// A wall maze's posts drawn, else 0.
     posts: usize,
+    /// `draw="mesh"`: the meshes the maze is drawn as (`lines` and `posts` then count
+    /// straight runs and posts, `reused` meshes kept, `pasted` meshes created); 0 for copies.
+    meshes: usize,
     /// Copies from an earlier maze reused.
     reused: usize,
     /// Copies pasted.
@@ -158,7 +161,8 @@ fn run_drawing<T: Send + 'static, R>(
 /// `floor="Floor"`, `parent="Maze"`, `line="Line"`, `start="Start"`, `end="End"`;
 /// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `dry_run`,
 /// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
-/// (ZeroMQ only). Returns an `ApplyReport`. A refused option raises `ValueError`, a
+/// (ZeroMQ only); `draw="copies"` (the default: one copy of the template per line) or
+/// `"mesh"` (a few mesh shapes, one rectangle or box per straight run; ZeroMQ). Returns an `ApplyReport`. A refused option raises `ValueError`, a
 /// simulator that does not answer or refuses `SimulatorError` (with the command line's
 /// hints in `.hints`). Drawing runs without the GIL; Ctrl-C stops after the request in
 /// flight, restores the idle rate, closes the connection and raises `Interrupted` (running
@@ -198,12 +202,20 @@ pub fn apply(
         interrupt: Some(stop.requested.clone()),
         ..Default::default()
     };
+    let mesh = args
+        .draw
+        .to_possible_value()
+        .is_some_and(|v| v.get_name() == "mesh");
     let (create_missing, save_scene) = (args.create_missing, args.save_scene);
     let scene = args.scene;
     let layout = layout.layout.clone();
     let connected = stop.connected.clone();
     let job = move || {
-        let drawing = Drawing::try_from(&*layout).context("nothing was drawn")?;
+        let drawing = if mesh {
+            What::Mesh(draw::mesh::MeshMaze::try_from(&*layout).context("nothing was drawn")?)
+        } else {
+            What::Copies(Drawing::try_from(&*layout).context("nothing was drawn")?)
+        };
         let mut backend = scene.connect()?;
         connected.store(true, Ordering::SeqCst);
         let result = draw_connected(
@@ -227,6 +239,7 @@ pub fn apply(
         ApplyReport {
             lines: report.lines,
             posts: report.posts,
+            meshes: report.meshes,
             reused: report.reused,
             pasted: report.pasted,
             removed: report.removed,
@@ -248,17 +261,28 @@ pub fn apply(
 /// scene saved.
 type Applied = (draw::ApplyReport, Vec<String>, Option<String>);
 
+/// What `apply` draws: copies of the templates, or meshes.
+enum What {
+    /// `draw="copies"`.
+    Copies(Drawing),
+    /// `draw="mesh"`.
+    Mesh(draw::mesh::MeshMaze),
+}
+
 /// `apply`'s work once connected, as `vrep-maze apply` does it: create what is missing,
 /// draw and verify, save the scene.
 fn draw_connected(
     backend: &mut dyn Backend,
     layout: &vrep_maze::layout::Layout,
-    drawing: &Drawing,
+    drawing: &What,
     opts: &ApplyOptions,
     create_missing: bool,
     save_scene: Option<&str>,
 ) -> anyhow::Result<Finished<Applied>> {
-    let total = drawing.lines.len();
+    let total = match drawing {
+        What::Copies(d) => d.lines.len(),
+        What::Mesh(m) => m.pieces(),
+    };
     if opts
         .interrupt
         .as_ref()
@@ -277,7 +301,11 @@ fn draw_connected(
         created = draw::create_missing_for(authoring, &opts.names, layout)
             .context("creating the missing scene objects")?;
     }
-    let report = match draw::apply(backend, drawing, opts, &mut |_| {}) {
+    let drawn = match drawing {
+        What::Copies(d) => draw::apply(backend, d, opts, &mut |_| {}),
+        What::Mesh(m) => draw::mesh::apply(backend, m, opts, &mut |_| {}),
+    };
+    let report = match drawn {
         Err(DrawError::Interrupted { placed, total }) => {
             return Ok(Finished::Stopped {
                 message: format!(

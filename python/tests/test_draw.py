@@ -124,3 +124,19 @@ def test_create_missing_makes_a_wall_mazes_templates(serve):
     assert {"Wall", "Post"} <= set(report.created), report.created
     assert len(layout.posts) == 5 * 5  # every lattice corner
     assert report.verified and (report.lines, report.posts) == (len(layout.walls), len(layout.posts))
+
+
+def test_zmq_draws_a_mesh_maze_that_copies_and_clear_replace(serve):
+    port = serve.port("zmq")
+    layout = vrep_maze.generate(seed=5, size=(6, 6))
+    report = vrep_maze.apply(layout, api="zmq", port=port, draw="mesh")
+    assert report.verified and report.meshes == 1 and report.pasted == 1, str(report)
+    assert str(report).startswith(f"drew {report.lines} line runs as 1 mesh(es)")
+    again = vrep_maze.apply(layout, api="zmq", port=port, draw="mesh")
+    assert (again.reused, again.pasted, again.removed) == (1, 0, 0), str(again)
+    copies = vrep_maze.apply(layout, api="zmq", port=port)
+    assert copies.meshes == 0 and copies.removed == 2, str(copies)  # the holder and its mesh
+    vrep_maze.apply(layout, api="zmq", port=port, draw="mesh")
+    assert len(vrep_maze.clear(api="zmq", port=port).removed) == 2
+    with pytest.raises(ValueError):
+        vrep_maze.apply(layout, api="zmq", port=port, draw="meshes")

@@ -68,6 +68,7 @@ class Layout:
 class ApplyReport:
     lines: int
     posts: int
+    meshes: int
     reused: int
     pasted: int
     removed: int
@@ -160,6 +161,7 @@ def apply(
     dry_run: bool = False,
     create_missing: bool = False,
     save_scene: Optional[str] = None,
+    draw: Optional[Literal["copies", "mesh"]] = None,
 ) -> ApplyReport: ...
 def clear(
     api: Optional[Api] = None,

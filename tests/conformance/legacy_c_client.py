@@ -641,6 +641,25 @@ def run_models(port, server_tmp):
     rc = lib.simxLoadModel(cid, b"/nonexistent/m.simmodel.xml", 0, C.byref(base), BLOCKING)
     check("simxLoadModel of a missing file gives return code 8", rc == REMOTE, rc)
     lib.simxFinish(cid)
+    # vrep-maze apply --draw mesh over legacy loads its meshes as an XML model
+    path = os.path.join(tempfile.mkdtemp(), "m.json")
+    subprocess.run([BIN, "generate", "--seed", "3", "-o", path], check=True, stdout=subprocess.DEVNULL)
+    r = subprocess.run([BIN, "apply", path, "--draw", "mesh", "--port", str(port)], capture_output=True, text=True)
+    check("vrep-maze apply --draw mesh over legacy", r.returncode == 0 and "verified" in r.stdout, r.stdout + r.stderr)
+    cid = c_connect(port)
+    rc, holder = handle(cid, "/Maze/MazeMeshes")
+    objs = scene_lines(cid)
+    meshes = [h for h, o in objs.items() if o[1] == holder and o[0].startswith("MazeMesh_l_")]
+    low = F(-1)
+    rc2 = lib.simxGetObjectFloatParameter(cid, meshes[0], 17, C.byref(low), BLOCKING) if meshes else -1
+    check("the C client finds the mesh under Maze/MazeMeshes, its box at the line height",
+          rc == OK and len(meshes) == 1 and rc2 == OK and abs(low.value - 0.001) < 1e-6, (rc, meshes, rc2, low.value))
+    lib.simxFinish(cid)
+    r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
+    cid = c_connect(port)
+    check("vrep-maze clear removes the mesh maze", r.returncode == 0 and handle(cid, "/Maze/MazeMeshes")[0] == REMOTE,
+          r.stdout + r.stderr)
+    lib.simxFinish(cid)
 
 
 if __name__ == "__main__":

@@ -256,7 +256,7 @@ try:
     check("setModelProperty(h, 0) + saveModel write an XML model", os.path.exists(model_path) and "<filetype>exhaustiveModel</filetype>" in open(model_path).read())
     copy = sim.loadModel(model_path)
     check("loadModel gives the base of a copy, alias Line, with the plane's mesh",
-          sim.getObjectAlias(copy, 0) == "Line" and copy != line and len(sim.getShapeMesh(copy)[1]) == 6)
+          sim.getObjectAlias(copy, -1) == "Line" and copy != line and len(sim.getShapeMesh(copy)[1]) == 6)
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     ref = sim.loadModel(os.path.join(root, "tests", "coppeliasim-xml", "mesh-two-rects-4.5.1.simmodel.xml"))
     check("loadModel of the two-rectangle model a real 4.5.1 wrote: green, 1.4 x 1.1",

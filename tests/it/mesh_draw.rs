@@ -42,6 +42,7 @@ mesh_backend_tests!(
     line_maze_draws_verifies_keeps_replaces_and_clears,
     wall_maze_with_posts_draws_boxes_that_copies_replace,
     verify_finds_a_changed_mesh_and_a_stray_copy,
+    ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored,
 );
 
 fn no_progress(_: draw::Stage) {}
@@ -339,6 +340,30 @@ fn legacy_sends_the_mesh_model_with_transfer_file_to_a_remote_simulator() {
         0,
         "the transferred model is erased"
     );
+    b.close().unwrap();
+    s.shutdown();
+}
+
+fn ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored(kind: Kind) {
+    use std::sync::Arc;
+    use std::sync::atomic::AtomicBool;
+    let s = kind.serve(Scene::course(), 8);
+    let mut b = s.connect();
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Prim, 20, 20, 1)).unwrap();
+    let opts = ApplyOptions {
+        interrupt: Some(Arc::new(AtomicBool::new(true))),
+        ..Default::default()
+    };
+    let result = mesh::apply(&mut *b, &m, &opts, &mut no_progress);
+    assert!(
+        matches!(result, Err(DrawError::Interrupted { placed: 0, total }) if total == m.pieces()),
+        "{result:?}"
+    );
+    assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
+    assert!(meshes(&s).is_empty(), "nothing created after the interrupt");
+    // the same apply again finishes the maze
+    apply_mesh(&mut b, &m).unwrap();
+    assert_eq!(meshes(&s).len(), m.meshes.len());
     b.close().unwrap();
     s.shutdown();
 }

@@ -127,4 +127,9 @@ pub trait MeshDrawing {
     ) -> Result<(i32, Vec<i32>), BackendError>;
     /// Reads a mesh back.
     fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError>;
+    /// Reads back only a mesh's triangles (or bounding box), what `apply` checks of the
+    /// meshes it has just created and dressed; by default all of [`MeshDrawing::read`].
+    fn read_shape(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
+        self.read(handle)
+    }
 }

@@ -78,16 +78,14 @@ impl MeshDrawing for ZmqBackend {
             return Ok(FoundMeshes::default());
         };
         let mut meshes = Vec::new();
-        // options 1: everything under the holder, without the holder itself
-        for h in self.handles_in(holder, 1)? {
+        // options 3: the holder's children, without the holder itself (removing the holder
+        // removes them; anything deeper moves up to its parent, as CoppeliaSim does)
+        for h in self.handles_in(holder, 3)? {
             let name = self.text_call("sim.getObjectAlias", h, -1)?;
-            let parent = self
-                .client
-                .call_int("sim.getObjectParent", vec![int(h.into())])?;
             meshes.push(FoundMesh {
                 handle: h,
                 name,
-                parent: (parent >= 0).then_some(parent),
+                parent: Some(holder),
             });
         }
         Ok(FoundMeshes {
@@ -162,6 +160,28 @@ impl MeshDrawing for ZmqBackend {
     }
 
     fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
+        let shape = self.read_shape(handle)?;
+        let colour = self
+            .call(
+                "sim.getShapeColor",
+                vec![
+                    int(handle.into()),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                ],
+            )?
+            .get(1)
+            .and_then(cbor::numbers::<3>);
+        let pose = self.world_pose(handle)?;
+        Ok(MeshReadback {
+            colour,
+            pose,
+            ..shape
+        })
+    }
+
+    /// `sim.getShapeMesh` alone; the pose is left at the origin.
+    fn read_shape(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
         let values = self.call("sim.getShapeMesh", vec![int(handle.into())])?;
         let floats = |v: Option<&Value>| -> Option<Vec<f32>> {
             cbor::array(v?)?
@@ -179,24 +199,10 @@ impl MeshDrawing for ZmqBackend {
                 "sim.getShapeMesh of {handle}: not vertices and indices"
             )));
         }
-        let colour = self
-            .call(
-                "sim.getShapeColor",
-                vec![
-                    int(handle.into()),
-                    Value::Text(String::new()),
-                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                ],
-            )?
-            .get(1)
-            .and_then(cbor::numbers::<3>);
-        let pose = self.world_pose(handle)?;
         Ok(MeshReadback {
             vertices,
             indices,
-            bounding_box: None,
-            colour,
-            pose,
+            ..Default::default()
         })
     }
 }
