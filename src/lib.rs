@@ -10,6 +10,7 @@
 //!   written whole or not at all).
 //! - [`coppelia`]: CoppeliaSim's constants and Euler convention, shared by clients and emulator.
 //! - [`draw`]: the [`draw::Backend`] port and the backend-neutral `apply`, `clear`, `verify`.
+//! - [`export`]: a layout as a CoppeliaSim, MuJoCo, Gazebo (SDF), URDF or Webots file.
 //! - The protocols, each a codec, a client, a drawing backend and an emulated server:
 //!   [`legacy`] (port 19997) and [`zmq_api`] (ZeroMQ, port 23000).
 //! - [`sim`]: the emulated simulator's scene, state and clock, under both servers.

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyString};
 use vrep_maze::atomic_file::write_atomically;
 use vrep_maze::cli::Command;
+use vrep_maze::export::{Format as ExportFormat, export};
 use vrep_maze::layout::json::{parse_layout, to_string};
 use vrep_maze::layout::solution::solve;
 use vrep_maze::layout::{self as library, Pose, Style, build::Planned, passages, read_layout};
@@ -275,6 +276,25 @@ impl Layout {
                 Ok(Some(PyString::new(py, &text).into_any()))
             }
         }
+    }
+
+    /// Writes the maze for a simulator as `vrep-maze export -o path` does (atomically), the
+    /// format chosen by the ending: `.simmodel.xml` / `.simscene.xml` (CoppeliaSim), `.mjcf` /
+    /// `.mujoco.xml` (MuJoCo), `.sdf` / `.world` (Gazebo), `.urdf`, `.wbt` (Webots). A
+    /// `ValueError` naming the endings for any other (a bare `.xml` is ambiguous).
+    fn export(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let format = ExportFormat::from_path(&path)
+            .ok_or_else(|| PyValueError::new_err(ExportFormat::refusal(&path)))?;
+        let layout = &self.layout;
+        let bytes = py
+            .detach(|| {
+                let mut bytes = Vec::new();
+                export(format, layout, &mut bytes).map(|()| bytes)
+            })
+            .map_err(|e| errors::from_anyhow(py, &e))?;
+        py.detach(|| write_atomically(&path, |w| w.write_all(&bytes)))
+            .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+        Ok(())
     }
 
     /// The SVG picture (without the solution), so Jupyter shows a `Layout` as the maze.

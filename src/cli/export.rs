@@ -1,4 +1,5 @@
-//! `vrep-maze export`: a layout as a file another program loads (today CoppeliaSim XML).
+//! `vrep-maze export`: a layout as a file another program loads: CoppeliaSim XML, MuJoCo
+//! MJCF, Gazebo SDF, URDF or a Webots world.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -13,13 +14,14 @@ use crate::export::{Format, export};
 /// Options of `export`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End"
+    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots"
 )]
 pub struct ExportArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
-    /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model)
-    /// or .simscene.xml (CoppeliaSim scene).
+    /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model),
+    /// .simscene.xml (CoppeliaSim scene), .mjcf or .mujoco.xml (MuJoCo), .sdf or .world
+    /// (Gazebo), .urdf, .wbt (Webots).
     #[arg(short, long)]
     pub output: PathBuf,
 }
@@ -27,13 +29,8 @@ pub struct ExportArgs {
 /// Runs `export`: the layout is read and validated completely before anything is written,
 /// and the file is replaced atomically.
 pub fn run(args: ExportArgs) -> Result<ExitCode> {
-    let format = Format::from_path(&args.output).ok_or_else(|| {
-        usage(format!(
-            "{}: export writes {} files (the ending chooses the format)",
-            args.output.display(),
-            Format::endings()
-        ))
-    })?;
+    let format =
+        Format::from_path(&args.output).ok_or_else(|| usage(Format::refusal(&args.output)))?;
     let layout = crate::layout::read_layout(&args.file)?;
     let mut text = Vec::new();
     export(format, &layout, &mut text)

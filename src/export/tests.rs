@@ -56,7 +56,38 @@ fn endings_choose_the_format() {
     assert_eq!(of("maze.xml"), None);
     assert_eq!(of(".simmodel.xml"), None);
     assert_eq!(of("maze.ttm"), None);
-    assert_eq!(Format::endings(), ".simmodel.xml, .simscene.xml");
+    assert_eq!(of("m.mjcf"), Some(Format::Mjcf));
+    assert_eq!(of("m.MuJoCo.XML"), Some(Format::Mjcf));
+    assert_eq!(of("m.sdf"), Some(Format::Sdf));
+    assert_eq!(of("dir/m.world"), Some(Format::Sdf));
+    assert_eq!(of("m.urdf"), Some(Format::Urdf));
+    assert_eq!(of("m.wbt"), Some(Format::Webots));
+    assert_eq!(of(".urdf"), None);
+    assert_eq!(
+        Format::endings(),
+        ".simmodel.xml, .simscene.xml, .mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt"
+    );
+}
+
+#[test]
+fn every_format_same_layout_same_bytes_and_invalid_layouts_write_nothing() {
+    use super::solids::tests::{line_layout, post_layout};
+    for layout in [line_layout(17.0), post_layout(-40.0)] {
+        for format in Format::ALL {
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            export(format, &layout, &mut a).unwrap();
+            export(format, &layout.clone(), &mut b).unwrap();
+            assert_eq!(a, b, "{format:?}");
+            assert!(!a.is_empty());
+        }
+    }
+    let mut bad = post_layout(0.0);
+    bad.grid.cell_size = -1.0;
+    for format in Format::ALL {
+        let mut out = Vec::new();
+        assert!(export(format, &bad, &mut out).is_err());
+        assert!(out.is_empty());
+    }
 }
 
 #[test]
@@ -76,6 +107,7 @@ fn every_object_has_the_structure_coppeliasim_writes_for_its_type() {
         let want_header = match format {
             Format::CoppeliaModel => parts(TWO_RECTS).0,
             Format::CoppeliaScene => course_header.clone(),
+            _ => unreachable!("only CoppeliaSim formats are listed"),
         };
         assert_eq!(header, want_header, "{name} {format:?}");
         for (kind, s) in &objects {

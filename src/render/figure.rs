@@ -6,7 +6,7 @@ use std::fmt;
 
 /// An opaque sRGB colour.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct Colour(pub [u8; 3]);
+pub(crate) struct Colour(pub [u8; 3]);
 
 impl fmt::Display for Colour {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -16,19 +16,19 @@ impl fmt::Display for Colour {
 }
 
 /// The floor.
-pub(super) const FLOOR: Colour = Colour([0xb4, 0xb4, 0xb4]);
+pub(crate) const FLOOR: Colour = Colour([0xb4, 0xb4, 0xb4]);
 /// The metre grid on the floor.
 pub(super) const GRID: Colour = Colour([0x8c, 0x8c, 0x8c]);
 /// The lines the robot follows: pure green, as the camera must see them.
-pub(super) const LINE: Colour = Colour([0x00, 0xff, 0x00]);
+pub(crate) const LINE: Colour = Colour([0x00, 0xff, 0x00]);
 /// A wall maze's walls: near-black bars on the light floor.
-pub(super) const WALL: Colour = Colour([0x20, 0x20, 0x20]);
+pub(crate) const WALL: Colour = Colour([0x20, 0x20, 0x20]);
 /// A wall maze's goal region (but its end cell): a light red tint.
 pub(super) const GOAL: Colour = Colour([0xe6, 0xa0, 0xa0]);
 /// The start marker: pure blue.
-pub(super) const START: Colour = Colour([0x00, 0x00, 0xff]);
+pub(crate) const START: Colour = Colour([0x00, 0x00, 0xff]);
 /// The end marker: pure red.
-pub(super) const END: Colour = Colour([0xff, 0x00, 0x00]);
+pub(crate) const END: Colour = Colour([0xff, 0x00, 0x00]);
 /// The solution path, drawn at [`SOLUTION_OPACITY`].
 pub(super) const SOLUTION: Colour = Colour([0xff, 0xa5, 0x00]);
 /// Opacity of the solution path.

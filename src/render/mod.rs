@@ -6,7 +6,7 @@
 //! passages, never from its `segments` or `walls`.
 
 mod ascii;
-mod figure;
+pub(crate) mod figure;
 mod png;
 mod svg;
 mod walls;

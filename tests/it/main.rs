@@ -13,6 +13,7 @@ mod connect;
 mod costs;
 mod ctrl_c;
 mod draw;
+mod export_robots;
 mod first_hour;
 mod generation_gate;
 mod generators;

@@ -1,0 +1,29 @@
+"""Layout.export: the files `vrep-maze export` writes, chosen by the ending."""
+
+import pytest
+
+import vrep_maze
+from conftest import MAZES, run_cli
+
+GOLDEN = MAZES / "dfs-9x9-seed42-walls.json"
+ENDINGS = [".simmodel.xml", ".simscene.xml", ".mjcf", ".mujoco.xml", ".sdf", ".world",
+           ".urdf", ".wbt"]
+
+
+@pytest.mark.parametrize("ending", ENDINGS)
+def test_export_writes_what_the_command_writes(tmp_path, ending):
+    ours, theirs = tmp_path / f"ours{ending}", tmp_path / f"theirs{ending}"
+    assert vrep_maze.load(GOLDEN).export(ours) is None
+    done = run_cli("export", GOLDEN, "-o", theirs)
+    assert done.returncode == 0, done.stderr
+    assert ours.read_bytes() == theirs.read_bytes()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([ours.name, theirs.name])
+
+
+def test_export_refuses_unknown_and_ambiguous_endings(tmp_path):
+    layout = vrep_maze.load(GOLDEN)
+    with pytest.raises(ValueError, match=r"a bare \.xml is ambiguous.*\.mjcf, \.mujoco\.xml"):
+        layout.export(tmp_path / "m.xml")
+    with pytest.raises(ValueError, match=r"\.sdf, \.world, \.urdf, \.wbt"):
+        layout.export(str(tmp_path / "m.obj"))
+    assert list(tmp_path.iterdir()) == []
