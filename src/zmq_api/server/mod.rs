@@ -134,7 +134,8 @@ impl ServerHandle {
 }
 
 /// Binds and starts the server over a simulator of its own.
-pub fn spawn(config: ServerConfig, sim: Simulator) -> std::io::Result<ServerHandle> {
+pub fn spawn(config: ServerConfig, mut sim: Simulator) -> std::io::Result<ServerHandle> {
+    sim.step = config.clock.step;
     spawn_shared(config, Arc::new(Mutex::new(sim)))
 }
 
@@ -352,9 +353,11 @@ fn outcome_reply(
 ) -> (Value, Duration) {
     let mut outcome = Outcome::Ret(vec![]);
     let extras = &mut state.extras;
-    state
-        .host
-        .with_sim(&mut |s| outcome = functions::call(s, extras, protocol, &req.func, &req.args));
+    state.host.with_sim(&mut |s| {
+        // simulation time and the emulated robot are brought up to the moment of the call
+        s.sync(Instant::now());
+        outcome = functions::call(s, extras, protocol, &req.func, &req.args);
+    });
     let work = call_cost(&state.config.timing, &req.func, &req.args, &outcome);
     let reply = match outcome {
         Outcome::Ret(values) => message::ret_reply(protocol, values),
