@@ -12,6 +12,7 @@ mod interrupt;
 mod output;
 mod progress;
 mod render;
+mod score;
 mod serve;
 mod validate;
 mod values;
@@ -58,6 +59,8 @@ pub enum Command {
     Apply(apply::ApplyArgs),
     /// Remove a drawn maze from CoppeliaSim (the templates stay).
     Clear(clear::ClearArgs),
+    /// Follow a robot while the simulation runs and grade its run against the maze.
+    Score(score::ScoreArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -182,6 +185,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Demo(args) => demo::run(args),
         Command::Apply(args) => apply::run(args, progress),
         Command::Clear(args) => clear::run(args),
+        Command::Score(args) => score::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }

@@ -8,6 +8,7 @@
 //! `cli::score`'s job. The drawn lines and walls are the rectangles of
 //! [`crate::layout::runs`], the same ones the pictures and meshes show.
 
+pub mod follow;
 pub mod trajectory;
 
 use nalgebra::{Isometry2, Point2};
@@ -214,6 +215,15 @@ impl Grader {
         ))
     }
 
+    /// `true` if the robot's centre at `sample` (floor frame) is inside `End`'s footprint
+    /// (of `options.end_size`, else the cell size).
+    pub fn in_end_at(&self, sample: &Sample, options: &GradeOptions) -> bool {
+        self.in_end(
+            self.floor_to_maze * Point2::new(sample.x, sample.y),
+            options.end_size.unwrap_or(self.cell_size),
+        )
+    }
+
     /// `true` if a maze-frame point lies in the `End` footprint of side `size`.
     fn in_end(&self, p: Point2<f64>, size: f64) -> bool {
         let half = size / 2.0;
@@ -332,7 +342,7 @@ impl Grader {
             .zip(distances)
             .filter(|(_, d)| **d > half)
             .map(|(w, _)| w[1].t - w[0].t)
-            .sum();
+            .fold(0.0, |a, b| a + b);
         let finite = |d: f64| if d.is_finite() { d } else { 0.0 };
         LineReport {
             mean_distance_m: if distances.is_empty() {

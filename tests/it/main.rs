@@ -20,6 +20,8 @@ mod legacy_client_server;
 mod legacy_draw;
 mod properties;
 mod schema;
+mod score;
+mod score_cli;
 mod texture;
 mod trust;
 mod validate;
