@@ -43,7 +43,12 @@ fn maze(walls: bool) -> Layout {
 fn path(points: &[(f64, f64)], speed: f64) -> Vec<Sample> {
     let (x, y) = points[0];
     let mut t = DWELL;
-    let mut out: Vec<Sample> = vec![Sample { t: 0.0, x, y, yaw: 0.0 }];
+    let mut out: Vec<Sample> = vec![Sample {
+        t: 0.0,
+        x,
+        y,
+        yaw: 0.0,
+    }];
     for &(x, y) in points {
         if let Some(last) = out.last() {
             t += (x - last.x).hypot(y - last.y) / speed;
@@ -187,7 +192,10 @@ fn perfect_run(kind: Kind) {
     let t = report.time_s.unwrap();
     // End's footprint starts 0.5 m before its centre: 5.5 m at 4 m/s, give or take the
     // steps between samples (every second one at ZeroMQ protocol 1)
-    assert!((1.2..=1.6).contains(&(t - DWELL)), "{name}: reached at {t} s");
+    assert!(
+        (1.2..=1.6).contains(&(t - DWELL)),
+        "{name}: reached at {t} s"
+    );
     assert!(
         followed.samples.windows(2).all(|w| w[0].t < w[1].t),
         "{name}"

@@ -209,3 +209,60 @@ fn a_missing_robot_and_a_simulation_that_never_starts_are_errors() {
             "the simulation did not start within 0.3 s; nothing was changed",
         ));
 }
+
+#[test]
+fn render_draws_a_trajectory_as_svg_or_png_and_refuses_ascii() {
+    let dir = tempfile::tempdir().unwrap();
+    let maze = layout(dir.path());
+    let run = dir.path().join("run.csv");
+    fs::write(&run, "t,x,y,yaw\n0,-1,-1,0\n1,-1,0,0\n2,0,0,0\n").unwrap();
+    let run = run.to_str().unwrap();
+    for ext in ["svg", "png"] {
+        let out = dir.path().join(format!("run.{ext}"));
+        bin()
+            .args([
+                "render",
+                &maze,
+                "--trajectory",
+                run,
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .assert()
+            .success();
+        let plain = dir.path().join(format!("plain.{ext}"));
+        bin()
+            .args(["render", &maze, "--solution", "-o", plain.to_str().unwrap()])
+            .assert()
+            .success();
+        assert_ne!(
+            fs::read(&out).unwrap(),
+            fs::read(&plain).unwrap(),
+            "{ext}: the run is drawn"
+        );
+    }
+    let svg = fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    assert!(
+        svg.contains(r#"stroke-linecap="round""#),
+        "the run's polylines"
+    );
+    bin()
+        .args(["render", &maze, "--trajectory", run])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("SVG or PNG only"));
+    let never = dir.path().join("never.svg");
+    bin()
+        .args([
+            "render",
+            &maze,
+            "--trajectory",
+            &maze,
+            "-o",
+            never.to_str().unwrap(),
+        ])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("header must be `t,x,y,yaw`"));
+    assert!(!never.exists());
+}
