@@ -4,6 +4,8 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use anyhow::{Context, Result};
@@ -12,9 +14,10 @@ use super::apply::ConnectArgs;
 use super::connect::{Api, LEGACY_CONNECT_TIMEOUT, LEGACY_PORT, ZMQ_CONNECT_TIMEOUT, ZMQ_PORT};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::output::write_output;
+use crate::layout::Layout;
 use crate::legacy::follow::LegacyFollower;
 use crate::score::follow::{FollowOptions, Follower, Until, follow};
-use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, trajectory};
+use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, Sample, trajectory};
 use crate::zmq_api::follow::ZmqFollower;
 
 /// Exit code of a run that ended early (the simulation stopped before `End` with `--until
@@ -63,58 +66,86 @@ pub struct ScoreArgs {
     pub trajectory: Option<PathBuf>,
 }
 
+/// A graded run: the report and the samples it was graded from.
+#[derive(Debug, Clone)]
+pub struct Scored {
+    /// The grade, marked incomplete when the run ended early.
+    pub report: Report,
+    /// The robot's poses, one per simulation step seen (`Floor` frame).
+    pub samples: Vec<Sample>,
+}
+
+impl ScoreArgs {
+    /// Checks the options and `layout`, connects, follows the robot and grades its run
+    /// (what `vrep-maze score` does before printing). `connected` is set once the
+    /// connection is made; setting `interrupt` ends the run early (then incomplete).
+    pub fn score(
+        &self,
+        layout: &Layout,
+        interrupt: Arc<AtomicBool>,
+        connected: &AtomicBool,
+    ) -> Result<Scored> {
+        super::ensure_usage!(
+            self.run_timeout.is_finite() && self.run_timeout > 0.0 && self.run_timeout <= 86_400.0,
+            "--timeout must be a number of seconds, more than 0 and at most a day, got {}",
+            self.run_timeout
+        );
+        super::ensure_usage!(
+            self.robot_radius.is_finite() && (0.0..=100.0).contains(&self.robot_radius),
+            "--robot-radius must be in 0..=100 m, got {}",
+            self.robot_radius
+        );
+        super::ensure_usage!(
+            self.end_size
+                .is_none_or(|s| s.is_finite() && s > 0.0 && s <= 1000.0),
+            "--end-size must be more than 0 and at most 1000 m"
+        );
+        crate::validate::checked(layout).context("nothing was scored")?;
+        let grader = Grader::new(layout).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let grade = GradeOptions {
+            robot_radius: self.robot_radius,
+            end_size: self.end_size,
+        };
+        let mut follower = connect(&self.scene)?;
+        connected.store(true, Ordering::SeqCst);
+        let options = FollowOptions {
+            robot: self.robot.clone(),
+            floor: self.scene.floor.clone(),
+            until: self.until,
+            timeout: Duration::from_secs_f64(self.run_timeout),
+            start_simulation: self.start_simulation,
+            interrupt: Some(interrupt),
+            grade,
+        };
+        if !self.start_simulation {
+            eprintln!(
+                "waiting for the simulation to run (at most {} s) ...",
+                self.run_timeout
+            );
+        }
+        let followed = follow(follower.as_mut(), &grader, &options);
+        follower.close();
+        let followed = followed.context("nothing was scored")?;
+        let mut report = grader.grade(&followed.samples, &grade);
+        report.complete = followed.incomplete.is_none();
+        report.incomplete_reason = followed.incomplete;
+        report.wall_time_s = followed.wall_time_s;
+        Ok(Scored {
+            report,
+            samples: followed.samples,
+        })
+    }
+}
+
 /// Runs `score`.
 pub fn run(args: ScoreArgs) -> Result<ExitCode> {
-    super::ensure_usage!(
-        args.run_timeout.is_finite() && args.run_timeout > 0.0 && args.run_timeout <= 86_400.0,
-        "--timeout must be a number of seconds, more than 0 and at most a day, got {}",
-        args.run_timeout
-    );
-    super::ensure_usage!(
-        args.robot_radius.is_finite() && (0.0..=100.0).contains(&args.robot_radius),
-        "--robot-radius must be in 0..=100 m, got {}",
-        args.robot_radius
-    );
-    super::ensure_usage!(
-        args.end_size
-            .is_none_or(|s| s.is_finite() && s > 0.0 && s <= 1000.0),
-        "--end-size must be more than 0 and at most 1000 m"
-    );
     let layout = crate::layout::read_layout(&args.layout)?;
-    crate::validate::checked(&layout)
-        .with_context(|| format!("{}: nothing was scored", args.layout.display()))?;
-    let grader =
-        Grader::new(&layout).map_err(|e| anyhow::anyhow!("{}: {e}", args.layout.display()))?;
-    let grade = GradeOptions {
-        robot_radius: args.robot_radius,
-        end_size: args.end_size,
-    };
     let interrupt = Interrupt::install()?;
-    let mut follower = connect(&args.scene)?;
-    let options = FollowOptions {
-        robot: args.robot.clone(),
-        floor: args.scene.floor.clone(),
-        until: args.until,
-        timeout: Duration::from_secs_f64(args.run_timeout),
-        start_simulation: args.start_simulation,
-        interrupt: Some(interrupt.shared()),
-        grade,
-    };
-    if !args.start_simulation {
-        eprintln!(
-            "waiting for the simulation to run (at most {} s) ...",
-            args.run_timeout
-        );
-    }
-    let followed = follow(follower.as_mut(), &grader, &options);
-    follower.close();
-    let followed = followed.context("nothing was scored")?;
-    let mut report = grader.grade(&followed.samples, &grade);
-    report.complete = followed.incomplete.is_none();
-    report.incomplete_reason = followed.incomplete;
-    report.wall_time_s = followed.wall_time_s;
+    let Scored { report, samples } = args
+        .score(&layout, interrupt.shared(), &AtomicBool::new(false))
+        .with_context(|| args.layout.display().to_string())?;
     if let Some(path) = &args.trajectory {
-        let csv = trajectory::to_csv(&followed.samples);
+        let csv = trajectory::to_csv(&samples);
         write_output(Some(path), |w| w.write_all(csv.as_bytes()))?;
     }
     let text = if args.json {
