@@ -48,7 +48,12 @@ pub fn score<'py>(
     let options = options::with(
         options,
         py,
-        &[("robot", robot), ("api", api), ("host", host), ("port", port)],
+        &[
+            ("robot", robot),
+            ("api", api),
+            ("host", host),
+            ("port", port),
+        ],
     )?;
     let argv = options::command_line("score", &["-"], &options)?;
     let Command::Score(args) = options::parse(argv)? else {
@@ -67,7 +72,9 @@ pub fn score<'py>(
             requested.store(true, Ordering::SeqCst);
             return OnSignal::Raise(raised);
         }
-        eprintln!("\ninterrupted: ending the run at the next look (press Ctrl-C again to stop at once)");
+        eprintln!(
+            "\ninterrupted: ending the run at the next look (press Ctrl-C again to stop at once)"
+        );
         pending = Some(raised);
         OnSignal::Wait
     })?
@@ -100,7 +107,10 @@ fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyA
 
 /// The samples as an `N x 4` array of `t, x, y, yaw`.
 fn samples_array<'py>(py: Python<'py>, samples: &[Sample]) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let flat: Vec<f64> = samples.iter().flat_map(|s| [s.t, s.x, s.y, s.yaw]).collect();
+    let flat: Vec<f64> = samples
+        .iter()
+        .flat_map(|s| [s.t, s.x, s.y, s.yaw])
+        .collect();
     let array = Array2::from_shape_vec((samples.len(), 4), flat)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(PyArray2::from_owned_array(py, array))
