@@ -8,6 +8,7 @@
 //!   geometry, segments, reading and writing), [`validate`] (every check a layout must pass),
 //!   [`render`] (ASCII, SVG, PNG), [`batch`] (many seeds at once) and [`atomic_file`] (files
 //!   written whole or not at all).
+//! - [`score`]: grading a robot's run (a trajectory) against a layout.
 //! - [`coppelia`]: CoppeliaSim's constants and Euler convention, shared by clients and emulator.
 //! - [`draw`]: the [`draw::Backend`] port and the backend-neutral `apply`, `clear`, `verify`.
 //! - [`export`]: a layout as a CoppeliaSim, MuJoCo, Gazebo (SDF), URDF or Webots file.
@@ -28,6 +29,7 @@ pub mod legacy;
 pub mod maze;
 pub mod render;
 pub mod rng;
+pub mod score;
 pub mod sim;
 pub mod validate;
 pub mod zmq_api;

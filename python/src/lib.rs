@@ -13,6 +13,7 @@ mod draw;
 mod errors;
 mod layout;
 mod options;
+mod score;
 mod worker;
 
 use pyo3::prelude::*;
@@ -27,6 +28,7 @@ fn _vrep_maze(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(draw::apply, m)?)?;
     m.add_function(wrap_pyfunction!(draw::clear, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch, m)?)?;
+    m.add_function(wrap_pyfunction!(score::score, m)?)?;
     m.add_function(wrap_pyfunction!(cli::main, m)?)?;
     m.add_class::<layout::Layout>()?;
     m.add_class::<draw::ApplyReport>()?;

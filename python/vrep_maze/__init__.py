@@ -17,6 +17,8 @@ Example::
   :func:`batch` yields many.
 - :func:`apply` draws a layout into CoppeliaSim (or ``vrep-maze serve``) and verifies it;
   :func:`clear` removes it. Both return a report.
+- :func:`score` follows a robot while the simulation runs and grades its run: the report as
+  a dict and the trajectory as an array.
 - Errors: ``ValueError`` (a refused option), :class:`ValidationError` (an invalid layout),
   :class:`SimulatorError` (a simulator that does not answer or refuses, with ``hints``),
   :class:`Interrupted` (Ctrl-C stopped a drawing cleanly).
@@ -36,6 +38,7 @@ from ._vrep_maze import (
     clear,
     generate,
     load,
+    score,
 )
 
 __all__ = [
@@ -52,4 +55,5 @@ __all__ = [
     "clear",
     "generate",
     "load",
+    "score",
 ]

@@ -181,4 +181,20 @@ def clear(
     stop_simulation: bool = False,
     dry_run: bool = False,
 ) -> ClearReport: ...
+def score(
+    layout: Layout,
+    robot: Optional[str] = None,
+    api: Optional[Api] = None,
+    host: Optional[str] = None,
+    port: Optional[int] = None,
+    *,
+    floor: Optional[str] = None,
+    connect_timeout: Optional[float] = None,
+    reply_timeout: Optional[float] = None,
+    start_simulation: bool = False,
+    timeout: Optional[float] = None,
+    until: Optional[Literal["end", "stop"]] = None,
+    robot_radius: Optional[float] = None,
+    end_size: Optional[float] = None,
+) -> Tuple[dict, npt.NDArray[np.float64]]: ...
 def main(argv: list[str]) -> int: ...

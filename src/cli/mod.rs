@@ -18,6 +18,7 @@ mod progress;
 mod render;
 pub mod reports;
 mod say;
+mod score;
 mod serve;
 mod session_marker;
 mod solve;
@@ -76,6 +77,8 @@ pub enum Command {
     Clear(clear::ClearArgs),
     /// Show what a CoppeliaSim scene holds now (and whether it matches a layout), changing nothing.
     Inspect(inspect::InspectArgs),
+    /// Follow a robot while the simulation runs and grade its run against the maze.
+    Score(score::ScoreArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -260,6 +263,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Apply(args) => apply::run(args, progress),
         Command::Clear(args) => clear::run(args),
         Command::Inspect(args) => inspect::run(args),
+        Command::Score(args) => score::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }

@@ -43,6 +43,10 @@ pub struct RenderArgs {
     /// SVG and PNG: the picture this many pixels wide (the height follows).
     #[arg(long, value_name = "PX", conflicts_with = "px_per_m", value_parser = clap::value_parser!(u32).range(1..=16384))]
     pub width: Option<u32>,
+    /// Draw a robot's run over the maze (a `score --trajectory` CSV: t,x,y,yaw), coloured
+    /// by time, with the solution for comparison (SVG and PNG).
+    #[arg(long, value_name = "run.csv")]
+    pub trajectory: Option<PathBuf>,
 }
 
 /// Runs `render`.
@@ -61,6 +65,10 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     }
     let format = choose_format(args.format, output, Format::Ascii)?;
     ensure_usage!(
+        args.trajectory.is_none() || format != Format::Ascii,
+        "--trajectory draws the run as SVG or PNG only (use --format svg or png, or -o FILE.svg)"
+    );
+    ensure_usage!(
         format != Format::Png || output.is_some() || !std::io::stdout().is_terminal(),
         "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
     );
@@ -73,12 +81,16 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
         .finish()
         .into_result()
         .with_context(|| format!("{}: nothing was rendered", args.file.display()))?;
+    let trajectory = match &args.trajectory {
+        None => None,
+        Some(path) => Some(read_trajectory(path)?),
+    };
     ensure_usage!(
         format != Format::Ascii || (!args.crop && args.px_per_m.is_none() && args.width.is_none()),
         "--crop, --px-per-m and --width shape SVG and PNG pictures, not ASCII (give --format svg|png or -o FILE.svg|.png)"
     );
     let options = RenderOptions {
-        solution: args.solution,
+        solution: args.solution || trajectory.is_some(),
         crop: args.crop,
         scale: match (args.px_per_m, args.width) {
             (Some(px), _) => Scale::PxPerMetre(px),
@@ -92,15 +104,16 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     // I/O error) is kept whole here and reported with the layout's name.
     let mut failure = None;
     let written = write_output(output, |w| {
-        format
-            .renderer()
-            .render(&layout, &options, w, &progress)
-            .map_err(|e| {
-                e.downcast::<io::Error>().unwrap_or_else(|other| {
-                    failure = Some(other);
-                    io::Error::other("the picture could not be drawn")
-                })
+        match &trajectory {
+            None => format.renderer().render(&layout, &options, w, &progress),
+            Some(run) => crate::render::render_run(format, &layout, &options, run, w, &progress),
+        }
+        .map_err(|e| {
+            e.downcast::<io::Error>().unwrap_or_else(|other| {
+                failure = Some(other);
+                io::Error::other("the picture could not be drawn")
             })
+        })
     });
     progress.finish_and_clear();
     if let Some(e) = failure {
@@ -115,6 +128,14 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
         ));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A `--trajectory` file's samples.
+fn read_trajectory(path: &Path) -> Result<Vec<crate::score::Sample>> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read the trajectory {}", path.display()))?;
+    crate::score::trajectory::parse_csv(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
 /// The format to write: `--format` if given, else the one the output's extension names, else

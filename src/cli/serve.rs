@@ -12,7 +12,7 @@ use super::stdout::outln;
 use std::sync::Arc;
 
 use crate::legacy::{ServerConfig, spawn};
-use crate::sim::{NamingMode, Scene, Simulator, Timing};
+use crate::sim::{NamingMode, RobotPath, Scene, Simulator, Timing};
 use crate::zmq_api::{self, Protocol};
 
 /// Serve an in-memory scene over the legacy and/or ZeroMQ remote API (no CoppeliaSim needed).
@@ -40,6 +40,11 @@ pub struct ServeArgs {
     /// output).
     #[arg(long, default_value = "course")]
     pub scene: String,
+    /// Add an object named `Robot` that, while the simulation runs, drives along this
+    /// path file's waypoints (CSV with header `t,x,y,yaw`: simulation seconds, metres and
+    /// radians relative to `Floor`, linear between waypoints), for `score` to follow.
+    #[arg(long, value_name = "PATH.csv")]
+    pub robot: Option<PathBuf>,
     /// Main-loop passes per second while the simulation is stopped (CoppeliaSim's default is
     /// 8; 0 = as fast as possible). Clients can change it (`sim_intparam_idle_fps`).
     #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
@@ -185,7 +190,10 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         let _ = tx.send(());
     })
     .context("cannot install the Ctrl-C handler")?;
-    let sim = Simulator::new(scene, args.idle_fps);
+    let mut sim = Simulator::new(scene, args.idle_fps);
+    if let Some(path) = &args.robot {
+        sim.robot = Some(robot_path(&mut sim.scene, path)?);
+    }
     let in_use = |addr: SocketAddr| {
         format!("cannot listen on {addr} (port in use? try --listen 127.0.0.1:0)")
     };
@@ -234,3 +242,24 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     }
     Ok(std::process::ExitCode::SUCCESS)
 }
+
+/// Reads a `--robot` path file and adds its robot to `scene`.
+fn robot_path(scene: &mut Scene, path: &std::path::Path) -> anyhow::Result<RobotPath> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read the robot path {}", path.display()))?;
+    let waypoints = crate::score::trajectory::parse_csv(&text)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    ensure_usage!(
+        !waypoints.is_empty(),
+        "{}: the robot path has no waypoints",
+        path.display()
+    );
+    ensure_usage!(
+        scene.resolve(ROBOT_NAME).is_err(),
+        "--robot: the scene already has an object named {ROBOT_NAME}"
+    );
+    RobotPath::add_to(scene, ROBOT_NAME, waypoints).map_err(|e| anyhow::anyhow!("--robot: {e}"))
+}
+
+/// The name of the object `serve --robot` adds (the course robot's body).
+pub const ROBOT_NAME: &str = "Robot";

@@ -430,6 +430,72 @@ impl Client {
         Ok(())
     }
 
+    /// Sends `commands` in streaming mode (`simx_opmode_streaming` + `period_ms`: the server
+    /// keeps them and executes them every main-loop pass, at most once per period) in one
+    /// message, without waiting; their results arrive in the inbox with later replies (read
+    /// them with [`Client::buffered`], keep them coming with [`Client::poll`]).
+    pub fn stream(&mut self, commands: &[Command], period_ms: u16) -> Result<(), ClientError> {
+        let blocks = commands
+            .iter()
+            .map(|c| Block {
+                delay: period_ms,
+                ..c.to_block(opmode::STREAMING)
+            })
+            .collect();
+        self.send_and_merge(blocks)
+    }
+
+    /// Ends the streams of `commands` (`simx_opmode_discontinue`) and forgets their results.
+    pub fn discontinue(&mut self, commands: &[Command]) -> Result<(), ClientError> {
+        let blocks: Vec<Block> = commands
+            .iter()
+            .map(|c| c.to_block(opmode::DISCONTINUE))
+            .collect();
+        for b in &blocks {
+            self.inbox.remove(&b.identity());
+        }
+        self.send_and_merge(blocks)
+    }
+
+    /// One message without commands: merges the results the server produced since the
+    /// previous reply into the inbox (what the C client's communication thread does every
+    /// few milliseconds).
+    pub fn poll(&mut self) -> Result<(), ClientError> {
+        self.send_and_merge(vec![])
+    }
+
+    /// `simx_opmode_buffer`: the latest result received for the identity of `command`
+    /// (kept in the inbox) and the simulation time it was executed at, in ms
+    /// (`simxGetLastCmdTime`: `int(simTime * 1000.01)`, 0 while the simulation is stopped);
+    /// `None` until one arrived.
+    pub fn buffered(&self, command: &Command) -> Option<(Reply, i32)> {
+        let b = command.to_block(0);
+        self.inbox.get(&(b.raw_id(), b.id_data)).map(|b| {
+            (
+                Reply {
+                    remote_error: b.status & status::REMOTE_ERROR != 0,
+                    data: b.data.clone(),
+                },
+                b.sim_time,
+            )
+        })
+    }
+
+    /// Sends `blocks` in one message and merges the reply's results into the inbox (the
+    /// newest result per identity, discontinue echoes left out).
+    fn send_and_merge(&mut self, blocks: Vec<Block>) -> Result<(), ClientError> {
+        self.stream
+            .set_read_timeout(Some(self.opts.reply_timeout))
+            .map_err(|e| ClientError::Wire(e.into()))?;
+        let (_, reply) = self.exchange(blocks)?;
+        for b in reply.blocks {
+            if b.opmode() != opmode::DISCONTINUE {
+                self.inbox.insert(b.identity(), b);
+            }
+        }
+        Ok(())
+    }
+
     /// Removes and returns the latest reply received for the identity of `command`
     /// (`simx_opmode_buffer` + remove).
     pub fn take_inbox(&mut self, command: &Command) -> Option<Reply> {

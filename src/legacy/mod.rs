@@ -10,6 +10,7 @@
 pub mod backend;
 pub mod client;
 pub mod command;
+pub mod follow;
 pub mod server;
 pub mod wire;
 

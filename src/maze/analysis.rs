@@ -61,6 +61,11 @@ impl Distances {
         best
     }
 
+    /// Steps from the source to `cell`, [`UNREACHED`] if there is no path.
+    pub fn steps_to(&self, cell: usize) -> u32 {
+        self.steps[cell]
+    }
+
     /// `true` if every cell can be reached.
     pub fn reach_all(&self) -> bool {
         !self.steps.contains(&UNREACHED)

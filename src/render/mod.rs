@@ -9,6 +9,7 @@ mod ascii;
 pub(crate) mod figure;
 mod png;
 mod svg;
+mod trajectory;
 mod walls;
 
 use std::fmt;
@@ -193,6 +194,26 @@ impl FromStr for Format {
     }
 }
 
+/// Writes the picture of `layout` in `format` with a robot's run (`trajectory`, floor
+/// frame, by time) drawn over it, coloured by time; pass `options.solution` to compare it
+/// with the solution. SVG and PNG only: ASCII has no room for a path.
+pub fn render_run(
+    format: Format,
+    layout: &Layout,
+    options: &RenderOptions,
+    trajectory: &[crate::score::Sample],
+    out: &mut dyn io::Write,
+    progress: &ProgressBar,
+) -> Result<()> {
+    match format {
+        Format::Svg => Svg.render_run(layout, options, trajectory, out, progress),
+        Format::Png => Png.render_run(layout, options, trajectory, out, progress),
+        Format::Ascii => Err(anyhow!(
+            "a run is drawn as SVG or PNG only (use --format svg or png, or -o FILE.svg)"
+        )),
+    }
+}
+
 /// The maze of a layout, with its start, end and (if asked) solution cells, and its walls
 /// if it is a wall maze.
 struct MazeView {
@@ -276,6 +297,65 @@ mod tests {
             assert!(!picture.is_empty());
             assert!(picture == render(format, &bare, &options), "{format}");
         }
+    }
+
+    #[test]
+    fn a_run_is_drawn_over_the_maze_and_nothing_changes_without_one() {
+        let layout = build_layout(&GenerateSpec::course(
+            Grid::new(3, 1).unwrap(),
+            Algorithm::Dfs,
+            1,
+        ))
+        .unwrap();
+        let options = RenderOptions {
+            solution: true,
+            ..Default::default()
+        };
+        let draw = |format, run: &[crate::score::Sample]| {
+            let mut bytes = Vec::new();
+            render_run(
+                format,
+                &layout,
+                &options,
+                run,
+                &mut bytes,
+                &ProgressBar::hidden(),
+            )
+            .unwrap();
+            bytes
+        };
+        for format in [Format::Svg, Format::Png] {
+            assert!(
+                draw(format, &[]) == render(format, &layout, &options),
+                "{format}"
+            );
+        }
+        // from Start (floor x = -1) to End (x = 1) along the corridor
+        let run: Vec<crate::score::Sample> = (0..=20)
+            .map(|k| crate::score::Sample {
+                t: f64::from(k),
+                x: -1.0 + f64::from(k) * 0.1,
+                y: 0.0,
+                yaw: 0.0,
+            })
+            .collect();
+        let svg = String::from_utf8(draw(Format::Svg, &run)).unwrap();
+        let bands = trajectory::bands(&run);
+        assert!(bands.len() > 2);
+        for (_, colour) in &bands {
+            assert!(svg.contains(&format!(r#"stroke="{colour}""#)), "{colour}");
+        }
+        // one polyline per band, and the solution's
+        assert_eq!(svg.matches("<polyline").count(), bands.len() + 1);
+        let ascii = render_run(
+            Format::Ascii,
+            &layout,
+            &options,
+            &run,
+            &mut Vec::new(),
+            &ProgressBar::hidden(),
+        );
+        assert!(ascii.unwrap_err().to_string().contains("SVG or PNG only"));
     }
 
     /// Render-only time and memory at scale (release build):

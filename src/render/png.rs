@@ -19,10 +19,11 @@ use super::figure::{
     Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, SOLUTION, SOLUTION_OPACITY, START,
     ScaleBar, WALL,
 };
-use super::{MazeView, RenderOptions, Renderer};
+use super::{MazeView, RenderOptions, Renderer, trajectory};
 use crate::layout::Layout;
 use crate::layout::runs::{Run, WallRun, for_each_run, for_each_wall_run, post_rect};
 use crate::maze::Cell;
+use crate::score::Sample;
 
 /// Pixels per metre when the floor is small enough: the course's 10 m floor is 800 x 800.
 const PX_PER_METRE: f64 = 80.0;
@@ -52,7 +53,22 @@ impl Renderer for Png {
         out: &mut dyn Write,
         progress: &ProgressBar,
     ) -> Result<()> {
-        let picture = Picture::of(layout, options)?;
+        self.render_run(layout, options, &[], out, progress)
+    }
+}
+
+impl Png {
+    /// [`Renderer::render`] with a robot's run (`trajectory`, floor frame) drawn over the
+    /// maze, coloured by time; nothing more when it is empty.
+    pub(super) fn render_run(
+        &self,
+        layout: &Layout,
+        options: &RenderOptions,
+        trajectory: &[Sample],
+        out: &mut dyn Write,
+        progress: &ProgressBar,
+    ) -> Result<()> {
+        let picture = Picture::of(layout, options, trajectory)?;
         let strip_rows = (STRIP_BYTES / (picture.width as usize * 3)).max(1);
         picture.encode(out, progress, strip_rows)
     }
@@ -227,6 +243,9 @@ struct Picture {
     goal: Vec<Shape>,
     /// The solution path (bars and round joins), drawn at [`SOLUTION_OPACITY`].
     solution: Vec<Shape>,
+    /// A robot's run (bars and round joins), coloured by time, drawn over everything but
+    /// the scale bar.
+    run: Vec<(Shape, Colour)>,
     /// The scale bar: shapes in painting order.
     scale_bar: Vec<(Shape, Colour)>,
 }
@@ -234,7 +253,7 @@ struct Picture {
 impl Picture {
     /// The picture of `layout`: [`PX_PER_METRE`], or less so the longest side is at most
     /// [`MAX_SIDE`] pixels.
-    fn of(layout: &Layout, options: &RenderOptions) -> Result<Self> {
+    fn of(layout: &Layout, options: &RenderOptions, trajectory: &[Sample]) -> Result<Self> {
         let view = MazeView::of(layout, options)?;
         let [fx, fy] = layout.floor.size;
         let window = super::window(layout, options);
@@ -304,6 +323,18 @@ impl Picture {
                 Shape::Disc(p, r) => Shape::Disc(maze_frame.apply(p.x, p.y), r * scale),
             })
             .collect();
+        let run_width = visible(layout.line.width * trajectory::WIDTH_SHARE);
+        let mut run = Vec::new();
+        for (points, colour) in trajectory::bands(trajectory) {
+            for pair in points.windows(2) {
+                let [[ax, ay], [bx, by]] = [pair[0], pair[1]];
+                run.push((floor.bar([ax, ay, bx, by], run_width), colour));
+            }
+            for &[x, y] in &points {
+                let disc = Shape::Disc(floor.apply(x, y), run_width / 2.0 * scale);
+                run.push((disc, colour));
+            }
+        }
         let bar = ScaleBar::for_window(window);
         let outline = visible(bar.outline_width()) / 2.0;
         let (x1, y1) = (bar.x + bar.length, bar.y + bar.unit);
@@ -337,6 +368,7 @@ impl Picture {
             markers,
             goal,
             solution,
+            run,
             scale_bar,
         })
     }
@@ -524,6 +556,9 @@ impl Picture {
             });
             if any {
                 strip.blend(&mask, SOLUTION, SOLUTION_OPACITY);
+            }
+            for (shape, colour) in &self.run {
+                strip.paint(shape, *colour);
             }
             for (shape, colour) in &self.scale_bar {
                 strip.paint(shape, *colour);
@@ -736,7 +771,7 @@ mod tests {
 
     fn encode(layout: &Layout, options: &RenderOptions, strip_rows: usize) -> Vec<u8> {
         let mut bytes = Vec::new();
-        Picture::of(layout, options)
+        Picture::of(layout, options, &[])
             .unwrap()
             .encode(&mut bytes, &ProgressBar::hidden(), strip_rows)
             .unwrap();
@@ -756,6 +791,43 @@ mod tests {
             height: info.height,
             rgb,
         }
+    }
+
+    #[test]
+    fn a_run_is_painted_over_the_maze_in_its_time_colours() {
+        // the 3 x 1 course corridor, driven from Start (floor x = -1) to End (x = 1)
+        let layout = build_layout(&GenerateSpec::course(
+            Grid::new(3, 1).unwrap(),
+            Algorithm::Dfs,
+            1,
+        ))
+        .unwrap();
+        let run: Vec<Sample> = (0..=20)
+            .map(|k| Sample {
+                t: f64::from(k),
+                x: -1.0 + f64::from(k) * 0.1,
+                y: 0.0,
+                yaw: 0.0,
+            })
+            .collect();
+        let mut bytes = Vec::new();
+        Png.render_run(
+            &layout,
+            &RenderOptions::default(),
+            &run,
+            &mut bytes,
+            &ProgressBar::hidden(),
+        )
+        .unwrap();
+        let image = decode(&bytes);
+        let bands = trajectory::bands(&run);
+        let (first, last) = (bands[0].1.0, bands.last().unwrap().1.0);
+        let rgb = |c: [u8; 3]| (c[0], c[1], c[2]);
+        // over the blue Start, the start of the run; over the red End, its end
+        assert_eq!(at(&image, &layout, -0.99, 0.0), rgb(first));
+        assert_eq!(at(&image, &layout, 0.99, 0.0), rgb(last));
+        // beside the path, the markers are as they were
+        assert_eq!(at(&image, &layout, 1.0, 0.3), rgb(END.0));
     }
 
     fn render(layout: &Layout, options: &RenderOptions) -> Image {

@@ -18,10 +18,11 @@ use super::figure::{
     ScaleBar, WALL,
 };
 use super::walls::Walls;
-use super::{MazeView, RenderOptions, Renderer};
+use super::{MazeView, RenderOptions, Renderer, trajectory};
 use crate::layout::Layout;
 use crate::layout::runs::{Run, WallRun, for_each_run, for_each_wall_run, post_rect};
 use crate::maze::Cell;
+use crate::score::Sample;
 
 /// Pixels per metre of the picture's nominal size.
 const SCALE: f64 = 40.0;
@@ -92,10 +93,25 @@ impl Renderer for Svg {
         out: &mut dyn Write,
         progress: &ProgressBar,
     ) -> Result<()> {
+        self.render_run(layout, options, &[], out, progress)
+    }
+}
+
+impl Svg {
+    /// [`Renderer::render`] with a robot's run (`trajectory`, floor frame) drawn over the
+    /// maze, coloured by time; nothing more when it is empty.
+    pub(super) fn render_run(
+        &self,
+        layout: &Layout,
+        options: &RenderOptions,
+        trajectory: &[Sample],
+        out: &mut dyn Write,
+        progress: &ProgressBar,
+    ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
         progress.set_length(u64::from(layout.grid.rows));
         let mut out = BufWriter::with_capacity(1 << 16, out);
-        write_svg(&mut out, layout, &view, options, progress)?;
+        write_svg(&mut out, layout, &view, options, trajectory, progress)?;
         out.flush()?;
         Ok(())
     }
@@ -106,6 +122,7 @@ fn write_svg(
     layout: &Layout,
     view: &MazeView,
     options: &RenderOptions,
+    trajectory: &[Sample],
     progress: &ProgressBar,
 ) -> io::Result<()> {
     let window = super::window(layout, options);
@@ -179,8 +196,30 @@ fn write_svg(
         )?;
     }
     out.write_all(b"</g>\n")?;
+    run_path(out, trajectory, layout.line.width * trajectory::WIDTH_SHARE)?;
     scale_bar(out, &ScaleBar::for_window(window))?;
     out.write_all(b"</g>\n</svg>\n")
+}
+
+/// A robot's run in the floor frame, one `<polyline>` per colour band; nothing when empty.
+fn run_path(out: &mut impl Write, samples: &[Sample], width: f64) -> io::Result<()> {
+    if samples.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        out,
+        r#"<g fill="none" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round">"#,
+        num(width)
+    )?;
+    for (points, colour) in trajectory::bands(samples) {
+        out.write_all(b"<polyline points=\"")?;
+        for (k, [x, y]) in points.iter().enumerate() {
+            let separator = if k == 0 { "" } else { " " };
+            write!(out, "{separator}{},{}", num(*x), num(*y))?;
+        }
+        writeln!(out, r#"" stroke="{colour}"/>"#)?;
+    }
+    out.write_all(b"</g>\n")
 }
 
 /// The green line runs, one `<rect>` each, advancing `progress` a maze row at a time.

@@ -9,6 +9,7 @@
 pub mod backend;
 pub mod cbor;
 pub mod client;
+pub mod follow;
 pub mod message;
 pub mod server;
 

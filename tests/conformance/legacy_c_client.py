@@ -54,6 +54,7 @@ sig = {
     "simxGetInMessageInfo": (I, [I, I, C.POINTER(I)]),
     "simxPauseCommunication": (I, [I, U]),
     "simxGetIntegerSignal": (I, [I, C.c_char_p, C.POINTER(I), I]),
+    "simxGetLastCmdTime": (I, [I]),
     "simxSetIntegerSignal": (I, [I, C.c_char_p, I, I]),
     "simxTransferFile": (I, [I, C.c_char_p, C.c_char_p, I, I]),
     "simxLoadModel": (I, [I, C.c_char_p, U, C.POINTER(I), I]),
@@ -107,8 +108,8 @@ def free_port():
     return p
 
 
-def start_server(port, dump, trace=None, env=None):
-    extra = ["--trace"] if trace else []
+def start_server(port, dump, trace=None, env=None, extra=()):
+    extra = (["--trace"] if trace else []) + list(extra)
     p = subprocess.Popen([BIN, "serve", "--listen", f"127.0.0.1:{port}", "--idle-fps", "8", "--dump", dump] + extra,
                          stdout=subprocess.PIPE, stderr=trace, text=True, env=env)
     line = p.stdout.readline()
@@ -223,8 +224,55 @@ def main():
         run_models(port, server_tmp)
     finally:
         stop(server)
+    port = free_port()
+    robot_path = os.path.join(tempfile.mkdtemp(), "path.csv")
+    with open(robot_path, "w") as f:
+        # 1 m/s along x from the floor origin for 2 s, then stand still
+        f.write("t,x,y,yaw\n0,0,0,0\n2,2,0,0\n")
+    server = start_server(port, os.path.join(tempfile.mkdtemp(), "scene3.json"), extra=["--robot", robot_path])
+    try:
+        run_robot(port)
+    finally:
+        stop(server)
     print(f"legacy-conformance: {passed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
+
+
+def run_robot(port):
+    """`serve --robot`: the robot's pose streamed while the simulation runs, each reply
+    stamped with the simulation time it was read at (simxGetLastCmdTime), as the course's
+    camera loop reads it."""
+    cid = c_connect(port)
+    rc, robot = handle(cid, "Robot")
+    _, floor = handle(cid, "Floor")
+    check("serve --robot adds an object named Robot", rc == OK, rc)
+    v = (F * 3)()
+    lib.simxGetObjectPosition(cid, robot, floor, v, STREAMING)
+    rc = lib.simxStartSimulation(cid, BLOCKING)
+    samples, deadline = [], time.time() + 3
+    while time.time() < deadline and len(samples) < 20:
+        time.sleep(0.02)
+        if lib.simxGetObjectPosition(cid, robot, floor, v, BUFFER) == OK:
+            t = lib.simxGetLastCmdTime(cid)
+            if t > 0 and (not samples or samples[-1][0] != t):
+                samples.append((t, v[0]))
+    lib.simxStopSimulation(cid, BLOCKING)
+    times = [t for t, _ in samples]
+    check("streamed replies carry the simulation time, whole 50 ms steps, increasing",
+          len(samples) >= 10 and all(t % 50 == 0 for t in times) and times == sorted(times), times)
+    check("the robot is where its path is at that simulation time (x = t / 1 s, until 2 s)",
+          all(abs(x - min(t / 1000.0, 2.0)) < 1e-4 for t, x in samples), samples)
+    deadline, x = time.time() + 2, None
+    while time.time() < deadline:
+        time.sleep(0.05)
+        lib.simxGetObjectPosition(cid, robot, floor, v, BUFFER)
+        if lib.simxGetLastCmdTime(cid) == 0:
+            x = v[0]
+            break
+    check("after the stop the stream is stamped 0 and the robot is back at its start",
+          x is not None and abs(x) < 1e-6, x)
+    lib.simxGetObjectPosition(cid, robot, floor, v, DISCONTINUE)
+    lib.simxFinish(cid)
 
 
 def run(port, dump, server):

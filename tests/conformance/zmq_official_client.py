@@ -309,5 +309,35 @@ try:
 finally:
     stop(proc)
 
+# serve --robot: the robot moves with the simulation time, as sim.getSimulationTime reads it
+robot_path = os.path.join(tmp, "path.csv")
+with open(robot_path, "w") as f:
+    f.write("t,x,y,yaw\n0,0,0,0\n2,2,0,0\n")  # 1 m/s along x for 2 s
+proc, port = start_server("--protocol", "2", "--idle-fps", "0", "--robot", robot_path)
+try:
+    sim = RemoteAPIClient("127.0.0.1", port).require("sim")
+    robot, floor = sim.getObject("/Robot"), sim.getObject("/Floor")
+    check("sim.getSimulationTime is 0 while stopped", sim.getSimulationTime() == 0)
+    sim.startSimulation()
+    seen = []
+    deadline = time.time() + 3
+    while time.time() < deadline and len(seen) < 10:
+        before = sim.getSimulationTime()
+        x = sim.getObjectPosition(robot, floor)[0]
+        after = sim.getSimulationTime()
+        if before == after and before > 0 and (not seen or seen[-1][0] != before):
+            seen.append((before, x))
+        time.sleep(0.02)
+    sim.stopSimulation()
+    steps = [round(t / 0.05, 6) for t, _ in seen]
+    check("sim.getSimulationTime advances in whole 50 ms steps while running",
+          len(seen) >= 5 and all(s == int(s) for s in steps), seen)
+    check("the robot is where its path is at that simulation time",
+          all(abs(x - min(t, 2.0)) < 1e-9 for t, x in seen), seen)
+    check("after the stop: time 0, the robot back at its start",
+          sim.getSimulationTime() == 0 and abs(sim.getObjectPosition(robot, floor)[0]) < 1e-9)
+finally:
+    stop(proc)
+
 print(f"zmq-conformance: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)

@@ -7,8 +7,10 @@ use std::path::{Path, PathBuf};
 const CLIENT_SIDE: &[&str] = &[
     "legacy::client",
     "legacy::backend",
+    "legacy::follow",
     "zmq_api::client",
     "zmq_api::backend",
+    "zmq_api::follow",
     "draw",
 ];
 

@@ -30,6 +30,8 @@ mod properties;
 mod readme;
 mod render_controls;
 mod schema;
+mod score;
+mod score_cli;
 mod solve;
 mod texture;
 mod trust;

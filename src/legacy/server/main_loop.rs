@@ -59,8 +59,6 @@ pub(super) struct Core {
     latest_client_time: i32,
     /// A message arrived since the latest pass (at idle fps 0 it triggers one).
     new_input: bool,
-    /// Simulation time of reply blocks, in ms (0 while stopped).
-    sim_time_ms: i32,
     /// The latest pass is still working (modeled cost) until then: its results are held back.
     busy_until: Option<Instant>,
     /// Passes that executed the input list.
@@ -83,7 +81,6 @@ impl Core {
             latest_id: -1,
             latest_client_time: 0,
             new_input: false,
-            sim_time_ms: 0,
             busy_until: None,
             passes: 0,
             messages: 0,
@@ -126,14 +123,16 @@ impl Core {
         }
     }
 
-    /// One main-loop pass: stamp the output header, execute the stored commands in order.
-    /// `step` is the simulation step, `started` the start of the server clock. Does nothing
+    /// One main-loop pass: bring the simulation up to now ([`Simulator::sync`]: the
+    /// emulated robot moves), stamp the output header, execute the stored commands in order
+    /// and stamp their replies with the simulation time. `started` is the start of the
+    /// server clock, `now` the moment of the pass. Does nothing
     /// while the results of the previous pass have not been sent. Returns the modeled work
     /// of the commands executed (zero with instant `timing`); when `stop` is set it leaves
     /// the commands not executed yet in the input list.
     fn pass(
         &mut self,
-        step: Duration,
+        now: Instant,
         started: Instant,
         timing: &Timing,
         stop: &AtomicBool,
@@ -142,9 +141,7 @@ impl Core {
             return Duration::ZERO;
         }
         self.passes += 1;
-        if self.sim.state == SimState::Running {
-            self.sim_time_ms = self.sim_time_ms.wrapping_add(step.as_millis() as i32);
-        }
+        self.sim.sync(now);
         let header = MessageHeader {
             message_id: self.latest_id,
             client_time: self.latest_client_time,
@@ -155,8 +152,8 @@ impl Core {
         };
         self.fresh = Some(header);
         self.stale = header;
-        let now = Instant::now();
-        let sim_time = self.sim_time_ms;
+        // 0 while stopped: the simulation clock starts at 0 with every run
+        let sim_time = self.sim.time_ms(now);
         // the pass is charged in the state it began in (before its commands change it)
         let mut charge = self.sim.charge(Served::LegacyPass, vec![]);
         let sim = &mut self.sim;
@@ -193,9 +190,6 @@ impl Core {
             results.push(reply);
             streaming
         });
-        if self.sim.state == SimState::Stopped {
-            self.sim_time_ms = 0;
-        }
         let executed = !results.is_empty();
         self.output = results;
         if !executed {
@@ -280,7 +274,7 @@ pub(super) fn run(shared: &Shared) {
         last_pass = Instant::now();
         core.new_input = false;
         let work = core.pass(
-            shared.config.clock.step,
+            last_pass,
             shared.started,
             &shared.config.timing,
             &shared.stop,
@@ -306,8 +300,13 @@ mod tests {
 
     /// One pass now, with no modeled cost and no stop request.
     fn instant_pass(core: &mut Core) -> Duration {
+        pass_at(core, Instant::now())
+    }
+
+    /// One pass at `now`, with no modeled cost and no stop request.
+    fn pass_at(core: &mut Core, now: Instant) -> Duration {
         core.pass(
-            STEP,
+            now,
             Instant::now(),
             &Timing::instant(),
             &AtomicBool::new(false),
@@ -478,7 +477,7 @@ mod tests {
         let blocks = (0..100).map(|i| set_x(i, 0.0)).collect();
         core.receive(&header(0), blocks);
         let stop = AtomicBool::new(true);
-        core.pass(STEP, Instant::now(), &Timing::instant(), &stop);
+        core.pass(Instant::now(), Instant::now(), &Timing::instant(), &stop);
         assert_eq!(core.input.len(), 100, "nothing executed once stopping");
     }
 
@@ -490,7 +489,12 @@ mod tests {
         let m = real.costs.unwrap();
         let paste = Command::CopyPaste(vec![line]).to_block(opmode::BLOCKING);
         core.receive(&header(0), vec![paste, set_x(line, 1.0)]);
-        let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
+        let work = core.pass(
+            Instant::now(),
+            Instant::now(),
+            &real,
+            &AtomicBool::new(false),
+        );
         // at idle fps 0 a pass lasts at least the floor (spec "Pacing": 9–10 ms)
         let pasted = m.ops(&[
             Op::LegacyCommand,
@@ -514,12 +518,22 @@ mod tests {
         assert_eq!((r.header.message_id, r.blocks.len()), (0, 2));
         // an empty pass costs nothing; at idle fps 8 there is no floor
         assert_eq!(
-            core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false)),
+            core.pass(
+                Instant::now(),
+                Instant::now(),
+                &real,
+                &AtomicBool::new(false)
+            ),
             Duration::ZERO
         );
         core.sim.idle_fps = 8;
         core.receive(&header(3), vec![set_x(line, 2.0)]);
-        let work = core.pass(STEP, Instant::now(), &real, &AtomicBool::new(false));
+        let work = core.pass(
+            Instant::now(),
+            Instant::now(),
+            &real,
+            &AtomicBool::new(false),
+        );
         assert_eq!(
             work,
             m.ops(&[Op::LegacyCommand, Op::HalfPose { objects: 6 }])
@@ -555,9 +569,11 @@ mod tests {
         let mut core = core();
         let get = Command::GetIntParam(crate::coppelia::INTPARAM_IDLE_FPS);
         core.sim.start();
+        let started = Instant::now();
         for n in 1..=2 {
             core.receive(&header(n), vec![get.to_block(opmode::BLOCKING)]);
-            instant_pass(&mut core);
+            // a pass one step later than the previous one: one more step of simulation time
+            pass_at(&mut core, started + STEP * n as u32 + STEP / 2);
             let r = core.receive(&header(n), vec![]);
             assert_eq!(r.header.server_state, server_state::NOT_STOPPED);
             assert_eq!(r.blocks[0].sim_time, 50 * n);

@@ -178,7 +178,9 @@ fn write_dump(config: &ServerConfig, sim: &Simulator) {
 }
 
 /// Binds and starts the server threads (accept/session thread and main-loop thread).
-pub fn spawn(config: ServerConfig, sim: Simulator) -> io::Result<ServerHandle> {
+pub fn spawn(config: ServerConfig, mut sim: Simulator) -> io::Result<ServerHandle> {
+    // the simulation advances one clock step per main-loop pass while it runs
+    sim.step = config.clock.step;
     let listener = TcpListener::bind(config.listen)?;
     let addr = listener.local_addr()?;
     let shared = Arc::new(Shared {

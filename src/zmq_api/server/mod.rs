@@ -137,7 +137,8 @@ impl ServerHandle {
 }
 
 /// Binds and starts the server over a simulator of its own.
-pub fn spawn(config: ServerConfig, sim: Simulator) -> std::io::Result<ServerHandle> {
+pub fn spawn(config: ServerConfig, mut sim: Simulator) -> std::io::Result<ServerHandle> {
+    sim.step = config.clock.step;
     spawn_shared(config, Arc::new(Mutex::new(sim)))
 }
 
@@ -413,6 +414,8 @@ fn outcome_reply(
     let mut work = vec![];
     let extras = &mut state.extras;
     state.host.with_sim(&mut |s| {
+        // simulation time and the emulated robot are brought up to the moment of the call
+        s.sync(Instant::now());
         work = call_ops(s, &req.func, &req.args);
         outcome = functions::call(s, extras, protocol, &req.func, &req.args);
         if req.func == "sim.getObjectsInTree" {

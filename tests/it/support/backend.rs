@@ -9,7 +9,7 @@ use std::time::Duration;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{Backend, BackendError};
 use vrep_maze::legacy::{self, LegacyBackend};
-use vrep_maze::sim::{Scene, Simulator};
+use vrep_maze::sim::{Clock, Scene, Simulator};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, SimHost, ZmqBackend};
 
 /// Timeout of a connection that is not meant to fail.
@@ -49,11 +49,16 @@ impl Kind {
 
     /// Starts an emulated server of this kind over `scene` with the user's idle rate `fps`.
     pub fn serve(self, scene: Scene, fps: i32) -> Server {
-        let sim = Simulator::new(scene, fps);
+        self.serve_sim(Simulator::new(scene, fps), Clock::default())
+    }
+
+    /// Starts an emulated server of this kind over `sim`, its main loop timed by `clock`.
+    pub fn serve_sim(self, sim: Simulator, clock: Clock) -> Server {
         match self.protocol() {
             None => {
                 let cfg = legacy::ServerConfig {
                     listen: "127.0.0.1:0".parse().unwrap(),
+                    clock,
                     ..Default::default()
                 };
                 let handle = Arc::new(legacy::spawn(cfg, sim).unwrap());
@@ -68,8 +73,12 @@ impl Kind {
                 let cfg = zmq_api::ServerConfig {
                     listen: "127.0.0.1:0".parse().unwrap(),
                     protocol,
+                    clock,
                     ..Default::default()
                 };
+                // the legacy server and `zmq_api::spawn` set the step from their clock
+                let mut sim = sim;
+                sim.step = clock.step;
                 let host: Arc<dyn SimHost> = Arc::new(Mutex::new(sim));
                 let handle = zmq_api::spawn_shared(cfg, host.clone()).unwrap();
                 Server {

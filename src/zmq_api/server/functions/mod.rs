@@ -116,6 +116,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.setObjectPose", poses::set_object_pose),
     ("sim.getObjectPose", poses::get_object_pose),
     ("sim.getSimulationState", state::get_simulation_state),
+    ("sim.getSimulationTime", state::get_simulation_time),
     ("sim.startSimulation", state::start_simulation),
     ("sim.stopSimulation", state::stop_simulation),
     ("sim.getInt32Param", state::get_int32_param),

@@ -25,6 +25,11 @@ pub(super) fn get_simulation_state(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Ou
     .into())])
 }
 
+/// `sim.getSimulationTime()`: seconds of simulation time, whole steps (0 while stopped).
+pub(super) fn get_simulation_time(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Outcome, String> {
+    ret(vec![Value::Float(ctx.sim.time(std::time::Instant::now()))])
+}
+
 /// `sim.startSimulation()`: scene edits from now on are undone on stop.
 pub(super) fn start_simulation(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Outcome, String> {
     ctx.sim.start();
@@ -130,6 +135,14 @@ mod tests {
             (Protocol::V1, Outcome::Ret(vec![])),
         ] {
             call(&mut sim, &mut x, protocol, "sim.startSimulation", &[]);
+            let Outcome::Ret(time) = call(&mut sim, &mut x, protocol, "sim.getSimulationTime", &[])
+            else {
+                panic!("sim.getSimulationTime returns")
+            };
+            assert!(
+                matches!(time[..], [Value::Float(t)] if (0.0..60.0).contains(&t)),
+                "{time:?}"
+            );
             let state = call(&mut sim, &mut x, protocol, "sim.getSimulationState", &[]);
             assert_eq!(state, Outcome::Ret(vec![int(17)]));
             assert_eq!(

@@ -1,0 +1,117 @@
+//! `score`: following a robot while the simulation runs and grading its run, as
+//! `vrep-maze score` does, with the report as a dict and the trajectory as a NumPy array.
+//!
+//! Ctrl-C: while connecting, `KeyboardInterrupt` at once; once connected, the first stops
+//! following at the next look (the simulation stopped if `start_simulation=True` started it,
+//! the connection closed) and raises `Interrupted` carrying the partial `report` and
+//! `trajectory`; a second raises `KeyboardInterrupt` at once.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use numpy::PyArray2;
+use numpy::ndarray::Array2;
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use vrep_maze::cli::Command;
+use vrep_maze::score::{Report, Sample};
+
+use crate::errors;
+use crate::layout::Layout;
+use crate::options;
+use crate::worker::{self, OnSignal};
+
+/// Follows the robot while the simulation runs and grades its run through `layout`, as
+/// `vrep-maze score` does.
+///
+/// Keywords are `score`'s options: `robot="Robot"`, the connection keywords of `apply`
+/// (`api`, `host`, `port`, `floor`, `connect_timeout`, `reply_timeout`, ...),
+/// `start_simulation`, `timeout` (wall seconds for the whole run), `until="end"` or
+/// `"stop"`, `robot_radius`, `end_size`. Returns `(report, trajectory)`: the report as a
+/// dict (the `--json` object, `report["complete"]` is `False` for a run that ended early)
+/// and the samples as an `N x 4` float array of `t, x, y, yaw`. No robot of that name, or a
+/// simulation that does not start within `timeout`, raises `SimulatorError`; a refused
+/// option `ValueError`. Ctrl-C raises `Interrupted` with `.report` and `.trajectory` of the
+/// partial run.
+#[pyfunction]
+#[pyo3(signature = (layout, robot=None, api=None, host=None, port=None, **options))]
+pub fn score<'py>(
+    py: Python<'py>,
+    layout: &Layout,
+    robot: Option<Bound<'py, PyAny>>,
+    api: Option<Bound<'py, PyAny>>,
+    host: Option<Bound<'py, PyAny>>,
+    port: Option<Bound<'py, PyAny>>,
+    options: Option<&Bound<'py, PyDict>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyArray2<f64>>)> {
+    let options = options::with(
+        options,
+        py,
+        &[
+            ("robot", robot),
+            ("api", api),
+            ("host", host),
+            ("port", port),
+        ],
+    )?;
+    let argv = options::command_line("score", &["-"], &options)?;
+    let Command::Score(args) = options::parse(argv)? else {
+        return Err(PyRuntimeError::new_err("score parsed as another command"));
+    };
+    let requested = Arc::new(AtomicBool::new(false));
+    let connected = Arc::new(AtomicBool::new(false));
+    let layout = layout.layout.clone();
+    let job = {
+        let (requested, connected) = (requested.clone(), connected.clone());
+        move || args.score(&layout, requested, &connected)
+    };
+    let mut pending = None;
+    let scored = worker::run(py, job, |raised| {
+        if !connected.load(Ordering::SeqCst) || requested.swap(true, Ordering::SeqCst) {
+            requested.store(true, Ordering::SeqCst);
+            return OnSignal::Raise(raised);
+        }
+        eprintln!(
+            "\ninterrupted: ending the run at the next look (press Ctrl-C again to stop at once)"
+        );
+        pending = Some(raised);
+        OnSignal::Wait
+    })?
+    .map_err(|e| errors::from_anyhow(py, &e))?;
+    let report = report_dict(py, &scored.report)?;
+    let trajectory = samples_array(py, &scored.samples)?;
+    if pending.is_some() {
+        let err = errors::interrupted(
+            py,
+            format!(
+                "interrupted: the run was followed for {} samples; the partial report and trajectory are in .report and .trajectory",
+                scored.samples.len()
+            ),
+            None,
+        );
+        let value = err.value(py);
+        value.setattr("report", &report)?;
+        value.setattr("trajectory", &trajectory)?;
+        return Err(err);
+    }
+    Ok((report, trajectory))
+}
+
+/// The report as `--json` writes it, as a Python dict.
+fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(report)
+        .map_err(|e| PyRuntimeError::new_err(format!("the report: {e}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// The samples as an `N x 4` array of `t, x, y, yaw`.
+fn samples_array<'py>(py: Python<'py>, samples: &[Sample]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = samples
+        .iter()
+        .flat_map(|s| [s.t, s.x, s.y, s.yaw])
+        .collect();
+    let array = Array2::from_shape_vec((samples.len(), 4), flat)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, array))
+}

@@ -1,0 +1,285 @@
+//! `vrep-maze score`: follow a robot while the simulation runs and grade its run against
+//! the maze (see [`crate::score`]). Reads only; starts and stops the simulation only with
+//! `--start-simulation`.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use anyhow::{Context, Result};
+
+use super::apply::ConnectArgs;
+use super::connect::{Api, LEGACY_CONNECT_TIMEOUT, LEGACY_PORT, ZMQ_CONNECT_TIMEOUT, ZMQ_PORT};
+use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::output::write_output;
+use crate::layout::Layout;
+use crate::legacy::follow::LegacyFollower;
+use crate::score::follow::{FollowOptions, Follower, Until, follow};
+use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, Sample, trajectory};
+use crate::zmq_api::follow::ZmqFollower;
+
+/// Exit code of a run that ended early (the simulation stopped before `End` with `--until
+/// end`, the connection dropped, or `--timeout` passed): the report is partial.
+pub const INCOMPLETE_EXIT_CODE: u8 = 3;
+
+/// How long `--api auto` tries the legacy port before it tries ZeroMQ.
+const AUTO_LEGACY_WAIT: Duration = Duration::from_millis(1500);
+
+/// Options of `score`.
+#[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("timeout", |a| a.long("reply-timeout").help("Seconds to wait for each reply (more than 0, at most a day)")),
+    after_help = "Examples:\n  vrep-maze score maze.json                       # wait for the simulation, follow Robot to End\n  vrep-maze score maze.json --start-simulation --json > report.json\n  vrep-maze score maze.json --until stop --trajectory run.csv\n\nExit codes: 0 complete, 1 error (nothing followed), 2 usage, 3 incomplete (partial report), 130 interrupted."
+)]
+pub struct ScoreArgs {
+    /// The layout the robot drives through.
+    pub layout: PathBuf,
+    /// The robot's object (its centre is graded).
+    #[arg(long, default_value = "Robot")]
+    pub robot: String,
+    /// Where the simulator is and what its objects are called (as for `apply`).
+    #[command(flatten)]
+    pub scene: ConnectArgs,
+    /// Start the simulation if it is stopped, and stop it when the run is over.
+    #[arg(long)]
+    pub start_simulation: bool,
+    /// Wall-clock seconds for the whole run, waiting for the simulation to start included.
+    #[arg(long = "timeout", value_name = "SECS", default_value_t = 600.0)]
+    pub run_timeout: f64,
+    /// When the run is over: when the robot reaches End, or when the simulation stops.
+    #[arg(long, value_enum, default_value = "end")]
+    pub until: Until,
+    /// The robot's radius in metres, for wall contacts (wall mazes).
+    #[arg(long, value_name = "M", default_value_t = DEFAULT_ROBOT_RADIUS)]
+    pub robot_radius: f64,
+    /// Side of End's square footprint in metres [default: the cell size, the course's 1 m
+    /// marker].
+    #[arg(long, value_name = "M")]
+    pub end_size: Option<f64>,
+    /// Print the report as JSON (schema: schema/score-report.schema.json).
+    #[arg(long)]
+    pub json: bool,
+    /// Also write the followed trajectory here (CSV: t,x,y,yaw; `-` for standard output).
+    #[arg(long, value_name = "run.csv")]
+    pub trajectory: Option<PathBuf>,
+}
+
+/// A graded run: the report and the samples it was graded from.
+#[derive(Debug, Clone)]
+pub struct Scored {
+    /// The grade, marked incomplete when the run ended early.
+    pub report: Report,
+    /// The robot's poses, one per simulation step seen (`Floor` frame).
+    pub samples: Vec<Sample>,
+}
+
+impl ScoreArgs {
+    /// Checks the options and `layout`, connects, follows the robot and grades its run
+    /// (what `vrep-maze score` does before printing). `connected` is set once the
+    /// connection is made; setting `interrupt` ends the run early (then incomplete).
+    pub fn score(
+        &self,
+        layout: &Layout,
+        interrupt: Arc<AtomicBool>,
+        connected: &AtomicBool,
+    ) -> Result<Scored> {
+        super::ensure_usage!(
+            self.run_timeout.is_finite() && self.run_timeout > 0.0 && self.run_timeout <= 86_400.0,
+            "--timeout must be a number of seconds, more than 0 and at most a day, got {}",
+            self.run_timeout
+        );
+        super::ensure_usage!(
+            self.robot_radius.is_finite() && (0.0..=100.0).contains(&self.robot_radius),
+            "--robot-radius must be in 0..=100 m, got {}",
+            self.robot_radius
+        );
+        super::ensure_usage!(
+            self.end_size
+                .is_none_or(|s| s.is_finite() && s > 0.0 && s <= 1000.0),
+            "--end-size must be more than 0 and at most 1000 m"
+        );
+        crate::validate::checked(layout).context("nothing was scored")?;
+        let grader = Grader::new(layout).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let grade = GradeOptions {
+            robot_radius: self.robot_radius,
+            end_size: self.end_size,
+        };
+        let mut follower = connect(&self.scene)?;
+        connected.store(true, Ordering::SeqCst);
+        let options = FollowOptions {
+            robot: self.robot.clone(),
+            floor: self.scene.floor.clone(),
+            until: self.until,
+            timeout: Duration::from_secs_f64(self.run_timeout),
+            start_simulation: self.start_simulation,
+            interrupt: Some(interrupt),
+            grade,
+        };
+        if !self.start_simulation {
+            eprintln!(
+                "waiting for the simulation to run (at most {} s) ...",
+                self.run_timeout
+            );
+        }
+        let followed = follow(follower.as_mut(), &grader, &options);
+        follower.close();
+        let followed = followed.context("nothing was scored")?;
+        let mut report = grader.grade(&followed.samples, &grade);
+        report.complete = followed.incomplete.is_none();
+        report.incomplete_reason = followed.incomplete;
+        report.wall_time_s = followed.wall_time_s;
+        Ok(Scored {
+            report,
+            samples: followed.samples,
+        })
+    }
+}
+
+/// Runs `score`.
+pub fn run(args: ScoreArgs) -> Result<ExitCode> {
+    let layout = crate::layout::read_layout(&args.layout)?;
+    let interrupt = Interrupt::install()?;
+    let Scored { report, samples } = args
+        .score(&layout, interrupt.shared(), &AtomicBool::new(false))
+        .with_context(|| args.layout.display().to_string())?;
+    if let Some(path) = &args.trajectory {
+        let csv = trajectory::to_csv(&samples);
+        write_output(Some(path), |w| w.write_all(csv.as_bytes()))?;
+    }
+    let text = if args.json {
+        serde_json::to_string_pretty(&report)? + "\n"
+    } else {
+        describe(&report)
+    };
+    write_output(None, |w| w.write_all(text.as_bytes()))?;
+    Ok(if report.complete {
+        ExitCode::SUCCESS
+    } else if interrupt.requested() {
+        ExitCode::from(INTERRUPTED_EXIT_CODE)
+    } else {
+        ExitCode::from(INCOMPLETE_EXIT_CODE)
+    })
+}
+
+/// Connects a follower over the API `args` chooses (auto: legacy briefly, then ZeroMQ).
+fn connect(args: &ConnectArgs) -> Result<Box<dyn Follower>> {
+    let legacy = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
+        let addr = format!("{}:{port}", args.host);
+        eprintln!("connecting to CoppeliaSim's legacy remote API at {addr} ...");
+        let opts = crate::legacy::ClientOptions {
+            connect_timeout: wait,
+            reply_timeout: args.timeout,
+            ..Default::default()
+        };
+        let client = crate::legacy::Client::connect_with(addr.as_str(), opts, &mut |_| true)
+            .with_context(|| format!("legacy remote API at {addr}"))?;
+        Ok(Box::new(LegacyFollower::new(client)))
+    };
+    let zmq = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
+        eprintln!(
+            "connecting to CoppeliaSim's ZeroMQ remote API at {}:{port} ...",
+            args.host
+        );
+        let options = crate::zmq_api::ClientOptions {
+            host: args.host.clone(),
+            port,
+            timeout: args.timeout,
+            connect_timeout: Some(wait),
+            protocol: None,
+        };
+        let client = crate::zmq_api::Client::connect(&options)
+            .with_context(|| format!("ZeroMQ remote API at {}:{port}", args.host))?;
+        Ok(Box::new(ZmqFollower::new(client)))
+    };
+    match args.api {
+        Api::Legacy => legacy(
+            args.port.unwrap_or(LEGACY_PORT),
+            args.connect_timeout.unwrap_or(LEGACY_CONNECT_TIMEOUT),
+        ),
+        Api::Zmq => zmq(
+            args.port.unwrap_or(ZMQ_PORT),
+            args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
+        ),
+        Api::Auto => {
+            super::ensure_usage!(
+                args.port.is_none(),
+                "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
+            );
+            let wait = args
+                .connect_timeout
+                .map_or(AUTO_LEGACY_WAIT, |t| t.min(AUTO_LEGACY_WAIT));
+            legacy(LEGACY_PORT, wait).or_else(|_| {
+                zmq(
+                    ZMQ_PORT,
+                    args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
+                )
+            })
+        }
+    }
+}
+
+/// The report for a terminal.
+fn describe(r: &Report) -> String {
+    use std::fmt::Write as _;
+    let m = |v: f64| format!("{v:.3} m");
+    let mut s = String::new();
+    let _ = match &r.incomplete_reason {
+        None => writeln!(s, "run: complete"),
+        Some(why) => writeln!(s, "run: INCOMPLETE ({why})"),
+    };
+    let _ = match (r.time_s, r.wall_time_s) {
+        (Some(t), Some(w)) => writeln!(
+            s,
+            "reached End: yes, at {t:.2} s simulation time ({w:.1} s wall time)"
+        ),
+        (Some(t), None) => writeln!(s, "reached End: yes, at {t:.2} s simulation time"),
+        _ => writeln!(s, "reached End: no"),
+    };
+    let to_end = r
+        .path_to_end_m
+        .map_or(String::new(), |p| format!(" ({} to End)", m(p)));
+    let shortest = match (r.shortest_length_m, r.start_cell) {
+        (Some(l), Some([x, y])) => format!("shortest {} from cell ({x},{y})", m(l)),
+        _ => "shortest unknown (the robot started outside the maze)".into(),
+    };
+    let _ = writeln!(s, "path: {} driven{to_end}; {shortest}", m(r.path_length_m));
+    let _ = match r.spl {
+        Some(spl) => writeln!(s, "SPL: {spl:.3}"),
+        None => writeln!(s, "SPL: unknown"),
+    };
+    let _ = writeln!(
+        s,
+        "cells: {} visited, {} revisits",
+        r.cells_visited, r.cells_revisited
+    );
+    if let Some(l) = &r.line {
+        let _ = writeln!(
+            s,
+            "line: {} mean, {} max from the line; {:.2} s more than half a line width off it",
+            m(l.mean_distance_m),
+            m(l.max_distance_m),
+            l.time_off_line_s
+        );
+    }
+    if let Some(w) = &r.walls {
+        let _ = writeln!(
+            s,
+            "walls: closest approach {} (robot radius {}), {} contact(s)",
+            m(w.closest_approach_m),
+            m(w.robot_radius_m),
+            w.contacts
+        );
+    }
+    let span = match (r.first_time_s, r.last_time_s) {
+        (Some(a), Some(b)) => format!(" (t = {a:.2} .. {b:.2} s)"),
+        _ => String::new(),
+    };
+    let _ = writeln!(
+        s,
+        "samples: {}{span}; {} off the floor, {} off the grid",
+        r.samples, r.samples_off_floor, r.samples_off_grid
+    );
+    s
+}

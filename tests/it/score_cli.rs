@@ -1,0 +1,268 @@
+//! `vrep-maze score` as a user runs it, against a `vrep-maze serve --robot` child: the
+//! JSON report and its schema, the trajectory file, the exit codes of a complete, a
+//! partial and a failed run.
+
+use std::fs;
+use std::path::Path;
+
+use vrep_maze::score::Report;
+
+use crate::support::bin;
+use crate::support::cli::Serve;
+
+/// The 3 x 3 course maze (DFS, seed 1): Start at floor (-1, -1), End at (1, -1); the
+/// solution goes up, along the top row and down (6 m).
+fn layout(dir: &Path) -> String {
+    let path = dir.join("m.json").display().to_string();
+    bin()
+        .args([
+            "generate", "--size", "3x3", "--seed", "1", "--algo", "dfs", "-o", &path,
+        ])
+        .assert()
+        .success();
+    path
+}
+
+/// A path file along floor points at 4 m/s, after half a second at the first one (so the
+/// scorer, which may join a step or two after the start, sees where the robot started).
+fn path_file(dir: &Path, points: &[(f64, f64)]) -> String {
+    let mut text = format!("t,x,y,yaw\n0,{},{},0\n", points[0].0, points[0].1);
+    let mut t = 0.5;
+    let mut last: Option<(f64, f64)> = None;
+    for &(x, y) in points {
+        if let Some((lx, ly)) = last {
+            t += (x - lx).hypot(y - ly) / 4.0;
+        }
+        text += &format!("{t},{x},{y},0\n");
+        last = Some((x, y));
+    }
+    let file = dir.join("path.csv");
+    fs::write(&file, text).unwrap();
+    file.display().to_string()
+}
+
+const SOLUTION: [(f64, f64); 4] = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)];
+
+fn serve(robot: Option<&str>, api: &str) -> Serve {
+    let mut args = vec![
+        "--listen",
+        "127.0.0.1:0",
+        "--timing",
+        "instant",
+        "--idle-fps",
+        "0",
+        "--api",
+        api,
+    ];
+    if let Some(path) = robot {
+        args.extend(["--robot", path]);
+    }
+    Serve::start(&args, 1)
+}
+
+fn schema_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("schema/score-report.schema.json")
+}
+
+#[test]
+fn the_checked_in_report_schema_matches_the_type() {
+    let schema = schemars::schema_for!(Report);
+    let text = serde_json::to_string_pretty(&schema).unwrap() + "\n";
+    if std::env::var_os("VREP_MAZE_BLESS").is_some() {
+        fs::write(schema_path(), &text).unwrap();
+        return;
+    }
+    let checked_in = fs::read_to_string(schema_path()).unwrap_or_default();
+    assert!(
+        checked_in == text,
+        "schema/score-report.schema.json is out of date: re-bless with VREP_MAZE_BLESS=1 cargo test --test it score_cli"
+    );
+    for field in [
+        "reached_end",
+        "time_s",
+        "path_length_m",
+        "shortest_length_m",
+        "spl",
+        "complete",
+    ] {
+        assert!(text.contains(&format!("\"{field}\"")), "{field}");
+    }
+}
+
+#[test]
+fn a_perfect_run_over_each_api_is_reported_as_json_that_satisfies_the_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    let maze = layout(dir.path());
+    let robot = path_file(dir.path(), &SOLUTION);
+    let schema: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(schema_path()).unwrap()).unwrap();
+    let validator = jsonschema::validator_for(&schema).unwrap();
+    for api in ["legacy", "zmq"] {
+        let server = serve(Some(&robot), api);
+        let run = dir.path().join(format!("run-{api}.csv"));
+        let out = bin()
+            .args([
+                "score",
+                &maze,
+                "--api",
+                api,
+                "--port",
+                &server.port(),
+                "--start-simulation",
+                "--json",
+            ])
+            .args(["--timeout", "60", "--trajectory", run.to_str().unwrap()])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let report: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert!(validator.is_valid(&report), "{api}: {report}");
+        assert_eq!(report["complete"], true, "{api}");
+        assert_eq!(report["reached_end"], true, "{api}");
+        assert_eq!(report["shortest_length_m"], 6.0, "{api}");
+        assert!(
+            (report["spl"].as_f64().unwrap() - 1.0).abs() < 1e-9,
+            "{api}: {report}"
+        );
+        let csv = fs::read_to_string(&run).unwrap();
+        let samples = vrep_maze::score::trajectory::parse_csv(&csv).unwrap();
+        assert_eq!(
+            Some(samples.len() as u64),
+            report["samples"].as_u64(),
+            "{api}"
+        );
+    }
+}
+
+#[test]
+fn a_run_cut_short_by_the_timeout_is_a_partial_report_with_exit_code_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let maze = layout(dir.path());
+    // up column 0 and stand there: End is never reached
+    let robot = path_file(dir.path(), &SOLUTION[..2]);
+    let server = serve(Some(&robot), "legacy");
+    let out = bin()
+        .args([
+            "score",
+            &maze,
+            "--port",
+            &server.port(),
+            "--start-simulation",
+            "--timeout",
+            "1.5",
+        ])
+        .assert()
+        .code(3)
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(out).unwrap();
+    assert!(
+        text.contains("run: INCOMPLETE (the timeout of 1.5 s passed first)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("reached End: no") && text.contains("SPL: 0.000"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_missing_robot_and_a_simulation_that_never_starts_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let maze = layout(dir.path());
+    let server = serve(None, "zmq");
+    let port = server.port();
+    bin()
+        .args([
+            "score",
+            &maze,
+            "--api",
+            "zmq",
+            "--port",
+            &port,
+            "--start-simulation",
+        ])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "the scene has no object named `Robot`",
+        ));
+    bin()
+        .args([
+            "score",
+            &maze,
+            "--api",
+            "zmq",
+            "--port",
+            &port,
+            "--robot",
+            "Floor",
+            "--timeout",
+            "0.3",
+        ])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains(
+            "the simulation did not start within 0.3 s; nothing was changed",
+        ));
+}
+
+#[test]
+fn render_draws_a_trajectory_as_svg_or_png_and_refuses_ascii() {
+    let dir = tempfile::tempdir().unwrap();
+    let maze = layout(dir.path());
+    let run = dir.path().join("run.csv");
+    fs::write(&run, "t,x,y,yaw\n0,-1,-1,0\n1,-1,0,0\n2,0,0,0\n").unwrap();
+    let run = run.to_str().unwrap();
+    for ext in ["svg", "png"] {
+        let out = dir.path().join(format!("run.{ext}"));
+        bin()
+            .args([
+                "render",
+                &maze,
+                "--trajectory",
+                run,
+                "-o",
+                out.to_str().unwrap(),
+            ])
+            .assert()
+            .success();
+        let plain = dir.path().join(format!("plain.{ext}"));
+        bin()
+            .args(["render", &maze, "--solution", "-o", plain.to_str().unwrap()])
+            .assert()
+            .success();
+        assert_ne!(
+            fs::read(&out).unwrap(),
+            fs::read(&plain).unwrap(),
+            "{ext}: the run is drawn"
+        );
+    }
+    let svg = fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    assert!(
+        svg.contains(r#"stroke-linecap="round""#),
+        "the run's polylines"
+    );
+    bin()
+        .args(["render", &maze, "--trajectory", run])
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("SVG or PNG only"));
+    let never = dir.path().join("never.svg");
+    bin()
+        .args([
+            "render",
+            &maze,
+            "--trajectory",
+            &maze,
+            "-o",
+            never.to_str().unwrap(),
+        ])
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("header must be `t,x,y,yaw`"));
+    assert!(!never.exists());
+}
