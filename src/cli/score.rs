@@ -167,7 +167,9 @@ pub fn run(args: ScoreArgs) -> Result<ExitCode> {
 fn connect(args: &ConnectArgs) -> Result<Box<dyn Follower>> {
     let legacy = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
         let addr = format!("{}:{port}", args.host);
-        eprintln!("connecting to CoppeliaSim's legacy remote API at {addr} ...");
+        super::say::note(format!(
+            "connecting to CoppeliaSim's legacy remote API at {addr} ..."
+        ));
         let opts = crate::legacy::ClientOptions {
             connect_timeout: wait,
             reply_timeout: args.timeout,
@@ -178,10 +180,10 @@ fn connect(args: &ConnectArgs) -> Result<Box<dyn Follower>> {
         Ok(Box::new(LegacyFollower::new(client)))
     };
     let zmq = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
-        eprintln!(
+        super::say::note(format!(
             "connecting to CoppeliaSim's ZeroMQ remote API at {}:{port} ...",
             args.host
-        );
+        ));
         let options = crate::zmq_api::ClientOptions {
             host: args.host.clone(),
             port,
@@ -203,16 +205,14 @@ fn connect(args: &ConnectArgs) -> Result<Box<dyn Follower>> {
             args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
         ),
         Api::Auto => {
-            super::ensure_usage!(
-                args.port.is_none(),
-                "--port needs --api legacy or --api zmq (auto tries {LEGACY_PORT}, then {ZMQ_PORT})"
-            );
+            // as `apply`: with --port, both APIs are tried on that port
+            let (legacy_port, zmq_port) = args.port.map_or((LEGACY_PORT, ZMQ_PORT), |p| (p, p));
             let wait = args
                 .connect_timeout
                 .map_or(AUTO_LEGACY_WAIT, |t| t.min(AUTO_LEGACY_WAIT));
-            legacy(LEGACY_PORT, wait).or_else(|_| {
+            legacy(legacy_port, wait).or_else(|_| {
                 zmq(
-                    ZMQ_PORT,
+                    zmq_port,
                     args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
                 )
             })

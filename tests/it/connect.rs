@@ -58,7 +58,16 @@ fn the_first_line_says_what_is_tried_before_any_wait() {
     let started = Instant::now();
     let mut child = Command::cargo_bin("vrep-maze")
         .unwrap()
-        .args(["apply", &m, "--port", &port, "--connect-timeout", "60"])
+        .args([
+            "apply",
+            &m,
+            "--api",
+            "legacy",
+            "--port",
+            &port,
+            "--connect-timeout",
+            "60",
+        ])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -188,7 +197,7 @@ fn a_zeromq_client_on_a_legacy_port_is_told_to_use_api_legacy() {
     );
     // the probe left the legacy server politely: the next client is served
     bin()
-        .args(["apply", &m, "--port", &port, "--dry-run"])
+        .args(["apply", &m, "--api", "legacy", "--port", &port, "--dry-run"])
         .assert()
         .success();
 }
@@ -259,9 +268,12 @@ fn with_no_simulator_the_wait_says_nothing_listens_and_ends_at_the_default() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let out = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
-        .output()
-        .unwrap();
+    let out = command_with_markers(
+        dir.path(),
+        &["apply", &m, "--api", "legacy", "--port", &port],
+    )
+    .output()
+    .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
@@ -283,11 +295,14 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
     let port = free_port();
     // an earlier run (a process id no system runs) left its session open
     std::fs::write(marker(dir.path(), &port), "4194305\n").unwrap();
-    let mut child = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = command_with_markers(
+        dir.path(),
+        &["apply", &m, "--api", "legacy", "--port", &port],
+    )
+    .stdout(Stdio::null())
+    .stderr(Stdio::piped())
+    .spawn()
+    .unwrap();
     let mut stderr = BufReader::new(child.stderr.take().unwrap());
     let mut said = String::new();
     for _ in 0..2 {
@@ -321,9 +336,12 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     // client left abruptly
     let s = Serve::start(&["--listen", "127.0.0.1:0"], 1);
     let port = s.port();
-    let out = command_with_markers(dir.path(), &["apply", &m, "--port", &port])
-        .output()
-        .unwrap();
+    let out = command_with_markers(
+        dir.path(),
+        &["apply", &m, "--api", "legacy", "--port", &port],
+    )
+    .output()
+    .unwrap();
     assert!(
         out.status.success(),
         "{}",
@@ -339,7 +357,14 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
         .success();
     let mut child = command_with_markers(
         dir.path(),
-        &["apply", big.to_str().unwrap(), "--port", &port],
+        &[
+            "apply",
+            big.to_str().unwrap(),
+            "--api",
+            "legacy",
+            "--port",
+            &port,
+        ],
     )
     .stdout(Stdio::null())
     .stderr(Stdio::null())
@@ -358,6 +383,8 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
         dir.path(),
         &[
             "clear",
+            "--api",
+            "legacy",
             "--port",
             &port,
             "--dry-run",
@@ -414,6 +441,8 @@ fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
         let (code, stderr, _) = run(&[
             "apply",
             &m,
+            "--api",
+            "legacy",
             "--port",
             &port,
             "--timeout",
