@@ -172,7 +172,7 @@ struct Row {
     before: &'static [Maze],
     then: Maze,
     /// The user's idle rate (CoppeliaSim's default is 8).
-    idle_fps: u32,
+    idle_fps: i32,
     /// The modes the row is run in.
     modes: &'static [Mode],
     /// Seconds a real CoppeliaSim 4.5.1 took in copies mode, from the spec.
