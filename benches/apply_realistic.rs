@@ -1,25 +1,30 @@
 //! Benchmark: `apply` against the emulator's realistic model of CoppeliaSim 4.5.1
 //! (`Timing::realistic()`: one ZeroMQ request per main-loop pass, pasting, re-parenting and
-//! removing growing with the objects in the scene; every figure cites
-//! `../shared/spec/real-coppeliasim-4.5.1.md`), for every row of issue 18's table, beside
-//! what a real CoppeliaSim 4.5.1 took for the same step (spec "Costs that grow with the
-//! scene"). The user's idle rate is CoppeliaSim's default, 8 fps. Each row's earlier mazes
-//! are drawn on an instant emulator first (not timed); only its own step sleeps.
+//! removing growing with the objects in the scene, meshes and XML models priced as measured;
+//! every figure cites `../shared/spec/real-coppeliasim-4.5.1.md`), for every row of issue 18's
+//! table in both draw modes ([`Mode`]), beside what a real CoppeliaSim 4.5.1 took for the same
+//! step in copies mode (spec "Costs that grow with the scene"), then issue 18's targets for
+//! `--draw mesh`. Each row's earlier mazes are drawn in the row's mode on an instant emulator
+//! first (not timed); only its own step sleeps.
 //!
-//!     cargo bench --bench apply_realistic                 # issue 18's rows (about 5 minutes)
+//!     cargo bench --bench apply_realistic                   # every row (about 10 minutes)
+//!     cargo bench --bench apply_realistic -- --mesh-only    # mesh mode only (about a minute)
+//!     cargo bench --bench apply_realistic -- 9x9 300x300    # rows whose step contains a word
 //!     cargo bench --bench apply_realistic -- --first-draws  # also the first draws of issue 11
 //!
-//! "emulated" is the wall time against the realistic emulator; "ledger" the same step priced
-//! from the emulator's ledger of the simulator's work (`vrep_maze::sim::cost::price_all`,
-//! what the unit tests check); "x real" is emulated / real. Each row takes a draw mode
-//! ([`Mode`]), so other modes are rows of the same table.
+//! "fps" is the user's idle rate (CoppeliaSim's default is 8); "emulated" the wall time
+//! against the realistic emulator; "ledger" the same step priced from the emulator's ledger of
+//! the simulator's work (`vrep_maze::sim::cost::price_all`, what the unit tests check); "real"
+//! the spec's figure (copies mode); "x real" emulated / real; "target" issue 18's target for
+//! mesh mode.
 
 use std::time::{Duration, Instant};
 
 use vrep_maze::coppelia::DEFAULT_IDLE_FPS;
+use vrep_maze::draw::mesh::{self, MeshMaze};
 use vrep_maze::draw::{self, ApplyOptions, Backend, Drawing};
 use vrep_maze::generate::Algorithm;
-use vrep_maze::layout::{GenerateSpec, build_layout};
+use vrep_maze::layout::{GenerateSpec, Layout, build_layout};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
 use vrep_maze::sim::cost::price_all;
@@ -27,33 +32,45 @@ use vrep_maze::sim::{Clock, CostModel, Scene, Simulator, Timing};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
 /// The `n` x `n` course maze of the spec's runs (Prim, seed 42: 160, 1,798, 7,198 and 19,998
-/// lines for 9, 30, 60, 100).
-fn drawing(n: u64) -> Drawing {
-    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, 42);
-    Drawing::try_from(&build_layout(&spec).unwrap()).unwrap()
+/// lines for 9, 30, 60, 100); another seed gives another maze of the same size.
+fn layout(n: u64, seed: u64) -> Layout {
+    let spec = GenerateSpec::course(Grid::new(n, n).unwrap(), Algorithm::Prim, seed);
+    build_layout(&spec).unwrap()
 }
 
 /// How a maze is drawn.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 enum Mode {
     /// One copy of the template per line (`--draw copies`, the default).
     Copies,
+    /// A few mesh shapes (`--draw mesh`): `sim.createMeshShape` over ZeroMQ, an XML model
+    /// loaded by `simxLoadModel` over the legacy API.
+    Mesh,
 }
 
 impl Mode {
     /// Every mode, each a row of the table.
-    const ALL: [Mode; 1] = [Mode::Copies];
+    const ALL: [Mode; 2] = [Mode::Copies, Mode::Mesh];
 
     fn name(self) -> &'static str {
         match self {
             Mode::Copies => "copies",
+            Mode::Mesh => "mesh",
         }
     }
 
-    /// Draws `d` over `backend` in this mode.
-    fn apply(self, backend: &mut dyn Backend, d: &Drawing) -> draw::ApplyReport {
+    /// Draws `layout` over `backend` in this mode.
+    fn apply(self, backend: &mut dyn Backend, layout: &Layout) -> draw::ApplyReport {
+        let opts = ApplyOptions::default();
         match self {
-            Mode::Copies => draw::apply(backend, d, &ApplyOptions::default(), &mut |_| {}),
+            Mode::Copies => {
+                let d = Drawing::try_from(layout).unwrap();
+                draw::apply(backend, &d, &opts, &mut |_| {})
+            }
+            Mode::Mesh => {
+                let m = MeshMaze::try_from(layout).unwrap();
+                mesh::apply(backend, &m, &opts, &mut |_| {})
+            }
         }
         .unwrap()
     }
@@ -66,7 +83,7 @@ enum Api {
     Zmq,
 }
 
-const TIMEOUT: Duration = Duration::from_secs(120);
+const TIMEOUT: Duration = Duration::from_secs(600);
 
 /// A running emulated server over a simulator.
 enum Server {
@@ -113,11 +130,11 @@ impl Server {
         }
     }
 
-    /// Draws `d` in `mode`; returns the wall time and the round trips.
-    fn apply(&self, mode: Mode, d: &Drawing) -> (Duration, usize) {
+    /// Draws `layout` in `mode`; returns the wall time and the round trips.
+    fn apply(&self, mode: Mode, layout: &Layout) -> (Duration, usize) {
         let mut b = self.connect();
         let t = Instant::now();
-        let report = mode.apply(b.as_mut(), d);
+        let report = mode.apply(b.as_mut(), layout);
         let wall = t.elapsed();
         b.close().unwrap();
         (wall, report.round_trips)
@@ -136,45 +153,115 @@ impl Server {
     }
 }
 
-/// One row of the table: mazes drawn first (API, size), then the timed step.
-struct Row {
-    step: &'static str,
-    before: &'static [(Api, u64)],
+/// A maze of a row: the API that draws it, its size and seed.
+#[derive(Debug, Clone, Copy)]
+struct Maze {
     api: Api,
     n: u64,
-    /// Seconds a real CoppeliaSim 4.5.1 took (copies mode), from the spec.
+    seed: u64,
+}
+
+/// The course maze of size `n` (seed 42) drawn over `api`.
+const fn maze(api: Api, n: u64) -> Maze {
+    Maze { api, n, seed: 42 }
+}
+
+/// One row of the table: mazes drawn first (in the row's mode), then the timed step.
+struct Row {
+    step: &'static str,
+    before: &'static [Maze],
+    then: Maze,
+    /// The user's idle rate (CoppeliaSim's default is 8).
+    idle_fps: i32,
+    /// The modes the row is run in.
+    modes: &'static [Mode],
+    /// Seconds a real CoppeliaSim 4.5.1 took in copies mode, from the spec.
     real: Option<f64>,
+    /// Issue 18's target for mesh mode, in seconds.
+    target: Option<f64>,
 }
 
 /// Issue 18's table (spec "Costs that grow with the scene", through vrep-maze).
 const ISSUE_18: &[Row] = &[
     Row {
         step: "legacy: replace 60x60 by 100x100",
-        before: &[(Api::Legacy, 60)],
-        api: Api::Legacy,
-        n: 100,
+        before: &[maze(Api::Legacy, 60)],
+        then: maze(Api::Legacy, 100),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &Mode::ALL,
         real: Some(62.1),
+        target: None,
     },
     Row {
         step: "ZeroMQ: replace 9x9 by 100x100",
-        before: &[(Api::Legacy, 9)],
-        api: Api::Zmq,
-        n: 100,
+        before: &[maze(Api::Legacy, 9)],
+        then: maze(Api::Zmq, 100),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &Mode::ALL,
         real: Some(139.8),
+        target: None,
     },
     Row {
         step: "ZeroMQ: replace 100x100 by 9x9",
-        before: &[(Api::Legacy, 100)],
-        api: Api::Zmq,
-        n: 9,
+        before: &[maze(Api::Legacy, 100)],
+        then: maze(Api::Zmq, 9),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &Mode::ALL,
         real: Some(29.5),
+        target: Some(0.5),
     },
     Row {
         step: "ZeroMQ: replace 100x100 by 30x30",
-        before: &[(Api::Legacy, 100)],
-        api: Api::Zmq,
-        n: 30,
+        before: &[maze(Api::Legacy, 100)],
+        then: maze(Api::Zmq, 30),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &Mode::ALL,
         real: Some(32.4),
+        target: None,
+    },
+];
+
+/// Issue 18's targets for `--draw mesh` that are not rows of its table above.
+const MESH_TARGETS: &[Row] = &[
+    Row {
+        step: "ZeroMQ: first draw 100x100",
+        before: &[],
+        then: maze(Api::Zmq, 100),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Mesh],
+        real: None,
+        target: Some(3.0),
+    },
+    Row {
+        step: "legacy: first draw 100x100",
+        before: &[],
+        then: maze(Api::Legacy, 100),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Mesh],
+        real: None,
+        target: Some(3.0),
+    },
+    Row {
+        step: "ZeroMQ: replace 9x9 by 9x9, fps 0",
+        before: &[maze(Api::Zmq, 9)],
+        then: Maze {
+            api: Api::Zmq,
+            n: 9,
+            seed: 43,
+        },
+        idle_fps: 0,
+        modes: &[Mode::Mesh],
+        real: None,
+        target: Some(0.05),
+    },
+    Row {
+        step: "ZeroMQ: first draw 300x300",
+        before: &[],
+        then: maze(Api::Zmq, 300),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Mesh],
+        real: None,
+        target: Some(30.0),
     },
 ];
 
@@ -183,70 +270,88 @@ const FIRST_DRAWS: &[Row] = &[
     Row {
         step: "legacy: first draw 9x9",
         before: &[],
-        api: Api::Legacy,
-        n: 9,
+        then: maze(Api::Legacy, 9),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Copies],
         real: Some(0.92),
+        target: None,
     },
     Row {
         step: "legacy: first draw 60x60",
         before: &[],
-        api: Api::Legacy,
-        n: 60,
+        then: maze(Api::Legacy, 60),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Copies],
         real: None,
+        target: None,
     },
     Row {
         step: "ZeroMQ: first draw 30x30",
         before: &[],
-        api: Api::Zmq,
-        n: 30,
+        then: maze(Api::Zmq, 30),
+        idle_fps: DEFAULT_IDLE_FPS,
+        modes: &[Mode::Copies],
         real: Some(7.2),
+        target: None,
     },
 ];
+
+/// `value` with two decimals, or "-".
+fn or_dash(value: Option<f64>) -> String {
+    value.map_or_else(|| "-".into(), |v| format!("{v:.2}"))
+}
 
 /// Sets the row's scene up on an instant emulator, then times its step on a realistic one.
 fn run(row: &Row, mode: Mode) {
     let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
-    for &(api, n) in row.before {
-        let s = Server::start(api, sim, Timing::instant());
-        s.apply(Mode::Copies, &drawing(n));
+    for m in row.before {
+        let s = Server::start(m.api, sim, Timing::instant());
+        s.apply(mode, &layout(m.n, m.seed));
         sim = s.stop();
     }
-    sim.idle_fps = DEFAULT_IDLE_FPS;
+    sim.idle_fps = row.idle_fps;
     sim.ledger = Some(vec![]);
-    let s = Server::start(row.api, sim, Timing::realistic());
-    let (wall, requests) = s.apply(mode, &drawing(row.n));
+    let s = Server::start(row.then.api, sim, Timing::realistic());
+    let (wall, requests) = s.apply(mode, &layout(row.then.n, row.then.seed));
     let ledger = s.stop().ledger.unwrap_or_default();
     let priced = price_all(&Clock::default(), &CostModel::measured(), &ledger);
     let secs = wall.as_secs_f64();
-    let (real, ratio) = match row.real {
-        Some(r) => (format!("{r:.2}"), format!("{:.2}", secs / r)),
-        None => ("-".into(), "-".into()),
-    };
+    let real = row.real.filter(|_| mode == Mode::Copies);
+    let target = row.target.filter(|_| mode == Mode::Mesh);
     println!(
-        "{:<34} {:<7} {:>9} {:>10.2} {:>8.2} {:>8} {:>7}",
+        "{:<34} {:>3} {:<6} {:>8} {:>9.2} {:>8.2} {:>7} {:>6} {:>6}",
         row.step,
+        row.idle_fps,
         mode.name(),
         requests,
         secs,
         priced.as_secs_f64(),
-        real,
-        ratio
+        or_dash(real),
+        or_dash(real.map(|r| secs / r)),
+        target.map_or_else(|| "-".into(), |t| format!("<={t}")),
     );
 }
 
 fn main() {
-    let first_draws = std::env::args().any(|a| a == "--first-draws");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let first_draws = args.iter().any(|a| a == "--first-draws");
+    let only_mesh = args.iter().any(|a| a == "--mesh-only");
+    let filters: Vec<&String> = args.iter().filter(|a| !a.starts_with("--")).collect();
     println!(
-        "{:<34} {:<7} {:>9} {:>10} {:>8} {:>8} {:>7}",
-        "step (user idle fps 8)", "mode", "requests", "emulated", "ledger", "real", "x real"
+        "{:<34} {:>3} {:<6} {:>8} {:>9} {:>8} {:>7} {:>6} {:>6}",
+        "step", "fps", "mode", "requests", "emulated", "ledger", "real", "x real", "target"
     );
-    let mut rows: Vec<&Row> = ISSUE_18.iter().collect();
+    let mut rows: Vec<&Row> = ISSUE_18.iter().chain(MESH_TARGETS).collect();
     if first_draws {
         rows.extend(FIRST_DRAWS);
     }
-    for row in rows {
-        for mode in Mode::ALL {
-            run(row, mode);
+    let chosen =
+        |row: &&Row| filters.is_empty() || filters.iter().any(|f| row.step.contains(f.as_str()));
+    for row in rows.into_iter().filter(chosen) {
+        for &mode in row.modes {
+            if !only_mesh || mode == Mode::Mesh {
+                run(row, mode);
+            }
         }
     }
 }

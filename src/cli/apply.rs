@@ -163,7 +163,8 @@ pub struct ApplyArgs {
     pub create_missing: bool,
     /// How the maze is drawn: `copies` pastes one copy of the template per line (or wall),
     /// `mesh` draws every straight run as one rectangle (or box) in a few mesh shapes,
-    /// coloured like the template (ZeroMQ API; seconds instead of minutes for big mazes).
+    /// coloured like the template (seconds instead of minutes for big mazes): created by
+    /// `sim.createMeshShape` over ZeroMQ, loaded as an XML model over the legacy API.
     #[arg(long, value_enum, default_value = "copies")]
     pub draw: DrawMode,
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).

@@ -14,7 +14,7 @@ use crate::export::{Format, export};
 /// Options of `export`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots"
+    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots\n  vrep-maze export maze.json -o maze.xml --format mjcf   # any name, the format named"
 )]
 pub struct ExportArgs {
     /// The layout file (`-` reads standard input).
@@ -24,13 +24,20 @@ pub struct ExportArgs {
     /// (Gazebo), .urdf, .wbt (Webots).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// The format, whatever the output's ending (for a bare `.xml`, say).
+    #[arg(long, value_name = "NAME")]
+    pub format: Option<Format>,
 }
 
 /// Runs `export`: the layout is read and validated completely before anything is written,
 /// and the file is replaced atomically.
 pub fn run(args: ExportArgs) -> Result<ExitCode> {
-    let format =
-        Format::from_path(&args.output).ok_or_else(|| usage(Format::refusal(&args.output)))?;
+    let format = match args.format {
+        Some(format) => format,
+        None => {
+            Format::from_path(&args.output).ok_or_else(|| usage(Format::refusal(&args.output)))?
+        }
+    };
     let layout = crate::layout::read_layout(&args.file)?;
     let mut text = Vec::new();
     export(format, &layout, &mut text)

@@ -200,8 +200,13 @@ fn report_usage(error: &clap::Error, args: &[OsString]) -> ExitCode {
     if let Some(first) = lines.next() {
         eprintln!("{}{}", shorten(first), missing_arguments(error));
     }
-    for tip in lines.filter_map(|l| l.strip_prefix("tip:")) {
-        eprintln!("  hint:{}", shorten(tip));
+    // clap's tips, and the values an option takes when the one given is not among them
+    for line in lines {
+        if let Some(tip) = line.strip_prefix("tip:") {
+            eprintln!("  hint:{}", shorten(tip));
+        } else if let Some(values) = line.strip_prefix("[possible values: ") {
+            eprintln!("  hint: one of {}", shorten(values.trim_end_matches(']')));
+        }
     }
     eprintln!("  hint: `--help` lists every option, with examples");
     ExitCode::from(USAGE_EXIT_CODE)

@@ -27,8 +27,8 @@ use crate::draw::mesh::MeshMaze;
 use crate::layout::Layout;
 use solids::Solids;
 
-/// The formats `export` writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The formats `export` writes (`--format` names them in kebab case: `coppelia-model`, ...).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Format {
     /// CoppeliaSim XML model (`.simmodel.xml`): the `Maze` dummy as model base holding the
     /// meshes.
@@ -89,7 +89,7 @@ impl Format {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
         format!(
-            "{}: {}export writes {} files (the ending chooses the format)",
+            "{}: {}export writes {} files (the ending chooses the format, or --format NAME)",
             path.display(),
             if bare_xml {
                 "a bare .xml is ambiguous; "

@@ -426,6 +426,58 @@ fn export_writes_coppeliasim_models_and_scenes_chosen_by_the_ending() {
 }
 
 #[test]
+fn export_format_overrides_the_ending_and_a_bare_xml_without_it_is_refused() {
+    let dir = TempDir::new().unwrap();
+    let maze = generate_to(&dir, "m.json", &["--seed", "5", "--size", "4x3"]);
+    let bare = dir.path().join("m.xml");
+    bin()
+        .arg("export")
+        .arg(&maze)
+        .arg("-o")
+        .arg(&bare)
+        .assert()
+        .code(2)
+        .stderr(contains("a bare .xml is ambiguous"))
+        .stderr(contains("--format"));
+    assert!(!bare.exists());
+    for (format, marker) in [
+        ("coppelia-scene", "<filetype>exhaustiveScene</filetype>"),
+        ("mjcf", "<mujoco"),
+    ] {
+        bin()
+            .arg("export")
+            .arg(&maze)
+            .arg("-o")
+            .arg(&bare)
+            .args(["--format", format])
+            .assert()
+            .success();
+        let text = fs::read_to_string(&bare).unwrap();
+        assert!(text.contains(marker), "{format}: {text:.200}");
+    }
+    // the format wins over an ending that names another one
+    let urdf = dir.path().join("m.urdf");
+    bin()
+        .arg("export")
+        .arg(&maze)
+        .arg("-o")
+        .arg(&urdf)
+        .args(["--format", "webots"])
+        .assert()
+        .success();
+    assert!(fs::read_to_string(&urdf).unwrap().starts_with("#VRML_SIM"));
+    bin()
+        .arg("export")
+        .arg(&maze)
+        .arg("-o")
+        .arg(&bare)
+        .args(["--format", "ttm"])
+        .assert()
+        .code(2)
+        .stderr(contains("coppelia-model"));
+}
+
+#[test]
 fn export_of_a_layout_that_fails_validation_writes_nothing() {
     let dir = TempDir::new().unwrap();
     let maze = generate_to(&dir, "m.json", &["--seed", "5", "--size", "4x3"]);
