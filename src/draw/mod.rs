@@ -14,6 +14,7 @@ pub mod home;
 pub mod lease;
 pub mod mesh;
 pub mod plan;
+pub mod record;
 pub mod verify;
 
 pub use apply::{ApplyOptions, ApplyReport, Stage, apply};

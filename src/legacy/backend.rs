@@ -1,5 +1,6 @@
 //! The legacy remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
 
+use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
 
 use super::client::{Client, ClientError, ClientOptions, Reply};
@@ -9,6 +10,8 @@ use super::command::{
 use crate::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
+use crate::draw::plan::is_copy_name;
+use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
 use crate::draw::{
     Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
 };
@@ -27,6 +30,13 @@ pub struct LegacyBackend {
     /// The simulator runs on this machine (a loopback host): mesh models are loaded from a
     /// temporary file by its path instead of being sent with `simxTransferFile`.
     local: bool,
+    /// The scene's record of the copies this tool pasted (read by the survey), whether it
+    /// changed since, and the template alias of each object a paste may copy: the
+    /// templates and their copies in the maze. Only the ZeroMQ backend needs the record (it
+    /// cannot read names in a batch); this one keeps it true for it.
+    record: CopyRecord,
+    record_changed: bool,
+    families: HashMap<i32, String>,
 }
 
 impl From<ClientError> for BackendError {
@@ -65,6 +75,9 @@ impl LegacyBackend {
             addr,
             on_clean_close: None,
             local,
+            record: CopyRecord::default(),
+            record_changed: false,
+            families: HashMap::new(),
         })
     }
 
@@ -76,6 +89,9 @@ impl LegacyBackend {
             addr: "a connected client".into(),
             on_clean_close: None,
             local: true,
+            record: CopyRecord::default(),
+            record_changed: false,
+            families: HashMap::new(),
         }
     }
 
@@ -110,6 +126,60 @@ impl LegacyBackend {
         self.client
             .as_mut()
             .ok_or_else(|| BackendError::Transport("connection already closed".into()))
+    }
+
+    /// Learns from a survey which objects are the templates and their copies in the maze
+    /// (named in a template's family and of its type, or recorded and of its type), and
+    /// keeps `record` (the scene's) to those copies.
+    fn learn_copies(
+        &mut self,
+        names: &[&str],
+        handles: &[Option<i32>],
+        objects: &[ObjectInfo],
+        kinds: &HashMap<i32, i32>,
+        mut record: CopyRecord,
+    ) {
+        self.families.clear();
+        let parent = handles.get(1).copied().flatten();
+        // ObjectNames order: floor, parent, template, start, end, then the other templates
+        let templates: Vec<(&str, String, i32)> = names
+            .iter()
+            .zip(handles)
+            .enumerate()
+            .filter(|(i, _)| *i == 2 || *i >= 5)
+            .filter_map(|(_, (n, h))| {
+                let alias = n.rsplit('/').next().unwrap_or(n).to_string();
+                h.map(|h| (*n, alias, h))
+            })
+            .collect();
+        let kind = |h: i32| kinds.get(&h).copied();
+        for (_, alias, h) in &templates {
+            self.families.insert(*h, alias.clone());
+        }
+        let mut copies = HashMap::new();
+        if parent.is_some() {
+            for o in objects {
+                if !(o.parent == parent || o.parent.is_none())
+                    || templates.iter().any(|t| t.2 == o.handle)
+                {
+                    continue;
+                }
+                let family = templates.iter().find(|(name, alias, h)| {
+                    let of_type = kind(o.handle).is_some() && kind(o.handle) == kind(*h);
+                    of_type && (is_copy_name(&o.name, name) || record.get(o.handle) == Some(alias))
+                });
+                if let Some((_, alias, _)) = family {
+                    copies.insert(o.handle, alias.clone());
+                }
+            }
+        }
+        let mut changed = record.retain(|h| copies.contains_key(&h));
+        for (h, alias) in &copies {
+            changed |= record.insert(*h, alias);
+        }
+        self.families.extend(copies);
+        self.record = record;
+        self.record_changed = changed;
     }
 
     fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, BackendError> {
@@ -203,8 +273,15 @@ impl Backend for LegacyBackend {
             .collect();
         cmds.extend(group_commands());
         cmds.extend(group_data_commands([group::TYPES]));
+        cmds.push(Command::GetStringSignal(COPIES_SIGNAL.into()));
         let r = self.call(&cmds)?;
         let k = names.len();
+        // an unset signal (or a simulator without string signals) is a remote error
+        let record = r
+            .get(k + 4)
+            .filter(|r| !r.remote_error)
+            .map(|r| CopyRecord::parse(&String::from_utf8_lossy(&r.data)))
+            .unwrap_or_default();
         let types = &r[k + 3];
         let kinds = match GroupData::decode(&types.data) {
             Some(g) if !types.remote_error && g.ints.len() == g.handles.len() => {
@@ -216,7 +293,7 @@ impl Backend for LegacyBackend {
                 ));
             }
         };
-        let handles = r[..k]
+        let handles: Vec<Option<i32>> = r[..k]
             .iter()
             .map(|r| {
                 if r.remote_error {
@@ -227,6 +304,7 @@ impl Backend for LegacyBackend {
             })
             .collect();
         let objects = parse_objects(&r[k..k + 3])?;
+        self.learn_copies(names, &handles, &objects, &kinds, record);
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
         Ok(Survey {
             handles,
@@ -305,7 +383,7 @@ impl Backend for LegacyBackend {
             .map(|g| Command::CopyPaste(g.clone()))
             .collect();
         let r = self.call(&cmds)?;
-        groups
+        let pasted = groups
             .iter()
             .zip(r)
             .map(|(g, r)| match decode_handle_list(&r.data) {
@@ -315,13 +393,39 @@ impl Backend for LegacyBackend {
                     g.len()
                 ))),
             })
-            .collect()
+            .collect::<Result<Vec<Vec<i32>>, BackendError>>()?;
+        // a copy of a template or of its copy is the template's: recorded, written with the
+        // next edits (which re-parent it)
+        for (g, new) in groups.iter().zip(&pasted) {
+            for (source, copy) in g.iter().zip(new) {
+                if let Some(alias) = self.families.get(source).cloned() {
+                    self.record_changed |= self.record.insert(*copy, &alias);
+                    self.families.insert(*copy, alias);
+                }
+            }
+        }
+        Ok(pasted)
     }
 
     fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
         let mut cmds = Vec::with_capacity(edits.len() * 2);
         let mut what = Vec::with_capacity(edits.len() * 2);
         let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
+        // the changed copy record rides with the edits, without the copies they remove: no
+        // request of its own
+        let removed: HashSet<i32> = edits
+            .iter()
+            .filter_map(|e| match e {
+                Edit::Remove(h) => Some(*h),
+                _ => None,
+            })
+            .collect();
+        let pruned = self.record.retain(|h| !removed.contains(&h));
+        let record = std::mem::take(&mut self.record_changed) || pruned;
+        if record {
+            let text = self.record.format().into_bytes();
+            cmds.push(Command::SetStringSignal(COPIES_SIGNAL.into(), text));
+        }
         for e in edits {
             match *e {
                 Edit::SetParent {
@@ -362,7 +466,8 @@ impl Backend for LegacyBackend {
             }
         }
         let r = self.call(&cmds)?;
-        let failed: Vec<&str> = r
+        // a simulator without string signals only loses the record
+        let failed: Vec<&str> = r[usize::from(record)..]
             .iter()
             .zip(&what)
             .filter(|(r, _)| r.remote_error)

@@ -55,6 +55,10 @@ pub mod id {
     pub const GET_INTEGER_SIGNAL: u16 = 0x3011;
     /// `simx_cmd_set_integer_signal`.
     pub const SET_INTEGER_SIGNAL: u16 = 0x3014;
+    /// `simx_cmd_get_string_signal`.
+    pub const GET_STRING_SIGNAL: u16 = 0x3012;
+    /// `simx_cmd_set_string_signal`.
+    pub const SET_STRING_SIGNAL: u16 = 0x3015;
 }
 
 /// Operation modes (high bits of the `cmd` word).
@@ -216,6 +220,10 @@ pub enum Command {
     SetIntSignal(String, i32),
     /// `simxClearIntegerSignal(name)`.
     ClearIntSignal(String),
+    /// `simxGetStringSignal(name)`: reply the signal's bytes.
+    GetStringSignal(String),
+    /// `simxSetStringSignal(name, value)`.
+    SetStringSignal(String, Vec<u8>),
     /// `simxLoadModel(path, 0)`: loads a model file on the server's machine (names starting
     /// with [`TEMP_FILE_PREFIX`] are in the server's folder for transferred files); reply
     /// the model base's handle.
@@ -291,6 +299,8 @@ impl Command {
             GetIntSignal(_) => id::GET_INTEGER_SIGNAL,
             SetIntSignal(..) => id::SET_INTEGER_SIGNAL,
             ClearIntSignal(_) => id::CLEAR_INTEGER_SIGNAL,
+            GetStringSignal(_) => id::GET_STRING_SIGNAL,
+            SetStringSignal(..) => id::SET_STRING_SIGNAL,
             LoadModel(_) => id::LOAD_MODEL,
             TransferFile { .. } => id::TRANSFER_FILE,
             EraseFile(_) => id::ERASE_FILE,
@@ -306,9 +316,12 @@ impl Command {
             GetObjectHandle(name)
             | GetIntSignal(name)
             | ClearIntSignal(name)
+            | GetStringSignal(name)
             | LoadModel(name)
             | EraseFile(name) => (cstr(name), vec![], 0),
-            TransferFile { name, data } => (cstr(name), data.clone(), 0),
+            TransferFile { name, data } | SetStringSignal(name, data) => {
+                (cstr(name), data.clone(), 0)
+            }
             SetIntSignal(name, v) => (cstr(name), i32s(&[*v]), 0),
             GetObjects(t) => (i32s(&[*t]), vec![], 0),
             GetObjectGroupData {
@@ -386,6 +399,8 @@ impl Command {
             id::GET_INTEGER_SIGNAL => Command::GetIntSignal(name(b)?),
             id::SET_INTEGER_SIGNAL => Command::SetIntSignal(name(b)?, dn(0)?),
             id::CLEAR_INTEGER_SIGNAL => Command::ClearIntSignal(name(b)?),
+            id::GET_STRING_SIGNAL => Command::GetStringSignal(name(b)?),
+            id::SET_STRING_SIGNAL => Command::SetStringSignal(name(b)?, b.data.clone()),
             id::LOAD_MODEL => Command::LoadModel(name(b)?),
             id::TRANSFER_FILE => Command::TransferFile {
                 name: name(b)?,
@@ -598,6 +613,8 @@ mod tests {
             Command::GetIntSignal("s".into()),
             Command::SetIntSignal("vrep-maze".into(), 8),
             Command::ClearIntSignal("x".into()),
+            Command::GetStringSignal("s".into()),
+            Command::SetStringSignal("vrep-maze.copies".into(), b"Line:12-40".to_vec()),
             Command::LoadModel("/tmp/m.simmodel.xml".into()),
             Command::TransferFile {
                 name: "REMOTE_API_TEMPFILE_1.simmodel.xml".into(),

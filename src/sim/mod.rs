@@ -50,6 +50,8 @@ pub struct Simulator {
     saved: Option<Scene>,
     /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
     pub int_signals: std::collections::BTreeMap<String, i32>,
+    /// String signals (`simxSetStringSignal`, `sim.setStringSignal`): named byte strings.
+    pub string_signals: std::collections::BTreeMap<String, Vec<u8>>,
     /// When `Some`, the servers append what each request made the simulator do
     /// ([`cost::Charge`]), so a run against an instant emulator can be priced afterwards.
     pub ledger: Option<Vec<Charge>>,
@@ -76,6 +78,7 @@ impl Simulator {
             state: SimState::Stopped,
             saved: None,
             int_signals: Default::default(),
+            string_signals: Default::default(),
             ledger: None,
             temp_dir: std::env::temp_dir(),
             step: Duration::from_millis(50),

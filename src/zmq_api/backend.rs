@@ -23,6 +23,7 @@ use crate::coppelia::{
     PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED,
     SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
+use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
 use crate::draw::{
     Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, LEASE_SIGNAL, Lease,
     ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
@@ -80,6 +81,12 @@ pub struct ZmqBackend {
     /// Alias and type code of objects this connection read or pasted, by handle (an
     /// object's alias and type do not change while a run draws).
     traits: HashMap<i32, (String, i32)>,
+    /// Aliases read without the type (root objects that are no template's copy).
+    aliases: HashMap<i32, String>,
+    /// The scene's record of the copies this tool pasted ([`CopyRecord`]), read once per
+    /// connection, and whether it changed since it was last written.
+    record: Option<CopyRecord>,
+    record_changed: bool,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -135,6 +142,9 @@ impl ZmqBackend {
             timeout,
             poses: HashMap::new(),
             traits: HashMap::new(),
+            aliases: HashMap::new(),
+            record: None,
+            record_changed: false,
         })
     }
 
@@ -259,10 +269,7 @@ impl ZmqBackend {
         if let Some(t) = self.traits.get(&handle) {
             return Ok(t.clone());
         }
-        let alias = self
-            .client
-            .call1("sim.getObjectAlias", vec![int(handle.into()), int(-1)])?;
-        let alias = cbor::text(&alias).unwrap_or_default().to_string();
+        let alias = self.alias(handle)?;
         let kind = match kind {
             Some(k) => k,
             None => self
@@ -273,10 +280,30 @@ impl ZmqBackend {
         Ok((alias, kind))
     }
 
+    /// The alias of `handle`: remembered, else read.
+    fn alias(&mut self, handle: i32) -> Result<String, BackendError> {
+        if let Some(alias) = self
+            .traits
+            .get(&handle)
+            .map(|t| &t.0)
+            .or_else(|| self.aliases.get(&handle))
+        {
+            return Ok(alias.clone());
+        }
+        let alias = self
+            .client
+            .call1("sim.getObjectAlias", vec![int(handle.into()), int(-1)])?;
+        let alias = cbor::text(&alias).unwrap_or_default().to_string();
+        self.aliases.insert(handle, alias.clone());
+        Ok(alias)
+    }
+
     /// The named objects (read), the maze dummy's children and root copies of the templates
     /// found (their poses as `poses` says), with the type codes of all of them. A child
     /// carrying a template's alias is named as a copy of it (`/Line[k]`), any other by its
-    /// alias, so that only the templates' copies are taken for the maze's.
+    /// alias, so that only the templates' copies are taken for the maze's. A child the copy
+    /// record names and of its template's type is known without reading its alias; the
+    /// record is then brought up to date (written with the next edit or paste).
     fn collect(
         &mut self,
         poses: LinePoses,
@@ -286,12 +313,28 @@ impl ZmqBackend {
         let mut kinds = HashMap::new();
         for (name, h) in &known.named {
             out.push(self.info(*h, name.clone(), None)?);
-            kinds.insert(*h, self.traits(*h, None)?.1);
+            // a named object's alias is its name's last part: only its type is read
+            if !self.traits.contains_key(h) {
+                let kind = self
+                    .client
+                    .call_int("sim.getObjectType", vec![int((*h).into())])?;
+                self.traits.insert(*h, (alias_of(name).to_string(), kind));
+            }
+            kinds.insert(*h, self.traits[h].1);
         }
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
         let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
             .chain(known.foreign_aliases.iter().map(String::as_str))
             .collect();
+        // the templates' types by alias: a recorded copy must still be of its template's type
+        let template_kinds: HashMap<&str, i32> = known
+            .named
+            .iter()
+            .filter(|(name, _)| templates.contains(&alias_of(name)))
+            .filter_map(|(name, h)| kinds.get(h).map(|k| (alias_of(name), *k)))
+            .collect();
+        let mut record = self.copy_record()?;
+        let mut present = Vec::new();
         let mut numbered = vec![0; templates.len()];
         let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
             Some(t) => {
@@ -318,8 +361,19 @@ impl ZmqBackend {
             for h in self.handles_in(parent, 3)? {
                 if seen.insert(h) {
                     let shape = shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
+                    // a recorded copy that is (still) of its template's type is known
+                    // without reading its alias
+                    if let (Some(alias), Some(kind)) = (record.get(h), shape)
+                        && template_kinds.get(alias) == Some(&kind)
+                        && !self.traits.contains_key(&h)
+                    {
+                        self.traits.insert(h, (alias.to_string(), kind));
+                    }
                     let (alias, kind) = self.traits(h, shape)?;
                     kinds.insert(h, kind);
+                    if template_kinds.get(alias.as_str()) == Some(&kind) {
+                        present.push((h, alias.clone()));
+                    }
                     let name = copy_name(&alias);
                     out.push(self.line_info(h, name, Some(parent), poses)?);
                 }
@@ -332,10 +386,11 @@ impl ZmqBackend {
             if seen.contains(&h) {
                 continue;
             }
-            let (alias, kind) = self.traits(h, None)?;
-            if !templates.contains(&alias.as_str()) {
+            // the type only of those carrying a template's alias
+            if !templates.contains(&self.alias(h)?.as_str()) {
                 continue;
             }
+            let (alias, kind) = self.traits(h, None)?;
             let parent = self
                 .client
                 .call_int("sim.getObjectParent", vec![int(h.into())])?;
@@ -344,10 +399,63 @@ impl ZmqBackend {
             }
             seen.insert(h);
             kinds.insert(h, kind);
+            if template_kinds.get(alias.as_str()) == Some(&kind) {
+                present.push((h, alias.clone()));
+            }
             let name = copy_name(&alias);
             out.push(self.line_info(h, name, None, poses)?);
         }
+        // the record now holds exactly the templates' copies in the maze: those read by
+        // alias are added (a maze drawn without a record pays its reads once), handles no
+        // longer there are dropped
+        if known.parent.is_some() {
+            let mut changed = record.retain(|h| present.iter().any(|(p, _)| *p == h));
+            for (h, alias) in &present {
+                changed |= record.insert(*h, alias);
+            }
+            self.record_changed |= changed;
+        }
+        self.record = Some(record);
         Ok((out, kinds))
+    }
+
+    /// The scene's copy record ([`COPIES_SIGNAL`]), read on first use (a simulator without
+    /// string signals has none).
+    fn copy_record(&mut self) -> Result<CopyRecord, BackendError> {
+        if let Some(r) = &self.record {
+            return Ok(r.clone());
+        }
+        let name = Value::Text(COPIES_SIGNAL.into());
+        let record = match self.call("sim.getStringSignal", vec![name]) {
+            Ok(values) => match values.first() {
+                Some(Value::Text(t)) => CopyRecord::parse(t),
+                Some(Value::Bytes(b)) => CopyRecord::parse(&String::from_utf8_lossy(b)),
+                _ => CopyRecord::default(),
+            },
+            Err(BackendError::Remote(_)) => CopyRecord::default(),
+            Err(e) => return Err(e),
+        };
+        self.record = Some(record.clone());
+        Ok(record)
+    }
+
+    /// Writes the copy record if it changed (a simulator without string signals only loses
+    /// the record: later runs read aliases instead).
+    fn write_record(&mut self) -> Result<(), BackendError> {
+        let Some(record) = self.record.as_ref().filter(|_| self.record_changed) else {
+            return Ok(());
+        };
+        let args = vec![
+            Value::Text(COPIES_SIGNAL.into()),
+            Value::Text(record.format()),
+        ];
+        match self.call("sim.setStringSignal", args) {
+            Ok(_) | Err(BackendError::Remote(_)) => {
+                self.record_changed = false;
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
     }
 
     /// Records the world pose an acknowledged `sim.setObjectPose` gave `handle`.
@@ -600,9 +708,16 @@ impl Backend for ZmqBackend {
                 .call1("sim.copyPasteObjects", vec![list, int(0)])?;
             match cbor::handles(&v) {
                 Some(new) if new.len() == g.len() => {
-                    // a copy has its original's alias and type
+                    // a copy has its original's alias and type; a copy of a template (or
+                    // of one of its copies) goes in the record
+                    let record = self.record.get_or_insert_default();
                     for (source, copy) in g.iter().zip(&new) {
                         if let Some(t) = self.traits.get(source).cloned() {
+                            let template = t.0 == self.known.line_alias
+                                || self.known.foreign_aliases.contains(&t.0);
+                            if template {
+                                self.record_changed |= record.insert(*copy, &t.0);
+                            }
                             self.traits.insert(*copy, t);
                         }
                     }
@@ -617,10 +732,25 @@ impl Backend for ZmqBackend {
                 }
             }
         }
+        self.write_record()?;
         Ok(out)
     }
 
     fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
+        // copies removed leave the record kept here, but that alone is not worth a call per
+        // removal round: the scene's record keeps their handles, which name no object any
+        // more (ignored, and dropped by the next run's survey)
+        if let Some(record) = self.record.as_mut() {
+            let removed: HashSet<i32> = edits
+                .iter()
+                .filter_map(|e| match e {
+                    Edit::Remove(h) => Some(*h),
+                    _ => None,
+                })
+                .collect();
+            record.retain(|h| !removed.contains(&h));
+        }
+        self.write_record()?;
         let mut i = 0;
         while i < edits.len() {
             match edits[i] {

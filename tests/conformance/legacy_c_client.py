@@ -56,6 +56,8 @@ sig = {
     "simxGetIntegerSignal": (I, [I, C.c_char_p, C.POINTER(I), I]),
     "simxGetLastCmdTime": (I, [I]),
     "simxSetIntegerSignal": (I, [I, C.c_char_p, I, I]),
+    "simxGetStringSignal": (I, [I, C.c_char_p, C.POINTER(C.POINTER(C.c_ubyte)), C.POINTER(I), I]),
+    "simxSetStringSignal": (I, [I, C.c_char_p, C.c_char_p, I, I]),
     "simxTransferFile": (I, [I, C.c_char_p, C.c_char_p, I, I]),
     "simxLoadModel": (I, [I, C.c_char_p, U, C.POINTER(I), I]),
     "simxEraseFile": (I, [I, C.c_char_p, I]),
@@ -639,6 +641,16 @@ def run_apply(port):
     ok = (lib.simxSetIntegerSignal(cid, b"vrep-maze.saved_idle_fps", 8, BLOCKING) == OK
           and lib.simxSetIntegerParameter(cid, 26, 0, BLOCKING) == OK)
     check("integer signals can be set with the C client", ok)
+    buf, n = C.POINTER(C.c_ubyte)(), I(0)
+    rc = lib.simxGetStringSignal(cid, b"vrep-maze.copies", C.byref(buf), C.byref(n), BLOCKING)
+    record = bytes(buf[:n.value]).decode() if rc == OK else ""
+    check("apply left the record of its copies (string signal vrep-maze.copies)",
+          rc == OK and re.fullmatch(r"Line:[0-9,-]+", record) is not None, (rc, record))
+    ok = lib.simxSetStringSignal(cid, b"vrep-maze.copies", b"Line:7-9", 8, BLOCKING) == OK
+    rc = lib.simxGetStringSignal(cid, b"vrep-maze.copies", C.byref(buf), C.byref(n), BLOCKING)
+    check("string signals can be set and read with the C client",
+          ok and rc == OK and bytes(buf[:n.value]) == b"Line:7-9", (ok, rc, n.value))
+    lib.simxSetStringSignal(cid, b"vrep-maze.copies", record.encode(), len(record), BLOCKING)
     lib.simxFinish(cid)
     r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
     check("vrep-maze clear succeeds and restores a rate left at 0 by an interrupted apply",

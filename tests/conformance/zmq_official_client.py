@@ -146,6 +146,11 @@ try:
     check("a function without return values returns None", sim.setInt32Param(sim.intparam_idle_fps, 5) is None)
     check("setInt32Param / getInt32Param idle fps", sim.getInt32Param(sim.intparam_idle_fps) == 5)
     sim.setInt32Param(sim.intparam_idle_fps, 0)
+    sim.setStringSignal("vrep-maze.copies", "Line:12-40,45")
+    check("setStringSignal / getStringSignal", sim.getStringSignal("vrep-maze.copies") in ("Line:12-40,45", b"Line:12-40,45"),
+          sim.getStringSignal("vrep-maze.copies"))
+    sim.clearStringSignal("vrep-maze.copies")
+    check("getStringSignal of a cleared signal is None", sim.getStringSignal("vrep-maze.copies") is None)
 
     plane = sim.createPrimitiveShape(sim.primitiveshape_plane, [0.6, 0.1, 0.0], 0)
     sim.setObjectAlias(plane, "Fresh-Line")

@@ -62,15 +62,17 @@ impl Both {
 
     /// Draws the `n` x `n` course maze (Prim, seed 42, as the spec's runs) with our client
     /// over the chosen API; returns what a real 4.5.1 would have taken, priced from the
-    /// ledger of the simulator's work.
-    fn apply(&self, zmq: bool, n: u64) -> f64 {
+    /// ledger of the simulator's work, and the round trips our client took.
+    fn apply(&self, zmq: bool, n: u64) -> (f64, usize) {
         self.legacy.with_sim(|s| s.ledger = Some(vec![]));
         let mut backend = self.connect(zmq);
         let d = drawing(n, 42);
-        draw::apply(backend.as_mut(), &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
+        let report =
+            draw::apply(backend.as_mut(), &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
         backend.close().unwrap();
         let ledger = self.legacy.with_sim(|s| s.ledger.take()).unwrap();
-        price_all(&Clock::default(), &CostModel::measured(), &ledger).as_secs_f64()
+        let priced = price_all(&Clock::default(), &CostModel::measured(), &ledger);
+        (priced.as_secs_f64(), report.round_trips)
     }
 
     fn shutdown(self) {
@@ -100,8 +102,8 @@ fn check(both: &Both, steps: &[(&str, bool, u64, f64)]) {
     let misses: Vec<String> = steps
         .iter()
         .filter_map(|&(step, zmq, n, real)| {
-            let modelled = both.apply(zmq, n);
-            eprintln!("{step}: modelled {modelled:.2} s, real {real} s");
+            let (modelled, round_trips) = both.apply(zmq, n);
+            eprintln!("{step}: modelled {modelled:.2} s, real {real} s, {round_trips} round trips");
             close_to(step, modelled, real).err()
         })
         .collect();

@@ -10,6 +10,7 @@ mod cli_legacy;
 mod cli_zmq;
 mod completion;
 mod connect;
+mod copy_record;
 mod costs;
 mod ctrl_c;
 mod draw;

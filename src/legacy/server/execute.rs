@@ -235,6 +235,14 @@ pub(super) fn execute(sim: &mut Simulator, block: &Block) -> (bool, Vec<u8>) {
             }
             (true, vec![])
         }
+        Command::GetStringSignal(name) => match sim.string_signals.get(&name) {
+            Some(v) => (true, v.clone()),
+            None => (false, vec![]),
+        },
+        Command::SetStringSignal(name, v) => {
+            sim.string_signals.insert(name, v);
+            (true, vec![])
+        }
         Command::LoadModel(path) => {
             let (ok, data, _) = load_model(sim, &path);
             (ok, data)

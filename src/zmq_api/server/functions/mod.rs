@@ -124,6 +124,9 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getInt32Signal", state::get_int32_signal),
     ("sim.setInt32Signal", state::set_int32_signal),
     ("sim.clearInt32Signal", state::clear_int32_signal),
+    ("sim.getStringSignal", state::get_string_signal),
+    ("sim.setStringSignal", state::set_string_signal),
+    ("sim.clearStringSignal", state::clear_string_signal),
     (
         "sim.createPrimitiveShape",
         authoring::create_primitive_shape,

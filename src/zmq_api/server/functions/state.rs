@@ -1,5 +1,5 @@
 //! The simulation state (start, stop), integer parameters (program version, idle fps) and
-//! integer signals.
+//! integer and string signals.
 
 use ciborium::Value;
 
@@ -63,6 +63,33 @@ pub(super) fn set_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcom
 /// `sim.clearInt32Signal(name)`; clearing an unset signal is no error.
 pub(super) fn clear_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     ctx.sim.int_signals.remove(a.text(0)?);
+    nothing()
+}
+
+/// `sim.getStringSignal(name)`: the value (text when it is UTF-8, else bytes), or nil when
+/// the signal is not set.
+pub(super) fn get_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let value = ctx.sim.string_signals.get(a.text(0)?).map(|v| {
+        String::from_utf8(v.clone()).map_or_else(|e| Value::Bytes(e.into_bytes()), Value::Text)
+    });
+    ret(vec![value.unwrap_or(Value::Null)])
+}
+
+/// `sim.setStringSignal(name, value)`: the value as text or bytes.
+pub(super) fn set_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let name = a.text(0)?;
+    let value = match a.get(1) {
+        Some(Value::Text(t)) => t.clone().into_bytes(),
+        Some(Value::Bytes(b)) => b.clone(),
+        _ => return Err(a.bad(1, "a string")),
+    };
+    ctx.sim.string_signals.insert(name.to_string(), value);
+    nothing()
+}
+
+/// `sim.clearStringSignal(name)`; clearing an unset signal is no error.
+pub(super) fn clear_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    ctx.sim.string_signals.remove(a.text(0)?);
     nothing()
 }
 
