@@ -122,18 +122,27 @@ pub struct ApplyJson {
     pub connection: String,
     /// lines or walls: what `lines` counts.
     pub style: Style,
-    /// Lines drawn (template included), or walls.
+    /// Lines drawn (template included), or walls: with `posts`, `unchanged + placed +
+    /// pasted` (`--draw mesh`: rectangles).
     pub lines: usize,
     /// Posts drawn.
     pub posts: usize,
-    /// Earlier copies reused.
+    /// Earlier copies reused (`--draw mesh`: meshes kept).
     pub reused: usize,
-    /// Copies pasted.
+    /// Copies pasted (`--draw mesh`: meshes created).
     pub pasted: usize,
     /// Earlier copies removed.
     pub removed: usize,
-    /// Objects already in place (no edit sent).
+    /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
     pub unchanged: usize,
+    /// Lines and posts kept whose pose (or parent) was sent.
+    pub placed: usize,
+    /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
+    pub markers_unchanged: usize,
+    /// Markers whose pose was sent.
+    pub markers_placed: usize,
+    /// A dry run found that a real run would change nothing.
+    pub nothing_to_do: bool,
     /// Edits sent.
     pub edits: usize,
     /// Messages exchanged with the simulator.

@@ -24,20 +24,22 @@ fn legacy_cli_apply_replace_clear() {
         .assert()
         .success()
         .stdout(
-            predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed")
+            predicate::str::contains("drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 0 already in place, 2 placed; 0 earlier copies removed")
                 .and(predicate::str::contains("verified")),
         );
     bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("159 reused, 0 pasted, 0 removed"));
+        .stdout(predicate::str::contains(
+            "160 kept (the template and 159 earlier copies: ",
+        ));
     bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
         .stdout(predicate::str::contains(
-            "0 pasted, 0 removed, 162 already in place",
+            "drew 160 lines: 160 kept (the template and 159 earlier copies: 160 already in place, 0 placed), 0 pasted; markers: 2 already in place, 0 placed; 0 earlier copies removed",
         ));
     bin()
         .args(["clear", "--port", &port])
