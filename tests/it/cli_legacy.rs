@@ -154,9 +154,48 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot read scene file"));
+    // on a terminal (standard output, no -o) a dump draws as text, as a layout does
+    let out = bin()
+        .args(["render", dump.to_str().unwrap()])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.lines().all(|l| l.chars().count() <= 80), "{text}");
+    assert!(
+        ["S", "E", "##", "..."].iter().all(|s| text.contains(s)),
+        "{text}"
+    );
+    // and as PNG: the lines' green, Start's blue and End's red are all there
+    let png = dir.path().join("scene.png");
     bin()
-        .args(["render", dump.to_str().unwrap(), "--format", "ascii"])
+        .args([
+            "render",
+            dump.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+        ])
+        .assert()
+        .success()
+        .stderr(
+            predicate::str::contains("wrote ")
+                .and(predicate::str::contains("png of the scene dump")),
+        );
+    let mut reader = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png).unwrap()))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.width, 800);
+    let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(3).collect();
+    for colour in [[0, 255, 0], [0, 0, 255], [255, 0, 0], [128, 128, 128]] {
+        assert!(pixels.iter().any(|p| *p == colour), "no {colour:?} pixel");
+    }
+    bin()
+        .args(["render", dump.to_str().unwrap(), "--solution"])
         .assert()
         .failure()
-        .stderr(predicate::str::contains("renders as SVG only"));
+        .stderr(predicate::str::contains("a scene dump is drawn as it is"));
 }
