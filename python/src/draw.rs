@@ -39,8 +39,22 @@ pub struct ApplyReport {
     pasted: usize,
     /// Earlier copies removed.
     removed: usize,
-    /// Objects already in place (no edit sent).
+    /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
+    /// `lines + posts == unchanged + placed + pasted` (copies).
     unchanged: usize,
+    /// Lines and posts kept whose pose (or parent) was sent.
+    placed: usize,
+    /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
+    markers_unchanged: usize,
+    /// Markers whose pose was sent (a dry run: would be).
+    markers_placed: usize,
+    /// `dry_run=True` found that a real run would change nothing.
+    nothing_to_do: bool,
+    /// What the user should know (a marker larger than a cell, a size not read, a template
+    /// standing on the maze): the `warning:` lines of `vrep-maze apply`.
+    warnings: Vec<String>,
+    /// The user's objects under the maze dummy (no copies of a template): left alone.
+    left_alone: Vec<String>,
     /// Edits sent.
     edits: usize,
     /// Messages exchanged with the simulator.
@@ -85,6 +99,11 @@ pub struct ClearReport {
     stopped_simulation: bool,
     /// `dry_run=True`: nothing was changed.
     dry_run: bool,
+    /// The user's objects under the maze dummy (no copies of a template): left alone.
+    left_alone: Vec<String>,
+    /// Where the line template went (one line), if it moved (or, a dry run, would): back
+    /// where it stood before the first `apply`, or below the floor.
+    template: Option<String>,
 }
 
 #[pymethods]
@@ -244,6 +263,12 @@ pub fn apply(
             pasted: report.pasted,
             removed: report.removed,
             unchanged: report.unchanged,
+            placed: report.placed,
+            markers_unchanged: report.markers_unchanged,
+            markers_placed: report.markers_placed,
+            nothing_to_do: report.dry_run && report.nothing_to_do(),
+            warnings: report.warnings.clone(),
+            left_alone: report.left_alone.clone(),
             edits: report.edits,
             round_trips: report.round_trips,
             elapsed: report.elapsed.as_secs_f64(),
@@ -380,5 +405,7 @@ pub fn clear(
         restored_idle_fps: report.restored_idle_fps,
         stopped_simulation: report.stopped_simulation,
         dry_run,
+        left_alone: report.left_alone,
+        template: report.template,
     })
 }

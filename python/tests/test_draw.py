@@ -18,7 +18,9 @@ def test_apply_replace_and_clear(serve, api):
     lines = len(first.segments)
     assert (report.lines, report.pasted, report.reused, report.removed) == (lines, lines - 1, 0, 0)
     assert report.verified and not report.dry_run and report.round_trips > 0
-    assert str(report).startswith(f"drew {lines} lines: 0 reused, {lines - 1} pasted")
+    assert str(report).startswith(f"drew {lines} lines: 1 kept (the template: ")
+    assert report.unchanged + report.placed + report.pasted == report.lines
+    assert report.markers_unchanged + report.markers_placed == 2
     # a second maze reuses the first one's copies
     second = vrep_maze.generate(seed=7, size=(5, 5))
     again = vrep_maze.apply(second, api=api, host="127.0.0.1", port=port)
@@ -60,7 +62,8 @@ def test_zmq_creates_missing_objects_and_both_apis_share_the_scene(tmp_path):
         assert report.saved_scene == str(tmp_path / "scene.ttt") and report.verified
         # the legacy API sees the maze the ZeroMQ one drew
         legacy = vrep_maze.apply(layout, api="legacy", port=server.legacy_port)
-        assert legacy.unchanged == legacy.lines + 2 and legacy.pasted == 0
+        assert legacy.unchanged == legacy.lines and legacy.pasted == 0
+        assert legacy.markers_unchanged == 2
     finally:
         server.process.kill()
         server.process.wait()
@@ -140,3 +143,29 @@ def test_zmq_draws_a_mesh_maze_that_copies_and_clear_replace(serve):
     assert len(vrep_maze.clear(api="zmq", port=port).removed) == 2
     with pytest.raises(ValueError):
         vrep_maze.apply(layout, api="zmq", port=port, draw="meshes")
+
+
+@pytest.mark.parametrize("api", APIS)
+def test_the_reports_carry_warnings_left_alone_and_the_template(api):
+    """The new report fields: apply's `warnings`, `left_alone`, `nothing_to_do` and
+    `placed`, clear's `left_alone` and `template`, as the command line says them."""
+    server = Serve("--timing", "instant")
+    try:
+        port = server.port(api)
+        # 0.8 m cells: the 1 m markers cover their neighbours, which apply warns about
+        layout = vrep_maze.generate(seed=5, size=(4, 4), cell_size=0.8)
+        first = vrep_maze.apply(layout, api=api, port=port)
+        assert any("covers the neighbouring cells" in w for w in first.warnings), first.warnings
+        assert first.left_alone == [] and not first.nothing_to_do and first.pasted > 0
+        dry = vrep_maze.apply(layout, api=api, port=port, dry_run=True)
+        assert dry.dry_run and dry.nothing_to_do and dry.placed == 0, str(dry)
+        assert str(dry).startswith("nothing to do: the scene already shows this layout")
+        planned = vrep_maze.clear(api=api, port=port, dry_run=True)
+        assert planned.left_alone == []
+        assert planned.template == "would put `Line` back where it stood before the first apply"
+        done = vrep_maze.clear(api=api, port=port)
+        assert done.template is not None and done.template.startswith("put `Line` back")
+        assert vrep_maze.clear(api=api, port=port).template is None
+    finally:
+        server.process.kill()
+        server.process.wait()

@@ -76,6 +76,12 @@ class ApplyReport:
     pasted: int
     removed: int
     unchanged: int
+    placed: int
+    markers_unchanged: int
+    markers_placed: int
+    nothing_to_do: bool
+    warnings: list[str]
+    left_alone: list[str]
     edits: int
     round_trips: int
     elapsed: float
@@ -92,6 +98,8 @@ class ClearReport:
     restored_idle_fps: Optional[int]
     stopped_simulation: bool
     dry_run: bool
+    left_alone: list[str]
+    template: Optional[str]
 
 class Batch(Iterator[Layout]):
     def __iter__(self) -> Batch: ...

@@ -1,5 +1,6 @@
 //! `vrep-maze inspect`: what is in a CoppeliaSim scene now, without changing it.
 
+use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -9,10 +10,11 @@ use super::apply::ConnectArgs;
 use super::connect::{Connected, connect};
 use super::reports::{DrawnMaze, InspectReport, LayoutMatch, REPORT_VERSION, SceneObject};
 use super::say::{self, say};
+use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
 use crate::draw::plan::{is_copy_name, relative_pose, world_frame};
 use crate::draw::verify::verify_read_only;
-use crate::draw::{Backend, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
+use crate::draw::{Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
 use crate::layout::Style;
 
 /// Show what the scene holds (API, version, simulation state, idle rate, the templates and
@@ -104,12 +106,40 @@ fn inspect(
         ("start marker", &names.start),
         ("end marker", &names.end),
     ];
+    let present: Vec<i32> = roles.iter().filter_map(|(_, name)| handle(name)).collect();
+    let sizes: HashMap<i32, BoundingBox> = present
+        .iter()
+        .zip(scene.bounding_boxes(&present)?)
+        .filter_map(|(&h, b)| Some((h, b?)))
+        .collect();
+    // colours of shapes only (a dummy has none)
+    let shapes: Vec<i32> = present
+        .iter()
+        .copied()
+        .filter(|h| survey.kinds.get(h) == Some(&OBJECT_SHAPE_TYPE))
+        .collect();
+    let colours_read = scene.shape_colours(&shapes)?;
+    let colours: HashMap<i32, [f64; 3]> = match &colours_read {
+        Some(colours) => shapes
+            .iter()
+            .zip(colours)
+            .filter_map(|(&h, c)| Some((h, (*c)?)))
+            .collect(),
+        None => HashMap::new(),
+    };
     let templates = roles
         .iter()
         .map(|(role, name)| {
             let h = handle(name);
             let object = h.and_then(by_handle);
-            scene_object(role, name, h, object, floor.as_ref())
+            let mut shown = scene_object(role, name, h, object, floor.as_ref());
+            shown.size = h
+                .and_then(|h| sizes.get(&h))
+                .map(|b| b.size().map(|v| round(v, 1e6)));
+            shown.colour = h
+                .and_then(|h| colours.get(&h))
+                .map(|c| c.map(|v| round(v, 1e3)));
+            shown
         })
         .collect();
     let parent = handle(&names.parent);
@@ -190,6 +220,7 @@ fn inspect(
         idle_fps: rates.current,
         saved_idle_fps: rates.saved,
         objects: templates,
+        colours_read: colours_read.is_some(),
         maze,
         layout,
     })
@@ -225,8 +256,8 @@ fn scene_object(
         Some(floor) if role != "floor" => relative_pose(floor, o),
         _ => (o.position, o.orientation),
     });
-    // to the micrometre, without a negative zero
-    let round = |v: f64| (v * 1e6).round() / 1e6 + 0.0;
+    // to the micrometre
+    let round = |v: f64| round(v, 1e6);
     SceneObject {
         role: role.into(),
         name: name.into(),
@@ -234,7 +265,14 @@ fn scene_object(
         handle,
         position: pose.map(|(p, _)| p.map(round)),
         orientation: pose.map(|(_, e)| e.map(round)),
+        size: None,
+        colour: None,
     }
+}
+
+/// `v` rounded to `1 / per` (1e6: the micrometre), without a negative zero.
+fn round(v: f64, per: f64) -> f64 {
+    (v * per).round() / per + 0.0
 }
 
 /// The report for a person.
@@ -254,9 +292,16 @@ fn show(r: &InspectReport) -> anyhow::Result<()> {
         r.idle_fps
     ))?;
     for o in &r.objects {
+        let mut looks = String::new();
+        if let Some(s) = o.size {
+            looks += &format!("; {} x {} x {} m", s[0], s[1], s[2]);
+        }
+        if let Some(c) = o.colour {
+            looks += &format!("; colour {}", hex(c));
+        }
         match (o.position, o.orientation) {
             (Some(p), Some(e)) => say(format!(
-                "  {:<14} {:<8} at {}, {}, {} m, yaw {} rad{}",
+                "  {:<14} {:<8} at {}, {}, {} m, yaw {} rad{}{looks}",
                 o.role,
                 o.name,
                 p[0],
@@ -272,6 +317,9 @@ fn show(r: &InspectReport) -> anyhow::Result<()> {
             _ if o.present => say(format!("  {:<14} {:<8} present", o.role, o.name))?,
             _ => say(format!("  {:<14} {:<8} missing", o.role, o.name))?,
         }
+    }
+    if !r.colours_read {
+        say("  (colours not shown: the legacy remote API cannot read them; --api zmq can)")?;
     }
     let m = &r.maze;
     let kind = match m.style {
@@ -317,4 +365,10 @@ fn show(r: &InspectReport) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// An RGB colour (0..1) as `#rrggbb`.
+fn hex(c: [f64; 3]) -> String {
+    let byte = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", byte(c[0]), byte(c[1]), byte(c[2]))
 }

@@ -53,15 +53,7 @@ pub struct RenderArgs {
 pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     let output = args.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(scene) = scene_dump(&args)? {
-        let format = choose_format(args.format, output, Format::Svg)?;
-        ensure_usage!(
-            format == Format::Svg,
-            "{}: a scene dump renders as SVG only (use --format svg or -o FILE.svg)",
-            args.file.display()
-        );
-        let svg = crate::sim::svg::scene_svg(&scene, 800.0);
-        write_output(output, |w| w.write_all(svg.as_bytes()))?;
-        return Ok(ExitCode::SUCCESS);
+        return render_scene(&args, output, &scene);
     }
     let format = choose_format(args.format, output, Format::Ascii)?;
     ensure_usage!(
@@ -167,7 +159,48 @@ fn choose_format(
         (f, e) => Ok(f.or(e).unwrap_or(default)),
     }
 }
-/// A `vrep-maze serve --dump` scene file (drawn as SVG seen from above), else `None`.
+/// Columns of a scene dump's ASCII picture (a classic terminal's width).
+const ASCII_COLUMNS: u32 = 80;
+
+/// Draws a scene dump seen from above ([`crate::sim::top_view`]): ASCII by default
+/// ([`ASCII_COLUMNS`] wide), SVG or PNG 800 px wide (or `--width`), the format chosen as a
+/// layout's is.
+fn render_scene(
+    args: &RenderArgs,
+    output: Option<&Path>,
+    scene: &crate::sim::Scene,
+) -> Result<ExitCode> {
+    use crate::sim::top_view;
+    let format = choose_format(args.format, output, Format::Ascii)?;
+    ensure_usage!(
+        !args.solution && args.trajectory.is_none() && !args.crop && args.px_per_m.is_none(),
+        "{}: a scene dump is drawn as it is (--width sets an SVG's or PNG's size; --solution, --trajectory, --crop and --px-per-m draw layouts)",
+        args.file.display()
+    );
+    ensure_usage!(
+        format != Format::Png || output.is_some() || !std::io::stdout().is_terminal(),
+        "PNG is binary and standard output is a terminal: give -o FILE.png (or redirect the output)"
+    );
+    let width = args.width.unwrap_or(800);
+    let bytes = match format {
+        Format::Svg => top_view::scene_svg(scene, f64::from(width)).into_bytes(),
+        Format::Png => top_view::scene_png(scene, width)
+            .with_context(|| format!("{}: the PNG could not be encoded", args.file.display()))?,
+        Format::Ascii => top_view::scene_ascii(scene, ASCII_COLUMNS).into_bytes(),
+    };
+    write_output(output, |w| w.write_all(&bytes))?;
+    if let Some(path) = output {
+        note(format!(
+            "wrote {}: {format} of the scene dump {} ({} objects)",
+            path.display(),
+            args.file.display(),
+            scene.len()
+        ));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A `vrep-maze serve --dump` scene file, else `None`.
 /// The most bytes of a scene dump read whole.
 const MAX_SCENE_DUMP_BYTES: usize = 1 << 30;
 /// Bytes read from the start of a file to tell a scene dump from a layout.

@@ -122,18 +122,27 @@ pub struct ApplyJson {
     pub connection: String,
     /// lines or walls: what `lines` counts.
     pub style: Style,
-    /// Lines drawn (template included), or walls.
+    /// Lines drawn (template included), or walls: with `posts`, `unchanged + placed +
+    /// pasted` (`--draw mesh`: rectangles).
     pub lines: usize,
     /// Posts drawn.
     pub posts: usize,
-    /// Earlier copies reused.
+    /// Earlier copies reused (`--draw mesh`: meshes kept).
     pub reused: usize,
-    /// Copies pasted.
+    /// Copies pasted (`--draw mesh`: meshes created).
     pub pasted: usize,
     /// Earlier copies removed.
     pub removed: usize,
-    /// Objects already in place (no edit sent).
+    /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
     pub unchanged: usize,
+    /// Lines and posts kept whose pose (or parent) was sent.
+    pub placed: usize,
+    /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
+    pub markers_unchanged: usize,
+    /// Markers whose pose was sent.
+    pub markers_placed: usize,
+    /// A dry run found that a real run would change nothing.
+    pub nothing_to_do: bool,
     /// Edits sent.
     pub edits: usize,
     /// Messages exchanged with the simulator.
@@ -194,6 +203,9 @@ pub struct InspectReport {
     pub saved_idle_fps: Option<i32>,
     /// The named objects: floor, maze dummy, templates, markers.
     pub objects: Vec<SceneObject>,
+    /// The API read the shapes' colours (ZeroMQ); `false` over the legacy API, which cannot
+    /// read a colour, so no object has one.
+    pub colours_read: bool,
     /// The maze drawn.
     pub maze: DrawnMaze,
     /// With `--layout`: whether the drawing matches it.
@@ -220,6 +232,14 @@ pub struct SceneObject {
     /// CoppeliaSim Euler angles, radians, in the same frame (yaw last), when read.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub orientation: Option<[f64; 3]>,
+    /// Bounding-box size along its own x, y, z, metres (a plane's z is 0), when the simulator
+    /// gives one (float parameters 15..20; single precision, rounded to the micrometre).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 3]>,
+    /// A shape's ambient-diffuse colour, RGB 0..1, when read (ZeroMQ `sim.getShapeColor`;
+    /// never over the legacy API: see `colours_read`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<[f64; 3]>,
 }
 
 /// The copies under the maze dummy.

@@ -69,7 +69,9 @@ pub enum Stage {
     Verifying,
 }
 
-/// What [`apply`] did.
+/// What [`apply`] did. In copies mode the counts add up: `lines + posts` = `unchanged +
+/// placed + pasted` (the drawing's lines and posts), and `unchanged + placed` = `reused`,
+/// plus the template itself in a line maze with lines; the markers are counted apart.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ApplyReport {
     /// Lines or walls: what `lines` counts.
@@ -82,20 +84,31 @@ pub struct ApplyReport {
     /// count rectangles and boxes, `reused` meshes kept, `pasted` meshes created); 0 in
     /// copies mode.
     pub meshes: usize,
-    /// Earlier copies reused.
+    /// Earlier copies reused (kept), the template not counted.
     pub reused: usize,
     /// Copies pasted.
     pub pasted: usize,
-    /// Earlier copies removed.
+    /// Earlier copies removed (the surplus, another style's copies, an earlier mesh maze).
     pub removed: usize,
-    /// Objects already in place (no edit sent).
+    /// Lines and posts kept (the template, reused copies) that were already in place: no
+    /// edit sent. Mesh mode: the meshes kept.
     pub unchanged: usize,
+    /// Lines and posts kept whose pose (or parent) was sent: found elsewhere, or a pose the
+    /// backend had not read (ZeroMQ sends a reused copy's pose rather than read it first).
+    pub placed: usize,
+    /// Markers already in place: `Start`, `End` and the line template where it is not a
+    /// line (hidden under `Start` in a one-cell maze; in mesh mode, on the first line).
+    pub markers_unchanged: usize,
+    /// Markers whose pose was sent (or, on a dry run, would be).
+    pub markers_placed: usize,
     /// Edits sent.
     pub edits: usize,
     /// Round trips.
     pub round_trips: usize,
     /// Wall time.
     pub elapsed: Duration,
+    /// The simulation was running when the scene was read.
+    pub simulation_running: bool,
     /// The simulation was stopped first.
     pub stopped_simulation: bool,
     /// Dry run: nothing was changed.
@@ -108,39 +121,81 @@ pub struct ApplyReport {
     pub left_alone: Vec<String>,
 }
 
+impl ApplyReport {
+    /// `true` when the scene already shows the drawing: nothing to paste, remove or place,
+    /// and no simulation to stop (on a dry run: nothing a real run would change).
+    pub fn nothing_to_do(&self) -> bool {
+        self.pasted == 0
+            && self.removed == 0
+            && self.placed == 0
+            && self.markers_placed == 0
+            && !self.simulation_running
+    }
+}
+
 impl std::fmt::Display for ApplyReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let verb = if self.dry_run { "would draw" } else { "drew" };
         let posts = if self.posts > 0 {
             format!(" and {} posts", self.posts)
         } else {
             String::new()
         };
+        let cost = format!(
+            "{} round trip(s), {:.2} s",
+            self.round_trips,
+            self.elapsed.as_secs_f64()
+        );
+        if self.dry_run && self.nothing_to_do() {
+            let what = if self.meshes > 0 {
+                format!("{} mesh(es)", self.meshes)
+            } else {
+                format!("{} {}{posts}", self.lines, self.style.name())
+            };
+            return write!(
+                f,
+                "nothing to do: the scene already shows this layout ({what}, markers in place); {cost}"
+            );
+        }
+        let verb = if self.dry_run { "would draw" } else { "drew" };
+        let markers = format!(
+            "markers: {} already in place, {} placed",
+            self.markers_unchanged, self.markers_placed
+        );
         if self.meshes > 0 {
             return write!(
                 f,
-                "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created, {} object(s) removed; {} round trip(s), {:.2} s",
+                "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created; {markers}; {} earlier object(s) removed; {cost}",
                 self.lines,
                 self.style.name().trim_end_matches('s'),
                 self.meshes,
                 self.reused,
                 self.pasted,
                 self.removed,
-                self.round_trips,
-                self.elapsed.as_secs_f64()
             );
         }
+        let kept = self.unchanged + self.placed;
+        let template = kept > self.reused;
+        let of = match (template, self.reused) {
+            (_, _) if kept == 0 => String::new(),
+            (true, 0) => "the template: ".to_string(),
+            (true, n) => format!("the template and {n} earlier copies: "),
+            (false, n) => format!("{n} earlier copies: "),
+        };
+        let kept = if kept == 0 {
+            "0 kept".to_string()
+        } else {
+            format!(
+                "{kept} kept ({of}{} already in place, {} placed)",
+                self.unchanged, self.placed
+            )
+        };
         write!(
             f,
-            "{verb} {} {}{posts}: {} reused, {} pasted, {} removed, {} already in place; {} round trip(s), {:.2} s",
+            "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed; {cost}",
             self.lines,
             self.style.name(),
-            self.reused,
             self.pasted,
             self.removed,
-            self.unchanged,
-            self.round_trips,
-            self.elapsed.as_secs_f64()
         )
     }
 }
@@ -223,6 +278,7 @@ fn apply_claimed(
         posts: drawing.posts.len(),
         dry_run: opts.dry_run,
         warnings: sizes.warnings,
+        simulation_running: survey.simulation_running,
         ..Default::default()
     };
     if survey.simulation_running {
@@ -294,33 +350,154 @@ fn apply_claimed(
         kept_children: kept,
         blocks_per_round: opts.paste_blocks_per_round,
     }));
-    if !opts.dry_run {
-        let line_template = survey.handles.get(5).copied().flatten();
-        keep_home(
-            scene,
-            drawing,
-            &h,
-            objects,
-            !existing.is_empty(),
-            line_template,
-            names,
-            &mut report,
-        )?;
-        let mut run = Drawer {
-            scene,
-            drawing,
-            opts,
-            h: &h,
-            claim,
-            progress,
-            report: &mut report,
-            objects_in_scene: survey.objects.len(),
-            placed: 0,
-            kinds: &survey.kinds,
+    if opts.dry_run {
+        // what a real run would place: compared as it compares, with every pose read (a
+        // backend may not have read the copies' poses in the survey), nothing written
+        let unread = objects
+            .iter()
+            .any(|o| o.position.iter().any(|x| x.is_nan()));
+        let read;
+        let objects = if unread {
+            read = plan::sort_out(&scene.objects()?, &h, &names.templates(), &survey.kinds);
+            &read.objects
+        } else {
+            objects
         };
-        run.draw(objects, &parts, &foreign)?;
+        placements(&parts, drawing, &h, objects, &mut report);
+        return Ok(report);
     }
+    let line_template = survey.handles.get(5).copied().flatten();
+    keep_home(
+        scene,
+        drawing,
+        &h,
+        objects,
+        !existing.is_empty(),
+        line_template,
+        names,
+        &mut report,
+    )?;
+    let mut run = Drawer {
+        scene,
+        drawing,
+        opts,
+        h: &h,
+        claim,
+        progress,
+        report: &mut report,
+        objects_in_scene: survey.objects.len(),
+        placed: 0,
+        kinds: &survey.kinds,
+    };
+    run.draw(objects, &parts, &foreign)?;
     Ok(report)
+}
+
+/// The kept objects' places: the edits that put each part's template (a line maze's) and
+/// reused copies, and the markers, where `drawing` wants them (relative to the floor),
+/// leaving out those `objects` shows there already; counted into `report`.
+struct Placements {
+    /// The edits to send.
+    edits: Vec<Edit>,
+    /// The objects drawn so far per part, `drawn[p][i]` for `parts[p].poses[i]`: a line
+    /// maze starts with the template itself, walls and posts with copies only.
+    drawn: Vec<Vec<i32>>,
+    /// Lines and posts kept (in place or placed).
+    kept: usize,
+}
+
+/// Decides [`Placements`] for `parts` from the scene's `objects`, counting the kept lines
+/// and markers found in place or placed into `report`; sends nothing.
+fn placements(
+    parts: &[Part<'_>],
+    drawing: &Drawing,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    report: &mut ApplyReport,
+) -> Placements {
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let known = |handle: i32| by_handle.get(&handle).copied();
+    let floor = known(h.floor).map(world_frame).unwrap_or_default();
+    let mut out = Placements {
+        edits: Vec::new(),
+        drawn: Vec::with_capacity(parts.len()),
+        kept: 0,
+    };
+    let mut markers = Vec::new();
+    for part in parts {
+        let mut copies = if part.template_drawn {
+            vec![part.template]
+        } else {
+            vec![]
+        };
+        copies.extend(&part.plan.reuse);
+        for (i, (&handle, want)) in copies.iter().zip(part.poses).enumerate() {
+            let parent = (i > 0 || !part.template_drawn).then_some(h.parent);
+            let edits = place(known(handle), &floor, h.floor, handle, want, parent);
+            if edits.is_empty() {
+                report.unchanged += 1;
+            } else {
+                report.placed += 1;
+            }
+            out.edits.extend(edits);
+            out.kept += 1;
+        }
+        if part.poses.is_empty() && part.template_drawn {
+            // no segment (a 1-cell maze): the template goes below the floor, out of
+            // every camera's sight, rather than lie on the maze
+            markers.push((
+                part.template,
+                home::Home::hidden(drawing.start.x, drawing.start.y),
+            ));
+        }
+        out.drawn.push(copies);
+    }
+    markers.push((h.start, drawing.start));
+    markers.push((h.end, drawing.end));
+    for (handle, want) in markers {
+        let edits = place(known(handle), &floor, h.floor, handle, &want, None);
+        if edits.is_empty() {
+            report.markers_unchanged += 1;
+        } else {
+            report.markers_placed += 1;
+        }
+        out.edits.extend(edits);
+    }
+    out
+}
+
+/// The edits that put `handle` at `want` (relative to the floor, under `parent`), none if
+/// `current` shows it there already.
+fn place(
+    current: Option<&ObjectInfo>,
+    floor: &crate::coppelia::frame::Frame,
+    floor_handle: i32,
+    handle: i32,
+    want: &Pose,
+    parent: Option<i32>,
+) -> Vec<Edit> {
+    let parent_ok = parent.is_none_or(|p| current.is_some_and(|o| o.parent == Some(p)));
+    let pose_ok = current.is_some_and(|o| pose_differences(floor, o, want).is_none());
+    let mut edits = Vec::new();
+    if parent_ok && pose_ok {
+        return edits;
+    }
+    if let Some(p) = parent
+        && !parent_ok
+    {
+        edits.push(Edit::SetParent {
+            handle,
+            parent: Some(p),
+            keep_in_place: false,
+        });
+    }
+    edits.push(Edit::SetPose {
+        handle,
+        relative_to: floor_handle,
+        position: crate::draw::position(want),
+        orientation: crate::draw::euler(want),
+    });
+    edits
 }
 
 /// Keeps the line template's home ([`home`]) before a drawing moves it: a line maze
@@ -445,9 +622,11 @@ impl Drawer<'_, '_> {
         parts: &[Part<'_>],
         foreign: &[i32],
     ) -> Result<(), DrawError> {
-        let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
-        let known = |handle: i32| by_handle.get(&handle).copied();
-        let floor = known(self.h.floor).map(world_frame).unwrap_or_default();
+        let floor = objects
+            .iter()
+            .find(|o| o.handle == self.h.floor)
+            .map(world_frame)
+            .unwrap_or_default();
         let (h, drawing) = (self.h, self.drawing);
         // the surplus goes first: fewer objects make every later copy cheaper
         let removals: Vec<Edit> = parts
@@ -460,35 +639,11 @@ impl Drawer<'_, '_> {
         self.objects_in_scene = self.objects_in_scene.saturating_sub(removals.len());
         // the templates, reused copies and markers, where they differ, go with the first
         // round of copies (or alone, if nothing is pasted)
-        let mut edits: Vec<Edit> = Vec::new();
-        // the objects drawn per part, `drawn[p][i]` for `parts[p].poses[i]`: a line maze
-        // starts with the template itself, walls and posts with copies only
-        let mut drawn: Vec<Vec<i32>> = Vec::with_capacity(parts.len());
-        let mut placed_now = 0;
-        for part in parts {
-            let mut copies = if part.template_drawn {
-                vec![part.template]
-            } else {
-                vec![]
-            };
-            copies.extend(&part.plan.reuse);
-            for (i, (&handle, want)) in copies.iter().zip(part.poses).enumerate() {
-                let parent = (i > 0 || !part.template_drawn).then_some(h.parent);
-                self.place(&mut edits, known(handle), &floor, handle, want, parent);
-                placed_now += 1;
-            }
-            if part.poses.is_empty() && part.template_drawn {
-                // no segment (a 1-cell maze): the template goes below the floor, out of
-                // every camera's sight, rather than lie on the maze
-                let hidden = home::Home::hidden(drawing.start.x, drawing.start.y);
-                let t = part.template;
-                self.place(&mut edits, known(t), &floor, t, &hidden, None);
-            }
-            drawn.push(copies);
-        }
-        for (handle, want) in [(h.start, &drawing.start), (h.end, &drawing.end)] {
-            self.place(&mut edits, known(handle), &floor, handle, want, None);
-        }
+        let Placements {
+            mut edits,
+            mut drawn,
+            kept: mut placed_now,
+        } = placements(parts, drawing, h, objects, self.report);
         let to_paste: usize = parts.iter().map(|part| part.plan.paste).sum();
         let mut pasted = 0;
         let mut short = None;
@@ -516,7 +671,14 @@ impl Drawer<'_, '_> {
                 for new in self.scene.copy_paste(&groups)? {
                     for handle in new {
                         if let Some(want) = part.poses.get(copies.len()) {
-                            self.place(&mut edits, None, &floor, handle, want, Some(h.parent));
+                            edits.extend(place(
+                                None,
+                                &floor,
+                                h.floor,
+                                handle,
+                                want,
+                                Some(h.parent),
+                            ));
                             new_lines += 1;
                         }
                         copies.push(handle);
@@ -569,40 +731,6 @@ impl Drawer<'_, '_> {
         } else {
             Err(DrawError::Verify(problems))
         }
-    }
-
-    /// Adds the edits that put `handle` at `want` (under `parent`), unless `current` shows
-    /// it there already.
-    fn place(
-        &mut self,
-        edits: &mut Vec<Edit>,
-        current: Option<&ObjectInfo>,
-        floor: &crate::coppelia::frame::Frame,
-        handle: i32,
-        want: &Pose,
-        parent: Option<i32>,
-    ) {
-        let parent_ok = parent.is_none_or(|p| current.is_some_and(|o| o.parent == Some(p)));
-        let pose_ok = current.is_some_and(|o| pose_differences(floor, o, want).is_none());
-        if parent_ok && pose_ok {
-            self.report.unchanged += 1;
-            return;
-        }
-        if let Some(p) = parent
-            && !parent_ok
-        {
-            edits.push(Edit::SetParent {
-                handle,
-                parent: Some(p),
-                keep_in_place: false,
-            });
-        }
-        edits.push(Edit::SetPose {
-            handle,
-            relative_to: self.h.floor,
-            position: crate::draw::position(want),
-            orientation: crate::draw::euler(want),
-        });
     }
 
     /// Sends `edits`, which place `lines` lines, in requests the simulator finishes in

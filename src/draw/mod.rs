@@ -420,6 +420,16 @@ pub trait Backend {
     /// for all, ZeroMQ one call per parameter and object.
     fn bounding_boxes(&mut self, handles: &[i32])
     -> Result<Vec<Option<BoundingBox>>, BackendError>;
+    /// The ambient-diffuse colours (RGB, 0..1) of the shapes `handles`, in the same order,
+    /// `None` for one the simulator gives none of; `Ok(None)` from an API that cannot read
+    /// colours (the legacy API has no call for it).
+    fn shape_colours(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Option<Vec<Option<[f64; 3]>>>, BackendError> {
+        let _ = handles;
+        Ok(None)
+    }
     /// Reads the integer signals `names` (`None`: not set), legacy in one request.
     fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError>;
     /// Sets (`Some`) or clears (`None`) integer signals in order, legacy in one request.

@@ -11,7 +11,7 @@ pub mod mesh;
 pub mod model;
 pub mod robot;
 pub mod scene;
-pub mod svg;
+pub mod top_view;
 
 use std::time::{Duration, Instant};
 

@@ -679,6 +679,14 @@ impl Backend for ZmqBackend {
         Ok(out)
     }
 
+    fn shape_colours(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Option<Vec<Option<[f64; 3]>>>, BackendError> {
+        let colours: Result<Vec<_>, _> = handles.iter().map(|&h| self.shape_colour(h)).collect();
+        colours.map(Some)
+    }
+
     fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
         let mut out = Vec::with_capacity(names.len());
         for name in names {

@@ -123,7 +123,9 @@ fn demo_runs_the_whole_job() {
         .success()
         .stdout(contains("OK 9x9 dfs seed 42, 160 segments"))
         .stdout(contains(" S "))
-        .stdout(contains("drew 160 lines: 0 reused, 159 pasted"))
+        .stdout(contains(
+            "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted",
+        ))
         .stdout(contains("verified: the scene holds 160 green lines"));
 }
 

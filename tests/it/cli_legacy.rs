@@ -24,20 +24,22 @@ fn legacy_cli_apply_replace_clear() {
         .assert()
         .success()
         .stdout(
-            predicate::str::contains("drew 160 lines: 0 reused, 159 pasted, 0 removed")
+            predicate::str::contains("drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 0 already in place, 2 placed; 0 earlier copies removed")
                 .and(predicate::str::contains("verified")),
         );
     bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
-        .stdout(predicate::str::contains("159 reused, 0 pasted, 0 removed"));
+        .stdout(predicate::str::contains(
+            "160 kept (the template and 159 earlier copies: ",
+        ));
     bin()
         .args(["apply", &m2, "--port", &port])
         .assert()
         .success()
         .stdout(predicate::str::contains(
-            "0 pasted, 0 removed, 162 already in place",
+            "drew 160 lines: 160 kept (the template and 159 earlier copies: 160 already in place, 0 placed), 0 pasted; markers: 2 already in place, 0 placed; 0 earlier copies removed",
         ));
     bin()
         .args(["clear", "--port", &port])
@@ -152,9 +154,48 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("cannot read scene file"));
+    // on a terminal (standard output, no -o) a dump draws as text, as a layout does
+    let out = bin()
+        .args(["render", dump.to_str().unwrap()])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let text = String::from_utf8(out).unwrap();
+    assert!(text.lines().all(|l| l.chars().count() <= 80), "{text}");
+    assert!(
+        ["S", "E", "##", "..."].iter().all(|s| text.contains(s)),
+        "{text}"
+    );
+    // and as PNG: the lines' green, Start's blue and End's red are all there
+    let png = dir.path().join("scene.png");
     bin()
-        .args(["render", dump.to_str().unwrap(), "--format", "ascii"])
+        .args([
+            "render",
+            dump.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+        ])
+        .assert()
+        .success()
+        .stderr(
+            predicate::str::contains("wrote ")
+                .and(predicate::str::contains("png of the scene dump")),
+        );
+    let mut reader = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png).unwrap()))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.width, 800);
+    let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(3).collect();
+    for colour in [[0, 255, 0], [0, 0, 255], [255, 0, 0], [128, 128, 128]] {
+        assert!(pixels.iter().any(|p| *p == colour), "no {colour:?} pixel");
+    }
+    bin()
+        .args(["render", dump.to_str().unwrap(), "--solution"])
         .assert()
         .failure()
-        .stderr(predicate::str::contains("renders as SVG only"));
+        .stderr(predicate::str::contains("a scene dump is drawn as it is"));
 }

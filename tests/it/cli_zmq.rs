@@ -60,7 +60,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
                     "created Floor, Maze, Line, Start, End",
                 ))
                 .and(predicate::str::contains(
-                    "drew 160 lines: 0 reused, 159 pasted",
+                    "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted",
                 ))
                 .and(predicate::str::contains("verified"))
                 .and(predicate::str::contains("saved the scene")),
@@ -83,7 +83,7 @@ fn zmq_cli_fresh_scene_create_missing_apply_save_clear() {
         .assert()
         .success()
         .stdout(
-            predicate::str::contains("159 reused, 0 pasted, 0 removed")
+            predicate::str::contains("160 kept (the template and 159 earlier copies: 1 already in place, 159 placed), 0 pasted; markers: 2 already in place, 0 placed; 0 earlier copies removed")
                 .and(predicate::str::contains("created").not()),
         );
     bin()

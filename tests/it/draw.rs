@@ -9,7 +9,7 @@ use vrep_maze::sim::Scene;
 
 use crate::support::backend::{Kind, Server};
 use crate::support::backend_tests;
-use crate::support::layouts::drawing;
+use crate::support::layouts::{assert_counts_add_up, drawing};
 
 backend_tests!(
     apply_draws_verifies_and_reapplies_without_changes,
@@ -22,6 +22,8 @@ backend_tests!(
     apply_in_a_moved_floor_with_templates_under_maze,
     template_inside_the_maze_dummy_is_kept_and_reused,
     bounding_boxes_are_read_as_the_simulator_gives_them,
+    counts_add_up_in_every_kind_of_apply,
+    dry_run_over_a_matching_scene_has_nothing_to_do,
 );
 
 /// The bounding boxes of the course objects (float parameters 15..20), in the order asked,
@@ -388,4 +390,94 @@ fn every_backend_draws_the_same_scene() {
     for (kind, snapshot) in &snapshots[1..] {
         assert_eq!(legacy, snapshot, "legacy and {}", kind.name());
     }
+}
+
+/// Every apply's report counts each line once (kept: in place or placed; or pasted) and each
+/// marker once, and its summary line says so: a first draw, a repeat on the same connection
+/// and on a new one (over ZeroMQ a new connection has not read the copies' poses, so it
+/// places them), a scene with one copy moved, a smaller maze, a one-cell maze.
+fn counts_add_up_in_every_kind_of_apply(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    let d = drawing(9, 42);
+    let mut b = s.connect();
+    let first = apply(&mut b, &d).unwrap();
+    assert_counts_add_up(&first, &d);
+    assert!(
+        first.to_string().starts_with(
+            "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 0 already in place, 2 placed; 0 earlier copies removed; "
+        ),
+        "{first}"
+    );
+    let again = apply(&mut b, &d).unwrap();
+    assert_counts_add_up(&again, &d);
+    assert_eq!((again.unchanged, again.placed), (160, 0), "{again}");
+    drop(b);
+    let mut b = s.connect();
+    let fresh = apply(&mut b, &d).unwrap();
+    assert_counts_add_up(&fresh, &d);
+    assert_eq!(fresh.reused, 159, "{fresh}");
+    drop(b);
+    s.with_sim(|sim| {
+        let copy = sim.scene.resolve("Line7").unwrap();
+        sim.scene.set_position(copy, -1, [0.1, 0.2, 0.3]).unwrap();
+    });
+    let mut b = s.connect();
+    let moved = apply(&mut b, &d).unwrap();
+    assert_counts_add_up(&moved, &d);
+    assert!(moved.placed >= 1, "{moved}");
+    let small = drawing(3, 2);
+    let smaller = apply(&mut b, &small).unwrap();
+    assert_counts_add_up(&smaller, &small);
+    assert_eq!(smaller.removed, 160 - small.lines.len(), "{smaller}");
+    let one = drawing(1, 1);
+    let hidden = apply(&mut b, &one).unwrap();
+    assert_counts_add_up(&hidden, &one);
+    assert_eq!((hidden.lines, hidden.markers_placed), (0, 3), "{hidden}");
+    drop(b);
+    s.shutdown();
+}
+
+/// A dry run compares poses as a real run does, reading and never writing: over a scene
+/// that shows the layout (read by a new connection, which knows no pose yet) it says there
+/// is nothing to do; with one copy moved it says that copy would be placed.
+fn dry_run_over_a_matching_scene_has_nothing_to_do(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let d = drawing(5, 3);
+    let mut b = s.connect();
+    apply(&mut b, &d).unwrap();
+    drop(b);
+    let dry = ApplyOptions {
+        dry_run: true,
+        ..Default::default()
+    };
+    let state = || s.with_sim(|sim| (sim.scene.to_json().to_string(), sim.idle_fps));
+    let before = state();
+    let mut b = s.connect();
+    let r = draw::apply(&mut *b, &d, &dry, &mut no_progress).unwrap();
+    drop(b);
+    assert_eq!(state(), before, "{}: a dry run writes nothing", kind.name());
+    assert!(r.nothing_to_do(), "{}: {r:?}", kind.name());
+    assert!(
+        r.to_string().starts_with(&format!(
+            "nothing to do: the scene already shows this layout ({} lines, markers in place); ",
+            d.lines.len()
+        )),
+        "{r}"
+    );
+    s.with_sim(|sim| {
+        let copy = sim.scene.resolve("Line3").unwrap();
+        sim.scene.set_position(copy, -1, [0.1, 0.2, 0.3]).unwrap();
+    });
+    let before = state();
+    let mut b = s.connect();
+    let r = draw::apply(&mut *b, &d, &dry, &mut no_progress).unwrap();
+    drop(b);
+    assert_eq!(state(), before, "{}: a dry run writes nothing", kind.name());
+    assert_counts_add_up(&r, &d);
+    assert_eq!((r.placed, r.pasted, r.removed), (1, 0, 0), "{r}");
+    assert!(
+        !r.nothing_to_do() && r.to_string().starts_with("would draw"),
+        "{r}"
+    );
+    s.shutdown();
 }

@@ -1,6 +1,6 @@
 //! `vrep-maze inspect`: what the scene holds, over every API, and never a write.
 
-use serde_json::Value;
+use serde_json::{Value, json};
 use vrep_maze::sim::{NewObject, ObjectType, Scene};
 
 use crate::support::backend::{Kind, Server};
@@ -106,18 +106,13 @@ fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
             .find(|o| o["role"] == "wall template")
             .unwrap();
         assert_eq!(wall["present"], false);
-        // the user's object under the dummy is not the maze's: named, left alone, and the
-        // drawing still matches the layout
+        // the user's object under the dummy is left alone: the maze still matches the layout
         let layout = &report["layout"];
         assert_eq!(layout["matches"], true, "{name}: {layout}");
         let maze = &report["maze"];
-        assert_eq!(
-            maze["not_ours"],
-            serde_json::json!(["Camera"]),
-            "{name}: {maze}"
-        );
+        // every API tells the maze's copies from the user's object
         assert_eq!(maze["lines"], 159, "{name}: {maze}");
-        assert_eq!(maze["names_unread"], 0, "{name}: {maze}");
+        assert_eq!(maze["not_ours"], json!(["Camera"]), "{name}");
         // without the user's object the drawing matches; another layout does not
         server.with_sim(|sim| {
             let camera = sim
@@ -172,4 +167,102 @@ fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() 
         "{text}"
     );
     server.shutdown();
+}
+
+/// The templates' and markers' sizes over every API; their colours over ZeroMQ
+/// (`sim.getShapeColor`), and over the legacy API, which cannot read colours, none, said in
+/// the text rather than guessed. Still never a write.
+#[test]
+fn inspect_shows_sizes_and_colours_where_the_api_reads_them() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let schema: Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("schema/inspect-v1.schema.json")).unwrap(),
+    )
+    .unwrap();
+    let validator = jsonschema::validator_for(&schema).unwrap();
+    for kind in Kind::ALL {
+        let name = kind.name();
+        let server = kind.serve(Scene::course_walls(), 0);
+        let before = state(&server);
+        let report = inspect(kind, &server, &[], 0);
+        assert!(
+            validator.iter_errors(&report).next().is_none(),
+            "{name}: {report}"
+        );
+        let object = |role: &str| {
+            report["objects"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .find(|o| o["role"] == role)
+                .unwrap()
+                .clone()
+        };
+        assert_eq!(
+            object("line template")["size"],
+            json!([0.6, 0.1, 0.0]),
+            "{name}"
+        );
+        assert_eq!(
+            object("wall template")["size"],
+            json!([1.0, 0.05, 0.2]),
+            "{name}"
+        );
+        assert_eq!(
+            object("start marker")["size"],
+            json!([1.0, 1.0, 0.0]),
+            "{name}"
+        );
+        let zmq = kind != Kind::Legacy;
+        assert_eq!(report["colours_read"], zmq, "{name}");
+        if zmq {
+            assert_eq!(
+                object("line template")["colour"],
+                json!([0.0, 1.0, 0.0]),
+                "{name}"
+            );
+            assert_eq!(
+                object("start marker")["colour"],
+                json!([0.0, 0.0, 1.0]),
+                "{name}"
+            );
+            assert_eq!(
+                object("end marker")["colour"],
+                json!([1.0, 0.0, 0.0]),
+                "{name}"
+            );
+        } else {
+            assert!(
+                report["objects"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .all(|o| o.get("colour").is_none()),
+                "{name}: a colour the legacy API cannot have read: {report}"
+            );
+        }
+        assert_eq!(
+            object("maze dummy").get("colour"),
+            None,
+            "{name}: a dummy has none"
+        );
+        let text = bin()
+            .arg("inspect")
+            .args(api_args(kind, &server))
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let text = String::from_utf8(text).unwrap();
+        assert!(text.contains("0.6 x 0.1 x 0 m"), "{name}: {text}");
+        assert_eq!(text.contains("colour #00ff00"), zmq, "{name}: {text}");
+        assert_eq!(
+            text.contains("colours not shown: the legacy remote API cannot read them"),
+            !zmq,
+            "{name}: {text}"
+        );
+        assert_eq!(state(&server), before, "{name}: inspect changed the scene");
+        server.shutdown();
+    }
 }

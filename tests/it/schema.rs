@@ -224,6 +224,36 @@ mod json_output {
             );
             assert_eq!(a["lines"], 160, "{api}");
             assert_eq!(a["verified"], true);
+            let n = |key: &str| a[key].as_u64().unwrap();
+            assert_eq!(
+                n("unchanged") + n("placed") + n("pasted"),
+                160,
+                "{api}: {a}"
+            );
+            assert_eq!(
+                n("markers_unchanged") + n("markers_placed"),
+                2,
+                "{api}: {a}"
+            );
+            let dry = document(
+                &[
+                    "apply",
+                    &m,
+                    "--json",
+                    "--dry-run",
+                    "--api",
+                    api,
+                    "--port",
+                    &port,
+                ],
+                0,
+                "apply-v1.schema.json",
+            );
+            assert_eq!(
+                (&dry["nothing_to_do"], &dry["unchanged"], &dry["verified"]),
+                (&true.into(), &160.into(), &false.into()),
+                "{api}: {dry}"
+            );
             let c = document(
                 &["clear", "--json", "--api", api, "--port", &port],
                 0,

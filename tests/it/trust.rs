@@ -185,7 +185,9 @@ fn apply_draws_nothing_from_a_layout_validate_rejects() {
         .args(["apply", good, "--port", &port, "--dry-run"])
         .assert()
         .success()
-        .stdout(predicates::str::contains("0 pasted"));
+        .stdout(predicates::str::contains(
+            "nothing to do: the scene already shows this layout",
+        ));
 }
 
 /// A failing OS call is named once: no "No such file or directory (os error 2): No such

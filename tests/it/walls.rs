@@ -175,6 +175,7 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
     assert_eq!(posts_n, 36, "every corner of the 6 x 6 lattice");
     let mut b = s.connect();
     let r = apply(&mut b, &posts).unwrap_or_else(|e| panic!("{k}: {e}"));
+    crate::support::layouts::assert_counts_add_up(&r, &posts);
     assert_eq!((r.lines, r.posts), (walls_n, posts_n), "{k}");
     assert_eq!(
         r.pasted,
@@ -202,6 +203,7 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
         (walls_n + posts_n, 0, 0, 0),
         "{k}"
     );
+    crate::support::layouts::assert_counts_add_up(&again, &posts);
     // the same maze without posts: the walls stay (their centres are the same), the posts go
     let plain = Drawing::try_from(&wall_layout(5, 3)).unwrap();
     assert_eq!(plain.lines.len(), walls_n);
@@ -211,6 +213,7 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
         (walls_n, posts_n, 0),
         "{k}"
     );
+    crate::support::layouts::assert_counts_add_up(&r, &plain);
     assert_eq!(post_copies(&s).0, 0, "{k}");
     draw::verify(&mut *b, &plain, &ObjectNames::default()).unwrap();
     // verify tells a maze with posts from one without
@@ -496,7 +499,7 @@ fn walls_cli_apply_into_serve_then_a_line_maze_replaces_them() {
         .assert()
         .success()
         .stdout(
-            predicates::str::contains("walls: 0 reused").and(predicates::str::contains(
+            predicates::str::contains("walls: 0 kept, ").and(predicates::str::contains(
                 "verified: every wall, start and end in place",
             )),
         );
@@ -633,7 +636,7 @@ fn posts_cli_apply_into_serve_over_both_apis_then_a_line_maze_replaces_them() {
         .assert()
         .success()
         .stdout(
-            predicates::str::contains("drew 100 walls and 100 posts: 0 reused, 200 pasted").and(
+            predicates::str::contains("drew 100 walls and 100 posts: 0 kept, 200 pasted").and(
                 predicates::str::contains("verified: every wall, post, start and end in place"),
             ),
         );
@@ -644,15 +647,19 @@ fn posts_cli_apply_into_serve_over_both_apis_then_a_line_maze_replaces_them() {
         .assert()
         .success()
         .stdout(predicates::str::contains(
-            "drew 100 walls and 100 posts: 200 reused, 0 pasted, 0 removed",
+            "drew 100 walls and 100 posts: 200 kept (200 earlier copies: 0 already in place, 200 placed), 0 pasted",
         ));
     bin()
         .args(["apply", &lines, "--api", "zmq", "--port", &zmq])
         .assert()
         .success()
-        .stdout(predicates::str::contains(
-            "drew 160 lines: 0 reused, 159 pasted, 200 removed",
-        ));
+        .stdout(
+            predicates::str::contains("drew 160 lines: 1 kept (the template: ").and(
+                predicates::str::contains(
+                    "159 pasted; markers: 2 already in place, 0 placed; 200 earlier copies removed",
+                ),
+            ),
+        );
     // posts again, then clear over the legacy API removes walls and posts
     bin()
         .arg("apply")

@@ -127,6 +127,7 @@ fn apply_claimed(
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
         style,
+        simulation_running: survey.simulation_running,
         lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
         posts: pieces_of(maze, &[MeshKind::Posts]),
         meshes: maze.meshes.len(),
@@ -171,6 +172,30 @@ fn apply_claimed(
     report.pasted = missing.len();
     report.removed = doomed.len();
     report.unchanged = report.reused;
+    // the template lies on the first line (or under Start), the markers on their cells
+    let by_handle: HashMap<i32, &ObjectInfo> =
+        survey.objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = by_handle
+        .get(&h.floor)
+        .map(|o| world_frame(o))
+        .unwrap_or_default();
+    let mut edits = Vec::new();
+    for (handle, want) in markers(maze, &h) {
+        let in_place = by_handle
+            .get(&handle)
+            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
+        if in_place {
+            report.markers_unchanged += 1;
+        } else {
+            report.markers_placed += 1;
+            edits.push(Edit::SetPose {
+                handle,
+                relative_to: h.floor,
+                position: crate::draw::position(&want),
+                orientation: crate::draw::euler(&want),
+            });
+        }
+    }
     if opts.dry_run {
         return Ok(report);
     }
@@ -245,27 +270,6 @@ fn apply_claimed(
             done: placed,
             total,
         });
-    }
-    // the template lies on the first line (or under Start), the markers on their cells
-    let by_handle: HashMap<i32, &ObjectInfo> =
-        survey.objects.iter().map(|o| (o.handle, o)).collect();
-    let floor = by_handle
-        .get(&h.floor)
-        .map(|o| world_frame(o))
-        .unwrap_or_default();
-    let mut edits = Vec::new();
-    for (handle, want) in markers(maze, &h) {
-        let in_place = by_handle
-            .get(&handle)
-            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
-        if !in_place {
-            edits.push(Edit::SetPose {
-                handle,
-                relative_to: h.floor,
-                position: crate::draw::position(&want),
-                orientation: crate::draw::euler(&want),
-            });
-        }
     }
     checkpoint(scene, placed, "while placing the markers")?;
     scene.edit(&edits)?;

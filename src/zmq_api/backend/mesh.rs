@@ -51,20 +51,30 @@ impl ZmqBackend {
     }
 }
 
-impl MeshDrawing for ZmqBackend {
-    fn look(&mut self, template: i32) -> Result<Look, BackendError> {
-        let values = self.call(
+impl ZmqBackend {
+    /// The ambient-diffuse colour of the shape `handle` (`sim.getShapeColor(h, "", 0)`),
+    /// `None` if the simulator gives none (no such shape).
+    pub(super) fn shape_colour(&mut self, handle: i32) -> Result<Option<[f64; 3]>, BackendError> {
+        let values = match self.call(
             "sim.getShapeColor",
             vec![
-                int(template.into()),
+                int(handle.into()),
                 Value::Text(String::new()),
                 int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
             ],
-        )?;
-        let colour = values.get(1).and_then(cbor::numbers::<3>).ok_or_else(|| {
-            BackendError::Transport(format!(
-                "sim.getShapeColor of {template}: no colour in {values:?}"
-            ))
+        ) {
+            Ok(values) => values,
+            Err(BackendError::Remote(_)) => return Ok(None),
+            Err(e) => return Err(e),
+        };
+        Ok(values.get(1).and_then(cbor::numbers::<3>))
+    }
+}
+
+impl MeshDrawing for ZmqBackend {
+    fn look(&mut self, template: i32) -> Result<Look, BackendError> {
+        let colour = self.shape_colour(template)?.ok_or_else(|| {
+            BackendError::Transport(format!("sim.getShapeColor of {template}: no colour"))
         })?;
         let special = self
             .client

@@ -24,3 +24,65 @@ pub fn drawing(n: u64, seed: u64) -> Drawing {
 pub fn drawing_with(algorithm: Algorithm, n: u64, seed: u64) -> Drawing {
     Drawing::try_from(&course_layout(algorithm, n, n, seed)).unwrap()
 }
+
+/// Checks that `r`, an apply of `d` in copies mode, counts each line and post once: kept
+/// (already in place or placed) or pasted; the kept being the reused copies and, in a line
+/// maze with lines, the template; and each marker once. Its summary line says those numbers.
+pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
+    let template = usize::from(d.template_drawn() && !d.lines.is_empty());
+    let hidden = usize::from(d.template_drawn() && d.lines.is_empty());
+    assert_eq!((r.lines, r.posts), (d.lines.len(), d.posts.len()), "{r}");
+    assert_eq!(r.lines + r.posts, r.unchanged + r.placed + r.pasted, "{r}");
+    assert_eq!(r.unchanged + r.placed, r.reused + template, "{r}");
+    assert_eq!(r.markers_unchanged + r.markers_placed, 2 + hidden, "{r}");
+    if r.dry_run && r.nothing_to_do() {
+        return;
+    }
+    // the summary line's own numbers add up: "N lines[ and P posts]: K kept (…: I already in
+    // place, M placed), X pasted; markers: A already in place, B placed; …"
+    let text = r.to_string();
+    let number_before = |word: &str| -> usize {
+        let at = text
+            .find(word)
+            .unwrap_or_else(|| panic!("no {word:?} in {text}"));
+        let head = text[..at].trim_end();
+        let digits = &head[head
+            .rfind(|c: char| !c.is_ascii_digit())
+            .map_or(0, |i| i + 1)..];
+        digits
+            .parse()
+            .unwrap_or_else(|_| panic!("no number before {word:?} in {text}"))
+    };
+    let whole = number_before(r.style.name())
+        + if d.posts.is_empty() {
+            0
+        } else {
+            number_before(" posts")
+        };
+    let kept = number_before(" kept");
+    assert_eq!(whole, kept + number_before(" pasted;"), "{text}");
+    if kept > 0 {
+        let (in_place, placed) = (
+            number_before(" already in place, "),
+            number_before(" placed)"),
+        );
+        assert_eq!(kept, in_place + placed, "{text}");
+    }
+    let markers = &text[text.find("markers: ").expect("markers")..];
+    let in_place: usize = markers["markers: ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let placed: usize = markers
+        .split(", ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(in_place + placed, 2 + hidden, "{text}");
+}
