@@ -187,18 +187,6 @@ pub enum DrawMode {
 /// Runs `apply`.
 pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
     say::set_json(args.json);
-    if args.draw == DrawMode::Mesh {
-        return run_mesh(args, bars);
-    }
-    let layout = crate::layout::read_layout(&args.layout)?;
-    let drawing = Drawing::try_from(&layout)
-        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
-    let mut opts = ApplyOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        ..Default::default()
-    };
     ensure_usage!(
         args.save_scene
             .as_deref()
@@ -211,7 +199,19 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
     );
     // two roles on one object: refused at once, before connecting
-    opts.names.check_roles()?;
+    args.scene.names().check_roles()?;
+    if args.draw == DrawMode::Mesh {
+        return run_mesh(args, bars);
+    }
+    let layout = crate::layout::read_layout(&args.layout)?;
+    let drawing = Drawing::try_from(&layout)
+        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
+    let mut opts = ApplyOptions {
+        names: args.scene.names(),
+        stop_simulation: args.stop_simulation,
+        dry_run: args.dry_run,
+        ..Default::default()
+    };
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
     let Connected {
@@ -328,33 +328,43 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         say(format!("verified: every {noun}, start and end in place"))?;
     }
     if args.json {
-        say::document(&ApplyJson {
-            format: "vrep-maze/apply".into(),
-            version: REPORT_VERSION,
-            layout: args.layout.display().to_string(),
-            connection,
-            style: report.style,
-            lines: report.lines,
-            posts: report.posts,
-            reused: report.reused,
-            pasted: report.pasted,
-            removed: report.removed,
-            unchanged: report.unchanged,
-            placed: report.placed,
-            markers_unchanged: report.markers_unchanged,
-            markers_placed: report.markers_placed,
-            nothing_to_do: report.dry_run && report.nothing_to_do(),
-            edits: report.edits,
-            round_trips: report.round_trips,
-            seconds: report.elapsed.as_secs_f64(),
-            stopped_simulation: report.stopped_simulation,
-            dry_run: report.dry_run,
-            verified: !report.dry_run,
-            created,
-            saved_scene: args.save_scene.filter(|_| !args.dry_run),
-        })?;
+        say::document(&apply_json(&args, connection, &report, created))?;
     }
     Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// The `--json` document of a finished apply (either draw mode).
+fn apply_json(
+    args: &ApplyArgs,
+    connection: String,
+    report: &draw::ApplyReport,
+    created: Vec<String>,
+) -> ApplyJson {
+    ApplyJson {
+        format: "vrep-maze/apply".into(),
+        version: REPORT_VERSION,
+        layout: args.layout.display().to_string(),
+        connection,
+        style: report.style,
+        lines: report.lines,
+        posts: report.posts,
+        reused: report.reused,
+        pasted: report.pasted,
+        removed: report.removed,
+        unchanged: report.unchanged,
+        placed: report.placed,
+        markers_unchanged: report.markers_unchanged,
+        markers_placed: report.markers_placed,
+        nothing_to_do: report.dry_run && report.nothing_to_do(),
+        edits: report.edits,
+        round_trips: report.round_trips,
+        seconds: report.elapsed.as_secs_f64(),
+        stopped_simulation: report.stopped_simulation,
+        dry_run: report.dry_run,
+        verified: !report.dry_run,
+        created,
+        saved_scene: args.save_scene.clone().filter(|_| !args.dry_run),
+    }
 }
 
 /// Runs `apply --draw mesh`.
@@ -370,18 +380,22 @@ fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exi
     };
     let interrupt = Interrupt::install()?;
     opts.interrupt = Some(interrupt.shared());
-    let mut backend = args.scene.connect()?;
+    let Connected {
+        mut backend,
+        description: connection,
+    } = args.scene.connect_until(Some(interrupt.flag()))?;
     if interrupt.requested() {
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
+    let mut created = Vec::new();
     if args.create_missing && !args.dry_run {
         let Some(authoring) = backend.authoring() else {
             anyhow::bail!(
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        let created = draw::create_missing_for(authoring, &opts.names, &layout)
+        created = draw::create_missing_for(authoring, &opts.names, &layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
             say(format!("created {}", created.join(", ")))?;
@@ -446,6 +460,9 @@ fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exi
     }
     if !report.dry_run {
         say("verified: every mesh read back, start and end in place")?;
+    }
+    if args.json {
+        say::document(&apply_json(&args, connection, &report, created))?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }

@@ -254,6 +254,28 @@ mod json_output {
                 (&true.into(), &160.into(), &false.into()),
                 "{api}: {dry}"
             );
+            // a mesh drawing's document has the same schema
+            let mesh = document(
+                &[
+                    "apply", &m, "--json", "--draw", "mesh", "--api", api, "--port", &port,
+                ],
+                0,
+                "apply-v1.schema.json",
+            );
+            // counted in runs (one rectangle each) and meshes, not in copies
+            assert_eq!(mesh["verified"], true, "{api}: {mesh}");
+            assert_eq!(
+                mesh["pasted"], 1,
+                "{api}: one mesh of the 9x9's runs: {mesh}"
+            );
+            assert_eq!(mesh["removed"], 159, "{api}: the copies went: {mesh}");
+            // and back to copies for the clear below
+            let back = document(
+                &["apply", &m, "--json", "--api", api, "--port", &port],
+                0,
+                "apply-v1.schema.json",
+            );
+            assert_eq!(back["lines"], 160, "{api}: {back}");
             let c = document(
                 &["clear", "--json", "--api", api, "--port", &port],
                 0,
