@@ -634,7 +634,14 @@ impl Backend for ZmqBackend {
         let current = self
             .client
             .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
-        let saved = self.saved_idle_fps()?;
+        // a record matters only while the rate is 0 (an interrupted run left it so); with the
+        // rate set, it is the user's and a record is stale: one paced call fewer before the
+        // rate is raised (at idle fps 8 each call waits for a main-loop pass, spec "Pacing")
+        let saved = if current == 0 {
+            self.saved_idle_fps()?
+        } else {
+            None
+        };
         Ok(IdleRates { current, saved })
     }
 
