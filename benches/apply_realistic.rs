@@ -11,6 +11,7 @@
 //!     cargo bench --bench apply_realistic -- --mesh-only    # mesh mode only (about a minute)
 //!     cargo bench --bench apply_realistic -- 9x9 300x300    # rows whose step contains a word
 //!     cargo bench --bench apply_realistic -- --first-draws  # also the first draws of issue 11
+//!     cargo bench --bench apply_realistic -- --charges      # also where each row's time goes
 //!
 //! "fps" is the user's idle rate (CoppeliaSim's default is 8); "emulated" the wall time
 //! against the realistic emulator; "ledger" the same step priced from the emulator's ledger of
@@ -18,6 +19,7 @@
 //! the spec's figure (copies mode); "x real" emulated / real; "target" issue 18's target for
 //! mesh mode.
 
+use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
 use vrep_maze::coppelia::DEFAULT_IDLE_FPS;
@@ -27,7 +29,7 @@ use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, Layout, build_layout};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::cost::price_all;
+use vrep_maze::sim::cost::{Charge, price_all};
 use vrep_maze::sim::{Clock, CostModel, Scene, Simulator, Timing};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
@@ -301,8 +303,45 @@ fn or_dash(value: Option<f64>) -> String {
     value.map_or_else(|| "-".into(), |v| format!("{v:.2}"))
 }
 
+/// Prints where a step's priced time goes: the requests that waited for an idle main-loop
+/// pass (spec "Pacing") and the work of every kind of operation.
+fn print_charges(ledger: &[Charge]) {
+    let clock = Clock::default();
+    let model = CostModel::measured();
+    let paced: Vec<&Charge> = ledger
+        .iter()
+        .filter(|c| clock.period(c.state, c.idle_fps).is_some())
+        .collect();
+    let waited: f64 = paced
+        .iter()
+        .filter_map(|c| clock.period(c.state, c.idle_fps))
+        .map(|p| p.as_secs_f64())
+        .sum();
+    println!(
+        "    paced: {} request(s) waited {waited:.3} s for a main-loop pass",
+        paced.len()
+    );
+    let mut work: BTreeMap<String, (usize, f64)> = BTreeMap::new();
+    for charge in ledger {
+        for op in &charge.ops {
+            let kind = format!("{op:?}");
+            let kind = kind.split([' ', '{']).next().unwrap_or_default().to_string();
+            let entry = work.entry(kind).or_default();
+            entry.0 += 1;
+            entry.1 += model.ops(std::slice::from_ref(op)).as_secs_f64();
+        }
+    }
+    let ops: f64 = work.values().map(|(_, secs)| secs).sum();
+    for (kind, (count, secs)) in work {
+        println!("    {kind:<14} x{count:<6} {secs:.3} s");
+    }
+    // a legacy pass at idle fps 0 takes at least `legacy_pass_floor`, whatever its commands
+    let priced = price_all(&clock, &model, ledger).as_secs_f64();
+    println!("    pass floors           {:.3} s", priced - waited - ops);
+}
+
 /// Sets the row's scene up on an instant emulator, then times its step on a realistic one.
-fn run(row: &Row, mode: Mode) {
+fn run(row: &Row, mode: Mode, charges: bool) {
     let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
     for m in row.before {
         let s = Server::start(m.api, sim, Timing::instant());
@@ -330,12 +369,16 @@ fn run(row: &Row, mode: Mode) {
         or_dash(real.map(|r| secs / r)),
         target.map_or_else(|| "-".into(), |t| format!("<={t}")),
     );
+    if charges {
+        print_charges(&ledger);
+    }
 }
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let first_draws = args.iter().any(|a| a == "--first-draws");
     let only_mesh = args.iter().any(|a| a == "--mesh-only");
+    let charges = args.iter().any(|a| a == "--charges");
     let filters: Vec<&String> = args.iter().filter(|a| !a.starts_with("--")).collect();
     println!(
         "{:<34} {:>3} {:<6} {:>8} {:>9} {:>8} {:>7} {:>6} {:>6}",
@@ -350,7 +393,7 @@ fn main() {
     for row in rows.into_iter().filter(chosen) {
         for &mode in row.modes {
             if !only_mesh || mode == Mode::Mesh {
-                run(row, mode);
+                run(row, mode, charges);
             }
         }
     }
