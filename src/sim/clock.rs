@@ -17,6 +17,14 @@ use super::SimState;
 /// The shortest main-loop pass at idle fps above 0 (coppeliaSimLib `simThread.cpp:4612-4621`).
 pub const MIN_IDLE_PASS: Duration = Duration::from_millis(20);
 
+/// How long one main-loop pass of the ZeroMQ add-on goes on serving requests that are
+/// already queued on its socket (zmqRemoteApi@coppeliasim-v4.5.1-rev4 `simAddOnZMQ remote API
+/// server.lua:86-105`: poll without waiting, serve, until nothing is queued or
+/// `maxTimeSlot`, 0.005 s by default at line 127, has passed since the pass began). A
+/// lock-step client's next request is never queued yet, so it gets one request per pass
+/// (spec "Pacing"); a client that sends several before reading gets them all served.
+pub const ZMQ_TIME_SLOT: Duration = Duration::from_millis(5);
+
 /// The emulated main loop's timing settings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Clock {

@@ -81,6 +81,9 @@ pub struct Charge {
     pub state: SimState,
     /// The work done.
     pub ops: Vec<Op>,
+    /// Served by the main-loop pass that served the request before it, because it was
+    /// already queued ([`crate::sim::ZMQ_TIME_SLOT`]): it waited for no pass of its own.
+    pub queued: bool,
 }
 
 impl Charge {
@@ -99,20 +102,41 @@ impl Charge {
     }
 }
 
-/// What a charge takes on a real simulator with a lock-step client: one main-loop period of
-/// waiting for the pass that serves it (none while the loop spins at idle fps 0: spec
-/// "Pacing", a legacy blocking call takes 125 ms at idle fps 8, a ZeroMQ call 93–125 ms),
-/// then its work.
+/// What a charge takes on a real simulator: one main-loop period of waiting for the pass
+/// that serves it (none while the loop spins at idle fps 0: spec "Pacing", a legacy blocking
+/// call takes 125 ms at idle fps 8, a ZeroMQ call 93–125 ms; none for a request served by
+/// the pass of the one before it, [`Charge::queued`]), then its work.
 pub fn price(clock: &Clock, model: &CostModel, charge: &Charge) -> Duration {
-    clock
-        .period(charge.state, charge.idle_fps)
-        .unwrap_or_default()
-        + charge.work(model)
+    let wait = match charge.queued {
+        true => None,
+        false => clock.period(charge.state, charge.idle_fps),
+    };
+    wait.unwrap_or_default() + charge.work(model)
 }
 
 /// [`price`] of every charge of a ledger.
 pub fn price_all(clock: &Clock, model: &CostModel, ledger: &[Charge]) -> Duration {
     ledger.iter().map(|c| price(clock, model, c)).sum()
+}
+
+/// [`price_all`] as a client that sends one request at a time meets it: every charge waits
+/// for a pass of its own, [`Charge::queued`] or not (what the spec's rows "through
+/// `vrep-maze`" were measured with: a release of 2026-11-23, before requests were sent ahead
+/// of replies).
+pub fn price_lock_step(clock: &Clock, model: &CostModel, ledger: &[Charge]) -> Duration {
+    ledger
+        .iter()
+        .map(|c| {
+            price(
+                clock,
+                model,
+                &Charge {
+                    queued: false,
+                    ..c.clone()
+                },
+            )
+        })
+        .sum()
 }
 
 /// The work of pasting `handles` (each distinct existing handle once: spec "Costs that grow
@@ -211,6 +235,7 @@ mod tests {
             idle_fps,
             state: SimState::Stopped,
             ops: vec![Op::LegacyCommand],
+            queued: false,
         };
         // spec "Pacing": a legacy blocking call at idle fps 8 waits a 125 ms pass
         let slow = charge(Served::LegacyPass, 8);
@@ -226,6 +251,16 @@ mod tests {
         assert_eq!(
             price_all(&clock, &m, &[fast, call]),
             m.legacy_pass_floor + m.legacy_command
+        );
+        // a ZeroMQ request queued behind another is served by the same pass
+        let paced = charge(Served::ZmqCall, 8);
+        let queued = Charge {
+            queued: true,
+            ..paced.clone()
+        };
+        assert_eq!(
+            price_all(&clock, &m, &[paced, queued]),
+            Duration::from_millis(125) + 2 * m.legacy_command
         );
     }
 }

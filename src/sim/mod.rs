@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 
 use crate::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 
-pub use clock::{Clock, ZmqPacer, ZmqPacing};
+pub use clock::{Clock, ZMQ_TIME_SLOT, ZmqPacer, ZmqPacing};
 pub use cost::{Charge, CostModel, Op, Served, Timing};
 pub use mesh::{Mesh, MeshError};
 pub use robot::RobotPath;
@@ -95,6 +95,7 @@ impl Simulator {
             idle_fps: self.idle_fps,
             state: self.state,
             ops,
+            queued: false,
         }
     }
 

@@ -13,7 +13,7 @@ use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
-use super::client::{Client, ClientOptions, ZmqError};
+use super::client::{Client, ClientOptions, Outcome, ZmqError};
 use crate::coppelia::frame::{
     Frame, euler_from_rotation, frame, position_euler, rotation_from_euler,
 };
@@ -87,6 +87,9 @@ pub struct ZmqBackend {
     /// connection, and whether it changed since it was last written.
     record: Option<CopyRecord>,
     record_changed: bool,
+    /// The idle rates read with the version when connecting, and the round trips made then:
+    /// [`Backend::idle_rates`] takes them while no other call has been made since.
+    first_rates: Option<(IdleRates, usize)>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -129,12 +132,24 @@ impl ZmqBackend {
         ZmqBackend::new(client, options.timeout)
     }
 
-    /// Wraps a connected client.
+    /// Wraps a connected client, reading the program version (it decides the argument order
+    /// of pose setters) and the idle rates ([`Backend::idle_rates`]) in one exchange: over
+    /// protocol 1 one main-loop pass for the three ([`Client::call_all`]).
     pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqBackend, BackendError> {
-        let version = client.call_int(
-            "sim.getInt32Param",
-            vec![int(INTPARAM_PROGRAM_VERSION.into())],
-        )?;
+        let mut outcomes = client
+            .call_all(&[
+                (
+                    "sim.getInt32Param",
+                    vec![int(INTPARAM_PROGRAM_VERSION.into())],
+                ),
+                idle_rate_call(),
+                saved_rate_call(),
+            ])?
+            .into_iter();
+        let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
+        let version = int_result("sim.getInt32Param", next())?;
+        let rates = idle_rates_of(next(), next())?;
+        let round_trips = client.stats().round_trips as usize;
         Ok(ZmqBackend {
             client,
             version,
@@ -145,6 +160,7 @@ impl ZmqBackend {
             aliases: HashMap::new(),
             record: None,
             record_changed: false,
+            first_rates: Some((rates, round_trips)),
         })
     }
 
@@ -573,18 +589,6 @@ impl ZmqBackend {
         )?;
         Ok(h)
     }
-
-    /// The user's idle rate recorded by an interrupted `apply` (integer signal
-    /// [`SAVED_IDLE_FPS_SIGNAL`]); `None` when there is no record (`sim.getInt32Signal`
-    /// returns nil) or the simulator has no integer signals.
-    fn saved_idle_fps(&mut self) -> Result<Option<i32>, BackendError> {
-        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
-        match self.call("sim.getInt32Signal", vec![name]) {
-            Ok(values) => Ok(values.first().and_then(cbor::int32)),
-            Err(BackendError::Remote(_)) => Ok(None),
-            Err(e) => Err(e),
-        }
-    }
 }
 
 /// The most copies one paste round makes over ZeroMQ (see `lines_per_request`).
@@ -631,18 +635,17 @@ impl Backend for ZmqBackend {
     }
 
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
-        let current = self
+        if let Some((rates, round_trips)) = self.first_rates.take()
+            && round_trips == self.round_trips()
+        {
+            return Ok(rates);
+        }
+        let mut outcomes = self
             .client
-            .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])?;
-        // a record matters only while the rate is 0 (an interrupted run left it so); with the
-        // rate set, it is the user's and a record is stale: one paced call fewer before the
-        // rate is raised (at idle fps 8 each call waits for a main-loop pass, spec "Pacing")
-        let saved = if current == 0 {
-            self.saved_idle_fps()?
-        } else {
-            None
-        };
-        Ok(IdleRates { current, saved })
+            .call_all(&[idle_rate_call(), saved_rate_call()])?
+            .into_iter();
+        let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
+        idle_rates_of(next(), next())
     }
 
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
@@ -817,34 +820,33 @@ impl Backend for ZmqBackend {
         Ok(())
     }
 
-    /// The record and the rate are two calls (ZeroMQ has no batching), ordered so that a cut
-    /// between them never loses the user's rate: the record is written before the rate is
-    /// lowered, and deleted only after the rate is restored.
+    /// The record and the rate are two calls, sent together ([`Client::call_all`]: one
+    /// main-loop pass over protocol 1) and ordered so that a cut between them never loses
+    /// the user's rate: the record is written before the rate is lowered, and deleted only
+    /// after the rate is restored (a stale record beside a set rate is ignored).
     fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
         let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
-        let set_rate = |backend: &mut Self| {
-            backend
-                .call(
-                    "sim.setInt32Param",
-                    vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
-                )
-                .map(drop)
+        let set_rate = (
+            "sim.setInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+        );
+        let (calls, rate_at) = match saved {
+            Some(v) => (
+                [("sim.setInt32Signal", vec![name, int(v.into())]), set_rate],
+                1,
+            ),
+            None => ([set_rate, ("sim.clearInt32Signal", vec![name])], 0),
         };
-        // A simulator without integer signals only loses the crash record.
-        let tolerate = |record: Result<Vec<Value>, BackendError>| match record {
-            Ok(_) | Err(BackendError::Remote(_)) => Ok(()),
-            Err(e) => Err(e),
-        };
-        match saved {
-            Some(v) => {
-                tolerate(self.call("sim.setInt32Signal", vec![name, int(v.into())]))?;
-                set_rate(self)
-            }
-            None => {
-                set_rate(self)?;
-                tolerate(self.call("sim.clearInt32Signal", vec![name]))
+        let outcomes = self.client.call_all(&calls)?;
+        for (k, outcome) in outcomes.into_iter().enumerate() {
+            match outcome {
+                Ok(_) => {}
+                // a simulator without integer signals only loses the crash record
+                Err(_) if k != rate_at => {}
+                Err(e) => return Err(e.into()),
             }
         }
+        Ok(())
     }
 
     fn stop_simulation(&mut self) -> Result<(), BackendError> {
@@ -1104,4 +1106,40 @@ impl ZmqBackend {
         )?;
         Ok(h)
     }
+}
+
+/// `sim.getInt32Param(sim.intparam_idle_fps)`.
+fn idle_rate_call() -> (&'static str, Vec<Value>) {
+    ("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])
+}
+
+/// `sim.getInt32Signal` of the user's idle rate recorded by an interrupted `apply`
+/// ([`SAVED_IDLE_FPS_SIGNAL`]).
+fn saved_rate_call() -> (&'static str, Vec<Value>) {
+    (
+        "sim.getInt32Signal",
+        vec![Value::Text(SAVED_IDLE_FPS_SIGNAL.into())],
+    )
+}
+
+/// The one integer a call returned.
+fn int_result(func: &str, outcome: Outcome) -> Result<i32, BackendError> {
+    let values = outcome?;
+    values
+        .first()
+        .and_then(cbor::int32)
+        .ok_or_else(|| BackendError::Transport(format!("{func}: expected an integer reply")))
+}
+
+/// The idle rates from the replies of [`idle_rate_call`] and [`saved_rate_call`]. The record
+/// matters only while the rate is 0 (an interrupted run left it so); beside a set rate it is
+/// stale. No record: the signal is not set (nil), or the simulator has no integer signals.
+fn idle_rates_of(current: Outcome, saved: Outcome) -> Result<IdleRates, BackendError> {
+    let current = int_result("sim.getInt32Param", current)?;
+    let saved = match saved {
+        Ok(values) if current == 0 => values.first().and_then(cbor::int32),
+        Ok(_) | Err(ZmqError::Remote { .. }) => None,
+        Err(e) => return Err(e.into()),
+    };
+    Ok(IdleRates { current, saved })
 }

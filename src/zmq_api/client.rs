@@ -1,12 +1,14 @@
 //! A ZeroMQ remote API client speaking both protocol generations.
 //!
-//! REQ socket with send/receive timeouts and LINGER 0; after a timeout the socket is replaced
-//! (a REQ socket that missed its reply is stuck). Every call is sent as a protocol-2 request;
+//! A DEALER socket framed as a REQ socket (an empty delimiter frame before each request), so
+//! that [`Client::call_all`] can send several requests before their replies; send/receive
+//! timeouts and LINGER 0; after a timeout the socket is replaced, so a late reply is never
+//! read as the next call's. Every call is sent as a protocol-2 request;
 //! the first reply tells the generation: a protocol-1 server (CoppeliaSim 4.3 to 4.5) answers
 //! with `success`, after which requests shrink to `{func, args}`.
 
 use std::net::{TcpStream, ToSocketAddrs};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use ciborium::Value;
 
@@ -106,6 +108,20 @@ pub enum ZmqError {
         /// Library error (printed in the message, so not a `source`).
         error: zmq::Error,
     },
+}
+
+/// What the server said of one call of [`Client::call_all`]: its return values, or its error
+/// ([`ZmqError::Remote`]).
+pub type Outcome = Result<Vec<Value>, ZmqError>;
+
+/// Sorts a call's result for [`Client::call_all`]: the server's refusal is the call's
+/// outcome, any other failure ends the exchange.
+fn outcome(result: Result<Vec<Value>, ZmqError>) -> Result<Outcome, ZmqError> {
+    match result {
+        Err(e @ ZmqError::Remote { .. }) => Ok(Err(e)),
+        Err(e) => Err(e),
+        Ok(values) => Ok(Ok(values)),
+    }
 }
 
 /// `func: message`, unless the message already names the function (`in func: ...`).
@@ -253,7 +269,7 @@ impl Client {
         let stream = addrs
             .iter()
             .find_map(|a| {
-                let attempt = std::time::Instant::now();
+                let attempt = Instant::now();
                 match TcpStream::connect_timeout(a, wait) {
                     Ok(s) => {
                         connected_in = attempt.elapsed();
@@ -318,74 +334,127 @@ impl Client {
     /// the wait goes on until the reply or the timeout. After a timeout, a server that no
     /// longer accepts connections is [`ZmqError::Gone`], for this call and every later one.
     fn round_trip(&mut self, func: &str, request: &Request) -> Result<Value, ZmqError> {
-        let gone = |c: &Client| ZmqError::Gone {
+        let mut replies = self.exchange(&[(func, request)])?;
+        Ok(replies.remove(0))
+    }
+
+    /// Sends every request before reading any reply, then reads the replies in order (one
+    /// request is a round trip). Any failure replaces the socket when replies are still
+    /// outstanding, so no late reply is ever taken for a later call's.
+    fn exchange(&mut self, requests: &[(&str, &Request)]) -> Result<Vec<Value>, ZmqError> {
+        let gone = |c: &Client, func: &str| ZmqError::Gone {
             func: func.to_string(),
             endpoint: c.endpoint.clone(),
             secs: c.timeout.as_secs_f64(),
         };
+        let first = requests.first().map_or("", |(f, _)| f);
         if self.gone {
-            return Err(gone(self));
+            return Err(gone(self, first));
         }
-        self.stats.round_trips += 1;
-        let transport = |c: &Client, source| ZmqError::Transport {
-            endpoint: c.endpoint.clone(),
-            error: source,
-        };
+        self.stats.round_trips += requests.len() as u64;
         let wait = if self.timed_out {
             self.timeout.min(AFTER_TIMEOUT_WAIT)
         } else {
             self.timeout
         };
-        let deadline = std::time::Instant::now() + wait;
-        let sent = loop {
-            match self.socket.send(request.encode(), 0) {
-                Err(zmq::Error::EINTR) if std::time::Instant::now() < deadline => {}
-                other => break other,
+        let deadline = Instant::now() + wait;
+        let mut sent = Ok(());
+        for (_, request) in requests {
+            sent = self.send(request, deadline);
+            if sent.is_err() {
+                break;
             }
-        };
-        let received = match sent {
-            Ok(()) => self.receive(deadline),
-            Err(e) => Err(e),
-        };
-        let bytes = match received {
-            Ok(b) => {
-                self.timed_out = false;
-                b
-            }
-            Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
-                self.timed_out = true;
-                self.reset()?;
-                if !self.still_listens() {
-                    self.gone = true;
-                    return Err(gone(self));
+        }
+        let mut replies = Vec::with_capacity(requests.len());
+        for (func, _) in requests {
+            let received = match &sent {
+                Ok(()) => self.receive(deadline),
+                Err(e) => Err(*e),
+            };
+            let bytes = match received {
+                Ok(b) => {
+                    self.timed_out = false;
+                    b
                 }
-                return Err(ZmqError::Timeout {
-                    func: func.to_string(),
-                    endpoint: self.endpoint.clone(),
-                    secs: wait.as_secs_f64(),
-                });
+                Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
+                    self.timed_out = true;
+                    self.reset()?;
+                    if !self.still_listens() {
+                        self.gone = true;
+                        return Err(gone(self, func));
+                    }
+                    return Err(ZmqError::Timeout {
+                        func: func.to_string(),
+                        endpoint: self.endpoint.clone(),
+                        secs: wait.as_secs_f64(),
+                    });
+                }
+                Err(e) => {
+                    if replies.len() + 1 < requests.len() {
+                        self.reset()?;
+                    }
+                    return Err(ZmqError::Transport {
+                        endpoint: self.endpoint.clone(),
+                        error: e,
+                    });
+                }
+            };
+            match cbor::decode(&bytes) {
+                Ok(value) => replies.push(value),
+                Err(CborError(detail)) => {
+                    if replies.len() + 1 < requests.len() {
+                        self.reset()?;
+                    }
+                    return Err(ZmqError::Malformed {
+                        func: func.to_string(),
+                        detail,
+                    });
+                }
             }
-            Err(e) => return Err(transport(self, e)),
-        };
-        cbor::decode(&bytes).map_err(|CborError(detail)| ZmqError::Malformed {
-            func: func.to_string(),
-            detail,
-        })
+        }
+        Ok(replies)
     }
 
-    /// The reply, waited for until `deadline` (`EAGAIN` then), through interrupted waits.
-    fn receive(&mut self, deadline: std::time::Instant) -> Result<Vec<u8>, zmq::Error> {
+    /// Sends one request as a REQ socket would (an empty delimiter frame, then the request),
+    /// through interrupted sends until `deadline`.
+    fn send(&mut self, request: &Request, deadline: Instant) -> Result<(), zmq::Error> {
+        let frames: [(Vec<u8>, i32); 2] = [(vec![], zmq::SNDMORE), (request.encode(), 0)];
+        for (frame, flags) in frames {
+            loop {
+                match self.socket.send(&frame[..], flags) {
+                    Err(zmq::Error::EINTR) if Instant::now() < deadline => {}
+                    other => {
+                        other?;
+                        break;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The next reply (its frames after the empty delimiter), waited for until `deadline`
+    /// (`EAGAIN` then), through interrupted waits.
+    fn receive(&mut self, deadline: Instant) -> Result<Vec<u8>, zmq::Error> {
         loop {
-            let left = deadline.saturating_duration_since(std::time::Instant::now());
+            let left = deadline.saturating_duration_since(Instant::now());
             if left.is_zero() {
                 return Err(zmq::Error::EAGAIN);
             }
             let ms = i64::try_from(left.as_millis()).unwrap_or(i64::MAX).max(1);
             match self.socket.poll(zmq::POLLIN, ms) {
                 Ok(0) | Err(zmq::Error::EINTR) => {}
-                Ok(_) => match self.socket.recv_bytes(zmq::DONTWAIT) {
+                Ok(_) => match self.socket.recv_multipart(zmq::DONTWAIT) {
                     Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {}
-                    other => return other,
+                    Ok(frames) => {
+                        let body = frames
+                            .into_iter()
+                            .skip_while(Vec::is_empty)
+                            .flatten()
+                            .collect();
+                        return Ok(body);
+                    }
+                    Err(e) => return Err(e),
                 },
                 Err(e) => return Err(e),
             }
@@ -462,6 +531,52 @@ impl Client {
         })
     }
 
+    /// Calls several functions, each as [`Client::call`] would; the outer error is a failed
+    /// exchange (timeout, transport, malformed reply), the inner ones what the server said
+    /// of each call. Against a protocol-1 server (CoppeliaSim 4.3 to 4.5) every request is
+    /// sent before any reply is read: its add-on serves the requests queued on its socket in
+    /// the same main-loop pass, for up to 5 ms (zmqRemoteApi@coppeliasim-v4.5.1-rev4
+    /// `simAddOnZMQ remote API server.lua:86-105`, `maxTimeSlot` 0.005 at line 127), where a
+    /// lock-step client waits one pass per call (93-125 ms at idle fps 8,
+    /// `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing"). Protocol 2 (whose replies may ask
+    /// to wait or repeat) and an unknown protocol are called in turn: a 4.6+ add-on serves a
+    /// lock-step client's next request at once within 50 ms of a pass anyway.
+    pub fn call_all(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
+        if self.protocol != Some(Protocol::V1) {
+            return calls
+                .iter()
+                .map(|(func, args)| outcome(self.call(func, args.clone())))
+                .collect();
+        }
+        self.stats.calls += calls.len() as u64;
+        let requests: Vec<Request> = calls
+            .iter()
+            .map(|(func, args)| self.request(func, args.clone()))
+            .collect();
+        let pairs: Vec<(&str, &Request)> = calls.iter().map(|(f, _)| *f).zip(&requests).collect();
+        let replies = self.exchange(&pairs)?;
+        replies
+            .iter()
+            .zip(calls)
+            .map(|(value, (func, _))| {
+                let malformed = |detail: String| ZmqError::Malformed {
+                    func: func.to_string(),
+                    detail,
+                };
+                match parse_reply(value).map_err(|CborError(d)| malformed(d))?.0 {
+                    Reply::Ret(values) => Ok(Ok(values)),
+                    Reply::Err(message) => Ok(Err(ZmqError::Remote {
+                        func: func.to_string(),
+                        message,
+                    })),
+                    other => Err(malformed(format!(
+                        "a protocol-1 server asked for {other:?}"
+                    ))),
+                }
+            })
+            .collect()
+    }
+
     /// Says goodbye (protocol 2 `_*end*_`), waiting briefly for the reply.
     pub fn close(mut self) {
         self.end();
@@ -472,8 +587,9 @@ impl Client {
             let _ = self.socket.set_rcvtimeo(200);
             let _ = self.socket.set_sndtimeo(200);
             let req = self.request(END, vec![]);
-            if self.socket.send(req.encode(), 0).is_ok() {
-                let _ = self.socket.recv_bytes(0);
+            let deadline = Instant::now() + Duration::from_millis(200);
+            if self.send(&req, deadline).is_ok() {
+                let _ = self.receive(deadline);
             }
             self.protocol = None;
         }
@@ -490,11 +606,11 @@ impl Drop for Client {
 /// with 0xFF and has 0x7F at byte 9. Says what the peer did otherwise.
 fn check_greeting(mut stream: TcpStream, wait: Duration) -> Result<(), String> {
     use std::io::Read;
-    let deadline = std::time::Instant::now() + wait;
+    let deadline = Instant::now() + wait;
     let mut got = Vec::with_capacity(10);
     let mut buf = [0u8; 10];
     while got.len() < 10 {
-        let left = deadline.saturating_duration_since(std::time::Instant::now());
+        let left = deadline.saturating_duration_since(Instant::now());
         if left.is_zero() {
             break;
         }
@@ -557,7 +673,9 @@ fn new_socket(
         endpoint: endpoint.to_string(),
         error: source,
     };
-    let socket = context.socket(zmq::REQ).map_err(transport)?;
+    // DEALER, not REQ: it may send the next request before the last reply (see
+    // `Client::call_all`); it adds the empty delimiter frame a REQ socket adds itself
+    let socket = context.socket(zmq::DEALER).map_err(transport)?;
     let ms = i32::try_from(timeout.as_millis())
         .unwrap_or(i32::MAX)
         .max(1);

@@ -14,6 +14,6 @@ pub mod message;
 pub mod server;
 
 pub use backend::ZmqBackend;
-pub use client::{Client, ClientOptions, ClientStats, ZmqError};
+pub use client::{Client, ClientOptions, ClientStats, Outcome, ZmqError};
 pub use message::Protocol;
 pub use server::{ServerConfig, ServerHandle, SimHost, spawn, spawn_shared};

@@ -1,5 +1,7 @@
 //! Our real clients against an instant emulator that keeps a ledger of the simulator's work,
-//! priced by the pure cost model (`vrep_maze::sim::cost::price_all`), against the times a
+//! priced by the pure cost model as the lock-step client the rows were measured with
+//! (`vrep_maze::sim::cost::price_lock_step`: one main-loop pass per request, where our client
+//! now sends some requests together, served by one pass), against the times a
 //! real CoppeliaSim 4.5.1 took for the same steps (`../shared/spec/real-coppeliasim-4.5.1.md`,
 //! "Costs that grow with the scene", the table "through `vrep-maze`", which holds every row of
 //! issue 18's table). Every step must be within a factor 0.75..1.33 of the real figure. No
@@ -11,7 +13,7 @@ use std::time::Duration;
 use vrep_maze::coppelia::DEFAULT_IDLE_FPS;
 use vrep_maze::draw::{self, ApplyOptions, Backend};
 use vrep_maze::legacy::{self, LegacyBackend};
-use vrep_maze::sim::cost::price_all;
+use vrep_maze::sim::cost::price_lock_step;
 use vrep_maze::sim::{Clock, CostModel, Scene, Simulator};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
@@ -71,7 +73,7 @@ impl Both {
             draw::apply(backend.as_mut(), &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
         backend.close().unwrap();
         let ledger = self.legacy.with_sim(|s| s.ledger.take()).unwrap();
-        let priced = price_all(&Clock::default(), &CostModel::measured(), &ledger);
+        let priced = price_lock_step(&Clock::default(), &CostModel::measured(), &ledger);
         (priced.as_secs_f64(), report.round_trips)
     }
 

@@ -2,7 +2,9 @@
 //!
 //! One REP socket, one thread. The add-on serves requests from CoppeliaSim's main loop, timed
 //! by [`ZmqPacer::serve_at`]: protocol 1 (4.5.1) one request per pass, protocol 2 (4.6+) also
-//! at once within the busy window of a pass that served one; at idle fps 0 at once. With
+//! at once within the busy window of a pass that served one; at idle fps 0 at once. A pass
+//! also serves the requests already queued on the socket when it has answered one, for up to
+//! [`ZMQ_TIME_SLOT`] (what a client that sends before reading replies meets). With
 //! realistic [`Timing`], each call then takes its modeled cost (`crate::coppelia::cost`: about
 //! 0.45 ms a call, plus the simulator's own work for pastes, re-parenting and removals, which
 //! grows with the objects in the scene; `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing",
@@ -25,7 +27,9 @@ use std::time::{Duration, Instant};
 use ciborium::Value;
 
 use crate::sim::cost::{self, Op};
-use crate::sim::{Charge, Clock, Served, SimState, Simulator, Timing, ZmqPacer, ZmqPacing};
+use crate::sim::{
+    Charge, Clock, Served, SimState, Simulator, Timing, ZMQ_TIME_SLOT, ZmqPacer, ZmqPacing,
+};
 use crate::zmq_api::cbor;
 use crate::zmq_api::message::{self, END, EXECUTED, Protocol, Request, VERSION_MISMATCH};
 use functions::{Extras, Outcome};
@@ -249,6 +253,8 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         Protocol::V2 => ZmqPacing::Window,
     });
     let clock = state.config.clock;
+    // the start of the pass still serving the requests queued on the socket, if any
+    let mut queue_pass: Option<Instant> = None;
     while !stop.load(Ordering::SeqCst) {
         let bytes = match socket.recv_bytes(0) {
             Ok(b) => b,
@@ -261,7 +267,14 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         state
             .host
             .with_sim(&mut |s| (sim_state, fps) = (s.state, s.idle_fps));
-        let at = pacer.serve_at(&clock, pacing, sim_state, fps, arrived);
+        let queued = queue_pass.take();
+        let (at, pass) = match queued {
+            Some(pass) => (arrived, pass),
+            None => {
+                let at = pacer.serve_at(&clock, pacing, sim_state, fps, arrived);
+                (at, at)
+            }
+        };
         if !sleep_until(at, stop) {
             break;
         }
@@ -274,6 +287,7 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
             idle_fps: fps,
             state: sim_state,
             ops,
+            queued: queued.is_some(),
         };
         state.host.with_sim(&mut |s| s.record(&charge));
         let work = state.config.timing.cost(|m| charge.work(m));
@@ -285,7 +299,14 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         }
         // a REP socket must answer before it can receive again; a failed send drops the client
         let _ = socket.send(cbor::encode(&reply), 0);
-        pacer.served(&clock, sim_state, fps, at, Instant::now());
+        let done = Instant::now();
+        pacer.served(&clock, sim_state, fps, at, done);
+        // the add-on polls again and serves a request already queued in the same pass,
+        // until its time slot is spent
+        let more = socket.poll(zmq::POLLIN, 0).is_ok_and(|n| n > 0);
+        if more && done < pass + ZMQ_TIME_SLOT {
+            queue_pass = Some(pass);
+        }
     }
 }
 
@@ -451,6 +472,7 @@ mod tests {
     use std::io::Write;
 
     use super::*;
+    use crate::coppelia::INTPARAM_PROGRAM_VERSION;
     use crate::sim::Scene;
 
     fn server(timing: Timing) -> ServerHandle {
@@ -587,5 +609,43 @@ mod tests {
                 Op::ZmqServe { objects: 6 }
             ]
         );
+    }
+
+    /// zmqRemoteApi@coppeliasim-v4.5.1-rev4 `simAddOnZMQ remote API server.lua:86-105`: a
+    /// pass serves the requests queued on the socket; a lock-step client has none queued.
+    #[test]
+    fn a_pass_serves_the_requests_already_queued_and_a_lock_step_client_has_none() {
+        let mut sim = Simulator::new(Scene::course(), 8);
+        sim.ledger = Some(vec![]);
+        let config = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            protocol: Protocol::V1,
+            ..Default::default()
+        };
+        let s = spawn(config, sim).unwrap();
+        let mut client = crate::zmq_api::Client::connect(&crate::zmq_api::ClientOptions {
+            port: s.local_addr().port(),
+            protocol: Some(Protocol::V1),
+            ..Default::default()
+        })
+        .unwrap();
+        let version = || {
+            (
+                "sim.getInt32Param",
+                vec![int(INTPARAM_PROGRAM_VERSION.into())],
+            )
+        };
+        client.call(version().0, version().1).unwrap();
+        client.call(version().0, version().1).unwrap();
+        let outcomes = client
+            .call_all(&[version(), ("sim.noSuchFunction", vec![]), version()])
+            .unwrap();
+        drop(client);
+        let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
+        s.shutdown();
+        assert_eq!(outcomes.len(), 3);
+        assert!(outcomes[0].is_ok() && outcomes[1].is_err() && outcomes[2].is_ok());
+        let queued: Vec<bool> = ledger.iter().map(|c| c.queued).collect();
+        assert_eq!(queued, [false, false, false, true, true]);
     }
 }
