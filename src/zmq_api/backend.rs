@@ -87,9 +87,10 @@ pub struct ZmqBackend {
     /// connection, and whether it changed since it was last written.
     record: Option<CopyRecord>,
     record_changed: bool,
-    /// The idle rates read with the version when connecting, and the round trips made then:
-    /// [`Backend::idle_rates`] takes them while no other call has been made since.
-    first_rates: Option<(IdleRates, usize)>,
+    /// The idle rates read with the version when connecting, the round trips made then and
+    /// when: [`Backend::idle_rates`] takes them while no other call has been made since,
+    /// within [`FIRST_RATES_FRESH`].
+    first_rates: Option<(IdleRates, usize, Instant)>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -160,7 +161,7 @@ impl ZmqBackend {
             aliases: HashMap::new(),
             record: None,
             record_changed: false,
-            first_rates: Some((rates, round_trips)),
+            first_rates: Some((rates, round_trips, Instant::now())),
         })
     }
 
@@ -591,6 +592,10 @@ impl ZmqBackend {
     }
 }
 
+/// How long the idle rates read when connecting stand for the scene's: a command draws at
+/// once; a connection kept longer reads them again (the user may have changed the rate).
+const FIRST_RATES_FRESH: Duration = Duration::from_secs(1);
+
 /// The most copies one paste round makes over ZeroMQ (see `lines_per_request`).
 const ZMQ_PASTE_ROUND: usize = 1000;
 
@@ -635,8 +640,9 @@ impl Backend for ZmqBackend {
     }
 
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
-        if let Some((rates, round_trips)) = self.first_rates.take()
+        if let Some((rates, round_trips, read)) = self.first_rates.take()
             && round_trips == self.round_trips()
+            && read.elapsed() < FIRST_RATES_FRESH
         {
             return Ok(rates);
         }

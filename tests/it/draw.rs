@@ -24,6 +24,7 @@ backend_tests!(
     bounding_boxes_are_read_as_the_simulator_gives_them,
     counts_add_up_in_every_kind_of_apply,
     dry_run_over_a_matching_scene_has_nothing_to_do,
+    the_rate_a_user_set_after_connecting_is_the_one_restored,
 );
 
 /// The bounding boxes of the course objects (float parameters 15..20), in the order asked,
@@ -479,5 +480,26 @@ fn dry_run_over_a_matching_scene_has_nothing_to_do(kind: Kind) {
         !r.nothing_to_do() && r.to_string().starts_with("would draw"),
         "{r}"
     );
+    s.shutdown();
+}
+
+/// The idle rate is read with the version when connecting (ZeroMQ: one main-loop pass for
+/// both); a connection that made other calls since, or was kept a while, reads it again, so
+/// the rate restored is the one the user had when the run began.
+fn the_rate_a_user_set_after_connecting_is_the_one_restored(kind: Kind) {
+    let s = kind.serve(Scene::course(), 8);
+    let d = drawing(3, 1);
+    let mut b = s.connect();
+    s.set_idle_fps(20);
+    b.int_signals(&["vrep-maze.test"]).unwrap();
+    apply(&mut b, &d).unwrap();
+    assert_eq!(s.idle_fps(), 20, "{}: after another call", kind.name());
+    drop(b);
+    let mut b = s.connect();
+    s.set_idle_fps(12);
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    apply(&mut b, &d).unwrap();
+    assert_eq!(s.idle_fps(), 12, "{}: a kept connection", kind.name());
+    drop(b);
     s.shutdown();
 }

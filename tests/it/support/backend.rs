@@ -202,6 +202,11 @@ impl Server {
         self.with_sim(|sim| sim.idle_fps)
     }
 
+    /// Sets the idle rate as a user in CoppeliaSim's settings would.
+    pub fn set_idle_fps(&self, fps: i32) {
+        self.with_sim(|sim| sim.idle_fps = fps);
+    }
+
     /// See [`Snapshot`].
     pub fn snapshot(&self) -> Snapshot {
         self.with_sim(|sim| {
