@@ -89,8 +89,11 @@ impl ApplyReport {
 /// What `clear` did.
 #[pyclass(frozen, get_all, module = "vrep_maze")]
 pub struct ClearReport {
-    /// Names of the objects removed (or, in a dry run, that would be).
+    /// Names of the copies of the templates removed (or, in a dry run, that would be).
     removed: Vec<String>,
+    /// Names of a mesh maze's objects removed (`draw="mesh"`): its meshes, then their
+    /// holder `MazeMeshes`.
+    removed_meshes: Vec<String>,
     /// Messages exchanged with the simulator.
     round_trips: usize,
     /// The idle rate restored (an interrupted `apply` had left it at 0), if it was.
@@ -114,8 +117,13 @@ impl ClearReport {
         } else {
             "removed"
         };
+        let meshes = self
+            .removed_meshes
+            .iter()
+            .filter(|n| *n != vrep_maze::draw::mesh::HOLDER)
+            .count();
         format!(
-            "<ClearReport {verb} {} maze cop{}; {} round trip(s)>",
+            "<ClearReport {verb} {} maze cop{} and {meshes} mesh(es); {} round trip(s)>",
             self.removed.len(),
             if self.removed.len() == 1 { "y" } else { "ies" },
             self.round_trips
@@ -401,6 +409,7 @@ pub fn clear(
     };
     run_drawing(py, &stop, job, |report| ClearReport {
         removed: report.removed,
+        removed_meshes: report.removed_meshes,
         round_trips: report.round_trips,
         restored_idle_fps: report.restored_idle_fps,
         stopped_simulation: report.stopped_simulation,

@@ -94,6 +94,7 @@ class ApplyReport:
 
 class ClearReport:
     removed: list[str]
+    removed_meshes: list[str]
     round_trips: int
     restored_idle_fps: Optional[int]
     stopped_simulation: bool

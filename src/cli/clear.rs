@@ -77,9 +77,12 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Some(line) = &report.template {
         say(line)?;
     }
-    if report.removed.is_empty() {
-        say("nothing to remove: no copies (lines, walls, posts) under Maze in the scene")?;
-    } else {
+    if report.removed.is_empty() && report.removed_meshes.is_empty() {
+        say(
+            "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under Maze in the scene",
+        )?;
+    }
+    if !report.removed.is_empty() {
         say(format!(
             "{verb} {} maze cop{}: {}{more}",
             report.removed.len(),
@@ -91,12 +94,16 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
             shown.join(", ")
         ))?;
     }
+    if let Some(line) = mesh_line(verb, &report.removed_meshes) {
+        say(line)?;
+    }
     if args.json {
         say::document(&ClearJson {
             format: "vrep-maze/clear".into(),
             version: REPORT_VERSION,
             connection,
             removed: report.removed,
+            removed_meshes: report.removed_meshes,
             round_trips: report.round_trips,
             restored_idle_fps: report.restored_idle_fps,
             stopped_simulation: report.stopped_simulation,
@@ -104,4 +111,38 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// The line that says a mesh maze (`apply --draw mesh`) went: its meshes and their holder.
+fn mesh_line(verb: &str, removed: &[String]) -> Option<String> {
+    let meshes: Vec<&str> = removed
+        .iter()
+        .map(String::as_str)
+        .filter(|n| *n != crate::draw::mesh::HOLDER)
+        .collect();
+    if removed.is_empty() {
+        return None;
+    }
+    if meshes.is_empty() {
+        return Some(format!(
+            "{verb} the empty holder `{}` of a mesh maze",
+            crate::draw::mesh::HOLDER
+        ));
+    }
+    let shown = meshes
+        .iter()
+        .take(4)
+        .copied()
+        .collect::<Vec<_>>()
+        .join(", ");
+    let more = if meshes.len() > 4 {
+        format!(", ... ({} more)", meshes.len() - 4)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "{verb} a mesh maze: {} mesh(es) ({shown}{more}) and their holder `{}`",
+        meshes.len(),
+        crate::draw::mesh::HOLDER
+    ))
 }

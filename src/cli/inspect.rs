@@ -12,6 +12,7 @@ use super::reports::{DrawnMaze, InspectReport, LayoutMatch, REPORT_VERSION, Scen
 use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
+use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
 use crate::draw::plan::{is_copy_name, relative_pose, world_frame};
 use crate::draw::verify::verify_read_only;
 use crate::draw::{Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
@@ -45,7 +46,11 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
             let layout = crate::layout::read_layout(path)?;
             let drawing = Drawing::try_from(&layout)
                 .with_context(|| format!("{}: cannot be compared", path.display()))?;
-            Some((path.display().to_string(), drawing))
+            Some(Wanted {
+                file: path.display().to_string(),
+                drawing,
+                layout,
+            })
         }
         None => None,
     };
@@ -71,12 +76,22 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
     })
 }
 
+/// A layout to compare the scene with.
+struct Wanted {
+    /// Its file, as the user named it.
+    file: String,
+    /// Drawn as copies of the templates.
+    drawing: Drawing,
+    /// The layout itself (drawn as meshes when the scene holds a mesh maze).
+    layout: crate::layout::Layout,
+}
+
 /// Reads the scene through `scene` (reads only).
 fn inspect(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     connection: String,
-    wanted: Option<&(String, Drawing)>,
+    wanted: Option<&Wanted>,
 ) -> Result<InspectReport> {
     let rates = scene.idle_rates()?;
     let (survey, surveyed) = survey(scene, names)?;
@@ -155,7 +170,18 @@ fn inspect(
     .map(|n| handle(n))
     .collect();
     let mut maze = DrawnMaze::default();
-    for o in objects {
+    // a mesh maze (`apply --draw mesh`): the holder under the maze dummy and its meshes
+    let meshes = match parent {
+        Some(parent) => crate::draw::mesh::found(scene, names, parent, objects)?,
+        None => Default::default(),
+    };
+    let mesh_kinds: Vec<MeshKind> = meshes
+        .meshes
+        .iter()
+        .filter_map(|m| parse_mesh_name(&m.name).map(|(kind, _)| kind))
+        .collect();
+    maze.meshes = meshes.meshes.iter().map(|m| m.name.clone()).collect();
+    for o in objects.iter().filter(|o| Some(o.handle) != meshes.holder) {
         let under_maze = parent.is_some() && o.parent == parent;
         let copy_of = |template: &str| is_copy_name(&o.name, template);
         // ZeroMQ reads no names of the maze dummy's children unless another style's template
@@ -185,7 +211,9 @@ fn inspect(
             _ => {}
         }
     }
-    maze.style = match (maze.lines, maze.walls) {
+    let lines = maze.lines + mesh_kinds.iter().filter(|k| **k == MeshKind::Lines).count();
+    let walls = maze.walls + mesh_kinds.iter().filter(|k| **k == MeshKind::Walls).count();
+    maze.style = match (lines, walls) {
         (0, 0) => None,
         (_, 0) => Some(Style::Lines),
         (0, _) => Some(Style::Walls),
@@ -193,7 +221,11 @@ fn inspect(
     };
     let layout = match wanted {
         None => None,
-        Some((file, drawing)) => Some(match verify_read_only(scene, drawing, names) {
+        Some(Wanted {
+            file,
+            drawing,
+            layout,
+        }) => Some(match compare(scene, names, drawing, layout, &meshes) {
             Ok(()) => LayoutMatch {
                 file: file.clone(),
                 matches: true,
@@ -224,6 +256,22 @@ fn inspect(
         maze,
         layout,
     })
+}
+
+/// Compares the scene with a layout as `apply` verifies it: as meshes when the scene holds a
+/// mesh maze (`meshes`), else as copies. Only reads.
+fn compare(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    drawing: &Drawing,
+    layout: &crate::layout::Layout,
+    meshes: &FoundMeshes,
+) -> Result<(), DrawError> {
+    if meshes.holder.is_none() {
+        return verify_read_only(scene, drawing, names);
+    }
+    let maze = MeshMaze::try_from(layout).map_err(|e| DrawError::Verify(vec![e.to_string()]))?;
+    crate::draw::mesh::verify_read_only(scene, &maze, names)
 }
 
 /// The survey of every name; a scene without the line template (a wall scene) is listed
@@ -332,6 +380,25 @@ fn show(r: &InspectReport) -> anyhow::Result<()> {
         "drawn: {} line copies, {} wall copies, {} post copies{kind}",
         m.lines, m.walls, m.posts
     ))?;
+    if !m.meshes.is_empty() {
+        let shown = m
+            .meshes
+            .iter()
+            .take(4)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join(", ");
+        let more = if m.meshes.len() > 4 {
+            format!(", ... ({} more)", m.meshes.len() - 4)
+        } else {
+            String::new()
+        };
+        say(format!(
+            "drawn as meshes (apply --draw mesh): {} mesh(es) under `{}`: {shown}{more}",
+            m.meshes.len(),
+            crate::draw::mesh::HOLDER
+        ))?;
+    }
     if m.names_unread > 0 {
         say(format!(
             "  ({} of them counted by position in the tree: this API read no names of the maze dummy's children, and apply treats them as copies)",

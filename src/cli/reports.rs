@@ -171,8 +171,11 @@ pub struct ClearJson {
     pub version: u32,
     /// Which API answered, where (and over ZeroMQ the simulator's version).
     pub connection: String,
-    /// Names of the objects removed (or that would be, on a dry run).
+    /// Names of the copies of the templates removed (or that would be, on a dry run).
     pub removed: Vec<String>,
+    /// Names of the objects of a mesh maze (`apply --draw mesh`) removed (or that would be):
+    /// its meshes, then their holder `MazeMeshes`.
+    pub removed_meshes: Vec<String>,
     /// Messages exchanged with the simulator.
     pub round_trips: usize,
     /// The idle rate restored (an interrupted apply had left it at 0).
@@ -251,7 +254,11 @@ pub struct DrawnMaze {
     pub walls: usize,
     /// Copies of the post template under the maze dummy.
     pub posts: usize,
-    /// lines or walls when the copies are one style's; absent when there are none, or both.
+    /// A mesh maze's meshes (`apply --draw mesh`): the objects under the holder
+    /// `MazeMeshes`, by name.
+    pub meshes: Vec<String>,
+    /// lines or walls when the copies and meshes are one style's; absent when there are
+    /// none, or both.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub style: Option<Style>,
     /// Children of the maze dummy whose names the API did not read (ZeroMQ, in a scene

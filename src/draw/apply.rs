@@ -296,7 +296,10 @@ fn apply_claimed(
     let objects = &sorted.objects;
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
-    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    let meshes: Vec<i32> = super::mesh::leftovers(scene, names, &h, &survey.objects)?
+        .into_iter()
+        .map(|(x, _)| x)
+        .collect();
     let mut existing = maze_lines(objects, &h, names.template(style), &others);
     existing.retain(|x| !meshes.contains(x));
     let copies_needed = drawing

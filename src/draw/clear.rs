@@ -15,8 +15,11 @@ use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, r
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ClearReport {
-    /// Names of the removed objects.
+    /// Names of the removed copies of the templates.
     pub removed: Vec<String>,
+    /// Names of the removed objects of a mesh maze (`apply --draw mesh`): its meshes, then
+    /// their holder.
+    pub removed_meshes: Vec<String>,
     /// Messages exchanged with the simulator.
     pub round_trips: usize,
     /// Idle rate restored (it had been left at 0 by an interrupted `apply`).
@@ -146,12 +149,9 @@ fn clear_claimed(
     let others = names.others(style);
     let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));
-    // a mesh maze (`--draw mesh`): its holder and meshes, ours by name
-    for m in super::mesh::leftovers(scene, names, &h, &survey.objects)? {
-        if !doomed.contains(&m) {
-            doomed.push(m);
-        }
-    }
+    // a mesh maze (`--draw mesh`): its meshes and holder, ours by name
+    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d));
     let names_by_handle: HashMap<i32, &str> = sorted
         .objects
         .iter()
@@ -165,6 +165,8 @@ fn clear_claimed(
                 .map_or_else(|| format!("object {d}"), |n| n.to_string())
         })
         .collect();
+    let removed_meshes = meshes.iter().map(|(_, name)| name.clone()).collect();
+    doomed.extend(meshes.iter().map(|(m, _)| *m));
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)
         let per_request = scene.lines_per_request(survey.objects.len()).max(1);
@@ -198,6 +200,7 @@ fn clear_claimed(
     Ok(ClearReport {
         template,
         removed,
+        removed_meshes,
         round_trips: 0,
         restored_idle_fps: None,
         stopped_simulation,

@@ -133,6 +133,74 @@ fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
     }
 }
 
+/// A maze drawn as meshes is the maze, not an object of the user's: inspect names its
+/// meshes and compares it with a layout as `apply --draw mesh` verifies it; `clear` then
+/// says it removed a mesh maze, not "copies".
+#[test]
+fn inspect_and_clear_know_a_mesh_maze_on_every_api() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawn = generate(dir.path(), "42", "prim");
+    let other = generate(dir.path(), "7", "dfs");
+    for kind in Kind::ALL {
+        let name = kind.name();
+        let server = kind.serve(Scene::course(), 0);
+        bin()
+            .args(["-q", "apply", &drawn, "--draw", "mesh"])
+            .args(api_args(kind, &server))
+            .assert()
+            .success();
+        let before = state(&server);
+        let report = inspect(kind, &server, &["--layout", &drawn], 0);
+        assert_eq!(state(&server), before, "{name}: inspect changed the scene");
+        let maze = &report["maze"];
+        assert_eq!(maze["not_ours"], json!([]), "{name}: {maze}");
+        assert_eq!(maze["style"], "lines", "{name}: {maze}");
+        let meshes = maze["meshes"].as_array().unwrap();
+        assert!(
+            !meshes.is_empty()
+                && meshes
+                    .iter()
+                    .all(|m| m.as_str().unwrap().starts_with("MazeMesh_l_")),
+            "{name}: {maze}"
+        );
+        assert_eq!(report["layout"]["matches"], true, "{name}: {report}");
+        let differing = inspect(kind, &server, &["--layout", &other], 1);
+        assert!(
+            differing["layout"]["differences"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|d| d.as_str().unwrap().contains("mesh")),
+            "{name}: {differing}"
+        );
+        let out = bin()
+            .arg("clear")
+            .args(api_args(kind, &server))
+            .arg("--json")
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let cleared: Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(cleared["removed"], json!([]), "{name}: {cleared}");
+        let mut removed_meshes: Vec<&str> = cleared["removed_meshes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|m| m.as_str().unwrap())
+            .collect();
+        assert_eq!(
+            removed_meshes.pop(),
+            Some("MazeMeshes"),
+            "{name}: {cleared}"
+        );
+        let drawn_meshes: Vec<&str> = meshes.iter().map(|m| m.as_str().unwrap()).collect();
+        assert_eq!(removed_meshes, drawn_meshes, "{name}");
+        server.shutdown();
+    }
+}
+
 #[test]
 fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() {
     let server = Kind::Legacy.serve(Scene::course_walls(), 0);

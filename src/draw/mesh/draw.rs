@@ -31,45 +31,56 @@ fn port(scene: &mut dyn Backend) -> Result<&mut dyn MeshDrawing, DrawError> {
     })
 }
 
-/// The holder of an earlier mesh maze and everything under it, found through the backend's
-/// mesh capability or, without one, among `objects` (the holder by its name under the maze
-/// dummy, the meshes as its children): what a copies-mode draw or a clear removes. Never
-/// the templates.
+/// The holder of a mesh maze under the maze dummy `parent` and what it holds, found through
+/// the backend's mesh capability or, without one, among `objects` (the holder by its name
+/// under the maze dummy, the meshes as its children).
+pub fn found(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    parent: i32,
+    objects: &[ObjectInfo],
+) -> Result<FoundMeshes, DrawError> {
+    if let Some(port) = scene.meshes() {
+        return Ok(port.find(names, parent)?);
+    }
+    let holder = objects
+        .iter()
+        .find(|o| o.parent == Some(parent) && o.name.rsplit('/').next() == Some(HOLDER));
+    Ok(FoundMeshes {
+        holder: holder.map(|o| o.handle),
+        meshes: holder
+            .map(|holder| {
+                objects
+                    .iter()
+                    .filter(|o| o.parent == Some(holder.handle))
+                    .map(|o| super::FoundMesh {
+                        handle: o.handle,
+                        name: o.name.clone(),
+                        parent: o.parent,
+                    })
+                    .collect()
+            })
+            .unwrap_or_default(),
+    })
+}
+
+/// The holder of an earlier mesh maze and everything under it ([`found`]), with their names:
+/// what a copies-mode draw or a clear removes. Never the templates.
 pub fn leftovers(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     h: &Handles,
     objects: &[ObjectInfo],
-) -> Result<Vec<i32>, DrawError> {
-    let found = match scene.meshes() {
-        Some(port) => port.find(names, h.parent)?,
-        None => {
-            let holder = objects
-                .iter()
-                .find(|o| o.parent == Some(h.parent) && o.name.rsplit('/').next() == Some(HOLDER));
-            FoundMeshes {
-                holder: holder.map(|o| o.handle),
-                meshes: holder
-                    .map(|holder| {
-                        objects
-                            .iter()
-                            .filter(|o| o.parent == Some(holder.handle))
-                            .map(|o| super::FoundMesh {
-                                handle: o.handle,
-                                name: o.name.clone(),
-                                parent: o.parent,
-                            })
-                            .collect()
-                    })
-                    .unwrap_or_default(),
-            }
-        }
-    };
+) -> Result<Vec<(i32, String)>, DrawError> {
+    let found = found(scene, names, h.parent, objects)?;
     let templates = h.templates();
+    let ours = |x: &i32| !templates.contains(x) && Some(*x) != h.post && *x != h.floor;
     Ok(found
-        .all_handles()
-        .into_iter()
-        .filter(|x| !templates.contains(x) && Some(*x) != h.post && *x != h.floor)
+        .meshes
+        .iter()
+        .map(|m| (m.handle, m.name.clone()))
+        .chain(found.holder.map(|x| (x, HOLDER.to_string())))
+        .filter(|(x, _)| ours(x))
         .collect())
 }
 
@@ -392,6 +403,15 @@ pub fn verify(
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
     raised(scene, false, |scene| verify_raised(scene, maze, names)).map(|(ok, _)| ok)
+}
+
+/// [`verify`] without raising the idle rate: only reads (what `inspect` compares with).
+pub fn verify_read_only(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    verify_raised(scene, maze, names)
 }
 
 fn verify_raised(

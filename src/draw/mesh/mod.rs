@@ -13,7 +13,7 @@ pub mod compare;
 pub mod draw;
 pub mod geometry;
 
-pub use draw::{apply, leftovers, verify};
+pub use draw::{apply, found, leftovers, verify, verify_read_only};
 pub use geometry::{
     MAX_TRIANGLES, MESH_PREFIX, MazeMesh, MeshKind, MeshMaze, Piece, mesh_name, parse_mesh_name,
 };
