@@ -193,6 +193,26 @@ impl ZmqBackend {
         }
     }
 
+    /// [`ZmqBackend::handle_of`] each of `names` ([`object_path`]), the calls sent together
+    /// ([`Client::call_all`]).
+    fn handles_of(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        let calls: Vec<(&str, Vec<Value>)> = names
+            .iter()
+            .map(|n| {
+                let opts = cbor::map([("noError", Value::Bool(true))]);
+                ("sim.getObject", vec![Value::Text(object_path(n)), opts])
+            })
+            .collect();
+        let mut out = Vec::with_capacity(names.len());
+        for outcome in self.client.call_all(&calls)? {
+            out.push(match outcome {
+                Ok(values) => values.first().and_then(cbor::int32).filter(|&h| h >= 0),
+                Err(_) => None,
+            });
+        }
+        Ok(out)
+    }
+
     fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, BackendError> {
         let v = self.client.call1(
             "sim.getObjectsInTree",
@@ -211,18 +231,11 @@ impl ZmqBackend {
     }
 
     fn world_pose(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), BackendError> {
-        let v = self.client.call1(
+        let values = self.call(
             "sim.getObjectPose",
             vec![int(handle.into()), int(HANDLE_WORLD.into())],
         )?;
-        let p = cbor::numbers::<7>(&v).ok_or_else(|| {
-            BackendError::Transport(format!(
-                "sim.getObjectPose of object {handle}: not 7 numbers: {}",
-                cbor::describe(&v)
-            ))
-        })?;
-        let q = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
-        Ok(([p[0], p[1], p[2]], euler_from_rotation(&q)))
+        pose_of(handle, &values)
     }
 
     /// An object with its pose: from [`ZmqBackend::poses`] if known, else read (`Read`) or
@@ -254,30 +267,50 @@ impl ZmqBackend {
         })
     }
 
-    fn info(
+    /// The named objects with their parents and world poses, and their type codes (a named
+    /// object's alias is its name's last part: only its type is read, once), the calls sent
+    /// together ([`Client::call_all`]).
+    fn named_infos(
         &mut self,
-        handle: i32,
-        name: String,
-        parent: Option<Option<i32>>,
-    ) -> Result<ObjectInfo, BackendError> {
-        let parent = match parent {
-            Some(p) => p,
-            None => {
-                let p = self
-                    .client
-                    .call_int("sim.getObjectParent", vec![int(handle.into())])?;
-                (p >= 0).then_some(p)
+        named: &[(String, i32)],
+    ) -> Result<Vec<(ObjectInfo, i32)>, BackendError> {
+        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
+        // one type read an object (two names may resolve to one object)
+        let mut typed: HashSet<i32> = self.traits.keys().copied().collect();
+        let mut read_type = Vec::with_capacity(named.len());
+        for (_, h) in named {
+            let handle = int((*h).into());
+            calls.push(("sim.getObjectParent", vec![handle.clone()]));
+            calls.push((
+                "sim.getObjectPose",
+                vec![handle.clone(), int(HANDLE_WORLD.into())],
+            ));
+            read_type.push(typed.insert(*h));
+            if read_type[read_type.len() - 1] {
+                calls.push(("sim.getObjectType", vec![handle]));
             }
-        };
-        let (position, orientation) = self.world_pose(handle)?;
-        self.poses.insert(handle, (position, orientation));
-        Ok(ObjectInfo {
-            handle,
-            name,
-            parent,
-            position,
-            orientation,
-        })
+        }
+        let mut outcomes = self.client.call_all(&calls)?.into_iter();
+        let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
+        let mut out = Vec::with_capacity(named.len());
+        for ((name, h), read_type) in named.iter().zip(read_type) {
+            let parent = int_result("sim.getObjectParent", next())?;
+            let (position, orientation) = pose_of(*h, &next()?)?;
+            if read_type {
+                let kind = int_result("sim.getObjectType", next())?;
+                self.traits.insert(*h, (alias_of(name).to_string(), kind));
+            }
+            self.poses.insert(*h, (position, orientation));
+            let info = ObjectInfo {
+                handle: *h,
+                name: name.clone(),
+                parent: (parent >= 0).then_some(parent),
+                position,
+                orientation,
+            };
+            out.push((info, self.traits[h].1));
+        }
+        Ok(out)
     }
 
     /// The alias and type code of `handle`: remembered (read before, or a copy this
@@ -328,16 +361,9 @@ impl ZmqBackend {
         let known = self.known.clone();
         let mut out = Vec::new();
         let mut kinds = HashMap::new();
-        for (name, h) in &known.named {
-            out.push(self.info(*h, name.clone(), None)?);
-            // a named object's alias is its name's last part: only its type is read
-            if !self.traits.contains_key(h) {
-                let kind = self
-                    .client
-                    .call_int("sim.getObjectType", vec![int((*h).into())])?;
-                self.traits.insert(*h, (alias_of(name).to_string(), kind));
-            }
-            kinds.insert(*h, self.traits[h].1);
+        for (info, kind) in self.named_infos(&known.named)? {
+            kinds.insert(info.handle, kind);
+            out.push(info);
         }
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
         let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
@@ -601,10 +627,7 @@ const ZMQ_PASTE_ROUND: usize = 1000;
 
 impl Backend for ZmqBackend {
     fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
-        let mut handles = Vec::with_capacity(names.len());
-        for n in names {
-            handles.push(self.handle_of(&object_path(n))?);
-        }
+        let handles = self.handles_of(names)?;
         // ObjectNames order: floor, parent, template, start, end, then the other templates
         self.known = Known {
             foreign_aliases: names
@@ -662,63 +685,85 @@ impl Backend for ZmqBackend {
         Ok(self.collect(LinePoses::Fresh)?.0)
     }
 
+    /// Six calls an object, sent together ([`Client::call_all`]).
     fn bounding_boxes(
         &mut self,
         handles: &[i32],
     ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
-        let mut out = Vec::with_capacity(handles.len());
-        for &h in handles {
-            let mut v = [0.0; 6];
-            let mut known = true;
-            for (k, slot) in v.iter_mut().enumerate() {
-                let param = OBJFLOATPARAM_BBOX + k as i32;
-                match self.call(
-                    "sim.getObjectFloatParam",
-                    vec![int(h.into()), int(param.into())],
-                ) {
-                    Ok(r) => match r.first().and_then(cbor::number) {
-                        Some(x) => *slot = x,
-                        None => known = false,
-                    },
-                    Err(BackendError::Remote(_)) => known = false,
-                    Err(e) => return Err(e),
+        let calls: Vec<(&str, Vec<Value>)> = handles
+            .iter()
+            .flat_map(|&h| {
+                (0..6).map(move |k| {
+                    let param = OBJFLOATPARAM_BBOX + k;
+                    (
+                        "sim.getObjectFloatParam",
+                        vec![int(h.into()), int(param.into())],
+                    )
+                })
+            })
+            .collect();
+        let outcomes = self.client.call_all(&calls)?;
+        Ok(outcomes
+            .chunks(6)
+            .map(|six| {
+                let mut v = [0.0; 6];
+                for (slot, outcome) in v.iter_mut().zip(six) {
+                    // an object without the parameter (gone) has no box
+                    *slot = outcome.as_ref().ok()?.first().and_then(cbor::number)?;
                 }
-                if !known {
-                    break;
-                }
-            }
-            out.push(known.then(|| BoundingBox {
-                min: [v[0], v[1], v[2]],
-                max: [v[3], v[4], v[5]],
-            }));
-        }
-        Ok(out)
+                Some(BoundingBox {
+                    min: [v[0], v[1], v[2]],
+                    max: [v[3], v[4], v[5]],
+                })
+            })
+            .collect())
     }
 
+    /// One call a shape, sent together ([`Client::call_all`]).
     fn shape_colours(
         &mut self,
         handles: &[i32],
     ) -> Result<Option<Vec<Option<[f64; 3]>>>, BackendError> {
-        let colours: Result<Vec<_>, _> = handles.iter().map(|&h| self.shape_colour(h)).collect();
-        colours.map(Some)
+        let calls: Vec<(&str, Vec<Value>)> = handles
+            .iter()
+            .map(|&h| mesh::shape_colour_call(h))
+            .collect();
+        let outcomes = self.client.call_all(&calls)?;
+        Ok(Some(
+            outcomes
+                .iter()
+                .map(|o| o.as_ref().ok().and_then(|v| mesh::colour_of(v)))
+                .collect(),
+        ))
     }
 
+    /// One call a signal, sent together ([`Client::call_all`]).
     fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        let calls: Vec<(&str, Vec<Value>)> = names
+            .iter()
+            .map(|name| ("sim.getInt32Signal", vec![Value::Text(name.to_string())]))
+            .collect();
         let mut out = Vec::with_capacity(names.len());
-        for name in names {
-            let values = self.call("sim.getInt32Signal", vec![Value::Text(name.to_string())])?;
-            out.push(values.first().and_then(cbor::int32));
+        for outcome in self.client.call_all(&calls)? {
+            out.push(outcome?.first().and_then(cbor::int32));
         }
         Ok(out)
     }
 
+    /// One call a signal, sent together ([`Client::call_all`]) and served in order.
     fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
-        for (name, value) in signals {
-            let name = Value::Text(name.to_string());
-            match value {
-                Some(v) => self.call("sim.setInt32Signal", vec![name, int((*v).into())])?,
-                None => self.call("sim.clearInt32Signal", vec![name])?,
-            };
+        let calls: Vec<(&str, Vec<Value>)> = signals
+            .iter()
+            .map(|(name, value)| {
+                let name = Value::Text(name.to_string());
+                match value {
+                    Some(v) => ("sim.setInt32Signal", vec![name, int((*v).into())]),
+                    None => ("sim.clearInt32Signal", vec![name]),
+                }
+            })
+            .collect();
+        for outcome in self.client.call_all(&calls)? {
+            outcome?;
         }
         Ok(())
     }
@@ -1148,4 +1193,22 @@ fn idle_rates_of(current: Outcome, saved: Outcome) -> Result<IdleRates, BackendE
         Err(e) => return Err(e.into()),
     };
     Ok(IdleRates { current, saved })
+}
+
+/// The world position and Euler angles in the reply of `sim.getObjectPose(handle, world)`
+/// (x, y, z, then the quaternion x, y, z, w).
+fn pose_of(handle: i32, values: &[Value]) -> Result<([f64; 3], [f64; 3]), BackendError> {
+    let v = values.first().ok_or_else(|| {
+        BackendError::Transport(format!(
+            "sim.getObjectPose of object {handle}: no return value"
+        ))
+    })?;
+    let p = cbor::numbers::<7>(v).ok_or_else(|| {
+        BackendError::Transport(format!(
+            "sim.getObjectPose of object {handle}: not 7 numbers: {}",
+            cbor::describe(v)
+        ))
+    })?;
+    let q = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
+    Ok(([p[0], p[1], p[2]], euler_from_rotation(&q)))
 }

@@ -25,6 +25,10 @@ const AFTER_TIMEOUT_WAIT: Duration = Duration::from_secs(1);
 /// How long the look at a silent server's port waits for its TCP connection.
 const STILL_LISTENS_WAIT: Duration = Duration::from_secs(1);
 
+/// The most requests [`Client::call_all`] sends before reading their replies: well under
+/// libzmq's default high-water mark of 1,000 messages a socket, where a send would block.
+const MAX_IN_FLIGHT: usize = 200;
+
 /// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
 const MAX_TURNS: usize = 10_000;
 
@@ -548,6 +552,16 @@ impl Client {
                 .map(|(func, args)| outcome(self.call(func, args.clone())))
                 .collect();
         }
+        let mut outcomes = Vec::with_capacity(calls.len());
+        for chunk in calls.chunks(MAX_IN_FLIGHT) {
+            outcomes.extend(self.call_together(chunk)?);
+        }
+        Ok(outcomes)
+    }
+
+    /// [`Client::call_all`] of at most [`MAX_IN_FLIGHT`] calls, all sent before any reply is
+    /// read.
+    fn call_together(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
         self.stats.calls += calls.len() as u64;
         let requests: Vec<Request> = calls
             .iter()

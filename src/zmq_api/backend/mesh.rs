@@ -51,23 +51,33 @@ impl ZmqBackend {
     }
 }
 
+/// `sim.getShapeColor(h, "", 0)`: the ambient-diffuse colour of the shape `handle`.
+pub(super) fn shape_colour_call(handle: i32) -> (&'static str, Vec<Value>) {
+    (
+        "sim.getShapeColor",
+        vec![
+            int(handle.into()),
+            Value::Text(String::new()),
+            int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+        ],
+    )
+}
+
+/// The colour in the reply of [`shape_colour_call`] (`[1, [r, g, b]]`).
+pub(super) fn colour_of(values: &[Value]) -> Option<[f64; 3]> {
+    values.get(1).and_then(cbor::numbers::<3>)
+}
+
 impl ZmqBackend {
     /// The ambient-diffuse colour of the shape `handle` (`sim.getShapeColor(h, "", 0)`),
     /// `None` if the simulator gives none (no such shape).
     pub(super) fn shape_colour(&mut self, handle: i32) -> Result<Option<[f64; 3]>, BackendError> {
-        let values = match self.call(
-            "sim.getShapeColor",
-            vec![
-                int(handle.into()),
-                Value::Text(String::new()),
-                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-            ],
-        ) {
-            Ok(values) => values,
-            Err(BackendError::Remote(_)) => return Ok(None),
-            Err(e) => return Err(e),
-        };
-        Ok(values.get(1).and_then(cbor::numbers::<3>))
+        let (func, args) = shape_colour_call(handle);
+        match self.call(func, args) {
+            Ok(values) => Ok(colour_of(&values)),
+            Err(BackendError::Remote(_)) => Ok(None),
+            Err(e) => Err(e),
+        }
     }
 }
 
