@@ -8,7 +8,7 @@ use anyhow::Context;
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
 
-use super::connect::{Api, Connected, connect};
+use super::connect::{Api, Connected, RawClient, connect, connect_client};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::{ApplyJson, REPORT_VERSION};
 use super::say::{self, say};
@@ -88,10 +88,7 @@ impl ConnectArgs {
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
-        ensure_usage!(
-            !self.host.trim().is_empty(),
-            "--host needs a host name or an IP address, not an empty one"
-        );
+        self.check_host()?;
         for (option, name) in [
             ("--floor", &self.floor),
             ("--parent", &self.parent),
@@ -118,6 +115,32 @@ impl ConnectArgs {
             say(format!("using the {}", connected.description))?;
         }
         Ok(connected)
+    }
+
+    /// Connects as [`ConnectArgs::connect_until`] does (the same waits, messages and hints)
+    /// for a command that does not draw: the raw client of the API that answered.
+    pub fn client_until(
+        &self,
+        stop: Option<&std::sync::atomic::AtomicBool>,
+    ) -> anyhow::Result<RawClient> {
+        self.check_host()?;
+        connect_client(
+            self.api,
+            &self.host,
+            self.port,
+            self.timeout,
+            self.connect_timeout,
+            stop,
+        )
+    }
+
+    /// Refuses an empty `--host`.
+    fn check_host(&self) -> anyhow::Result<()> {
+        ensure_usage!(
+            !self.host.trim().is_empty(),
+            "--host needs a host name or an IP address, not an empty one"
+        );
+        Ok(())
     }
 }
 

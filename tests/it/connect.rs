@@ -1,4 +1,4 @@
-//! Connecting `apply` and `clear`: what is tried is said at once, a port where nothing
+//! Connecting `apply`, `clear` and `score`: what is tried is said at once, a port where nothing
 //! listens is a clear error with hints within `--connect-timeout`, a port that speaks the
 //! other remote API is named as such (quickly, and without disturbing that server), and a
 //! refused legacy connection is retried silently when standard error is not a terminal.
@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use assert_cmd::cargo::CommandCargoExt;
 
 use crate::support::bin;
-use crate::support::cli::{Serve, generate};
+use crate::support::cli::{DEFAULT_PORTS, Serve, generate};
 
 /// A loopback port where nothing listens (bound, then released).
 fn free_port() -> String {
@@ -140,6 +140,34 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
         )),
         "{stderr}"
     );
+}
+
+#[test]
+fn score_connects_as_apply_does_with_the_same_hints() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    let port = free_port();
+    // a failed legacy connection looks at the ZeroMQ port 23000 for a hint: held still
+    let _ports = DEFAULT_PORTS.lock();
+    let hints = |command: &str| {
+        let args = ["--api", "legacy", "--port", &port, "--connect-timeout", "1"];
+        let (code, stderr, _) = run(&[&[command, m.as_str()][..], &args].concat());
+        assert_eq!(code, Some(1), "{stderr}");
+        assert_clear_error(&stderr);
+        stderr
+            .lines()
+            .filter(|line| line.starts_with("  hint: "))
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    let apply = hints("apply");
+    assert!(
+        apply
+            .iter()
+            .any(|h| h.contains("is CoppeliaSim running with the legacy remote API")),
+        "{apply:?}"
+    );
+    assert_eq!(hints("score"), apply);
 }
 
 #[test]
