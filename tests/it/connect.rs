@@ -36,6 +36,11 @@ fn run(args: &[&str]) -> (Option<i32>, String, Duration) {
     )
 }
 
+/// `command` (with its layout, if any) over `api` on `port`, then `extra`.
+fn on<'a>(command: &[&'a str], api: &'a str, port: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    [command, &["--api", api, "--port", port], extra].concat()
+}
+
 /// Every stderr line is the `connecting to` line, the one `error:` line, or a hint.
 fn assert_clear_error(stderr: &str) {
     let errors = stderr.lines().filter(|l| l.starts_with("error: ")).count();
@@ -58,16 +63,12 @@ fn the_first_line_says_what_is_tried_before_any_wait() {
     let started = Instant::now();
     let mut child = Command::cargo_bin("vrep-maze")
         .unwrap()
-        .args([
-            "apply",
-            &m,
-            "--api",
+        .args(on(
+            &["apply", &m],
             "legacy",
-            "--port",
             &port,
-            "--connect-timeout",
-            "60",
-        ])
+            &["--connect-timeout", "60"],
+        ))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -92,16 +93,12 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let (code, stderr, took) = run(&[
-        "apply",
-        &m,
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["apply", &m],
         "legacy",
-        "--port",
         &port,
-        "--connect-timeout",
-        "1",
-    ]);
+        &["--connect-timeout", "1"],
+    ));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
@@ -118,19 +115,16 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     assert!(stderr.contains("for about a minute"), "{stderr}");
     assert!(stderr.contains("--connect-timeout 75"), "{stderr}");
     // `clear` connects the same way; over ZeroMQ a refused port fails at once
-    let (code, stderr, took) = run(&[
-        "clear",
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["clear"],
         "legacy",
-        "--port",
         &port,
-        "--connect-timeout",
-        "0.5",
-    ]);
+        &["--connect-timeout", "0.5"],
+    ));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
-    let (code, stderr, took) = run(&["clear", "--api", "zmq", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["clear"], "zmq", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(8), "{took:?}");
     assert_clear_error(&stderr);
@@ -179,7 +173,7 @@ fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
         1,
     );
     let port = s.port();
-    let (code, stderr, took) = run(&["apply", &m, "--api", "legacy", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["apply", &m], "legacy", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(5), "{took:?}: {stderr}");
     assert_clear_error(&stderr);
@@ -191,17 +185,12 @@ fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
     );
     // the ZeroMQ server was not disturbed: it answers the next client at once
     bin()
-        .args([
-            "apply",
-            &m,
-            "--api",
+        .args(on(
+            &["apply", &m],
             "zmq",
-            "--port",
             &port,
-            "--dry-run",
-            "--timeout",
-            "3",
-        ])
+            &["--dry-run", "--timeout", "3"],
+        ))
         .assert()
         .success();
 }
@@ -212,7 +201,7 @@ fn a_zeromq_client_on_a_legacy_port_is_told_to_use_api_legacy() {
     let m = generate(dir.path(), "4", "kruskal");
     let s = Serve::start(&["--listen", "127.0.0.1:0", "--idle-fps", "0"], 1);
     let port = s.port();
-    let (code, stderr, took) = run(&["apply", &m, "--api", "zmq", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["apply", &m], "zmq", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     // no reply timeout (10 s) was waited for
     assert!(took < Duration::from_secs(8), "{took:?}: {stderr}");
@@ -225,7 +214,7 @@ fn a_zeromq_client_on_a_legacy_port_is_told_to_use_api_legacy() {
     );
     // the probe left the legacy server politely: the next client is served
     bin()
-        .args(["apply", &m, "--api", "legacy", "--port", &port, "--dry-run"])
+        .args(on(&["apply", &m], "legacy", &port, &["--dry-run"]))
         .assert()
         .success();
 }
@@ -251,17 +240,12 @@ fn a_refused_legacy_connection_is_retried_without_a_countdown_off_a_terminal() {
         vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default())
             .unwrap();
     client.close().unwrap();
-    let (code, stderr, took) = run(&[
-        "apply",
-        &m,
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["apply", &m],
         "legacy",
-        "--port",
         &port,
-        "--dry-run",
-        "--connect-timeout",
-        "30",
-    ]);
+        &["--dry-run", "--connect-timeout", "30"],
+    ));
     assert_eq!(code, Some(0), "{stderr}");
     assert!(took < Duration::from_secs(25), "{took:?}");
     let mut lines = stderr.lines();
@@ -296,12 +280,9 @@ fn with_no_simulator_the_wait_says_nothing_listens_and_ends_at_the_default() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let out = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .output()
-    .unwrap();
+    let out = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
@@ -323,14 +304,11 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
     let port = free_port();
     // an earlier run (a process id no system runs) left its session open
     std::fs::write(marker(dir.path(), &port), "4194305\n").unwrap();
-    let mut child = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .stdout(Stdio::null())
-    .stderr(Stdio::piped())
-    .spawn()
-    .unwrap();
+    let mut child = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
     let mut stderr = BufReader::new(child.stderr.take().unwrap());
     let mut said = String::new();
     for _ in 0..2 {
@@ -364,12 +342,9 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     // client left abruptly
     let s = Serve::start(&["--listen", "127.0.0.1:0"], 1);
     let port = s.port();
-    let out = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .output()
-    .unwrap();
+    let out = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .output()
+        .unwrap();
     assert!(
         out.status.success(),
         "{}",
@@ -385,14 +360,7 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
         .success();
     let mut child = command_with_markers(
         dir.path(),
-        &[
-            "apply",
-            big.to_str().unwrap(),
-            "--api",
-            "legacy",
-            "--port",
-            &port,
-        ],
+        &on(&["apply", big.to_str().unwrap()], "legacy", &port, &[]),
     )
     .stdout(Stdio::null())
     .stderr(Stdio::null())
@@ -409,16 +377,12 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     assert_eq!(pid.trim(), child.id().to_string());
     let out = command_with_markers(
         dir.path(),
-        &[
-            "clear",
-            "--api",
+        &on(
+            &["clear"],
             "legacy",
-            "--port",
             &port,
-            "--dry-run",
-            "--connect-timeout",
-            "1",
-        ],
+            &["--dry-run", "--connect-timeout", "1"],
+        ),
     )
     .output()
     .unwrap();
@@ -466,18 +430,12 @@ fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
     let m = generate(dir.path(), "2", "prim");
     for eager in [true, false] {
         let port = web_server(eager);
-        let (code, stderr, _) = run(&[
-            "apply",
-            &m,
-            "--api",
+        let (code, stderr, _) = run(&on(
+            &["apply", &m],
             "legacy",
-            "--port",
             &port,
-            "--timeout",
-            "1",
-            "--connect-timeout",
-            "3",
-        ]);
+            &["--timeout", "1", "--connect-timeout", "3"],
+        ));
         assert_eq!(code, Some(1), "{stderr}");
         assert_clear_error(&stderr);
         assert!(
