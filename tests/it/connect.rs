@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use assert_cmd::cargo::CommandCargoExt;
 
 use crate::support::bin;
-use crate::support::cli::{DEFAULT_PORTS, Serve, generate};
+use crate::support::cli::{DEFAULT_PORTS, Serve, generate, interrupt};
 
 /// A loopback port where nothing listens (bound, then released).
 fn free_port() -> String {
@@ -319,11 +319,7 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
             && said.contains("waiting up to 75 s"),
         "{said}"
     );
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+    interrupt(child.id());
     let mut rest = String::new();
     std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
     let code = child.wait().unwrap().code();

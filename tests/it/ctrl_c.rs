@@ -14,7 +14,7 @@ use tempfile::TempDir;
 use crate::support::backend::{Kind, TIMEOUT};
 use crate::support::backend_tests;
 use crate::support::bin;
-use crate::support::cli::Serve;
+use crate::support::cli::{Serve, interrupt};
 
 /// A layout of `size` cells (`24x24`) from `seed`, written into `dir`.
 fn layout(dir: &TempDir, seed: &str, size: &str) -> PathBuf {
@@ -35,14 +35,6 @@ fn apply_command(layout: &Path, port: &str) -> Command {
         .stdout(Stdio::null())
         .stderr(Stdio::piped());
     command
-}
-
-fn interrupt(pid: u32) {
-    let status = Command::new("kill")
-        .args(["-INT", &pid.to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
 }
 
 #[test]
