@@ -8,7 +8,7 @@ use anyhow::Context;
 use super::ensure_usage;
 use super::progress::{Progress, Unit};
 
-use super::connect::{Api, Connected, connect};
+use super::connect::{Api, Connected, RawClient, connect, connect_client};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::{ApplyJson, REPORT_VERSION};
 use super::say::{self, say};
@@ -88,10 +88,7 @@ impl ConnectArgs {
         &self,
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
-        ensure_usage!(
-            !self.host.trim().is_empty(),
-            "--host needs a host name or an IP address, not an empty one"
-        );
+        self.check_host()?;
         for (option, name) in [
             ("--floor", &self.floor),
             ("--parent", &self.parent),
@@ -118,6 +115,32 @@ impl ConnectArgs {
             say(format!("using the {}", connected.description))?;
         }
         Ok(connected)
+    }
+
+    /// Connects as [`ConnectArgs::connect_until`] does (the same waits, messages and hints)
+    /// for a command that does not draw: the raw client of the API that answered.
+    pub fn client_until(
+        &self,
+        stop: Option<&std::sync::atomic::AtomicBool>,
+    ) -> anyhow::Result<RawClient> {
+        self.check_host()?;
+        connect_client(
+            self.api,
+            &self.host,
+            self.port,
+            self.timeout,
+            self.connect_timeout,
+            stop,
+        )
+    }
+
+    /// Refuses an empty `--host`.
+    fn check_host(&self) -> anyhow::Result<()> {
+        ensure_usage!(
+            !self.host.trim().is_empty(),
+            "--host needs a host name or an IP address, not an empty one"
+        );
+        Ok(())
     }
 }
 
@@ -200,12 +223,101 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     );
     // two roles on one object: refused at once, before connecting
     args.scene.names().check_roles()?;
-    if args.draw == DrawMode::Mesh {
-        return run_mesh(args, bars);
-    }
     let layout = crate::layout::read_layout(&args.layout)?;
-    let drawing = Drawing::try_from(&layout)
-        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
+    let nothing_drawn = || format!("{}: nothing was drawn", args.layout.display());
+    match args.draw {
+        DrawMode::Copies => {
+            let drawing = Drawing::try_from(&layout).with_context(nothing_drawn)?;
+            let mode = copies_mode(drawing);
+            drive(&args, bars, &layout, mode)
+        }
+        DrawMode::Mesh => {
+            let maze = draw::mesh::MeshMaze::try_from(&layout).with_context(nothing_drawn)?;
+            let mode = mesh_mode(maze);
+            drive(&args, bars, &layout, mode)
+        }
+    }
+}
+
+/// A draw function of the library: [`draw::apply`] (copies) or [`draw::mesh::apply`].
+type DrawFn<D> = fn(
+    &mut dyn Backend,
+    &D,
+    &ApplyOptions,
+    &mut dyn FnMut(Stage),
+) -> Result<draw::ApplyReport, DrawError>;
+
+/// What one draw mode (`--draw`) supplies to [`drive`], which does the rest of `apply` the
+/// same way for both: the drawing, the function that draws it and the words it is told in.
+struct Mode<D> {
+    /// What is drawn, made from the layout.
+    drawing: D,
+    /// Draws it.
+    draw: DrawFn<D>,
+    /// What the progress bar counts ("lines", "wall runs and posts", ...).
+    what: &'static str,
+    /// How many of them there are.
+    total: usize,
+    /// The bar's message while pasting.
+    pasting: String,
+    /// The bar's message while placing.
+    placing: String,
+    /// What "interrupted: N of M ..." counts, and what was done with them.
+    interrupted: String,
+    /// The last line of a real run: what was verified.
+    verified: String,
+    /// A missing object's error suggests `--create-missing` when ZeroMQ answered.
+    hints_create_missing: bool,
+}
+
+/// `--draw copies`: one copy of a template per line, wall or post.
+fn copies_mode(drawing: Drawing) -> Mode<Drawing> {
+    let (what, noun) = match (drawing.style, drawing.posts.is_empty()) {
+        (crate::layout::Style::Lines, _) => ("lines", "line"),
+        (crate::layout::Style::Walls, true) => ("walls", "wall"),
+        (crate::layout::Style::Walls, false) => ("walls and posts", "wall, post"),
+    };
+    Mode {
+        draw: draw::apply,
+        what,
+        total: drawing.copies(),
+        pasting: format!("pasting {what}"),
+        placing: format!("placing {what}"),
+        interrupted: "copies placed".into(),
+        verified: format!("verified: every {noun}, start and end in place"),
+        hints_create_missing: true,
+        drawing,
+    }
+}
+
+/// `--draw mesh`: a few mesh shapes, one rectangle or box per straight run.
+fn mesh_mode(maze: draw::mesh::MeshMaze) -> Mode<draw::mesh::MeshMaze> {
+    let what = match maze.style {
+        crate::layout::Style::Lines => "line runs",
+        crate::layout::Style::Walls => "wall runs and posts",
+    };
+    Mode {
+        draw: draw::mesh::apply,
+        what,
+        total: maze.pieces(),
+        pasting: format!("creating the meshes of {what}"),
+        placing: format!("creating the meshes of {what}"),
+        interrupted: format!("{what} drawn"),
+        verified: "verified: every mesh read back, start and end in place".into(),
+        hints_create_missing: false,
+        drawing: maze,
+    }
+}
+
+/// Runs `apply` in `mode` after the usage checks: connects (Ctrl-C ends the wait), creates
+/// the missing objects if asked, draws with a progress bar, saves the scene if asked and
+/// says what was done (`--json`: one document).
+fn drive<D>(
+    args: &ApplyArgs,
+    bars: Progress,
+    layout: &crate::layout::Layout,
+    mode: Mode<D>,
+) -> anyhow::Result<std::process::ExitCode> {
     let mut opts = ApplyOptions {
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
@@ -229,20 +341,16 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
                 "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
             );
         };
-        created = draw::create_missing_for(authoring, &opts.names, &layout)
+        created = draw::create_missing_for(authoring, &opts.names, layout)
             .context("creating the missing scene objects")?;
         if !created.is_empty() {
             say(format!("created {}", created.join(", ")))?;
         }
     }
-    let what = match (drawing.style, drawing.posts.is_empty()) {
-        (crate::layout::Style::Walls, false) => "walls and posts",
-        (style, _) => style.name(),
-    };
     let bar = bars.bar(
         "reading the scene",
-        drawing.copies() as u64,
-        Unit::Items(what),
+        mode.total as u64,
+        Unit::Items(mode.what),
     );
     let api = backend.remote_api();
     let dry_run = args.dry_run;
@@ -254,17 +362,18 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
                 bar.suspend(|| eprintln!("{line}"));
             }
         }
-        Stage::Pasting { .. } => bar.set_message(format!("pasting {what}")),
+        Stage::Pasting { .. } => bar.set_message(mode.pasting.clone()),
         Stage::Placing { done, .. } => {
-            bar.set_message(format!("placing {what}"));
+            bar.set_message(mode.placing.clone());
             bar.set_position(done as u64);
         }
         Stage::Verifying => bar.set_message("verifying"),
     };
-    let result = draw::apply(backend.as_mut(), &drawing, &opts, &mut progress);
+    let result = (mode.draw)(backend.as_mut(), &mode.drawing, &opts, &mut progress);
     bar.finish_and_clear();
     // over ZeroMQ the missing objects can be made: say so first
-    let can_create = backend.authoring().is_some() && !args.create_missing;
+    let can_create =
+        mode.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
     let result = result.map_err(|e| match e {
         DrawError::Missing { names, mut hints } if can_create => {
             hints.insert(
@@ -280,7 +389,8 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         // official client does spares the user the simulator's one-minute refusal
         let closed = backend.close();
         eprintln!(
-            "interrupted: {placed} of {total} copies placed; the idle rate is restored{}",
+            "interrupted: {placed} of {total} {}; the idle rate is restored{}",
+            mode.interrupted,
             if closed.is_ok() {
                 " and the connection closed cleanly"
             } else {
@@ -320,15 +430,10 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         say(line)?;
     }
     if !report.dry_run {
-        let noun = match (drawing.style, drawing.posts.is_empty()) {
-            (crate::layout::Style::Lines, _) => "line",
-            (crate::layout::Style::Walls, true) => "wall",
-            (crate::layout::Style::Walls, false) => "wall, post",
-        };
-        say(format!("verified: every {noun}, start and end in place"))?;
+        say(mode.verified)?;
     }
     if args.json {
-        say::document(&apply_json(&args, connection, &report, created))?;
+        say::document(&apply_json(args, connection, &report, created))?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }
@@ -365,104 +470,4 @@ fn apply_json(
         created,
         saved_scene: args.save_scene.clone().filter(|_| !args.dry_run),
     }
-}
-
-/// Runs `apply --draw mesh`.
-fn run_mesh(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
-    let layout = crate::layout::read_layout(&args.layout)?;
-    let maze = draw::mesh::MeshMaze::try_from(&layout)
-        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
-    let mut opts = ApplyOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        ..Default::default()
-    };
-    let interrupt = Interrupt::install()?;
-    opts.interrupt = Some(interrupt.shared());
-    let Connected {
-        mut backend,
-        description: connection,
-    } = args.scene.connect_until(Some(interrupt.flag()))?;
-    if interrupt.requested() {
-        let _ = backend.close();
-        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
-    }
-    let mut created = Vec::new();
-    if args.create_missing && !args.dry_run {
-        let Some(authoring) = backend.authoring() else {
-            anyhow::bail!(
-                "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
-            );
-        };
-        created = draw::create_missing_for(authoring, &opts.names, &layout)
-            .context("creating the missing scene objects")?;
-        if !created.is_empty() {
-            say(format!("created {}", created.join(", ")))?;
-        }
-    }
-    let what = match maze.style {
-        crate::layout::Style::Lines => "line runs",
-        crate::layout::Style::Walls => "wall runs and posts",
-    };
-    let bar = bars.bar("reading the scene", maze.pieces() as u64, Unit::Items(what));
-    let mut progress = |stage: Stage| match stage {
-        Stage::Surveyed => bar.set_message("reading the scene"),
-        Stage::Pasting { .. } | Stage::Placing { .. } => {
-            if let Stage::Placing { done, .. } = stage {
-                bar.set_position(done as u64);
-            }
-            bar.set_message(format!("creating the meshes of {what}"));
-        }
-        Stage::Verifying => bar.set_message("verifying"),
-        Stage::Planned(_) => {}
-    };
-    let result = draw::mesh::apply(backend.as_mut(), &maze, &opts, &mut progress);
-    bar.finish_and_clear();
-    if let Err(DrawError::Interrupted { placed, total }) = &result {
-        let closed = backend.close();
-        eprintln!(
-            "interrupted: {placed} of {total} {what} drawn; the idle rate is restored{}",
-            if closed.is_ok() {
-                " and the connection closed cleanly"
-            } else {
-                ""
-            }
-        );
-        eprintln!(
-            "  hint: run the same apply again to finish the maze, or vrep-maze clear to remove it"
-        );
-        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
-    }
-    let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
-    if let Some(path) = &args.save_scene
-        && !args.dry_run
-    {
-        let Some(authoring) = backend.authoring() else {
-            anyhow::bail!(
-                "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
-            );
-        };
-        authoring
-            .save_scene(path)
-            .with_context(|| format!("saving the scene to {path}"))?;
-        say(format!(
-            "saved the scene to {path} (on the simulator's machine)"
-        ))?;
-    }
-    let _ = backend.close();
-    if report.stopped_simulation {
-        say("stopped the simulation first")?;
-    }
-    say(&report)?;
-    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
-        say(line)?;
-    }
-    if !report.dry_run {
-        say("verified: every mesh read back, start and end in place")?;
-    }
-    if args.json {
-        say::document(&apply_json(&args, connection, &report, created))?;
-    }
-    Ok(std::process::ExitCode::SUCCESS)
 }

@@ -1,5 +1,8 @@
-//! Choosing the remote API for `apply` and `clear` and connecting to it: legacy (port 19997),
-//! ZeroMQ (port 23000), or auto (try legacy briefly, then ZeroMQ, and say which answered).
+//! Choosing the remote API for `apply`, `clear`, `inspect` and `score` and connecting to it:
+//! legacy (port 19997), ZeroMQ (port 23000), or auto (try legacy briefly, then ZeroMQ, and
+//! say which answered). A command that draws gets a drawing backend ([`connect`]), `score`
+//! the raw client it follows a robot with ([`connect_client`]), through the same waits,
+//! messages and hints.
 //!
 //! What is tried is said at once on standard error (standard output stays for reports).
 //! A real CoppeliaSim 4.5.1 refuses every connection on its legacy port for about a minute
@@ -85,6 +88,72 @@ pub struct Connected {
     pub description: String,
 }
 
+/// The client of the API that answered, for a command that does not draw (`score` follows
+/// a robot with it).
+pub enum RawClient {
+    /// The legacy remote API.
+    Legacy(legacy::Client),
+    /// The ZeroMQ remote API.
+    Zmq(zmq_api::Client),
+}
+
+/// What a connection is made into: a drawing backend ([`Connected`]) or a [`RawClient`].
+trait Opened: Sized {
+    /// The legacy connection `client` to `addr` (replies within `timeout`), whose session
+    /// `marker` may record.
+    fn legacy(client: legacy::Client, marker: SessionMarker, addr: &str, timeout: Duration)
+    -> Self;
+    /// Connects over ZeroMQ to `host:port`.
+    fn zmq(
+        host: &str,
+        port: u16,
+        timeout: Duration,
+        connect_timeout: Duration,
+    ) -> anyhow::Result<Self>;
+}
+
+impl Opened for Connected {
+    /// The session is recorded ([`SessionMarker`]) until the backend closes it cleanly.
+    fn legacy(
+        client: legacy::Client,
+        marker: SessionMarker,
+        addr: &str,
+        timeout: Duration,
+    ) -> Self {
+        marker.opened();
+        let backend = LegacyBackend::new(client, timeout).on_clean_close(move || marker.closed());
+        Connected {
+            backend: Box::new(backend),
+            description: format!("legacy remote API at {addr}"),
+        }
+    }
+
+    fn zmq(
+        host: &str,
+        port: u16,
+        timeout: Duration,
+        connect_timeout: Duration,
+    ) -> anyhow::Result<Self> {
+        zmq(host, port, timeout, connect_timeout)
+    }
+}
+
+impl Opened for RawClient {
+    /// The session is not recorded: the follower that owns the client closes it.
+    fn legacy(client: legacy::Client, _: SessionMarker, _: &str, _: Duration) -> Self {
+        RawClient::Legacy(client)
+    }
+
+    fn zmq(
+        host: &str,
+        port: u16,
+        timeout: Duration,
+        connect_timeout: Duration,
+    ) -> anyhow::Result<Self> {
+        zmq_client(host, port, timeout, connect_timeout).map(RawClient::Zmq)
+    }
+}
+
 /// Connects as `api` says. `port` overrides the API's default (auto tries both APIs on it);
 /// `timeout` bounds each reply; `connect_timeout` the connection [default:
 /// [`LEGACY_CONNECT_TIMEOUT`] (or [`LEGACY_REFUSAL_WAIT`] when an earlier run left
@@ -98,6 +167,31 @@ pub fn connect(
     connect_timeout: Option<Duration>,
     stop: Option<&AtomicBool>,
 ) -> anyhow::Result<Connected> {
+    open(api, host, port, timeout, connect_timeout, stop)
+}
+
+/// Connects as [`connect`] does (the same waits, messages and hints), handing out the raw
+/// client of the API that answered instead of a drawing backend.
+pub fn connect_client(
+    api: Api,
+    host: &str,
+    port: Option<u16>,
+    timeout: Duration,
+    connect_timeout: Option<Duration>,
+    stop: Option<&AtomicBool>,
+) -> anyhow::Result<RawClient> {
+    open(api, host, port, timeout, connect_timeout, stop)
+}
+
+/// [`connect`] and [`connect_client`]: the connection made into `T`.
+fn open<T: Opened>(
+    api: Api,
+    host: &str,
+    port: Option<u16>,
+    timeout: Duration,
+    connect_timeout: Option<Duration>,
+    stop: Option<&AtomicBool>,
+) -> anyhow::Result<T> {
     match api {
         Api::Legacy => legacy(
             host,
@@ -107,7 +201,7 @@ pub fn connect(
             true,
             stop,
         ),
-        Api::Zmq => zmq(
+        Api::Zmq => T::zmq(
             host,
             port.unwrap_or(ZMQ_PORT),
             timeout,
@@ -135,7 +229,7 @@ pub fn connect(
                 socket_addr(host, legacy_port)
             ));
             let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
-            zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
+            T::zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
                 connect_error(
                     format!(
                         "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
@@ -175,14 +269,17 @@ fn seconds(d: Duration) -> String {
     }
 }
 
-fn legacy(
+/// Connects to the legacy remote API at `host:port`, waiting out CoppeliaSim's one-minute
+/// refusal when an earlier run left abruptly; `probe_zmq`: a failure looks whether the
+/// ZeroMQ port answers, for a hint.
+fn legacy<T: Opened>(
     host: &str,
     port: u16,
     timeout: Duration,
     connect_timeout: Option<Duration>,
     probe_zmq: bool,
     stop: Option<&AtomicBool>,
-) -> anyhow::Result<Connected> {
+) -> anyhow::Result<T> {
     let addr = socket_addr(host, port);
     let marker = SessionMarker::for_address(host, port);
     let earlier = marker.left_abruptly();
@@ -231,16 +328,7 @@ fn legacy(
     });
     countdown.done();
     let error = match result {
-        Ok(client) => {
-            marker.opened();
-            let closed = marker.clone();
-            let backend =
-                LegacyBackend::new(client, timeout).on_clean_close(move || closed.closed());
-            return Ok(Connected {
-                backend: Box::new(backend),
-                description: format!("legacy remote API at {addr}"),
-            });
-        }
+        Ok(client) => return Ok(T::legacy(client, marker, &addr, timeout)),
         Err(e) => e,
     };
     Err(match error {
@@ -368,6 +456,59 @@ fn zmq(
         backend: Box::new(backend),
         description,
     })
+}
+
+/// Connects a raw ZeroMQ client to `host:port`, as [`zmq`] connects before it makes the
+/// client a backend.
+fn zmq_client(
+    host: &str,
+    port: u16,
+    timeout: Duration,
+    connect_timeout: Duration,
+) -> anyhow::Result<zmq_api::Client> {
+    super::say::note(format!(
+        "connecting to CoppeliaSim's ZeroMQ remote API at {} ...",
+        socket_addr(host, port)
+    ));
+    let options = zmq_api::ClientOptions {
+        host: host.to_string(),
+        port,
+        timeout,
+        connect_timeout: Some(connect_timeout),
+        protocol: None,
+    };
+    zmq_api::Client::connect(&options).map_err(|e| zmq_connect_error(e, host, port))
+}
+
+/// A failed ZeroMQ connection to `host:port` as one line and its hints: a port that speaks
+/// the legacy API is named as such.
+fn zmq_connect_error(error: ZmqError, host: &str, port: u16) -> anyhow::Error {
+    let addr = socket_addr(host, port);
+    match error {
+        e @ ZmqError::NotZeroMq { .. } => {
+            if legacy_answers(&addr) {
+                connect_error(
+                    format!(
+                        "port {port} speaks the legacy remote API, not the ZeroMQ one: use --api legacy"
+                    ),
+                    vec![],
+                )
+            } else {
+                connect_error(
+                    e.to_string(),
+                    vec![format!(
+                        "is port {port} CoppeliaSim's ZeroMQ remote API? (the add-on serves {ZMQ_PORT} from CoppeliaSim 4.3)"
+                    )],
+                )
+            }
+        }
+        e @ ZmqError::Connect { .. } => anyhow::Error::new(e),
+        e @ ZmqError::Resolve { .. } => connect_error(
+            e.to_string(),
+            vec!["check --host: a name this machine resolves, or an IP address".into()],
+        ),
+        e => anyhow::Error::new(e).context(format!("ZeroMQ remote API at {addr}")),
+    }
 }
 
 /// Whether a ZeroMQ remote API answers a call on `host:port` within [`PROBE_TIMEOUT`].

@@ -11,7 +11,7 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 
 use super::apply::ConnectArgs;
-use super::connect::{Api, LEGACY_CONNECT_TIMEOUT, LEGACY_PORT, ZMQ_CONNECT_TIMEOUT, ZMQ_PORT};
+use super::connect::RawClient;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::output::write_output;
 use crate::layout::Layout;
@@ -23,9 +23,6 @@ use crate::zmq_api::follow::ZmqFollower;
 /// Exit code of a run that ended early (the simulation stopped before `End` with `--until
 /// end`, the connection dropped, or `--timeout` passed): the report is partial.
 pub const INCOMPLETE_EXIT_CODE: u8 = 3;
-
-/// How long `--api auto` tries the legacy port before it tries ZeroMQ.
-const AUTO_LEGACY_WAIT: Duration = Duration::from_millis(1500);
 
 /// Options of `score`.
 #[derive(Debug, clap::Args)]
@@ -106,7 +103,7 @@ impl ScoreArgs {
             robot_radius: self.robot_radius,
             end_size: self.end_size,
         };
-        let mut follower = connect(&self.scene)?;
+        let mut follower = connect(&self.scene, &interrupt)?;
         connected.store(true, Ordering::SeqCst);
         let options = FollowOptions {
             robot: self.robot.clone(),
@@ -163,61 +160,13 @@ pub fn run(args: ScoreArgs) -> Result<ExitCode> {
     })
 }
 
-/// Connects a follower over the API `args` chooses (auto: legacy briefly, then ZeroMQ).
-fn connect(args: &ConnectArgs) -> Result<Box<dyn Follower>> {
-    let legacy = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
-        let addr = format!("{}:{port}", args.host);
-        super::say::note(format!(
-            "connecting to CoppeliaSim's legacy remote API at {addr} ..."
-        ));
-        let opts = crate::legacy::ClientOptions {
-            connect_timeout: wait,
-            reply_timeout: args.timeout,
-            ..Default::default()
-        };
-        let client = crate::legacy::Client::connect_with(addr.as_str(), opts, &mut |_| true)
-            .with_context(|| format!("legacy remote API at {addr}"))?;
-        Ok(Box::new(LegacyFollower::new(client)))
-    };
-    let zmq = |port: u16, wait: Duration| -> Result<Box<dyn Follower>> {
-        super::say::note(format!(
-            "connecting to CoppeliaSim's ZeroMQ remote API at {}:{port} ...",
-            args.host
-        ));
-        let options = crate::zmq_api::ClientOptions {
-            host: args.host.clone(),
-            port,
-            timeout: args.timeout,
-            connect_timeout: Some(wait),
-            protocol: None,
-        };
-        let client = crate::zmq_api::Client::connect(&options)
-            .with_context(|| format!("ZeroMQ remote API at {}:{port}", args.host))?;
-        Ok(Box::new(ZmqFollower::new(client)))
-    };
-    match args.api {
-        Api::Legacy => legacy(
-            args.port.unwrap_or(LEGACY_PORT),
-            args.connect_timeout.unwrap_or(LEGACY_CONNECT_TIMEOUT),
-        ),
-        Api::Zmq => zmq(
-            args.port.unwrap_or(ZMQ_PORT),
-            args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
-        ),
-        Api::Auto => {
-            // as `apply`: with --port, both APIs are tried on that port
-            let (legacy_port, zmq_port) = args.port.map_or((LEGACY_PORT, ZMQ_PORT), |p| (p, p));
-            let wait = args
-                .connect_timeout
-                .map_or(AUTO_LEGACY_WAIT, |t| t.min(AUTO_LEGACY_WAIT));
-            legacy(legacy_port, wait).or_else(|_| {
-                zmq(
-                    zmq_port,
-                    args.connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
-                )
-            })
-        }
-    }
+/// Connects a follower over the API `args` chooses (auto: legacy briefly, then ZeroMQ), as
+/// `apply` connects; setting `stop` (Ctrl-C) ends the connection wait.
+fn connect(args: &ConnectArgs, stop: &AtomicBool) -> Result<Box<dyn Follower>> {
+    Ok(match args.client_until(Some(stop))? {
+        RawClient::Legacy(client) => Box::new(LegacyFollower::new(client)),
+        RawClient::Zmq(client) => Box::new(ZmqFollower::new(client)),
+    })
 }
 
 /// The report for a terminal.

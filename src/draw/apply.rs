@@ -12,7 +12,7 @@ use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose,
+    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose, Survey,
     resolve_handles, verify,
 };
 
@@ -212,17 +212,70 @@ pub fn apply(
 ) -> Result<ApplyReport, DrawError> {
     // two roles on one object: refused before anything is sent
     opts.names.check_roles()?;
+    raised_and_claimed(scene, opts.dry_run, |scene, claim| {
+        apply_claimed(scene, drawing, opts, progress, claim)
+    })
+}
+
+/// Runs a draw's `work` as every draw runs ([`apply`], [`super::mesh::apply()`]): with the
+/// idle rate raised ([`raised`]) and the scene claimed ([`claimed`]), counting its round
+/// trips and wall time into the report it returns.
+pub(crate) fn raised_and_claimed(
+    scene: &mut dyn Backend,
+    dry_run: bool,
+    work: impl FnOnce(&mut dyn Backend, &Claim) -> Result<ApplyReport, DrawError>,
+) -> Result<ApplyReport, DrawError> {
     let started = Instant::now();
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
-    let (mut report, _) = raised(scene, opts.dry_run, |scene| {
-        claimed(scene, opts.dry_run, |scene, claim| {
-            apply_claimed(scene, drawing, opts, progress, claim)
-        })
-    })?;
+    let (mut report, _) = raised(scene, dry_run, |scene| claimed(scene, dry_run, work))?;
     report.round_trips = scene.round_trips() - rt0;
     report.elapsed = started.elapsed();
     Ok(report)
+}
+
+/// Reads the scene for drawing `style` (with `posts`: the post template too): the survey
+/// and the handles of the named objects, or [`DrawError::Missing`].
+pub(crate) fn surveyed(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    style: super::Style,
+    posts: bool,
+) -> Result<(Survey, Handles), DrawError> {
+    let survey = scene.survey(&names.survey(style))?;
+    let h = resolve_handles(names, style, &survey, posts)?;
+    Ok((survey, h))
+}
+
+/// Deals with a simulation the survey found `running` before anything is changed: refuses
+/// it ([`DrawError::SimulationRunning`]) unless `stop` is asked, then stops it unless
+/// `dry_run`. Returns whether it was stopped.
+pub(crate) fn stop_running_simulation(
+    scene: &mut dyn Backend,
+    running: bool,
+    stop: bool,
+    dry_run: bool,
+) -> Result<bool, DrawError> {
+    if !running {
+        return Ok(false);
+    }
+    if !stop {
+        return Err(DrawError::SimulationRunning);
+    }
+    if !dry_run {
+        scene.stop_simulation()?;
+        return Ok(true);
+    }
+    Ok(false)
+}
+
+impl ApplyOptions {
+    /// Whether Ctrl-C asked the run to stop ([`ApplyOptions::interrupt`]).
+    pub(crate) fn interrupted(&self) -> bool {
+        self.interrupt
+            .as_ref()
+            .is_some_and(|flag| flag.load(Ordering::SeqCst))
+    }
 }
 
 /// Runs `work` with the idle rate raised to 0 (unless `dry_run`), so that reading and
@@ -265,8 +318,7 @@ fn apply_claimed(
     let style = drawing.style;
     let names = &opts.names;
     let posts = !drawing.posts.is_empty();
-    let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey, posts)?;
+    let (survey, h) = surveyed(scene, names, style, posts)?;
     let sizes = sizes_of(scene, drawing, names, &h)?;
     if !sizes.refusals.is_empty() {
         return Err(DrawError::Sizes(sizes.refusals));
@@ -281,15 +333,12 @@ fn apply_claimed(
         simulation_running: survey.simulation_running,
         ..Default::default()
     };
-    if survey.simulation_running {
-        if !opts.stop_simulation {
-            return Err(DrawError::SimulationRunning);
-        }
-        if !opts.dry_run {
-            scene.stop_simulation()?;
-            report.stopped_simulation = true;
-        }
-    }
+    report.stopped_simulation = stop_running_simulation(
+        scene,
+        survey.simulation_running,
+        opts.stop_simulation,
+        opts.dry_run,
+    )?;
     // only the templates' copies are the maze's: the user's objects stay as they are
     let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
     report.left_alone = sorted.strangers;
@@ -768,12 +817,7 @@ impl Drawer<'_, '_> {
 
     /// Stops here if the user interrupted or another run took the scene over.
     fn checkpoint(&mut self, phase: &'static str) -> Result<(), DrawError> {
-        if self
-            .opts
-            .interrupt
-            .as_ref()
-            .is_some_and(|flag| flag.load(Ordering::SeqCst))
-        {
+        if self.opts.interrupted() {
             return Err(DrawError::Interrupted {
                 placed: self.placed,
                 total: self.drawing.copies(),

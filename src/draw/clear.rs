@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::apply::raised;
+use super::apply::{raised, stop_running_simulation};
 use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
@@ -134,16 +134,12 @@ fn clear_claimed(
         survey = scene.survey(&names.survey(style))?;
     }
     let h = resolve_handles(names, style, &survey, false)?;
-    let mut stopped_simulation = false;
-    if survey.simulation_running {
-        if !opts.stop_simulation {
-            return Err(DrawError::SimulationRunning);
-        }
-        if !dry_run {
-            scene.stop_simulation()?;
-            stopped_simulation = true;
-        }
-    }
+    let stopped_simulation = stop_running_simulation(
+        scene,
+        survey.simulation_running,
+        opts.stop_simulation,
+        dry_run,
+    )?;
     // only the templates' copies are the maze's: the user's objects stay as they are
     let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
     let others = names.others(style);

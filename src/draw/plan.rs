@@ -449,16 +449,22 @@ mod tests {
         assert!(is_copy_name("Seg#1", "Seg#0"));
     }
 
-    #[test]
-    fn maze_lines_are_children_and_parentless_copies() {
-        let h = Handles {
+    /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
+    /// template.
+    fn handles() -> Handles {
+        Handles {
             floor: 1,
             parent: 2,
             line: 3,
             start: 4,
             end: 5,
             post: None,
-        };
+        }
+    }
+
+    #[test]
+    fn maze_lines_are_children_and_parentless_copies() {
+        let h = handles();
         let objects = vec![
             obj(1, "Floor", None),
             obj(2, "Maze", None),
@@ -477,14 +483,7 @@ mod tests {
 
     #[test]
     fn another_styles_copies_are_foreign_and_its_template_untouched() {
-        let h = Handles {
-            floor: 1,
-            parent: 2,
-            line: 3,
-            start: 4,
-            end: 5,
-            post: None,
-        };
+        let h = handles();
         let objects = vec![
             obj(1, "Floor", None),
             obj(2, "Maze", None),
@@ -517,14 +516,7 @@ mod tests {
 
     #[test]
     fn only_copies_of_a_template_by_name_and_type_are_the_mazes() {
-        let h = Handles {
-            floor: 1,
-            parent: 2,
-            line: 3,
-            start: 4,
-            end: 5,
-            post: None,
-        };
+        let h = handles();
         let objects = vec![
             obj(1, "Floor", None),
             obj(2, "Maze", None),

@@ -5,9 +5,7 @@ use std::collections::{HashMap, HashSet};
 
 use super::apply::raised;
 use super::plan::{self, foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
-use super::{
-    Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style, resolve_handles,
-};
+use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
 /// `drawing.lines[i]` (`lines[0]` is the template in a line maze) and `posts[i]` the one
@@ -183,8 +181,7 @@ fn verify_raised(
 ) -> Result<(), DrawError> {
     let style = drawing.style;
     let with_posts = !drawing.posts.is_empty();
-    let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey, with_posts)?;
+    let (survey, h) = super::apply::surveyed(scene, names, style, with_posts)?;
     let sizes = super::apply::sizes_of(scene, drawing, names, &h)?;
     if !sizes.refusals.is_empty() {
         return Err(DrawError::Sizes(sizes.refusals));

@@ -1,4 +1,4 @@
-//! Connecting `apply` and `clear`: what is tried is said at once, a port where nothing
+//! Connecting `apply`, `clear` and `score`: what is tried is said at once, a port where nothing
 //! listens is a clear error with hints within `--connect-timeout`, a port that speaks the
 //! other remote API is named as such (quickly, and without disturbing that server), and a
 //! refused legacy connection is retried silently when standard error is not a terminal.
@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use assert_cmd::cargo::CommandCargoExt;
 
 use crate::support::bin;
-use crate::support::cli::{Serve, generate};
+use crate::support::cli::{DEFAULT_PORTS, Serve, generate, interrupt};
 
 /// A loopback port where nothing listens (bound, then released).
 fn free_port() -> String {
@@ -34,6 +34,11 @@ fn run(args: &[&str]) -> (Option<i32>, String, Duration) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
         started.elapsed(),
     )
+}
+
+/// `command` (with its layout, if any) over `api` on `port`, then `extra`.
+fn on<'a>(command: &[&'a str], api: &'a str, port: &'a str, extra: &[&'a str]) -> Vec<&'a str> {
+    [command, &["--api", api, "--port", port], extra].concat()
 }
 
 /// Every stderr line is the `connecting to` line, the one `error:` line, or a hint.
@@ -58,16 +63,12 @@ fn the_first_line_says_what_is_tried_before_any_wait() {
     let started = Instant::now();
     let mut child = Command::cargo_bin("vrep-maze")
         .unwrap()
-        .args([
-            "apply",
-            &m,
-            "--api",
+        .args(on(
+            &["apply", &m],
             "legacy",
-            "--port",
             &port,
-            "--connect-timeout",
-            "60",
-        ])
+            &["--connect-timeout", "60"],
+        ))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -92,16 +93,12 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let (code, stderr, took) = run(&[
-        "apply",
-        &m,
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["apply", &m],
         "legacy",
-        "--port",
         &port,
-        "--connect-timeout",
-        "1",
-    ]);
+        &["--connect-timeout", "1"],
+    ));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
@@ -118,19 +115,16 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
     assert!(stderr.contains("for about a minute"), "{stderr}");
     assert!(stderr.contains("--connect-timeout 75"), "{stderr}");
     // `clear` connects the same way; over ZeroMQ a refused port fails at once
-    let (code, stderr, took) = run(&[
-        "clear",
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["clear"],
         "legacy",
-        "--port",
         &port,
-        "--connect-timeout",
-        "0.5",
-    ]);
+        &["--connect-timeout", "0.5"],
+    ));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(15), "{took:?}");
     assert_clear_error(&stderr);
-    let (code, stderr, took) = run(&["clear", "--api", "zmq", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["clear"], "zmq", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(8), "{took:?}");
     assert_clear_error(&stderr);
@@ -143,6 +137,34 @@ fn nothing_listening_is_one_error_line_with_hints_within_the_connect_timeout() {
 }
 
 #[test]
+fn score_connects_as_apply_does_with_the_same_hints() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "2", "prim");
+    let port = free_port();
+    // a failed legacy connection looks at the ZeroMQ port 23000 for a hint: held still
+    let _ports = DEFAULT_PORTS.lock();
+    let hints = |command: &str| {
+        let args = ["--api", "legacy", "--port", &port, "--connect-timeout", "1"];
+        let (code, stderr, _) = run(&[&[command, m.as_str()][..], &args].concat());
+        assert_eq!(code, Some(1), "{stderr}");
+        assert_clear_error(&stderr);
+        stderr
+            .lines()
+            .filter(|line| line.starts_with("  hint: "))
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    let apply = hints("apply");
+    assert!(
+        apply
+            .iter()
+            .any(|h| h.contains("is CoppeliaSim running with the legacy remote API")),
+        "{apply:?}"
+    );
+    assert_eq!(hints("score"), apply);
+}
+
+#[test]
 fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "3", "dfs");
@@ -151,7 +173,7 @@ fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
         1,
     );
     let port = s.port();
-    let (code, stderr, took) = run(&["apply", &m, "--api", "legacy", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["apply", &m], "legacy", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(took < Duration::from_secs(5), "{took:?}: {stderr}");
     assert_clear_error(&stderr);
@@ -163,17 +185,12 @@ fn a_legacy_client_on_a_zeromq_port_is_told_to_use_api_zmq_quickly() {
     );
     // the ZeroMQ server was not disturbed: it answers the next client at once
     bin()
-        .args([
-            "apply",
-            &m,
-            "--api",
+        .args(on(
+            &["apply", &m],
             "zmq",
-            "--port",
             &port,
-            "--dry-run",
-            "--timeout",
-            "3",
-        ])
+            &["--dry-run", "--timeout", "3"],
+        ))
         .assert()
         .success();
 }
@@ -184,7 +201,7 @@ fn a_zeromq_client_on_a_legacy_port_is_told_to_use_api_legacy() {
     let m = generate(dir.path(), "4", "kruskal");
     let s = Serve::start(&["--listen", "127.0.0.1:0", "--idle-fps", "0"], 1);
     let port = s.port();
-    let (code, stderr, took) = run(&["apply", &m, "--api", "zmq", "--port", &port]);
+    let (code, stderr, took) = run(&on(&["apply", &m], "zmq", &port, &[]));
     assert_eq!(code, Some(1), "{stderr}");
     // no reply timeout (10 s) was waited for
     assert!(took < Duration::from_secs(8), "{took:?}: {stderr}");
@@ -197,7 +214,7 @@ fn a_zeromq_client_on_a_legacy_port_is_told_to_use_api_legacy() {
     );
     // the probe left the legacy server politely: the next client is served
     bin()
-        .args(["apply", &m, "--api", "legacy", "--port", &port, "--dry-run"])
+        .args(on(&["apply", &m], "legacy", &port, &["--dry-run"]))
         .assert()
         .success();
 }
@@ -223,17 +240,12 @@ fn a_refused_legacy_connection_is_retried_without_a_countdown_off_a_terminal() {
         vrep_maze::legacy::Client::connect(format!("127.0.0.1:{port}"), Default::default())
             .unwrap();
     client.close().unwrap();
-    let (code, stderr, took) = run(&[
-        "apply",
-        &m,
-        "--api",
+    let (code, stderr, took) = run(&on(
+        &["apply", &m],
         "legacy",
-        "--port",
         &port,
-        "--dry-run",
-        "--connect-timeout",
-        "30",
-    ]);
+        &["--dry-run", "--connect-timeout", "30"],
+    ));
     assert_eq!(code, Some(0), "{stderr}");
     assert!(took < Duration::from_secs(25), "{took:?}");
     let mut lines = stderr.lines();
@@ -268,12 +280,9 @@ fn with_no_simulator_the_wait_says_nothing_listens_and_ends_at_the_default() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    let out = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .output()
-    .unwrap();
+    let out = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
@@ -295,14 +304,11 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
     let port = free_port();
     // an earlier run (a process id no system runs) left its session open
     std::fs::write(marker(dir.path(), &port), "4194305\n").unwrap();
-    let mut child = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .stdout(Stdio::null())
-    .stderr(Stdio::piped())
-    .spawn()
-    .unwrap();
+    let mut child = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
     let mut stderr = BufReader::new(child.stderr.take().unwrap());
     let mut said = String::new();
     for _ in 0..2 {
@@ -313,11 +319,7 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
             && said.contains("waiting up to 75 s"),
         "{said}"
     );
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+    interrupt(child.id());
     let mut rest = String::new();
     std::io::Read::read_to_string(&mut stderr, &mut rest).unwrap();
     let code = child.wait().unwrap().code();
@@ -336,12 +338,9 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     // client left abruptly
     let s = Serve::start(&["--listen", "127.0.0.1:0"], 1);
     let port = s.port();
-    let out = command_with_markers(
-        dir.path(),
-        &["apply", &m, "--api", "legacy", "--port", &port],
-    )
-    .output()
-    .unwrap();
+    let out = command_with_markers(dir.path(), &on(&["apply", &m], "legacy", &port, &[]))
+        .output()
+        .unwrap();
     assert!(
         out.status.success(),
         "{}",
@@ -357,14 +356,7 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
         .success();
     let mut child = command_with_markers(
         dir.path(),
-        &[
-            "apply",
-            big.to_str().unwrap(),
-            "--api",
-            "legacy",
-            "--port",
-            &port,
-        ],
+        &on(&["apply", big.to_str().unwrap()], "legacy", &port, &[]),
     )
     .stdout(Stdio::null())
     .stderr(Stdio::null())
@@ -381,16 +373,12 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     assert_eq!(pid.trim(), child.id().to_string());
     let out = command_with_markers(
         dir.path(),
-        &[
-            "clear",
-            "--api",
+        &on(
+            &["clear"],
             "legacy",
-            "--port",
             &port,
-            "--dry-run",
-            "--connect-timeout",
-            "1",
-        ],
+            &["--dry-run", "--connect-timeout", "1"],
+        ),
     )
     .output()
     .unwrap();
@@ -438,18 +426,12 @@ fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
     let m = generate(dir.path(), "2", "prim");
     for eager in [true, false] {
         let port = web_server(eager);
-        let (code, stderr, _) = run(&[
-            "apply",
-            &m,
-            "--api",
+        let (code, stderr, _) = run(&on(
+            &["apply", &m],
             "legacy",
-            "--port",
             &port,
-            "--timeout",
-            "1",
-            "--connect-timeout",
-            "3",
-        ]);
+            &["--timeout", "1", "--connect-timeout", "3"],
+        ));
         assert_eq!(code, Some(1), "{stderr}");
         assert_clear_error(&stderr);
         assert!(

@@ -4,6 +4,7 @@
 //! connection closed as the official client closes it), and the next apply connects at once
 //! and repairs the scene.
 
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -13,37 +14,39 @@ use tempfile::TempDir;
 use crate::support::backend::{Kind, TIMEOUT};
 use crate::support::backend_tests;
 use crate::support::bin;
-use crate::support::cli::Serve;
+use crate::support::cli::{Serve, interrupt};
 
-fn interrupt(pid: u32) {
-    let status = Command::new("kill")
-        .args(["-INT", &pid.to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
+/// A layout of `size` cells (`24x24`) from `seed`, written into `dir`.
+fn layout(dir: &TempDir, seed: &str, size: &str) -> PathBuf {
+    let layout = dir.path().join("m.json");
+    bin()
+        .args(["generate", "--seed", seed, "--size", size, "-o"])
+        .arg(&layout)
+        .assert()
+        .success();
+    layout
+}
+
+/// `vrep-maze apply layout --port port`, its standard error piped, ready to spawn.
+fn apply_command(layout: &Path, port: &str) -> Command {
+    let mut command = Command::cargo_bin("vrep-maze").unwrap();
+    command
+        .args(["apply", layout.to_str().unwrap(), "--port", port])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    command
 }
 
 #[test]
 fn ctrl_c_at_any_point_leaves_a_scene_the_next_apply_repairs_at_once() {
     let dir = TempDir::new().unwrap();
-    let layout = dir.path().join("m.json");
-    bin()
-        .args(["generate", "--seed", "5", "--size", "24x24", "-o"])
-        .arg(&layout)
-        .assert()
-        .success();
+    let layout = layout(&dir, "5", "24x24");
     // the realistic model is serve's default: idle fps 8 and the one-minute refusal
     let serve = Serve::start(&["--listen", "127.0.0.1:0"], 1);
     let port = serve.port();
     let mut interrupted = 0;
     for delay_ms in [150u64, 400, 700, 1000, 1400] {
-        let apply = Command::cargo_bin("vrep-maze")
-            .unwrap()
-            .args(["apply", layout.to_str().unwrap(), "--port", &port])
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let apply = apply_command(&layout, &port).spawn().unwrap();
         std::thread::sleep(Duration::from_millis(delay_ms));
         interrupt(apply.id());
         let out = apply.wait_with_output().unwrap();
@@ -117,24 +120,15 @@ backend_tests!(
 /// interrupts a wait for a reply is not a failure. The user's idle rate is back after it.
 fn ctrl_c_always_exits_130_with_the_idle_rate_restored(kind: Kind) {
     let dir = TempDir::new().unwrap();
-    let layout = dir.path().join("m.json");
-    bin()
-        .args(["generate", "--seed", "2", "--size", "30x30", "-o"])
-        .arg(&layout)
-        .assert()
-        .success();
+    let layout = layout(&dir, "2", "30x30");
     let (serve_args, apply_args) = serve_and_apply_args(kind);
     let serve = Serve::start(&serve_args, 1);
     let port = serve.port();
     let mut interrupted = 0;
     for delay_ms in [100u64, 300, 600, 900, 1200, 1600] {
-        let apply = Command::cargo_bin("vrep-maze")
-            .unwrap()
-            .args(["apply", layout.to_str().unwrap(), "--port", &port])
+        let apply = apply_command(&layout, &port)
             .args(&apply_args)
             .env("XDG_RUNTIME_DIR", dir.path())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
             .spawn()
             .unwrap();
         std::thread::sleep(Duration::from_millis(delay_ms));
@@ -177,23 +171,14 @@ fn ctrl_c_always_exits_130_with_the_idle_rate_restored(kind: Kind) {
 /// the simulator is gone (after one `--timeout`, not one per call still to make).
 fn a_server_killed_mid_apply_is_named_as_gone(kind: Kind) {
     let dir = TempDir::new().unwrap();
-    let layout = dir.path().join("m.json");
-    bin()
-        .args(["generate", "--seed", "3", "--size", "40x40", "-o"])
-        .arg(&layout)
-        .assert()
-        .success();
+    let layout = layout(&dir, "3", "40x40");
     let (serve_args, apply_args) = serve_and_apply_args(kind);
     let mut serve = Serve::start(&serve_args, 1);
     let port = serve.port();
-    let apply = Command::cargo_bin("vrep-maze")
-        .unwrap()
-        .args(["apply", layout.to_str().unwrap(), "--port", &port])
+    let apply = apply_command(&layout, &port)
         .args(["--timeout", "2"])
         .args(&apply_args)
         .env("XDG_RUNTIME_DIR", dir.path())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(800));

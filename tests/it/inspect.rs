@@ -50,6 +50,39 @@ fn inspect(kind: Kind, server: &Server, extra: &[&str], code: i32) -> Value {
     serde_json::from_str(&String::from_utf8(out).unwrap()).unwrap()
 }
 
+/// `inspect`'s text, expecting success.
+fn inspect_text(kind: Kind, server: &Server) -> String {
+    let out = bin()
+        .arg("inspect")
+        .args(api_args(kind, server))
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    String::from_utf8(out).unwrap()
+}
+
+/// The object of `role` in an `inspect --json` report.
+fn object<'r>(report: &'r Value, role: &str) -> &'r Value {
+    report["objects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|o| o["role"] == role)
+        .unwrap()
+}
+
+/// The validator of `schema/inspect-v1.schema.json`.
+fn schema() -> jsonschema::Validator {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let schema: Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("schema/inspect-v1.schema.json")).unwrap(),
+    )
+    .unwrap();
+    jsonschema::validator_for(&schema).unwrap()
+}
+
 #[test]
 fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
     let dir = tempfile::tempdir().unwrap();
@@ -88,24 +121,12 @@ fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
         assert_eq!(state(&server), before, "{name}: inspect changed the scene");
         assert_eq!(report["simulation_running"], false, "{name}");
         assert_eq!(report["idle_fps"], 0, "{name}");
-        let line = report["objects"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|o| o["role"] == "line template")
-            .unwrap();
         assert_eq!(
-            line["position"],
-            serde_json::json!([-3.75, -4.0, 0.001]),
+            object(&report, "line template")["position"],
+            json!([-3.75, -4.0, 0.001]),
             "{name}"
         );
-        let wall = report["objects"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|o| o["role"] == "wall template")
-            .unwrap();
-        assert_eq!(wall["present"], false);
+        assert_eq!(object(&report, "wall template")["present"], false);
         // the user's object under the dummy is left alone: the maze still matches the layout
         let layout = &report["layout"];
         assert_eq!(layout["matches"], true, "{name}: {layout}");
@@ -205,26 +226,12 @@ fn inspect_and_clear_know_a_mesh_maze_on_every_api() {
 fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() {
     let server = Kind::Legacy.serve(Scene::course_walls(), 0);
     let report = inspect(Kind::Legacy, &server, &[], 0);
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let schema: Value = serde_json::from_str(
-        &std::fs::read_to_string(root.join("schema/inspect-v1.schema.json")).unwrap(),
-    )
-    .unwrap();
-    let validator = jsonschema::validator_for(&schema).unwrap();
-    let errors: Vec<String> = validator
+    let errors: Vec<String> = schema()
         .iter_errors(&report)
         .map(|e| e.to_string())
         .collect();
     assert!(errors.is_empty(), "{errors:?}");
-    let text = bin()
-        .arg("inspect")
-        .args(api_args(Kind::Legacy, &server))
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let text = String::from_utf8(text).unwrap();
+    let text = inspect_text(Kind::Legacy, &server);
     assert!(text.contains("wall template  Wall"), "{text}");
     assert!(
         text.contains("simulation stopped; idle rate 0 fps"),
@@ -242,12 +249,7 @@ fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() 
 /// the text rather than guessed. Still never a write.
 #[test]
 fn inspect_shows_sizes_and_colours_where_the_api_reads_them() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let schema: Value = serde_json::from_str(
-        &std::fs::read_to_string(root.join("schema/inspect-v1.schema.json")).unwrap(),
-    )
-    .unwrap();
-    let validator = jsonschema::validator_for(&schema).unwrap();
+    let validator = schema();
     for kind in Kind::ALL {
         let name = kind.name();
         let server = kind.serve(Scene::course_walls(), 0);
@@ -257,48 +259,23 @@ fn inspect_shows_sizes_and_colours_where_the_api_reads_them() {
             validator.iter_errors(&report).next().is_none(),
             "{name}: {report}"
         );
-        let object = |role: &str| {
-            report["objects"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .find(|o| o["role"] == role)
-                .unwrap()
-                .clone()
-        };
-        assert_eq!(
-            object("line template")["size"],
-            json!([0.6, 0.1, 0.0]),
-            "{name}"
-        );
-        assert_eq!(
-            object("wall template")["size"],
-            json!([1.0, 0.05, 0.2]),
-            "{name}"
-        );
-        assert_eq!(
-            object("start marker")["size"],
-            json!([1.0, 1.0, 0.0]),
-            "{name}"
-        );
+        for (role, size) in [
+            ("line template", json!([0.6, 0.1, 0.0])),
+            ("wall template", json!([1.0, 0.05, 0.2])),
+            ("start marker", json!([1.0, 1.0, 0.0])),
+        ] {
+            assert_eq!(object(&report, role)["size"], size, "{name}: {role}");
+        }
         let zmq = kind != Kind::Legacy;
         assert_eq!(report["colours_read"], zmq, "{name}");
         if zmq {
-            assert_eq!(
-                object("line template")["colour"],
-                json!([0.0, 1.0, 0.0]),
-                "{name}"
-            );
-            assert_eq!(
-                object("start marker")["colour"],
-                json!([0.0, 0.0, 1.0]),
-                "{name}"
-            );
-            assert_eq!(
-                object("end marker")["colour"],
-                json!([1.0, 0.0, 0.0]),
-                "{name}"
-            );
+            for (role, colour) in [
+                ("line template", json!([0.0, 1.0, 0.0])),
+                ("start marker", json!([0.0, 0.0, 1.0])),
+                ("end marker", json!([1.0, 0.0, 0.0])),
+            ] {
+                assert_eq!(object(&report, role)["colour"], colour, "{name}: {role}");
+            }
         } else {
             assert!(
                 report["objects"]
@@ -310,19 +287,11 @@ fn inspect_shows_sizes_and_colours_where_the_api_reads_them() {
             );
         }
         assert_eq!(
-            object("maze dummy").get("colour"),
+            object(&report, "maze dummy").get("colour"),
             None,
             "{name}: a dummy has none"
         );
-        let text = bin()
-            .arg("inspect")
-            .args(api_args(kind, &server))
-            .assert()
-            .success()
-            .get_output()
-            .stdout
-            .clone();
-        let text = String::from_utf8(text).unwrap();
+        let text = inspect_text(kind, &server);
         assert!(text.contains("0.6 x 0.1 x 0 m"), "{name}: {text}");
         assert_eq!(text.contains("colour #00ff00"), zmq, "{name}: {text}");
         assert_eq!(

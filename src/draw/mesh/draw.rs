@@ -3,18 +3,17 @@
 //! included), place the template and markers, check; and read a drawn mesh maze back.
 
 use std::collections::{HashMap, HashSet};
-use std::sync::atomic::Ordering;
-use std::time::Instant;
 
 use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
-use crate::draw::apply::{ApplyOptions, ApplyReport, Stage, raised};
-use crate::draw::lease::{Claim, claimed};
+use crate::draw::apply::{
+    ApplyOptions, ApplyReport, Stage, raised, raised_and_claimed, stop_running_simulation, surveyed,
+};
+use crate::draw::lease::Claim;
 use crate::draw::plan::{foreign_copies, maze_lines, pose_differences, world_frame};
 use crate::draw::{
     Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
-    resolve_handles,
 };
 
 /// Meshes created per request to [`MeshDrawing::create`], between two checks for Ctrl-C and
@@ -93,16 +92,9 @@ pub fn apply(
     opts: &ApplyOptions,
     progress: &mut dyn FnMut(Stage),
 ) -> Result<ApplyReport, DrawError> {
-    let started = Instant::now();
-    let rt0 = scene.round_trips();
-    let (mut report, _) = raised(scene, opts.dry_run, |scene| {
-        claimed(scene, opts.dry_run, |scene, claim| {
-            apply_claimed(scene, maze, opts, progress, claim)
-        })
-    })?;
-    report.round_trips = scene.round_trips() - rt0;
-    report.elapsed = started.elapsed();
-    Ok(report)
+    raised_and_claimed(scene, opts.dry_run, |scene, claim| {
+        apply_claimed(scene, maze, opts, progress, claim)
+    })
 }
 
 /// Pieces of `kind` in `maze`.
@@ -133,8 +125,7 @@ fn apply_claimed(
     claim: &Claim,
 ) -> Result<ApplyReport, DrawError> {
     let (style, names) = (maze.style, &opts.names);
-    let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey, false)?;
+    let (survey, h) = surveyed(scene, names, style, false)?;
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
         style,
@@ -145,15 +136,12 @@ fn apply_claimed(
         dry_run: opts.dry_run,
         ..Default::default()
     };
-    if survey.simulation_running {
-        if !opts.stop_simulation {
-            return Err(DrawError::SimulationRunning);
-        }
-        if !opts.dry_run {
-            scene.stop_simulation()?;
-            report.stopped_simulation = true;
-        }
-    }
+    report.stopped_simulation = stop_running_simulation(
+        scene,
+        survey.simulation_running,
+        opts.stop_simulation,
+        opts.dry_run,
+    )?;
     let found = port(scene)?.find(names, h.parent)?;
     // an earlier maze's copies of any template go, and so does anything else under the
     // maze dummy but the holder and the templates
@@ -211,11 +199,7 @@ fn apply_claimed(
         return Ok(report);
     }
     let checkpoint = |scene: &mut dyn Backend, placed: usize, phase| {
-        if opts
-            .interrupt
-            .as_ref()
-            .is_some_and(|flag| flag.load(Ordering::SeqCst))
-        {
+        if opts.interrupted() {
             return Err(DrawError::Interrupted {
                 placed,
                 total: maze.pieces(),
@@ -420,8 +404,7 @@ fn verify_raised(
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
     let style = maze.style;
-    let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey, false)?;
+    let (_, h) = surveyed(scene, names, style, false)?;
     let objects = scene.objects_from_scene()?;
     let found = port(scene)?.find(names, h.parent)?;
     let mut problems = name_problems(maze, &found);

@@ -27,6 +27,15 @@ pub fn generate(dir: &Path, seed: &str, algo: &str) -> String {
     path
 }
 
+/// Sends SIGINT (Ctrl-C) to the process `pid`.
+pub fn interrupt(pid: u32) {
+    let status = Command::new("kill")
+        .args(["-INT", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+}
+
 /// A `vrep-maze serve` child process, killed when dropped.
 pub struct Serve {
     /// The process.
