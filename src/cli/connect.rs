@@ -408,47 +408,8 @@ fn zmq(
     timeout: Duration,
     connect_timeout: Duration,
 ) -> anyhow::Result<Connected> {
+    let client = zmq_client(host, port, timeout, connect_timeout)?;
     let addr = socket_addr(host, port);
-    super::say::note(format!(
-        "connecting to CoppeliaSim's ZeroMQ remote API at {addr} ..."
-    ));
-    let options = zmq_api::ClientOptions {
-        host: host.to_string(),
-        port,
-        timeout,
-        connect_timeout: Some(connect_timeout),
-        protocol: None,
-    };
-    let client = match zmq_api::Client::connect(&options) {
-        Ok(client) => client,
-        Err(e @ ZmqError::NotZeroMq { .. }) => {
-            return Err(if legacy_answers(&addr) {
-                connect_error(
-                    format!(
-                        "port {port} speaks the legacy remote API, not the ZeroMQ one: use --api legacy"
-                    ),
-                    vec![],
-                )
-            } else {
-                connect_error(
-                    e.to_string(),
-                    vec![format!(
-                        "is port {port} CoppeliaSim's ZeroMQ remote API? (the add-on serves {ZMQ_PORT} from CoppeliaSim 4.3)"
-                    )],
-                )
-            });
-        }
-        Err(e @ ZmqError::Connect { .. }) => return Err(anyhow::Error::new(e)),
-        Err(e @ ZmqError::Resolve { .. }) => {
-            return Err(connect_error(
-                e.to_string(),
-                vec!["check --host: a name this machine resolves, or an IP address".into()],
-            ));
-        }
-        Err(e) => {
-            return Err(anyhow::Error::new(e).context(format!("ZeroMQ remote API at {addr}")));
-        }
-    };
     let backend =
         ZmqBackend::new(client, timeout).with_context(|| format!("ZeroMQ remote API at {addr}"))?;
     let description = backend.describe();
