@@ -421,7 +421,7 @@ fn apply_claimed(
     let line_template = survey.handles.get(5).copied().flatten();
     keep_home(
         scene,
-        drawing,
+        drawing.template_drawn(),
         &h,
         objects,
         !existing.is_empty(),
@@ -559,9 +559,9 @@ fn place(
 /// puts a line template that has a record (the first line of a line maze it replaces)
 /// back home and deletes the record.
 #[allow(clippy::too_many_arguments)]
-fn keep_home(
+pub(crate) fn keep_home(
     scene: &mut dyn Backend,
-    drawing: &Drawing,
+    template_drawn: bool,
     h: &Handles,
     objects: &[ObjectInfo],
     earlier_maze: bool,
@@ -575,7 +575,7 @@ fn keep_home(
         .find(|o| o.handle == h.floor)
         .map(world_frame)
         .unwrap_or_default();
-    if !drawing.template_drawn() {
+    if !template_drawn {
         if let Some(home) = record.filter(|r| Some(r.handle) == line_template) {
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;

@@ -85,8 +85,17 @@ fn under_maze(s: &Server) -> usize {
     })
 }
 
+/// Where `Line` stands, rounded to 0.1 mm.
+fn line_home(s: &Server) -> [i64; 3] {
+    s.with_sim(|sim| {
+        let o = sim.scene.objects().find(|o| o.alias == "Line").unwrap();
+        o.position.map(|x| (x * 1e4).round() as i64)
+    })
+}
+
 fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
     let s = kind.serve(Scene::course(), 8);
+    let home = line_home(&s);
     let mut b = s.connect();
     let layout = course_layout(Algorithm::Prim, 9, 9, 42);
     let m = MeshMaze::try_from(&layout).unwrap();
@@ -141,6 +150,12 @@ fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
     let c = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
     assert!(c.removed.is_empty(), "{:?}", c.removed);
     assert_eq!(c.removed_meshes.len(), 2, "{:?}", c.removed_meshes);
+    // the template, which lay on the first line, is back where it stood before
+    assert!(
+        c.template.as_ref().is_some_and(|t| t.contains("back where it stood")),
+        "{c:?}"
+    );
+    assert_eq!(line_home(&s), home);
     assert_eq!(under_maze(&s), 0);
     assert!(meshes(&s).is_empty());
     b.close().unwrap();

@@ -8,7 +8,8 @@ use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Stage, raised, raised_and_claimed, stop_running_simulation, surveyed,
+    ApplyOptions, ApplyReport, Stage, keep_home, raised, raised_and_claimed,
+    stop_running_simulation, surveyed,
 };
 use crate::draw::lease::Claim;
 use crate::draw::plan::{foreign_copies, maze_lines, pose_differences, world_frame};
@@ -198,6 +199,17 @@ fn apply_claimed(
     if opts.dry_run {
         return Ok(report);
     }
+    // where the line template stood before it goes onto the first line, for `clear`
+    keep_home(
+        scene,
+        style == Style::Lines,
+        &h,
+        &survey.objects,
+        found.holder.is_some() || !doomed.is_empty(),
+        survey.handles.get(5).copied().flatten(),
+        names,
+        &mut report,
+    )?;
     let checkpoint = |scene: &mut dyn Backend, placed: usize, phase| {
         if opts.interrupted() {
             return Err(DrawError::Interrupted {
