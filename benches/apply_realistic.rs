@@ -325,7 +325,11 @@ fn print_charges(ledger: &[Charge]) {
     for charge in ledger {
         for op in &charge.ops {
             let kind = format!("{op:?}");
-            let kind = kind.split([' ', '{']).next().unwrap_or_default().to_string();
+            let kind = kind
+                .split([' ', '{'])
+                .next()
+                .unwrap_or_default()
+                .to_string();
             let entry = work.entry(kind).or_default();
             entry.0 += 1;
             entry.1 += model.ops(std::slice::from_ref(op)).as_secs_f64();
