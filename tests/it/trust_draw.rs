@@ -72,8 +72,8 @@ fn object(kind: ObjectType, parent: Option<i32>, at: [f64; 3], size: [f64; 3]) -
 }
 
 /// The course scene with the user's objects: under `Maze` a dummy `MySensor`, a 0.2 m
-/// cuboid `Box`, a 1 m plane `BigPlane` and a dummy `Line9` (a copy's name, not a plane);
-/// at the root a dummy `Line5`. Returns the scene and the names under `Maze`.
+/// cuboid `Box`, a 1 m plane `BigPlane`, a dummy `Line9` (a copy's name, not a plane) and a
+/// 1 m plane `Line12` (a copy's name and type, not its size); at the root a dummy `Line5`. Returns the scene and the names under `Maze`.
 pub fn scene_with_the_users_objects() -> (Scene, Vec<&'static str>) {
     let mut scene = Scene::course();
     let maze = scene.resolve("Maze").unwrap();
@@ -100,10 +100,22 @@ pub fn scene_with_the_users_objects() -> (Scene, Vec<&'static str>) {
         object(ObjectType::Dummy, under, [0.5, 0.5, 0.5], [0.01; 3]),
     );
     scene.add(
+        "Line12",
+        object(
+            ObjectType::Shape,
+            under,
+            [-4.0, -4.0, 0.001],
+            [1.0, 1.0, 0.0],
+        ),
+    );
+    scene.add(
         "Line5",
         object(ObjectType::Dummy, None, [3.0, 3.0, 0.5], [0.01; 3]),
     );
-    (scene, vec!["MySensor", "Box", "BigPlane", "Line9"])
+    (
+        scene,
+        vec!["MySensor", "Box", "BigPlane", "Line9", "Line12"],
+    )
 }
 
 /// World pose and parent of each of `names`.
@@ -141,7 +153,7 @@ fn objects_that_are_not_ours_are_left_alone_and_named(kind: Kind) {
     let k = kind.name();
     let (scene, under_maze) = scene_with_the_users_objects();
     let s = kind.serve(scene, 0);
-    let mine = ["MySensor", "Box", "BigPlane", "Line9", "Line5"];
+    let mine = ["MySensor", "Box", "BigPlane", "Line9", "Line12", "Line5"];
     let before = poses(&s, &mine);
     let mut b = s.connect();
     let big = drawing(6, 3);
