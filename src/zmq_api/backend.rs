@@ -92,6 +92,9 @@ pub struct ZmqBackend {
     /// doubted ([`ZmqBackend::doubt`]) and their templates; emptied by each survey.
     extents: HashMap<i32, Option<[f64; 3]>>,
     children: HashMap<i32, bool>,
+    /// Whether anything lies below the maze dummy's children (one call for the whole
+    /// maze, made for the first doubted child of a survey).
+    deep: Option<bool>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -152,6 +155,7 @@ impl ZmqBackend {
             record_changed: false,
             extents: HashMap::new(),
             children: HashMap::new(),
+            deep: None,
         })
     }
 
@@ -368,7 +372,7 @@ impl ZmqBackend {
         // a copy of a template by alias and type, unless the record does not hold it and
         // what `doubt` reads of an object named and typed like a copy says otherwise
         let judge = |backend: &mut Self,
-                     h: i32,
+                     (h, tree): (i32, Option<(i32, &[i32])>),
                      name: &str,
                      alias: &str,
                      kind: i32,
@@ -379,7 +383,7 @@ impl ZmqBackend {
                 .find(|t| plan::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind));
             let template = family.and_then(|t| template_handles.get(t).copied());
             if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
-                backend.doubt(h, template, found)?;
+                backend.doubt(h, template, tree, found)?;
             }
             Ok(template_kinds.get(alias) == Some(&kind)
                 && !plan::contradicts_copy(found, h, template))
@@ -399,7 +403,8 @@ impl ZmqBackend {
                 .unwrap_or_default()
                 .into_iter()
                 .collect();
-            for h in self.handles_in(parent, 3)? {
+            let kids = self.handles_in(parent, 3)?;
+            for &h in &kids {
                 if seen.insert(h) {
                     let shape = shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
                     // a recorded copy that is (still) of its template's type is known
@@ -413,7 +418,8 @@ impl ZmqBackend {
                     let (alias, kind) = self.traits(h, shape)?;
                     found.kinds.insert(h, kind);
                     let name = copy_name(&alias);
-                    if judge(self, h, &name, &alias, kind, &mut found)? {
+                    let tree = Some((parent, &kids[..]));
+                    if judge(self, (h, tree), &name, &alias, kind, &mut found)? {
                         present.push((h, alias.clone()));
                     }
                     if distrust {
@@ -444,7 +450,7 @@ impl ZmqBackend {
             seen.insert(h);
             found.kinds.insert(h, kind);
             let name = copy_name(&alias);
-            if judge(self, h, &name, &alias, kind, &mut found)? {
+            if judge(self, (h, None), &name, &alias, kind, &mut found)? {
                 present.push((h, alias.clone()));
             }
             out.push(self.line_info(h, name, None, poses)?);
@@ -466,11 +472,14 @@ impl ZmqBackend {
     /// Reads what tells `handle`, named and typed like a copy of `template` but not in the
     /// copy record, from a copy ([`plan::contradicts_copy`]) into `found`: its size and its
     /// template's (a shape's `sim.getShapeBB`, one call; other objects' bounding box, six)
-    /// and whether it has children (`sim.getObjectsInTree`, one call). Read once per survey.
+    /// and whether it has children (`sim.getObjectsInTree`, one call, unless `tree`, the
+    /// maze dummy and its children it is one of, shows nothing below them: one call for
+    /// the whole maze). Read once per survey.
     fn doubt(
         &mut self,
         handle: i32,
         template: i32,
+        tree: Option<(i32, &[i32])>,
         found: &mut plan::Traits,
     ) -> Result<(), BackendError> {
         for h in [template, handle] {
@@ -478,8 +487,19 @@ impl ZmqBackend {
                 found.sizes.insert(h, size);
             }
         }
+        let deep = match (tree, self.deep) {
+            (None, _) => true,
+            (Some(_), Some(deep)) => deep,
+            (Some((parent, kids)), None) => {
+                // options 1: the whole tree without the dummy
+                let deep = self.handles_in(parent, 1)?.len() > kids.len();
+                self.deep = Some(deep);
+                deep
+            }
+        };
         let children = match self.children.get(&handle) {
             Some(&c) => c,
+            None if !deep => false,
             None => {
                 let c = !self.handles_in(handle, 3)?.is_empty();
                 self.children.insert(handle, c);
@@ -716,6 +736,7 @@ impl Backend for ZmqBackend {
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
         self.extents.clear();
         self.children.clear();
+        self.deep = None;
         let (objects, traits) = if handles.iter().take(5).all(Option::is_some) {
             self.collect(LinePoses::Known)?
         } else {
