@@ -171,36 +171,51 @@ fn batch_refuses_repeated_seeds_and_names_an_out_dir_that_is_a_file() {
 
 backend_tests!(a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it);
 
-/// A `Maze` dummy at a NaN position or orientation puts every copy under it at NaN: apply
-/// fails verification over every API (ZeroMQ included, which does not read back the poses
+/// A `Maze` dummy at a NaN position or orientation puts every copy under it at NaN (a
+/// `Floor` at NaN every pose relative to it): apply fails verification over every API (ZeroMQ included, which does not read back the poses
 /// it set while the dummy stays put and finite), with the hint that a re-run does not
 /// repair it; once the dummy's pose is reset, the same apply verifies.
 fn a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it(kind: Kind) {
     let k = kind.name();
     let d = drawing_with(Algorithm::Dfs, 3, 4);
-    for broken in ["position", "orientation"] {
+    let maze = "`Maze` (the maze dummy, --parent) is at a pose that is not a number (NaN)";
+    let floor = "`Floor` (the floor, --floor) is at a pose that is not a number (NaN)";
+    for (object, broken, named) in [
+        ("Maze", "position", maze),
+        ("Maze", "orientation", maze),
+        ("Floor", "position", floor),
+    ] {
         let s = kind.serve(Scene::course(), 0);
-        let break_maze = |value: f64| {
+        let start = s.with_sim(|sim| {
+            let h = sim.scene.resolve(object).unwrap();
+            sim.scene.pose(h, -1).unwrap()
+        });
+        // its x (or roll) at NaN, or back where the scene had it
+        let set = |broken_now: bool| {
             s.with_sim(|sim| {
-                let maze = sim.scene.resolve("Maze").unwrap();
-                let v = [value, 0.0, 0.0];
+                let h = sim.scene.resolve(object).unwrap();
+                let mut v = if broken == "position" {
+                    start.0
+                } else {
+                    start.1
+                };
+                if broken_now {
+                    v[0] = f64::NAN;
+                }
                 match broken {
-                    "position" => sim.scene.set_position(maze, -1, v).unwrap(),
-                    _ => sim.scene.set_orientation(maze, -1, v).unwrap(),
+                    "position" => sim.scene.set_position(h, -1, v).unwrap(),
+                    _ => sim.scene.set_orientation(h, -1, v).unwrap(),
                 }
             })
         };
-        break_maze(f64::NAN);
+        set(true);
         let mut b = s.connect();
         for run in ["first", "second"] {
             let e = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
                 .expect_err(&format!("{k}: {broken} NaN, {run} run verified"));
             assert!(
-                matches!(e, draw::DrawError::Verify(_))
-                    && e.to_string().contains(
-                        "`Maze` (the maze dummy, --parent) is at a pose that is not a number (NaN)"
-                    ),
-                "{k}: {broken}: {e}"
+                matches!(e, draw::DrawError::Verify(_)) && e.to_string().contains(named),
+                "{k}: {object} {broken}: {e}"
             );
             let hints = e.hints();
             assert!(
@@ -215,10 +230,10 @@ fn a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it(ki
             );
         }
         let e = draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_err();
-        assert!(e.to_string().contains("`Maze` (the maze dummy"), "{k}: {e}");
+        assert!(e.to_string().contains(named), "{k}: {e}");
         assert!(e.hints()[0].contains("does not repair"), "{k}: {e}");
-        // the same connection, the dummy repaired: the same apply draws and verifies
-        break_maze(0.0);
+        // the same connection, the object repaired: the same apply draws and verifies
+        set(false);
         draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
             .unwrap_or_else(|e| panic!("{k}: {broken} reset: {e}"));
         draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
