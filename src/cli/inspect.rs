@@ -13,7 +13,7 @@ use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
-use crate::draw::plan::{is_copy_name, relative_pose, world_frame};
+use crate::draw::plan::{is_copy_of, relative_pose, world_frame};
 use crate::draw::verify::verify_read_only;
 use crate::draw::{Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
 use crate::layout::Style;
@@ -131,7 +131,7 @@ fn inspect(
     let shapes: Vec<i32> = present
         .iter()
         .copied()
-        .filter(|h| survey.kinds.get(h) == Some(&OBJECT_SHAPE_TYPE))
+        .filter(|h| survey.traits.kinds.get(h) == Some(&OBJECT_SHAPE_TYPE))
         .collect();
     let colours_read = scene.shape_colours(&shapes)?;
     let colours: HashMap<i32, [f64; 3]> = match &colours_read {
@@ -183,7 +183,8 @@ fn inspect(
     maze.meshes = meshes.meshes.iter().map(|m| m.name.clone()).collect();
     for o in objects.iter().filter(|o| Some(o.handle) != meshes.holder) {
         let under_maze = parent.is_some() && o.parent == parent;
-        let copy_of = |template: &str| is_copy_name(&o.name, template);
+        // named, typed and (where read) sized like a template's copy, as drawing judges
+        let copy_of = |template: &str| is_copy_of(o, template, handle(template), &survey.traits);
         // ZeroMQ reads no names of the maze dummy's children unless another style's template
         // is in the scene; drawing treats them as copies of the surveyed template
         let unread = o

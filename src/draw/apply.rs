@@ -340,7 +340,7 @@ fn apply_claimed(
         opts.dry_run,
     )?;
     // only the templates' copies are the maze's: the user's objects stay as they are
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     report.left_alone = sorted.strangers;
     let objects = &sorted.objects;
     let others = names.others(style);
@@ -410,7 +410,7 @@ fn apply_claimed(
             .any(|o| o.position.iter().any(|x| x.is_nan()));
         let read;
         let objects = if unread {
-            read = plan::sort_out(&scene.objects()?, &h, &names.templates(), &survey.kinds);
+            read = plan::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
             &read.objects
         } else {
             objects
@@ -439,7 +439,7 @@ fn apply_claimed(
         report: &mut report,
         objects_in_scene: survey.objects.len(),
         placed: 0,
-        kinds: &survey.kinds,
+        traits: &survey.traits,
     };
     run.draw(objects, &parts, &foreign)?;
     Ok(report)
@@ -659,8 +659,8 @@ struct Drawer<'a, 'p> {
     objects_in_scene: usize,
     /// Lines whose place has been sent (or found right).
     placed: usize,
-    /// Type codes the survey read ([`plan::sort_out`]).
-    kinds: &'a plan::Kinds,
+    /// What the survey read of copies and the user's objects ([`plan::sort_out`]).
+    traits: &'a plan::Traits,
 }
 
 impl Drawer<'_, '_> {
@@ -765,7 +765,7 @@ impl Drawer<'_, '_> {
             self.scene.objects()?
         };
         self.claim.check(self.scene, "while verifying")?;
-        let after = plan::sort_out(&after, h, &self.opts.names.templates(), self.kinds).objects;
+        let after = plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());
             drawn.get(p).map_or(&[][..], |d| &d[..poses.min(d.len())])

@@ -141,7 +141,7 @@ fn clear_claimed(
         dry_run,
     )?;
     // only the templates' copies are the maze's: the user's objects stay as they are
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.kinds);
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     let others = names.others(style);
     let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));

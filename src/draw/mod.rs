@@ -337,10 +337,10 @@ pub struct Survey {
     pub objects: Vec<ObjectInfo>,
     /// Simulation not stopped.
     pub simulation_running: bool,
-    /// Object type codes (`sim_object_*_type`: 0 shape, 4 dummy, ...) by handle, of the
-    /// objects a backend read the type of: at least the named ones and those of
-    /// [`Survey::objects`] that may be copies of a template ([`plan::Kinds`]).
-    pub kinds: std::collections::HashMap<i32, i32>,
+    /// What the backend read that tells a template's copy from the user's object named like
+    /// one ([`plan::Traits`]: types, and sizes and children where the name, type and copy
+    /// record leave a doubt).
+    pub traits: plan::Traits,
 }
 
 /// The idle rate now and the user's rate recorded by an interrupted run.
@@ -591,10 +591,14 @@ impl DrawError {
             DrawError::SimulationRunning => {
                 vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
             }
-            // a copy set where it belongs yet read back as NaN hangs from a broken pose
-            DrawError::Verify(problems) if problems.iter().any(|p| p.contains("NaN")) => vec![
+            // the floor or the maze dummy at NaN: every copy reads back so
+            DrawError::Verify(problems)
+                if problems.iter().any(|p| p.contains(verify::BROKEN_POSE)) =>
+            {
+                vec![
                 "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
-            ],
+            ]
+            }
             DrawError::Sizes(_) => vec![
                 "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
             ],

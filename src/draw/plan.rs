@@ -1,7 +1,7 @@
 //! Pure drawing decisions: which objects belong to an earlier maze, and what to paste,
 //! reuse and remove.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
@@ -42,25 +42,66 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
             .is_some_and(digits)
 }
 
-/// Object type codes by handle, as a survey read them ([`super::Survey::kinds`]).
+/// Object type codes by handle, as a survey read them ([`Traits::kinds`]).
 pub type Kinds = HashMap<i32, i32>;
 
-/// `true` if `o` is a copy of the template named `template` whose type code is
-/// `template_kind`: named in its family (`Line0`, `Line#0`, `/Line[1]`, [`is_copy_name`])
-/// and, where both types are known, of the template's type (a dummy or a cuboid named
-/// `Line3` is no copy of the `Line` plane). The one test of what a drawing may reuse, move
-/// or remove: anything else is the user's.
+/// What a backend read of a survey's objects that tells a template's copy from the user's
+/// object named like one ([`super::Survey::traits`]). A backend reads sizes and children
+/// only where the name and type say "copy" and its record of the copies this tool pasted
+/// ([`super::record`]) does not already say so (normally none), and the sizes of those
+/// objects' templates: a fact not read is no evidence either way.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Traits {
+    /// Object type codes (`sim_object_*_type`: 0 shape, 4 dummy, ...) by handle: at least
+    /// the named objects and the objects that may be copies of a template.
+    pub kinds: Kinds,
+    /// Bounding-box extents (x, y, z, metres, [`super::BoundingBox::size`]) by handle: the
+    /// copy candidates the backend sized, and their templates.
+    pub sizes: HashMap<i32, [f64; 3]>,
+    /// Copy candidates the backend found to have children of their own (a pasted copy has
+    /// none: the copies are pasted without their trees).
+    pub with_children: HashSet<i32>,
+}
+
+/// `true` if `a` and `b` are the same extents within [`SIZE_TOLERANCE`] along each axis
+/// (never with a NaN): a copy has exactly its template's bounding box, both kept in single
+/// precision.
+pub fn same_extents(a: [f64; 3], b: [f64; 3]) -> bool {
+    a.iter().zip(b).all(|(x, y)| same_size(*x, y))
+}
+
+/// `true` if what a backend read of `handle` ([`Traits`]) says it is no copy of the
+/// template `template`, though named and typed like one: it has children of its own, or
+/// both sizes were read and differ ([`same_extents`]).
+pub fn contradicts_copy(traits: &Traits, handle: i32, template: Option<i32>) -> bool {
+    let size = |h: i32| traits.sizes.get(&h).copied();
+    traits.with_children.contains(&handle)
+        || matches!(
+            (size(handle), template.and_then(size)),
+            (Some(a), Some(b)) if !same_extents(a, b)
+        )
+}
+
+/// `true` if `o` is a copy of the template named `template` (handle `template_handle`, if
+/// in the scene, whose type code is `template_kind`): named in its family (`Line0`,
+/// `Line#0`, `/Line[1]`, [`is_copy_name`]), of the template's type where both types are
+/// known (a dummy or a cuboid named `Line3` is no copy of the `Line` plane), and not
+/// contradicted by its size or children ([`contradicts_copy`]: a 1 m plane named `Line9` is
+/// no copy of the 0.6 m `Line`). The one test of what a drawing may reuse, move or remove:
+/// anything else is the user's.
 pub fn is_copy_of(
     o: &ObjectInfo,
     template: &str,
-    template_kind: Option<i32>,
-    kinds: &Kinds,
+    template_handle: Option<i32>,
+    traits: &Traits,
 ) -> bool {
+    let template_kind = template_handle.and_then(|t| traits.kinds.get(&t));
     is_copy_name(&o.name, template)
-        && match (kinds.get(&o.handle), template_kind) {
-            (Some(kind), Some(template_kind)) => *kind == template_kind,
+        && match (traits.kinds.get(&o.handle), template_kind) {
+            (Some(kind), Some(template_kind)) => kind == template_kind,
             _ => true,
         }
+        && !contradicts_copy(traits, o.handle, template_handle)
 }
 
 /// The objects of a survey sorted into those a drawing may consider and those it must
@@ -72,22 +113,23 @@ pub struct Sorted {
     pub objects: Vec<ObjectInfo>,
     /// Names of the user's objects that a drawing could have mistaken for its own: the maze
     /// dummy's children that are no copy of a template, and root objects named like a copy
-    /// but of another type. Left alone, and named in reports.
+    /// but of another type or size, or with children. Left alone, and named in reports.
     pub strangers: Vec<String>,
 }
 
 /// Sorts `objects` ([`Sorted`]): an object that is a child of the maze dummy or has no
 /// parent, is not one of the handles of `h`, not named as one of `templates` (line, wall,
-/// post) and no copy of any of them ([`is_copy_of`]) is the user's.
-pub fn sort_out(objects: &[ObjectInfo], h: &Handles, templates: &[&str], kinds: &Kinds) -> Sorted {
+/// post) and no copy of any of them ([`is_copy_of`], judged by what the backend read:
+/// `traits`) is the user's.
+pub fn sort_out(
+    objects: &[ObjectInfo],
+    h: &Handles,
+    templates: &[&str],
+    traits: &Traits,
+) -> Sorted {
     let named = [h.floor, h.parent, h.line, h.start, h.end];
-    let kind_of = |name: &str| {
-        objects
-            .iter()
-            .find(|o| o.name == name)
-            .and_then(|o| kinds.get(&o.handle).copied())
-    };
-    let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, kind_of(t))).collect();
+    let handle_of = |name: &str| objects.iter().find(|o| o.name == name).map(|o| o.handle);
+    let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, handle_of(t))).collect();
     let mut sorted = Sorted {
         objects: Vec::with_capacity(objects.len()),
         strangers: Vec::new(),
@@ -100,7 +142,7 @@ pub fn sort_out(objects: &[ObjectInfo], h: &Handles, templates: &[&str], kinds: 
             || (under_maze && o.name.rsplit('/').next() == Some(super::mesh::HOLDER))
             || families
                 .iter()
-                .any(|(t, kind)| o.name == *t || is_copy_of(o, t, *kind, kinds));
+                .any(|(t, handle)| o.name == *t || is_copy_of(o, t, *handle, traits));
         if ours {
             sorted.objects.push(o.clone());
         } else if under_maze || families.iter().any(|(t, _)| is_copy_name(&o.name, t)) {
@@ -533,16 +575,78 @@ mod tests {
             obj(13, "Other", Some(1)),
         ];
         // 0 shape, 4 dummy: Line1 and the root Line3 are dummies
-        let kinds: Kinds = [(3, 0), (6, 0), (7, 4), (8, 4), (9, 0), (10, 4), (12, 0)]
-            .into_iter()
-            .collect();
-        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &kinds);
+        let traits = Traits {
+            kinds: [(3, 0), (6, 0), (7, 4), (8, 4), (9, 0), (10, 4), (12, 0)]
+                .into_iter()
+                .collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
         let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
         assert_eq!(kept, vec![1, 2, 3, 4, 5, 6, 9, 12, 13]);
         assert_eq!(sorted.strangers, vec!["MySensor", "Line1", "Line3"]);
         // a type nobody read: the name decides
-        let sorted = sort_out(&objects, &h, &["Line"], &Kinds::new());
+        let sorted = sort_out(&objects, &h, &["Line"], &Traits::default());
         assert_eq!(sorted.strangers, vec!["MySensor", "Wall0"]);
+    }
+
+    #[test]
+    fn a_copy_named_shape_of_another_size_or_with_children_is_the_users() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+            post: None,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "Line9", Some(2)),
+            obj(8, "/Line[3]", Some(2)),
+            obj(9, "Line4", Some(2)),
+            obj(10, "Line5", None),
+            obj(11, "Line6", Some(2)),
+        ];
+        let line = [0.6, 0.1, 0.0];
+        let traits = Traits {
+            kinds: (3..=11).map(|h| (h, 0)).collect(),
+            sizes: [
+                (3, line),
+                // single precision: within half a millimetre is the template's size
+                (6, [0.6 + 4e-4, 0.1 - 4e-4, 0.0]),
+                (7, [1.0, 1.0, 0.0]),
+                (8, [0.6, 0.1, 0.05]),
+                (9, line),
+                (10, [0.6 + 7e-4, 0.1, 0.0]),
+                (11, [f64::NAN, 0.1, 0.0]),
+            ]
+            .into_iter()
+            .collect(),
+            with_children: [9].into_iter().collect(),
+        };
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
+        let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
+        assert_eq!(kept, vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(
+            sorted.strangers,
+            vec!["Line9", "/Line[3]", "Line4", "Line5", "Line6"]
+        );
+        // a size read without its template's (or the other way round) is no evidence
+        let mut unread = traits.clone();
+        unread.sizes.remove(&3);
+        unread.with_children.clear();
+        assert_eq!(
+            sort_out(&objects, &h, &["Line"], &unread).objects.len(),
+            objects.len()
+        );
+        assert!(same_extents(line, [0.6, 0.1, 4.9e-4]));
+        assert!(!same_extents(line, [0.6, 0.1, 5.1e-4]));
     }
 
     /// A bounding box of `size`, centred.

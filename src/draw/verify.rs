@@ -26,6 +26,7 @@ pub fn check(
     else {
         return vec!["the floor object disappeared".into()];
     };
+    problems.extend(broken_frames(objects, h, names));
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let get = |handle: i32| by_handle.get(&handle).copied();
     let parts = [
@@ -103,6 +104,42 @@ pub fn check(
         problems.push(stray_problem(&stray));
     }
     problems
+}
+
+/// What a problem of [`broken_frames`] says, which [`DrawError::hints`] recognises.
+pub(crate) const BROKEN_POSE: &str = "is at a pose that is not a number (NaN)";
+
+/// One problem for each of the floor and the maze dummy whose world pose in `objects` is not
+/// finite: every pose relative to the floor, and every copy under the dummy, reads back
+/// so, whatever a drawing sets, and vrep-maze never moves either object.
+fn broken_frames(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames) -> Vec<String> {
+    [
+        (
+            h.floor,
+            &names.floor,
+            "the floor, --floor",
+            "every pose relative to it",
+        ),
+        (
+            h.parent,
+            &names.parent,
+            "the maze dummy, --parent",
+            "every copy under it",
+        ),
+    ]
+    .into_iter()
+    .filter(|(handle, ..)| {
+        objects.iter().any(|o| {
+            o.handle == *handle
+                && !o
+                    .position
+                    .iter()
+                    .chain(&o.orientation)
+                    .all(|x| x.is_finite())
+        })
+    })
+    .map(|(_, name, role, what)| format!("`{name}` ({role}) {BROKEN_POSE}: so is {what}"))
+    .collect()
 }
 
 /// The maze's copies of the post template when the drawing has posts (else they are
@@ -192,7 +229,7 @@ fn verify_raised(
         &scene.objects_from_scene()?,
         &h,
         &names.templates(),
-        &survey.kinds,
+        &survey.traits,
     )
     .objects;
     let floor = objects
@@ -213,6 +250,7 @@ fn verify_raised(
         &names.others(style),
     ));
     let mut problems = Vec::new();
+    problems.extend(broken_frames(objects, &h, names));
     let mut stray = Vec::new();
     let parts = [
         (noun(style), pool, &drawing.lines),

@@ -10,7 +10,7 @@ use super::command::{
 use crate::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
-use crate::draw::plan::is_copy_name;
+use crate::draw::plan::{self, Traits, is_copy_name};
 use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
 use crate::draw::{
     Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
@@ -129,48 +129,28 @@ impl LegacyBackend {
     }
 
     /// Learns from a survey which objects are the templates and their copies in the maze
-    /// (named in a template's family and of its type, or recorded and of its type), and
-    /// keeps `record` (the scene's) to those copies.
+    /// (named in a template's family and of its type, or recorded and of its type, and not
+    /// contradicted by `traits`: [`plan::contradicts_copy`]), and keeps `record` (the
+    /// scene's) to those copies.
     fn learn_copies(
         &mut self,
         names: &[&str],
         handles: &[Option<i32>],
         objects: &[ObjectInfo],
-        kinds: &HashMap<i32, i32>,
+        traits: &Traits,
         mut record: CopyRecord,
     ) {
         self.families.clear();
-        let parent = handles.get(1).copied().flatten();
-        // ObjectNames order: floor, parent, template, start, end, then the other templates
-        let templates: Vec<(&str, String, i32)> = names
-            .iter()
-            .zip(handles)
-            .enumerate()
-            .filter(|(i, _)| *i == 2 || *i >= 5)
-            .filter_map(|(_, (n, h))| {
-                let alias = n.rsplit('/').next().unwrap_or(n).to_string();
-                h.map(|h| (*n, alias, h))
-            })
-            .collect();
-        let kind = |h: i32| kinds.get(&h).copied();
+        let templates = templates_of(names, handles);
         for (_, alias, h) in &templates {
             self.families.insert(*h, alias.clone());
         }
         let mut copies = HashMap::new();
-        if parent.is_some() {
-            for o in objects {
-                if !(o.parent == parent || o.parent.is_none())
-                    || templates.iter().any(|t| t.2 == o.handle)
-                {
-                    continue;
-                }
-                let family = templates.iter().find(|(name, alias, h)| {
-                    let of_type = kind(o.handle).is_some() && kind(o.handle) == kind(*h);
-                    of_type && (is_copy_name(&o.name, name) || record.get(o.handle) == Some(alias))
-                });
-                if let Some((_, alias, _)) = family {
-                    copies.insert(o.handle, alias.clone());
-                }
+        for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+            let of_type = kind_matches(traits, o.handle, *template);
+            let named = is_copy_name(&o.name, name) || record.get(o.handle) == Some(alias);
+            if of_type && named && !plan::contradicts_copy(traits, o.handle, Some(*template)) {
+                copies.insert(o.handle, alias.clone());
             }
         }
         let mut changed = record.retain(|h| copies.contains_key(&h));
@@ -182,6 +162,58 @@ impl LegacyBackend {
         self.record_changed = changed;
     }
 
+    /// What tells the maze's copies from the user's objects named like them ([`Traits`]):
+    /// `kinds`, plus the sizes and children of the objects named and typed like a
+    /// template's copy that `record` does not hold (normally none: only a maze drawn by an
+    /// older version, or a scene reloaded, since signals are not saved with it), and of
+    /// their templates. Sizes take six commands an object, in one request per
+    /// [`SIZED_PER_REQUEST`] objects; children come with the survey's parents.
+    fn traits(
+        &mut self,
+        names: &[&str],
+        handles: &[Option<i32>],
+        objects: &[ObjectInfo],
+        kinds: HashMap<i32, i32>,
+        record: &CopyRecord,
+    ) -> Result<Traits, BackendError> {
+        let mut traits = Traits {
+            kinds,
+            ..Default::default()
+        };
+        let templates = templates_of(names, handles);
+        let mut doubtful = Vec::new();
+        let mut sized: Vec<i32> = Vec::new();
+        for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+            if kind_matches(&traits, o.handle, *template)
+                && is_copy_name(&o.name, name)
+                && record.get(o.handle) != Some(alias)
+            {
+                doubtful.push(o.handle);
+                if !sized.contains(template) {
+                    sized.push(*template);
+                }
+            }
+        }
+        if doubtful.is_empty() {
+            return Ok(traits);
+        }
+        let parents: HashSet<i32> = objects.iter().filter_map(|o| o.parent).collect();
+        traits.with_children = doubtful
+            .iter()
+            .copied()
+            .filter(|h| parents.contains(h))
+            .collect();
+        sized.extend(doubtful);
+        for chunk in sized.chunks(SIZED_PER_REQUEST) {
+            for (h, b) in chunk.iter().zip(self.bounding_boxes(chunk)?) {
+                if let Some(b) = b {
+                    traits.sizes.insert(*h, b.size());
+                }
+            }
+        }
+        Ok(traits)
+    }
+
     fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, BackendError> {
         Ok(self.client()?.call(commands)?)
     }
@@ -191,6 +223,51 @@ impl Drop for LegacyBackend {
     fn drop(&mut self) {
         let _ = self.close_client();
     }
+}
+
+/// Objects sized in one request while telling copies from the user's objects (six
+/// commands each: about 0.2 MB a request).
+const SIZED_PER_REQUEST: usize = 1000;
+
+/// The templates a survey asked for and found (`names` in [`crate::draw::ObjectNames`]
+/// survey order: floor, parent, template, start, end, then the other templates): name,
+/// alias, handle.
+fn templates_of<'n>(names: &[&'n str], handles: &[Option<i32>]) -> Vec<(&'n str, String, i32)> {
+    names
+        .iter()
+        .zip(handles)
+        .enumerate()
+        .filter(|(i, _)| *i == 2 || *i >= 5)
+        .filter_map(|(_, (n, h))| {
+            let alias = n.rsplit('/').next().unwrap_or(n).to_string();
+            h.map(|h| (*n, alias, h))
+        })
+        .collect()
+}
+
+/// The objects that may be a template's copy in the maze (children of the maze dummy, the
+/// second of `handles`, and parentless objects, but not the templates; none without a maze
+/// dummy), each paired with each of `templates`: callers test the family.
+fn maze_objects<'a, 't>(
+    handles: &[Option<i32>],
+    objects: &'a [ObjectInfo],
+    templates: &'t [(&str, String, i32)],
+) -> impl Iterator<Item = (&'a ObjectInfo, &'t (&'t str, String, i32))> {
+    let parent = handles.get(1).copied().flatten();
+    objects
+        .iter()
+        .filter(move |o| {
+            parent.is_some()
+                && (o.parent == parent || o.parent.is_none())
+                && !templates.iter().any(|t| t.2 == o.handle)
+        })
+        .flat_map(move |o| templates.iter().map(move |t| (o, t)))
+}
+
+/// `true` if `handle` and `template` are both of a known and the same type.
+fn kind_matches(traits: &Traits, handle: i32, template: i32) -> bool {
+    let kind = |h: i32| traits.kinds.get(&h);
+    kind(handle).is_some() && kind(handle) == kind(template)
 }
 
 fn group_commands() -> [Command; 3] {
@@ -304,13 +381,15 @@ impl Backend for LegacyBackend {
             })
             .collect();
         let objects = parse_objects(&r[k..k + 3])?;
-        self.learn_copies(names, &handles, &objects, &kinds, record);
+        // the simulation state of the survey's own reply (a second request may follow)
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
+        let traits = self.traits(names, &handles, &objects, kinds, &record)?;
+        self.learn_copies(names, &handles, &objects, &traits, record);
         Ok(Survey {
             handles,
             objects,
             simulation_running,
-            kinds,
+            traits,
         })
     }
 

@@ -23,6 +23,7 @@ use crate::coppelia::{
     PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED,
     SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
+use crate::draw::plan;
 use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
 use crate::draw::{
     Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, LEASE_SIGNAL, Lease,
@@ -91,6 +92,13 @@ pub struct ZmqBackend {
     /// when: [`Backend::idle_rates`] takes them while no other call has been made since,
     /// within [`FIRST_RATES_FRESH`].
     first_rates: Option<(IdleRates, usize, Instant)>,
+    /// Bounding-box extents and whether an object has children, of the objects a survey
+    /// doubted ([`ZmqBackend::doubt`]) and their templates; emptied by each survey.
+    extents: HashMap<i32, Option<[f64; 3]>>,
+    children: HashMap<i32, bool>,
+    /// Whether anything lies below the maze dummy's children (one call for the whole
+    /// maze, made for the first doubted child of a survey).
+    deep: Option<bool>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -162,6 +170,9 @@ impl ZmqBackend {
             record: None,
             record_changed: false,
             first_rates: Some((rates, round_trips, Instant::now())),
+            extents: HashMap::new(),
+            children: HashMap::new(),
+            deep: None,
         })
     }
 
@@ -349,32 +360,47 @@ impl ZmqBackend {
     }
 
     /// The named objects (read), the maze dummy's children and root copies of the templates
-    /// found (their poses as `poses` says), with the type codes of all of them. A child
-    /// carrying a template's alias is named as a copy of it (`/Line[k]`), any other by its
-    /// alias, so that only the templates' copies are taken for the maze's. A child the copy
-    /// record names and of its template's type is known without reading its alias; the
-    /// record is then brought up to date (written with the next edit or paste).
+    /// found (their poses as `poses` says), with what tells copies from the user's objects
+    /// ([`plan::Traits`]). A child carrying a template's alias is named as a copy of it
+    /// (`/Line[k]`), any other by its alias, so that only the templates' copies are taken
+    /// for the maze's. A child the copy record names and of its template's type is known
+    /// without reading its alias; one that is not recorded but named and typed like a copy
+    /// is sized and asked for children ([`ZmqBackend::doubt`]: normally none). The record
+    /// is then brought up to date (written with the next edit or paste). The poses this
+    /// connection set for the maze dummy's children are trusted only while the dummy is
+    /// where it was when they were set, at a finite pose (a child of a dummy at NaN is at
+    /// NaN, whatever was set).
     fn collect(
         &mut self,
         poses: LinePoses,
-    ) -> Result<(Vec<ObjectInfo>, HashMap<i32, i32>), BackendError> {
+    ) -> Result<(Vec<ObjectInfo>, plan::Traits), BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
-        let mut kinds = HashMap::new();
+        let mut found = plan::Traits::default();
+        let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
         for (info, kind) in self.named_infos(&known.named)? {
-            kinds.insert(info.handle, kind);
+            found.kinds.insert(info.handle, kind);
             out.push(info);
         }
+        let parent_now = known.parent.and_then(|p| self.poses.get(&p).copied());
+        let finite = |(p, e): WorldPose| p.iter().chain(&e).all(|x| x.is_finite());
+        let distrust =
+            parent_now.is_some_and(|now| !finite(now) || parent_before.is_some_and(|b| b != now));
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
         let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
             .chain(known.foreign_aliases.iter().map(String::as_str))
             .collect();
-        // the templates' types by alias: a recorded copy must still be of its template's type
-        let template_kinds: HashMap<&str, i32> = known
+        // the templates' handles and types by alias: a recorded copy must still be of its
+        // template's type
+        let template_handles: HashMap<&str, i32> = known
             .named
             .iter()
             .filter(|(name, _)| templates.contains(&alias_of(name)))
-            .filter_map(|(name, h)| kinds.get(h).map(|k| (alias_of(name), *k)))
+            .map(|(name, h)| (alias_of(name), *h))
+            .collect();
+        let template_kinds: HashMap<&str, i32> = template_handles
+            .iter()
+            .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
             .collect();
         let mut record = self.copy_record()?;
         let mut present = Vec::new();
@@ -385,6 +411,25 @@ impl ZmqBackend {
                 format!("/{alias}[{}]", numbered[t])
             }
             None => alias.to_string(),
+        };
+        // a copy of a template by alias and type, unless the record does not hold it and
+        // what `doubt` reads of an object named and typed like a copy says otherwise
+        let judge = |backend: &mut Self,
+                     (h, tree): (i32, Option<(i32, &[i32])>),
+                     name: &str,
+                     alias: &str,
+                     kind: i32,
+                     found: &mut plan::Traits|
+         -> Result<bool, BackendError> {
+            let family = templates
+                .iter()
+                .find(|t| plan::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind));
+            let template = family.and_then(|t| template_handles.get(t).copied());
+            if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
+                backend.doubt(h, template, tree, found)?;
+            }
+            Ok(template_kinds.get(alias) == Some(&kind)
+                && !plan::contradicts_copy(found, h, template))
         };
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself; the shapes
@@ -401,7 +446,8 @@ impl ZmqBackend {
                 .unwrap_or_default()
                 .into_iter()
                 .collect();
-            for h in self.handles_in(parent, 3)? {
+            let kids = self.handles_in(parent, 3)?;
+            for &h in &kids {
                 if seen.insert(h) {
                     let shape = shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
                     // a recorded copy that is (still) of its template's type is known
@@ -413,11 +459,15 @@ impl ZmqBackend {
                         self.traits.insert(h, (alias.to_string(), kind));
                     }
                     let (alias, kind) = self.traits(h, shape)?;
-                    kinds.insert(h, kind);
-                    if template_kinds.get(alias.as_str()) == Some(&kind) {
+                    found.kinds.insert(h, kind);
+                    let name = copy_name(&alias);
+                    let tree = Some((parent, &kids[..]));
+                    if judge(self, (h, tree), &name, &alias, kind, &mut found)? {
                         present.push((h, alias.clone()));
                     }
-                    let name = copy_name(&alias);
+                    if distrust {
+                        self.poses.remove(&h);
+                    }
                     out.push(self.line_info(h, name, Some(parent), poses)?);
                 }
             }
@@ -441,11 +491,11 @@ impl ZmqBackend {
                 continue; // not a root object after all
             }
             seen.insert(h);
-            kinds.insert(h, kind);
-            if template_kinds.get(alias.as_str()) == Some(&kind) {
+            found.kinds.insert(h, kind);
+            let name = copy_name(&alias);
+            if judge(self, (h, None), &name, &alias, kind, &mut found)? {
                 present.push((h, alias.clone()));
             }
-            let name = copy_name(&alias);
             out.push(self.line_info(h, name, None, poses)?);
         }
         // the record now holds exactly the templates' copies in the maze: those read by
@@ -459,7 +509,74 @@ impl ZmqBackend {
             self.record_changed |= changed;
         }
         self.record = Some(record);
-        Ok((out, kinds))
+        Ok((out, found))
+    }
+
+    /// Reads what tells `handle`, named and typed like a copy of `template` but not in the
+    /// copy record, from a copy ([`plan::contradicts_copy`]) into `found`: its size and its
+    /// template's (a shape's `sim.getShapeBB`, one call; other objects' bounding box, six)
+    /// and whether it has children (`sim.getObjectsInTree`, one call, unless `tree`, the
+    /// maze dummy and its children it is one of, shows nothing below them: one call for
+    /// the whole maze). Read once per survey.
+    fn doubt(
+        &mut self,
+        handle: i32,
+        template: i32,
+        tree: Option<(i32, &[i32])>,
+        found: &mut plan::Traits,
+    ) -> Result<(), BackendError> {
+        for h in [template, handle] {
+            if let Some(size) = self.extents(h)? {
+                found.sizes.insert(h, size);
+            }
+        }
+        let deep = match (tree, self.deep) {
+            (None, _) => true,
+            (Some(_), Some(deep)) => deep,
+            (Some((parent, kids)), None) => {
+                // options 1: the whole tree without the dummy
+                let deep = self.handles_in(parent, 1)?.len() > kids.len();
+                self.deep = Some(deep);
+                deep
+            }
+        };
+        let children = match self.children.get(&handle) {
+            Some(&c) => c,
+            None if !deep => false,
+            None => {
+                let c = !self.handles_in(handle, 3)?.is_empty();
+                self.children.insert(handle, c);
+                c
+            }
+        };
+        if children {
+            found.with_children.insert(handle);
+        }
+        Ok(())
+    }
+
+    /// The bounding-box extents of `handle` (`None` if the simulator gives none), read once
+    /// per survey.
+    fn extents(&mut self, handle: i32) -> Result<Option<[f64; 3]>, BackendError> {
+        if let Some(size) = self.extents.get(&handle) {
+            return Ok(*size);
+        }
+        let shape = self.traits.get(&handle).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE);
+        let size = if shape {
+            match self.call("sim.getShapeBB", vec![int(handle.into())]) {
+                Ok(r) => r.first().and_then(cbor::numbers::<3>),
+                Err(BackendError::Remote(_)) => None,
+                Err(e) => return Err(e),
+            }
+        } else {
+            self.bounding_boxes(&[handle])?
+                .first()
+                .copied()
+                .flatten()
+                .map(|b| b.size())
+        };
+        self.extents.insert(handle, size);
+        Ok(size)
     }
 
     /// The scene's copy record ([`COPIES_SIGNAL`]), read on first use (a simulator without
@@ -649,7 +766,10 @@ impl Backend for ZmqBackend {
                 .unwrap_or_default(),
         };
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
-        let (objects, kinds) = if handles.iter().take(5).all(Option::is_some) {
+        self.extents.clear();
+        self.children.clear();
+        self.deep = None;
+        let (objects, traits) = if handles.iter().take(5).all(Option::is_some) {
             self.collect(LinePoses::Known)?
         } else {
             Default::default()
@@ -658,7 +778,7 @@ impl Backend for ZmqBackend {
             handles,
             objects,
             simulation_running: state != SIMULATION_STOPPED,
-            kinds,
+            traits,
         })
     }
 

@@ -57,8 +57,9 @@ fn assert_record_is_the_copies(s: &Server, what: &str) {
 }
 
 /// Over ZeroMQ, a re-apply over a maze this tool drew knows its copies from the record: a
-/// scene without the record (an older version's maze) costs at least one more call per
-/// copy (its alias), and that run writes the record, so the next pays no more.
+/// scene without the record (an older version's maze) costs one or two more calls per
+/// copy (its alias, and its size, since it is named like a copy), and that run writes the
+/// record, so the next pays no more.
 #[test]
 fn a_reapply_over_our_maze_reads_no_alias_per_child() {
     for kind in [Kind::Zmq1, Kind::Zmq2] {
@@ -72,8 +73,10 @@ fn a_reapply_over_our_maze_reads_no_alias_per_child() {
         let without = apply_fresh(&s, &d);
         let children = copies(&s).len();
         assert!(children > 100, "{k}: {children}");
+        // at most an alias and a size a copy (the one tree call that shows nothing below
+        // the copies spares one per copy), the template's size once
         assert!(
-            without >= with_record + children,
+            without >= with_record + children && without <= with_record + 2 * children + 4,
             "{k}: {without} round trips without the record, {with_record} with it, {children} copies"
         );
         assert_record_is_the_copies(&s, k);

@@ -2,6 +2,7 @@
 //! API and the ZeroMQ API in both protocols (`legacy_draw` and `zmq_draw` hold what only
 //! one API has).
 
+use vrep_maze::draw::record::COPIES_SIGNAL;
 use vrep_maze::draw::{
     self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Survey,
 };
@@ -282,7 +283,9 @@ fn idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs(kind: Ki
 }
 
 fn idle_rate_is_restored_after_a_remote_error(kind: Kind) {
-    // Maze hangs under a parentless Line copy: re-parenting that copy to Maze is a cycle
+    // Maze hangs under a parentless Line copy that the copy record names (an object with
+    // children of its own that the record does not name is the user's, left alone):
+    // re-parenting that copy to Maze is a cycle
     let mut scene = Scene::course();
     let (line, maze) = (
         scene.resolve("Line").unwrap(),
@@ -291,6 +294,10 @@ fn idle_rate_is_restored_after_a_remote_error(kind: Kind) {
     let copy = scene.copy_paste(&[line]).unwrap()[0];
     scene.set_parent(maze, Some(copy), true).unwrap();
     let s = kind.serve(scene, 8);
+    s.with_sim(|sim| {
+        sim.string_signals
+            .insert(COPIES_SIGNAL.into(), format!("Line:{copy}").into_bytes())
+    });
     let mut b = s.connect();
     let e = apply(&mut b, &drawing(3, 1)).unwrap_err();
     assert!(e.to_string().contains(kind.parent_cycle_error()), "{e}");

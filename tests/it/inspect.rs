@@ -114,6 +114,18 @@ fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
                     colour: [0; 3],
                 },
             );
+            // named and typed like a copy of `Line`, but a 1 m plane
+            sim.scene.add(
+                "Line9",
+                NewObject {
+                    kind: ObjectType::Shape,
+                    parent: Some(maze),
+                    position: [4.0, -4.0, 0.001],
+                    orientation: [0.0; 3],
+                    size: [1.0, 1.0, 0.0],
+                    colour: [0, 255, 0],
+                },
+            );
         });
         let before = state(&server);
         let report = inspect(kind, &server, &["--layout", &drawn], 0);
@@ -127,22 +139,24 @@ fn inspect_reports_the_scene_and_changes_nothing_on_every_api() {
             "{name}"
         );
         assert_eq!(object(&report, "wall template")["present"], false);
-        // the user's object under the dummy is left alone: the maze still matches the layout
+        // the user's objects under the dummy are left alone: the maze still matches the layout
         let layout = &report["layout"];
         assert_eq!(layout["matches"], true, "{name}: {layout}");
         let maze = &report["maze"];
         // every API tells the maze's copies from the user's object
         assert_eq!(maze["lines"], 159, "{name}: {maze}");
-        assert_eq!(maze["not_ours"], json!(["Camera"]), "{name}");
-        // without the user's object the drawing matches; another layout does not
+        assert_eq!(maze["not_ours"], json!(["Camera", "Line9"]), "{name}");
+        // without the user's objects the drawing matches; another layout does not
         server.with_sim(|sim| {
-            let camera = sim
-                .scene
-                .objects()
-                .find(|o| o.alias == "Camera")
-                .unwrap()
-                .handle;
-            sim.scene.remove(camera).unwrap();
+            for alias in ["Camera", "Line9"] {
+                let h = sim
+                    .scene
+                    .objects()
+                    .find(|o| o.alias == alias)
+                    .unwrap()
+                    .handle;
+                sim.scene.remove(h).unwrap();
+            }
         });
         let before = state(&server);
         let matching = inspect(kind, &server, &["--layout", &drawn], 0);

@@ -43,7 +43,60 @@ mesh_backend_tests!(
     wall_maze_with_posts_draws_boxes_that_copies_replace,
     verify_finds_a_changed_mesh_and_a_stray_copy,
     ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored,
+    the_users_objects_under_the_maze_outlive_a_mesh_maze,
 );
+
+/// The user's objects under `Maze` (a dummy, a cuboid, a 1 m plane, a dummy and a 1 m plane
+/// named like copies of `Line`) are no part of a mesh maze: drawing it over copies, and
+/// clearing it, leaves them where they are and names them; verification passes beside
+/// them.
+fn the_users_objects_under_the_maze_outlive_a_mesh_maze(kind: Kind) {
+    let k = kind.name();
+    let (mut scene, mut mine) = crate::trust_draw::scene_with_the_users_objects();
+    let maze = scene.resolve("Maze").unwrap();
+    scene.add(
+        "Line3",
+        vrep_maze::sim::NewObject {
+            kind: vrep_maze::sim::ObjectType::Shape,
+            parent: Some(maze),
+            position: [4.0, 4.0, 0.001],
+            orientation: [0.0; 3],
+            size: [1.0, 1.0, 0.0],
+            colour: [0, 255, 0],
+        },
+    );
+    mine.push("Line3");
+    let s = kind.serve(scene, 0);
+    let snapshot = |s: &Server| {
+        let all = s.snapshot();
+        mine.iter()
+            .map(|n| {
+                all.iter()
+                    .find(|o| o.0 == *n)
+                    .cloned()
+                    .expect("still there")
+            })
+            .collect::<Vec<_>>()
+    };
+    let before = snapshot(&s);
+    let mut b = s.connect();
+    let layout = course_layout(Algorithm::Prim, 5, 5, 42);
+    apply_copies(&mut b, &layout);
+    let m = MeshMaze::try_from(&layout).unwrap();
+    let r = apply_mesh(&mut b, &m).unwrap_or_else(|e| panic!("{k}: {e}"));
+    for name in &mine {
+        assert!(r.left_alone.iter().any(|n| n == name), "{k}: {name}: {r:?}");
+    }
+    verify_mesh(&mut b, &m).unwrap_or_else(|e| panic!("{k}: {e}"));
+    let cleared = draw::clear(&mut *b, &Default::default()).unwrap();
+    assert!(
+        cleared.removed.iter().all(|n| !mine.contains(&n.as_str())),
+        "{k}: {cleared:?}"
+    );
+    assert_eq!(snapshot(&s), before, "{k}: the user's objects untouched");
+    drop(b);
+    s.shutdown();
+}
 
 fn no_progress(_: draw::Stage) {}
 
@@ -152,7 +205,9 @@ fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
     assert_eq!(c.removed_meshes.len(), 2, "{:?}", c.removed_meshes);
     // the template, which lay on the first line, is back where it stood before
     assert!(
-        c.template.as_ref().is_some_and(|t| t.contains("back where it stood")),
+        c.template
+            .as_ref()
+            .is_some_and(|t| t.contains("back where it stood")),
         "{c:?}"
     );
     assert_eq!(line_home(&s), home);

@@ -1,11 +1,12 @@
 //! Messages name the truth: what the user gave (the option, the character, the file), with
 //! every control character escaped, and refusals come before anything is drawn.
 
-use vrep_maze::draw::{self, ApplyOptions};
+use vrep_maze::draw::{self, ApplyOptions, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
 
 use crate::support::backend::Kind;
+use crate::support::backend_tests;
 use crate::support::bin;
 use crate::support::cli::generate;
 use crate::support::layouts::drawing_with;
@@ -168,29 +169,75 @@ fn batch_refuses_repeated_seeds_and_names_an_out_dir_that_is_a_file() {
     assert!(!stderr.contains("os error"), "{stderr}");
 }
 
-#[test]
-fn a_parent_with_a_nan_pose_gets_a_hint_that_a_rerun_does_not_repair_it() {
-    let s = Kind::Legacy.serve(Scene::course(), 0);
-    s.with_sim(|sim| {
-        let maze = sim.scene.resolve("Maze").unwrap();
-        sim.scene
-            .set_position(maze, -1, [f64::NAN, 0.0, 0.0])
-            .unwrap();
-    });
-    let mut b = s.connect();
+backend_tests!(a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it);
+
+/// A `Maze` dummy at a NaN position or orientation puts every copy under it at NaN (a
+/// `Floor` at NaN every pose relative to it): apply fails verification over every API (ZeroMQ included, which does not read back the poses
+/// it set while the dummy stays put and finite), with the hint that a re-run does not
+/// repair it; once the dummy's pose is reset, the same apply verifies.
+fn a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it(kind: Kind) {
+    let k = kind.name();
     let d = drawing_with(Algorithm::Dfs, 3, 4);
-    let e = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap_err();
-    let hints = e.hints();
-    assert!(
-        hints.iter().any(|h| h.contains("not a number (NaN)")
-            && h.contains("does not repair")
-            && h.contains("--parent")),
-        "{hints:?}"
-    );
-    assert!(
-        !hints.iter().any(|h| h.contains("it repairs what differs")),
-        "{hints:?}"
-    );
-    drop(b);
-    s.shutdown();
+    let maze = "`Maze` (the maze dummy, --parent) is at a pose that is not a number (NaN)";
+    let floor = "`Floor` (the floor, --floor) is at a pose that is not a number (NaN)";
+    for (object, broken, named) in [
+        ("Maze", "position", maze),
+        ("Maze", "orientation", maze),
+        ("Floor", "position", floor),
+    ] {
+        let s = kind.serve(Scene::course(), 0);
+        let start = s.with_sim(|sim| {
+            let h = sim.scene.resolve(object).unwrap();
+            sim.scene.pose(h, -1).unwrap()
+        });
+        // its x (or roll) at NaN, or back where the scene had it
+        let set = |broken_now: bool| {
+            s.with_sim(|sim| {
+                let h = sim.scene.resolve(object).unwrap();
+                let mut v = if broken == "position" {
+                    start.0
+                } else {
+                    start.1
+                };
+                if broken_now {
+                    v[0] = f64::NAN;
+                }
+                match broken {
+                    "position" => sim.scene.set_position(h, -1, v).unwrap(),
+                    _ => sim.scene.set_orientation(h, -1, v).unwrap(),
+                }
+            })
+        };
+        set(true);
+        let mut b = s.connect();
+        for run in ["first", "second"] {
+            let e = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
+                .expect_err(&format!("{k}: {broken} NaN, {run} run verified"));
+            assert!(
+                matches!(e, draw::DrawError::Verify(_)) && e.to_string().contains(named),
+                "{k}: {object} {broken}: {e}"
+            );
+            let hints = e.hints();
+            assert!(
+                hints.iter().any(|h| h.contains("not a number (NaN)")
+                    && h.contains("does not repair")
+                    && h.contains("--parent")),
+                "{k}: {hints:?}"
+            );
+            assert!(
+                !hints.iter().any(|h| h.contains("it repairs what differs")),
+                "{k}: {hints:?}"
+            );
+        }
+        let e = draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_err();
+        assert!(e.to_string().contains(named), "{k}: {e}");
+        assert!(e.hints()[0].contains("does not repair"), "{k}: {e}");
+        // the same connection, the object repaired: the same apply draws and verifies
+        set(false);
+        draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
+            .unwrap_or_else(|e| panic!("{k}: {broken} reset: {e}"));
+        draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
+        drop(b);
+        s.shutdown();
+    }
 }

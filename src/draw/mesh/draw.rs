@@ -12,7 +12,7 @@ use crate::draw::apply::{
     stop_running_simulation, surveyed,
 };
 use crate::draw::lease::Claim;
-use crate::draw::plan::{foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
 use crate::draw::{
     Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
 };
@@ -144,12 +144,14 @@ fn apply_claimed(
         opts.dry_run,
     )?;
     let found = port(scene)?.find(names, h.parent)?;
-    // an earlier maze's copies of any template go, and so does anything else under the
-    // maze dummy but the holder and the templates
+    // an earlier maze's copies of any template go; the user's objects under the maze dummy
+    // stay ([`plan::sort_out`])
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
+    report.left_alone = sorted.strangers;
     let others = names.others(style);
-    let mut doomed: Vec<i32> = maze_lines(&survey.objects, &h, names.template(style), &others)
+    let mut doomed: Vec<i32> = maze_lines(&sorted.objects, &h, names.template(style), &others)
         .into_iter()
-        .chain(foreign_copies(&survey.objects, &h, &others))
+        .chain(foreign_copies(&sorted.objects, &h, &others))
         .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
         .collect();
     let wanted: HashMap<String, usize> = maze
@@ -416,8 +418,15 @@ fn verify_raised(
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
     let style = maze.style;
-    let (_, h) = surveyed(scene, names, style, false)?;
-    let objects = scene.objects_from_scene()?;
+    let (survey, h) = surveyed(scene, names, style, false)?;
+    // the user's objects under the maze dummy are no stray maze objects
+    let objects = plan::sort_out(
+        &scene.objects_from_scene()?,
+        &h,
+        &names.templates(),
+        &survey.traits,
+    )
+    .objects;
     let found = port(scene)?.find(names, h.parent)?;
     let mut problems = name_problems(maze, &found);
     let others = names.others(style);
