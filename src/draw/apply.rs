@@ -13,7 +13,7 @@ use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
     Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose, Survey,
-    resolve_handles, verify,
+    TemplateUse, resolve_handles, verify,
 };
 
 /// Options of [`apply`].
@@ -319,7 +319,7 @@ fn apply_claimed(
     let names = &opts.names;
     let posts = !drawing.posts.is_empty();
     let (survey, h) = surveyed(scene, names, style, posts)?;
-    let sizes = sizes_of(scene, drawing, names, &h)?;
+    let sizes = sizes_of(scene, &drawing.template_use(), names, &h)?;
     if !sizes.refusals.is_empty() {
         return Err(DrawError::Sizes(sizes.refusals));
     }
@@ -615,11 +615,11 @@ pub(crate) fn keep_home(
 /// and end in one request (legacy) and compares them with the drawing's sizes.
 pub(crate) fn sizes_of(
     scene: &mut dyn Backend,
-    drawing: &Drawing,
+    drawing: &TemplateUse<'_>,
     names: &ObjectNames,
     h: &Handles,
 ) -> Result<plan::SizeCheck, DrawError> {
-    let post = h.post.filter(|_| !drawing.posts.is_empty());
+    let post = h.post.filter(|_| drawing.posts);
     let mut asked = vec![h.line, h.start, h.end];
     asked.extend(post);
     let boxes = scene.bounding_boxes(&asked)?;

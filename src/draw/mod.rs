@@ -90,7 +90,54 @@ pub struct ObjectNames {
     pub post: String,
 }
 
+impl Sizes {
+    /// The sizes `layout` was generated for.
+    pub fn of(layout: &crate::layout::Layout) -> Sizes {
+        let wall = layout
+            .wall
+            .as_ref()
+            .map(|w| [w.length, w.thickness, w.height]);
+        Sizes {
+            cell: layout.grid.cell_size,
+            line: [layout.line.length, layout.line.width],
+            wall,
+            post: layout
+                .post
+                .as_ref()
+                .zip(wall)
+                .map(|(p, w)| [p.size, p.size, w[2]]),
+        }
+    }
+}
+
+/// What a drawing asks of the templates and markers ([`plan::check_sizes`]): its style, the
+/// sizes it was generated for, whether the style's template lies on the maze (a line maze's
+/// first line, or a wall maze's every wall) and whether posts are copies of the post
+/// template.
+#[derive(Debug, Clone, Copy)]
+pub struct TemplateUse<'a> {
+    /// Lines or walls.
+    pub style: Style,
+    /// The sizes the layout was generated for.
+    pub sizes: &'a Sizes,
+    /// The style's template is drawn on the maze, so it must have the layout's size.
+    pub template: bool,
+    /// The posts are copies of the post template.
+    pub posts: bool,
+}
+
 impl Drawing {
+    /// What this drawing asks of the templates: the style's template is the first line (or
+    /// copied for every wall) when there is any, the post template for every post.
+    pub fn template_use(&self) -> TemplateUse<'_> {
+        TemplateUse {
+            style: self.style,
+            sizes: &self.sizes,
+            template: !self.lines.is_empty(),
+            posts: !self.posts.is_empty(),
+        }
+    }
+
     /// `true` when the template itself is the first copy drawn (lines); a wall template
     /// stays where the scene has it and every wall is a copy.
     pub fn template_drawn(&self) -> bool {
@@ -689,26 +736,13 @@ impl TryFrom<&crate::layout::Layout> for Drawing {
             Style::Lines => layout.segments.clone(),
             Style::Walls => layout.walls.clone(),
         };
-        let wall = layout
-            .wall
-            .as_ref()
-            .map(|w| [w.length, w.thickness, w.height]);
         Ok(Drawing {
             style: layout.style,
             lines,
             posts: layout.posts.clone(),
             start: layout.start.pose,
             end: layout.end.pose,
-            sizes: Sizes {
-                cell: layout.grid.cell_size,
-                line: [layout.line.length, layout.line.width],
-                wall,
-                post: layout
-                    .post
-                    .as_ref()
-                    .zip(wall)
-                    .map(|(p, w)| [p.size, p.size, w[2]]),
-            },
+            sizes: Sizes::of(layout),
         })
     }
 }

@@ -3,7 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose};
+use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose, TemplateUse};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
@@ -320,7 +320,7 @@ fn extents(v: &[f64]) -> String {
 /// options to generate with or the size to give the template. A marker wider than a cell is
 /// a warning (it hides the neighbouring cells), as is a size the simulator did not give.
 pub fn check_sizes(
-    drawing: &Drawing,
+    drawing: &TemplateUse<'_>,
     names: &ObjectNames,
     template: Option<BoundingBox>,
     post: Option<BoundingBox>,
@@ -328,7 +328,7 @@ pub fn check_sizes(
     end: Option<BoundingBox>,
 ) -> SizeCheck {
     let mut check = SizeCheck::default();
-    let sizes = &drawing.sizes;
+    let sizes = drawing.sizes;
     let differs = |scene: &[f64], layout: &[f64]| {
         scene
             .iter()
@@ -343,7 +343,7 @@ pub fn check_sizes(
     };
     let template_name = names.template(drawing.style);
     // a line maze's template is its first line, a wall maze's is copied for every wall
-    if !drawing.lines.is_empty() {
+    if drawing.template {
         match (template, drawing.style, sizes.wall) {
             (None, ..) => unread(template_name, &mut check),
             (Some(b), super::Style::Lines, _) => {
@@ -364,7 +364,7 @@ pub fn check_sizes(
                 let have = b.size();
                 // between posts a wall may reach into them, up to their centres (a whole
                 // cell side): its ends are hidden inside the posts
-                let longest = if drawing.posts.is_empty() {
+                let longest = if !drawing.posts {
                     wall[0]
                 } else {
                     sizes.cell.max(wall[0])
@@ -386,7 +386,7 @@ pub fn check_sizes(
             (Some(_), super::Style::Walls, None) => {}
         }
     }
-    if let (Some(want), false) = (sizes.post, drawing.posts.is_empty()) {
+    if let (Some(want), true) = (sizes.post, drawing.posts) {
         match post {
             None => unread(&names.post, &mut check),
             Some(b) => {
@@ -672,7 +672,9 @@ mod tests {
         let d = course_drawing();
         let names = ObjectNames::default();
         let marker = bbox([1.0, 1.0, 0.0]);
-        let check = |line: [f64; 3]| check_sizes(&d, &names, bbox(line), None, marker, marker);
+        let check = |line: [f64; 3]| {
+            check_sizes(&d.template_use(), &names, bbox(line), None, marker, marker)
+        };
         assert_eq!(check([0.6, 0.1, 0.0]), SizeCheck::default());
         // single precision and millimetre dialogs: within 0.5 mm is the same size
         assert_eq!(
@@ -695,7 +697,7 @@ mod tests {
         );
         // a marker wider than a cell is a warning; a size not read is said
         let wide = check_sizes(
-            &d,
+            &d.template_use(),
             &names,
             bbox([0.6, 0.1, 0.0]),
             None,

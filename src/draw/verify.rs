@@ -219,7 +219,7 @@ fn verify_raised(
     let style = drawing.style;
     let with_posts = !drawing.posts.is_empty();
     let (survey, h) = super::apply::surveyed(scene, names, style, with_posts)?;
-    let sizes = super::apply::sizes_of(scene, drawing, names, &h)?;
+    let sizes = super::apply::sizes_of(scene, &drawing.template_use(), names, &h)?;
     if !sizes.refusals.is_empty() {
         return Err(DrawError::Sizes(sizes.refusals));
     }

@@ -6,7 +6,8 @@
 use tempfile::TempDir;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::home::HOME_SIGNALS;
-use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, Drawing, ObjectNames};
+use vrep_maze::draw::mesh::MeshMaze;
+use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing, ObjectNames};
 use vrep_maze::layout::read_layout;
 use vrep_maze::sim::{NewObject, ObjectType, Scene};
 
@@ -27,6 +28,7 @@ backend_tests!(
     a_wall_template_standing_on_the_maze_is_a_warning,
     copy_named_objects_of_another_size_or_with_children_are_the_users,
     a_small_cuboid_named_like_a_wall_copy_is_the_users,
+    mesh_mode_refuses_a_line_template_of_another_size,
 );
 
 /// Class 4 for wall mazes: the `Wall` and `Post` templates stay where the scene has them,
@@ -834,4 +836,66 @@ fn cli_refuses_two_roles_before_connecting() {
             "clear {args:?}"
         );
     }
+}
+
+/// Class 3 in mesh mode (`apply --draw mesh`): `Line` lies on the first line, so a template
+/// of another size than the layout's lines is refused before any edit, by apply and verify;
+/// a wall maze's boxes take the layout's sizes whatever `Wall` and `Post` measure (only
+/// their looks are read), so those are not compared; a marker wider than a cell is a warning.
+fn mesh_mode_refuses_a_line_template_of_another_size(kind: Kind) {
+    let k = kind.name();
+    let dir = TempDir::new().unwrap();
+    let s = kind.serve(Scene::course_walls(), 0);
+    let before = s.snapshot();
+    let mut b = s.connect();
+    let mesh = |name: &str, args: &[&str]| {
+        let path = dir.path().join(name);
+        bin()
+            .args(["generate", "--seed", "1", "-o"])
+            .arg(&path)
+            .args(args)
+            .assert()
+            .success();
+        MeshMaze::try_from(&read_layout(&path).unwrap()).unwrap()
+    };
+    let short = mesh(
+        "short.json",
+        &[
+            "--size",
+            "4x4",
+            "--line-length",
+            "0.3",
+            "--line-width",
+            "0.05",
+            "--cell-size",
+            "0.5",
+        ],
+    );
+    let draw_mesh = |b: &mut dyn Backend, m: &MeshMaze| {
+        draw::mesh::apply(b, m, &ApplyOptions::default(), &mut |_| {})
+    };
+    let e = draw_mesh(&mut *b, &short).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        matches!(e, DrawError::Sizes(_)) && text.contains("resize `Line` to 0.3 x 0.05 m"),
+        "{k}: {text}"
+    );
+    assert!(
+        matches!(
+            draw::mesh::verify(&mut *b, &short, &ObjectNames::default()),
+            Err(DrawError::Sizes(_))
+        ),
+        "{k}"
+    );
+    assert_eq!(s.snapshot(), before, "{k}: nothing drawn");
+    // micromouse walls (0.168 m cells) over the course's 1 m Wall: boxes of the layout's size
+    let mouse = mesh("mouse.json", &["--preset", "micromouse-half"]);
+    let r = draw_mesh(&mut *b, &mouse).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert!(
+        r.warnings.iter().any(|w| w.contains("`Start`")),
+        "{k}: the 1 m Start covers the neighbouring cells: {:?}",
+        r.warnings
+    );
+    drop(b);
+    s.shutdown();
 }

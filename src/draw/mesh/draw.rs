@@ -8,7 +8,7 @@ use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Stage, keep_home, raised, raised_and_claimed,
+    ApplyOptions, ApplyReport, Stage, keep_home, raised, raised_and_claimed, sizes_of,
     stop_running_simulation, surveyed,
 };
 use crate::draw::lease::Claim;
@@ -127,6 +127,11 @@ fn apply_claimed(
 ) -> Result<ApplyReport, DrawError> {
     let (style, names) = (maze.style, &opts.names);
     let (survey, h) = surveyed(scene, names, style, false)?;
+    // the line template lies on the first line: it must have the layout's line size
+    let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
+    if !sizes.refusals.is_empty() {
+        return Err(DrawError::Sizes(sizes.refusals));
+    }
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
         style,
@@ -135,6 +140,7 @@ fn apply_claimed(
         posts: pieces_of(maze, &[MeshKind::Posts]),
         meshes: maze.meshes.len(),
         dry_run: opts.dry_run,
+        warnings: sizes.warnings,
         ..Default::default()
     };
     report.stopped_simulation = stop_running_simulation(
@@ -419,6 +425,10 @@ fn verify_raised(
 ) -> Result<(), DrawError> {
     let style = maze.style;
     let (survey, h) = surveyed(scene, names, style, false)?;
+    let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
+    if !sizes.refusals.is_empty() {
+        return Err(DrawError::Sizes(sizes.refusals));
+    }
     // the user's objects under the maze dummy are no stray maze objects
     let objects = plan::sort_out(
         &scene.objects_from_scene()?,

@@ -10,6 +10,7 @@
 
 use nalgebra::{Isometry2, Point2, Vector2};
 
+use crate::draw::{Sizes, TemplateUse};
 use crate::layout::runs::{OpenSides, for_each_run, for_each_wall_run, post_rect};
 use crate::layout::{Layout, Pose, Style, passages};
 use crate::maze::Grid;
@@ -135,12 +136,27 @@ pub struct MeshMaze {
     pub start: Pose,
     /// Pose of the end marker.
     pub end: Pose,
+    /// The sizes the layout was generated for (the line template, which lies on the first
+    /// line, and the markers must have them).
+    pub sizes: Sizes,
 }
 
 impl MeshMaze {
     /// Rectangles and boxes in all meshes.
     pub fn pieces(&self) -> usize {
         self.meshes.iter().map(|m| m.pieces.len()).sum()
+    }
+
+    /// What this maze asks of the templates: a line maze's template lies on its first line,
+    /// so it must have the layout's line size; walls and posts are boxes of the layout's
+    /// sizes, whatever the `Wall` and `Post` templates measure (only their looks are read).
+    pub fn template_use(&self) -> TemplateUse<'_> {
+        TemplateUse {
+            style: self.style,
+            sizes: &self.sizes,
+            template: self.template.is_some(),
+            posts: false,
+        }
     }
 }
 
@@ -211,6 +227,7 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
             .flatten(),
         start: layout.start.pose,
         end: layout.end.pose,
+        sizes: Sizes::of(layout),
     }
 }
 
