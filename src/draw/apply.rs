@@ -318,31 +318,26 @@ fn apply_claimed(
     let style = drawing.style;
     let names = &opts.names;
     let posts = !drawing.posts.is_empty();
-    let (survey, h) = surveyed(scene, names, style, posts)?;
-    let sizes = sizes_of(scene, &drawing.template_use(), names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
-    }
-    progress(Stage::Surveyed);
-    let mut report = ApplyReport {
+    let counts = ApplyReport {
         style,
         lines: drawing.lines.len(),
         posts: drawing.posts.len(),
-        dry_run: opts.dry_run,
-        warnings: sizes.warnings,
-        simulation_running: survey.simulation_running,
         ..Default::default()
     };
-    report.stopped_simulation = stop_running_simulation(
+    let Begun {
+        survey,
+        h,
+        mut report,
+        objects,
+    } = begin(
         scene,
-        survey.simulation_running,
-        opts.stop_simulation,
-        opts.dry_run,
+        opts,
+        &drawing.template_use(),
+        posts,
+        counts,
+        progress,
     )?;
-    // only the templates' copies are the maze's: the user's objects stay as they are
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
-    report.left_alone = sorted.strangers;
-    let objects = &sorted.objects;
+    let objects = &objects;
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
     let meshes: Vec<i32> = super::mesh::leftovers(scene, names, &h, &survey.objects)?
@@ -609,6 +604,60 @@ pub(crate) fn keep_home(
     };
     home::write(scene, &home)?;
     Ok(())
+}
+
+/// What a draw of either mode knows once it has looked at the scene.
+pub(crate) struct Begun {
+    /// The survey of the style's names.
+    pub survey: Survey,
+    /// The named objects' handles.
+    pub h: Handles,
+    /// The report so far: the counts given, the size warnings, the simulation state, the
+    /// user's objects left alone.
+    pub report: ApplyReport,
+    /// The survey's objects without the user's ([`plan::sort_out`]).
+    pub objects: Vec<ObjectInfo>,
+}
+
+/// The start both draw modes share: survey the scene, refuse templates or markers whose
+/// sizes contradict what the drawing asks of them (`asks`), report the survey done, refuse
+/// (or stop, as `opts` says) a running simulation, and set the user's objects apart: only
+/// the templates' copies are the maze's. `counts` is the report's start (style and sizes).
+pub(crate) fn begin(
+    scene: &mut dyn Backend,
+    opts: &ApplyOptions,
+    asks: &TemplateUse<'_>,
+    posts: bool,
+    counts: ApplyReport,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<Begun, DrawError> {
+    let names = &opts.names;
+    let (survey, h) = surveyed(scene, names, asks.style, posts)?;
+    let sizes = sizes_of(scene, asks, names, &h)?;
+    if !sizes.refusals.is_empty() {
+        return Err(DrawError::Sizes(sizes.refusals));
+    }
+    progress(Stage::Surveyed);
+    let mut report = ApplyReport {
+        dry_run: opts.dry_run,
+        warnings: sizes.warnings,
+        simulation_running: survey.simulation_running,
+        ..counts
+    };
+    report.stopped_simulation = stop_running_simulation(
+        scene,
+        survey.simulation_running,
+        opts.stop_simulation,
+        opts.dry_run,
+    )?;
+    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
+    report.left_alone = sorted.strangers;
+    Ok(Begun {
+        survey,
+        h,
+        report,
+        objects: sorted.objects,
+    })
 }
 
 /// Reads the bounding boxes of the template, post template (if the drawing has posts), start

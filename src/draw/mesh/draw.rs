@@ -8,8 +8,8 @@ use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Stage, keep_home, raised, raised_and_claimed, sizes_of,
-    stop_running_simulation, surveyed,
+    ApplyOptions, ApplyReport, Begun, Stage, begin, keep_home, raised, raised_and_claimed,
+    sizes_of, surveyed,
 };
 use crate::draw::lease::Claim;
 use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
@@ -126,38 +126,27 @@ fn apply_claimed(
     claim: &Claim,
 ) -> Result<ApplyReport, DrawError> {
     let (style, names) = (maze.style, &opts.names);
-    let (survey, h) = surveyed(scene, names, style, false)?;
-    // the line template lies on the first line: it must have the layout's line size
-    let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
-    }
-    progress(Stage::Surveyed);
-    let mut report = ApplyReport {
+    let counts = ApplyReport {
         style,
-        simulation_running: survey.simulation_running,
         lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
         posts: pieces_of(maze, &[MeshKind::Posts]),
         meshes: maze.meshes.len(),
-        dry_run: opts.dry_run,
-        warnings: sizes.warnings,
         ..Default::default()
     };
-    report.stopped_simulation = stop_running_simulation(
-        scene,
-        survey.simulation_running,
-        opts.stop_simulation,
-        opts.dry_run,
-    )?;
+    // the line template lies on the first line: it must have the layout's line size
+    let Begun {
+        survey,
+        h,
+        mut report,
+        objects,
+    } = begin(scene, opts, &maze.template_use(), false, counts, progress)?;
     let found = port(scene)?.find(names, h.parent)?;
     // an earlier maze's copies of any template go; the user's objects under the maze dummy
     // stay ([`plan::sort_out`])
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
-    report.left_alone = sorted.strangers;
     let others = names.others(style);
-    let mut doomed: Vec<i32> = maze_lines(&sorted.objects, &h, names.template(style), &others)
+    let mut doomed: Vec<i32> = maze_lines(&objects, &h, names.template(style), &others)
         .into_iter()
-        .chain(foreign_copies(&sorted.objects, &h, &others))
+        .chain(foreign_copies(&objects, &h, &others))
         .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
         .collect();
     let wanted: HashMap<String, usize> = maze
