@@ -582,16 +582,21 @@ mod tests {
         assert_eq!(tree_ops(&tree), [Op::ZmqTree { handles: 500 }]);
     }
 
-    #[test]
-    fn served_calls_are_recorded_in_the_ledger_when_kept() {
-        let mut sim = Simulator::new(Scene::course(), 0);
+    /// A protocol-1 server over the course scene at `idle_fps`, keeping a ledger.
+    fn ledger_server(idle_fps: i32) -> ServerHandle {
+        let mut sim = Simulator::new(Scene::course(), idle_fps);
         sim.ledger = Some(vec![]);
         let config = ServerConfig {
             listen: "127.0.0.1:0".parse().unwrap(),
             protocol: Protocol::V1,
             ..Default::default()
         };
-        let s = spawn(config, sim).unwrap();
+        spawn(config, sim).unwrap()
+    }
+
+    #[test]
+    fn served_calls_are_recorded_in_the_ledger_when_kept() {
+        let s = ledger_server(0);
         let line = s.with_sim(|sim| sim.scene.resolve("Line").unwrap());
         let list = vec![Value::Array(vec![int(line.into()); 3]), int(0)];
         assert!(call(s.local_addr(), "sim.copyPasteObjects", list).is_some());
@@ -615,14 +620,7 @@ mod tests {
     /// pass serves the requests queued on the socket; a lock-step client has none queued.
     #[test]
     fn a_pass_serves_the_requests_already_queued_and_a_lock_step_client_has_none() {
-        let mut sim = Simulator::new(Scene::course(), 8);
-        sim.ledger = Some(vec![]);
-        let config = ServerConfig {
-            listen: "127.0.0.1:0".parse().unwrap(),
-            protocol: Protocol::V1,
-            ..Default::default()
-        };
-        let s = spawn(config, sim).unwrap();
+        let s = ledger_server(8);
         let mut client = crate::zmq_api::Client::connect(&crate::zmq_api::ClientOptions {
             port: s.local_addr().port(),
             protocol: Some(Protocol::V1),
