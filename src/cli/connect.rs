@@ -408,10 +408,11 @@ fn zmq(
     timeout: Duration,
     connect_timeout: Duration,
 ) -> anyhow::Result<Connected> {
-    let client = zmq_client(host, port, timeout, connect_timeout)?;
+    let first = ZmqBackend::first_calls();
+    let (client, outcomes) = zmq_open(host, port, timeout, connect_timeout, &first)?;
     let addr = socket_addr(host, port);
-    let backend =
-        ZmqBackend::new(client, timeout).with_context(|| format!("ZeroMQ remote API at {addr}"))?;
+    let backend = ZmqBackend::with_first(client, timeout, outcomes)
+        .with_context(|| format!("ZeroMQ remote API at {addr}"))?;
     let description = backend.describe();
     Ok(Connected {
         backend: Box::new(backend),
@@ -427,6 +428,18 @@ fn zmq_client(
     timeout: Duration,
     connect_timeout: Duration,
 ) -> anyhow::Result<zmq_api::Client> {
+    zmq_open(host, port, timeout, connect_timeout, &[]).map(|(client, _)| client)
+}
+
+/// Connects a ZeroMQ client to `host:port`, sending `calls` with the connection's own
+/// (`zmq_api::Client::connect_with`: one main-loop pass for all), and says what it tries.
+fn zmq_open(
+    host: &str,
+    port: u16,
+    timeout: Duration,
+    connect_timeout: Duration,
+    calls: &[(&str, Vec<ciborium::Value>)],
+) -> anyhow::Result<(zmq_api::Client, Vec<zmq_api::Outcome>)> {
     super::say::note(format!(
         "connecting to CoppeliaSim's ZeroMQ remote API at {} ...",
         socket_addr(host, port)
@@ -438,7 +451,7 @@ fn zmq_client(
         connect_timeout: Some(connect_timeout),
         protocol: None,
     };
-    zmq_api::Client::connect(&options).map_err(|e| zmq_connect_error(e, host, port))
+    zmq_api::Client::connect_with(&options, calls).map_err(|e| zmq_connect_error(e, host, port))
 }
 
 /// A failed ZeroMQ connection to `host:port` as one line and its hints: a port that speaks

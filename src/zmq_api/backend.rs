@@ -134,27 +134,40 @@ fn check_alias(name: &str) -> Result<(), BackendError> {
 }
 
 impl ZmqBackend {
-    /// Connects (see [`Client::connect`]) and reads the program version, which decides the
-    /// argument order of pose setters.
+    /// Connects (see [`Client::connect_with`]: the connection's own call and the first
+    /// reads, [`ZmqBackend::first_calls`], wait for one main-loop pass).
     pub fn connect(options: &ClientOptions) -> Result<ZmqBackend, BackendError> {
-        let client = Client::connect(options)?;
-        ZmqBackend::new(client, options.timeout)
+        let (client, outcomes) = Client::connect_with(options, &ZmqBackend::first_calls())?;
+        ZmqBackend::with_first(client, options.timeout, outcomes)
     }
 
-    /// Wraps a connected client, reading the program version (it decides the argument order
-    /// of pose setters) and the idle rates ([`Backend::idle_rates`]) in one exchange: over
-    /// protocol 1 one main-loop pass for the three ([`Client::call_all`]).
+    /// Wraps a connected client, making the first reads ([`ZmqBackend::first_calls`]) in one
+    /// exchange: over protocol 1 one main-loop pass for the three ([`Client::call_all`]).
     pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqBackend, BackendError> {
-        let mut outcomes = client
-            .call_all(&[
-                (
-                    "sim.getInt32Param",
-                    vec![int(INTPARAM_PROGRAM_VERSION.into())],
-                ),
-                idle_rate_call(),
-                saved_rate_call(),
-            ])?
-            .into_iter();
+        let outcomes = client.call_all(&ZmqBackend::first_calls())?;
+        ZmqBackend::with_first(client, timeout, outcomes)
+    }
+
+    /// What a backend reads first: the program version (it decides the argument order of
+    /// pose setters) and the idle rates ([`Backend::idle_rates`]).
+    pub fn first_calls() -> Vec<(&'static str, Vec<Value>)> {
+        vec![
+            (
+                "sim.getInt32Param",
+                vec![int(INTPARAM_PROGRAM_VERSION.into())],
+            ),
+            idle_rate_call(),
+            saved_rate_call(),
+        ]
+    }
+
+    /// The backend over `client`, from the outcomes of [`ZmqBackend::first_calls`].
+    pub fn with_first(
+        client: Client,
+        timeout: Duration,
+        outcomes: Vec<Outcome>,
+    ) -> Result<ZmqBackend, BackendError> {
+        let mut outcomes = outcomes.into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
         let version = int_result("sim.getInt32Param", next())?;
         let rates = idle_rates_of(next(), next())?;

@@ -229,19 +229,42 @@ pub fn new_uuid() -> String {
 impl Client {
     /// Connects: checks that the port accepts TCP connections and that the peer greets in
     /// ZeroMQ's ZMTP (else [`ZmqError::NotZeroMq`] at once, not a timeout of the first
-    /// call), opens the REQ socket, then
+    /// call), opens the socket, then
     /// calls `zmqRemoteApi.require('sim')`, which also reveals the protocol generation (a
     /// protocol-1 server has no `require`, and `sim` is global there).
     pub fn connect(options: &ClientOptions) -> Result<Client, ZmqError> {
+        Client::connect_with(options, &[]).map(|(client, _)| client)
+    }
+
+    /// Connects as [`Client::connect`] does, sending `calls` together with its
+    /// `zmqRemoteApi.require('sim')` before any reply is read, whatever the protocol (the
+    /// add-on of either generation serves queued requests in the same main-loop pass:
+    /// [`Client::call_all`]), so the connection and `calls` wait for one pass. For reads
+    /// only: a protocol-2 server that asks to repeat one gets it again after the others.
+    /// Returns the client and what the server said of each of `calls`.
+    pub fn connect_with(
+        options: &ClientOptions,
+        calls: &[(&str, Vec<Value>)],
+    ) -> Result<(Client, Vec<Outcome>), ZmqError> {
         let mut client = Client::open(options)?;
-        if options.protocol != Some(Protocol::V1) {
-            match client.call("zmqRemoteApi.require", vec![Value::Text("sim".into())]) {
+        let require = options.protocol != Some(Protocol::V1);
+        let mut all: Vec<(&str, Vec<Value>)> = Vec::with_capacity(calls.len() + 1);
+        if require {
+            all.push(("zmqRemoteApi.require", vec![Value::Text("sim".into())]));
+        }
+        all.extend(calls.iter().cloned());
+        let mut outcomes = Vec::with_capacity(all.len());
+        for chunk in all.chunks(MAX_IN_FLIGHT) {
+            outcomes.extend(client.call_together(chunk)?);
+        }
+        if require {
+            match outcomes.remove(0) {
                 Ok(_) => {}
                 Err(e) if e.is_no_such_function() || client.protocol == Some(Protocol::V1) => {}
                 Err(e) => return Err(e),
             }
         }
-        Ok(client)
+        Ok((client, outcomes))
     }
 
     /// Opens the socket without any call (for tests of the raw call loop).
@@ -482,13 +505,26 @@ impl Client {
     /// `_*wait*_` / `_*repeat*_` loop of protocol 2.
     pub fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, ZmqError> {
         self.stats.calls += 1;
-        let mut next = self.request(func, args);
+        let request = self.request(func, args);
+        let value = self.round_trip(func, &request)?;
+        self.settle(func, request, value)
+    }
+
+    /// Runs the `_*wait*_` / `_*repeat*_` loop of protocol 2 from `value`, the reply to
+    /// `request`, until the call's result (or error). Learns the protocol generation from
+    /// the first reply.
+    fn settle(
+        &mut self,
+        func: &str,
+        request: Request,
+        mut value: Value,
+    ) -> Result<Vec<Value>, ZmqError> {
         let malformed = |detail: String| ZmqError::Malformed {
             func: func.to_string(),
             detail,
         };
+        let mut last = request;
         for _ in 0..MAX_TURNS {
-            let value = self.round_trip(func, &next)?;
             let (reply, protocol) = parse_reply(&value).map_err(|CborError(d)| malformed(d))?;
             if self.protocol.is_none() {
                 self.protocol = Some(protocol);
@@ -501,13 +537,14 @@ impl Client {
                         message,
                     });
                 }
-                Reply::Wait => next = self.request(EXECUTED, vec![]),
+                Reply::Wait => last = self.request(EXECUTED, vec![]),
                 // resend the last message (the official client does so: after a wait it
                 // resends `_*executed*_`, never the original call, which would run twice)
                 Reply::Repeat => {}
                 // We register no callbacks: answer with no results so the server can go on.
-                Reply::Callback(_) => next = self.request(EXECUTED, vec![]),
+                Reply::Callback(_) => last = self.request(EXECUTED, vec![]),
             }
+            value = self.round_trip(func, &last)?;
         }
         Err(malformed(format!(
             "more than {MAX_TURNS} wait/repeat turns"
@@ -569,25 +606,12 @@ impl Client {
             .collect();
         let pairs: Vec<(&str, &Request)> = calls.iter().map(|(f, _)| *f).zip(&requests).collect();
         let replies = self.exchange(&pairs)?;
+        // every reply is read: a protocol-2 wait or repeat goes on one call at a time
         replies
-            .iter()
+            .into_iter()
+            .zip(requests)
             .zip(calls)
-            .map(|(value, (func, _))| {
-                let malformed = |detail: String| ZmqError::Malformed {
-                    func: func.to_string(),
-                    detail,
-                };
-                match parse_reply(value).map_err(|CborError(d)| malformed(d))?.0 {
-                    Reply::Ret(values) => Ok(Ok(values)),
-                    Reply::Err(message) => Ok(Err(ZmqError::Remote {
-                        func: func.to_string(),
-                        message,
-                    })),
-                    other => Err(malformed(format!(
-                        "a protocol-1 server asked for {other:?}"
-                    ))),
-                }
-            })
+            .map(|((value, request), (func, _))| outcome(self.settle(func, request, value)))
             .collect()
     }
 

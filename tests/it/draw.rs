@@ -514,8 +514,8 @@ fn the_rate_a_user_set_after_connecting_is_the_one_restored(kind: Kind) {
 /// At CoppeliaSim's default idle fps 8 every request that waits for a main-loop pass costs
 /// 125 ms (spec "Pacing"), so before the rate is raised an apply makes as few as it can: the
 /// legacy API reads the rate (one message) and records and raises it (one message); over
-/// ZeroMQ protocol 1 the connection's `require` (which tells the protocol), then the version
-/// and rates read together, then the record and the raise sent together (`Client::call_all`:
+/// ZeroMQ protocol 1 the connection's `require` sent with the version and rates reads
+/// (`Client::connect_with`), then the record and the raise sent together (`Client::call_all`:
 /// 4.5.1's add-on serves queued requests in the same pass). Afterwards nothing waits, but
 /// the record's removal, sent with the restore of the rate and served after it, may: it is
 /// served by the same pass only if it arrived while that pass still served (a real 4.5.1
@@ -523,7 +523,7 @@ fn the_rate_a_user_set_after_connecting_is_the_one_restored(kind: Kind) {
 /// from the emulator's ledger.
 #[test]
 fn before_the_rate_is_raised_an_apply_waits_for_few_passes() {
-    for (kind, most) in [(Kind::Legacy, 2), (Kind::Zmq1, 3)] {
+    for (kind, most) in [(Kind::Legacy, 2), (Kind::Zmq1, 2)] {
         let s = kind.serve(Scene::course(), 8);
         s.with_sim(|sim| sim.ledger = Some(vec![]));
         let mut b = s.connect();
