@@ -151,7 +151,9 @@ pub fn spawn(config: ServerConfig, mut sim: Simulator) -> std::io::Result<Server
 pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Result<ServerHandle> {
     let io = |e: zmq::Error| std::io::Error::other(format!("ZeroMQ: {e}"));
     let context = zmq::Context::new();
-    let socket = context.socket(zmq::REP).map_err(io)?;
+    // ROUTER, answering as a REP socket does: it lets the server see which requests are
+    // already waiting when it answers one (`serve`)
+    let socket = context.socket(zmq::ROUTER).map_err(io)?;
     socket.set_linger(0).map_err(io)?;
     socket.set_rcvtimeo(50).map_err(io)?;
     // a peer that is not a ZeroMQ client (a legacy client pointed at this port) never
@@ -245,7 +247,36 @@ fn sleep_until(t: Instant, stop: &AtomicBool) -> bool {
     !stop.load(Ordering::SeqCst)
 }
 
-/// Receives, paces and answers requests until `stop` is set.
+/// A request as the ROUTER socket gives it.
+struct Incoming {
+    /// The peer's routing frames, up to the empty delimiter a REQ peer sends: what the reply
+    /// goes back with.
+    envelope: Vec<Vec<u8>>,
+    /// The request.
+    body: Vec<u8>,
+    /// When the server took it off the socket.
+    arrived: Instant,
+    /// It was already waiting when the request before it was answered.
+    queued: bool,
+}
+
+/// The next request on `socket` (`flags`: 0 waits up to the receive timeout, `DONTWAIT`
+/// not at all).
+fn receive(socket: &zmq::Socket, flags: i32, queued: bool) -> Result<Incoming, zmq::Error> {
+    let mut frames = socket.recv_multipart(flags)?;
+    let body = frames.pop().unwrap_or_default();
+    Ok(Incoming {
+        envelope: frames,
+        body,
+        arrived: Instant::now(),
+        queued,
+    })
+}
+
+/// Receives, paces and answers requests until `stop` is set. Before it answers a request it
+/// takes in every request already waiting, queued behind it: the add-on serves those in the
+/// same main-loop pass while its time slot lasts ([`ZMQ_TIME_SLOT`]); a lock-step client's
+/// next request cannot be among them.
 fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &AtomicU64) {
     let mut pacer = ZmqPacer::new(Instant::now());
     let pacing = state.config.pacing.unwrap_or(match state.config.protocol {
@@ -253,24 +284,28 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         Protocol::V2 => ZmqPacing::Window,
     });
     let clock = state.config.clock;
+    let mut backlog: std::collections::VecDeque<Incoming> = Default::default();
     // the pass still serving the requests queued on the socket, if any: its start and the
     // modeled time its requests took so far
     let mut queue_pass: Option<(Instant, Duration)> = None;
     while !stop.load(Ordering::SeqCst) {
-        let bytes = match socket.recv_bytes(0) {
-            Ok(b) => b,
-            Err(zmq::Error::EAGAIN) => continue,
-            Err(_) => break,
+        let incoming = match backlog.pop_front() {
+            Some(r) => r,
+            None => match receive(socket, 0, false) {
+                Ok(r) => r,
+                Err(zmq::Error::EAGAIN) => continue,
+                Err(_) => break,
+            },
         };
-        let arrived = Instant::now();
+        let arrived = incoming.arrived;
         requests.fetch_add(1, Ordering::SeqCst);
         let (mut sim_state, mut fps) = (SimState::Stopped, 0);
         state
             .host
             .with_sim(&mut |s| (sim_state, fps) = (s.state, s.idle_fps));
-        let queued = queue_pass.take();
+        let queued = queue_pass.take().filter(|_| incoming.queued);
         let (at, (pass, spent)) = match queued {
-            Some(pass) => (arrived, pass),
+            Some(pass) => (Instant::now(), pass),
             None => {
                 let at = pacer.serve_at(&clock, pacing, sim_state, fps, arrived);
                 (at, (at, Duration::ZERO))
@@ -282,7 +317,7 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         // the modeled cost is what a call takes end to end on a real simulator (the spec's
         // 0.45 ms was timed by a client): the emulator's own processing and its loopback
         // round trip count towards it
-        let (reply, ops) = handle(state, &bytes);
+        let (reply, ops) = handle(state, &incoming.body);
         let charge = Charge {
             served: Served::ZmqCall,
             idle_fps: fps,
@@ -298,16 +333,19 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         ) {
             break;
         }
-        // a REP socket must answer before it can receive again; a failed send drops the client
-        let _ = socket.send(cbor::encode(&reply), 0);
-        let done = Instant::now();
-        pacer.served(&clock, sim_state, fps, at, done);
+        while let Ok(r) = receive(socket, zmq::DONTWAIT, true) {
+            backlog.push_back(r);
+        }
+        // the reply goes back as a REP socket sends it; a failed send drops the client
+        let mut frames = incoming.envelope;
+        frames.push(cbor::encode(&reply));
+        let _ = socket.send_multipart(frames, 0);
+        pacer.served(&clock, sim_state, fps, at, Instant::now());
         // the add-on polls again and serves a request already queued in the same pass,
         // until its time slot is spent (the modeled time of the calls it served, not the
         // emulator's own, which a debug build makes longer)
         let spent = spent + work;
-        let more = socket.poll(zmq::POLLIN, 0).is_ok_and(|n| n > 0);
-        if more && spent < ZMQ_TIME_SLOT {
+        if backlog.front().is_some_and(|r| r.queued) && spent < ZMQ_TIME_SLOT {
             queue_pass = Some((pass, spent));
         }
     }
