@@ -660,8 +660,8 @@ pub(crate) fn begin(
     })
 }
 
-/// Reads the bounding boxes of the template, post template (if the drawing has posts), start
-/// and end in one request (legacy) and compares them with the drawing's sizes.
+/// Reads the sizes of the template, post template (if the drawing has posts), start and end
+/// ([`Backend::sizes`]: legacy in one request) and compares them with the drawing's.
 pub(crate) fn sizes_of(
     scene: &mut dyn Backend,
     drawing: &TemplateUse<'_>,
@@ -671,8 +671,8 @@ pub(crate) fn sizes_of(
     let post = h.post.filter(|_| drawing.posts);
     let mut asked = vec![h.line, h.start, h.end];
     asked.extend(post);
-    let boxes = scene.bounding_boxes(&asked)?;
-    let get = |k: usize| boxes.get(k).copied().flatten();
+    let sizes = scene.sizes(&asked)?;
+    let get = |k: usize| sizes.get(k).copied().flatten();
     Ok(plan::check_sizes(
         drawing,
         names,

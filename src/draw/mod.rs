@@ -467,6 +467,15 @@ pub trait Backend {
     /// for all, ZeroMQ one call per parameter and object.
     fn bounding_boxes(&mut self, handles: &[i32])
     -> Result<Vec<Option<BoundingBox>>, BackendError>;
+    /// The sizes (bounding-box extents x, y, z) of `handles`, in the same order, `None` for
+    /// an object that has none; by default from [`Backend::bounding_boxes`].
+    fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
+        Ok(self
+            .bounding_boxes(handles)?
+            .into_iter()
+            .map(|b| b.map(|b| b.size()))
+            .collect())
+    }
     /// The ambient-diffuse colours (RGB, 0..1) of the shapes `handles`, in the same order,
     /// `None` for one the simulator gives none of; `Ok(None)` from an API that cannot read
     /// colours (the legacy API has no call for it).

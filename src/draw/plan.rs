@@ -3,7 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::{BoundingBox, Drawing, Handles, ObjectInfo, ObjectNames, Pose, TemplateUse};
+use super::{Drawing, Handles, ObjectInfo, ObjectNames, Pose, TemplateUse};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
@@ -322,10 +322,10 @@ fn extents(v: &[f64]) -> String {
 pub fn check_sizes(
     drawing: &TemplateUse<'_>,
     names: &ObjectNames,
-    template: Option<BoundingBox>,
-    post: Option<BoundingBox>,
-    start: Option<BoundingBox>,
-    end: Option<BoundingBox>,
+    template: Option<[f64; 3]>,
+    post: Option<[f64; 3]>,
+    start: Option<[f64; 3]>,
+    end: Option<[f64; 3]>,
 ) -> SizeCheck {
     let mut check = SizeCheck::default();
     let sizes = drawing.sizes;
@@ -346,8 +346,7 @@ pub fn check_sizes(
     if drawing.template {
         match (template, drawing.style, sizes.wall) {
             (None, ..) => unread(template_name, &mut check),
-            (Some(b), super::Style::Lines, _) => {
-                let have = b.size();
+            (Some(have), super::Style::Lines, _) => {
                 if differs(&have[..2], &sizes.line) {
                     check.refusals.push(format!(
                         "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: generate with --line-length {} --line-width {}, or resize `{template_name}` to {} m",
@@ -360,8 +359,7 @@ pub fn check_sizes(
                     ));
                 }
             }
-            (Some(b), super::Style::Walls, Some(wall)) => {
-                let have = b.size();
+            (Some(have), super::Style::Walls, Some(wall)) => {
                 // between posts a wall may reach into them, up to their centres (a whole
                 // cell side): its ends are hidden inside the posts
                 let longest = if !drawing.posts {
@@ -389,8 +387,7 @@ pub fn check_sizes(
     if let (Some(want), true) = (sizes.post, drawing.posts) {
         match post {
             None => unread(&names.post, &mut check),
-            Some(b) => {
-                let have = b.size();
+            Some(have) => {
                 if differs(&have, &want) {
                     check.refusals.push(format!(
                         "the scene's `{}` is {} m but the layout's posts are {} m: generate with --post-size {} (and --wall-height {}), or resize `{}` to {} m",
@@ -409,8 +406,7 @@ pub fn check_sizes(
     for (name, b) in [(&names.start, start), (&names.end, end)] {
         match b {
             None => unread(name, &mut check),
-            Some(b) => {
-                let have = b.size();
+            Some(have) => {
                 if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
                     check.warnings.push(format!(
                         "the scene's `{name}` is {} m but the cells are {} m: it covers the neighbouring cells; resize `{name}` to at most {} x {} m",
@@ -649,12 +645,9 @@ mod tests {
         assert!(!same_extents(line, [0.6, 0.1, 5.1e-4]));
     }
 
-    /// A bounding box of `size`, centred.
-    fn bbox(size: [f64; 3]) -> Option<BoundingBox> {
-        Some(BoundingBox {
-            min: size.map(|v| -v / 2.0),
-            max: size.map(|v| v / 2.0),
-        })
+    /// A size the simulator gave.
+    fn bbox(size: [f64; 3]) -> Option<[f64; 3]> {
+        Some(size)
     }
 
     fn course_drawing() -> Drawing {

@@ -852,6 +852,36 @@ impl Backend for ZmqBackend {
             .collect())
     }
 
+    /// A shape's size in one call (`sim.getShapeBB`), any other object's from its bounding
+    /// box (six calls); all sent together ([`Client::call_all`]).
+    fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
+        let shape = |b: &Self, h: &i32| b.traits.get(h).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE);
+        let shapes: Vec<i32> = handles.iter().copied().filter(|h| shape(self, h)).collect();
+        let calls: Vec<(&str, Vec<Value>)> = shapes
+            .iter()
+            .map(|&h| ("sim.getShapeBB", vec![int(h.into())]))
+            .collect();
+        let mut sizes: HashMap<i32, Option<[f64; 3]>> = HashMap::new();
+        for (h, outcome) in shapes.iter().zip(self.client.call_all(&calls)?) {
+            if let Ok(values) = outcome {
+                sizes.insert(*h, values.first().and_then(cbor::numbers::<3>));
+            }
+        }
+        // the others, and a shape whose size the simulator would not give this way
+        let rest: Vec<i32> = handles
+            .iter()
+            .copied()
+            .filter(|h| !sizes.contains_key(h))
+            .collect();
+        for (h, b) in rest.iter().zip(self.bounding_boxes(&rest)?) {
+            sizes.insert(*h, b.map(|b| b.size()));
+        }
+        Ok(handles
+            .iter()
+            .map(|h| sizes.get(h).copied().flatten())
+            .collect())
+    }
+
     /// One call a shape, sent together ([`Client::call_all`]).
     fn shape_colours(
         &mut self,
