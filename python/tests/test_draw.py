@@ -140,7 +140,10 @@ def test_zmq_draws_a_mesh_maze_that_copies_and_clear_replace(serve):
     copies = vrep_maze.apply(layout, api="zmq", port=port)
     assert copies.meshes == 0 and copies.removed == 2, str(copies)  # the holder and its mesh
     vrep_maze.apply(layout, api="zmq", port=port, draw="mesh")
-    assert len(vrep_maze.clear(api="zmq", port=port).removed) == 2
+    cleared = vrep_maze.clear(api="zmq", port=port)
+    # a mesh maze is named apart from copies: its mesh, then the holder
+    assert cleared.removed == [] and len(cleared.removed_meshes) == 2, repr(cleared)
+    assert cleared.removed_meshes[-1] == "MazeMeshes", cleared.removed_meshes
     with pytest.raises(ValueError):
         vrep_maze.apply(layout, api="zmq", port=port, draw="meshes")
 
