@@ -11,34 +11,12 @@ use vrep_maze::maze::Grid;
 use vrep_maze::sim::{Mesh, Scene};
 
 use crate::support::backend::{Kind, Server};
+use crate::support::backend_tests;
 use crate::support::layouts::course_layout;
 
-/// One test per API that draws meshes for each scenario (the legacy API through an XML
-/// model loaded from a temporary file, ZeroMQ protocols 1 and 2).
-macro_rules! mesh_backend_tests {
-    ($($scenario:ident),+ $(,)?) => {$(
-        mod $scenario {
-            use crate::support::backend::Kind;
-
-            #[test]
-            fn legacy() {
-                super::$scenario(Kind::Legacy)
-            }
-
-            #[test]
-            fn zmq1() {
-                super::$scenario(Kind::Zmq1)
-            }
-
-            #[test]
-            fn zmq2() {
-                super::$scenario(Kind::Zmq2)
-            }
-        }
-    )+};
-}
-
-mesh_backend_tests!(
+// every API draws meshes: the legacy API through an XML model loaded from a temporary
+// file, ZeroMQ protocols 1 and 2 with `sim.createMeshShape`
+backend_tests!(
     line_maze_draws_verifies_keeps_replaces_and_clears,
     wall_maze_with_posts_draws_boxes_that_copies_replace,
     verify_finds_a_changed_mesh_and_a_stray_copy,
