@@ -5,7 +5,7 @@
 //! read at (`simxGetLastCmdTime`). A header-only message every look keeps the replies
 //! coming, as the C client's communication thread does.
 
-use super::client::{Client, ClientError};
+use super::client::Client;
 use super::command::{Command, SimControl, read_f32x3, read_i32};
 use crate::coppelia::frame::rotation_from_euler;
 use crate::score::Sample;
@@ -34,11 +34,11 @@ impl LegacyFollower {
         let reply = self
             .client
             .call1(Command::GetObjectHandle(name.to_string()))
-            .map_err(lost)?;
+            .map_err(FollowError::lost)?;
         if reply.remote_error {
             return Err(FollowError::NoSuchObject(name.to_string()));
         }
-        read_i32(&reply.data, 0).ok_or_else(|| bad("simxGetObjectHandle"))
+        read_i32(&reply.data, 0).ok_or_else(|| FollowError::malformed("simxGetObjectHandle"))
     }
 
     fn streams(&self) -> Result<[Command; 2], FollowError> {
@@ -58,14 +58,6 @@ impl LegacyFollower {
     }
 }
 
-fn lost(e: ClientError) -> FollowError {
-    FollowError::Connection(e.to_string())
-}
-
-fn bad(what: &str) -> FollowError {
-    FollowError::Connection(format!("malformed reply to {what}"))
-}
-
 impl Follower for LegacyFollower {
     fn find(&mut self, robot: &str, floor: &str) -> Result<(), FollowError> {
         let robot = self.handle(robot)?;
@@ -75,7 +67,7 @@ impl Follower for LegacyFollower {
     }
 
     fn is_running(&mut self) -> Result<bool, FollowError> {
-        self.client.poll().map_err(lost)?;
+        self.client.poll().map_err(FollowError::lost)?;
         Ok(self.client.simulation_running().unwrap_or(false))
     }
 
@@ -88,18 +80,18 @@ impl Follower for LegacyFollower {
         // a remote error only says it already was in that state
         self.client
             .call1(Command::Simulation(control))
-            .map_err(lost)?;
+            .map_err(FollowError::lost)?;
         Ok(())
     }
 
     fn look(&mut self) -> Result<Look, FollowError> {
         let [position, orientation] = self.streams()?;
         if self.streaming {
-            self.client.poll().map_err(lost)?;
+            self.client.poll().map_err(FollowError::lost)?;
         } else {
             self.client
                 .stream(&[position.clone(), orientation.clone()], 0)
-                .map_err(lost)?;
+                .map_err(FollowError::lost)?;
             self.streaming = true;
         }
         if self.client.simulation_running() == Some(false) {
@@ -115,8 +107,10 @@ impl Follower for LegacyFollower {
         if tp != te || tp <= 0 || p.remote_error || e.remote_error {
             return Ok(Look::Nothing);
         }
-        let p = read_f32x3(&p.data, 0).ok_or_else(|| bad("simxGetObjectPosition"))?;
-        let e = read_f32x3(&e.data, 0).ok_or_else(|| bad("simxGetObjectOrientation"))?;
+        let p = read_f32x3(&p.data, 0)
+            .ok_or_else(|| FollowError::malformed("simxGetObjectPosition"))?;
+        let e = read_f32x3(&e.data, 0)
+            .ok_or_else(|| FollowError::malformed("simxGetObjectOrientation"))?;
         let rotation = rotation_from_euler(e.map(f64::from));
         Ok(Look::Pose(Sample {
             t: f64::from(tp) / 1000.0,

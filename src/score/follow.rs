@@ -23,6 +23,18 @@ pub enum FollowError {
     Connection(String),
 }
 
+impl FollowError {
+    /// The connection failed: `error` as it says it.
+    pub fn lost(error: impl std::fmt::Display) -> FollowError {
+        FollowError::Connection(error.to_string())
+    }
+
+    /// The reply to `what` could not be understood.
+    pub fn malformed(what: &str) -> FollowError {
+        FollowError::Connection(format!("malformed reply to {what}"))
+    }
+}
+
 /// What one look at the simulator found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Look {

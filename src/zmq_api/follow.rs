@@ -51,7 +51,7 @@ impl ZmqFollower {
             Ok(_) | Err(ZmqError::Remote { .. }) => {
                 Err(FollowError::NoSuchObject(name.to_string()))
             }
-            Err(e) => Err(lost(e)),
+            Err(e) => Err(FollowError::lost(e)),
         }
     }
 
@@ -59,17 +59,9 @@ impl ZmqFollower {
         let v = self
             .client
             .call1("sim.getSimulationTime", vec![])
-            .map_err(lost)?;
-        cbor::number(&v).ok_or_else(|| bad("sim.getSimulationTime"))
+            .map_err(FollowError::lost)?;
+        cbor::number(&v).ok_or_else(|| FollowError::malformed("sim.getSimulationTime"))
     }
-}
-
-fn lost(e: ZmqError) -> FollowError {
-    FollowError::Connection(e.to_string())
-}
-
-fn bad(what: &str) -> FollowError {
-    FollowError::Connection(format!("malformed reply to {what}"))
 }
 
 impl Follower for ZmqFollower {
@@ -84,7 +76,7 @@ impl Follower for ZmqFollower {
         let state = self
             .client
             .call_int("sim.getSimulationState", vec![])
-            .map_err(lost)?;
+            .map_err(FollowError::lost)?;
         Ok(state != SIMULATION_STOPPED)
     }
 
@@ -94,7 +86,7 @@ impl Follower for ZmqFollower {
         } else {
             "sim.stopSimulation"
         };
-        self.client.call(func, vec![]).map_err(lost)?;
+        self.client.call(func, vec![]).map_err(FollowError::lost)?;
         Ok(())
     }
 
@@ -112,7 +104,7 @@ impl Follower for ZmqFollower {
                 "sim.getObjectPose",
                 vec![int(robot.into()), int(floor.into())],
             )
-            .map_err(lost)?;
+            .map_err(FollowError::lost)?;
         let after = self.time()?;
         self.time = Some(after);
         if (after <= 0.0 || after < before) && !self.is_running()? {
@@ -125,7 +117,8 @@ impl Follower for ZmqFollower {
         if after <= 0.0 {
             return Ok(Look::Nothing);
         }
-        let p = cbor::numbers::<7>(&pose).ok_or_else(|| bad("sim.getObjectPose"))?;
+        let p =
+            cbor::numbers::<7>(&pose).ok_or_else(|| FollowError::malformed("sim.getObjectPose"))?;
         let rotation = UnitQuaternion::from_quaternion(Quaternion::new(p[6], p[3], p[4], p[5]));
         Ok(Look::Pose(Sample {
             t: (before + after) / 2.0,
