@@ -165,38 +165,22 @@ mod json_output {
         assert_eq!(s, plain, "--json is --format json");
 
         let out = dir.path().join("set");
-        let b = document(
-            &[
-                "batch",
-                "--json",
-                "--seeds",
-                "0..4",
-                "--size",
-                "5x5",
-                "--out-dir",
-                out.to_str().unwrap(),
-            ],
-            0,
-            "batch-v1.schema.json",
-        );
+        let batch = [
+            "batch",
+            "--json",
+            "--seeds",
+            "0..4",
+            "--size",
+            "5x5",
+            "--out-dir",
+            out.to_str().unwrap(),
+        ];
+        let b = document(&batch, 0, "batch-v1.schema.json");
         assert_eq!(
             (b["seeds"].as_u64(), b["written"].as_u64()),
             (Some(4), Some(4))
         );
-        let again = document(
-            &[
-                "batch",
-                "--json",
-                "--seeds",
-                "0..4",
-                "--size",
-                "5x5",
-                "--out-dir",
-                out.to_str().unwrap(),
-            ],
-            0,
-            "batch-v1.schema.json",
-        );
+        let again = document(&batch, 0, "batch-v1.schema.json");
         assert_eq!(again["unchanged"], 4);
     }
 
