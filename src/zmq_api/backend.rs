@@ -203,22 +203,14 @@ impl ZmqBackend {
         Ok(self.client.call(func, args)?)
     }
 
-    /// The handle of a path, `None` if there is no such object: -1 with `noError`, or an
-    /// error from a simulator that does not know the `noError` option.
+    /// The handle of a path, `None` if there is no such object ([`ZmqBackend::handles_of`]).
     fn handle_of(&mut self, path: &str) -> Result<Option<i32>, BackendError> {
-        let opts = cbor::map([("noError", Value::Bool(true))]);
-        match self
-            .client
-            .call_int("sim.getObject", vec![Value::Text(path.into()), opts])
-        {
-            Ok(h) => Ok((h >= 0).then_some(h)),
-            Err(ZmqError::Remote { .. }) => Ok(None),
-            Err(e) => Err(e.into()),
-        }
+        Ok(self.handles_of(&[path])?.into_iter().next().flatten())
     }
 
-    /// [`ZmqBackend::handle_of`] each of `names` ([`object_path`]), the calls sent together
-    /// ([`Client::call_all`]).
+    /// The handles of `names` ([`object_path`]), `None` for a name with no object (-1 with
+    /// `noError`, or an error from a simulator that does not know the `noError` option),
+    /// the calls sent together ([`Client::call_all`]).
     fn handles_of(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
         let calls: Vec<(&str, Vec<Value>)> = names
             .iter()
@@ -574,20 +566,7 @@ impl ZmqBackend {
         if let Some(size) = self.extents.get(&handle) {
             return Ok(*size);
         }
-        let shape = self.traits.get(&handle).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE);
-        let size = if shape {
-            match self.call("sim.getShapeBB", vec![int(handle.into())]) {
-                Ok(r) => r.first().and_then(cbor::numbers::<3>),
-                Err(BackendError::Remote(_)) => None,
-                Err(e) => return Err(e),
-            }
-        } else {
-            self.bounding_boxes(&[handle])?
-                .first()
-                .copied()
-                .flatten()
-                .map(|b| b.size())
-        };
+        let size = self.sizes(&[handle])?.into_iter().next().flatten();
         self.extents.insert(handle, size);
         Ok(size)
     }

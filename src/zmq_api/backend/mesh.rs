@@ -68,22 +68,11 @@ pub(super) fn colour_of(values: &[Value]) -> Option<[f64; 3]> {
     values.get(1).and_then(cbor::numbers::<3>)
 }
 
-impl ZmqBackend {
-    /// The ambient-diffuse colour of the shape `handle` (`sim.getShapeColor(h, "", 0)`),
-    /// `None` if the simulator gives none (no such shape).
-    pub(super) fn shape_colour(&mut self, handle: i32) -> Result<Option<[f64; 3]>, BackendError> {
-        let (func, args) = shape_colour_call(handle);
-        match self.call(func, args) {
-            Ok(values) => Ok(colour_of(&values)),
-            Err(BackendError::Remote(_)) => Ok(None),
-            Err(e) => Err(e),
-        }
-    }
-}
-
 impl MeshDrawing for ZmqBackend {
     fn look(&mut self, template: i32) -> Result<Look, BackendError> {
-        let colour = self.shape_colour(template)?.ok_or_else(|| {
+        let colours = crate::draw::Backend::shape_colours(self, &[template])?;
+        let colour = colours.into_iter().flatten().next().flatten();
+        let colour = colour.ok_or_else(|| {
             BackendError::Transport(format!("sim.getShapeColor of {template}: no colour"))
         })?;
         let special = self
