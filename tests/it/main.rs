@@ -30,6 +30,7 @@ mod permissions;
 mod properties;
 mod readme;
 mod render_controls;
+mod scenarios;
 mod schema;
 mod score;
 mod score_cli;

@@ -1,0 +1,405 @@
+//! The scenarios: what a user does with `vrep-maze` against a simulator, checked by what the
+//! scene holds afterwards ([`super::observer`]), not by what the tool reports.
+
+use std::path::Path;
+use std::process::Output;
+use std::time::{Duration, Instant};
+
+use vrep_maze::layout::Layout;
+
+use super::footprint;
+use super::observer::{Look, Observer};
+use super::target::{Sim, Target};
+use crate::support::bin;
+
+/// Instantiates each scenario `fn scenario(target: Target)` once per target:
+/// `scenario::on_serve_legacy`, `on_serve_zmq1`, `on_serve_zmq2` (run by `cargo test`), and
+/// `on_real_4_5_1_legacy`, `on_real_4_5_1_zmq`, `on_real_4_10_0_zmq` (ignored unless asked:
+/// `VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it on_real -- --ignored`).
+macro_rules! on_every_target {
+    ($($scenario:ident),+ $(,)?) => {$(
+        mod $scenario {
+            use super::super::target::Target;
+
+            #[test]
+            fn on_serve_legacy() {
+                super::$scenario(Target::ServeLegacy)
+            }
+
+            #[test]
+            fn on_serve_zmq1() {
+                super::$scenario(Target::ServeZmq1)
+            }
+
+            #[test]
+            fn on_serve_zmq2() {
+                super::$scenario(Target::ServeZmq2)
+            }
+
+            #[test]
+            #[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it on_real -- --ignored"]
+            fn on_real_4_5_1_legacy() {
+                super::$scenario(Target::Real451Legacy)
+            }
+
+            #[test]
+            #[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it on_real -- --ignored"]
+            fn on_real_4_5_1_zmq() {
+                super::$scenario(Target::Real451Zmq)
+            }
+
+            #[test]
+            #[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it on_real -- --ignored"]
+            fn on_real_4_10_0_zmq() {
+                super::$scenario(Target::Real410Zmq)
+            }
+        }
+    )+};
+}
+
+on_every_target!(
+    lines_apply_reapply_clear,
+    replace_and_switch_draw_modes,
+    walls_with_posts,
+    inspect_finds_a_moved_line_and_apply_repairs_it,
+    interrupted_applies_are_repaired,
+    dry_runs_change_nothing,
+    runs_back_to_back_each_connect_at_once,
+);
+
+/// What a command printed.
+struct Ran {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+/// Runs `vrep-maze args...` with the target's `--api`/`--port` (`api`: those to use).
+fn run_with(sim: &Sim, args: &[&str], api: &[String]) -> Ran {
+    let out: Output = bin()
+        .args(args)
+        .args(api)
+        .args(["--connect-timeout", "5"])
+        .timeout(Duration::from_secs(300))
+        .output()
+        .unwrap();
+    let ran = Ran {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    };
+    // no message of this version may blame a scene this version drew on an older one
+    assert!(
+        !ran.stderr.contains("older vrep-maze") && !ran.stdout.contains("older vrep-maze"),
+        "{:?} on {:?} blamed an older vrep-maze:\n{}{}",
+        args,
+        sim.target,
+        ran.stdout,
+        ran.stderr
+    );
+    ran
+}
+
+/// [`run_with`] the scenario's API.
+fn run(sim: &Sim, args: &[&str]) -> Ran {
+    run_with(sim, args, &sim.api_args())
+}
+
+/// [`run`], which must succeed.
+fn ok(sim: &Sim, args: &[&str]) -> Ran {
+    let ran = run(sim, args);
+    succeeded(sim, args, ran)
+}
+
+fn succeeded(sim: &Sim, args: &[&str], ran: Ran) -> Ran {
+    assert_eq!(
+        ran.code,
+        0,
+        "{args:?} on {:?} failed:\n{}{}\n{}",
+        sim.target,
+        ran.stdout,
+        ran.stderr,
+        sim.log_tail()
+    );
+    ran
+}
+
+/// `generate args... -o dir/name.json`: the file's path and the layout.
+fn generate(dir: &Path, name: &str, args: &[&str]) -> (String, Layout) {
+    let path = dir.join(format!("{name}.json")).display().to_string();
+    bin()
+        .arg("generate")
+        .args(args)
+        .args(["-o", &path])
+        .assert()
+        .success();
+    let layout = vrep_maze::layout::json::read_layout(Path::new(&path)).unwrap();
+    (path, layout)
+}
+
+/// Checks that the scene shows exactly `layout`, with its markers where it puts them and the
+/// user's idle rate `fps` in force.
+fn assert_shows(sim: &Sim, look: &Look, layout: &Layout, fps: i32) {
+    let triangles: Vec<_> = look
+        .triangles
+        .iter()
+        .flat_map(|(_, t)| t.iter().copied())
+        .collect();
+    if let Err(e) = footprint::compare(layout, &triangles) {
+        panic!("{:?}: {e}\nobjects: {:?}", sim.target, look.aliases());
+    }
+    for (marker, pose) in [
+        (look.start, &layout.start.pose),
+        (look.end, &layout.end.pose),
+    ] {
+        let o = look.objects.iter().find(|o| o.handle == marker).unwrap();
+        let d = (o.position[0] - pose.x).hypot(o.position[1] - pose.y);
+        assert!(
+            d < 1e-4,
+            "{:?}: {} at {:?}, the layout puts it at {pose:?}",
+            sim.target,
+            o.alias,
+            o.position
+        );
+    }
+    assert_eq!(
+        look.idle_fps, fps,
+        "{:?}: the user's idle rate was not restored",
+        sim.target
+    );
+}
+
+/// Checks that nothing of a maze is left: nothing under `Maze`, `Line` where it stood before
+/// the first apply (`home`), as many objects as the scene had then.
+fn assert_cleared(sim: &Sim, look: &Look, before: &Look) {
+    let maze = look.root("Maze").handle;
+    let left: Vec<&str> = look.below(maze).iter().map(|o| o.alias.as_str()).collect();
+    assert!(
+        left.is_empty(),
+        "{:?}: left under Maze: {left:?}",
+        sim.target
+    );
+    let (now, home) = (look.root("Line").position, before.root("Line").position);
+    let d = (0..3).map(|k| (now[k] - home[k]).abs()).fold(0.0, f64::max);
+    assert!(
+        d < 1e-4,
+        "{:?}: Line at {now:?}, it stood at {home:?}",
+        sim.target
+    );
+    assert_eq!(look.aliases(), before.aliases(), "{:?}", sim.target);
+    assert_eq!(look.idle_fps, before.idle_fps, "{:?}", sim.target);
+}
+
+fn lines_apply_reapply_clear(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (m42, layout) = generate(dir.path(), "m42", &["--seed", "42"]);
+    let first = ok(&sim, &["apply", &m42]);
+    assert!(first.stdout.contains("verified"), "{}", first.stdout);
+    let drawn = obs.look();
+    assert_shows(&sim, &drawn, &layout, before.idle_fps);
+    let again = ok(&sim, &["apply", &m42]);
+    assert!(again.stdout.contains("verified"), "{}", again.stdout);
+    let redrawn = obs.look();
+    assert_shows(&sim, &redrawn, &layout, before.idle_fps);
+    assert_eq!(
+        redrawn.aliases(),
+        drawn.aliases(),
+        "{target:?}: a re-apply changed the objects"
+    );
+    ok(&sim, &["inspect", "--layout", &m42]);
+    ok(&sim, &["clear"]);
+    assert_cleared(&sim, &obs.look(), &before);
+}
+
+fn replace_and_switch_draw_modes(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (a, la) = generate(dir.path(), "a", &["--seed", "42"]);
+    let (b, lb) = generate(dir.path(), "b", &["--seed", "7", "--algo", "prim"]);
+    let (c, lc) = generate(
+        dir.path(),
+        "c",
+        &["--seed", "3", "--algo", "kruskal", "--size", "7x7"],
+    );
+    for (file, layout, mode) in [
+        (&a, &la, "copies"),
+        (&b, &lb, "mesh"),
+        (&a, &la, "copies"),
+        (&c, &lc, "copies"),
+        (&c, &lc, "mesh"),
+        (&b, &lb, "mesh"),
+    ] {
+        ok(&sim, &["apply", file, "--draw", mode]);
+        assert_shows(&sim, &obs.look(), layout, before.idle_fps);
+        ok(&sim, &["inspect", "--layout", file]);
+    }
+    ok(&sim, &["clear"]);
+    assert_cleared(&sim, &obs.look(), &before);
+}
+
+fn walls_with_posts(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (w, lw) = generate(
+        dir.path(),
+        "w",
+        &["--seed", "5", "--style", "walls", "--posts"],
+    );
+    // the course scene has no Wall or Post: they are created over ZeroMQ (legacy creates none)
+    let created = run_with(
+        &sim,
+        &["apply", &w, "--create-missing", "--draw", "mesh"],
+        &sim.zmq_args(),
+    );
+    succeeded(&sim, &["apply --create-missing"], created);
+    assert_shows(&sim, &obs.look(), &lw, before.idle_fps);
+    ok(&sim, &["inspect", "--layout", &w]);
+    ok(&sim, &["apply", &w, "--draw", "mesh"]);
+    ok(&sim, &["apply", &w]);
+    assert_shows(&sim, &obs.look(), &lw, before.idle_fps);
+    ok(&sim, &["inspect", "--layout", &w]);
+    let (m, lm) = generate(dir.path(), "m", &["--seed", "42"]);
+    ok(&sim, &["apply", &m]);
+    assert_shows(&sim, &obs.look(), &lm, before.idle_fps);
+    ok(&sim, &["clear"]);
+    let after = obs.look();
+    let maze = after.root("Maze").handle;
+    assert!(
+        after.below(maze).is_empty(),
+        "{target:?}: {:?}",
+        after.aliases()
+    );
+}
+
+fn inspect_finds_a_moved_line_and_apply_repairs_it(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (m, layout) = generate(dir.path(), "m", &["--seed", "11", "--algo", "wilson"]);
+    ok(&sim, &["apply", &m]);
+    let drawn = obs.look();
+    let maze = drawn.root("Maze").handle;
+    let copy = drawn.below(maze)[3].clone();
+    obs.move_to(
+        copy.handle,
+        [copy.position[0] + 0.3, copy.position[1], copy.position[2]],
+    );
+    let found = run(&sim, &["inspect", "--layout", &m]);
+    assert_ne!(
+        found.code, 0,
+        "{target:?}: inspect missed a moved line:\n{}",
+        found.stdout
+    );
+    ok(&sim, &["apply", &m]);
+    assert_shows(&sim, &obs.look(), &layout, before.idle_fps);
+    ok(&sim, &["inspect", "--layout", &m]);
+}
+
+fn interrupted_applies_are_repaired(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (a, _) = generate(dir.path(), "a", &["--seed", "1", "--algo", "prim"]);
+    let (b, lb) = generate(dir.path(), "b", &["--seed", "2", "--algo", "dfs"]);
+    ok(&sim, &["apply", &a]);
+    for delay_ms in [150, 300, 500, 800] {
+        let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("vrep-maze"))
+            .args(["apply", "-q", &b])
+            .args(sim.api_args())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        crate::support::cli::interrupt(child.id());
+        let out = child.wait_with_output().unwrap();
+        let code = out.status.code();
+        assert!(
+            matches!(code, Some(0) | Some(130)),
+            "{target:?}: Ctrl-C after {delay_ms} ms: {code:?}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert_eq!(
+            obs.idle_fps(),
+            before.idle_fps,
+            "{target:?}: Ctrl-C after {delay_ms} ms left the idle rate raised"
+        );
+    }
+    ok(&sim, &["apply", &b]);
+    assert_shows(&sim, &obs.look(), &lb, before.idle_fps);
+    ok(&sim, &["clear"]);
+    assert_cleared(&sim, &obs.look(), &before);
+}
+
+/// Object aliases and positions rounded to 0.1 mm: what a dry run must leave as it was.
+fn state(look: &Look) -> Vec<(String, i32, [i64; 3])> {
+    let mut s: Vec<_> = look
+        .objects
+        .iter()
+        .map(|o| {
+            (
+                o.alias.clone(),
+                o.parent,
+                o.position.map(|v| (v * 1e4).round() as i64),
+            )
+        })
+        .collect();
+    s.sort();
+    s
+}
+
+fn dry_runs_change_nothing(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let (a, _) = generate(dir.path(), "a", &["--seed", "21"]);
+    let (b, _) = generate(dir.path(), "b", &["--seed", "22", "--algo", "eller"]);
+    ok(&sim, &["apply", &a]);
+    let drawn = state(&obs.look());
+    ok(&sim, &["apply", &b, "--dry-run"]);
+    ok(&sim, &["apply", &b, "--dry-run", "--draw", "mesh"]);
+    ok(&sim, &["clear", "--dry-run"]);
+    assert_eq!(
+        state(&obs.look()),
+        drawn,
+        "{target:?}: a dry run changed the scene"
+    );
+    ok(&sim, &["apply", &b, "--draw", "mesh"]);
+    let meshes = state(&obs.look());
+    ok(&sim, &["apply", &a, "--dry-run"]);
+    ok(&sim, &["clear", "--dry-run"]);
+    assert_eq!(
+        state(&obs.look()),
+        meshes,
+        "{target:?}: a dry run changed the scene"
+    );
+}
+
+/// Twenty runs one after the other, alternating `apply` and `clear`, each connecting within
+/// its 5 s connection timeout (a port left refusing for a minute fails the next one).
+fn runs_back_to_back_each_connect_at_once(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let (m, _) = generate(dir.path(), "m", &["--seed", "42"]);
+    let mut slowest = Duration::ZERO;
+    for k in 0..20 {
+        let args: &[&str] = if k % 2 == 0 {
+            &["apply", "-q", &m]
+        } else {
+            &["clear"]
+        };
+        let t = Instant::now();
+        ok(&sim, args);
+        slowest = slowest.max(t.elapsed());
+    }
+    eprintln!("{target:?}: slowest of 20 runs back to back: {slowest:?}");
+}

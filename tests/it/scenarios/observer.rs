@@ -1,0 +1,252 @@
+//! Reads a scene the way a person checking it would, independently of the code under test:
+//! raw ZeroMQ calls (`sim.getObjectsInTree`, `sim.getObjectPose`, `sim.getShapeMesh`, ...),
+//! no `draw`, no backend. It works on `serve` and on real 4.5.1 and 4.10, whichever API the
+//! scenario drew through (4.5.1 serves ZeroMQ beside legacy on one scene).
+
+use std::time::Duration;
+
+use ciborium::Value;
+use vrep_maze::coppelia::{HANDLE_ALL, HANDLE_SCENE, INTPARAM_IDLE_FPS, OBJECT_SHAPE_TYPE};
+use vrep_maze::zmq_api::cbor;
+use vrep_maze::zmq_api::{Client, ClientOptions};
+
+/// A shape's triangles in the floor frame: `[x, y, z]` per corner.
+pub type Triangle = [[f64; 3]; 3];
+
+/// One object of the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    /// Its handle.
+    pub handle: i32,
+    /// Its alias.
+    pub alias: String,
+    /// Its parent's handle (`-1`: the scene root).
+    pub parent: i32,
+    /// Position relative to the floor.
+    pub position: [f64; 3],
+}
+
+/// What the observer saw at one moment.
+#[derive(Debug, Clone)]
+pub struct Look {
+    /// The idle rate the scene had before the observer raised it to read.
+    pub idle_fps: i32,
+    /// Every object of the scene.
+    pub objects: Vec<Object>,
+    /// Every shape's triangles, in the floor frame, by handle (floor and markers left out).
+    pub triangles: Vec<(i32, Vec<Triangle>)>,
+    /// `Start`'s handle.
+    pub start: i32,
+    /// `End`'s handle.
+    pub end: i32,
+}
+
+impl Look {
+    /// The object with this alias at the scene root (panics if there is none).
+    pub fn root(&self, alias: &str) -> &Object {
+        self.objects
+            .iter()
+            .find(|o| o.alias == alias && o.parent == -1)
+            .unwrap_or_else(|| panic!("no {alias} at the scene root: {:?}", self.aliases()))
+    }
+
+    /// Every alias, sorted.
+    pub fn aliases(&self) -> Vec<String> {
+        let mut a: Vec<String> = self.objects.iter().map(|o| o.alias.clone()).collect();
+        a.sort();
+        a
+    }
+
+    /// The objects whose parent is `parent`'s handle, or below it.
+    pub fn below(&self, parent: i32) -> Vec<&Object> {
+        let mut out = vec![];
+        let mut frontier = vec![parent];
+        while let Some(p) = frontier.pop() {
+            for o in self.objects.iter().filter(|o| o.parent == p) {
+                out.push(o);
+                frontier.push(o.handle);
+            }
+        }
+        out
+    }
+}
+
+/// A ZeroMQ connection that only reads (and raises the idle rate while it reads, restoring it).
+pub struct Observer {
+    client: Client,
+}
+
+fn call(client: &mut Client, func: &str, args: Vec<Value>) -> Vec<Value> {
+    client
+        .call(func, args)
+        .unwrap_or_else(|e| panic!("observer: {func}: {e}"))
+}
+
+fn int(v: i64) -> Value {
+    cbor::int(v)
+}
+
+fn text(s: &str) -> Value {
+    Value::Text(s.into())
+}
+
+/// Numbers from a CBOR array, or from a byte string of little-endian `f32`s or `f64`s
+/// (`packed`: how many bytes a number takes there).
+fn floats(value: &Value) -> Vec<f64> {
+    match value {
+        Value::Array(items) => items.iter().map(|v| cbor::number(v).unwrap()).collect(),
+        Value::Bytes(b) if b.len() % 4 == 0 => b
+            .chunks_exact(4)
+            .map(|c| f64::from(f32::from_le_bytes(c.try_into().unwrap())))
+            .collect(),
+        other => panic!("observer: not numbers: {}", cbor::describe(other)),
+    }
+}
+
+fn ints(value: &Value) -> Vec<i64> {
+    match value {
+        Value::Array(items) => items.iter().map(|v| cbor::integer(v).unwrap()).collect(),
+        Value::Bytes(b) if b.len() % 4 == 0 => b
+            .chunks_exact(4)
+            .map(|c| i64::from(i32::from_le_bytes(c.try_into().unwrap())))
+            .collect(),
+        other => panic!("observer: not integers: {}", cbor::describe(other)),
+    }
+}
+
+/// `[x, y, z, qx, qy, qz, qw]` applied to a point.
+fn transform(pose: &[f64], p: [f64; 3]) -> [f64; 3] {
+    let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        pose[6], pose[3], pose[4], pose[5],
+    ));
+    let v = q * nalgebra::Vector3::new(p[0], p[1], p[2]);
+    [v.x + pose[0], v.y + pose[1], v.z + pose[2]]
+}
+
+impl Observer {
+    /// Connects to the ZeroMQ remote API at `port` on the loopback.
+    pub fn connect(port: u16) -> Observer {
+        let client = Client::connect(&ClientOptions {
+            port,
+            timeout: Duration::from_secs(30),
+            ..Default::default()
+        })
+        .unwrap_or_else(|e| panic!("observer: cannot connect to 127.0.0.1:{port}: {e}"));
+        Observer { client }
+    }
+
+    /// The idle rate now.
+    pub fn idle_fps(&mut self) -> i32 {
+        let v = call(
+            &mut self.client,
+            "sim.getInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into())],
+        );
+        cbor::int32(&v[0]).unwrap()
+    }
+
+    /// Sets the idle rate (what a user does in the simulator's settings).
+    pub fn set_idle_fps(&mut self, fps: i32) {
+        call(
+            &mut self.client,
+            "sim.setInt32Param",
+            vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
+        );
+    }
+
+    /// A handle by path (`/Floor`).
+    pub fn handle(&mut self, path: &str) -> i32 {
+        let v = call(&mut self.client, "sim.getObject", vec![text(path)]);
+        cbor::int32(&v[0]).unwrap()
+    }
+
+    /// Moves `handle` to `position` relative to the floor (a user's edit).
+    pub fn move_to(&mut self, handle: i32, position: [f64; 3]) {
+        let floor = self.handle("/Floor");
+        call(
+            &mut self.client,
+            "sim.setObjectPosition",
+            vec![
+                int(handle.into()),
+                int(floor.into()),
+                cbor::float_array(&position),
+            ],
+        );
+    }
+
+    /// Everything in the scene, read at idle rate 0 and the user's rate put back after.
+    pub fn look(&mut self) -> Look {
+        let idle_fps = self.idle_fps();
+        self.set_idle_fps(0);
+        let look = self.read(idle_fps);
+        self.set_idle_fps(idle_fps);
+        look
+    }
+
+    fn read(&mut self, idle_fps: i32) -> Look {
+        let floor = self.handle("/Floor");
+        let start = self.handle("/Start");
+        let end = self.handle("/End");
+        let c = &mut self.client;
+        let all = call(
+            c,
+            "sim.getObjectsInTree",
+            vec![int(HANDLE_SCENE.into()), int(HANDLE_ALL.into()), int(0)],
+        );
+        let handles = ints(&all[0]);
+        let shapes = call(
+            c,
+            "sim.getObjectsInTree",
+            vec![
+                int(HANDLE_SCENE.into()),
+                int(OBJECT_SHAPE_TYPE.into()),
+                int(0),
+            ],
+        );
+        let shapes = ints(&shapes[0]);
+        let mut objects = vec![];
+        for &h in &handles {
+            let h = int(h);
+            let alias = call(c, "sim.getObjectAlias", vec![h.clone()]);
+            let parent = call(c, "sim.getObjectParent", vec![h.clone()]);
+            let pose = call(
+                c,
+                "sim.getObjectPosition",
+                vec![h.clone(), int(floor.into())],
+            );
+            let p = floats(&pose[0]);
+            objects.push(Object {
+                handle: cbor::int32(&h).unwrap(),
+                alias: cbor::text(&alias[0]).unwrap().to_string(),
+                parent: cbor::int32(&parent[0]).unwrap(),
+                position: [p[0], p[1], p[2]],
+            });
+        }
+        let mut triangles = vec![];
+        for &h in shapes
+            .iter()
+            .filter(|&&h| ![floor, start, end].contains(&(h as i32)))
+        {
+            let pose = floats(&call(c, "sim.getObjectPose", vec![int(h), int(floor.into())])[0]);
+            let mesh = call(c, "sim.getShapeMesh", vec![int(h)]);
+            let v = floats(&mesh[0]);
+            let idx = ints(&mesh[1]);
+            let corner = |k: i64| {
+                let k = k as usize * 3;
+                transform(&pose, [v[k], v[k + 1], v[k + 2]])
+            };
+            let tris = idx
+                .chunks_exact(3)
+                .map(|t| [corner(t[0]), corner(t[1]), corner(t[2])])
+                .collect();
+            triangles.push((h as i32, tris));
+        }
+        Look {
+            idle_fps,
+            objects,
+            triangles,
+            start,
+            end,
+        }
+    }
+}
