@@ -175,6 +175,9 @@ impl Sim {
     }
 }
 
+/// Held while `sim.sh start` runs.
+static STARTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// A real CoppeliaSim started by `sim.sh` in a folder of its own (so tests run side by side
 /// without sharing its process file), stopped when dropped.
 struct RealSim {
@@ -202,7 +205,11 @@ impl RealSim {
         if let Some(l) = legacy {
             cmd.args(["--legacy-port", &l.to_string()]);
         }
-        let out = cmd.output().unwrap();
+        // one start at a time: a first start installs libraries with apt-get, which runs once
+        let out = {
+            let _one = STARTING.lock().unwrap_or_else(|e| e.into_inner());
+            cmd.output().unwrap()
+        };
         let real = RealSim {
             script,
             version,
