@@ -211,8 +211,10 @@ impl Scene {
     }
 
     /// The course scene of `../shared/spec/course-scene.md` (the spec folder beside this
-    /// repository): `Floor` (10 m x 10 m), dummy `Maze`, green `Line`
-    /// (0.6 x 0.1 at z 0.001), blue `Start` and red `End` (1 x 1 at z 0.002).
+    /// repository), its objects where the real `course.ttt` of `../shared/coppeliasim/` has
+    /// them (read back from a real 4.5.1): `Floor` (10 m x 10 m, grey here, white there), dummy
+    /// `Maze` at the origin, green `Line` (0.6 x 0.1) at the origin at z 0.001, blue `Start`
+    /// at (-4, -4) and red `End` at (4, 4) (1 x 1 at z 0.002).
     pub fn course() -> Scene {
         let mut s = Scene::empty();
         let shape = |position, size, colour| NewObject {
@@ -237,15 +239,15 @@ impl Scene {
         );
         s.add(
             "Line",
-            shape([0.0, -5.5, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]),
+            shape([0.0, 0.0, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]),
         );
         s.add(
             "Start",
-            shape([-1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]),
+            shape([-4.0, -4.0, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]),
         );
         s.add(
             "End",
-            shape([1.5, -5.5, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]),
+            shape([4.0, 4.0, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]),
         );
         s
     }

@@ -218,32 +218,35 @@ mod tests {
             .unwrap();
         let mut buf = vec![0; reader.output_buffer_size().unwrap()];
         let info = reader.next_frame(&mut buf).unwrap();
-        // the 10 m floor and the markers below it (y -6 to 5), 100 px a metre
-        assert_eq!((info.width, info.height), (1000, 1100));
+        // the 10 m floor, the markers and the line on it, 100 px a metre
+        assert_eq!((info.width, info.height), (1000, 1000));
         let at = |x: f64, y: f64| {
             let (col, row) = ((x + 5.0) * 100.0, (5.0 - y) * 100.0);
             let k = (row as usize * 1000 + col as usize) * 3;
             [buf[k], buf[k + 1], buf[k + 2]]
         };
-        assert_eq!(at(-1.5, -5.5), [0, 0, 255], "Start");
-        assert_eq!(at(1.5, -5.5), [255, 0, 0], "End");
-        assert_eq!(at(0.0, -5.5), [0, 255, 0], "Line");
+        assert_eq!(at(-4.0, -4.0), [0, 0, 255], "Start");
+        assert_eq!(at(4.0, 4.0), [255, 0, 0], "End");
+        assert_eq!(at(0.0, 0.0), [0, 255, 0], "Line");
         assert_eq!(at(0.0, 3.0), [128, 128, 128], "Floor");
-        assert_eq!(at(-4.0, -5.5), [255; 3], "nothing");
     }
 
     #[test]
     fn course_scene_ascii_marks_start_end_and_floor() {
         let text = scene_ascii(&Scene::course(), 40);
-        assert_eq!(text.lines().count(), 22, "{text}");
+        // the 10 m floor holds everything: 40 columns, half as many rows (a cell is 1:2)
+        assert_eq!(text.lines().count(), 20, "{text}");
         assert!(text.lines().all(|l| l.chars().count() <= 40));
         assert!(
             text.contains('S') && text.contains('E') && text.contains('#'),
             "{text}"
         );
         assert!(text.contains("...."), "{text}");
-        let s = text.find('S').unwrap();
-        let e = text.find('E').unwrap();
-        assert!(s < e, "start west of end on one row:\n{text}");
+        let at = |c: char| {
+            let row = text.lines().position(|l| l.contains(c)).unwrap();
+            (row, text.lines().nth(row).unwrap().find(c).unwrap())
+        };
+        let (s, e) = (at('S'), at('E'));
+        assert!(e.0 < s.0 && s.1 < e.1, "end north-east of start:\n{text}");
     }
 }

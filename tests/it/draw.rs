@@ -412,7 +412,7 @@ fn counts_add_up_in_every_kind_of_apply(kind: Kind) {
     assert_counts_add_up(&first, &d);
     assert!(
         first.to_string().starts_with(
-            "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 0 already in place, 2 placed; 0 earlier copies removed; "
+            "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 1 already in place, 1 placed; 0 earlier copies removed; "
         ),
         "{first}"
     );

@@ -234,11 +234,11 @@ fn zmq_protocol_1_recorded_pairs() {
             "a2 64 66756e63 6d 73696d2e6765744f626a656374 64 61726773 81 65 2f4c696e65",
             "a2 67 73756363657373 f5 63 726574 81 0c",
         ),
-        // {"func": "sim.getObjectPosition", "args": [12, -1]} -> ret [[0.0, -5.5, 0.001]]
+        // {"func": "sim.getObjectPosition", "args": [12, -1]} -> ret [[0.0, 0.0, 0.001]]
         // (floats in their shortest exact width, as the Lua encoder may also pick)
         (
             "a2 64 66756e63 75 73696d2e6765744f626a656374506f736974696f6e 64 61726773 82 0c 20",
-            "a2 67 73756363657373 f5 63 726574 81 83 f90000 f9c580 fb3f50624dd2f1a9fc",
+            "a2 67 73756363657373 f5 63 726574 81 83 f90000 f90000 fb3f50624dd2f1a9fc",
         ),
         // {"func": "sim.setObjectPosition", "args": [12, -1, [0, 0, 0.5]]} -> {"success": true, "ret": {}}
         (

@@ -187,7 +187,7 @@ mod tests {
         let doc = xml::read(&std::fs::read_to_string(&path).unwrap()).unwrap();
         assert_eq!(doc.objects[0].alias, "Line");
         assert!(doc.objects[0].model_base);
-        assert_eq!(doc.objects[0].position, [0.0, -5.5, 0.001]);
+        assert_eq!(doc.objects[0].position, [0.0, 0.0, 0.001]);
         let loaded = ret1(run(
             &mut sim,
             "sim.loadModel",
