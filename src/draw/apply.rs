@@ -12,8 +12,8 @@ use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose, Survey,
-    TemplateUse, resolve_handles, verify,
+    Backend, BackendError, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
+    Pose, Survey, TemplateUse, resolve_handles, verify,
 };
 
 /// Options of [`apply`].
@@ -293,14 +293,37 @@ pub(crate) fn raised<T>(
     // an interrupted earlier run may have left the rate at 0 and recorded the user's value
     let user_fps = rates.saved.unwrap_or(rates.current);
     let raise = !dry_run && (user_fps != 0 || rates.saved.is_some());
-    if raise {
-        scene.set_idle_fps(0, Some(user_fps))?;
+    raised_from(scene, rates, raise.then_some(user_fps), work)
+}
+
+/// [`raised`] for a run that only reads (`vrep-maze inspect`): the user's rate is raised and
+/// restored as a draw does it, but a rate an interrupted run left at 0 with its record is
+/// left exactly as found (reads are fast at 0 already; `clear` or the next apply repairs it,
+/// and the report says so). Returns `work`'s value and the rates found.
+pub(crate) fn raised_to_read<T, E: From<BackendError>>(
+    scene: &mut dyn Backend,
+    work: impl FnOnce(&mut dyn Backend) -> Result<T, E>,
+) -> Result<(T, IdleRates), E> {
+    let rates = scene.idle_rates()?;
+    let raise = rates.saved.is_none() && rates.current != 0;
+    raised_from(scene, rates, raise.then_some(rates.current), work)
+}
+
+/// Runs `work` with the idle rate at 0 when `user_fps` is given (recorded in the scene while
+/// raised), restoring it to `user_fps` afterwards whatever `work` returned.
+fn raised_from<T, E: From<BackendError>>(
+    scene: &mut dyn Backend,
+    rates: IdleRates,
+    user_fps: Option<i32>,
+    work: impl FnOnce(&mut dyn Backend) -> Result<T, E>,
+) -> Result<(T, IdleRates), E> {
+    if let Some(fps) = user_fps {
+        scene.set_idle_fps(0, Some(fps))?;
     }
     let result = work(scene);
-    let restored = if raise {
-        scene.set_idle_fps(user_fps, None)
-    } else {
-        Ok(())
+    let restored = match user_fps {
+        Some(fps) => scene.set_idle_fps(fps, None),
+        None => Ok(()),
     };
     let value = result?;
     restored?;

@@ -398,7 +398,8 @@ pub fn verify(
     raised(scene, false, |scene| verify_raised(scene, maze, names)).map(|(ok, _)| ok)
 }
 
-/// [`verify`] without raising the idle rate: only reads (what `inspect` compares with).
+/// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
+/// itself (what `inspect` compares with, [`crate::draw::apply::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
