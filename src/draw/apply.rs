@@ -157,8 +157,15 @@ impl std::fmt::Display for ApplyReport {
             );
         }
         let verb = if self.dry_run { "would draw" } else { "drew" };
+        // Start and End, and the line template where it is no line of copies (on the first
+        // line of a mesh maze, under `Start` in a one-cell maze): counted with them
+        let what = if self.markers_unchanged + self.markers_placed > 2 {
+            "Start, End and the line template"
+        } else {
+            "markers"
+        };
         let markers = format!(
-            "markers: {} already in place, {} placed",
+            "{what}: {} already in place, {} placed",
             self.markers_unchanged, self.markers_placed
         );
         if self.meshes > 0 {
