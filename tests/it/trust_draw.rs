@@ -899,6 +899,9 @@ fn mesh_mode_refuses_a_line_template_of_another_size(kind: Kind) {
     s.shutdown();
 }
 
+/// A way of drawing a layout (as copies or as meshes).
+type DrawWith<'a> = dyn Fn(&mut dyn Backend, &Layout) -> draw::ApplyReport + 'a;
+
 /// Class 4: the "older vrep-maze" warning is for line copies without a record only. A wall
 /// maze never moves the line template, so a line maze drawn after one (copies or meshes, over
 /// copies or meshes) records the template where it stands, without a warning; a line mesh
@@ -923,10 +926,7 @@ fn no_older_version_is_blamed_for_a_wall_maze_or_a_mesh_maze(kind: Kind) {
     let meshes = |b: &mut dyn Backend, l: &Layout| {
         draw::mesh::apply(b, &MeshMaze::try_from(l).unwrap(), &opts, &mut |_| {}).unwrap()
     };
-    let modes: [(
-        &str,
-        &dyn Fn(&mut dyn Backend, &Layout) -> draw::ApplyReport,
-    ); 2] = [("copies", &copies), ("meshes", &meshes)];
+    let modes: [(&str, &DrawWith<'_>); 2] = [("copies", &copies), ("meshes", &meshes)];
     for (first, draw_walls) in modes {
         for (then, draw_lines) in modes {
             let s = kind.serve(Scene::course_walls(), 0);
