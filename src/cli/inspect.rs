@@ -8,10 +8,12 @@ use anyhow::{Context, Result};
 
 use super::apply::ConnectArgs;
 use super::connect::{Connected, connect};
+use super::interrupt::{Interrupt, Interrupted};
 use super::reports::{DrawnMaze, InspectReport, LayoutMatch, REPORT_VERSION, SceneObject};
 use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
+use crate::draw::apply::raised_to_read;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
 use crate::draw::plan::{is_copy_of, relative_pose, world_frame};
 use crate::draw::verify::verify_read_only;
@@ -20,7 +22,8 @@ use crate::layout::Style;
 
 /// Show what the scene holds (API, version, simulation state, idle rate, the templates and
 /// markers, the maze drawn, objects under the maze dummy that are not ours) and, given a
-/// layout, whether the drawing matches it. Only reads: the scene is left exactly as it was.
+/// layout, whether the drawing matches it. Only reads: the scene is left as it was (the idle
+/// rate is raised while reading and restored, as apply does).
 #[derive(Debug, clap::Args)]
 #[command(
     after_help = "Examples:\n  vrep-maze inspect\n  vrep-maze inspect --layout maze.json\n  vrep-maze inspect --api zmq --json"
@@ -56,13 +59,29 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
     };
     let names = args.scene.names();
     let c = &args.scene;
+    let interrupt = Interrupt::install()?;
     let Connected {
         mut backend,
         description,
-    } = connect(c.api, &c.host, c.port, c.timeout, c.connect_timeout, None)?;
-    let report = inspect(backend.as_mut(), &names, description, wanted.as_ref());
+    } = connect(
+        c.api,
+        &c.host,
+        c.port,
+        c.timeout,
+        c.connect_timeout,
+        Some(interrupt.flag()),
+    )?;
+    // every read paced by the idle rate costs a main-loop pass (93-125 ms at the default 8
+    // fps, `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing"): raised as apply raises it,
+    // and restored on every path, Ctrl-C and errors included
+    let read = raised_to_read(backend.as_mut(), |scene| {
+        inspect(scene, &names, description, wanted.as_ref(), &interrupt)
+    });
     let _ = backend.close();
-    let report = report?;
+    let (mut report, rates) = read?;
+    // the rates as the user left them, not as raised while reading
+    report.idle_fps = rates.current;
+    report.saved_idle_fps = rates.saved;
     if args.json {
         say::document(&report)?;
     } else {
@@ -86,15 +105,26 @@ struct Wanted {
     layout: crate::layout::Layout,
 }
 
-/// Reads the scene through `scene` (reads only).
+/// Reads the scene through `scene` (reads only; the idle rates are left for the caller to
+/// fill in), stopping between requests once `interrupt` is set.
 fn inspect(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     connection: String,
     wanted: Option<&Wanted>,
+    interrupt: &Interrupt,
 ) -> Result<InspectReport> {
-    let rates = scene.idle_rates()?;
+    let go_on = || -> Result<()> {
+        if interrupt.requested() {
+            return Err(Interrupted(
+                "while reading the scene: nothing was changed, the idle rate is restored".into(),
+            )
+            .into());
+        }
+        Ok(())
+    };
     let (survey, surveyed) = survey(scene, names)?;
+    go_on()?;
     let objects = &survey.objects;
     let handle = |name: &str| {
         let names = [
@@ -122,6 +152,7 @@ fn inspect(
         ("end marker", &names.end),
     ];
     let present: Vec<i32> = roles.iter().filter_map(|(_, name)| handle(name)).collect();
+    go_on()?;
     let sizes: HashMap<i32, BoundingBox> = present
         .iter()
         .zip(scene.bounding_boxes(&present)?)
@@ -133,6 +164,7 @@ fn inspect(
         .copied()
         .filter(|h| survey.traits.kinds.get(h) == Some(&OBJECT_SHAPE_TYPE))
         .collect();
+    go_on()?;
     let colours_read = scene.shape_colours(&shapes)?;
     let colours: HashMap<i32, [f64; 3]> = match &colours_read {
         Some(colours) => shapes
@@ -175,6 +207,7 @@ fn inspect(
         Some(parent) => crate::draw::mesh::found(scene, names, parent, objects)?,
         None => Default::default(),
     };
+    go_on()?;
     let mesh_kinds: Vec<MeshKind> = meshes
         .meshes
         .iter()
@@ -220,6 +253,7 @@ fn inspect(
         (0, _) => Some(Style::Walls),
         _ => None,
     };
+    go_on()?;
     let layout = match wanted {
         None => None,
         Some(Wanted {
@@ -250,8 +284,8 @@ fn inspect(
         version: REPORT_VERSION,
         connection,
         simulation_running: survey.simulation_running,
-        idle_fps: rates.current,
-        saved_idle_fps: rates.saved,
+        idle_fps: 0,
+        saved_idle_fps: None,
         objects: templates,
         colours_read: colours_read.is_some(),
         maze,

@@ -1,4 +1,4 @@
-//! Ctrl-C, SIGTERM and SIGHUP for commands that must stop cleanly (`batch`, `apply`,
+//! Ctrl-C, SIGTERM and SIGHUP for commands that must stop cleanly (`batch`, `apply`, `inspect`,
 //! `clear`): the first
 //! signal asks the running command to finish what is in flight and stop; a second one ends
 //! the process at once with exit code 130.

@@ -12,8 +12,8 @@ use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
 use super::{
-    Backend, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames, Pose, Survey,
-    TemplateUse, resolve_handles, verify,
+    Backend, BackendError, DrawError, Drawing, Edit, Handles, IdleRates, ObjectInfo, ObjectNames,
+    Pose, Survey, TemplateUse, resolve_handles, verify,
 };
 
 /// Options of [`apply`].
@@ -157,8 +157,15 @@ impl std::fmt::Display for ApplyReport {
             );
         }
         let verb = if self.dry_run { "would draw" } else { "drew" };
+        // Start and End, and the line template where it is no line of copies (on the first
+        // line of a mesh maze, under `Start` in a one-cell maze): counted with them
+        let what = if self.markers_unchanged + self.markers_placed > 2 {
+            "Start, End and the line template"
+        } else {
+            "markers"
+        };
         let markers = format!(
-            "markers: {} already in place, {} placed",
+            "{what}: {} already in place, {} placed",
             self.markers_unchanged, self.markers_placed
         );
         if self.meshes > 0 {
@@ -293,14 +300,37 @@ pub(crate) fn raised<T>(
     // an interrupted earlier run may have left the rate at 0 and recorded the user's value
     let user_fps = rates.saved.unwrap_or(rates.current);
     let raise = !dry_run && (user_fps != 0 || rates.saved.is_some());
-    if raise {
-        scene.set_idle_fps(0, Some(user_fps))?;
+    raised_from(scene, rates, raise.then_some(user_fps), work)
+}
+
+/// [`raised`] for a run that only reads (`vrep-maze inspect`): the user's rate is raised and
+/// restored as a draw does it, but a rate an interrupted run left at 0 with its record is
+/// left exactly as found (reads are fast at 0 already; `clear` or the next apply repairs it,
+/// and the report says so). Returns `work`'s value and the rates found.
+pub(crate) fn raised_to_read<T, E: From<BackendError>>(
+    scene: &mut dyn Backend,
+    work: impl FnOnce(&mut dyn Backend) -> Result<T, E>,
+) -> Result<(T, IdleRates), E> {
+    let rates = scene.idle_rates()?;
+    let raise = rates.saved.is_none() && rates.current != 0;
+    raised_from(scene, rates, raise.then_some(rates.current), work)
+}
+
+/// Runs `work` with the idle rate at 0 when `user_fps` is given (recorded in the scene while
+/// raised), restoring it to `user_fps` afterwards whatever `work` returned.
+fn raised_from<T, E: From<BackendError>>(
+    scene: &mut dyn Backend,
+    rates: IdleRates,
+    user_fps: Option<i32>,
+    work: impl FnOnce(&mut dyn Backend) -> Result<T, E>,
+) -> Result<(T, IdleRates), E> {
+    if let Some(fps) = user_fps {
+        scene.set_idle_fps(0, Some(fps))?;
     }
     let result = work(scene);
-    let restored = if raise {
-        scene.set_idle_fps(user_fps, None)
-    } else {
-        Ok(())
+    let restored = match user_fps {
+        Some(fps) => scene.set_idle_fps(fps, None),
+        None => Ok(()),
     };
     let value = result?;
     restored?;
@@ -340,12 +370,14 @@ fn apply_claimed(
     let objects = &objects;
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
-    let meshes: Vec<i32> = super::mesh::leftovers(scene, names, &h, &survey.objects)?
-        .into_iter()
-        .map(|(x, _)| x)
-        .collect();
+    let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    let meshes: Vec<i32> = leftovers.iter().map(|(x, _)| *x).collect();
     let mut existing = maze_lines(objects, &h, names.template(style), &others);
     existing.retain(|x| !meshes.contains(x));
+    let earlier = EarlierLines::of(
+        style == super::Style::Lines && !existing.is_empty(),
+        leftovers.iter().map(|(_, name)| name.as_str()),
+    );
     let copies_needed = drawing
         .lines
         .len()
@@ -419,7 +451,7 @@ fn apply_claimed(
         drawing.template_drawn(),
         &h,
         objects,
-        !existing.is_empty(),
+        earlier,
         line_template,
         names,
         &mut report,
@@ -547,19 +579,52 @@ fn place(
     edits
 }
 
+/// The earlier line maze a drawing finds, which tells whether the line template already lies
+/// on one of its lines ([`keep_home`]). A wall maze never moves the line template, so an
+/// earlier wall maze is none.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum EarlierLines {
+    /// No line maze: the template stands where the user put it.
+    None,
+    /// Copies of the line template under the maze dummy.
+    Copies,
+    /// A line maze drawn as meshes (`--draw mesh`, or loaded from `export -o
+    /// x.simscene.xml`, which puts the template on the first line, under a mesh).
+    Meshes,
+}
+
+impl EarlierLines {
+    /// What `line_copies` (copies of the line template under the maze dummy) and the names
+    /// of an earlier mesh maze's objects say.
+    pub(crate) fn of<'a>(line_copies: bool, meshes: impl IntoIterator<Item = &'a str>) -> Self {
+        let line_meshes = meshes.into_iter().any(|name| {
+            super::mesh::parse_mesh_name(name)
+                .is_some_and(|(kind, _)| kind == super::mesh::MeshKind::Lines)
+        });
+        match (line_copies, line_meshes) {
+            (true, _) => EarlierLines::Copies,
+            (false, true) => EarlierLines::Meshes,
+            (false, false) => EarlierLines::None,
+        }
+    }
+}
+
 /// Keeps the line template's home ([`home`]) before a drawing moves it: a line maze
-/// records where the template stands now, unless a record of it exists; if earlier copies
-/// exist without a record (a maze drawn by an older version), the template already lies on
-/// a line, so its home is taken to be below the floor (said in a warning). A wall maze
-/// puts a line template that has a record (the first line of a line maze it replaces)
-/// back home and deletes the record.
+/// records where the template stands now, unless a record of it exists. If an earlier line
+/// maze exists without a record, the template already lies on its first line, so its home is
+/// taken to be below the floor: said in a warning for copies (a maze drawn by an older
+/// version, or a scene saved and loaded again: the record is kept in signals, which a scene
+/// file does not hold), silently for meshes (only this version draws them, and our
+/// `.simscene.xml` export puts the template there, under a mesh). A wall maze puts a line
+/// template that has a record (the first line of a line maze it replaces) back home and
+/// deletes the record.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn keep_home(
     scene: &mut dyn Backend,
     template_drawn: bool,
     h: &Handles,
     objects: &[ObjectInfo],
-    earlier_maze: bool,
+    earlier: EarlierLines,
     line_template: Option<i32>,
     names: &ObjectNames,
     report: &mut ApplyReport,
@@ -584,11 +649,13 @@ pub(crate) fn keep_home(
         return Ok(());
     };
     let (position, orientation) = plan::relative_pose(&floor, template);
-    let home = if earlier_maze {
-        report.warnings.push(format!(
-            "no record of where `{}` stood before the first apply (a maze drawn by an older vrep-maze): `clear` will put it below the floor, out of sight",
-            names.line
-        ));
+    let home = if earlier != EarlierLines::None {
+        if earlier == EarlierLines::Copies {
+            report.warnings.push(format!(
+                "no record of where `{}` stood before the first apply (a maze drawn by an older vrep-maze, or a scene saved and loaded again): `clear` will put it below the floor, out of sight",
+                names.line
+            ));
+        }
         let hidden = home::Home::hidden(position[0], position[1]);
         home::Home {
             handle: h.line,

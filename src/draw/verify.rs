@@ -200,8 +200,8 @@ pub fn verify(
     raised(scene, false, |scene| verify_raised(scene, drawing, names)).map(|(ok, _)| ok)
 }
 
-/// [`verify`] without raising the idle rate: only reads, so a scene is left exactly as it
-/// was (`vrep-maze inspect`); at a low idle rate each read waits for a main-loop pass.
+/// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
+/// itself (`vrep-maze inspect`, [`super::apply::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     drawing: &Drawing,

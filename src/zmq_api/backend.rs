@@ -254,33 +254,107 @@ impl ZmqBackend {
         pose_of(handle, &values)
     }
 
-    /// An object with its pose: from [`ZmqBackend::poses`] if known, else read (`Read`) or
-    /// NaN (`Known`, never in place).
-    fn line_info(
+    /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
+    /// else read (`Read`) or NaN (`Known`, never in place); `Fresh` reads every one. The reads
+    /// are sent together ([`Client::call_all`]).
+    fn line_infos(
         &mut self,
-        handle: i32,
-        name: String,
-        parent: Option<i32>,
+        lines: Vec<(i32, String, Option<i32>)>,
         poses: LinePoses,
-    ) -> Result<ObjectInfo, BackendError> {
+    ) -> Result<Vec<ObjectInfo>, BackendError> {
         let unknown = ([f64::NAN; 3], [f64::NAN; 3]);
-        let (position, orientation) = match (self.poses.get(&handle), poses) {
-            (Some(&pose), LinePoses::Known | LinePoses::Read) => pose,
-            (None, LinePoses::Known) => unknown,
-            (_, LinePoses::Read | LinePoses::Fresh) => match self.world_pose(handle) {
-                Ok(pose) => pose,
+        let read: Vec<i32> = lines
+            .iter()
+            .map(|(h, _, _)| *h)
+            .filter(|h| match (self.poses.contains_key(h), poses) {
+                (true, LinePoses::Known | LinePoses::Read) | (false, LinePoses::Known) => false,
+                (_, LinePoses::Read | LinePoses::Fresh) => true,
+            })
+            .collect();
+        let calls: Vec<(&str, Vec<Value>)> = read
+            .iter()
+            .map(|h| {
+                let args = vec![int((*h).into()), int(HANDLE_WORLD.into())];
+                ("sim.getObjectPose", args)
+            })
+            .collect();
+        let mut read_now = HashMap::with_capacity(read.len());
+        for (h, outcome) in read.iter().zip(self.client.call_all(&calls)?) {
+            let pose = match outcome {
+                Ok(values) => pose_of(*h, &values)?,
                 // listed a moment ago, gone now (another run removed it): never in place
-                Err(BackendError::Remote(_)) => unknown,
-                Err(e) => return Err(e),
-            },
-        };
-        Ok(ObjectInfo {
-            handle,
-            name,
-            parent,
-            position,
-            orientation,
-        })
+                Err(ZmqError::Remote { .. }) => unknown,
+                Err(e) => return Err(e.into()),
+            };
+            read_now.insert(*h, pose);
+        }
+        Ok(lines
+            .into_iter()
+            .map(|(handle, name, parent)| {
+                let (position, orientation) = read_now
+                    .get(&handle)
+                    .or_else(|| self.poses.get(&handle))
+                    .copied()
+                    .unwrap_or(unknown);
+                ObjectInfo {
+                    handle,
+                    name,
+                    parent,
+                    position,
+                    orientation,
+                }
+            })
+            .collect())
+    }
+
+    /// Reads the aliases of `handles` not known yet, and the type codes of those whose `kind`
+    /// is not given, together ([`Client::call_all`]): what [`ZmqBackend::traits`] and
+    /// [`ZmqBackend::alias`] then find remembered (`with_types: false`: the aliases only). An
+    /// object whose read fails is left unknown, for the one-by-one read to report.
+    fn read_traits(
+        &mut self,
+        handles: &[(i32, Option<i32>)],
+        with_types: bool,
+    ) -> Result<(), BackendError> {
+        let todo: Vec<(i32, Option<i32>)> = handles
+            .iter()
+            .copied()
+            .filter(|(h, _)| {
+                !self.traits.contains_key(h) && (with_types || !self.aliases.contains_key(h))
+            })
+            .collect();
+        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
+        for (h, kind) in &todo {
+            calls.push(("sim.getObjectAlias", vec![int((*h).into()), int(-1)]));
+            if with_types && kind.is_none() {
+                calls.push(("sim.getObjectType", vec![int((*h).into())]));
+            }
+        }
+        let mut outcomes = self.client.call_all(&calls)?.into_iter();
+        for (h, kind) in todo {
+            let alias = outcomes.next().and_then(Result::ok);
+            let alias = alias
+                .as_ref()
+                .and_then(|v| v.first())
+                .map(|v| cbor::text(v).unwrap_or_default().to_string());
+            let kind = match kind {
+                Some(k) => Some(k),
+                None if with_types => outcomes
+                    .next()
+                    .and_then(|o| int_result("sim.getObjectType", o).ok()),
+                None => None,
+            };
+            match (alias, kind) {
+                (Some(alias), Some(kind)) if with_types => {
+                    self.traits.insert(h, (alias, kind));
+                }
+                (Some(alias), _) if !with_types => {
+                    self.aliases.insert(h, alias);
+                }
+                _ => {}
+            }
+        }
+        Ok(())
     }
 
     /// The named objects with their parents and world poses, and their type codes (a named
@@ -452,18 +526,26 @@ impl ZmqBackend {
                 .into_iter()
                 .collect();
             let kids = self.handles_in(parent, 3)?;
+            let shape = |h: i32| shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
+            let new_kids: Vec<i32> = kids.iter().copied().filter(|h| !seen.contains(h)).collect();
+            for &h in &new_kids {
+                // a recorded copy that is (still) of its template's type is known without
+                // reading its alias
+                if let (Some(alias), Some(kind)) = (record.get(h), shape(h))
+                    && template_kinds.get(alias) == Some(&kind)
+                    && !self.traits.contains_key(&h)
+                {
+                    self.traits.insert(h, (alias.to_string(), kind));
+                }
+            }
+            // the others' aliases (and the non-shapes' types) together, not one by one
+            let unknown: Vec<(i32, Option<i32>)> =
+                new_kids.iter().map(|&h| (h, shape(h))).collect();
+            self.read_traits(&unknown, true)?;
+            let mut lines = Vec::new();
             for &h in &kids {
                 if seen.insert(h) {
-                    let shape = shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
-                    // a recorded copy that is (still) of its template's type is known
-                    // without reading its alias
-                    if let (Some(alias), Some(kind)) = (record.get(h), shape)
-                        && template_kinds.get(alias) == Some(&kind)
-                        && !self.traits.contains_key(&h)
-                    {
-                        self.traits.insert(h, (alias.to_string(), kind));
-                    }
-                    let (alias, kind) = self.traits(h, shape)?;
+                    let (alias, kind) = self.traits(h, shape(h))?;
                     found.kinds.insert(h, kind);
                     let name = copy_name(&alias);
                     let tree = Some((parent, &kids[..]));
@@ -473,14 +555,23 @@ impl ZmqBackend {
                     if distrust {
                         self.poses.remove(&h);
                     }
-                    out.push(self.line_info(h, name, Some(parent), poses)?);
+                    lines.push((h, name, Some(parent)));
                 }
             }
+            out.extend(self.line_infos(lines, poses)?);
         }
         // root objects carrying a template's alias: copies left parentless by an interrupted
         // run (of this style's template, or of another found in the scene, which a drawing
         // removes or, for posts, reuses). They are named `/Line[k]` whatever their path.
-        for h in self.handles_in(HANDLE_SCENE, 2)? {
+        let roots: Vec<i32> = self
+            .handles_in(HANDLE_SCENE, 2)?
+            .into_iter()
+            .filter(|h| !seen.contains(h))
+            .collect();
+        let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
+        self.read_traits(&unknown, false)?;
+        let mut lines = Vec::new();
+        for h in roots {
             if seen.contains(&h) {
                 continue;
             }
@@ -501,8 +592,9 @@ impl ZmqBackend {
             if judge(self, (h, None), &name, &alias, kind, &mut found)? {
                 present.push((h, alias.clone()));
             }
-            out.push(self.line_info(h, name, None, poses)?);
+            lines.push((h, name, None));
         }
+        out.extend(self.line_infos(lines, poses)?);
         // the record now holds exactly the templates' copies in the maze: those read by
         // alias are added (a maze drawn without a record pays its reads once), handles no
         // longer there are dropped

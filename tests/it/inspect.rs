@@ -317,3 +317,43 @@ fn inspect_shows_sizes_and_colours_where_the_api_reads_them() {
         server.shutdown();
     }
 }
+
+/// `inspect --layout` raises the idle rate as `apply` does, so that at the default idle fps 8
+/// (a main-loop pass per paced request, `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing")
+/// only the requests before the rate is raised (and the last, after it is restored) wait for
+/// a pass, whatever the scene holds: a maze of copies or of meshes. The rate and its record
+/// are left as they were. Counted from the emulator's ledger, as
+/// `draw::before_the_rate_is_raised_an_apply_waits_for_few_passes` counts apply's.
+#[test]
+fn inspect_raises_the_idle_rate_and_waits_for_few_passes() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawn = generate(dir.path(), "42", "prim");
+    for (kind, most) in [(Kind::Legacy, 2), (Kind::Zmq1, 2)] {
+        for draw in ["copies", "mesh"] {
+            let name = format!("{}, {draw}", kind.name());
+            let server = kind.serve(Scene::course(), 8);
+            bin()
+                .args(["-q", "apply", &drawn, "--draw", draw])
+                .args(api_args(kind, &server))
+                .assert()
+                .success();
+            let before = state(&server);
+            server.with_sim(|sim| sim.ledger = Some(vec![]));
+            let report = inspect(kind, &server, &["--layout", &drawn], 0);
+            let ledger = server.with_sim(|sim| sim.ledger.take()).unwrap();
+            assert_eq!(state(&server), before, "{name}: inspect changed the scene");
+            assert_eq!(
+                report["idle_fps"], 8,
+                "{name}: the user's rate, not the raised one"
+            );
+            assert_eq!(report["layout"]["matches"], true, "{name}: {report}");
+            let waited: Vec<bool> = ledger.iter().map(|c| !c.queued && c.idle_fps > 0).collect();
+            let before_last = &waited[..waited.len() - 1];
+            assert!(
+                before_last.iter().filter(|w| **w).count() <= most,
+                "{name}: requests that waited for a pass, in order: {waited:?}"
+            );
+            server.shutdown();
+        }
+    }
+}

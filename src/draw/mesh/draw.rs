@@ -8,8 +8,8 @@ use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Begun, Stage, begin, keep_home, raised, raised_and_claimed,
-    sizes_of, surveyed,
+    ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, keep_home, raised,
+    raised_and_claimed, sizes_of, surveyed,
 };
 use crate::draw::lease::Claim;
 use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
@@ -202,7 +202,13 @@ fn apply_claimed(
         style == Style::Lines,
         &h,
         &survey.objects,
-        found.holder.is_some() || !doomed.is_empty(),
+        EarlierLines::of(
+            style == Style::Lines
+                && maze_lines(&objects, &h, &names.line, &others)
+                    .iter()
+                    .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
+            found.meshes.iter().map(|m| m.name.as_str()),
+        ),
         survey.handles.get(5).copied().flatten(),
         names,
         &mut report,
@@ -398,7 +404,8 @@ pub fn verify(
     raised(scene, false, |scene| verify_raised(scene, maze, names)).map(|(ok, _)| ok)
 }
 
-/// [`verify`] without raising the idle rate: only reads (what `inspect` compares with).
+/// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
+/// itself (what `inspect` compares with, [`crate::draw::apply::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     maze: &MeshMaze,

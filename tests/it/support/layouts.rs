@@ -68,14 +68,19 @@ pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
         );
         assert_eq!(kept, in_place + placed, "{text}");
     }
-    let markers = &text[text.find("markers: ").expect("markers")..];
-    let in_place: usize = markers["markers: ".len()..]
+    // the template is named with the markers when it is counted with them (one cell)
+    let label = ["markers: ", "Start, End and the line template: "]
+        .into_iter()
+        .find(|l| text.contains(l))
+        .expect("markers");
+    let markers = &text[text.find(label).unwrap()..];
+    let in_place: usize = markers[label.len()..]
         .split(' ')
         .next()
         .unwrap()
         .parse()
         .unwrap();
-    let placed: usize = markers
+    let placed: usize = markers[label.len()..]
         .split(", ")
         .nth(1)
         .unwrap()
