@@ -375,7 +375,10 @@ fn apply_claimed(
     let mut existing = maze_lines(objects, &h, names.template(style), &others);
     existing.retain(|x| !meshes.contains(x));
     let earlier = EarlierLines::of(
-        style == super::Style::Lines && !existing.is_empty(),
+        match style {
+            super::Style::Lines => !existing.is_empty(),
+            super::Style::Walls => has_line_copies(objects, &h, &names.line),
+        },
         leftovers.iter().map(|(_, name)| name.as_str()),
     );
     let copies_needed = drawing
@@ -609,15 +612,22 @@ impl EarlierLines {
     }
 }
 
+/// Whether copies of the line template (`line`) lie under the maze dummy: an earlier line
+/// maze a wall maze replaces.
+pub(crate) fn has_line_copies(objects: &[ObjectInfo], h: &Handles, line: &str) -> bool {
+    objects
+        .iter()
+        .any(|o| o.parent == Some(h.parent) && plan::is_copy_name(&o.name, line))
+}
+
 /// Keeps the line template's home ([`home`]) before a drawing moves it: a line maze
 /// records where the template stands now, unless a record of it exists. If an earlier line
 /// maze exists without a record, the template already lies on its first line, so its home is
 /// taken to be below the floor: said in a warning for copies (a maze drawn by an older
 /// version, or a scene saved and loaded again: the record is kept in signals, which a scene
 /// file does not hold), silently for meshes (only this version draws them, and our
-/// `.simscene.xml` export puts the template there, under a mesh). A wall maze puts a line
-/// template that has a record (the first line of a line maze it replaces) back home and
-/// deletes the record.
+/// `.simscene.xml` export puts the template there, under a mesh). A wall maze hides the line
+/// template ([`hide_line_template`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn keep_home(
     scene: &mut dyn Backend,
@@ -636,11 +646,7 @@ pub(crate) fn keep_home(
         .map(world_frame)
         .unwrap_or_default();
     if !template_drawn {
-        if let Some(home) = record.filter(|r| Some(r.handle) == line_template) {
-            scene.edit(&[home.edit(h.floor)])?;
-            home::forget(scene)?;
-        }
-        return Ok(());
+        return hide_line_template(scene, h, &floor, objects, earlier, line_template, record);
     }
     if record.is_some_and(|r| r.handle == h.line) {
         return Ok(());
@@ -670,6 +676,59 @@ pub(crate) fn keep_home(
         }
     };
     home::write(scene, &home)?;
+    Ok(())
+}
+
+/// A wall maze has no line, so the line template (`line_template`, if the scene has one)
+/// must not lie on its floor as a stray line for a camera to see (the course scene keeps it
+/// at the floor's centre, `../shared/spec/course-scene.md`): it goes below the floor under
+/// where it stood, its home recorded first unless a record exists (the first line of a line
+/// maze it replaces: below the floor if that maze has no record), so that `clear`, or the
+/// next line maze, puts it back.
+fn hide_line_template(
+    scene: &mut dyn Backend,
+    h: &Handles,
+    floor: &crate::coppelia::frame::Frame,
+    objects: &[ObjectInfo],
+    earlier: EarlierLines,
+    line_template: Option<i32>,
+    record: Option<home::Home>,
+) -> Result<(), DrawError> {
+    let Some(template) = line_template.and_then(|t| objects.iter().find(|o| o.handle == t)) else {
+        return Ok(());
+    };
+    let (position, orientation) = plan::relative_pose(floor, template);
+    let home = match record.filter(|r| r.handle == template.handle) {
+        Some(home) => home,
+        None => {
+            let home = if earlier == EarlierLines::None {
+                home::Home {
+                    handle: template.handle,
+                    position,
+                    orientation,
+                }
+            } else {
+                let below = home::Home::hidden(position[0], position[1]);
+                home::Home {
+                    handle: template.handle,
+                    position: crate::draw::position(&below),
+                    orientation: crate::draw::euler(&below),
+                }
+            };
+            home::write(scene, &home)?;
+            home
+        }
+    };
+    let hidden = home::Home::hidden(home.position[0], home.position[1]);
+    let want = crate::draw::position(&hidden);
+    if (0..3).any(|k| (position[k] - want[k]).abs() > plan::POSITION_TOLERANCE) {
+        scene.edit(&[Edit::SetPose {
+            handle: template.handle,
+            relative_to: h.floor,
+            position: want,
+            orientation: crate::draw::euler(&hidden),
+        }])?;
+    }
     Ok(())
 }
 

@@ -8,8 +8,8 @@ use super::compare::{bounds, mesh_differences};
 use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, keep_home, raised,
-    raised_and_claimed, sizes_of, surveyed,
+    ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, has_line_copies, keep_home,
+    raised, raised_and_claimed, sizes_of, surveyed,
 };
 use crate::draw::lease::Claim;
 use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
@@ -203,10 +203,12 @@ fn apply_claimed(
         &h,
         &survey.objects,
         EarlierLines::of(
-            style == Style::Lines
-                && maze_lines(&objects, &h, &names.line, &others)
+            match style {
+                Style::Lines => maze_lines(&objects, &h, &names.line, &others)
                     .iter()
                     .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
+                Style::Walls => has_line_copies(&objects, &h, &names.line),
+            },
             found.meshes.iter().map(|m| m.name.as_str()),
         ),
         survey.handles.get(5).copied().flatten(),
