@@ -406,9 +406,10 @@ fn main() {
         }
         let ok = Command::new(BIN)
             .current_dir(dir.path())
+            .stdout(Stdio::null())
             .arg("generate")
             .args(*gen_args)
-            .args(["-o", file, "-q"])
+            .args(["-o", file])
             .status()
             .unwrap();
         assert!(ok.success(), "generate {file}");
