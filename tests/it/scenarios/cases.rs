@@ -65,6 +65,7 @@ on_every_target!(
     interrupted_applies_are_repaired,
     dry_runs_change_nothing,
     runs_back_to_back_each_connect_at_once,
+    score_follows_a_scripted_robot,
 );
 
 /// What a command printed.
@@ -416,4 +417,57 @@ fn runs_back_to_back_each_connect_at_once(target: Target) {
         slowest = slowest.max(t.elapsed());
     }
     eprintln!("{target:?}: slowest of 20 runs back to back: {slowest:?}");
+}
+
+/// `score --start-simulation` follows a robot driving the solution of a 3 x 3 maze at 4 m/s
+/// (moved by remote calls: these simulators have no physics, the course scene no script) and
+/// reports it reached `End` along the shortest way, then leaves the simulation stopped.
+fn score_follows_a_scripted_robot(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let (maze, _) = generate(
+        dir.path(),
+        "m",
+        &["--size", "3x3", "--seed", "1", "--algo", "dfs"],
+    );
+    // the solution: up, along the top row, down (6 m), after half a second at the start
+    let corners = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)];
+    let mut waypoints = vec![(0.0, -1.0, -1.0)];
+    let mut t = 0.5;
+    for (k, &(x, y)) in corners.iter().enumerate() {
+        if k > 0 {
+            let (px, py) = corners[k - 1];
+            t += f64::hypot(x - px, y - py) / 4.0;
+        }
+        waypoints.push((t, x, y));
+    }
+    let mut obs = Observer::connect(sim.zmq);
+    ok(&sim, &["apply", &maze]);
+    let robot = obs.add_robot(-1.0, -1.0, target.real());
+    let driver = Observer::connect(sim.zmq);
+    let driving =
+        std::thread::spawn(move || driver.drive(robot, &waypoints, Duration::from_secs(60)));
+    let ran = ok(
+        &sim,
+        &[
+            "score",
+            &maze,
+            "--start-simulation",
+            "--json",
+            "--timeout",
+            "60",
+        ],
+    );
+    driving.join().unwrap();
+    let report: serde_json::Value = serde_json::from_str(&ran.stdout)
+        .unwrap_or_else(|e| panic!("{target:?}: {e}: {}", ran.stdout));
+    assert_eq!(report["complete"], true, "{target:?}: {report}");
+    assert_eq!(report["reached_end"], true, "{target:?}: {report}");
+    let spl = report["spl"].as_f64().unwrap();
+    assert!(spl > 0.9, "{target:?}: SPL {spl}: {report}");
+    assert_eq!(
+        obs.simulation_state(),
+        0,
+        "{target:?}: the simulation was left running"
+    );
 }

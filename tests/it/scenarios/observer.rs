@@ -145,6 +145,12 @@ impl Observer {
         cbor::int32(&v[0]).unwrap()
     }
 
+    /// `sim.getSimulationState`: 0 stopped.
+    pub fn simulation_state(&mut self) -> i32 {
+        let v = call(&mut self.client, "sim.getSimulationState", vec![]);
+        cbor::int32(&v[0]).unwrap()
+    }
+
     /// Sets the idle rate (what a user does in the simulator's settings).
     pub fn set_idle_fps(&mut self, fps: i32) {
         call(
@@ -172,6 +178,62 @@ impl Observer {
                 cbor::float_array(&position),
             ],
         );
+    }
+
+    /// Adds `Robot`, a dummy at floor (`x`, `y`), and returns its handle. On a real simulator
+    /// the simulation is set to real time (`sim.boolparam_realtime_simulation`, 25: without
+    /// physics these builds run about 300 times faster, `../shared/coppeliasim/README.md`), as
+    /// a desktop CoppeliaSim with physics about runs.
+    pub fn add_robot(&mut self, x: f64, y: f64, real_time: bool) -> i32 {
+        let floor = self.handle("/Floor");
+        let c = &mut self.client;
+        let robot = call(c, "sim.createDummy", vec![Value::Float(0.05)]);
+        let robot = robot[0].clone();
+        call(c, "sim.setObjectAlias", vec![robot.clone(), text("Robot")]);
+        call(
+            c,
+            "sim.setObjectPosition",
+            vec![
+                robot.clone(),
+                int(floor.into()),
+                cbor::float_array(&[x, y, 0.05]),
+            ],
+        );
+        if real_time {
+            call(c, "sim.setBoolParam", vec![int(25), Value::Bool(true)]);
+        }
+        cbor::int32(&robot).unwrap()
+    }
+
+    /// Drives `robot` along `waypoints` (simulation seconds, floor x and y; linear between
+    /// them) by remote calls while the simulation runs (the scene has no script that could),
+    /// until it has run and stopped, or `limit` passes.
+    pub fn drive(mut self, robot: i32, waypoints: &[(f64, f64, f64)], limit: Duration) {
+        let floor = self.handle("/Floor");
+        let began = std::time::Instant::now();
+        let mut ran = false;
+        while began.elapsed() < limit {
+            let state = call(&mut self.client, "sim.getSimulationState", vec![]);
+            if cbor::int32(&state[0]) == Some(0) {
+                if ran {
+                    return;
+                }
+                std::thread::sleep(Duration::from_millis(10));
+                continue;
+            }
+            ran = true;
+            let t = call(&mut self.client, "sim.getSimulationTime", vec![]);
+            let t = cbor::number(&t[0]).unwrap();
+            let (x, y) = along(waypoints, t);
+            let _ = self.client.call(
+                "sim.setObjectPosition",
+                vec![
+                    int(robot.into()),
+                    int(floor.into()),
+                    cbor::float_array(&[x, y, 0.05]),
+                ],
+            );
+        }
     }
 
     /// Everything in the scene, read at idle rate 0 and the user's rate put back after.
@@ -249,4 +311,17 @@ impl Observer {
             end,
         }
     }
+}
+
+/// The point of `waypoints` at time `t` (linear between them; the last after the end).
+fn along(waypoints: &[(f64, f64, f64)], t: f64) -> (f64, f64) {
+    for pair in waypoints.windows(2) {
+        let ((t0, x0, y0), (t1, x1, y1)) = (pair[0], pair[1]);
+        if t < t1 {
+            let a = ((t - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            return (x0 + a * (x1 - x0), y0 + a * (y1 - y0));
+        }
+    }
+    let &(_, x, y) = waypoints.last().unwrap();
+    (x, y)
 }

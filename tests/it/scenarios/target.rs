@@ -27,6 +27,14 @@ pub enum Target {
 }
 
 impl Target {
+    /// Whether this is a real CoppeliaSim (not `serve`).
+    pub fn real(self) -> bool {
+        matches!(
+            self,
+            Target::Real451Legacy | Target::Real451Zmq | Target::Real410Zmq
+        )
+    }
+
     /// Whether the scenario draws over the legacy remote API.
     pub fn legacy(self) -> bool {
         matches!(self, Target::ServeLegacy | Target::Real451Legacy)
