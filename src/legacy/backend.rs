@@ -610,11 +610,11 @@ impl Backend for LegacyBackend {
         format!("legacy remote API at {}", self.addr)
     }
 
-    /// Sends the kill command (as `simxFinish` does) and closes the socket.
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
     }
 
+    /// Ends the session as `simxFinish` does ([`Client::close`]).
     fn close(&mut self) -> Result<(), BackendError> {
         Ok(self.close_client()?)
     }
