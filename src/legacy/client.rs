@@ -168,8 +168,8 @@ impl Client {
     }
 
     /// [`Client::connect`], calling `retrying` after each failed attempt that will be
-    /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after
-    /// a client left abruptly); when it returns `false` the wait ends with
+    /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after a
+    /// session it closed first); when it returns `false` the wait ends with
     /// [`ClientError::Stopped`].
     pub fn connect_with(
         addr: impl ToSocketAddrs + std::fmt::Display,

@@ -35,6 +35,7 @@ mod score;
 mod score_cli;
 mod solve;
 mod texture;
+mod time_wait;
 mod trust;
 mod trust_draw;
 mod validate;
