@@ -47,7 +47,7 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
             },
         };
         let _ = l.set_nonblocking(true);
-        let stream = loop {
+        let mut stream = loop {
             if shared.stop.load(Ordering::SeqCst) {
                 return;
             }
@@ -64,7 +64,6 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} connected");
         }
-        let mut stream = stream;
         let (why, end) = session(shared, &mut stream);
         shared
             .active
