@@ -51,8 +51,8 @@ pub struct ConnectArgs {
     #[arg(long, default_value = "End")]
     pub end: String,
     /// Seconds to keep trying to connect [default: 10; 75 for legacy when an earlier run
-    /// left its session abruptly, since CoppeliaSim then refuses every connection for about
-    /// a minute; auto tries legacy for at most 1.5 unless so] (more than 0, at most a day).
+    /// ended with its session open, since CoppeliaSim may then refuse every connection for
+    /// about a minute; auto tries legacy for at most 1.5 unless so] (more than 0, at most a day).
     #[arg(long, value_name = "SECS", value_parser = parse_timeout, allow_negative_numbers = true)]
     pub connect_timeout: Option<Duration>,
     /// Seconds to wait for each reply (more than 0, at most a day).

@@ -6,9 +6,11 @@
 //!
 //! What is tried is said at once on standard error (standard output stays for reports).
 //! A real CoppeliaSim 4.5.1 refuses every connection on its legacy port for about a minute
-//! after a client left abruptly (spec `real-coppeliasim-4.5.1.md`, "Connections"). The
-//! legacy connect wait outlasts that minute only when the refusal can be the cause: when an
-//! earlier run of this tool left its session here abruptly ([`SessionMarker`]); then a
+//! after a session it closed first whose client answered with its own close (TCP's
+//! TIME_WAIT on the port: spec `real-coppeliasim-4.5.1.md`, "Why the legacy port refuses for a minute: TIME_WAIT"). Our client
+//! never leaves so; the legacy connect wait outlasts that minute only when the refusal can
+//! be the cause: when an earlier run of this tool ended with its session here still open
+//! ([`SessionMarker`]); then a
 //! countdown shows on a terminal. Otherwise a port where nothing listens is said so within
 //! [`NOTHING_LISTENS_AFTER`] and the wait ends after [`LEGACY_CONNECT_TIMEOUT`]. Ctrl-C
 //! ends any wait at once.
@@ -45,8 +47,8 @@ pub const LEGACY_PORT: u16 = 19997;
 /// The ZeroMQ remote API's default port.
 pub const ZMQ_PORT: u16 = 23000;
 
-/// Connect wait of the legacy API when an earlier run left its session abruptly: longer
-/// than the minute (62–65 s measured) for which CoppeliaSim then refuses connections.
+/// Connect wait of the legacy API when an earlier run ended with its session open: longer
+/// than the minute (60–65 s measured) for which CoppeliaSim may then refuse connections.
 pub const LEGACY_REFUSAL_WAIT: Duration = Duration::from_secs(75);
 /// Default connect wait of the legacy API otherwise: a simulator that is starting opens
 /// its port within it.
@@ -239,7 +241,7 @@ fn open<T: Opened>(
                     vec![
                         "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into(),
                         format!(
-                            "after a client leaves abruptly, CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
+                            "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
                             seconds(wait),
                             LEGACY_REFUSAL_WAIT.as_secs()
                         ),
@@ -293,7 +295,7 @@ fn legacy<T: Opened>(
     ));
     if let Some(earlier) = earlier {
         eprintln!(
-            "an earlier vrep-maze run (process {}) left its session at {addr} abruptly; CoppeliaSim then refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
+            "an earlier vrep-maze run (process {}) ended with its session at {addr} open; if CoppeliaSim closed it first, it refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
             earlier.pid,
             seconds(connect_timeout)
         );
@@ -353,7 +355,7 @@ fn legacy<T: Opened>(
             )];
             if connect_timeout < LEGACY_REFUSAL_WAIT {
                 hints.push(format!(
-                    "after a client leaves abruptly (Ctrl-C, a crash) CoppeliaSim refuses every connection on its legacy port for about a minute; if another program left so, pass --connect-timeout {} to wait it out",
+                    "after a session it closed first (a client that waits for the server to close after its last message, or one silent for 10 s) CoppeliaSim refuses every connection on its legacy port for about a minute; if another program left so, pass --connect-timeout {} to wait it out",
                     LEGACY_REFUSAL_WAIT.as_secs()
                 ));
             }
@@ -543,7 +545,7 @@ impl Countdown {
                 "refused"
             };
             bar.set_message(format!(
-                "{what}; retrying for {} s more — CoppeliaSim refuses connections for about a minute after a client left abruptly (Ctrl-C to stop)",
+                "{what}; retrying for {} s more — CoppeliaSim refuses connections for about a minute after a session it closed first (Ctrl-C to stop)",
                 r.left.as_secs_f64().ceil()
             ));
         }

@@ -63,18 +63,19 @@ pub struct ServeArgs {
     #[arg(long)]
     pub trace: bool,
     /// After any client leaves, refuse connections for this many milliseconds while the
-    /// listening socket is re-created. 0 = never refuse (a real CoppeliaSim 4.5.1 accepts the
-    /// next client at once after a normal close).
-    #[arg(long, default_value_t = 0, allow_negative_numbers = true)]
-    pub rebind_delay_ms: u64,
+    /// listening socket is re-created [default: 500 with realistic timing (CoppeliaSim's
+    /// plugin sleeps 0.5 s before it binds the port again), 0 with instant].
+    #[arg(long, value_name = "MS")]
+    pub rebind_delay_ms: Option<u64>,
     /// `realistic`: take the time a real CoppeliaSim 4.5.1 takes (modeled server work of each
-    /// call, the legacy reconnect penalty); `instant`: no modeled costs and no penalty (the
-    /// main loop still passes at the idle rate).
+    /// call, the legacy port's re-creation and TIME_WAIT); `instant`: none of them (the main
+    /// loop still passes at the idle rate).
     #[arg(long, value_enum, default_value = "realistic")]
     pub timing: TimingMode,
-    /// Legacy API: after a client leaves without the closing exchange (killed, reset, timed
-    /// out), refuse every connection for this many seconds [default: 60 with realistic
-    /// timing, 0 with instant].
+    /// Legacy API: after a session whose server side closed first (after its reply to the
+    /// kill command, or on the idle timeout) and whose client answered that close with its
+    /// own instead of data or a reset, refuse every connection for this many seconds, as
+    /// TCP's TIME_WAIT on the port does [default: 60 with realistic timing, 0 with instant].
     #[arg(long, value_name = "SECS")]
     pub reconnect_penalty: Option<f64>,
 }
@@ -84,7 +85,7 @@ pub struct ServeArgs {
 pub enum TimingMode {
     /// What a real CoppeliaSim 4.5.1 takes.
     Realistic,
-    /// No modeled costs, no reconnect penalty.
+    /// No modeled costs, no re-creation delay, no TIME_WAIT.
     Instant,
 }
 
@@ -181,7 +182,14 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         dump: args.dump,
         verbose: args.verbose || args.trace,
         trace: args.trace,
-        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms),
+        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms.unwrap_or(
+            match args.timing {
+                // spec real-coppeliasim-4.5.1.md, "Why the legacy port refuses for a minute:
+                // TIME_WAIT": `Sleep(500)` before the plugin binds the port again
+                TimingMode::Realistic => 500,
+                TimingMode::Instant => 0,
+            },
+        )),
         timing,
         ..Default::default()
     };

@@ -1,9 +1,12 @@
 //! A marker this tool leaves while a legacy remote API session is open, removed when the
 //! session closes cleanly. CoppeliaSim refuses every legacy connection for about a minute
-//! after a client left abruptly (spec `real-coppeliasim-4.5.1.md`, "Connections"); a marker
-//! whose process is gone says that an earlier run here left so (killed, crashed, a second
-//! Ctrl-C, the connection lost), so the next run knows when that refusal can be the cause
-//! of a refused connection and waits it out only then.
+//! after a session it closed first whose client answered with its own close (spec
+//! `real-coppeliasim-4.5.1.md`, "Why the legacy port refuses for a minute: TIME_WAIT"). Our client never leaves so,
+//! but a run that ends with its session open can still cause it: CoppeliaSim drops a client
+//! silent for 10 s (a suspended process) and the process's end then answers that close. A
+//! marker whose process is gone says that an earlier run here ended so (killed, crashed,
+//! suspended, a second Ctrl-C), so the next run knows when that refusal can be the cause of
+//! a refused connection and waits it out only then.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -15,7 +18,7 @@ pub(crate) struct SessionMarker {
     path: PathBuf,
 }
 
-/// An earlier run that left its session abruptly.
+/// An earlier run that ended with its session open.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct LeftAbruptly {
     /// Its process id.
@@ -49,7 +52,7 @@ impl SessionMarker {
         }
     }
 
-    /// The earlier run that left a session here abruptly, if the marker says so: it
+    /// The earlier run that ended with a session here open, if the marker says so: it
     /// exists and the process that wrote it no longer runs (a running one still holds its
     /// session, or is about to close it).
     pub(crate) fn left_abruptly(&self) -> Option<LeftAbruptly> {

@@ -96,8 +96,8 @@ impl LegacyBackend {
     }
 
     /// Runs `then` once the connection is closed cleanly, by [`Backend::close`] or by
-    /// dropping the backend: the simulator then takes its next client at once (a client
-    /// that leaves any other way makes CoppeliaSim refuse connections for about a minute).
+    /// dropping the backend (the simulator acknowledged the kill command and listens again
+    /// within 0.5 s), not when the session ended any other way.
     pub fn on_clean_close(mut self, then: impl FnOnce() + Send + 'static) -> LegacyBackend {
         self.on_clean_close = Some(Box::new(then));
         self
@@ -610,11 +610,11 @@ impl Backend for LegacyBackend {
         format!("legacy remote API at {}", self.addr)
     }
 
-    /// Sends the kill command (as `simxFinish` does) and closes the socket.
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
     }
 
+    /// Ends the session as `simxFinish` does ([`Client::close`]).
     fn close(&mut self) -> Result<(), BackendError> {
         Ok(self.close_client()?)
     }

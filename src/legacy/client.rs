@@ -7,7 +7,7 @@
 //! ID >= the ID of the carrying message), or the timeout expires.
 
 use std::collections::HashMap;
-use std::net::{Shutdown, SocketAddr, TcpStream, ToSocketAddrs};
+use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
 use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
@@ -20,9 +20,10 @@ use super::wire::{
 #[derive(Debug, thiserror::Error)]
 pub enum ClientError {
     /// Nobody accepted the connection before the deadline (nothing listens, or CoppeliaSim
-    /// refuses connections: it does so for about a minute after a client left abruptly).
+    /// refuses connections: it does so for about a minute after a session it closed first,
+    /// its port then being in TCP TIME_WAIT).
     #[error(
-        "cannot connect to {addr}: nothing accepted a connection within {waited:.1} s ({why}; is CoppeliaSim running with the legacy remote API on this port? it refuses every connection for about a minute after a client left abruptly)"
+        "cannot connect to {addr}: nothing accepted a connection within {waited:.1} s ({why}; is CoppeliaSim running with the legacy remote API on this port? it refuses every connection for about a minute after a session it closed first)"
     )]
     Connect {
         /// Address tried.
@@ -141,9 +142,13 @@ pub struct Reply {
     pub data: Vec<u8>,
 }
 
-/// A connected client.
+/// A connected client. However it ends ([`Client::close`], or dropped on an error path), it
+/// leaves through [`Client::end_session`], so the simulator's port listens again at once.
 pub struct Client {
     stream: TcpStream,
+    /// The server answered our first message and the session has not ended yet: dropping
+    /// the client must still leave properly (never set for a peer we only probed).
+    open: bool,
     opts: ClientOptions,
     next_id: i32,
     clock: Instant,
@@ -163,8 +168,8 @@ impl Client {
     }
 
     /// [`Client::connect`], calling `retrying` after each failed attempt that will be
-    /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after
-    /// a client left abruptly); when it returns `false` the wait ends with
+    /// retried (for a countdown: CoppeliaSim refuses connections for about a minute after a
+    /// session it closed first); when it returns `false` the wait ends with
     /// [`ClientError::Stopped`].
     pub fn connect_with(
         addr: impl ToSocketAddrs + std::fmt::Display,
@@ -201,6 +206,7 @@ impl Client {
                         }
                         let mut client = Client {
                             stream,
+                            open: false,
                             opts: opts.clone(),
                             next_id: 0,
                             clock: Instant::now(),
@@ -218,7 +224,10 @@ impl Client {
                             .max(Duration::from_millis(200));
                         client.stream.set_read_timeout(Some(wait)).ok();
                         match client.exchange(vec![]) {
-                            Ok(_) => return Ok(client),
+                            Ok(_) => {
+                                client.open = true;
+                                return Ok(client);
+                            }
                             Err(ClientError::Timeout(_)) => {
                                 // a web server waits for a request's end before it answers
                                 if answers_in_http(a, wait) {
@@ -506,16 +515,67 @@ impl Client {
         })
     }
 
-    /// Sends the kill block, reads the final reply (briefly) and closes the socket ourselves.
+    /// Ends the session (see [`Client::end_session`]); `Err` if the simulator did not
+    /// acknowledge the kill command.
     pub fn close(mut self) -> Result<(), ClientError> {
-        self.stream
-            .set_read_timeout(Some(Duration::from_millis(500)))
-            .ok();
-        let r = self
-            .exchange(vec![Command::KillConnection.to_block(opmode::ONESHOT)])
-            .map(|_| ());
-        let _ = self.stream.shutdown(Shutdown::Both);
-        r
+        self.end_session()
+    }
+
+    /// The one way a session ends, as the official client's `simxFinish` ends it
+    /// (`../shared/spec/real-coppeliasim-4.5.1.md`, "Why the legacy port refuses for a
+    /// minute: TIME_WAIT"): the kill block, its reply (briefly awaited), then one more
+    /// header-only message. CoppeliaSim closes its side right after that reply; our last
+    /// message reaches a closed socket (or one closed with it unread), so the server's kernel
+    /// answers with a reset and the server's side ends without TIME_WAIT. A client that
+    /// answered the server's close with its own FIN instead would leave the port refusing
+    /// every connection for a minute whenever the server closed first. Does nothing the
+    /// second time.
+    fn end_session(&mut self) -> Result<(), ClientError> {
+        if !std::mem::take(&mut self.open) {
+            return Ok(());
+        }
+        self.stream.set_read_timeout(Some(LEAVE_WAIT)).ok();
+        self.exchange(vec![Command::KillConnection.to_block(opmode::ONESHOT)])?;
+        let last = Message {
+            header: MessageHeader {
+                message_id: self.next_id,
+                ..Default::default()
+            },
+            blocks: vec![],
+        };
+        if write_message(&mut self.stream, &last.encode(), self.opts.max_packet_size).is_ok() {
+            wait_for_the_end(&mut self.stream, LEAVE_WAIT);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Client {
+    /// A client dropped without [`Client::close`] (an error path, an interrupted run) leaves
+    /// the same way.
+    fn drop(&mut self) {
+        let _ = self.end_session();
+    }
+}
+
+/// How long leaving waits for the kill command's reply, then for the server's close.
+const LEAVE_WAIT: Duration = Duration::from_millis(500);
+
+/// Reads and discards until the peer closes or resets the connection, or `wait` has passed.
+fn wait_for_the_end(stream: &mut TcpStream, wait: Duration) {
+    use std::io::Read;
+    let deadline = Instant::now() + wait;
+    let mut buf = [0u8; 256];
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() || stream.set_read_timeout(Some(left)).is_err() {
+            return;
+        }
+        match stream.read(&mut buf) {
+            Ok(0) => return,
+            Err(e) if e.kind() != std::io::ErrorKind::Interrupted => return,
+            Ok(_) | Err(_) => {}
+        }
     }
 }
 

@@ -19,13 +19,11 @@ use super::{Clock, Scene, SimState};
 pub struct Timing {
     /// The modeled server work of each operation; `None`: every operation is instant.
     pub costs: Option<CostModel>,
-    /// Legacy API: after a session that did not end with the kill command (connection reset,
-    /// end of file, the 10 s idle timeout, a protocol error), the port refuses every
-    /// connection for this long. Spec "Connections (legacy API)": "a client that leaves
-    /// abruptly ... makes the port refuse every connection for about 60 s (measured 62–65
-    /// s)"; "while the simulation runs, after a client ended on an error ... 43–60 s". The
-    /// cause: the server's socket in TIME_WAIT and a re-bind without SO_REUSEADDR retried
-    /// every 2.5 s (simExtRemoteApi `inConnection.cpp:243-277`, `simxSocket.cpp:544-554`).
+    /// Legacy API: how long the port refuses every connection after a session whose server
+    /// side closed first and whose client answered with its own close (or not at all): TCP's
+    /// TIME_WAIT on the port, which the plugin binds again without SO_REUSEADDR (spec "Why
+    /// the legacy port refuses for a minute: TIME_WAIT": 60 s, measured 60–63 s; the older
+    /// 62–65 s of "Connections (legacy API)" were the same thing).
     pub reconnect_penalty: Duration,
 }
 
@@ -45,8 +43,8 @@ impl Timing {
         }
     }
 
-    /// What a real CoppeliaSim 4.5.1 takes: [`CostModel::measured`] and a 60 s reconnect
-    /// penalty (spec "Connections (legacy API)", measured 62–65 s).
+    /// What a real CoppeliaSim 4.5.1 takes: [`CostModel::measured`] and a 60 s TIME_WAIT
+    /// (spec "Why the legacy port refuses for a minute: TIME_WAIT").
     pub fn realistic() -> Timing {
         Timing {
             costs: Some(CostModel::measured()),

@@ -118,17 +118,21 @@ impl Object {
     }
 
     /// Object float parameter `param` as `sim.getObjectFloatParam` gives it, `None` for one
-    /// the emulator does not model. 15..20 are the bounding box in the object's own frame
-    /// (min x, y, z, then max x, y, z): a mesh's box ([`Object::bounding_box`], which need not
-    /// be centred on its frame), else the size centred on the object: the course's `Line` plane
-    /// gives -0.3, -0.05, 0, 0.3, 0.05, 0 (`../shared/spec/real-coppeliasim-4.5.1.md`).
+    /// the emulator does not model. 15..20 are the bounding box (min x, y, z, then max x, y,
+    /// z) as half-extents about the box's centre, whatever the shape's frame: the course's
+    /// `Line` plane gives -0.3, -0.05, 0, 0.3, 0.05, 0, and so does a mesh whose vertices lie
+    /// off its frame, made by `sim.createMeshShape` or loaded from an XML model alike
+    /// (`../shared/spec/real-coppeliasim-4.5.1.md`, "Meshes on the real 4.5.1": a 27.05 m row
+    /// of posts gives -13.525..13.525; the XML-loaded meshes of `apply --api legacy --draw
+    /// mesh` measured the same on 2026-11-27).
     pub fn float_param(&self, param: i32) -> Option<f64> {
         let k = usize::try_from(param.checked_sub(crate::coppelia::OBJFLOATPARAM_BBOX)?).ok()?;
         let (min, max) = self.bounding_box();
+        let half = [0, 1, 2].map(|i| (max[i] - min[i]) / 2.0);
         // `+ 0.0` turns the -0 of an empty extent into 0, as CoppeliaSim answers
         match k {
-            0..=2 => Some(min[k] + 0.0),
-            3..=5 => Some(max[k - 3] + 0.0),
+            0..=2 => Some(-half[k] + 0.0),
+            3..=5 => Some(half[k - 3] + 0.0),
             _ => None,
         }
     }
@@ -869,6 +873,19 @@ mod tests {
 
     fn names(s: &Scene, hs: &[i32]) -> Vec<String> {
         hs.iter().map(|h| s.get(*h).unwrap().name.clone()).collect()
+    }
+
+    #[test]
+    fn a_mesh_off_its_frame_gives_its_box_as_half_extents_about_its_centre() {
+        let s = Scene::course();
+        let line = s.resolve("Line").unwrap();
+        let mut o = s.get(line).unwrap().clone();
+        // a 2 x 1 m rectangle whose corner is the frame's origin, 3 m along x
+        let vertices = vec![3.0, 0.0, 0.0, 5.0, 0.0, 0.0, 5.0, 1.0, 0.0, 3.0, 1.0, 0.0];
+        o.mesh = Some(Mesh::new(vertices, vec![0, 1, 2, 0, 2, 3]).unwrap());
+        assert_eq!(o.bounding_box(), ([3.0, 0.0, 0.0], [5.0, 1.0, 0.0]));
+        let got: Vec<f64> = (15..=20).map(|p| o.float_param(p).unwrap()).collect();
+        assert_eq!(got, [-1.0, -0.5, 0.0, 1.0, 0.5, 0.0]);
     }
 
     #[test]

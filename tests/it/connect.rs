@@ -315,7 +315,7 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
         stderr.read_line(&mut said).unwrap();
     }
     assert!(
-        said.contains("an earlier vrep-maze run (process 4194305) left its session")
+        said.contains("an earlier vrep-maze run (process 4194305) ended with its session")
             && said.contains("waiting up to 75 s"),
         "{said}"
     );
@@ -385,7 +385,7 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains(&format!(
-            "an earlier vrep-maze run (process {}) left its session at 127.0.0.1:{port} abruptly",
+            "an earlier vrep-maze run (process {}) ended with its session at 127.0.0.1:{port} open",
             child.id()
         )),
         "{stderr}"

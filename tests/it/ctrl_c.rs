@@ -1,6 +1,6 @@
 //! Ctrl-C during `apply`, against `vrep-maze serve` with its realistic model on (paced by
-//! the idle rate, per-line server costs, and the one-minute refusal after a client leaves
-//! abruptly): wherever the signal lands, apply stops cleanly (exit 130, idle rate restored,
+//! the idle rate, per-line server costs, and the one-minute TIME_WAIT after a session the
+//! server closed first): wherever the signal lands, apply stops cleanly (exit 130, idle rate restored,
 //! connection closed as the official client closes it), and the next apply connects at once
 //! and repairs the scene.
 
@@ -41,7 +41,7 @@ fn apply_command(layout: &Path, port: &str) -> Command {
 fn ctrl_c_at_any_point_leaves_a_scene_the_next_apply_repairs_at_once() {
     let dir = TempDir::new().unwrap();
     let layout = layout(&dir, "5", "24x24");
-    // the realistic model is serve's default: idle fps 8 and the one-minute refusal
+    // the realistic model is serve's default: idle fps 8 and the one-minute TIME_WAIT
     let serve = Serve::start(&["--listen", "127.0.0.1:0"], 1);
     let port = serve.port();
     let mut interrupted = 0;

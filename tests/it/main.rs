@@ -36,6 +36,7 @@ mod score;
 mod score_cli;
 mod solve;
 mod texture;
+mod time_wait;
 mod trust;
 mod trust_draw;
 mod validate;

@@ -273,10 +273,18 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
             .find(|o| parse_mesh_name(&o.alias).is_some())
             .unwrap()
             .handle;
-        // every x moved by 1 cm: ZeroMQ reads the vertices, the legacy API the box
+        // the mesh stretched by 1 cm along x (its largest x moved): ZeroMQ reads the
+        // vertices, the legacy API the box's size (CoppeliaSim gives no box position)
         let mut mesh = sim.scene.get(h).unwrap().mesh.clone().unwrap();
+        let right = mesh
+            .vertices
+            .iter()
+            .step_by(3)
+            .fold(f32::NEG_INFINITY, |a, &b| a.max(b));
         for v in mesh.vertices.iter_mut().step_by(3) {
-            *v += 0.01;
+            if *v == right {
+                *v += 0.01;
+            }
         }
         sim.scene.set_mesh(h, mesh).unwrap();
     });

@@ -48,12 +48,12 @@ pub struct ServerConfig {
     /// Print every received message (header and blocks) on stderr.
     pub trace: bool,
     /// After a client leaves, the listening socket is closed and re-created this much later
-    /// (CoppeliaSim: 500 ms and more; connections are refused meanwhile). Zero keeps it open.
-    /// A client that left with the kill command can be followed at once on a real 4.5.1
-    /// (`../shared/spec/real-coppeliasim-4.5.1.md`, "Connections (legacy API)"), so `serve`
-    /// leaves this at zero.
+    /// (connections are refused meanwhile); zero keeps it open. CoppeliaSim's plugin sleeps
+    /// 0.5 s (`../shared/spec/real-coppeliasim-4.5.1.md`, "Why the legacy port refuses for a
+    /// minute: TIME_WAIT"), which `serve --timing realistic` models; the library's default
+    /// is zero, as fast as tests want.
     pub rebind_delay: Duration,
-    /// Modeled server work and the reconnect penalty after an abrupt end of session
+    /// Modeled server work and the TIME_WAIT after a session the server closed first
     /// ([`Timing::instant`] by default: nothing modeled, no penalty;
     /// [`Timing::realistic`] for what a real CoppeliaSim 4.5.1 does).
     pub timing: Timing,
@@ -213,7 +213,7 @@ mod tests {
     use crate::legacy::wire::{Message, MessageHeader, read_message, write_message};
     use crate::sim::{Scene, Timing};
 
-    const PENALTY: Duration = Duration::from_millis(500);
+    const PENALTY: Duration = Duration::from_secs(2);
 
     fn server() -> ServerHandle {
         let config = ServerConfig {
@@ -255,38 +255,90 @@ mod tests {
         false
     }
 
+    /// Leaves as the official client's `simxFinish` does: the kill block, its reply, one
+    /// more message, then the server's close awaited.
+    fn leave_as_simx_finish(mut stream: TcpStream) {
+        use std::io::Read;
+        exchange(&mut stream, true);
+        let last = Message {
+            header: MessageHeader::default(),
+            blocks: vec![],
+        };
+        write_message(&mut stream, &last.encode(), MAX_PACKET_SIZE).unwrap();
+        stream
+            .set_read_timeout(Some(Duration::from_secs(5)))
+            .unwrap();
+        let _ = stream.read(&mut [0u8; 16]);
+    }
+
+    /// Reads until the server closes its side.
+    fn wait_for_close(stream: &mut TcpStream) {
+        use std::io::Read;
+        stream
+            .set_read_timeout(Some(Duration::from_secs(5)))
+            .unwrap();
+        assert_eq!(
+            stream.read(&mut [0u8; 16]).unwrap(),
+            0,
+            "closed by the server"
+        );
+    }
+
+    /// Waits for a connection that is accepted and served, for up to 10 s.
+    fn served(addr: SocketAddr) -> TcpStream {
+        let end = Instant::now() + Duration::from_secs(10);
+        loop {
+            if let Ok(c) = TcpStream::connect(addr) {
+                return c;
+            }
+            assert!(Instant::now() < end, "accepted within 10 s");
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
     #[test]
-    fn after_the_kill_command_the_next_client_is_accepted_at_once() {
+    fn a_client_that_leaves_as_simx_finish_does_is_followed_at_once() {
         let s = server();
         for _ in 0..3 {
-            let mut c = TcpStream::connect(s.local_addr()).expect("accepted at once");
+            let started = Instant::now();
+            let mut c = served(s.local_addr());
+            assert!(started.elapsed() < PENALTY / 4, "{:?}", started.elapsed());
             exchange(&mut c, false);
-            exchange(&mut c, true);
+            leave_as_simx_finish(c);
         }
         s.shutdown();
     }
 
     #[test]
-    fn after_an_abrupt_end_every_connection_is_refused_until_the_penalty_expires() {
+    fn a_client_that_answers_the_servers_close_with_its_own_leaves_the_port_in_time_wait() {
         let s = server();
         let addr = s.local_addr();
         let mut c = TcpStream::connect(addr).unwrap();
-        exchange(&mut c, false);
-        drop(c); // no kill command: end of file mid-session
+        exchange(&mut c, true);
+        // the server closes first; our FIN in answer puts its end in TIME_WAIT
+        wait_for_close(&mut c);
+        drop(c);
         assert!(
             becomes(addr, true, PENALTY / 2),
             "refused during the penalty"
         );
-        // the first connection accepted is served (a probe dropped here would end abruptly)
-        let end = Instant::now() + Duration::from_secs(10);
-        let mut c = loop {
-            if let Ok(c) = TcpStream::connect(addr) {
-                break c;
-            }
-            assert!(Instant::now() < end, "accepted after the penalty");
-            std::thread::sleep(Duration::from_millis(10));
-        };
-        exchange(&mut c, true);
+        let started = Instant::now();
+        leave_as_simx_finish(served(addr));
+        assert!(started.elapsed() > PENALTY / 2, "{:?}", started.elapsed());
+        s.shutdown();
+    }
+
+    #[test]
+    fn a_client_that_closes_first_mid_session_is_followed_at_once() {
+        let s = server();
+        let addr = s.local_addr();
+        let mut c = TcpStream::connect(addr).unwrap();
+        exchange(&mut c, false);
+        drop(c); // no kill command: end of file mid-session, before the server closed
+        std::thread::sleep(Duration::from_millis(50));
+        let mut c = TcpStream::connect(addr).expect("accepted at once");
+        exchange(&mut c, false);
+        leave_as_simx_finish(c);
         s.shutdown();
     }
 
@@ -296,8 +348,7 @@ mod tests {
         let addr = s.local_addr();
         drop(TcpStream::connect(addr).unwrap()); // a port probe
         std::thread::sleep(Duration::from_millis(50));
-        let mut c = TcpStream::connect(addr).expect("accepted at once");
-        exchange(&mut c, true);
+        leave_as_simx_finish(TcpStream::connect(addr).expect("accepted at once"));
         s.shutdown();
     }
 
@@ -317,8 +368,9 @@ mod tests {
         };
         let s = spawn(config, Simulator::new(Scene::course(), 0)).unwrap();
         let mut c = TcpStream::connect(s.local_addr()).unwrap();
-        exchange(&mut c, false);
-        drop(c); // no kill command: end of file mid-session
+        exchange(&mut c, true);
+        wait_for_close(&mut c);
+        drop(c); // the server closed first: TIME_WAIT
         assert!(becomes(s.local_addr(), true, Duration::from_secs(5)));
         // joins the accept thread, which is sleeping out the penalty
         s.shutdown();

@@ -5,15 +5,21 @@
 //! writes back the reply it returns; it ends on a socket or protocol error, after a message
 //! whose last block is the kill command, or when the server stops.
 //!
-//! A session that ends any other way than with the kill command (connection reset, end of
-//! file, the idle timeout, a protocol error) closes the port for
-//! [`Timing::reconnect_penalty`](crate::sim::Timing::reconnect_penalty): every connection is
-//! refused until it expires (`../shared/spec/real-coppeliasim-4.5.1.md`, "Connections (legacy
-//! API)": about 60 s, measured 62–65 s stopped and 43–60 s running; the real cause is the
-//! server socket in TIME_WAIT and a re-bind without SO_REUSEADDR retried every 2.5 s,
-//! simExtRemoteApi `inConnection.cpp:243-277`, `simxSocket.cpp:544-554`).
+//! After a session the port refuses connections for a while, as CoppeliaSim's does
+//! (`../shared/spec/real-coppeliasim-4.5.1.md`, "Why the legacy port refuses for a minute:
+//! TIME_WAIT"): the plugin closes its listening socket with the connection, sleeps 0.5 s
+//! ([`ServerConfig::rebind_delay`](super::ServerConfig::rebind_delay)) and binds the port
+//! again without SO_REUSEADDR. When the server's side closed first (right after its reply to
+//! the kill block, or on its idle timeout or a protocol error) and the client answered that
+//! close with its own FIN, or not at all, the server's end of the connection holds the port
+//! (TIME_WAIT, or FIN_WAIT_2 while the client stays silent) and every connection is refused
+//! for [`Timing::reconnect_penalty`](crate::sim::Timing::reconnect_penalty) (60 s). When the
+//! client closed first, or answered with data or a reset (what the official client's
+//! `simxFinish` and ours do), the port listens again after the 0.5 s. The older
+//! measurements of the minute after a Ctrl-C or an error (spec "Connections (legacy API)")
+//! were of a client that sent the kill block and then waited for the server to close.
 
-use std::io;
+use std::io::{self, Read};
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -41,7 +47,7 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
             },
         };
         let _ = l.set_nonblocking(true);
-        let stream = loop {
+        let mut stream = loop {
             if shared.stop.load(Ordering::SeqCst) {
                 return;
             }
@@ -58,7 +64,7 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         if shared.config.verbose {
             eprintln!("vrep-maze serve: client {peer:?} connected");
         }
-        let (why, killed) = session(shared, stream);
+        let (why, end) = session(shared, &mut stream);
         shared
             .active
             .lock()
@@ -67,7 +73,7 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
         {
             let mut core = shared.lock();
             core.end_session();
-            if !killed {
+            if end != End::Killed {
                 write_dump(&shared.config, &core.sim);
             }
         }
@@ -75,24 +81,88 @@ pub(super) fn accept_loop(shared: &Shared, listener: TcpListener, addr: SocketAd
             eprintln!("vrep-maze serve: client {peer:?} left: {why}");
         }
         let penalty = shared.config.timing.reconnect_penalty;
-        let closed_for = if killed || shared.stop.load(Ordering::SeqCst) {
-            shared.config.rebind_delay
-        } else {
-            shared.config.rebind_delay.max(penalty)
-        };
-        if closed_for.is_zero() {
+        let rebind = shared.config.rebind_delay;
+        let stopping = shared.stop.load(Ordering::SeqCst);
+        let server_first = !stopping && end != End::ClientFirst && !penalty.is_zero();
+        if rebind.is_zero() && !server_first {
             listener = Some(l);
+            continue;
+        }
+        drop(l);
+        let closed_for = if server_first {
+            server_closes(shared, &mut stream, penalty)
         } else {
-            drop(l);
-            if shared.config.verbose && !killed && !penalty.is_zero() {
-                eprintln!(
-                    "vrep-maze serve: the client left without the kill command: refusing connections for {:.1} s",
-                    closed_for.as_secs_f64()
-                );
+            rebind
+        };
+        drop(stream);
+        sleep_unless_stopped(&shared.stop, closed_for.max(rebind));
+    }
+}
+
+/// How a session ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum End {
+    /// The client's end of file or reset arrived before the server closed (it left
+    /// mid-session or before sending anything, or the reply could not be written).
+    ClientFirst,
+    /// The server replied to the kill block and closes its side now.
+    Killed,
+    /// The server gave up on the client (idle timeout, protocol error) and closes its side.
+    ServerFirst,
+}
+
+/// The server closes its side first (`stream`: the session's connection) and watches how
+/// the client answers, within `penalty`; returns how long the port still refuses
+/// connections from then on (spec "Why the legacy port refuses for a minute: TIME_WAIT").
+/// A client whose FIN, data or reset had already arrived closed first (unread data makes the
+/// close a reset): no TIME_WAIT. Otherwise the server's FIN goes out; data or a reset in
+/// answer meets a closed socket, whose kernel resets the connection: no TIME_WAIT either.
+/// The client's FIN puts the server's end in TIME_WAIT for `penalty` from then; silence
+/// keeps it in FIN_WAIT_2 (the kernel's 60 s orphan timeout, modeled as `penalty`).
+fn server_closes(shared: &Shared, stream: &mut TcpStream, penalty: Duration) -> Duration {
+    let rebind = shared.config.rebind_delay;
+    let mut byte = [0u8; 1];
+    let _ = stream.set_nonblocking(true);
+    let arrived = stream.peek(&mut byte);
+    let _ = stream.set_nonblocking(false);
+    match arrived {
+        Err(e) if e.kind() == io::ErrorKind::WouldBlock => {}
+        _ => return rebind,
+    }
+    let _ = stream.shutdown(Shutdown::Write);
+    let started = Instant::now();
+    let mut buf = [0u8; 256];
+    while !shared.stop.load(Ordering::SeqCst) {
+        let Some(left) = penalty
+            .checked_sub(started.elapsed())
+            .filter(|l| !l.is_zero())
+        else {
+            // FIN_WAIT_2 timed out: the port is free
+            return Duration::ZERO;
+        };
+        let _ = stream.set_read_timeout(Some(left.min(Duration::from_millis(20))));
+        match stream.read(&mut buf) {
+            Ok(0) => {
+                if shared.config.verbose {
+                    eprintln!(
+                        "vrep-maze serve: the client answered the server's close with its own: the port is in TIME_WAIT, refusing connections for {:.1} s",
+                        penalty.as_secs_f64()
+                    );
+                }
+                return penalty;
             }
-            sleep_unless_stopped(&shared.stop, closed_for);
+            Err(e)
+                if matches!(
+                    e.kind(),
+                    io::ErrorKind::WouldBlock
+                        | io::ErrorKind::TimedOut
+                        | io::ErrorKind::Interrupted
+                ) => {}
+            // data at a closed socket, or the client's reset: the connection is reset
+            Ok(_) | Err(_) => return rebind,
         }
     }
+    Duration::ZERO
 }
 
 /// Sleeps `d`, or less if the server stops meanwhile.
@@ -106,37 +176,25 @@ fn sleep_unless_stopped(stop: &AtomicBool, d: Duration) {
     }
 }
 
-/// Serves one client until it leaves; returns why the session ended, and whether it ended
-/// cleanly (with the kill command, or closed by the client before any message).
-fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
+/// Serves one client until it leaves; returns why the session ended, and how.
+fn session(shared: &Shared, stream: &mut TcpStream) -> (String, End) {
     let _ = stream.set_read_timeout(Some(shared.config.idle_timeout));
     let _ = stream.set_nodelay(true);
     *shared.active.lock().unwrap_or_else(|e| e.into_inner()) = stream.try_clone().ok();
     shared.lock().end_session();
-    let mut exchanged = false;
     loop {
         if shared.stop.load(Ordering::SeqCst) {
             let _ = stream.shutdown(Shutdown::Both);
-            return ("server stopping".into(), false);
+            return ("server stopping".into(), End::ServerFirst);
         }
-        let bytes = match read_message(&mut stream) {
+        let bytes = match read_message(stream) {
             Ok(b) => b,
-            // A client that closed before sending anything (a port probe) is not counted as
-            // leaving abruptly: the measured refusal followed clients killed or interrupted
-            // during their exchanges, and by the source it follows a close on the server's
-            // side, while a probe closes first itself (spec "Connections (legacy API)";
-            // simExtRemoteApi inConnection.cpp:243-277). Unmeasured: a modeling choice.
-            Err(WireError::Io(e))
-                if !exchanged && e.kind() == std::io::ErrorKind::UnexpectedEof =>
-            {
-                return ("closed before sending anything".into(), true);
-            }
-            Err(e) => return (format!("{e}"), false),
+            Err(WireError::Io(e)) if !timed_out(&e) => return (e.to_string(), End::ClientFirst),
+            Err(e) => return (format!("{e}"), End::ServerFirst),
         };
-        exchanged = true;
         let msg = match Message::decode(&bytes) {
             Ok(m) => m,
-            Err(e) => return (format!("protocol error: {e}"), false),
+            Err(e) => return (format!("protocol error: {e}"), End::ServerFirst),
         };
         if shared.config.trace {
             trace(&msg, bytes.len());
@@ -170,14 +228,21 @@ fn session(shared: &Shared, mut stream: TcpStream) -> (String, bool) {
             }
             reply
         };
-        if let Err(e) = write_message(&mut stream, &reply.encode(), shared.config.max_packet_size) {
-            return (format!("{e}"), kill);
+        if let Err(e) = write_message(stream, &reply.encode(), shared.config.max_packet_size) {
+            return (format!("{e}"), End::ClientFirst);
         }
         if kill {
-            let _ = stream.shutdown(Shutdown::Both);
-            return ("kill command".into(), true);
+            return ("kill command".into(), End::Killed);
         }
     }
+}
+
+/// Whether a read failed on the idle timeout (the server gives up on a silent client).
+fn timed_out(e: &io::Error) -> bool {
+    matches!(
+        e.kind(),
+        io::ErrorKind::WouldBlock | io::ErrorKind::TimedOut
+    )
 }
 
 /// One line per message and per block, for protocol debugging and conformance tests.
