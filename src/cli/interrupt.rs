@@ -1,10 +1,12 @@
 //! Ctrl-C, SIGTERM and SIGHUP for commands that must stop cleanly (`batch`, `apply`, `inspect`,
 //! `clear`): the first
 //! signal asks the running command to finish what is in flight and stop; a second one ends
-//! the process at once with exit code 130.
+//! the process at once with exit code 130 (once a legacy request in flight is answered, for at
+//! most [`REPLY_WAIT`]: a real CoppeliaSim quits when its legacy client leaves mid-request).
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 
@@ -27,14 +29,24 @@ impl Interrupt {
     pub fn install() -> Result<Interrupt> {
         let flag = Arc::new(AtomicBool::new(false));
         let seen = flag.clone();
+        let signals = AtomicU8::new(0);
         ctrlc::set_handler(move || {
-            if seen.swap(true, Ordering::SeqCst) {
-                eprintln!("\ninterrupted again: stopping at once");
-                std::process::exit(i32::from(INTERRUPTED_EXIT_CODE));
+            seen.store(true, Ordering::SeqCst);
+            match signals.fetch_add(1, Ordering::SeqCst) {
+                0 => eprintln!(
+                    "\ninterrupted: finishing what is in flight (press Ctrl-C again to stop at once)"
+                ),
+                1 if crate::legacy::client::exchange_in_flight() => {
+                    eprintln!(
+                        "\ninterrupted again: stopping as soon as CoppeliaSim has answered the request in flight (a legacy client that leaves mid-request makes it quit); Ctrl-C once more to stop anyway"
+                    );
+                    std::thread::spawn(stop_after_the_reply);
+                }
+                _ => {
+                    eprintln!("\ninterrupted again: stopping at once");
+                    std::process::exit(i32::from(INTERRUPTED_EXIT_CODE));
+                }
             }
-            eprintln!(
-                "\ninterrupted: finishing what is in flight (press Ctrl-C again to stop at once)"
-            );
         })
         .context("cannot install the Ctrl-C handler")?;
         Ok(Interrupt(flag))
@@ -54,4 +66,17 @@ impl Interrupt {
     pub fn requested(&self) -> bool {
         self.0.load(Ordering::SeqCst)
     }
+}
+
+/// The longest a second interrupt waits for a legacy reply in flight.
+pub const REPLY_WAIT: Duration = Duration::from_secs(10);
+
+/// Exits with [`INTERRUPTED_EXIT_CODE`] once no legacy exchange is in flight, or after
+/// [`REPLY_WAIT`].
+fn stop_after_the_reply() {
+    let began = Instant::now();
+    while crate::legacy::client::exchange_in_flight() && began.elapsed() < REPLY_WAIT {
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    std::process::exit(i32::from(INTERRUPTED_EXIT_CODE));
 }

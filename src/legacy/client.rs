@@ -8,6 +8,7 @@
 
 use std::collections::HashMap;
 use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
@@ -331,6 +332,7 @@ impl Client {
             ..Default::default()
         };
         let bytes = Message { header, blocks }.encode();
+        let _in_flight = InFlight::enter();
         write_message(&mut self.stream, &bytes, self.opts.max_packet_size)
             .map_err(|e| map_io(e, self.opts.reply_timeout))?;
         self.messages += 1;
@@ -561,6 +563,34 @@ impl Drop for Client {
 /// How long leaving waits for the kill command's reply, then for the server's close.
 const LEAVE_WAIT: Duration = Duration::from_millis(500);
 
+/// Legacy exchanges under way in this process: a message sent, its reply not read yet.
+static IN_FLIGHT: AtomicUsize = AtomicUsize::new(0);
+
+/// Whether a legacy exchange is under way in this process. A real CoppeliaSim 4.5.1 ends
+/// when its legacy client vanishes in the middle of one (a SIGKILL mid-draw,
+/// `../shared/spec/real-coppeliasim-4.5.1.md` "Connections, again"; a second Ctrl-C that
+/// exits at once did the same, 3 of 3 tries): a process that must stop at once waits for
+/// the reply in flight first.
+pub fn exchange_in_flight() -> bool {
+    IN_FLIGHT.load(Ordering::SeqCst) > 0
+}
+
+/// Counts one exchange in [`IN_FLIGHT`] while it lives.
+struct InFlight;
+
+impl InFlight {
+    fn enter() -> InFlight {
+        IN_FLIGHT.fetch_add(1, Ordering::SeqCst);
+        InFlight
+    }
+}
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        IN_FLIGHT.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
 /// Reads and discards until the peer closes or resets the connection, or `wait` has passed.
 fn wait_for_the_end(stream: &mut TcpStream, wait: Duration) {
     use std::io::Read;
@@ -654,6 +684,32 @@ mod tests {
 
     /// The first 10 bytes libzmq sends on a new connection.
     const ZMTP_SIGNATURE: [u8; 10] = [0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+
+    #[test]
+    fn an_exchange_waiting_for_its_reply_is_in_flight() {
+        let l = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = l.local_addr().unwrap();
+        let (received, read) = std::sync::mpsc::channel();
+        let (answer, answered) = std::sync::mpsc::channel::<()>();
+        let server = std::thread::spawn(move || {
+            let (mut s, _) = l.accept().unwrap();
+            let mut first = [0u8; 1];
+            s.read_exact(&mut first).unwrap();
+            received.send(()).unwrap();
+            let _ = answered.recv();
+        });
+        let opts = ClientOptions {
+            connect_timeout: Duration::from_millis(300),
+            ..ClientOptions::default()
+        };
+        let client = std::thread::spawn(move || Client::connect(addr, opts));
+        read.recv().unwrap();
+        // the connection's first message is sent and its reply not read
+        assert!(exchange_in_flight());
+        answer.send(()).unwrap();
+        server.join().unwrap();
+        assert!(client.join().unwrap().is_err());
+    }
 
     #[test]
     fn a_zeromq_peer_is_recognised_before_anything_is_sent_to_it() {
