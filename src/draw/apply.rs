@@ -228,7 +228,15 @@ pub(crate) fn raised_and_claimed(
     let started = Instant::now();
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
-    let (mut report, _) = raised(scene, dry_run, |scene| claimed(scene, dry_run, work))?;
+    let (mut report, _) = raised(scene, dry_run, |scene| {
+        claimed(scene, dry_run, |scene, claim| {
+            let mut report = work(scene, claim)?;
+            report
+                .warnings
+                .splice(0..0, claim.warning().map(str::to_string));
+            Ok(report)
+        })
+    })?;
     report.round_trips = scene.round_trips() - rt0;
     report.elapsed = started.elapsed();
     Ok(report)
@@ -416,6 +424,7 @@ fn apply_claimed(
     let line_template = survey.handles.get(5).copied().flatten();
     keep_home(
         scene,
+        claim.signals_kept(),
         drawing.template_drawn(),
         &h,
         objects,
@@ -552,10 +561,12 @@ fn place(
 /// exist without a record (a maze drawn by an older version), the template already lies on
 /// a line, so its home is taken to be below the floor (said in a warning). A wall maze
 /// puts a line template that has a record (the first line of a line maze it replaces)
-/// back home and deletes the record.
+/// back home and deletes the record. Nothing where the simulator keeps no signals
+/// (`signals_kept` false: the claim's warning says `clear` cannot put the template back).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn keep_home(
     scene: &mut dyn Backend,
+    signals_kept: bool,
     template_drawn: bool,
     h: &Handles,
     objects: &[ObjectInfo],
@@ -564,6 +575,9 @@ pub(crate) fn keep_home(
     names: &ObjectNames,
     report: &mut ApplyReport,
 ) -> Result<(), DrawError> {
+    if !signals_kept {
+        return Ok(());
+    }
     let record = home::read(scene)?;
     let floor = objects
         .iter()

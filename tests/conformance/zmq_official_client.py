@@ -146,11 +146,20 @@ try:
     check("a function without return values returns None", sim.setInt32Param(sim.intparam_idle_fps, 5) is None)
     check("setInt32Param / getInt32Param idle fps", sim.getInt32Param(sim.intparam_idle_fps) == 5)
     sim.setInt32Param(sim.intparam_idle_fps, 0)
-    sim.setStringSignal("vrep-maze.copies", "Line:12-40,45")
-    check("setStringSignal / getStringSignal", sim.getStringSignal("vrep-maze.copies") in ("Line:12-40,45", b"Line:12-40,45"),
-          sim.getStringSignal("vrep-maze.copies"))
-    sim.clearStringSignal("vrep-maze.copies")
-    check("getStringSignal of a cleared signal is None", sim.getStringSignal("vrep-maze.copies") is None)
+    sim.setStringSignal("vrep_maze.copies", "Line:12-40,45")
+    check("setStringSignal / getStringSignal", sim.getStringSignal("vrep_maze.copies") in ("Line:12-40,45", b"Line:12-40,45"),
+          sim.getStringSignal("vrep_maze.copies"))
+    sim.clearStringSignal("vrep_maze.copies")
+    check("getStringSignal of a cleared signal is None", sim.getStringSignal("vrep_maze.copies") is None)
+    # 4.10 keeps signals as scene properties and silently drops a name that is no valid
+    # property name (../shared/spec/real-coppeliasim-4.10.md "Signals are scene properties now")
+    check("setInt32Signal of a name with '-' answers 1", sim.setInt32Signal("vrep-maze.lease", 7) == 1)
+    check("getInt32Signal of a name with '-' is None: it was not stored", sim.getInt32Signal("vrep-maze.lease") is None)
+    sim.setInt32Signal("vrep_maze.lease", 7)
+    check("getInt32Signal of a property name gives the value", sim.getInt32Signal("vrep_maze.lease") == 7)
+    sim.clearInt32Signal("vrep_maze.lease")
+    sim.setStringSignal("a-b", "x")
+    check("getStringSignal of a name with '-' is None", sim.getStringSignal("a-b") is None)
 
     plane = sim.createPrimitiveShape(sim.primitiveshape_plane, [0.6, 0.1, 0.0], 0)
     sim.setObjectAlias(plane, "Fresh-Line")
