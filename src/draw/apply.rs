@@ -578,7 +578,7 @@ pub(crate) fn keep_home(
     if !signals_kept {
         return Ok(());
     }
-    let record = home::read(scene)?;
+    let (record, old) = home::read(scene)?.unzip();
     let floor = objects
         .iter()
         .find(|o| o.handle == h.floor)
@@ -591,7 +591,11 @@ pub(crate) fn keep_home(
         }
         return Ok(());
     }
-    if record.is_some_and(|r| r.handle == h.line) {
+    if let Some(home) = record.filter(|r| r.handle == h.line) {
+        // an older version's record moves to the new names
+        if old == Some(true) {
+            home::write(scene, &home)?;
+        }
         return Ok(());
     }
     let Some(template) = objects.iter().find(|o| o.handle == h.line) else {

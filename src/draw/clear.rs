@@ -52,6 +52,7 @@ fn send_home(
     let verb = if dry_run { "would put" } else { "put" };
     let template = &names.line;
     let record = if kept { home::read(scene)? } else { None };
+    let record = record.map(|(home, _)| home);
     if let Some(home) = record.filter(|r| r.handle == h.line) {
         if !dry_run {
             scene.edit(&[home.edit(h.floor)])?;

@@ -34,7 +34,7 @@ impl Home {
         Some([self.handle, p[0]?, p[1]?, p[2]?, e[0]?, e[1]?, e[2]?])
     }
 
-    /// The record from the signal values, `None` unless all are set.
+    /// The record from the signal values, `None` unless all seven are set.
     fn decode(values: &[Option<i32>]) -> Option<Home> {
         let v: Vec<i32> = values.iter().copied().collect::<Option<_>>()?;
         let real = |k: usize| v[k] as f64 / 1e6;
@@ -66,12 +66,16 @@ impl Home {
     }
 }
 
-/// Reads the record (under the new names, else an older version's: [`signals`]); `None` if
+/// Reads the record (under the new names, else an older version's: [`signals`]), and
+/// whether it is an older version's (to be written again under the new names); `None` if
 /// there is none (never recorded, or cleared).
-pub fn read(scene: &mut dyn Backend) -> Result<Option<Home>, BackendError> {
+pub fn read(scene: &mut dyn Backend) -> Result<Option<(Home, bool)>, BackendError> {
     let values = scene.int_signals(&signals::names_to_read(&HOME))?;
-    let complete = |v: &[Option<i32>]| Home::decode(v).is_some();
-    Ok(Home::decode(&signals::newest_set(&values, complete)))
+    let (new, old) = values.split_at(HOME.len());
+    Ok(match Home::decode(new) {
+        Some(home) => Some((home, false)),
+        None => Home::decode(old).map(|home| (home, true)),
+    })
 }
 
 /// Records `home` (nothing if its pose is not finite or out of range), removing an older

@@ -75,8 +75,7 @@ pub const HOME: [Signal; 7] = [
     },
 ];
 
-/// The names to read for `signals`: every new name, then every old one (in the order
-/// [`newest`] and [`newest_set`] take their values).
+/// The names to read for `signals`: every new name, then every old one.
 pub fn names_to_read(signals: &[Signal]) -> Vec<&'static str> {
     let new = signals.iter().map(|s| s.name);
     new.chain(signals.iter().map(|s| s.old)).collect()
@@ -85,21 +84,6 @@ pub fn names_to_read(signals: &[Signal]) -> Vec<&'static str> {
 /// The value of one signal from its new and old names' values: the new one, else the old.
 pub fn newest<T>(new: Option<T>, old: Option<T>) -> Option<T> {
     new.or(old)
-}
-
-/// The values of a set of signals read as [`names_to_read`] lists them: the new names' set
-/// if `complete` accepts it, else the old names' (a record spans several signals, and is
-/// never mixed from both).
-pub fn newest_set<T: Clone>(
-    values: &[Option<T>],
-    complete: impl Fn(&[Option<T>]) -> bool,
-) -> Vec<Option<T>> {
-    let (new, old) = values.split_at(values.len() / 2);
-    if complete(new) || !complete(old) {
-        new.to_vec()
-    } else {
-        old.to_vec()
-    }
 }
 
 /// The integer-signal writes that set (`Some`) or clear (`None`) each signal, then clear
@@ -136,26 +120,13 @@ mod tests {
     }
 
     #[test]
-    fn new_names_win_and_sets_are_never_mixed() {
+    fn new_names_are_read_first_and_old_ones_removed_on_write() {
         assert_eq!(
             names_to_read(&HOME[..2]),
             [HOME[0].name, HOME[1].name, HOME[0].old, HOME[1].old]
         );
         assert_eq!(newest(Some(1), Some(2)), Some(1));
         assert_eq!(newest(None, Some(2)), Some(2));
-        let all = |v: &[Option<i32>]| v.iter().all(Option::is_some);
-        assert_eq!(
-            newest_set(&[Some(1), None, Some(3), Some(4)], all),
-            [Some(3), Some(4)]
-        );
-        assert_eq!(
-            newest_set(&[Some(1), Some(2), Some(3), Some(4)], all),
-            [Some(1), Some(2)]
-        );
-        assert_eq!(
-            newest_set(&[Some(1), None, None, Some(4)], all),
-            [Some(1), None]
-        );
         assert_eq!(
             int_writes(&[(LEASE, Some(7)), (COPIES, None)]),
             [

@@ -366,8 +366,11 @@ impl Backend for LegacyBackend {
                 .map(|r| String::from_utf8_lossy(&r.data).into_owned())
         };
         let old = text(k + 5).filter(|t| !t.is_empty());
+        let new = text(k + 4);
+        // an older version's record alone moves to the new name with the next edits
+        let moved = new.is_none() && old.is_some();
         self.old_record = old.is_some();
-        let record = signals::newest(text(k + 4), old)
+        let record = signals::newest(new, old)
             .map(|t| CopyRecord::parse(&t))
             .unwrap_or_default();
         let types = &r[k + 3];
@@ -396,6 +399,7 @@ impl Backend for LegacyBackend {
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
         let traits = self.traits(names, &handles, &objects, kinds, &record)?;
         self.learn_copies(names, &handles, &objects, &traits, record);
+        self.record_changed |= moved;
         Ok(Survey {
             handles,
             objects,

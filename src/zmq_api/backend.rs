@@ -609,8 +609,11 @@ impl ZmqBackend {
             });
         }
         let old = texts.pop().flatten();
+        let new = texts.pop().flatten();
         self.old_record = old.is_some();
-        let text = signals::newest(texts.pop().flatten(), old);
+        // an older version's record alone moves to the new name with the next write
+        self.record_changed |= new.is_none() && old.is_some();
+        let text = signals::newest(new, old);
         let record = text.map_or_else(CopyRecord::default, |t| CopyRecord::parse(&t));
         self.record = Some(record.clone());
         Ok(record)

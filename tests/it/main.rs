@@ -33,6 +33,7 @@ mod render_controls;
 mod schema;
 mod score;
 mod score_cli;
+mod signals;
 mod solve;
 mod texture;
 mod trust;
