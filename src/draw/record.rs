@@ -103,6 +103,18 @@ impl CopyRecord {
         self.0.len() != before
     }
 
+    /// The record of both `self` and `other` (`self`'s alias where both hold a handle): how
+    /// the record under the new name and an older version's are read together. Safe, as
+    /// either only says "ours" of copies, and a handle no longer in the scene is never taken
+    /// from it; a mixed history (a newer run, a clear, then an older version's run) leaves
+    /// a stale record beside a true one.
+    pub fn merged(mut self, other: CopyRecord) -> CopyRecord {
+        for (h, alias) in other.0 {
+            self.0.entry(h).or_insert(alias);
+        }
+        self
+    }
+
     /// Number of handles recorded.
     pub fn len(&self) -> usize {
         self.0.len()
@@ -133,6 +145,8 @@ mod tests {
         let odd = CopyRecord::parse("Line:3-1,x,4;:5;Wall:7-9;junk;Post:-2,0-99999999");
         assert_eq!(odd.format(), "Line:4;Wall:7-9");
         assert!(CopyRecord::parse("").is_empty());
+        let both = CopyRecord::parse("Line:1-2").merged(CopyRecord::parse("Wall:2-3"));
+        assert_eq!(both.format(), "Line:1-2;Wall:3");
         // separators in an alias would change what the record says: such copies are left out
         let mut odd = r.clone();
         odd.insert(30, "a;b:c");

@@ -7,8 +7,9 @@
 //! "Signals are scene properties now"). Versions before this one named their signals
 //! `vrep-maze.*`, which 4.10 drops; the names here are `vrep_maze.*`, valid on every version.
 //! A scene drawn by an older version (on 4.5.1, which keeps any name) still has its records
-//! under the old names: they are read when the new ones are absent, and removed when the new
-//! ones are written, so nothing stale survives.
+//! under the old names: they are read when the new ones are absent (the copy record: merged
+//! with the new one, `record::CopyRecord::merged`), and removed when the new ones are
+//! written, so nothing stale survives.
 //!
 //! String signal values are Rust strings, so always valid UTF-8: 4.10's add-on never answers
 //! the read of a string signal that is not (`../shared/spec/real-coppeliasim-4.10.md` "The

@@ -367,12 +367,11 @@ impl Backend for LegacyBackend {
         };
         let old = text(k + 5).filter(|t| !t.is_empty());
         let new = text(k + 4);
-        // an older version's record alone moves to the new name with the next edits
-        let moved = new.is_none() && old.is_some();
+        // an older version's record moves to the new name with the next edits
+        let moved = old.is_some();
         self.old_record = old.is_some();
-        let record = signals::newest(new, old)
-            .map(|t| CopyRecord::parse(&t))
-            .unwrap_or_default();
+        let parse = |t: Option<String>| t.map(|t| CopyRecord::parse(&t)).unwrap_or_default();
+        let record = parse(new).merged(parse(old));
         let types = &r[k + 3];
         let kinds = match GroupData::decode(&types.data) {
             Some(g) if !types.remote_error && g.ints.len() == g.handles.len() => {

@@ -581,8 +581,8 @@ impl ZmqBackend {
         Ok(size)
     }
 
-    /// The scene's copy record ([`signals::COPIES`], else an older version's under its old
-    /// name, read together), read on first use (a simulator without string signals has none,
+    /// The scene's copy record ([`signals::COPIES`], merged with an older version's under
+    /// its old name, read together), read on first use (a simulator without string signals has none,
     /// nor one that does not keep signals).
     fn copy_record(&mut self) -> Result<CopyRecord, BackendError> {
         if let Some(r) = &self.record {
@@ -611,10 +611,10 @@ impl ZmqBackend {
         let old = texts.pop().flatten();
         let new = texts.pop().flatten();
         self.old_record = old.is_some();
-        // an older version's record alone moves to the new name with the next write
-        self.record_changed |= new.is_none() && old.is_some();
-        let text = signals::newest(new, old);
-        let record = text.map_or_else(CopyRecord::default, |t| CopyRecord::parse(&t));
+        // an older version's record moves to the new name with the next write
+        self.record_changed |= old.is_some();
+        let parse = |t: Option<String>| t.map(|t| CopyRecord::parse(&t)).unwrap_or_default();
+        let record = parse(new).merged(parse(old));
         self.record = Some(record.clone());
         Ok(record)
     }
