@@ -92,6 +92,9 @@ pub struct ZmqBackend {
     /// An older version's copy record was read (under [`signals::COPIES`]'s old name): it is
     /// removed with the next write of the record.
     old_record: bool,
+    /// An older version's record of the user's idle rate was read (under
+    /// [`signals::SAVED_IDLE_FPS`]'s old name): deleting the record deletes it too.
+    old_saved_rate: bool,
     /// `false` once the simulator did not keep the lease ([`Lease::unkept`]): the copy record
     /// is then neither read nor written.
     signals_kept: bool,
@@ -178,7 +181,7 @@ impl ZmqBackend {
         let mut outcomes = outcomes.into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
         let version = int_result("sim.getInt32Param", next())?;
-        let rates = idle_rates_of(next(), next(), next())?;
+        let (rates, old_saved_rate) = idle_rates_of(next(), next(), next())?;
         let round_trips = client.stats().round_trips as usize;
         Ok(ZmqBackend {
             client,
@@ -191,6 +194,7 @@ impl ZmqBackend {
             record: None,
             record_changed: false,
             old_record: false,
+            old_saved_rate,
             signals_kept: true,
             first_rates: Some((rates, round_trips, Instant::now())),
             extents: HashMap::new(),
@@ -832,7 +836,9 @@ impl Backend for ZmqBackend {
             ])?
             .into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
-        idle_rates_of(next(), next(), next())
+        let (rates, old) = idle_rates_of(next(), next(), next())?;
+        self.old_saved_rate = old;
+        Ok(rates)
     }
 
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
@@ -1063,7 +1069,8 @@ impl Backend for ZmqBackend {
     /// main-loop pass over protocol 1) and ordered so that a cut between them never loses
     /// the user's rate: the record is written before the rate is lowered, and deleted only
     /// after the rate is restored (a stale record beside a set rate is ignored).
-    /// Deleting the record deletes an older version's too ([`signals::SAVED_IDLE_FPS`]).
+    /// Deleting the record deletes an older version's too ([`signals::SAVED_IDLE_FPS`]), if
+    /// one was read: a call more after the rate is restored, which may wait for a pass.
     fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
         let name = |n: &str| Value::Text(n.into());
         let set_rate = (
@@ -1081,14 +1088,16 @@ impl Backend for ZmqBackend {
                 ],
                 1,
             ),
-            None => (
-                vec![
+            None => {
+                let mut calls = vec![
                     set_rate,
                     ("sim.clearInt32Signal", vec![name(SAVED_IDLE_FPS.name)]),
-                    ("sim.clearInt32Signal", vec![name(SAVED_IDLE_FPS.old)]),
-                ],
-                0,
-            ),
+                ];
+                if std::mem::take(&mut self.old_saved_rate) {
+                    calls.push(("sim.clearInt32Signal", vec![name(SAVED_IDLE_FPS.old)]));
+                }
+                (calls, 0)
+            }
         };
         let outcomes = self.client.call_all(&calls)?;
         for (k, outcome) in outcomes.into_iter().enumerate() {
@@ -1409,22 +1418,25 @@ fn int_result(func: &str, outcome: Outcome) -> Result<i32, BackendError> {
 }
 
 /// The idle rates from the replies of [`idle_rate_call`] and the two [`saved_rate_call`]s
-/// (new name, then old: [`signals::newest`]). The record matters only while the rate is 0
-/// (an interrupted run left it so); beside a set rate it is stale. No record: the signal is
-/// not set (nil), or the simulator has no integer signals.
+/// (new name, then old: [`signals::newest`]), and whether an older version's record was
+/// read. The record matters only while the rate is 0 (an interrupted run left it so); beside
+/// a set rate it is stale. No record: the signal is not set (nil), or the simulator has no
+/// integer signals.
 fn idle_rates_of(
     current: Outcome,
     saved: Outcome,
     old: Outcome,
-) -> Result<IdleRates, BackendError> {
+) -> Result<(IdleRates, bool), BackendError> {
     let current = int_result("sim.getInt32Param", current)?;
     let read = |outcome: Outcome| match outcome {
-        Ok(values) if current == 0 => Ok(values.first().and_then(cbor::int32)),
-        Ok(_) | Err(ZmqError::Remote { .. }) => Ok(None),
+        Ok(values) => Ok(values.first().and_then(cbor::int32)),
+        Err(ZmqError::Remote { .. }) => Ok(None),
         Err(e) => Err(BackendError::from(e)),
     };
-    let saved = signals::newest(read(saved)?, read(old)?);
-    Ok(IdleRates { current, saved })
+    let (saved, old) = (read(saved)?, read(old)?);
+    let old_read = old.is_some();
+    let saved = signals::newest(saved, old).filter(|_| current == 0);
+    Ok((IdleRates { current, saved }, old_read))
 }
 
 /// The world position and Euler angles in the reply of `sim.getObjectPose(handle, world)`
