@@ -107,6 +107,8 @@ pub struct ClearReport {
     /// Where the line template went (one line), if it moved (or, a dry run, would): back
     /// where it stood before the first `apply`, or below the floor.
     template: Option<String>,
+    /// Warnings (the simulator did not keep the scene's signals).
+    warnings: Vec<String>,
 }
 
 #[pymethods]
@@ -416,5 +418,6 @@ pub fn clear(
         dry_run,
         left_alone: report.left_alone,
         template: report.template,
+        warnings: report.warnings,
     })
 }

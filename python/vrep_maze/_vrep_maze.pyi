@@ -101,6 +101,7 @@ class ClearReport:
     dry_run: bool
     left_alone: list[str]
     template: Optional[str]
+    warnings: list[str]
 
 class Batch(Iterator[Layout]):
     def __iter__(self) -> Batch: ...

@@ -52,6 +52,9 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     }
     let report = result?;
     let _ = backend.close();
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
     if report.stopped_simulation {
         say("stopped the simulation first")?;
     }

@@ -235,7 +235,15 @@ pub(crate) fn raised_and_claimed(
     let started = Instant::now();
     let rt0 = scene.round_trips();
     // the rate first: every call before it waits for an idle pass (the claim too)
-    let (mut report, _) = raised(scene, dry_run, |scene| claimed(scene, dry_run, work))?;
+    let (mut report, _) = raised(scene, dry_run, |scene| {
+        claimed(scene, dry_run, |scene, claim| {
+            let mut report = work(scene, claim)?;
+            report
+                .warnings
+                .splice(0..0, claim.warning().map(str::to_string));
+            Ok(report)
+        })
+    })?;
     report.round_trips = scene.round_trips() - rt0;
     report.elapsed = started.elapsed();
     Ok(report)
@@ -451,6 +459,7 @@ fn apply_claimed(
     let line_template = survey.handles.get(5).copied().flatten();
     keep_home(
         scene,
+        claim.signals_kept(),
         drawing.template_drawn(),
         &h,
         objects,
@@ -627,10 +636,12 @@ pub(crate) fn has_line_copies(objects: &[ObjectInfo], h: &Handles, line: &str) -
 /// version, or a scene saved and loaded again: the record is kept in signals, which a scene
 /// file does not hold), silently for meshes (only this version draws them, and our
 /// `.simscene.xml` export puts the template there, under a mesh). A wall maze hides the line
-/// template ([`hide_line_template`]).
+/// template ([`hide_line_template`]). Nothing where the simulator keeps no signals
+/// (`signals_kept` false: the claim's warning says `clear` cannot put the template back).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn keep_home(
     scene: &mut dyn Backend,
+    signals_kept: bool,
     template_drawn: bool,
     h: &Handles,
     objects: &[ObjectInfo],
@@ -639,12 +650,19 @@ pub(crate) fn keep_home(
     names: &ObjectNames,
     report: &mut ApplyReport,
 ) -> Result<(), DrawError> {
-    let record = home::read(scene)?;
+    if !signals_kept {
+        return Ok(());
+    }
+    let (record, old) = home::read(scene)?.unzip();
     let floor = objects
         .iter()
         .find(|o| o.handle == h.floor)
         .map(world_frame)
         .unwrap_or_default();
+    // an older version's record moves to the new names
+    if let (Some(home), Some(true)) = (record, old) {
+        home::write(scene, &home)?;
+    }
     if !template_drawn {
         return hide_line_template(scene, h, &floor, objects, earlier, line_template, record);
     }

@@ -31,14 +31,18 @@ pub struct ClearReport {
     /// Where the line template went (one line), if it moved: back home, or below the floor
     /// when its home was never recorded ([`home`]).
     pub template: Option<String>,
+    /// Lines to show as warnings (the simulator did not keep the scene's signals).
+    pub warnings: Vec<String>,
 }
 
 /// Puts the line template back where it stood before the first `apply` ([`home`]) and
 /// deletes the record. Without a record, a template that `drawn` says was the first line
-/// of a maze (drawn by an older version) goes below the floor, out of sight. Says what it
-/// did (or, with `dry_run`, would do).
+/// of a maze (drawn by an older version, or on a simulator that keeps no signals: `kept`
+/// false, the record is not read) goes below the floor, out of sight. Says what it did (or,
+/// with `dry_run`, would do).
 fn send_home(
     scene: &mut dyn Backend,
+    kept: bool,
     h: &Handles,
     objects: &[ObjectInfo],
     drawn: bool,
@@ -47,7 +51,9 @@ fn send_home(
 ) -> Result<Option<String>, DrawError> {
     let verb = if dry_run { "would put" } else { "put" };
     let template = &names.line;
-    if let Some(home) = home::read(scene)?.filter(|r| r.handle == h.line) {
+    let record = if kept { home::read(scene)? } else { None };
+    let record = record.map(|(home, _)| home);
+    if let Some(home) = record.filter(|r| r.handle == h.line) {
         if !dry_run {
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;
@@ -80,8 +86,13 @@ fn send_home(
             orientation: crate::draw::euler(&hidden),
         }])?;
     }
+    let why = if kept {
+        "a maze drawn by an older vrep-maze"
+    } else {
+        "the simulator keeps no signals"
+    };
     Ok(Some(format!(
-        "no record of where `{template}` stood before the first apply (a maze drawn by an older vrep-maze): {verb} it below the floor at ({:.3}, {:.3}), out of sight; move it where you want it",
+        "no record of where `{template}` stood before the first apply ({why}): {verb} it below the floor at ({:.3}, {:.3}), out of sight; move it where you want it",
         position[0], position[1]
     )))
 }
@@ -184,6 +195,7 @@ fn clear_claimed(
     let template = if style == Style::Lines {
         send_home(
             scene,
+            claim.signals_kept(),
             &h,
             &sorted.objects,
             !doomed.is_empty(),
@@ -201,5 +213,6 @@ fn clear_claimed(
         restored_idle_fps: None,
         stopped_simulation,
         left_alone: sorted.strangers,
+        warnings: claim.warning().map(str::to_string).into_iter().collect(),
     })
 }

@@ -1,21 +1,11 @@
 //! Where the line template stood before the first `apply`: a line maze draws its template
 //! as the first line, so `clear` puts it back there. The pose is kept in the scene (integer
-//! signals, which both APIs read and write and which survive between runs), as the
-//! template's handle and its pose in the floor frame in micrometres and microradians.
+//! signals [`signals::HOME`], which both APIs read and write and which survive between
+//! runs), as the template's handle and its pose in the floor frame in micrometres and
+//! microradians.
 
+use super::signals::{self, HOME};
 use super::{Backend, BackendError, Pose};
-
-/// The integer signals of the record: the template's handle, then x, y, z (micrometres) and
-/// the three Euler angles (microradians) in the floor frame.
-pub const HOME_SIGNALS: [&str; 7] = [
-    "vrep-maze.template_home.handle",
-    "vrep-maze.template_home.x_um",
-    "vrep-maze.template_home.y_um",
-    "vrep-maze.template_home.z_um",
-    "vrep-maze.template_home.alpha_urad",
-    "vrep-maze.template_home.beta_urad",
-    "vrep-maze.template_home.gamma_urad",
-];
 
 /// How far below the floor a template no line needs is put (metres): under an opaque floor,
 /// out of every camera above it.
@@ -44,11 +34,11 @@ impl Home {
         Some([self.handle, p[0]?, p[1]?, p[2]?, e[0]?, e[1]?, e[2]?])
     }
 
-    /// The record from the signal values, `None` unless all are set.
+    /// The record from the signal values, `None` unless all seven are set.
     fn decode(values: &[Option<i32>]) -> Option<Home> {
         let v: Vec<i32> = values.iter().copied().collect::<Option<_>>()?;
         let real = |k: usize| v[k] as f64 / 1e6;
-        (v.len() == HOME_SIGNALS.len()).then(|| Home {
+        (v.len() == HOME.len()).then(|| Home {
             handle: v[0],
             position: [real(1), real(2), real(3)],
             orientation: [real(4), real(5), real(6)],
@@ -76,28 +66,32 @@ impl Home {
     }
 }
 
-/// Reads the record; `None` if there is none (never recorded, or cleared).
-pub fn read(scene: &mut dyn Backend) -> Result<Option<Home>, BackendError> {
-    Ok(Home::decode(&scene.int_signals(&HOME_SIGNALS)?))
+/// Reads the record (under the new names, else an older version's: [`signals`]), and
+/// whether it is an older version's (to be written again under the new names); `None` if
+/// there is none (never recorded, or cleared).
+pub fn read(scene: &mut dyn Backend) -> Result<Option<(Home, bool)>, BackendError> {
+    let values = scene.int_signals(&signals::names_to_read(&HOME))?;
+    let (new, old) = values.split_at(HOME.len());
+    Ok(match Home::decode(new) {
+        Some(home) => Some((home, false)),
+        None => Home::decode(old).map(|home| (home, true)),
+    })
 }
 
-/// Records `home` (nothing if its pose is not finite or out of range).
+/// Records `home` (nothing if its pose is not finite or out of range), removing an older
+/// version's record.
 pub fn write(scene: &mut dyn Backend, home: &Home) -> Result<(), BackendError> {
     let Some(values) = home.encode() else {
         return Ok(());
     };
-    let signals: Vec<(&str, Option<i32>)> = HOME_SIGNALS
-        .iter()
-        .zip(values)
-        .map(|(n, v)| (*n, Some(v)))
-        .collect();
-    scene.set_int_signals(&signals)
+    let set: Vec<_> = HOME.into_iter().zip(values.map(Some)).collect();
+    scene.set_int_signals(&signals::int_writes(&set))
 }
 
-/// Deletes the record.
+/// Deletes the record (an older version's too).
 pub fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
-    let signals: Vec<(&str, Option<i32>)> = HOME_SIGNALS.iter().map(|n| (*n, None)).collect();
-    scene.set_int_signals(&signals)
+    let set: Vec<_> = HOME.into_iter().map(|s| (s, None)).collect();
+    scene.set_int_signals(&signals::int_writes(&set))
 }
 
 #[cfg(test)]

@@ -4,22 +4,40 @@
 //! run stops at its next check with [`DrawError::Concurrent`] instead of drawing on, and the
 //! later one's verification sees whatever the earlier left: a race ends in a clear error,
 //! never in a wrong maze reported as verified.
+//!
+//! The claim is a run's first signal write that it reads back: a simulator that does not
+//! keep it (CoppeliaSim 4.10 silently drops a signal whose name is no valid property name,
+//! `../shared/spec/real-coppeliasim-4.10.md` "Signals are scene properties now") is said so
+//! in one warning, and the run goes on without the scene's signals ([`Claim::signals_kept`]):
+//! never a false [`DrawError::Concurrent`].
 
 use std::hash::{BuildHasher, RandomState};
 
+use super::signals::LEASE;
 use super::{Backend, BackendError, DrawError};
 
-/// Name of the integer signal holding the token of the run drawing into the scene.
-pub const LEASE_SIGNAL: &str = "vrep-maze.lease";
+/// What [`Lease::claim`] found: the token recorded before it wrote its own, and what reads
+/// back after it did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Claimed {
+    /// The token recorded before the claim, if any.
+    pub previous: Option<i32>,
+    /// The token read back after writing (`None`: the simulator did not keep it).
+    pub read_back: Option<i32>,
+}
 
-/// The scene-side record of who is drawing: see [`Backend::lease`].
+/// The scene-side record of who is drawing ([`LEASE`]): see [`Backend::lease`].
 pub trait Lease {
-    /// Records `token` as the scene's current drawer, replacing any earlier record.
-    fn claim(&mut self, token: i32) -> Result<(), BackendError>;
+    /// Records `token` as the scene's current drawer, replacing any earlier record (an
+    /// older version's too), and reads it back.
+    fn claim(&mut self, token: i32) -> Result<Claimed, BackendError>;
     /// The token recorded now, if any.
     fn holder(&mut self) -> Result<Option<i32>, BackendError>;
     /// Removes the record (only called by the run that holds it).
     fn release(&mut self) -> Result<(), BackendError>;
+    /// The simulator did not keep the lease: this connection stops reading and writing the
+    /// scene's other signals too (they would be lost the same way).
+    fn unkept(&mut self);
 }
 
 /// Edits sent between two lease checks (at about 0.45 ms per ZeroMQ call on a real
@@ -39,6 +57,8 @@ pub(crate) struct Claim {
     /// or an interrupted one. Such a run verifies against what it reads from the scene, not
     /// against what it was told it set.
     contended: bool,
+    /// The warning that the simulator keeps no signals ([`Claim::signals_kept`]).
+    unkept: Option<String>,
 }
 
 impl Claim {
@@ -47,7 +67,19 @@ impl Claim {
         Claim {
             token: None,
             contended: false,
+            unkept: None,
         }
+    }
+
+    /// `false` when the simulator did not keep the lease it was given: the run has no lease,
+    /// no copy record, and no record of the line template's home (`clear` cannot put it back).
+    pub(crate) fn signals_kept(&self) -> bool {
+        self.unkept.is_none()
+    }
+
+    /// The one warning line saying the simulator kept no signal, if it did not.
+    pub(crate) fn warning(&self) -> Option<&str> {
+        self.unkept.as_deref()
     }
 
     /// See [`Claim::contended`](Claim).
@@ -55,31 +87,45 @@ impl Claim {
         self.contended
     }
 
-    /// Claims the scene with a fresh random token. A simulator that cannot record one (no
-    /// integer signals) gives an empty claim: the run goes on unguarded.
+    /// Claims the scene with a fresh random token and reads it back. A simulator that does
+    /// not keep it (or refuses integer signals) gives a claim without a token and with a
+    /// warning: the run goes on unguarded, without the scene's signals.
     pub(crate) fn take(backend: &mut dyn Backend) -> Result<Claim, DrawError> {
+        let simulator = backend.describe();
         let Some(lease) = backend.lease() else {
             return Ok(Claim::none());
         };
         let token = random_token();
-        let previous = match lease.holder() {
-            Ok(holder) => holder,
-            Err(BackendError::Remote(_)) => return Ok(Claim::none()),
+        let claimed = match lease.claim(token) {
+            Ok(c) if c.read_back.is_some() => c,
+            Ok(_) => return Ok(Claim::unkept(lease, &simulator, "it read back empty")),
+            Err(BackendError::Remote(e)) => return Ok(Claim::unkept(lease, &simulator, &e)),
             Err(e) => return Err(e.into()),
         };
-        match lease.claim(token) {
-            Ok(()) => {}
-            Err(BackendError::Remote(_)) => return Ok(Claim::none()),
-            Err(e) => return Err(e.into()),
-        }
-        let contended = previous.is_some();
+        // another run's token read back: it claimed just after this one, and this run stops
+        // at its first check
+        let contended = claimed.previous.is_some();
         if contended {
             std::thread::sleep(TAKEOVER_GRACE);
         }
         Ok(Claim {
             token: Some(token),
             contended,
+            unkept: None,
         })
+    }
+
+    /// The claim of a run on a simulator that did not keep the lease (`why`).
+    fn unkept(lease: &mut dyn Lease, simulator: &str, why: &str) -> Claim {
+        lease.unkept();
+        Claim {
+            token: None,
+            contended: false,
+            unkept: Some(format!(
+                "the simulator did not keep the integer signal `{}` ({why}; {simulator}): drawing without a lease (a concurrent run is not detected), without a copy record, and `clear` cannot put the line template back",
+                LEASE.name
+            )),
+        }
     }
 
     /// How many edits to send between two checks: few enough that a run which lost the lease

@@ -15,11 +15,12 @@ pub mod lease;
 pub mod mesh;
 pub mod plan;
 pub mod record;
+pub mod signals;
 pub mod verify;
 
 pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
 pub use clear::{ClearOptions, ClearReport, clear};
-pub use lease::{LEASE_SIGNAL, Lease};
+pub use lease::{Claimed, Lease};
 pub use verify::verify;
 
 pub use crate::layout::{Pose, Style};
@@ -313,9 +314,6 @@ pub fn left_alone_line(left_alone: &[String], parent: &str) -> Option<String> {
     ))
 }
 
-/// Name of the integer signal in which `apply` records the user's idle rate while it runs.
-pub const SAVED_IDLE_FPS_SIGNAL: &str = "vrep-maze.saved_idle_fps";
-
 /// Handles of the objects [`ObjectNames`] names, resolved in one scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Handles {
@@ -396,7 +394,7 @@ pub struct IdleRates {
     /// Current `sim_intparam_idle_fps`.
     pub current: i32,
     /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
-    /// (the simulator keeps it as the integer signal [`SAVED_IDLE_FPS_SIGNAL`]).
+    /// (the simulator keeps it as the integer signal [`signals::SAVED_IDLE_FPS`]).
     pub saved: Option<i32>,
 }
 

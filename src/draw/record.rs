@@ -1,5 +1,5 @@
 //! The record of the copies this tool pasted, kept in the scene's string signal
-//! [`COPIES_SIGNAL`] so that a later run over the ZeroMQ API (one call per object, no
+//! [`signals::COPIES`](super::signals::COPIES) so that a later run over the ZeroMQ API (one call per object, no
 //! batching) knows a child of the maze dummy for a template's copy without reading its alias.
 //!
 //! The record maps handles to the alias of the template they copy, written compactly as
@@ -8,12 +8,16 @@
 //! say "ours" but never "the user's": a handle that is no longer in the scene, or an object
 //! that is not of the template's type, is simply not taken from it (CoppeliaSim does not
 //! reuse handles within a session; signals are not saved with a scene, so after a reload
-//! the record is gone and copies are recognised by their aliases again).
+//! the record is gone and copies are recognised by their aliases again). An alias holding
+//! one of the record's separators (`;:,`) is left out of it: such copies are recognised by
+//! their aliases. The record is a Rust string, so valid UTF-8 whatever the aliases are (4.10's
+//! add-on never answers the read of a string signal that is not,
+//! `../shared/spec/real-coppeliasim-4.10.md` "The remote APIs").
 
 use std::collections::BTreeMap;
 
-/// The string signal holding the record.
-pub const COPIES_SIGNAL: &str = "vrep-maze.copies";
+/// Characters the written record uses to separate aliases, handles and ranges.
+const SEPARATORS: [char; 3] = [';', ':', ','];
 
 /// Handles of pasted copies and the alias of the template each copies.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -51,7 +55,7 @@ impl CopyRecord {
     /// The record as [`CopyRecord::parse`] reads it.
     pub fn format(&self) -> String {
         let mut by_alias: BTreeMap<&str, Vec<(i32, i32)>> = BTreeMap::new();
-        for (&h, alias) in &self.0 {
+        for (&h, alias) in self.0.iter().filter(|(_, a)| !a.contains(SEPARATORS)) {
             let ranges = by_alias.entry(alias).or_default();
             match ranges.last_mut() {
                 Some((_, to)) if *to + 1 == h => *to = h,
@@ -99,6 +103,18 @@ impl CopyRecord {
         self.0.len() != before
     }
 
+    /// The record of both `self` and `other` (`self`'s alias where both hold a handle): how
+    /// the record under the new name and an older version's are read together. Safe, as
+    /// either only says "ours" of copies, and a handle no longer in the scene is never taken
+    /// from it; a mixed history (a newer run, a clear, then an older version's run) leaves
+    /// a stale record beside a true one.
+    pub fn merged(mut self, other: CopyRecord) -> CopyRecord {
+        for (h, alias) in other.0 {
+            self.0.entry(h).or_insert(alias);
+        }
+        self
+    }
+
     /// Number of handles recorded.
     pub fn len(&self) -> usize {
         self.0.len()
@@ -129,6 +145,13 @@ mod tests {
         let odd = CopyRecord::parse("Line:3-1,x,4;:5;Wall:7-9;junk;Post:-2,0-99999999");
         assert_eq!(odd.format(), "Line:4;Wall:7-9");
         assert!(CopyRecord::parse("").is_empty());
+        let both = CopyRecord::parse("Line:1-2").merged(CopyRecord::parse("Wall:2-3"));
+        assert_eq!(both.format(), "Line:1-2;Wall:3");
+        // separators in an alias would change what the record says: such copies are left out
+        let mut odd = r.clone();
+        odd.insert(30, "a;b:c");
+        odd.insert(31, "Lîne é");
+        assert_eq!(odd.format(), "Line:12-14,16,20;Lîne é:31;Post:15");
         assert!(r.retain(|h| h != 20));
         assert!(!r.retain(|_| true));
         assert_eq!(r.len(), 5);

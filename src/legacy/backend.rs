@@ -11,10 +11,9 @@ use crate::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
 use crate::draw::plan::{self, Traits, is_copy_name};
-use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
-use crate::draw::{
-    Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, SAVED_IDLE_FPS_SIGNAL, Survey,
-};
+use crate::draw::record::CopyRecord;
+use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
+use crate::draw::{Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey};
 
 mod mesh;
 
@@ -36,6 +35,10 @@ pub struct LegacyBackend {
     /// cannot read names in a batch); this one keeps it true for it.
     record: CopyRecord,
     record_changed: bool,
+    /// The survey read an older version's record (under [`signals::COPIES`]'s old name): it
+    /// is emptied with the next write of the record (the legacy API cannot delete a string
+    /// signal).
+    old_record: bool,
     families: HashMap<i32, String>,
 }
 
@@ -77,6 +80,7 @@ impl LegacyBackend {
             local,
             record: CopyRecord::default(),
             record_changed: false,
+            old_record: false,
             families: HashMap::new(),
         })
     }
@@ -91,6 +95,7 @@ impl LegacyBackend {
             local: true,
             record: CopyRecord::default(),
             record_changed: false,
+            old_record: false,
             families: HashMap::new(),
         }
     }
@@ -321,7 +326,8 @@ impl Backend for LegacyBackend {
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
         let r = self.call(&[
             Command::GetIntParam(INTPARAM_IDLE_FPS),
-            Command::GetIntSignal(SAVED_IDLE_FPS_SIGNAL.into()),
+            Command::GetIntSignal(SAVED_IDLE_FPS.name.into()),
+            Command::GetIntSignal(SAVED_IDLE_FPS.old.into()),
         ])?;
         let current = if r[0].remote_error {
             return Err(BackendError::Remote("reading the idle rate".into()));
@@ -329,11 +335,10 @@ impl Backend for LegacyBackend {
             read_i32(&r[0].data, 0).unwrap_or(DEFAULT_IDLE_FPS)
         };
         // no record: the signal does not exist, which the server reports as an error
-        let saved = if r[1].remote_error {
-            None
-        } else {
-            read_i32(&r[1].data, 0)
+        let saved_in = |r: &crate::legacy::client::Reply| {
+            (!r.remote_error).then(|| read_i32(&r.data, 0)).flatten()
         };
+        let saved = signals::newest(saved_in(&r[1]), saved_in(&r[2]));
         Ok(IdleRates { current, saved })
     }
 
@@ -350,15 +355,23 @@ impl Backend for LegacyBackend {
             .collect();
         cmds.extend(group_commands());
         cmds.extend(group_data_commands([group::TYPES]));
-        cmds.push(Command::GetStringSignal(COPIES_SIGNAL.into()));
+        cmds.push(Command::GetStringSignal(COPIES.name.into()));
+        cmds.push(Command::GetStringSignal(COPIES.old.into()));
         let r = self.call(&cmds)?;
         let k = names.len();
         // an unset signal (or a simulator without string signals) is a remote error
-        let record = r
-            .get(k + 4)
-            .filter(|r| !r.remote_error)
-            .map(|r| CopyRecord::parse(&String::from_utf8_lossy(&r.data)))
-            .unwrap_or_default();
+        let text = |at: usize| {
+            r.get(at)
+                .filter(|r| !r.remote_error)
+                .map(|r| String::from_utf8_lossy(&r.data).into_owned())
+        };
+        let old = text(k + 5).filter(|t| !t.is_empty());
+        let new = text(k + 4);
+        // an older version's record moves to the new name with the next edits
+        let moved = old.is_some();
+        self.old_record = old.is_some();
+        let parse = |t: Option<String>| t.map(|t| CopyRecord::parse(&t)).unwrap_or_default();
+        let record = parse(new).merged(parse(old));
         let types = &r[k + 3];
         let kinds = match GroupData::decode(&types.data) {
             Some(g) if !types.remote_error && g.ints.len() == g.handles.len() => {
@@ -385,6 +398,7 @@ impl Backend for LegacyBackend {
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);
         let traits = self.traits(names, &handles, &objects, kinds, &record)?;
         self.learn_copies(names, &handles, &objects, &traits, record);
+        self.record_changed |= moved;
         Ok(Survey {
             handles,
             objects,
@@ -500,10 +514,19 @@ impl Backend for LegacyBackend {
             })
             .collect();
         let pruned = self.record.retain(|h| !removed.contains(&h));
-        let record = std::mem::take(&mut self.record_changed) || pruned;
-        if record {
-            let text = self.record.format().into_bytes();
-            cmds.push(Command::SetStringSignal(COPIES_SIGNAL.into(), text));
+        let mut record = 0;
+        if std::mem::take(&mut self.record_changed) || pruned {
+            // a String: valid UTF-8 ([`crate::draw::record`])
+            let text: String = self.record.format();
+            cmds.push(Command::SetStringSignal(
+                COPIES.name.into(),
+                text.into_bytes(),
+            ));
+            record += 1;
+            if std::mem::take(&mut self.old_record) {
+                cmds.push(Command::SetStringSignal(COPIES.old.into(), vec![]));
+                record += 1;
+            }
         }
         for e in edits {
             match *e {
@@ -546,7 +569,7 @@ impl Backend for LegacyBackend {
         }
         let r = self.call(&cmds)?;
         // a simulator without string signals only loses the record
-        let failed: Vec<&str> = r[usize::from(record)..]
+        let failed: Vec<&str> = r[record..]
             .iter()
             .zip(&what)
             .filter(|(r, _)| r.remote_error)
@@ -565,13 +588,18 @@ impl Backend for LegacyBackend {
     }
 
     fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
-        let record = match saved {
-            Some(v) => Command::SetIntSignal(SAVED_IDLE_FPS_SIGNAL.into(), v),
-            None => Command::ClearIntSignal(SAVED_IDLE_FPS_SIGNAL.into()),
+        // deleting the record deletes an older version's too
+        let mut cmds = match saved {
+            Some(v) => vec![Command::SetIntSignal(SAVED_IDLE_FPS.name.into(), v)],
+            None => vec![
+                Command::ClearIntSignal(SAVED_IDLE_FPS.name.into()),
+                Command::ClearIntSignal(SAVED_IDLE_FPS.old.into()),
+            ],
         };
         // record first: if setting the rate fails, the record still tells the next run
-        let r = self.call(&[record, Command::SetIntParam(INTPARAM_IDLE_FPS, fps)])?;
-        if r[1].remote_error {
+        cmds.push(Command::SetIntParam(INTPARAM_IDLE_FPS, fps));
+        let r = self.call(&cmds)?;
+        if r.last().is_none_or(|r| r.remote_error) {
             Err(BackendError::Remote(format!(
                 "setting the idle rate to {fps} fps"
             )))

@@ -9,6 +9,7 @@ pub mod cost;
 mod index;
 pub mod mesh;
 pub mod model;
+pub mod property;
 pub mod robot;
 pub mod scene;
 pub mod top_view;

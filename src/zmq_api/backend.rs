@@ -24,10 +24,11 @@ use crate::coppelia::{
     SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
 use crate::draw::plan;
-use crate::draw::record::{COPIES_SIGNAL, CopyRecord};
+use crate::draw::record::CopyRecord;
+use crate::draw::signals::{self, COPIES, LEASE, SAVED_IDLE_FPS};
 use crate::draw::{
-    Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, LEASE_SIGNAL, Lease,
-    ObjectInfo, ObjectNames, SAVED_IDLE_FPS_SIGNAL, Survey,
+    Authoring, Backend, BackendError, BoundingBox, Claimed, Edit, IdleRates, Lease, ObjectInfo,
+    ObjectNames, Survey,
 };
 
 mod mesh;
@@ -88,6 +89,15 @@ pub struct ZmqBackend {
     /// connection, and whether it changed since it was last written.
     record: Option<CopyRecord>,
     record_changed: bool,
+    /// An older version's copy record was read (under [`signals::COPIES`]'s old name): it is
+    /// removed with the next write of the record.
+    old_record: bool,
+    /// An older version's record of the user's idle rate was read (under
+    /// [`signals::SAVED_IDLE_FPS`]'s old name): deleting the record deletes it too.
+    old_saved_rate: bool,
+    /// `false` once the simulator did not keep the lease ([`Lease::unkept`]): the copy record
+    /// is then neither read nor written.
+    signals_kept: bool,
     /// The idle rates read with the version when connecting, the round trips made then and
     /// when: [`Backend::idle_rates`] takes them while no other call has been made since,
     /// within [`FIRST_RATES_FRESH`].
@@ -142,7 +152,7 @@ impl ZmqBackend {
     }
 
     /// Wraps a connected client, making the first reads ([`ZmqBackend::first_calls`]) in one
-    /// exchange: over protocol 1 one main-loop pass for the three ([`Client::call_all`]).
+    /// exchange: over protocol 1 one main-loop pass for the four ([`Client::call_all`]).
     pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqBackend, BackendError> {
         let outcomes = client.call_all(&ZmqBackend::first_calls())?;
         ZmqBackend::with_first(client, timeout, outcomes)
@@ -157,7 +167,8 @@ impl ZmqBackend {
                 vec![int(INTPARAM_PROGRAM_VERSION.into())],
             ),
             idle_rate_call(),
-            saved_rate_call(),
+            saved_rate_call(SAVED_IDLE_FPS.name),
+            saved_rate_call(SAVED_IDLE_FPS.old),
         ]
     }
 
@@ -170,7 +181,7 @@ impl ZmqBackend {
         let mut outcomes = outcomes.into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
         let version = int_result("sim.getInt32Param", next())?;
-        let rates = idle_rates_of(next(), next())?;
+        let (rates, old_saved_rate) = idle_rates_of(next(), next(), next())?;
         let round_trips = client.stats().round_trips as usize;
         Ok(ZmqBackend {
             client,
@@ -182,6 +193,9 @@ impl ZmqBackend {
             aliases: HashMap::new(),
             record: None,
             record_changed: false,
+            old_record: false,
+            old_saved_rate,
+            signals_kept: true,
             first_rates: Some((rates, round_trips, Instant::now())),
             extents: HashMap::new(),
             children: HashMap::new(),
@@ -663,43 +677,75 @@ impl ZmqBackend {
         Ok(size)
     }
 
-    /// The scene's copy record ([`COPIES_SIGNAL`]), read on first use (a simulator without
-    /// string signals has none).
+    /// The scene's copy record ([`signals::COPIES`], merged with an older version's under
+    /// its old name, read together), read on first use (a simulator without string signals has none,
+    /// nor one that does not keep signals).
     fn copy_record(&mut self) -> Result<CopyRecord, BackendError> {
         if let Some(r) = &self.record {
             return Ok(r.clone());
         }
-        let name = Value::Text(COPIES_SIGNAL.into());
-        let record = match self.call("sim.getStringSignal", vec![name]) {
-            Ok(values) => match values.first() {
-                Some(Value::Text(t)) => CopyRecord::parse(t),
-                Some(Value::Bytes(b)) => CopyRecord::parse(&String::from_utf8_lossy(b)),
-                _ => CopyRecord::default(),
-            },
-            Err(BackendError::Remote(_)) => CopyRecord::default(),
-            Err(e) => return Err(e),
-        };
+        if !self.signals_kept {
+            self.record = Some(CopyRecord::default());
+            return Ok(CopyRecord::default());
+        }
+        let call = |name: &str| ("sim.getStringSignal", vec![Value::Text(name.into())]);
+        let mut texts = Vec::with_capacity(2);
+        for outcome in self
+            .client
+            .call_all(&[call(COPIES.name), call(COPIES.old)])?
+        {
+            texts.push(match outcome {
+                Ok(values) => match values.first() {
+                    Some(Value::Text(t)) => Some(t.clone()),
+                    Some(Value::Bytes(b)) => Some(String::from_utf8_lossy(b).into_owned()),
+                    _ => None,
+                },
+                Err(ZmqError::Remote { .. }) => None,
+                Err(e) => return Err(e.into()),
+            });
+        }
+        let old = texts.pop().flatten();
+        let new = texts.pop().flatten();
+        self.old_record = old.is_some();
+        // an older version's record moves to the new name with the next write
+        self.record_changed |= old.is_some();
+        let parse = |t: Option<String>| t.map(|t| CopyRecord::parse(&t)).unwrap_or_default();
+        let record = parse(new).merged(parse(old));
         self.record = Some(record.clone());
         Ok(record)
     }
 
     /// Writes the copy record if it changed (a simulator without string signals only loses
-    /// the record: later runs read aliases instead).
+    /// the record: later runs read aliases instead), and removes an older version's. The
+    /// record is a `String`: CBOR text, valid UTF-8 ([`crate::draw::record`]).
     fn write_record(&mut self) -> Result<(), BackendError> {
-        let Some(record) = self.record.as_ref().filter(|_| self.record_changed) else {
+        let Some(record) = self
+            .record
+            .as_ref()
+            .filter(|_| self.record_changed && self.signals_kept)
+        else {
             return Ok(());
         };
-        let args = vec![
-            Value::Text(COPIES_SIGNAL.into()),
-            Value::Text(record.format()),
-        ];
-        match self.call("sim.setStringSignal", args) {
-            Ok(_) | Err(BackendError::Remote(_)) => {
-                self.record_changed = false;
-                Ok(())
-            }
-            Err(e) => Err(e),
+        let text: String = record.format();
+        let mut calls = vec![(
+            "sim.setStringSignal",
+            vec![Value::Text(COPIES.name.into()), Value::Text(text)],
+        )];
+        if self.old_record {
+            calls.push((
+                "sim.clearStringSignal",
+                vec![Value::Text(COPIES.old.into())],
+            ));
         }
+        for outcome in self.client.call_all(&calls)? {
+            match outcome {
+                Ok(_) | Err(ZmqError::Remote { .. }) => {}
+                Err(e) => return Err(e.into()),
+            }
+        }
+        self.record_changed = false;
+        self.old_record = false;
+        Ok(())
     }
 
     /// Records the world pose an acknowledged `sim.setObjectPose` gave `handle`.
@@ -875,10 +921,16 @@ impl Backend for ZmqBackend {
         }
         let mut outcomes = self
             .client
-            .call_all(&[idle_rate_call(), saved_rate_call()])?
+            .call_all(&[
+                idle_rate_call(),
+                saved_rate_call(SAVED_IDLE_FPS.name),
+                saved_rate_call(SAVED_IDLE_FPS.old),
+            ])?
             .into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
-        idle_rates_of(next(), next())
+        let (rates, old) = idle_rates_of(next(), next(), next())?;
+        self.old_saved_rate = old;
+        Ok(rates)
     }
 
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
@@ -1109,18 +1161,35 @@ impl Backend for ZmqBackend {
     /// main-loop pass over protocol 1) and ordered so that a cut between them never loses
     /// the user's rate: the record is written before the rate is lowered, and deleted only
     /// after the rate is restored (a stale record beside a set rate is ignored).
+    /// Deleting the record deletes an older version's too ([`signals::SAVED_IDLE_FPS`]), if
+    /// one was read: a call more after the rate is restored, which may wait for a pass.
     fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
-        let name = Value::Text(SAVED_IDLE_FPS_SIGNAL.into());
+        let name = |n: &str| Value::Text(n.into());
         let set_rate = (
             "sim.setInt32Param",
             vec![int(INTPARAM_IDLE_FPS.into()), int(fps.into())],
         );
         let (calls, rate_at) = match saved {
             Some(v) => (
-                [("sim.setInt32Signal", vec![name, int(v.into())]), set_rate],
+                vec![
+                    (
+                        "sim.setInt32Signal",
+                        vec![name(SAVED_IDLE_FPS.name), int(v.into())],
+                    ),
+                    set_rate,
+                ],
                 1,
             ),
-            None => ([set_rate, ("sim.clearInt32Signal", vec![name])], 0),
+            None => {
+                let mut calls = vec![
+                    set_rate,
+                    ("sim.clearInt32Signal", vec![name(SAVED_IDLE_FPS.name)]),
+                ];
+                if std::mem::take(&mut self.old_saved_rate) {
+                    calls.push(("sim.clearInt32Signal", vec![name(SAVED_IDLE_FPS.old)]));
+                }
+                (calls, 0)
+            }
         };
         let outcomes = self.client.call_all(&calls)?;
         for (k, outcome) in outcomes.into_iter().enumerate() {
@@ -1192,25 +1261,52 @@ impl Backend for ZmqBackend {
     }
 }
 
-/// The lease is the integer signal [`LEASE_SIGNAL`] (a simulator without integer signals
+/// The lease is the integer signal [`signals::LEASE`] (a simulator without integer signals
 /// answers with a remote error, and the run goes on unguarded).
 impl Lease for ZmqBackend {
-    fn claim(&mut self, token: i32) -> Result<(), BackendError> {
-        let name = Value::Text(LEASE_SIGNAL.into());
-        self.call("sim.setInt32Signal", vec![name, int(token.into())])?;
-        Ok(())
+    /// Four calls sent together ([`Client::call_all`]: one main-loop pass over protocol 1):
+    /// read the holder, write the token, remove an older version's lease (which stops an
+    /// older run drawing now), read the token back.
+    fn claim(&mut self, token: i32) -> Result<Claimed, BackendError> {
+        let name = |n: &str| Value::Text(n.into());
+        let calls = [
+            ("sim.getInt32Signal", vec![name(LEASE.name)]),
+            (
+                "sim.setInt32Signal",
+                vec![name(LEASE.name), int(token.into())],
+            ),
+            ("sim.clearInt32Signal", vec![name(LEASE.old)]),
+            ("sim.getInt32Signal", vec![name(LEASE.name)]),
+        ];
+        let mut read = Vec::with_capacity(2);
+        for (k, outcome) in self.client.call_all(&calls)?.into_iter().enumerate() {
+            let values = outcome?;
+            if k == 0 || k == 3 {
+                read.push(values.first().and_then(cbor::int32));
+            }
+        }
+        Ok(Claimed {
+            previous: read[0],
+            read_back: read[1],
+        })
     }
 
     fn holder(&mut self) -> Result<Option<i32>, BackendError> {
-        let name = Value::Text(LEASE_SIGNAL.into());
+        let name = Value::Text(LEASE.name.into());
         let values = self.call("sim.getInt32Signal", vec![name])?;
         Ok(values.first().and_then(cbor::int32))
     }
 
     fn release(&mut self) -> Result<(), BackendError> {
-        let name = Value::Text(LEASE_SIGNAL.into());
+        let name = Value::Text(LEASE.name.into());
         self.call("sim.clearInt32Signal", vec![name])?;
         Ok(())
+    }
+
+    fn unkept(&mut self) {
+        self.signals_kept = false;
+        self.record = Some(CopyRecord::default());
+        self.record_changed = false;
     }
 }
 
@@ -1398,13 +1494,10 @@ fn idle_rate_call() -> (&'static str, Vec<Value>) {
     ("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])
 }
 
-/// `sim.getInt32Signal` of the user's idle rate recorded by an interrupted `apply`
-/// ([`SAVED_IDLE_FPS_SIGNAL`]).
-fn saved_rate_call() -> (&'static str, Vec<Value>) {
-    (
-        "sim.getInt32Signal",
-        vec![Value::Text(SAVED_IDLE_FPS_SIGNAL.into())],
-    )
+/// `sim.getInt32Signal(name)` of the user's idle rate recorded by an interrupted `apply`
+/// ([`signals::SAVED_IDLE_FPS`]'s name or old name).
+fn saved_rate_call(name: &str) -> (&'static str, Vec<Value>) {
+    ("sim.getInt32Signal", vec![Value::Text(name.into())])
 }
 
 /// The one integer a call returned.
@@ -1416,17 +1509,26 @@ fn int_result(func: &str, outcome: Outcome) -> Result<i32, BackendError> {
         .ok_or_else(|| BackendError::Transport(format!("{func}: expected an integer reply")))
 }
 
-/// The idle rates from the replies of [`idle_rate_call`] and [`saved_rate_call`]. The record
-/// matters only while the rate is 0 (an interrupted run left it so); beside a set rate it is
-/// stale. No record: the signal is not set (nil), or the simulator has no integer signals.
-fn idle_rates_of(current: Outcome, saved: Outcome) -> Result<IdleRates, BackendError> {
+/// The idle rates from the replies of [`idle_rate_call`] and the two [`saved_rate_call`]s
+/// (new name, then old: [`signals::newest`]), and whether an older version's record was
+/// read. The record matters only while the rate is 0 (an interrupted run left it so); beside
+/// a set rate it is stale. No record: the signal is not set (nil), or the simulator has no
+/// integer signals.
+fn idle_rates_of(
+    current: Outcome,
+    saved: Outcome,
+    old: Outcome,
+) -> Result<(IdleRates, bool), BackendError> {
     let current = int_result("sim.getInt32Param", current)?;
-    let saved = match saved {
-        Ok(values) if current == 0 => values.first().and_then(cbor::int32),
-        Ok(_) | Err(ZmqError::Remote { .. }) => None,
-        Err(e) => return Err(e.into()),
+    let read = |outcome: Outcome| match outcome {
+        Ok(values) => Ok(values.first().and_then(cbor::int32)),
+        Err(ZmqError::Remote { .. }) => Ok(None),
+        Err(e) => Err(BackendError::from(e)),
     };
-    Ok(IdleRates { current, saved })
+    let (saved, old) = (read(saved)?, read(old)?);
+    let old_read = old.is_some();
+    let saved = signals::newest(saved, old).filter(|_| current == 0);
+    Ok((IdleRates { current, saved }, old_read))
 }
 
 /// The world position and Euler angles in the reply of `sim.getObjectPose(handle, world)`

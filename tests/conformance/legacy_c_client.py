@@ -640,23 +640,23 @@ def run_apply(port):
         v = I(-1)
         lib.simxGetIntegerParameter(cid, 26, C.byref(v), BLOCKING)
         check(f"{label}: the idle rate is restored to 8", v.value == 8, v.value)
-        rc = lib.simxGetIntegerSignal(cid, b"vrep-maze.saved_idle_fps", C.byref(v), BLOCKING)
+        rc = lib.simxGetIntegerSignal(cid, b"vrep_maze.saved_idle_fps", C.byref(v), BLOCKING)
         check(f"{label}: the saved-idle-rate signal is deleted", rc == REMOTE, rc)
         lib.simxFinish(cid)
     cid = c_connect(port)
-    ok = (lib.simxSetIntegerSignal(cid, b"vrep-maze.saved_idle_fps", 8, BLOCKING) == OK
+    ok = (lib.simxSetIntegerSignal(cid, b"vrep_maze.saved_idle_fps", 8, BLOCKING) == OK
           and lib.simxSetIntegerParameter(cid, 26, 0, BLOCKING) == OK)
     check("integer signals can be set with the C client", ok)
     buf, n = C.POINTER(C.c_ubyte)(), I(0)
-    rc = lib.simxGetStringSignal(cid, b"vrep-maze.copies", C.byref(buf), C.byref(n), BLOCKING)
+    rc = lib.simxGetStringSignal(cid, b"vrep_maze.copies", C.byref(buf), C.byref(n), BLOCKING)
     record = bytes(buf[:n.value]).decode() if rc == OK else ""
-    check("apply left the record of its copies (string signal vrep-maze.copies)",
+    check("apply left the record of its copies (string signal vrep_maze.copies)",
           rc == OK and re.fullmatch(r"Line:[0-9,-]+", record) is not None, (rc, record))
-    ok = lib.simxSetStringSignal(cid, b"vrep-maze.copies", b"Line:7-9", 8, BLOCKING) == OK
-    rc = lib.simxGetStringSignal(cid, b"vrep-maze.copies", C.byref(buf), C.byref(n), BLOCKING)
+    ok = lib.simxSetStringSignal(cid, b"vrep_maze.copies", b"Line:7-9", 8, BLOCKING) == OK
+    rc = lib.simxGetStringSignal(cid, b"vrep_maze.copies", C.byref(buf), C.byref(n), BLOCKING)
     check("string signals can be set and read with the C client",
           ok and rc == OK and bytes(buf[:n.value]) == b"Line:7-9", (ok, rc, n.value))
-    lib.simxSetStringSignal(cid, b"vrep-maze.copies", record.encode(), len(record), BLOCKING)
+    lib.simxSetStringSignal(cid, b"vrep_maze.copies", record.encode(), len(record), BLOCKING)
     lib.simxFinish(cid)
     r = subprocess.run([BIN, "clear", "--port", str(port)], capture_output=True, text=True)
     check("vrep-maze clear succeeds and restores a rate left at 0 by an interrupted apply",

@@ -3,7 +3,8 @@
 //! both APIs keep it true (exactly the copies in the maze), and a forged entry never makes a
 //! user's object of another type ours.
 
-use vrep_maze::draw::record::{COPIES_SIGNAL, CopyRecord};
+use vrep_maze::draw::record::CopyRecord;
+use vrep_maze::draw::signals::COPIES;
 use vrep_maze::draw::{self, ApplyOptions, Drawing};
 use vrep_maze::sim::{NewObject, ObjectType, Scene};
 
@@ -21,7 +22,7 @@ fn apply_fresh(s: &Server, d: &Drawing) -> usize {
 /// The scene's record, parsed.
 fn record(s: &Server) -> CopyRecord {
     s.with_sim(|sim| {
-        let text = sim.string_signals.get(COPIES_SIGNAL).cloned();
+        let text = sim.string_signals.get(COPIES.name).cloned();
         CopyRecord::parse(&String::from_utf8(text.expect("a record")).unwrap())
     })
 }
@@ -69,7 +70,7 @@ fn a_reapply_over_our_maze_reads_no_alias_per_child() {
         apply_fresh(&s, &d);
         assert_record_is_the_copies(&s, k);
         let with_record = apply_fresh(&s, &d);
-        s.with_sim(|sim| sim.string_signals.remove(COPIES_SIGNAL));
+        s.with_sim(|sim| sim.string_signals.remove(COPIES.name));
         let without = apply_fresh(&s, &d);
         let children = copies(&s).len();
         assert!(children > 100, "{k}: {children}");
@@ -132,7 +133,7 @@ fn a_recorded_handle_of_another_type_is_still_the_users() {
         let forged = format!("Line:{sensor}");
         s.with_sim(|sim| {
             sim.string_signals
-                .insert(COPIES_SIGNAL.into(), forged.into_bytes())
+                .insert(COPIES.name.into(), forged.into_bytes())
         });
         let mut b = s.connect();
         let r = draw::apply(

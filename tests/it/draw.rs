@@ -2,7 +2,7 @@
 //! API and the ZeroMQ API in both protocols (`legacy_draw` and `zmq_draw` hold what only
 //! one API has).
 
-use vrep_maze::draw::record::COPIES_SIGNAL;
+use vrep_maze::draw::signals::COPIES;
 use vrep_maze::draw::{
     self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Survey,
 };
@@ -296,7 +296,7 @@ fn idle_rate_is_restored_after_a_remote_error(kind: Kind) {
     let s = kind.serve(scene, 8);
     s.with_sim(|sim| {
         sim.string_signals
-            .insert(COPIES_SIGNAL.into(), format!("Line:{copy}").into_bytes())
+            .insert(COPIES.name.into(), format!("Line:{copy}").into_bytes())
     });
     let mut b = s.connect();
     let e = apply(&mut b, &drawing(3, 1)).unwrap_err();

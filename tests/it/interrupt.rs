@@ -4,10 +4,8 @@
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use vrep_maze::draw::home::HOME_SIGNALS;
-use vrep_maze::draw::{
-    self, ApplyOptions, BackendError, Drawing, ObjectNames, SAVED_IDLE_FPS_SIGNAL,
-};
+use vrep_maze::draw::signals::{HOME, SAVED_IDLE_FPS};
+use vrep_maze::draw::{self, ApplyOptions, BackendError, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
 
@@ -136,7 +134,7 @@ fn cut_and_repair(kind: Kind, scene: &Scene, d: &Drawing, k: usize, repair: Repa
     drop(b);
     // the line template's home stays recorded while a maze is drawn (`draw::home`)
     let (fps, signals) = s.with_sim(|sim| {
-        let other = |n: &&String| !HOME_SIGNALS.contains(&n.as_str());
+        let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
         (sim.idle_fps, sim.int_signals.keys().filter(other).count())
     });
     assert_eq!(
@@ -280,7 +278,7 @@ fn idle_rate_left_at_zero_by_an_interrupted_apply_is_restored(kind: Kind) {
         let host = s.host();
         let raised = move || {
             with_sim(&*host, |sim| {
-                sim.idle_fps == 0 && sim.int_signals.contains_key(SAVED_IDLE_FPS_SIGNAL)
+                sim.idle_fps == 0 && sim.int_signals.contains_key(SAVED_IDLE_FPS.name)
             })
         };
         let proxy = Proxy::start(s.addr(), Cut::When(Box::new(raised)));
@@ -306,7 +304,7 @@ fn idle_rate_left_at_zero_by_an_interrupted_apply_is_restored(kind: Kind) {
         drop(b);
         // the line template's home stays recorded while a maze is drawn (`draw::home`)
         let (fps, signals) = s.with_sim(|sim| {
-            let other = |n: &&String| !HOME_SIGNALS.contains(&n.as_str());
+            let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
             (sim.idle_fps, sim.int_signals.keys().filter(other).count())
         });
         assert_eq!(

@@ -34,6 +34,7 @@ mod scenarios;
 mod schema;
 mod score;
 mod score_cli;
+mod signals;
 mod solve;
 mod texture;
 mod time_wait;

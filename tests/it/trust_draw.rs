@@ -5,8 +5,8 @@
 
 use tempfile::TempDir;
 use vrep_maze::coppelia::HANDLE_WORLD;
-use vrep_maze::draw::home::HOME_SIGNALS;
 use vrep_maze::draw::mesh::MeshMaze;
+use vrep_maze::draw::signals::HOME;
 use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing, ObjectNames};
 use vrep_maze::layout::{Layout, read_layout};
 use vrep_maze::sim::{NewObject, ObjectType, Scene};
@@ -721,9 +721,8 @@ fn clear_puts_the_template_back_where_it_stood(kind: Kind) {
         position(&s, "Line")
     );
     let left = s.with_sim(|sim| {
-        HOME_SIGNALS
-            .iter()
-            .filter(|n| sim.int_signals.contains_key(**n))
+        HOME.iter()
+            .filter(|n| sim.int_signals.contains_key(n.name))
             .count()
     });
     assert_eq!(left, 0, "{k}: the record is deleted");
@@ -761,8 +760,8 @@ fn a_maze_without_a_record_of_home_hides_the_template_on_clear(kind: Kind) {
     let mut b = s.connect();
     apply(&mut *b, &drawing(4, 2)).unwrap();
     s.with_sim(|sim| {
-        HOME_SIGNALS.iter().for_each(|n| {
-            sim.int_signals.remove(*n);
+        HOME.iter().for_each(|n| {
+            sim.int_signals.remove(n.name);
         })
     });
     let r = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
@@ -775,8 +774,8 @@ fn a_maze_without_a_record_of_home_hides_the_template_on_clear(kind: Kind) {
     // and an apply over such a maze warns that clear will do so
     apply(&mut *b, &drawing(4, 2)).unwrap();
     s.with_sim(|sim| {
-        HOME_SIGNALS.iter().for_each(|n| {
-            sim.int_signals.remove(*n);
+        HOME.iter().for_each(|n| {
+            sim.int_signals.remove(n.name);
         })
     });
     let r = apply(&mut *b, &drawing(3, 2)).unwrap();

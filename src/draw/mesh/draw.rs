@@ -199,6 +199,7 @@ fn apply_claimed(
     // where the line template stood before it goes onto the first line, for `clear`
     keep_home(
         scene,
+        claim.signals_kept(),
         style == Style::Lines,
         &h,
         &survey.objects,

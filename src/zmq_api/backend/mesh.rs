@@ -1,5 +1,6 @@
-//! [`MeshDrawing`] over the ZeroMQ remote API: `sim.createMeshShape` per mesh, dressed and
-//! named with a few calls each, read back with `sim.getShapeMesh`.
+//! [`MeshDrawing`] over the ZeroMQ remote API: `sim.createShape` (`sim.createMeshShape`
+//! before 4.6) per mesh, dressed and named with a few calls each, read back with
+//! `sim.getShapeMesh`.
 
 use ciborium::Value;
 
@@ -15,6 +16,13 @@ use crate::zmq_api::cbor::{self, float_array, int};
 
 /// Shading angle of the meshes (CoppeliaSim's usual 20 degrees; flat faces show no edge).
 const SHADING_ANGLE: f64 = 0.349;
+
+/// The first program version whose add-on speaks protocol 2 (4.6.0): from it on meshes are
+/// made with `sim.createShape`, since 4.10 logs that `sim.createMeshShape` is deprecated
+/// (`../shared/spec/real-coppeliasim-4.10.md` "Other API changes that matter"). Both make the
+/// same shape, at the identity pose with its vertices as given (coppeliaSimLib@coppeliasim-v4.10.0-rev0
+/// `simInternal.cpp:6304-6408`); 4.5.1, where every timing was measured, keeps the older call.
+const CREATE_SHAPE_SINCE: i32 = 40600;
 
 /// Positions within this of the origin, and angles within this of zero, are the identity.
 const IDENTITY: f64 = 1e-9;
@@ -126,8 +134,13 @@ impl MeshDrawing for ZmqBackend {
         for mesh in meshes {
             let vertices: Vec<f64> = mesh.vertices.iter().map(|&v| f64::from(v)).collect();
             let indices = Value::Array(mesh.indices.iter().map(|&i| int(i.into())).collect());
+            let create = if self.version >= CREATE_SHAPE_SINCE {
+                "sim.createShape"
+            } else {
+                "sim.createMeshShape"
+            };
             let h = self.client.call_int(
-                "sim.createMeshShape",
+                create,
                 vec![
                     int(0),
                     Value::Float(SHADING_ANGLE),

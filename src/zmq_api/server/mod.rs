@@ -438,7 +438,7 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
         return None;
     };
     match func {
-        "sim.createMeshShape" => match args.get(3) {
+        "sim.createMeshShape" | "sim.createShape" => match args.get(3) {
             Some(Value::Array(indices)) => Some(Op::CreateMesh {
                 triangles: indices.len() / 3,
             }),
@@ -480,6 +480,12 @@ fn outcome_reply(
         s.sync(Instant::now());
         work = call_ops(s, &req.func, &req.args);
         outcome = functions::call(s, extras, protocol, &req.func, &req.args);
+        // what the simulator logs (deprecation notes): shown with the failed requests
+        for note in extras.notes.drain(..) {
+            if state.config.verbose {
+                eprintln!("vrep-maze serve (zmq): {note}");
+            }
+        }
         if req.func == "sim.getObjectsInTree" {
             work = tree_ops(&outcome);
         }

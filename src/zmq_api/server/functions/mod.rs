@@ -44,6 +44,10 @@ pub(super) struct Extras {
     shape_params: HashMap<(i32, i32), i32>,
     /// Model properties set by `sim.setModelProperty` (or a loaded model base), per handle.
     model_property: HashMap<i32, i32>,
+    /// Lines the simulator logs (its deprecation notes), taken by the server after each call.
+    pub(super) notes: Vec<String>,
+    /// The deprecation note of `sim.createMeshShape` was logged (4.10 logs it once).
+    mesh_shape_noted: bool,
 }
 
 impl Extras {
@@ -146,6 +150,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getObjectInt32Param", authoring::get_object_int32_param),
     ("sim.saveScene", authoring::save_scene),
     ("sim.createMeshShape", shapes::create_mesh_shape),
+    ("sim.createShape", shapes::create_shape),
     ("sim.getShapeMesh", shapes::get_shape_mesh),
     ("sim.getShapeBB", shapes::get_shape_bb),
     ("sim.groupShapes", shapes::group_shapes),
@@ -243,7 +248,17 @@ mod testing {
 
     /// Calls `func` over protocol 2 with fresh [`Extras`].
     pub(super) fn run(sim: &mut Simulator, func: &str, args: Vec<Value>) -> Outcome {
-        call(sim, &mut Extras::default(), Protocol::V2, func, &args)
+        run_on(sim, Protocol::V2, func, args)
+    }
+
+    /// Calls `func` over `protocol` with fresh [`Extras`].
+    pub(super) fn run_on(
+        sim: &mut Simulator,
+        protocol: Protocol,
+        func: &str,
+        args: Vec<Value>,
+    ) -> Outcome {
+        call(sim, &mut Extras::default(), protocol, func, &args)
     }
 
     /// The single return value of a successful call.

@@ -2,18 +2,44 @@
 //! box back (every shape: a created mesh, or the primitive a plane or cuboid is), merging
 //! shapes. As CoppeliaSim 4.5.1 (coppeliaSimLib `simInternal.cpp`, tag
 //! coppeliasim-v4.5.1-rev4): a new mesh is at the world origin with its vertices as given,
-//! duplicate vertices merged; a mesh reads back relative to the shape's frame.
+//! duplicate vertices merged; a mesh reads back relative to the shape's frame. 4.10 (protocol
+//! 2) differs in two replies: `sim.getShapeBB` gives the box's pose too, and
+//! `sim.createMeshShape` logs that it is deprecated (`../shared/spec/real-coppeliasim-4.10.md`
+//! "Other API changes that matter").
 
 use ciborium::Value;
 
 use super::{Args, Ctx, Outcome, ret};
 use crate::sim::{Mesh, MeshError, NewObject, ObjectType};
 use crate::zmq_api::cbor::{float_array, int};
+use crate::zmq_api::message::Protocol;
+
+/// What 4.10 logs, once, at the first `sim.createMeshShape` (`../shared/spec/real-coppeliasim-4.10.md`
+/// "Other API changes that matter").
+const MESH_SHAPE_DEPRECATED: &str =
+    "sim.createMeshShape: deprecated, please use sim.createShape instead";
 
 /// `sim.createMeshShape(options, shadingAngle, vertices, indices)`: a grey shape named
 /// `Shape` (`Shape0`, ...) at the world origin; bad vertices or indices are the errors
-/// CoppeliaSim gives.
+/// CoppeliaSim gives. Over protocol 2 the first call logs the deprecation note.
 pub(super) fn create_mesh_shape(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    if ctx.protocol == Protocol::V2 && !ctx.extras.mesh_shape_noted {
+        ctx.extras.mesh_shape_noted = true;
+        ctx.extras.notes.push(MESH_SHAPE_DEPRECATED.into());
+    }
+    create_shape(ctx, a)
+}
+
+/// `sim.createShape(options, shadingAngle, vertices, indices, normals = nil, ...)`, on both
+/// generations (4.5.1 has it too: coppeliaSimLib@coppeliasim-v4.5.1-rev4
+/// `luaScriptFunctions.cpp:288`): the shape [`create_mesh_shape`] makes, at the identity
+/// pose with its vertices as given (coppeliaSimLib@coppeliasim-v4.10.0-rev0
+/// `simInternal.cpp:6304-6362`). There its bounding box is then re-fitted to the mesh
+/// (`alignBB("mesh")`: measured on 4.10.0 on 2026-11-27, two flat rectangles 1 x 0.1 get the
+/// sizes 0 x 0.1 x 1, the box turned -90 degrees about y); here it stays aligned with the
+/// shape's frame, as `sim.createMeshShape`'s. No client of ours reads a created mesh's box.
+/// Optional normals and textures are not modelled.
+pub(super) fn create_shape(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     a.int(0)?;
     a.get(1)
         .and_then(crate::zmq_api::cbor::number)
@@ -76,12 +102,22 @@ pub(super) fn get_shape_mesh(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome,
     ret(vec![float_array(&vertices), indices, float_array(&normals)])
 }
 
-/// `sim.getShapeBB(h)`: the size of the shape's bounding box (x, y, z).
+/// `sim.getShapeBB(h)`: the size of the shape's bounding box (x, y, z); over protocol 2
+/// also the box's pose in the shape's frame (x, y, z, qx, qy, qz, qw: its centre, unrotated
+/// here), as 4.10 answers (`../shared/spec/real-coppeliasim-4.10.md` "Other API changes that
+/// matter"; coppeliaSimLib@coppeliasim-v4.10.0-rev0 `luaScriptFunctions.cpp:11347-11378`).
 pub(super) fn get_shape_bb(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let h = a.int(0)?;
     let (min, max) = shape(ctx, a, h)?.bounding_box();
     let size = [0, 1, 2].map(|k| max[k] - min[k]);
-    ret(vec![float_array(&size)])
+    let mut values = vec![float_array(&size)];
+    if ctx.protocol == Protocol::V2 {
+        let centre = [0, 1, 2].map(|k| (max[k] + min[k]) / 2.0);
+        values.push(float_array(&[
+            centre[0], centre[1], centre[2], 0.0, 0.0, 0.0, 1.0,
+        ]));
+    }
+    ret(values)
 }
 
 /// `sim.groupShapes(handles, merge = false)`: the shapes become one, the last listed (its
@@ -129,7 +165,7 @@ pub(super) fn group_shapes(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, S
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::{ret1, run};
+    use super::super::testing::{ret1, run, run_on};
     use super::*;
     use crate::coppelia::DEFAULT_IDLE_FPS;
     use crate::sim::{Scene, Simulator};
@@ -163,11 +199,20 @@ mod tests {
         ));
         let h32 = cbor::int32(&h).unwrap();
         assert_eq!(sim.scene.get(h32).unwrap().name, "Shape");
-        let bb = ret1(run(&mut sim, "sim.getShapeBB", vec![h.clone()]));
+        let Outcome::Ret(bb) = run(&mut sim, "sim.getShapeBB", vec![h.clone()]) else {
+            panic!()
+        };
         assert_eq!(
-            cbor::numbers::<3>(&bb),
+            cbor::numbers::<3>(&bb[0]),
             Some([1.0, 0.1, 0.0].map(|x: f64| f64::from(x as f32)))
         );
+        // protocol 2: and the box's pose, its centre in the shape's frame
+        let pose = cbor::numbers::<7>(&bb[1]).unwrap();
+        assert!(
+            (pose[0] - 0.5).abs() < 1e-6 && (pose[1] - 0.05).abs() < 1e-6,
+            "{pose:?}"
+        );
+        assert_eq!(pose[3..], [0.0, 0.0, 0.0, 1.0]);
         run(
             &mut sim,
             "sim.setObjectPosition",
@@ -209,7 +254,8 @@ mod tests {
         assert!(v.chunks(3).all(|p| (p[0].abs() - 0.3).abs() < 1e-6
             && (p[1].abs() - 0.05).abs() < 1e-6
             && p[2] == 0.0));
-        let bb = ret1(run(&mut sim, "sim.getShapeBB", vec![line]));
+        // protocol 1 (4.5.1): the sizes only
+        let bb = ret1(run_on(&mut sim, Protocol::V1, "sim.getShapeBB", vec![line]));
         let bb = cbor::numbers::<3>(&bb).unwrap();
         assert!((bb[0] - 0.6).abs() < 1e-9 && (bb[1] - 0.1).abs() < 1e-9 && bb[2] == 0.0);
     }
@@ -259,6 +305,41 @@ mod tests {
                 other => panic!("{func}: {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn create_shape_is_create_mesh_shape_without_the_deprecation_note() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let mut extras = super::super::Extras::default();
+        let mut create = |protocol, func| {
+            let (v, i) = two_rects();
+            let args = [int(0), Value::Float(0.5), v, i];
+            let h = ret1(super::super::call(
+                &mut sim,
+                &mut extras,
+                protocol,
+                func,
+                &args,
+            ));
+            (cbor::int32(&h).unwrap(), std::mem::take(&mut extras.notes))
+        };
+        let (a, notes) = create(Protocol::V2, "sim.createShape");
+        assert!(notes.is_empty());
+        let (_, notes) = create(Protocol::V1, "sim.createMeshShape");
+        assert!(notes.is_empty(), "4.5.1 logs nothing");
+        let (_, notes) = create(Protocol::V2, "sim.createMeshShape");
+        assert_eq!(notes, [MESH_SHAPE_DEPRECATED]);
+        let (b, notes) = create(Protocol::V2, "sim.createMeshShape");
+        assert!(notes.is_empty(), "logged once");
+        let mesh = |h: i32| {
+            sim.scene
+                .get(h)
+                .unwrap()
+                .shape_mesh()
+                .map(|m| m.into_owned())
+        };
+        assert_eq!(mesh(a), mesh(b));
+        assert_eq!(sim.scene.get(a).unwrap().position, [0.0; 3]);
     }
 
     #[test]

@@ -1,5 +1,11 @@
 //! The simulation state (start, stop), integer parameters (program version, idle fps) and
 //! integer and string signals.
+//!
+//! Signals differ between the generations. Protocol 1 (4.5.1) keeps a signal of any name
+//! and its setters return nothing. Protocol 2 (4.10) keeps signals as scene properties: a
+//! name that is no valid property name ([`is_property_name`]) is not stored, the setter
+//! answers `[1]` all the same, and a getter of a signal that does not exist answers nothing
+//! (`{}`), `../shared/spec/real-coppeliasim-4.10.md` "Signals are scene properties now".
 
 use ciborium::Value;
 
@@ -8,6 +14,7 @@ use crate::coppelia::{
     INTPARAM_PROGRAM_VERSION, SIMULATION_ADVANCING_RUNNING, SIMULATION_PAUSED, SIMULATION_STOPPED,
 };
 use crate::sim::SimState;
+use crate::sim::property::is_property_name;
 use crate::zmq_api::cbor::int;
 use crate::zmq_api::message::Protocol;
 
@@ -47,17 +54,40 @@ pub(super) fn stop_simulation(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Outcome
     }
 }
 
-/// `sim.getInt32Signal(name)`: the value, or nil when the signal is not set.
-pub(super) fn get_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
-    let value = ctx.sim.int_signals.get(a.text(0)?).copied();
-    ret(vec![value.map_or(Value::Null, |v| int(v.into()))])
+/// The reply of a signal getter: the value, or for a signal that does not exist nil
+/// (protocol 1) or nothing (protocol 2: see the module's doc).
+fn signal_reply(ctx: &Ctx<'_>, value: Option<Value>) -> Result<Outcome, String> {
+    match (value, ctx.protocol) {
+        (Some(v), _) => ret(vec![v]),
+        (None, Protocol::V1) => ret(vec![Value::Null]),
+        (None, Protocol::V2) => nothing(),
+    }
 }
 
-/// `sim.setInt32Signal(name, value)`.
+/// Whether a signal setter stores `name` (protocol 2: only a valid property name), and its
+/// reply (protocol 2: `[1]`, stored or not). See the module's doc.
+fn signal_set(ctx: &Ctx<'_>, name: &str) -> (bool, Result<Outcome, String>) {
+    match ctx.protocol {
+        Protocol::V1 => (true, nothing()),
+        Protocol::V2 => (is_property_name(name), ret(vec![int(1)])),
+    }
+}
+
+/// `sim.getInt32Signal(name)`: the value, or nil (protocol 2: nothing) when it is not set.
+pub(super) fn get_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let value = ctx.sim.int_signals.get(a.text(0)?).copied();
+    signal_reply(ctx, value.map(|v| int(v.into())))
+}
+
+/// `sim.setInt32Signal(name, value)` (protocol 2: a name that is no property name is
+/// silently not stored).
 pub(super) fn set_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let (name, value) = (a.text(0)?, a.int(1)?);
-    ctx.sim.int_signals.insert(name.to_string(), value);
-    nothing()
+    let (stored, reply) = signal_set(ctx, name);
+    if stored {
+        ctx.sim.int_signals.insert(name.to_string(), value);
+    }
+    reply
 }
 
 /// `sim.clearInt32Signal(name)`; clearing an unset signal is no error.
@@ -66,16 +96,20 @@ pub(super) fn clear_int32_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outc
     nothing()
 }
 
-/// `sim.getStringSignal(name)`: the value (text when it is UTF-8, else bytes), or nil when
-/// the signal is not set.
+/// `sim.getStringSignal(name)`: the value (text when it is UTF-8, else bytes), or nil
+/// (protocol 2: nothing) when the signal is not set.
 pub(super) fn get_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let value = ctx.sim.string_signals.get(a.text(0)?).map(|v| {
         String::from_utf8(v.clone()).map_or_else(|e| Value::Bytes(e.into_bytes()), Value::Text)
     });
-    ret(vec![value.unwrap_or(Value::Null)])
+    signal_reply(ctx, value)
 }
 
-/// `sim.setStringSignal(name, value)`: the value as text or bytes.
+/// `sim.setStringSignal(name, value)`: the value as text or bytes (protocol 2: a name that
+/// is no property name is silently not stored). Protocol 2 refuses bytes that are not
+/// UTF-8: 4.10's add-on would never answer the signal's read (it fails to encode it and
+/// restarts, losing the client's signals, `../shared/spec/real-coppeliasim-4.10.md` "The
+/// remote APIs"); refusing at once makes such a write a clear error here instead of a hang.
 pub(super) fn set_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let name = a.text(0)?;
     let value = match a.get(1) {
@@ -83,8 +117,17 @@ pub(super) fn set_string_signal(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outco
         Some(Value::Bytes(b)) => b.clone(),
         _ => return Err(a.bad(1, "a string")),
     };
-    ctx.sim.string_signals.insert(name.to_string(), value);
-    nothing()
+    if ctx.protocol == Protocol::V2 && std::str::from_utf8(&value).is_err() {
+        return Err(format!(
+            "in {}: the value of string signal `{name}` is not UTF-8 (CoppeliaSim 4.10's add-on never answers its read)",
+            a.func
+        ));
+    }
+    let (stored, reply) = signal_set(ctx, name);
+    if stored {
+        ctx.sim.string_signals.insert(name.to_string(), value);
+    }
+    reply
 }
 
 /// `sim.clearStringSignal(name)`; clearing an unset signal is no error.
@@ -125,6 +168,85 @@ mod tests {
     use super::*;
     use crate::coppelia::DEFAULT_IDLE_FPS;
     use crate::sim::{Scene, Simulator};
+
+    /// One call over `protocol`, on a shared simulator.
+    fn on(sim: &mut Simulator, protocol: Protocol, func: &str, args: &[Value]) -> Outcome {
+        call(sim, &mut Extras::default(), protocol, func, args)
+    }
+
+    #[test]
+    fn protocol_2_silently_drops_a_signal_that_is_no_property_name() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let text = |s: &str| Value::Text(s.into());
+        for name in ["vrep-maze.lease", "vrep_maze.lease"] {
+            let set = on(
+                &mut sim,
+                Protocol::V2,
+                "sim.setInt32Signal",
+                &[text(name), int(7)],
+            );
+            assert_eq!(set, Outcome::Ret(vec![int(1)]), "{name}");
+            let set = on(
+                &mut sim,
+                Protocol::V2,
+                "sim.setStringSignal",
+                &[text(name), text("x")],
+            );
+            assert_eq!(set, Outcome::Ret(vec![int(1)]), "{name}");
+        }
+        // the spec's table: nothing for the name with '-', the value for the other
+        let get = |sim: &mut Simulator, f: &str, n: &str| on(sim, Protocol::V2, f, &[text(n)]);
+        assert_eq!(
+            get(&mut sim, "sim.getInt32Signal", "vrep-maze.lease"),
+            Outcome::Ret(vec![])
+        );
+        assert_eq!(
+            get(&mut sim, "sim.getStringSignal", "vrep-maze.lease"),
+            Outcome::Ret(vec![])
+        );
+        assert_eq!(
+            get(&mut sim, "sim.getInt32Signal", "vrep_maze.lease"),
+            Outcome::Ret(vec![int(7)])
+        );
+        assert_eq!(
+            get(&mut sim, "sim.getStringSignal", "vrep_maze.lease"),
+            Outcome::Ret(vec![text("x")])
+        );
+        // protocol 1 (4.5.1) keeps any name, answers nothing to a setter and nil for no signal
+        let set = on(
+            &mut sim,
+            Protocol::V1,
+            "sim.setInt32Signal",
+            &[text("a-b"), int(3)],
+        );
+        assert_eq!(set, Outcome::Ret(vec![]));
+        assert_eq!(
+            on(&mut sim, Protocol::V1, "sim.getInt32Signal", &[text("a-b")]),
+            Outcome::Ret(vec![int(3)])
+        );
+        assert_eq!(
+            on(&mut sim, Protocol::V1, "sim.getInt32Signal", &[text("c")]),
+            Outcome::Ret(vec![Value::Null])
+        );
+    }
+
+    #[test]
+    fn protocol_2_refuses_a_string_signal_that_is_not_utf8() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let args = [Value::Text("s".into()), Value::Bytes(vec![0xff, 0x41])];
+        let refused = on(&mut sim, Protocol::V2, "sim.setStringSignal", &args);
+        assert!(
+            matches!(&refused, Outcome::Err(e) if e.contains("not UTF-8")),
+            "{refused:?}"
+        );
+        assert!(sim.string_signals.is_empty());
+        assert_eq!(
+            on(&mut sim, Protocol::V1, "sim.setStringSignal", &args),
+            Outcome::Ret(vec![])
+        );
+        let read = on(&mut sim, Protocol::V1, "sim.getStringSignal", &args[..1]);
+        assert_eq!(read, Outcome::Ret(vec![Value::Bytes(vec![0xff, 0x41])]));
+    }
 
     #[test]
     fn protocol_1_reports_4_5_1_and_protocol_2_reports_4_10() {
