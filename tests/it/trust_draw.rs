@@ -913,8 +913,9 @@ fn no_older_version_is_blamed_for_a_wall_maze_or_a_mesh_maze(kind: Kind) {
     let lines = generated_layout(&dir, "lines.json", &["--size", "3x3"]);
     let forget = |s: &Server| {
         s.with_sim(|sim| {
-            HOME_SIGNALS.iter().for_each(|n| {
-                sim.int_signals.remove(*n);
+            HOME.iter().for_each(|n| {
+                sim.int_signals.remove(n.name);
+                sim.int_signals.remove(n.old);
             })
         })
     };
