@@ -789,7 +789,8 @@ fn a_maze_without_a_record_of_home_hides_the_template_on_clear(kind: Kind) {
 }
 
 /// Class 4: a wall maze replacing a line maze does not leave the line template lying where
-/// the first line was.
+/// the first line was, nor anywhere on the floor: it goes below the floor under where it
+/// stood before the first apply, and `clear` puts it back there.
 fn a_wall_maze_sends_the_line_template_home(kind: Kind) {
     let k = kind.name();
     let dir = TempDir::new().unwrap();
@@ -799,6 +800,13 @@ fn a_wall_maze_sends_the_line_template_home(kind: Kind) {
     apply(&mut *b, &drawing(3, 2)).unwrap();
     let walls = generated(&dir, "walls.json", &["--style", "walls", "--size", "3x3"]);
     apply(&mut *b, &walls).unwrap_or_else(|e| panic!("{k}: {e}"));
+    let below = [home[0], home[1], -vrep_maze::draw::home::HIDDEN_DEPTH];
+    assert!(
+        near(position(&s, "Line"), below),
+        "{k}: {:?}",
+        position(&s, "Line")
+    );
+    draw::clear(&mut *b, &ClearOptions::default()).unwrap();
     assert!(
         near(position(&s, "Line"), home),
         "{k}: {:?}",
