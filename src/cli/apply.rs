@@ -190,6 +190,10 @@ pub struct ApplyArgs {
     /// `sim.createMeshShape` over ZeroMQ, loaded as an XML model over the legacy API.
     #[arg(long, value_enum, default_value = "copies")]
     pub draw: DrawMode,
+    /// ZeroMQ only: grow a `Floor` smaller than the layout's floor to its size
+    /// (`sim.scaleObject`) instead of refusing; `clear` puts it back to its size before.
+    #[arg(long)]
+    pub resize_floor: bool,
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
     #[arg(long, value_name = "PATH")]
     pub save_scene: Option<String>,
@@ -220,6 +224,10 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     ensure_usage!(
         !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
+    );
+    ensure_usage!(
+        !args.resize_floor || args.scene.api != Api::Legacy,
+        "--resize-floor needs the ZeroMQ remote API (--api zmq): the legacy API cannot resize objects"
     );
     // two roles on one object: refused at once, before connecting
     args.scene.names().check_roles()?;
@@ -322,6 +330,7 @@ fn drive<D>(
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
+        resize_floor: args.resize_floor,
         ..Default::default()
     };
     let interrupt = Interrupt::install()?;
@@ -424,6 +433,9 @@ fn drive<D>(
     let _ = backend.close();
     if report.stopped_simulation {
         say("stopped the simulation first")?;
+    }
+    if let Some(line) = &report.floor {
+        say(line)?;
     }
     say(&report)?;
     if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {

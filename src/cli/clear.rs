@@ -77,6 +77,9 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Some(line) = &report.template {
         say(line)?;
     }
+    if let Some(line) = &report.floor {
+        say(line)?;
+    }
     if report.removed.is_empty() && report.removed_meshes.is_empty() {
         say(
             "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under Maze in the scene",

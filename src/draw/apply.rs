@@ -8,6 +8,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
@@ -30,6 +31,9 @@ pub struct ApplyOptions {
     /// Set by a Ctrl-C handler: the run stops after the request in flight, restores the
     /// idle rate and fails with [`DrawError::Interrupted`].
     pub interrupt: Option<Arc<AtomicBool>>,
+    /// Grow a floor smaller than the layout's to its size ([`super::floor::resize`]; the
+    /// ZeroMQ API only) instead of refusing with [`DrawError::Floor`].
+    pub resize_floor: bool,
 }
 
 impl Default for ApplyOptions {
@@ -40,6 +44,7 @@ impl Default for ApplyOptions {
             dry_run: false,
             paste_blocks_per_round: 16,
             interrupt: None,
+            resize_floor: false,
         }
     }
 }
@@ -114,8 +119,11 @@ pub struct ApplyReport {
     /// Dry run: nothing was changed.
     pub dry_run: bool,
     /// What the user should know: markers larger than a cell, sizes not read
-    /// ([`plan::check_sizes`]).
+    /// ([`super::fit::check_sizes`]).
     pub warnings: Vec<String>,
+    /// The floor grown to the layout's (`--resize-floor`, [`super::floor::resize`]): one
+    /// line saying from what size to what.
+    pub floor: Option<String>,
     /// The user's objects under the maze dummy (and root objects named like copies of a
     /// template but of another type): left alone ([`plan::sort_out`]).
     pub left_alone: Vec<String>,
@@ -130,6 +138,7 @@ impl ApplyReport {
             && self.placed == 0
             && self.markers_placed == 0
             && !self.simulation_running
+            && self.floor.is_none()
     }
 }
 
@@ -760,8 +769,23 @@ pub(crate) fn begin(
     let names = &opts.names;
     let (survey, h) = surveyed(scene, names, asks.style, posts)?;
     let sizes = sizes_of(scene, asks, names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
+    let short = sizes.floor.filter(|_| sizes.refusals.is_empty());
+    if let Some(refused) = sizes.refused(names) {
+        return Err(refused);
+    }
+    if let Some(short) = short.filter(|_| !opts.resize_floor) {
+        let resize = if short.factors().is_none() {
+            super::floor::Resize::NoExtent
+        } else if scene.authoring().is_none() {
+            super::floor::Resize::NoApi
+        } else {
+            super::floor::Resize::Offered
+        };
+        return Err(DrawError::Floor {
+            floor: names.floor.clone(),
+            short,
+            resize,
+        });
     }
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
@@ -776,6 +800,15 @@ pub(crate) fn begin(
         opts.stop_simulation,
         opts.dry_run,
     )?;
+    if let Some(short) = short {
+        report.floor = Some(super::floor::resize(
+            scene,
+            h.floor,
+            &names.floor,
+            &short,
+            opts.dry_run,
+        )?);
+    }
     let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     report.left_alone = sorted.strangers;
     Ok(Begun {
@@ -786,26 +819,30 @@ pub(crate) fn begin(
     })
 }
 
-/// Reads the sizes of the template, post template (if the drawing has posts), start and end
-/// ([`Backend::sizes`]: legacy in one request) and compares them with the drawing's.
+/// Reads the sizes of the template, start, end, floor and post template (if the drawing
+/// has posts) ([`Backend::sizes`]: legacy in one request) and compares them with the
+/// drawing's ([`fit::check_sizes`]).
 pub(crate) fn sizes_of(
     scene: &mut dyn Backend,
     drawing: &TemplateUse<'_>,
     names: &ObjectNames,
     h: &Handles,
-) -> Result<plan::SizeCheck, DrawError> {
+) -> Result<fit::SizeCheck, DrawError> {
     let post = h.post.filter(|_| drawing.posts);
-    let mut asked = vec![h.line, h.start, h.end];
+    let mut asked = vec![h.line, h.start, h.end, h.floor];
     asked.extend(post);
     let sizes = scene.sizes(&asked)?;
     let get = |k: usize| sizes.get(k).copied().flatten();
-    Ok(plan::check_sizes(
+    Ok(fit::check_sizes(
         drawing,
         names,
-        get(0),
-        post.and_then(|_| get(3)),
-        get(1),
-        get(2),
+        &fit::Measured {
+            template: get(0),
+            start: get(1),
+            end: get(2),
+            floor: get(3),
+            post: post.and_then(|_| get(4)),
+        },
     ))
 }
 

@@ -31,6 +31,9 @@ pub struct ClearReport {
     /// Where the line template went (one line), if it moved: back home, or below the floor
     /// when its home was never recorded ([`home`]).
     pub template: Option<String>,
+    /// The floor put back to its size before `apply --resize-floor` (one line), or why it
+    /// was not ([`super::floor::restore`]).
+    pub floor: Option<String>,
 }
 
 /// Puts the line template back where it stood before the first `apply` ([`home`]) and
@@ -193,8 +196,10 @@ fn clear_claimed(
     } else {
         None
     };
+    let floor = super::floor::restore(scene, h.floor, &names.floor, dry_run)?;
     Ok(ClearReport {
         template,
+        floor,
         removed,
         removed_meshes,
         round_trips: 0,

@@ -426,6 +426,24 @@ impl Scene {
         Ok(())
     }
 
+    /// Scales an object along its own x, y and z by `factors` (`sim.scaleObject`): its size
+    /// and, for a mesh shape, its vertices; its pose stays.
+    pub fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), SimError> {
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        o.size = [0, 1, 2].map(|k| o.size[k] * factors[k]);
+        if let Some(mesh) = &mut o.mesh {
+            for v in mesh.vertices.chunks_exact_mut(3) {
+                for k in 0..3 {
+                    v[k] = (f64::from(v[k]) * factors[k]) as f32;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Resizes an object (its bounding box; e.g. a template the user scaled).
     pub fn set_size(&mut self, handle: i32, size: [f64; 3]) -> Result<(), SimError> {
         let o = self
