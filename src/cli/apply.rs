@@ -134,6 +134,60 @@ impl ConnectArgs {
         )
     }
 
+    /// `vrep-maze COMMAND` with the options of this connection that are not the defaults
+    /// (host, API, port, names, timeouts), each word quoted for the shell: the command a
+    /// hint shows, which reaches the same simulator and objects.
+    pub fn command(&self, command: &str) -> String {
+        let mut words = vec!["vrep-maze".to_string(), command.to_string()];
+        let mut add = |option: &str, value: String| {
+            words.push(option.to_string());
+            words.push(super::escape::shell_word(&value).into_owned());
+        };
+        if self.host != "127.0.0.1" {
+            add("--host", self.host.clone());
+        }
+        if self.api != Api::Auto {
+            let api = clap::ValueEnum::to_possible_value(&self.api)
+                .map(|v| v.get_name().to_string())
+                .unwrap_or_default();
+            add("--api", api);
+        }
+        if let Some(port) = self.port {
+            add("--port", port.to_string());
+        }
+        let defaults = ObjectNames::default();
+        for ((option, name), default) in [
+            ("--floor", &self.floor),
+            ("--parent", &self.parent),
+            ("--line", &self.line),
+            ("--wall", &self.wall),
+            ("--post", &self.post),
+            ("--start", &self.start),
+            ("--end", &self.end),
+        ]
+        .into_iter()
+        .zip([
+            &defaults.floor,
+            &defaults.parent,
+            &defaults.line,
+            &defaults.wall,
+            &defaults.post,
+            &defaults.start,
+            &defaults.end,
+        ]) {
+            if name != default {
+                add(option, name.clone());
+            }
+        }
+        if let Some(wait) = self.connect_timeout {
+            add("--connect-timeout", wait.as_secs_f64().to_string());
+        }
+        if self.timeout != Duration::from_secs(10) {
+            add("--timeout", self.timeout.as_secs_f64().to_string());
+        }
+        words.join(" ")
+    }
+
     /// Refuses an empty `--host`.
     fn check_host(&self) -> anyhow::Result<()> {
         ensure_usage!(
@@ -407,13 +461,14 @@ fn drive<D>(
             }
         );
         eprintln!(
-            "  hint: run the same apply again to finish the maze, or vrep-maze clear to remove it"
+            "  hint: run the same apply again to finish the maze, or {} to remove it",
+            super::escape::escaped(&args.scene.command("clear"))
         );
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
     let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
     for warning in &report.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", super::escape::escaped(warning));
     }
     if let Some(path) = &args.save_scene
         && !args.dry_run

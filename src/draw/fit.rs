@@ -174,6 +174,45 @@ fn wall_options(
     }
 }
 
+/// What `generate --style walls --posts` says of a post template of `post` (x, y, z) with
+/// the layout's walls, as high as the post, on the drawing's cells (`scene_wall`: the
+/// scene's wall template, which must be as high): `Ok` with the options if it would
+/// generate with them, else why not.
+fn post_options(
+    drawing: &TemplateUse<'_>,
+    scene_wall: Option<[f64; 3]>,
+    post: [f64; 3],
+) -> Result<String, String> {
+    let sizes = drawing.sizes;
+    let Some(wall) = sizes.wall else {
+        return Err("the layout has no walls".into());
+    };
+    let height = scene_wall.map_or(wall[2], |w| w[2]);
+    if !same_size(height, post[2]) {
+        return Err(format!(
+            "a post is as high as the walls, and the wall template is {} m high",
+            metres(height)
+        ));
+    }
+    let side = post[0].max(post[1]);
+    let found = crate::layout::walls::check_template(
+        sizes.cell,
+        wall[0],
+        wall[1],
+        post[2],
+        Some(side),
+        Naming::Options,
+    );
+    match found.first() {
+        None => Ok(format!(
+            "--posts --post-size {} --wall-height {}",
+            metres(side),
+            metres(post[2])
+        )),
+        Some(v) => Err(v.to_string()),
+    }
+}
+
 /// "generate with OPTIONS, or resize ...", or where `generate` refuses those options
 /// (`options` is the reason), only the resize, with the reason.
 fn remedy(options: Result<String, String>, resize: String) -> String {
@@ -263,16 +302,7 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
             None => unread(&names.post, &mut check),
             Some(have) => {
                 if differs(&have, &want) {
-                    // the walls as the scene's wall template has them, else the layout's
-                    let wall = m.template.or(sizes.wall).unwrap_or(want);
-                    let options = if same_size(wall[2], have[2]) {
-                        wall_options(drawing, wall, Some(have[0].max(have[1])))
-                    } else {
-                        Err(format!(
-                            "a post is as high as the walls, and `{template_name}` is {} m high",
-                            metres(wall[2])
-                        ))
-                    };
+                    let options = post_options(drawing, m.template, have);
                     check.refusals.push(format!(
                         "the scene's `{}` is {} m but the layout's posts are {} m: {}",
                         names.post,

@@ -685,7 +685,7 @@ impl DrawError {
                         fit::extents(&short.resized()),
                         fit::extents(&short.have)
                     ),
-                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: draw over the ZeroMQ remote API with --api zmq --resize-floor (CoppeliaSim 4.5.1 serves both)".into(),
+                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
                     floor::Resize::NoExtent => format!(
                         "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
                     ),

@@ -426,6 +426,16 @@ impl Scene {
         Ok(())
     }
 
+    /// This scene with its `Floor` resized to `size` (x, y) metres: a floor that takes a
+    /// maze larger than the course's 10 m (what a user makes by scaling the floor).
+    pub fn with_floor(mut self, size: [f64; 2]) -> Scene {
+        if let Ok(floor) = self.resolve("Floor") {
+            let z = self.objects.get(&floor).map_or(0.0, |o| o.size[2]);
+            let _ = self.set_size(floor, [size[0], size[1], z]);
+        }
+        self
+    }
+
     /// Scales an object along its own x, y and z by `factors` (`sim.scaleObject`): its size
     /// and, for a mesh shape, its vertices; its pose stays.
     pub fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), SimError> {

@@ -790,7 +790,8 @@ fn a_maze_without_a_record_of_home_hides_the_template_on_clear(kind: Kind) {
 }
 
 /// Class 4: a wall maze replacing a line maze does not leave the line template lying where
-/// the first line was.
+/// the first line was, nor where it stood (a stray line among the walls): it goes below the
+/// floor under its home, and `clear` puts it back home.
 fn a_wall_maze_sends_the_line_template_home(kind: Kind) {
     let k = kind.name();
     let dir = TempDir::new().unwrap();
@@ -800,6 +801,12 @@ fn a_wall_maze_sends_the_line_template_home(kind: Kind) {
     apply(&mut *b, &drawing(3, 2)).unwrap();
     let walls = generated(&dir, "walls.json", &["--style", "walls", "--size", "3x3"]);
     apply(&mut *b, &walls).unwrap_or_else(|e| panic!("{k}: {e}"));
+    let hidden = position(&s, "Line");
+    assert!(
+        near([hidden[0], hidden[1], home[2]], home) && hidden[2] < -0.05,
+        "{k}: {hidden:?}"
+    );
+    draw::clear(&mut *b, &ClearOptions::default()).unwrap();
     assert!(
         near(position(&s, "Line"), home),
         "{k}: {:?}",
