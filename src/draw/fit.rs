@@ -342,7 +342,8 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
         Some(have) => {
             let have = [have[0], have[1]];
             // NaN is never large enough
-            let short = (0..2).any(|k| !(have[k] >= sizes.floor[k] - SIZE_TOLERANCE));
+            let short =
+                (0..2).any(|k| have[k].is_nan() || have[k] < sizes.floor[k] - SIZE_TOLERANCE);
             if short {
                 check.floor = Some(FloorShort {
                     have,
