@@ -538,3 +538,49 @@ fn apply_json(
         saved_scene: args.save_scene.clone().filter(|_| !args.dry_run),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::super::{Cli, Command};
+    use super::*;
+
+    /// The connection options of `clear` as parsed from `words`.
+    fn parsed(words: &[&str]) -> ConnectArgs {
+        match Cli::try_parse_from(words).unwrap().command {
+            Command::Clear(args) => args.scene,
+            _ => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn the_command_a_hint_shows_reaches_the_same_simulator_and_objects() {
+        let words = [
+            "vrep-maze",
+            "clear",
+            "--api",
+            "zmq",
+            "--port",
+            "23160",
+            "--parent",
+            "MyMaze",
+            "--timeout",
+            "2.5",
+        ];
+        let scene = parsed(&words);
+        let command = scene.command("clear");
+        assert_eq!(command, words.join(" "));
+        let again = parsed(&command.split(' ').collect::<Vec<_>>());
+        assert_eq!(again.command("clear"), command);
+        assert_eq!(
+            parsed(&["vrep-maze", "clear"]).command("clear"),
+            "vrep-maze clear"
+        );
+        let spaced = parsed(&["vrep-maze", "clear", "--line", "Green line"]);
+        assert_eq!(
+            spaced.command("clear"),
+            "vrep-maze clear --line 'Green line'"
+        );
+    }
+}
