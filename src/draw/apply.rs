@@ -655,7 +655,16 @@ pub(crate) fn keep_home(
         .map(world_frame)
         .unwrap_or_default();
     if !template_drawn {
-        return hide_line_template(scene, h, &floor, objects, earlier, line_template, record);
+        return hide_line_template(
+            scene,
+            h,
+            &floor,
+            objects,
+            earlier,
+            line_template,
+            &names.line,
+            record,
+        );
     }
     if record.is_some_and(|r| r.handle == h.line) {
         return Ok(());
@@ -664,7 +673,7 @@ pub(crate) fn keep_home(
         return Ok(());
     };
     let (position, orientation) = plan::relative_pose(&floor, template);
-    let home = if earlier != EarlierLines::None {
+    let home = if on_an_earlier_maze(scene, h, objects, template, &names.line, &floor, earlier)? {
         if earlier == EarlierLines::Copies {
             report.warnings.push(format!(
                 "no record of where `{}` stood before the first apply (a maze drawn by an older vrep-maze, or a scene saved and loaded again): `clear` will put it below the floor, out of sight",
@@ -688,12 +697,44 @@ pub(crate) fn keep_home(
     Ok(())
 }
 
+/// Whether the line template (`template`, named `line`) lies on the earlier line maze
+/// `earlier` says there is, as its first line: always on a mesh maze's (only our export puts
+/// it there), on a maze of copies only if one of the copies under the maze dummy touches it
+/// as a maze's lines do ([`super::first_line::lies_on_a_maze`]; its length read for it), so
+/// that a user's copy of `Line` under `Maze` does not make the template's own pose a guess.
+pub(crate) fn on_an_earlier_maze(
+    scene: &mut dyn Backend,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    template: &ObjectInfo,
+    line: &str,
+    floor: &crate::coppelia::frame::Frame,
+    earlier: EarlierLines,
+) -> Result<bool, DrawError> {
+    match earlier {
+        EarlierLines::None => Ok(false),
+        EarlierLines::Meshes => Ok(true),
+        EarlierLines::Copies => {
+            let copies: Vec<&ObjectInfo> = objects
+                .iter()
+                .filter(|o| o.parent == Some(h.parent) && plan::is_copy_name(&o.name, line))
+                .collect();
+            let length = scene.sizes(&[template.handle])?.first().copied().flatten();
+            // a length not read: no evidence either way, so taken to be on it as before
+            Ok(length.is_none_or(|size| {
+                super::first_line::lies_on_a_maze(template, &copies, floor, size[0])
+            }))
+        }
+    }
+}
+
 /// A wall maze has no line, so the line template (`line_template`, if the scene has one)
 /// must not lie on its floor as a stray line for a camera to see (the course scene keeps it
 /// at the floor's centre, `../shared/spec/course-scene.md`): it goes below the floor under
 /// where it stood, its home recorded first unless a record exists (the first line of a line
 /// maze it replaces: below the floor if that maze has no record), so that `clear`, or the
 /// next line maze, puts it back.
+#[allow(clippy::too_many_arguments)]
 fn hide_line_template(
     scene: &mut dyn Backend,
     h: &Handles,
@@ -701,6 +742,7 @@ fn hide_line_template(
     objects: &[ObjectInfo],
     earlier: EarlierLines,
     line_template: Option<i32>,
+    line_name: &str,
     record: Option<home::Home>,
 ) -> Result<(), DrawError> {
     let Some(template) = line_template.and_then(|t| objects.iter().find(|o| o.handle == t)) else {
@@ -710,7 +752,9 @@ fn hide_line_template(
     let home = match record.filter(|r| r.handle == template.handle) {
         Some(home) => home,
         None => {
-            let home = if earlier == EarlierLines::None {
+            let on_maze =
+                on_an_earlier_maze(scene, h, objects, template, line_name, floor, earlier)?;
+            let home = if !on_maze {
                 home::Home {
                     handle: template.handle,
                     position,

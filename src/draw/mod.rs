@@ -10,6 +10,7 @@
 pub mod apply;
 pub mod clear;
 pub mod estimate;
+pub mod first_line;
 pub mod fit;
 pub mod floor;
 pub mod home;

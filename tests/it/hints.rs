@@ -1,4 +1,4 @@
-//! Issue 30, items 7-10: the templates' full sizes and the floor's are checked, and every
+//! Issue 30, items 2 and 7-10: a template's home is recorded only from its own pose; the templates' full sizes and the floor's are checked, and every
 //! hint the tool prints is a command that works: each one here is followed as a person would
 //! follow it, and the drawing then succeeds. Readers of user input are bounded, and names on
 //! success paths are escaped.
@@ -20,6 +20,7 @@ backend_tests!(
     a_size_hint_followed_draws_the_maze,
     a_tall_line_or_marker_is_refused_until_flat,
     a_small_floor_is_refused_with_hints_that_work,
+    a_users_copy_of_line_does_not_cost_the_template_its_home,
 );
 
 /// `generate --seed 1 ARGS -o dir/name`, as a drawing.
@@ -291,4 +292,42 @@ fn names_on_success_paths_are_escaped() {
         !err.contains('\u{1b}') && err.lines().count() == 1 && err.contains("o\\nz.json"),
         "{err:?}"
     );
+}
+
+/// Issue 30 item 2: a user's copy of `Line` under `Maze` (pasted from it, so at its very
+/// pose) is no earlier maze: the template's home is its own pose, no "older vrep-maze" is
+/// blamed, and `clear` puts it back there, saying so truly.
+fn a_users_copy_of_line_does_not_cost_the_template_its_home(kind: Kind) {
+    let k = kind.name();
+    let dir = TempDir::new().unwrap();
+    let mut scene = Scene::course();
+    let (line, maze) = (
+        scene.resolve("Line").unwrap(),
+        scene.resolve("Maze").unwrap(),
+    );
+    let home = scene.get(line).unwrap().position;
+    let copy = scene.copy_paste(&[line]).unwrap()[0];
+    scene.set_parent(copy, Some(maze), true).unwrap();
+    let s = kind.serve(scene, 0);
+    let mut b = s.connect();
+    let course = generated(&dir, "course.json", &[]);
+    let r = apply(&mut *b, &course).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert!(
+        !r.warnings.iter().any(|w| w.contains("no record")),
+        "{k}: {:?}",
+        r.warnings
+    );
+    let c = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
+    assert_eq!(
+        c.template.as_deref(),
+        Some("put `Line` back where it stood before the first apply"),
+        "{k}"
+    );
+    let now = s.with_sim(|sim| sim.scene.get(line).unwrap().position);
+    assert!(
+        (0..3).all(|i| (now[i] - home[i]).abs() < 1e-6),
+        "{k}: {now:?}, not {home:?}"
+    );
+    drop(b);
+    s.shutdown();
 }
