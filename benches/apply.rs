@@ -23,7 +23,11 @@ fn server(fps: i32) -> ServerHandle {
         timing: Timing::realistic(),
         ..Default::default()
     };
-    spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap()
+    spawn(
+        cfg,
+        Simulator::new(Scene::course().with_floor([500.0, 500.0]), fps),
+    )
+    .unwrap()
 }
 
 fn opts() -> ClientOptions {

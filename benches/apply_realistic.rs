@@ -359,7 +359,7 @@ fn print_charges(ledger: &[Charge]) {
 
 /// Sets the row's scene up on an instant emulator, then times its step on a realistic one.
 fn run(row: &Row, mode: Mode, charges: bool) {
-    let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+    let mut sim = Simulator::new(Scene::course().with_floor([500.0, 500.0]), DEFAULT_IDLE_FPS);
     for m in row.before {
         let s = Server::start(m.api, sim, Timing::instant());
         s.apply(mode, &layout(m.n, m.seed));

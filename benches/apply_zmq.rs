@@ -32,7 +32,11 @@ fn legacy_run(d: &Drawing, fps: i32) -> Run {
         timing: Timing::realistic(),
         ..Default::default()
     };
-    let s = legacy::spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap();
+    let s = legacy::spawn(
+        cfg,
+        Simulator::new(Scene::course().with_floor([500.0, 500.0]), fps),
+    )
+    .unwrap();
     let t = Instant::now();
     let mut sc =
         LegacyBackend::connect("127.0.0.1", s.local_addr().port(), Duration::from_secs(60))
@@ -60,7 +64,11 @@ fn zmq_run(d: &Drawing, fps: i32, protocol: Protocol) -> Run {
         timing: Timing::realistic(),
         ..Default::default()
     };
-    let s = zmq_api::spawn(cfg, Simulator::new(Scene::course(), fps)).unwrap();
+    let s = zmq_api::spawn(
+        cfg,
+        Simulator::new(Scene::course().with_floor([500.0, 500.0]), fps),
+    )
+    .unwrap();
     let t = Instant::now();
     let opts = ClientOptions {
         port: s.local_addr().port(),

@@ -353,6 +353,37 @@ fn set_idle_fps(zmq: u16, fps: i32) {
     c.close();
 }
 
+/// Grows the course's 10 m floor to 500 m over ZeroMQ (`sim.scaleObject`, as a user scales
+/// it), so the big mazes fit on it over either API: `apply` refuses a layout whose floor is
+/// larger than the scene's.
+fn grow_floor(zmq: u16) {
+    let mut c = Client::connect(&ClientOptions {
+        port: zmq,
+        timeout: Duration::from_secs(10),
+        ..Default::default()
+    })
+    .unwrap();
+    let floor = c
+        .call_int(
+            "sim.getObject",
+            vec![ciborium::Value::Text("/Floor".into())],
+        )
+        .unwrap();
+    let factor = |f: f64| ciborium::Value::Float(f);
+    c.call(
+        "sim.scaleObject",
+        vec![
+            cbor::int(floor.into()),
+            factor(50.0),
+            factor(50.0),
+            factor(1.0),
+            cbor::int(0),
+        ],
+    )
+    .unwrap();
+    c.close();
+}
+
 /// Runs `row` once on a fresh simulator (real, or `serve` as the same version).
 fn once(dir: &Path, row: &Row, real: bool) -> Result<f64, String> {
     let sims = real_sims_dir();
@@ -368,6 +399,7 @@ fn once(dir: &Path, row: &Row, real: bool) -> Result<f64, String> {
         _keep_served = Some(s);
         _keep_real = None;
     }
+    grow_floor(zmq);
     for setup in row.setup {
         run(dir, setup, row.on, legacy, zmq).map_err(|e| format!("setup: {e}"))?;
     }

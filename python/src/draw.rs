@@ -228,6 +228,7 @@ pub fn apply(
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
+        resize_floor: args.resize_floor,
         interrupt: Some(stop.requested.clone()),
         ..Default::default()
     };
@@ -391,6 +392,7 @@ pub fn clear(
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
+        resize_floor: args.resize_floor,
         interrupt: Some(stop.requested.clone()),
     };
     let scene = args.scene;

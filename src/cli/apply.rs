@@ -134,6 +134,60 @@ impl ConnectArgs {
         )
     }
 
+    /// `vrep-maze COMMAND` with the options of this connection that are not the defaults
+    /// (host, API, port, names, timeouts), each word quoted for the shell: the command a
+    /// hint shows, which reaches the same simulator and objects.
+    pub fn command(&self, command: &str) -> String {
+        let mut words = vec!["vrep-maze".to_string(), command.to_string()];
+        let mut add = |option: &str, value: String| {
+            words.push(option.to_string());
+            words.push(super::escape::shell_word(&value).into_owned());
+        };
+        if self.host != "127.0.0.1" {
+            add("--host", self.host.clone());
+        }
+        if self.api != Api::Auto {
+            let api = clap::ValueEnum::to_possible_value(&self.api)
+                .map(|v| v.get_name().to_string())
+                .unwrap_or_default();
+            add("--api", api);
+        }
+        if let Some(port) = self.port {
+            add("--port", port.to_string());
+        }
+        let defaults = ObjectNames::default();
+        for ((option, name), default) in [
+            ("--floor", &self.floor),
+            ("--parent", &self.parent),
+            ("--line", &self.line),
+            ("--wall", &self.wall),
+            ("--post", &self.post),
+            ("--start", &self.start),
+            ("--end", &self.end),
+        ]
+        .into_iter()
+        .zip([
+            &defaults.floor,
+            &defaults.parent,
+            &defaults.line,
+            &defaults.wall,
+            &defaults.post,
+            &defaults.start,
+            &defaults.end,
+        ]) {
+            if name != default {
+                add(option, name.clone());
+            }
+        }
+        if let Some(wait) = self.connect_timeout {
+            add("--connect-timeout", wait.as_secs_f64().to_string());
+        }
+        if self.timeout != Duration::from_secs(10) {
+            add("--timeout", self.timeout.as_secs_f64().to_string());
+        }
+        words.join(" ")
+    }
+
     /// Refuses an empty `--host`.
     fn check_host(&self) -> anyhow::Result<()> {
         ensure_usage!(
@@ -190,6 +244,10 @@ pub struct ApplyArgs {
     /// `sim.createMeshShape` over ZeroMQ, loaded as an XML model over the legacy API.
     #[arg(long, value_enum, default_value = "copies")]
     pub draw: DrawMode,
+    /// ZeroMQ only: grow a `Floor` smaller than the layout's floor to its size
+    /// (`sim.scaleObject`) instead of refusing; `clear` puts it back to its size before.
+    #[arg(long)]
+    pub resize_floor: bool,
     /// ZeroMQ only: save the scene afterwards to this path (on the simulator's machine).
     #[arg(long, value_name = "PATH")]
     pub save_scene: Option<String>,
@@ -220,6 +278,10 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     ensure_usage!(
         !zmq_only || args.scene.api != Api::Legacy,
         "--create-missing and --save-scene need the ZeroMQ remote API (--api zmq): the legacy API cannot create objects or save scenes"
+    );
+    ensure_usage!(
+        !args.resize_floor || args.scene.api != Api::Legacy,
+        "--resize-floor needs the ZeroMQ remote API (--api zmq): the legacy API cannot resize objects"
     );
     // two roles on one object: refused at once, before connecting
     args.scene.names().check_roles()?;
@@ -322,6 +384,7 @@ fn drive<D>(
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
+        resize_floor: args.resize_floor,
         ..Default::default()
     };
     let interrupt = Interrupt::install()?;
@@ -398,13 +461,14 @@ fn drive<D>(
             }
         );
         eprintln!(
-            "  hint: run the same apply again to finish the maze, or vrep-maze clear to remove it"
+            "  hint: run the same apply again to finish the maze, or {} to remove it",
+            super::escape::escaped(&args.scene.command("clear"))
         );
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
     let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
     for warning in &report.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", super::escape::escaped(warning));
     }
     if let Some(path) = &args.save_scene
         && !args.dry_run
@@ -424,6 +488,9 @@ fn drive<D>(
     let _ = backend.close();
     if report.stopped_simulation {
         say("stopped the simulation first")?;
+    }
+    if let Some(line) = &report.floor {
+        say(line)?;
     }
     say(&report)?;
     if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
@@ -469,5 +536,51 @@ fn apply_json(
         verified: !report.dry_run,
         created,
         saved_scene: args.save_scene.clone().filter(|_| !args.dry_run),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::super::{Cli, Command};
+    use super::*;
+
+    /// The connection options of `clear` as parsed from `words`.
+    fn parsed(words: &[&str]) -> ConnectArgs {
+        match Cli::try_parse_from(words).unwrap().command {
+            Command::Clear(args) => args.scene,
+            _ => unreachable!(),
+        }
+    }
+
+    #[test]
+    fn the_command_a_hint_shows_reaches_the_same_simulator_and_objects() {
+        let words = [
+            "vrep-maze",
+            "clear",
+            "--api",
+            "zmq",
+            "--port",
+            "23160",
+            "--parent",
+            "MyMaze",
+            "--timeout",
+            "2.5",
+        ];
+        let scene = parsed(&words);
+        let command = scene.command("clear");
+        assert_eq!(command, words.join(" "));
+        let again = parsed(&command.split(' ').collect::<Vec<_>>());
+        assert_eq!(again.command("clear"), command);
+        assert_eq!(
+            parsed(&["vrep-maze", "clear"]).command("clear"),
+            "vrep-maze clear"
+        );
+        let spaced = parsed(&["vrep-maze", "clear", "--line", "Green line"]);
+        assert_eq!(
+            spaced.command("clear"),
+            "vrep-maze clear --line 'Green line'"
+        );
     }
 }

@@ -47,7 +47,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Err(DrawError::Interrupted { .. }) = &result {
         let _ = backend.close();
         eprintln!("interrupted: some maze lines may remain; the idle rate is restored");
-        eprintln!("  hint: run vrep-maze clear again to finish");
+        eprintln!("  hint: run the same clear again to finish");
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
     let report = result?;
@@ -78,6 +78,9 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         say(line)?;
     }
     if let Some(line) = &report.template {
+        say(line)?;
+    }
+    if let Some(line) = &report.floor {
         say(line)?;
     }
     if report.removed.is_empty() && report.removed_meshes.is_empty() {

@@ -295,8 +295,9 @@ fn legacy<T: Opened>(
     ));
     if let Some(earlier) = earlier {
         eprintln!(
-            "an earlier vrep-maze run (process {}) ended with its session at {addr} open; if CoppeliaSim closed it first, it refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
+            "an earlier vrep-maze run (process {}) ended with its session at {} open; if CoppeliaSim closed it first, it refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
             earlier.pid,
+            super::escape::escaped(&addr),
             seconds(connect_timeout)
         );
     }
@@ -316,7 +317,8 @@ fn legacy<T: Opened>(
         } else if !said_nothing_listens && r.waited >= NOTHING_LISTENS_AFTER {
             said_nothing_listens = true;
             eprintln!(
-                "nothing listens on {addr} ({}){}; trying until {} s",
+                "nothing listens on {} ({}){}; trying until {} s",
+                super::escape::escaped(&addr),
                 r.why,
                 if probe_zmq && port != ZMQ_PORT && !accepts_tcp(host, ZMQ_PORT) {
                     format!(", nor on the ZeroMQ port {ZMQ_PORT}")

@@ -23,9 +23,29 @@ pub(crate) fn escaped(text: &str) -> Cow<'_, str> {
     Cow::Owned(out)
 }
 
+/// `text` as one word of a POSIX shell command line, for a hint that shows a command: as
+/// it is when every character is one no shell treats specially, else in single quotes (an
+/// inner `'` as `'\''`).
+pub(crate) fn shell_word(text: &str) -> Cow<'_, str> {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_-./:=,+@%".contains(c);
+    if !text.is_empty() && text.chars().all(plain) {
+        return Cow::Borrowed(text);
+    }
+    Cow::Owned(format!("'{}'", text.replace('\'', "'\\''")))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_word_with_spaces_or_quotes_is_quoted_for_the_shell() {
+        assert_eq!(shell_word("maze.json"), "maze.json");
+        assert_eq!(shell_word("my maze.json"), "'my maze.json'");
+        assert_eq!(shell_word("it's"), "'it'\\''s'");
+        assert_eq!(shell_word(""), "''");
+        assert_eq!(shell_word("$(rm)"), "'$(rm)'");
+    }
 
     #[test]
     fn control_characters_are_escaped_and_the_rest_is_kept() {

@@ -402,7 +402,7 @@ pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
     if let Some(path) = &args.output {
         eprintln!(
             "wrote {}: {}, solution {} cells",
-            path.display(),
+            super::escape::escaped(&path.display().to_string()),
             super::validate::describe(layout, count),
             layout.metrics.solution_cells
         );

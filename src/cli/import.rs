@@ -49,7 +49,8 @@ pub fn run(args: ImportArgs) -> Result<ExitCode> {
     )?;
     anyhow::ensure!(
         !(text.trim_start().starts_with('{') && text.contains(crate::layout::FORMAT)),
-        "{name} is a layout (JSON) already, not a maze drawn as text: use it as it is (vrep-maze render {name} draws it as text)"
+        "{name} is a layout (JSON) already, not a maze drawn as text: use it as it is (vrep-maze render {} draws it as text)",
+        super::escape::shell_word(&name)
     );
     let options = ImportOptions {
         cell_size: args.cell_size,
@@ -63,10 +64,11 @@ pub fn run(args: ImportArgs) -> Result<ExitCode> {
     write_output(args.output.as_deref(), |w| write_layout(&layout, w))?;
     if let Some(path) = &args.output {
         eprintln!(
-            "wrote {}: {}x{} imported from {name}, solution {} cells",
-            path.display(),
+            "wrote {}: {}x{} imported from {}, solution {} cells",
+            super::escape::escaped(&path.display().to_string()),
             layout.grid.columns,
             layout.grid.rows,
+            super::escape::escaped(&name),
             layout.metrics.solution_cells
         );
     }

@@ -1,5 +1,5 @@
 //! Reading a whole text file that is not a layout (a drawing to `import`, a scene dump to
-//! `render`): at most a bound that any real one stays under, refusing binary data at its
+//! `render`, a trajectory to `render --trajectory` or `serve --robot`): at most a bound that any real one stays under, refusing binary data at its
 //! first NUL byte, so an endless or huge input (`/dev/zero`, a disk image) fails after a
 //! bounded read with a message that says what it is.
 
@@ -7,6 +7,22 @@ use std::io::Read;
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
+
+/// The most bytes of a trajectory CSV (`render --trajectory`, `serve --robot`): a row of
+/// `t,x,y,yaw` takes about 40 bytes, so this holds over 80 hours of a run sampled 20 times a
+/// second.
+pub(crate) const MAX_TRAJECTORY_BYTES: usize = 256 << 20;
+
+/// The text of a trajectory CSV file (`-`: standard input), within
+/// [`MAX_TRAJECTORY_BYTES`].
+pub(crate) fn read_trajectory_text(path: &Path) -> Result<String> {
+    read_text(
+        path,
+        MAX_TRAJECTORY_BYTES,
+        "a trajectory (CSV: t,x,y,yaw)",
+        "a trajectory is read whole, so its size is bounded: 256 MiB holds over 80 hours at 20 samples a second",
+    )
+}
 
 /// Bytes read at a time.
 const CHUNK: usize = 1 << 20;

@@ -85,7 +85,7 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
     if args.json {
         say::document(&report)?;
     } else {
-        show(&report)?;
+        show(&report, &args.scene.command("clear"))?;
     }
     let differs = report.layout.as_ref().is_some_and(|l| !l.matches);
     Ok(if differs {
@@ -358,12 +358,16 @@ fn round(v: f64, per: f64) -> f64 {
     (v * per).round() / per + 0.0
 }
 
-/// The report for a person.
-fn show(r: &InspectReport) -> anyhow::Result<()> {
+/// The report for a person; `clear` is the command that clears this scene (a hint).
+fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
     say(format!("connected to the {}", r.connection))?;
     let saved = r
         .saved_idle_fps
-        .map(|s| format!(" (an interrupted apply left it so; your rate was {s} fps: vrep-maze clear restores it)"))
+        .map(|s| {
+            format!(
+                " (an interrupted apply left it so; your rate was {s} fps: {clear} restores it)"
+            )
+        })
         .unwrap_or_default();
     say(format!(
         "simulation {}; idle rate {} fps{saved}",

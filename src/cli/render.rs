@@ -122,9 +122,9 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// A `--trajectory` file's samples.
+/// A `--trajectory` file's samples, read within [`super::input::MAX_TRAJECTORY_BYTES`].
 fn read_trajectory(path: &Path) -> Result<Vec<crate::score::Sample>> {
-    let text = std::fs::read_to_string(path)
+    let text = super::input::read_trajectory_text(path)
         .with_context(|| format!("cannot read the trajectory {}", path.display()))?;
     crate::score::trajectory::parse_csv(&text)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))

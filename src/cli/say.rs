@@ -32,10 +32,15 @@ pub fn json() -> bool {
 
 /// A result line for a person: standard output, standard error under `--json`, nothing
 /// under `-q`. A write error is the run's error ([`super::stdout`]), never a panic.
+/// A line holds names from files, options and scenes: each control character in it is
+/// escaped ([`super::escape`]), so no name can split it, forge another or move the cursor.
 pub fn say(line: impl std::fmt::Display) -> anyhow::Result<()> {
     if quiet() {
-        Ok(())
-    } else if json() {
+        return Ok(());
+    }
+    let line = line.to_string();
+    let line = super::escape::escaped(&line);
+    if json() {
         eprintln!("{line}");
         Ok(())
     } else {
@@ -43,10 +48,11 @@ pub fn say(line: impl std::fmt::Display) -> anyhow::Result<()> {
     }
 }
 
-/// A note on what is going on ("connecting to ..."): standard error, nothing under `-q`.
+/// A note on what is going on ("connecting to ..."): standard error, nothing under `-q`;
+/// escaped as [`say`] is.
 pub fn note(line: impl std::fmt::Display) {
     if !quiet() {
-        eprintln!("{line}");
+        eprintln!("{}", super::escape::escaped(&line.to_string()));
     }
 }
 

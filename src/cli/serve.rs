@@ -253,7 +253,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
 
 /// Reads a `--robot` path file and adds its robot to `scene`.
 fn robot_path(scene: &mut Scene, path: &std::path::Path) -> anyhow::Result<RobotPath> {
-    let text = std::fs::read_to_string(path)
+    let text = super::input::read_trajectory_text(path)
         .with_context(|| format!("cannot read the robot path {}", path.display()))?;
     let waypoints = crate::score::trajectory::parse_csv(&text)
         .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;

@@ -9,6 +9,7 @@
 //! a refused connection and waits it out only then.
 
 use std::fs;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// The marker of sessions with the legacy remote API at `host:port` (one file per
@@ -56,7 +57,13 @@ impl SessionMarker {
     /// exists and the process that wrote it no longer runs (a running one still holds its
     /// session, or is about to close it).
     pub(crate) fn left_abruptly(&self) -> Option<LeftAbruptly> {
-        let text = fs::read_to_string(&self.path).ok()?;
+        // a process id: a few bytes, whatever else lies at this path
+        let mut text = String::new();
+        fs::File::open(&self.path)
+            .ok()?
+            .take(64)
+            .read_to_string(&mut text)
+            .ok()?;
         let pid = text.trim().parse::<u32>().ok().unwrap_or(0);
         let running = pid == std::process::id()
             || (pid != 0

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
@@ -30,6 +31,9 @@ pub struct ApplyOptions {
     /// Set by a Ctrl-C handler: the run stops after the request in flight, restores the
     /// idle rate and fails with [`DrawError::Interrupted`].
     pub interrupt: Option<Arc<AtomicBool>>,
+    /// Grow a floor smaller than the layout's to its size ([`super::floor::resize`]; the
+    /// ZeroMQ API only) instead of refusing with [`DrawError::Floor`].
+    pub resize_floor: bool,
 }
 
 impl Default for ApplyOptions {
@@ -40,6 +44,7 @@ impl Default for ApplyOptions {
             dry_run: false,
             paste_blocks_per_round: 16,
             interrupt: None,
+            resize_floor: false,
         }
     }
 }
@@ -114,8 +119,11 @@ pub struct ApplyReport {
     /// Dry run: nothing was changed.
     pub dry_run: bool,
     /// What the user should know: markers larger than a cell, sizes not read
-    /// ([`plan::check_sizes`]).
+    /// ([`super::fit::check_sizes`]).
     pub warnings: Vec<String>,
+    /// The floor grown to the layout's (`--resize-floor`, [`super::floor::resize`]): one
+    /// line saying from what size to what.
+    pub floor: Option<String>,
     /// The user's objects under the maze dummy (and root objects named like copies of a
     /// template but of another type): left alone ([`plan::sort_out`]).
     pub left_alone: Vec<String>,
@@ -130,6 +138,7 @@ impl ApplyReport {
             && self.placed == 0
             && self.markers_placed == 0
             && !self.simulation_running
+            && self.floor.is_none()
     }
 }
 
@@ -664,7 +673,16 @@ pub(crate) fn keep_home(
         home::write(scene, &home)?;
     }
     if !template_drawn {
-        return hide_line_template(scene, h, &floor, objects, earlier, line_template, record);
+        return hide_line_template(
+            scene,
+            h,
+            &floor,
+            objects,
+            earlier,
+            line_template,
+            &names.line,
+            record,
+        );
     }
     if record.is_some_and(|r| r.handle == h.line) {
         return Ok(());
@@ -673,7 +691,7 @@ pub(crate) fn keep_home(
         return Ok(());
     };
     let (position, orientation) = plan::relative_pose(&floor, template);
-    let home = if earlier != EarlierLines::None {
+    let home = if on_an_earlier_maze(scene, h, objects, template, &names.line, &floor, earlier)? {
         if earlier == EarlierLines::Copies {
             report.warnings.push(format!(
                 "no record of where `{}` stood before the first apply (a maze drawn by an older vrep-maze, or a scene saved and loaded again): `clear` will put it below the floor, out of sight",
@@ -697,12 +715,44 @@ pub(crate) fn keep_home(
     Ok(())
 }
 
+/// Whether the line template (`template`, named `line`) lies on the earlier line maze
+/// `earlier` says there is, as its first line: always on a mesh maze's (only our export puts
+/// it there), on a maze of copies only if one of the copies under the maze dummy touches it
+/// as a maze's lines do ([`super::first_line::lies_on_a_maze`]; its length read for it), so
+/// that a user's copy of `Line` under `Maze` does not make the template's own pose a guess.
+pub(crate) fn on_an_earlier_maze(
+    scene: &mut dyn Backend,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    template: &ObjectInfo,
+    line: &str,
+    floor: &crate::coppelia::frame::Frame,
+    earlier: EarlierLines,
+) -> Result<bool, DrawError> {
+    match earlier {
+        EarlierLines::None => Ok(false),
+        EarlierLines::Meshes => Ok(true),
+        EarlierLines::Copies => {
+            let copies: Vec<&ObjectInfo> = objects
+                .iter()
+                .filter(|o| o.parent == Some(h.parent) && plan::is_copy_name(&o.name, line))
+                .collect();
+            let length = scene.sizes(&[template.handle])?.first().copied().flatten();
+            // a length not read: no evidence either way, so taken to be on it as before
+            Ok(length.is_none_or(|size| {
+                super::first_line::lies_on_a_maze(template, &copies, floor, size[0])
+            }))
+        }
+    }
+}
+
 /// A wall maze has no line, so the line template (`line_template`, if the scene has one)
 /// must not lie on its floor as a stray line for a camera to see (the course scene keeps it
 /// at the floor's centre, `../shared/spec/course-scene.md`): it goes below the floor under
 /// where it stood, its home recorded first unless a record exists (the first line of a line
 /// maze it replaces: below the floor if that maze has no record), so that `clear`, or the
 /// next line maze, puts it back.
+#[allow(clippy::too_many_arguments)]
 fn hide_line_template(
     scene: &mut dyn Backend,
     h: &Handles,
@@ -710,6 +760,7 @@ fn hide_line_template(
     objects: &[ObjectInfo],
     earlier: EarlierLines,
     line_template: Option<i32>,
+    line_name: &str,
     record: Option<home::Home>,
 ) -> Result<(), DrawError> {
     let Some(template) = line_template.and_then(|t| objects.iter().find(|o| o.handle == t)) else {
@@ -719,7 +770,9 @@ fn hide_line_template(
     let home = match record.filter(|r| r.handle == template.handle) {
         Some(home) => home,
         None => {
-            let home = if earlier == EarlierLines::None {
+            let on_maze =
+                on_an_earlier_maze(scene, h, objects, template, line_name, floor, earlier)?;
+            let home = if !on_maze {
                 home::Home {
                     handle: template.handle,
                     position,
@@ -778,8 +831,23 @@ pub(crate) fn begin(
     let names = &opts.names;
     let (survey, h) = surveyed(scene, names, asks.style, posts)?;
     let sizes = sizes_of(scene, asks, names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
+    let short = sizes.floor.filter(|_| sizes.refusals.is_empty());
+    if let Some(refused) = sizes.refused(names) {
+        return Err(refused);
+    }
+    if let Some(short) = short.filter(|_| !opts.resize_floor) {
+        let resize = if short.factors().is_none() {
+            super::floor::Resize::NoExtent
+        } else if scene.authoring().is_none() {
+            super::floor::Resize::NoApi
+        } else {
+            super::floor::Resize::Offered
+        };
+        return Err(DrawError::Floor {
+            floor: names.floor.clone(),
+            short,
+            resize,
+        });
     }
     progress(Stage::Surveyed);
     let mut report = ApplyReport {
@@ -794,6 +862,15 @@ pub(crate) fn begin(
         opts.stop_simulation,
         opts.dry_run,
     )?;
+    if let Some(short) = short {
+        report.floor = Some(super::floor::resize(
+            scene,
+            h.floor,
+            &names.floor,
+            &short,
+            opts.dry_run,
+        )?);
+    }
     let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     report.left_alone = sorted.strangers;
     Ok(Begun {
@@ -804,26 +881,30 @@ pub(crate) fn begin(
     })
 }
 
-/// Reads the sizes of the template, post template (if the drawing has posts), start and end
-/// ([`Backend::sizes`]: legacy in one request) and compares them with the drawing's.
+/// Reads the sizes of the template, start, end, floor and post template (if the drawing
+/// has posts) ([`Backend::sizes`]: legacy in one request) and compares them with the
+/// drawing's ([`fit::check_sizes`]).
 pub(crate) fn sizes_of(
     scene: &mut dyn Backend,
     drawing: &TemplateUse<'_>,
     names: &ObjectNames,
     h: &Handles,
-) -> Result<plan::SizeCheck, DrawError> {
+) -> Result<fit::SizeCheck, DrawError> {
     let post = h.post.filter(|_| drawing.posts);
-    let mut asked = vec![h.line, h.start, h.end];
+    let mut asked = vec![h.line, h.start, h.end, h.floor];
     asked.extend(post);
     let sizes = scene.sizes(&asked)?;
     let get = |k: usize| sizes.get(k).copied().flatten();
-    Ok(plan::check_sizes(
+    Ok(fit::check_sizes(
         drawing,
         names,
-        get(0),
-        post.and_then(|_| get(3)),
-        get(1),
-        get(2),
+        &fit::Measured {
+            template: get(0),
+            start: get(1),
+            end: get(2),
+            floor: get(3),
+            post: post.and_then(|_| get(4)),
+        },
     ))
 }
 

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::apply::{raised, stop_running_simulation};
+use super::apply::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
@@ -33,6 +33,9 @@ pub struct ClearReport {
     pub template: Option<String>,
     /// Lines to show as warnings (the simulator did not keep the scene's signals).
     pub warnings: Vec<String>,
+    /// The floor put back to its size before `apply --resize-floor` (one line), or why it
+    /// was not ([`super::floor::restore`]).
+    pub floor: Option<String>,
 }
 
 /// Puts the line template back where it stood before the first `apply` ([`home`]) and
@@ -58,9 +61,15 @@ fn send_home(
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;
         }
-        return Ok(Some(format!(
-            "{verb} `{template}` back where it stood before the first apply"
-        )));
+        // a home below the floor is where the first apply hid it, not where it stood
+        return Ok(Some(if home.position[2] < 0.0 {
+            format!(
+                "{verb} `{template}` below the floor at ({:.3}, {:.3}), out of sight, where the first apply recorded it (it lay on an earlier maze then, with no record of where it stood before); move it where you want it",
+                home.position[0], home.position[1]
+            )
+        } else {
+            format!("{verb} `{template}` back where it stood before the first apply")
+        }));
     }
     let floor = objects
         .iter()
@@ -75,6 +84,13 @@ fn send_home(
         return Ok(None);
     };
     if !drawn || position[2] < 0.0 {
+        return Ok(None);
+    }
+    let template_info = objects.iter().find(|o| o.handle == h.line);
+    if let Some(t) = template_info
+        && !on_an_earlier_maze(scene, h, objects, t, template, &floor, EarlierLines::Copies)?
+    {
+        // it stands where the user put it: no maze's first line
         return Ok(None);
     }
     let hidden = home::Home::hidden(position[0], position[1]);
@@ -205,8 +221,10 @@ fn clear_claimed(
     } else {
         None
     };
+    let floor = super::floor::restore(scene, h.floor, &names.floor, dry_run)?;
     Ok(ClearReport {
         template,
+        floor,
         removed,
         removed_meshes,
         round_trips: 0,

@@ -10,6 +10,9 @@
 pub mod apply;
 pub mod clear;
 pub mod estimate;
+pub mod first_line;
+pub mod fit;
+pub mod floor;
 pub mod home;
 pub mod lease;
 pub mod mesh;
@@ -57,7 +60,7 @@ pub struct Drawing {
     pub sizes: Sizes,
 }
 
-/// The sizes a layout was generated for ([`plan::check_sizes`] compares the scene's
+/// The sizes a layout was generated for ([`fit::check_sizes`] compares the scene's
 /// templates and markers with them).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -70,6 +73,13 @@ pub struct Sizes {
     pub wall: Option<[f64; 3]>,
     /// Post template of a wall maze with posts: x, y, z, metres.
     pub post: Option<[f64; 3]>,
+    /// Height of the lines above the floor, metres: a line template lies flat, at most
+    /// twice as thick ([`fit::check_sizes`]).
+    pub line_z: f64,
+    /// Heights of the start and end markers above the floor, metres: flat as the lines.
+    pub marker_z: [f64; 2],
+    /// The floor the layout was made for (x, y), metres: the scene's must be as large.
+    pub floor: [f64; 2],
 }
 
 /// Names of the scene objects a drawing needs.
@@ -107,11 +117,14 @@ impl Sizes {
                 .as_ref()
                 .zip(wall)
                 .map(|(p, w)| [p.size, p.size, w[2]]),
+            line_z: layout.line.z,
+            marker_z: [layout.start.pose.z, layout.end.pose.z],
+            floor: layout.floor.size,
         }
     }
 }
 
-/// What a drawing asks of the templates and markers ([`plan::check_sizes`]): its style, the
+/// What a drawing asks of the templates and markers ([`fit::check_sizes`]): its style, the
 /// sizes it was generated for, whether the style's template lies on the maze (a line maze's
 /// first line, or a wall maze's every wall) and whether posts are copies of the post
 /// template.
@@ -552,6 +565,9 @@ pub trait Authoring {
     ) -> Result<Vec<String>, BackendError>;
     /// Saves the scene to `path` on the simulator's machine.
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
+    /// Scales the object `handle` by `factors` along its x, y and z (`sim.scaleObject`: a
+    /// shape's mesh or primitive grows, its pose stays).
+    fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), BackendError>;
 }
 
 /// Creates the objects `layout` is drawn with that the scene lacks: the course's
@@ -598,10 +614,21 @@ pub enum DrawError {
         second: &'static str,
     },
     /// The scene's templates are not the size the layout was generated for
-    /// ([`plan::check_sizes`]): refused before any edit, one line per template with what
+    /// ([`fit::check_sizes`]): refused before any edit, one line per template with what
     /// to change.
     #[error("the scene's templates do not fit the layout: {}", .0.join("; "))]
     Sizes(Vec<String>),
+    /// The scene's floor is smaller than the layout's ([`fit::SizeCheck::floor`]): refused
+    /// before any edit unless `apply --resize-floor` grows it ([`floor::resize`]).
+    #[error("{}", .short.describe(.floor))]
+    Floor {
+        /// The floor's name.
+        floor: String,
+        /// Its size and the layout's.
+        short: fit::FloorShort,
+        /// Whether this connection can resize it.
+        resize: floor::Resize,
+    },
     /// The simulation runs; edits would be lost when it stops.
     #[error("the simulation is running: changes made now would be discarded when it stops")]
     SimulationRunning,
@@ -641,6 +668,28 @@ impl DrawError {
                 )];
                 lines.extend(hints.iter().cloned());
                 lines
+            }
+            DrawError::Floor {
+                floor,
+                short,
+                resize,
+            } => {
+                let by_hand = format!(
+                    "or resize `{floor}` in CoppeliaSim to at least {} m",
+                    fit::extents(&short.resized())
+                );
+                let first = match resize {
+                    floor::Resize::Offered => format!(
+                        "pass --resize-floor: apply scales `{floor}` to {} m and clear puts it back to {} m",
+                        fit::extents(&short.resized()),
+                        fit::extents(&short.have)
+                    ),
+                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
+                    floor::Resize::NoExtent => format!(
+                        "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
+                    ),
+                };
+                vec![first, by_hand]
             }
             DrawError::SimulationRunning => {
                 vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]

@@ -3,7 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::{Drawing, Handles, ObjectInfo, ObjectNames, Pose, TemplateUse};
+use super::{Drawing, Handles, ObjectInfo, Pose};
 use crate::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
 
 /// Tolerance on positions (metres) for "already in place" and verification.
@@ -287,139 +287,9 @@ pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Opti
 /// millimetre is far above the simulator's noise and far below what a camera sees.
 pub const SIZE_TOLERANCE: f64 = 5e-4;
 
-/// What [`check_sizes`] found: refusals (the drawing would not be the layout) and warnings.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct SizeCheck {
-    /// One line per template that contradicts the layout, with what to change.
-    pub refusals: Vec<String>,
-    /// Markers larger than a cell, sizes that could not be read.
-    pub warnings: Vec<String>,
-}
-
 /// `true` if two lengths are equal within [`SIZE_TOLERANCE`] (never with a NaN).
-fn same_size(a: f64, b: f64) -> bool {
+pub(crate) fn same_size(a: f64, b: f64) -> bool {
     (a - b).abs() <= SIZE_TOLERANCE
-}
-
-/// A length for messages: metres with at most 4 decimals (`0.6`, `0.05`).
-fn metres(v: f64) -> String {
-    format!("{}", (v * 1e4).round() / 1e4)
-}
-
-/// `a x b [x c]` metres.
-fn extents(v: &[f64]) -> String {
-    v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
-}
-
-/// Compares the bounding boxes of the scene's template (`template`: `Line`, or `Wall` in a
-/// wall maze), post template, start and end markers with the sizes `drawing` was generated
-/// for. A template drawn from ([`Drawing::lines`] or [`Drawing::posts`] not empty) must have
-/// the layout's extents within [`SIZE_TOLERANCE`] (a line template its length along x and
-/// width along y; a wall and a post template all three, except that a wall between posts
-/// may be as long as a cell side, its ends hidden in the posts), else it is refused with the
-/// options to generate with or the size to give the template. A marker wider than a cell is
-/// a warning (it hides the neighbouring cells), as is a size the simulator did not give.
-pub fn check_sizes(
-    drawing: &TemplateUse<'_>,
-    names: &ObjectNames,
-    template: Option<[f64; 3]>,
-    post: Option<[f64; 3]>,
-    start: Option<[f64; 3]>,
-    end: Option<[f64; 3]>,
-) -> SizeCheck {
-    let mut check = SizeCheck::default();
-    let sizes = drawing.sizes;
-    let differs = |scene: &[f64], layout: &[f64]| {
-        scene
-            .iter()
-            .zip(layout)
-            // NaN is never the same size
-            .any(|(s, l)| !same_size(*s, *l))
-    };
-    let unread = |name: &str, check: &mut SizeCheck| {
-        check.warnings.push(format!(
-            "the simulator did not give the size of `{name}`: not compared with the layout"
-        ));
-    };
-    let template_name = names.template(drawing.style);
-    // a line maze's template is its first line, a wall maze's is copied for every wall
-    if drawing.template {
-        match (template, drawing.style, sizes.wall) {
-            (None, ..) => unread(template_name, &mut check),
-            (Some(have), super::Style::Lines, _) => {
-                if differs(&have[..2], &sizes.line) {
-                    check.refusals.push(format!(
-                        "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: generate with --line-length {} --line-width {}, or resize `{template_name}` to {} m",
-                        extents(&have[..2]),
-                        metres(sizes.line[0]),
-                        metres(sizes.line[1]),
-                        metres(have[0]),
-                        metres(have[1]),
-                        extents(&sizes.line)
-                    ));
-                }
-            }
-            (Some(have), super::Style::Walls, Some(wall)) => {
-                // between posts a wall may reach into them, up to their centres (a whole
-                // cell side): its ends are hidden inside the posts
-                let longest = if !drawing.posts {
-                    wall[0]
-                } else {
-                    sizes.cell.max(wall[0])
-                };
-                let length_ok =
-                    have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
-                if !length_ok || differs(&have[1..], &wall[1..]) {
-                    check.refusals.push(format!(
-                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): generate with --wall-length {} --wall-thickness {} --wall-height {}, or resize `{template_name}` to {} m",
-                        extents(&have),
-                        extents(&wall),
-                        metres(have[0]),
-                        metres(have[1]),
-                        metres(have[2]),
-                        extents(&wall)
-                    ));
-                }
-            }
-            (Some(_), super::Style::Walls, None) => {}
-        }
-    }
-    if let (Some(want), true) = (sizes.post, drawing.posts) {
-        match post {
-            None => unread(&names.post, &mut check),
-            Some(have) => {
-                if differs(&have, &want) {
-                    check.refusals.push(format!(
-                        "the scene's `{}` is {} m but the layout's posts are {} m: generate with --post-size {} (and --wall-height {}), or resize `{}` to {} m",
-                        names.post,
-                        extents(&have),
-                        extents(&want),
-                        metres(have[0].max(have[1])),
-                        metres(have[2]),
-                        names.post,
-                        extents(&want)
-                    ));
-                }
-            }
-        }
-    }
-    for (name, b) in [(&names.start, start), (&names.end, end)] {
-        match b {
-            None => unread(name, &mut check),
-            Some(have) => {
-                if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
-                    check.warnings.push(format!(
-                        "the scene's `{name}` is {} m but the cells are {} m: it covers the neighbouring cells; resize `{name}` to at most {} x {} m",
-                        extents(&have[..2]),
-                        metres(sizes.cell),
-                        metres(sizes.cell),
-                        metres(sizes.cell)
-                    ));
-                }
-            }
-        }
-    }
-    check
 }
 
 /// Warnings for the templates a wall maze copies (`templates`: name and handle) that stand
@@ -460,6 +330,7 @@ pub fn templates_on_the_maze(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::draw::ObjectNames;
 
     fn obj(handle: i32, name: &str, parent: Option<i32>) -> ObjectInfo {
         ObjectInfo {
@@ -643,64 +514,6 @@ mod tests {
         );
         assert!(same_extents(line, [0.6, 0.1, 4.9e-4]));
         assert!(!same_extents(line, [0.6, 0.1, 5.1e-4]));
-    }
-
-    /// A size the simulator gave.
-    fn bbox(size: [f64; 3]) -> Option<[f64; 3]> {
-        Some(size)
-    }
-
-    fn course_drawing() -> Drawing {
-        let layout = crate::layout::build_layout(&crate::layout::GenerateSpec::course(
-            crate::maze::Grid::new(3, 3).unwrap(),
-            crate::generate::Algorithm::Prim,
-            1,
-        ))
-        .unwrap();
-        Drawing::try_from(&layout).unwrap()
-    }
-
-    #[test]
-    fn sizes_within_half_a_millimetre_fit_and_others_are_refused_with_the_fix() {
-        let d = course_drawing();
-        let names = ObjectNames::default();
-        let marker = bbox([1.0, 1.0, 0.0]);
-        let check = |line: [f64; 3]| {
-            check_sizes(&d.template_use(), &names, bbox(line), None, marker, marker)
-        };
-        assert_eq!(check([0.6, 0.1, 0.0]), SizeCheck::default());
-        // single precision and millimetre dialogs: within 0.5 mm is the same size
-        assert_eq!(
-            check([0.6 + 4.9e-4, 0.1 - 4.9e-4, 0.0]),
-            SizeCheck::default()
-        );
-        let refused = check([0.6 + 6e-4, 0.1, 0.0]);
-        assert_eq!(refused.refusals.len(), 1, "{refused:?}");
-        let refused = check([0.3, 0.05, 0.0]).refusals.join("");
-        assert!(
-            refused.contains("`Line` is 0.3 x 0.05 m")
-                && refused.contains("generate with --line-length 0.3 --line-width 0.05")
-                && refused.contains("resize `Line` to 0.6 x 0.1 m"),
-            "{refused}"
-        );
-        assert_eq!(
-            check([f64::NAN, 0.1, 0.0]).refusals.len(),
-            1,
-            "NaN never fits"
-        );
-        // a marker wider than a cell is a warning; a size not read is said
-        let wide = check_sizes(
-            &d.template_use(),
-            &names,
-            bbox([0.6, 0.1, 0.0]),
-            None,
-            bbox([1.2, 1.0, 0.0]),
-            None,
-        );
-        assert!(wide.refusals.is_empty());
-        assert_eq!(wide.warnings.len(), 2, "{wide:?}");
-        assert!(wide.warnings[0].contains("`Start` is 1.2 x 1 m but the cells are 1 m"));
-        assert!(wide.warnings[1].contains("did not give the size of `End`"));
     }
 
     #[test]

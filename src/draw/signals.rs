@@ -76,6 +76,15 @@ pub const HOME: [Signal; 7] = [
     },
 ];
 
+/// Integer signals: the floor's size before `apply --resize-floor` grew it
+/// ([`super::floor`]): its handle, then its size along x and y, millimetres (up to
+/// 2,000 km). New with this version, so without older names.
+pub const FLOOR_SIZE: [&str; 3] = [
+    "vrep_maze.floor_size.handle",
+    "vrep_maze.floor_size.x_mm",
+    "vrep_maze.floor_size.y_mm",
+];
+
 /// The names to read for `signals`: every new name, then every old one.
 pub fn names_to_read(signals: &[Signal]) -> Vec<&'static str> {
     let new = signals.iter().map(|s| s.name);
@@ -117,6 +126,10 @@ mod tests {
             assert!(!is_property_name(s.old), "{}", s.old);
             assert_eq!(s.old.replace('-', "_"), s.name);
             assert!(names.insert(s.name), "{} twice", s.name);
+        }
+        for name in FLOOR_SIZE {
+            assert!(is_property_name(name), "{name}");
+            assert!(names.insert(name), "{name} twice");
         }
     }
 

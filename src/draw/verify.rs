@@ -220,8 +220,8 @@ fn verify_raised(
     let with_posts = !drawing.posts.is_empty();
     let (survey, h) = super::apply::surveyed(scene, names, style, with_posts)?;
     let sizes = super::apply::sizes_of(scene, &drawing.template_use(), names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
+    if let Some(differences) = sizes.differences(names) {
+        return Err(differences);
     }
     // every pose as the scene holds it now, not as a backend remembers setting it; the
     // user's objects are no maze lines

@@ -430,6 +430,34 @@ impl Scene {
         Ok(())
     }
 
+    /// This scene with its `Floor` resized to `size` (x, y) metres: a floor that takes a
+    /// maze larger than the course's 10 m (what a user makes by scaling the floor).
+    pub fn with_floor(mut self, size: [f64; 2]) -> Scene {
+        if let Ok(floor) = self.resolve("Floor") {
+            let z = self.objects.get(&floor).map_or(0.0, |o| o.size[2]);
+            let _ = self.set_size(floor, [size[0], size[1], z]);
+        }
+        self
+    }
+
+    /// Scales an object along its own x, y and z by `factors` (`sim.scaleObject`): its size
+    /// and, for a mesh shape, its vertices; its pose stays.
+    pub fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), SimError> {
+        let o = self
+            .objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?;
+        o.size = [0, 1, 2].map(|k| o.size[k] * factors[k]);
+        if let Some(mesh) = &mut o.mesh {
+            for v in mesh.vertices.chunks_exact_mut(3) {
+                for k in 0..3 {
+                    v[k] = (f64::from(v[k]) * factors[k]) as f32;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Resizes an object (its bounding box; e.g. a template the user scaled).
     pub fn set_size(&mut self, handle: i32, size: [f64; 3]) -> Result<(), SimError> {
         let o = self

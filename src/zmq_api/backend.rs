@@ -1337,6 +1337,12 @@ impl Authoring for ZmqBackend {
         self.call("sim.saveScene", vec![Value::Text(path.into())])?;
         Ok(())
     }
+
+    fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), BackendError> {
+        let [x, y, z] = factors.map(Value::Float);
+        self.call("sim.scaleObject", vec![int(handle.into()), x, y, z, int(0)])?;
+        Ok(())
+    }
 }
 
 /// An object `create_missing` makes.

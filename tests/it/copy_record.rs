@@ -9,7 +9,7 @@ use vrep_maze::draw::{self, ApplyOptions, Drawing};
 use vrep_maze::sim::{NewObject, ObjectType, Scene};
 
 use crate::support::backend::{Kind, Server};
-use crate::support::layouts::drawing;
+use crate::support::layouts::{big_course, drawing};
 
 /// Applies `d` over a fresh connection; the round trips it took.
 fn apply_fresh(s: &Server, d: &Drawing) -> usize {
@@ -100,7 +100,7 @@ fn a_reapply_over_our_maze_reads_no_alias_per_child() {
 /// later ZeroMQ run: its pastes are recorded, its removals dropped.
 #[test]
 fn the_legacy_api_keeps_the_record_true() {
-    let s = Kind::Legacy.serve(Scene::course(), 0);
+    let s = Kind::Legacy.serve(big_course(), 0);
     apply_fresh(&s, &drawing(9, 42));
     assert_record_is_the_copies(&s, "9x9");
     apply_fresh(&s, &drawing(12, 3));

@@ -14,7 +14,7 @@ use vrep_maze::coppelia::DEFAULT_IDLE_FPS;
 use vrep_maze::draw::{self, ApplyOptions, Backend};
 use vrep_maze::legacy::{self, LegacyBackend};
 use vrep_maze::sim::cost::price_lock_step;
-use vrep_maze::sim::{Clock, CostModel, Scene, Simulator};
+use vrep_maze::sim::{Clock, CostModel, Simulator};
 use vrep_maze::zmq_api::{self, ClientOptions, Protocol, ZmqBackend};
 
 use crate::support::layouts::drawing;
@@ -28,7 +28,7 @@ struct Both {
 
 impl Both {
     fn start() -> Both {
-        let sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let sim = Simulator::new(crate::support::layouts::big_course(), DEFAULT_IDLE_FPS);
         let cfg = legacy::ServerConfig {
             listen: "127.0.0.1:0".parse().unwrap(),
             ..Default::default()
@@ -179,7 +179,15 @@ fn apply_warns_before_a_slow_copies_draw_unless_quiet() {
             .success();
     }
     let serve = |extra: &[&str]| {
-        let mut args = vec!["--listen", "127.0.0.1:0", "--timing", "instant"];
+        let scene = crate::support::layouts::big_course_file(dir.path());
+        let mut args = vec![
+            "--listen",
+            "127.0.0.1:0",
+            "--timing",
+            "instant",
+            "--scene",
+            &scene,
+        ];
         args.extend(extra);
         Serve::start(&args, 1)
     };

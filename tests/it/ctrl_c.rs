@@ -42,7 +42,8 @@ fn ctrl_c_at_any_point_leaves_a_scene_the_next_apply_repairs_at_once() {
     let dir = TempDir::new().unwrap();
     let layout = layout(&dir, "5", "24x24");
     // the realistic model is serve's default: idle fps 8 and the one-minute TIME_WAIT
-    let serve = Serve::start(&["--listen", "127.0.0.1:0"], 1);
+    let scene = crate::support::layouts::big_course_file(dir.path());
+    let serve = Serve::start(&["--listen", "127.0.0.1:0", "--scene", &scene], 1);
     let port = serve.port();
     let mut interrupted = 0;
     for delay_ms in [150u64, 400, 700, 1000, 1400] {
@@ -122,6 +123,8 @@ fn ctrl_c_always_exits_130_with_the_idle_rate_restored(kind: Kind) {
     let dir = TempDir::new().unwrap();
     let layout = layout(&dir, "2", "30x30");
     let (serve_args, apply_args) = serve_and_apply_args(kind);
+    let scene = crate::support::layouts::big_course_file(dir.path());
+    let serve_args = [serve_args, vec!["--scene", &scene]].concat();
     let serve = Serve::start(&serve_args, 1);
     let port = serve.port();
     let mut interrupted = 0;
@@ -173,6 +176,8 @@ fn a_server_killed_mid_apply_is_named_as_gone(kind: Kind) {
     let dir = TempDir::new().unwrap();
     let layout = layout(&dir, "3", "40x40");
     let (serve_args, apply_args) = serve_and_apply_args(kind);
+    let scene = crate::support::layouts::big_course_file(dir.path());
+    let serve_args = [serve_args, vec!["--scene", &scene]].concat();
     let mut serve = Serve::start(&serve_args, 1);
     let port = serve.port();
     let apply = apply_command(&layout, &port)

@@ -12,7 +12,7 @@ fn no_progress(_: draw::Stage) {}
 
 #[test]
 fn legacy_apply_round_trips_30x30() {
-    let s = Kind::Legacy.serve(Scene::course(), 0);
+    let s = Kind::Legacy.serve(crate::support::layouts::big_course(), 0);
     let mut sc = s.connect();
     let d = drawing(30, 7);
     let r = draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();

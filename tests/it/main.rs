@@ -19,6 +19,7 @@ mod first_hour;
 mod generation_gate;
 mod generators;
 mod golden;
+mod hints;
 mod inspect;
 mod interrupt;
 mod layering;

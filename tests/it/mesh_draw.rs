@@ -405,7 +405,7 @@ fn legacy_sends_the_mesh_model_with_transfer_file_to_a_remote_simulator() {
 fn ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored(kind: Kind) {
     use std::sync::Arc;
     use std::sync::atomic::AtomicBool;
-    let s = kind.serve(Scene::course(), 8);
+    let s = kind.serve(crate::support::layouts::big_course(), 8);
     let mut b = s.connect();
     let m = MeshMaze::try_from(&course_layout(Algorithm::Prim, 20, 20, 1)).unwrap();
     let opts = ApplyOptions {

@@ -7,7 +7,7 @@ use vrep_maze::draw::{self, ApplyOptions, DrawError, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, build_layout};
 use vrep_maze::maze::Grid;
-use vrep_maze::sim::{Scene, Simulator};
+use vrep_maze::sim::Simulator;
 use vrep_maze::zmq_api::{ClientOptions, Protocol, ServerConfig, ZmqBackend, spawn};
 
 fn drawing(n: u64, seed: u64) -> Drawing {
@@ -31,7 +31,11 @@ fn concurrent_applies_never_verify_a_wrong_scene() {
         protocol: Protocol::V2,
         ..Default::default()
     };
-    let server = spawn(config, Simulator::new(Scene::course(), 0)).unwrap();
+    let server = spawn(
+        config,
+        Simulator::new(crate::support::layouts::big_course(), 0),
+    )
+    .unwrap();
     let port = server.local_addr().port();
     let (mut verified, mut refused) = (0, 0);
     for trial in 0..4u64 {

@@ -23,6 +23,27 @@ mod write;
 pub use read::read;
 pub use write::write;
 
+/// The most bytes of an XML model or scene file the emulator loads (`simxLoadModel`,
+/// `sim.loadModel`): far above a mesh model of the largest maze, so a path to an endless
+/// or huge file (`/dev/zero`, a disk image) fails after a bounded read.
+pub const MAX_FILE_BYTES: u64 = 4 << 30;
+
+/// The text of the XML file at `path`, read within [`MAX_FILE_BYTES`]; the error says why not.
+pub fn read_file(path: &std::path::Path) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > MAX_FILE_BYTES {
+        return Err(std::io::Error::other(format!(
+            "more than {} GiB: not a model",
+            MAX_FILE_BYTES >> 30
+        )));
+    }
+    Ok(text)
+}
+
 /// Whether a file is a model (dragged into a scene) or a whole scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FileKind {

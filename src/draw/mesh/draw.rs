@@ -425,8 +425,8 @@ fn verify_raised(
     let style = maze.style;
     let (survey, h) = surveyed(scene, names, style, false)?;
     let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
-    if !sizes.refusals.is_empty() {
-        return Err(DrawError::Sizes(sizes.refusals));
+    if let Some(differences) = sizes.differences(names) {
+        return Err(differences);
     }
     // the user's objects under the maze dummy are no stray maze objects
     let objects = plan::sort_out(

@@ -84,7 +84,7 @@ fn load_model(sim: &mut Simulator, path: &str) -> (bool, Vec<u8>, usize) {
     if !path.ends_with(crate::coppelia::xml::FileKind::Model.extension()) {
         return failed;
     }
-    let Ok(text) = std::fs::read_to_string(&file) else {
+    let Ok(text) = crate::coppelia::xml::read_file(&file) else {
         return failed;
     };
     let Ok(doc) = crate::coppelia::xml::read(&text) else {

@@ -4,6 +4,23 @@ use vrep_maze::draw::Drawing;
 use vrep_maze::generate::Algorithm;
 use vrep_maze::layout::{GenerateSpec, Layout, build_layout};
 use vrep_maze::maze::Grid;
+use vrep_maze::sim::Scene;
+
+/// A floor that takes every maze the tests draw over the emulator (the course's is 10 m:
+/// `apply` refuses a larger maze's layout on it).
+pub const BIG_FLOOR: [f64; 2] = [500.0, 500.0];
+
+/// The course scene with a [`BIG_FLOOR`].
+pub fn big_course() -> Scene {
+    Scene::course().with_floor(BIG_FLOOR)
+}
+
+/// [`big_course`] as a scene file in `dir`, for `vrep-maze serve --scene`.
+pub fn big_course_file(dir: &std::path::Path) -> String {
+    let path = dir.join("big-course.json");
+    std::fs::write(&path, big_course().to_json().to_string()).unwrap();
+    path.display().to_string()
+}
 
 /// The course layout for `algorithm` and `seed` on a `w` x `h` grid.
 pub fn course_layout(algorithm: Algorithm, w: u64, h: u64, seed: u64) -> Layout {

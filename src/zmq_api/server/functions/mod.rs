@@ -154,6 +154,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getShapeMesh", shapes::get_shape_mesh),
     ("sim.getShapeBB", shapes::get_shape_bb),
     ("sim.groupShapes", shapes::group_shapes),
+    ("sim.scaleObject", shapes::scale_object),
     ("sim.setModelProperty", models::set_model_property),
     ("sim.getModelProperty", models::get_model_property),
     ("sim.saveModel", models::save_model),

@@ -127,7 +127,7 @@ fn model_document(ctx: &Ctx<'_>, base: i32) -> Result<Document, crate::sim::SimE
 /// `sim.loadModel(path)`: the model's objects enter the scene; returns the model base's handle.
 pub(super) fn load_model(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let path = xml_model_path(a, 0)?;
-    let text = std::fs::read_to_string(path)
+    let text = xml::read_file(std::path::Path::new(path))
         .map_err(|e| format!("in {}: cannot read {path}: {e}", a.func))?;
     let doc = xml::read(&text).map_err(|e| format!("in {}: {path}: {e}", a.func))?;
     let loaded = crate::sim::model::load(&mut ctx.sim.scene, &doc)

@@ -120,6 +120,24 @@ pub(super) fn get_shape_bb(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, S
     ret(values)
 }
 
+/// `sim.scaleObject(h, x, y, z, options = 0)`: the object grows or shrinks along its own
+/// axes, its pose stays; returns 1. Measured on the real 4.5.1 (course.ttt's `Floor`, a 10 m
+/// plane: `sim.getShapeBB` 10, 10, 0, then `sim.scaleObject(Floor, 4.5, 4.5, 1, 0)` answered
+/// 1 and the box read 45, 45, 0 at the same position). A factor that is not a positive
+/// number is refused.
+pub(super) fn scale_object(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    let h = a.int(0)?;
+    let factor = |i: usize| {
+        a.get(i)
+            .and_then(crate::zmq_api::cbor::number)
+            .filter(|f| f.is_finite() && *f > 0.0)
+            .ok_or_else(|| a.bad(i, "a positive number"))
+    };
+    let factors = [factor(1)?, factor(2)?, factor(3)?];
+    ctx.sim.scene.scale(h, factors).map_err(|_| a.no_object())?;
+    ret(vec![int(1)])
+}
+
 /// `sim.groupShapes(handles, merge = false)`: the shapes become one, the last listed (its
 /// handle, name, parent and frame), holding every mesh expressed in its frame; the others
 /// are removed. A merged shape and a grouped one read back the same mesh here. Fewer than
@@ -258,6 +276,44 @@ mod tests {
         let bb = ret1(run_on(&mut sim, Protocol::V1, "sim.getShapeBB", vec![line]));
         let bb = cbor::numbers::<3>(&bb).unwrap();
         assert!((bb[0] - 0.6).abs() < 1e-9 && (bb[1] - 0.1).abs() < 1e-9 && bb[2] == 0.0);
+    }
+
+    #[test]
+    fn a_scaled_floor_grows_along_x_and_y_and_stays_where_it_is() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let floor = int(sim.scene.resolve("Floor").unwrap().into());
+        let before = sim
+            .scene
+            .get(sim.scene.resolve("Floor").unwrap())
+            .unwrap()
+            .position;
+        let scaled = run(
+            &mut sim,
+            "sim.scaleObject",
+            vec![
+                floor.clone(),
+                floats(&[4.5]),
+                Value::Float(4.5),
+                Value::Float(1.0),
+            ],
+        );
+        assert!(matches!(scaled, Outcome::Err(_)), "a factor is a number");
+        let one = ret1(run(
+            &mut sim,
+            "sim.scaleObject",
+            vec![
+                floor.clone(),
+                Value::Float(4.5),
+                Value::Float(4.5),
+                Value::Float(1.0),
+                int(0),
+            ],
+        ));
+        assert_eq!(cbor::number(&one), Some(1.0));
+        let bb = ret1(run(&mut sim, "sim.getShapeBB", vec![floor]));
+        assert_eq!(cbor::numbers::<3>(&bb), Some([45.0, 45.0, 0.0]));
+        let h = sim.scene.resolve("Floor").unwrap();
+        assert_eq!(sim.scene.get(h).unwrap().position, before);
     }
 
     #[test]

@@ -1,0 +1,183 @@
+//! The floor's size before `apply --resize-floor` grew it to a layout's: recorded in the
+//! scene (integer signals, as the line template's home is, [`super::home`]) before the
+//! first resize, so that `clear` scales the floor back. Scaling needs the ZeroMQ remote API
+//! (`sim.scaleObject`); the legacy remote API has no call that resizes an object.
+
+use super::fit::{FloorShort, extents};
+use super::signals::FLOOR_SIZE as FLOOR_SIGNALS;
+use super::{Backend, BackendError, DrawError};
+
+/// A floor's size before the first `apply --resize-floor`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FloorRecord {
+    /// The floor it is the size of.
+    pub handle: i32,
+    /// Extent along x and y, metres.
+    pub size: [f64; 2],
+}
+
+impl FloorRecord {
+    /// The signal values (`None` when a size does not fit: such a size is not recorded).
+    fn encode(&self) -> Option<[i32; 3]> {
+        let fixed = |v: f64| {
+            let scaled = (v * 1e3).round();
+            (scaled.is_finite() && scaled > 0.0 && scaled < i32::MAX as f64)
+                .then_some(scaled as i32)
+        };
+        Some([self.handle, fixed(self.size[0])?, fixed(self.size[1])?])
+    }
+
+    /// The record from the signal values, `None` unless all are set.
+    fn decode(values: &[Option<i32>]) -> Option<FloorRecord> {
+        match values {
+            [Some(handle), Some(x), Some(y)] => Some(FloorRecord {
+                handle: *handle,
+                size: [f64::from(*x) / 1e3, f64::from(*y) / 1e3],
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// Reads the record; `None` if there is none.
+pub fn read(scene: &mut dyn Backend) -> Result<Option<FloorRecord>, BackendError> {
+    Ok(FloorRecord::decode(&scene.int_signals(&FLOOR_SIGNALS)?))
+}
+
+/// Deletes the record.
+fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
+    let signals: Vec<(&str, Option<i32>)> = FLOOR_SIGNALS.iter().map(|n| (*n, None)).collect();
+    scene.set_int_signals(&signals)
+}
+
+/// What stands in the way of resizing a floor, for [`DrawError::Floor`]'s hints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resize {
+    /// The API can resize it: `--resize-floor` was not given.
+    Offered,
+    /// The legacy remote API answered: it cannot resize objects.
+    NoApi,
+    /// The floor has no extent along x or y: no scale makes it larger.
+    NoExtent,
+}
+
+/// Grows the floor `floor` (named `name`) to the layout's size ([`FloorShort::resized`]):
+/// its size before is recorded first unless a record of it exists (an earlier resize), then
+/// it is scaled. With `dry_run` nothing is sent. Returns the report's line.
+pub fn resize(
+    scene: &mut dyn Backend,
+    floor: i32,
+    name: &str,
+    short: &FloorShort,
+    dry_run: bool,
+) -> Result<String, DrawError> {
+    let refused = |resize| DrawError::Floor {
+        floor: name.to_string(),
+        short: *short,
+        resize,
+    };
+    let factors = short.factors().ok_or_else(|| refused(Resize::NoExtent))?;
+    if scene.authoring().is_none() {
+        return Err(refused(Resize::NoApi));
+    }
+    let to = extents(&short.resized());
+    if dry_run {
+        return Ok(format!(
+            "would resize `{name}` from {} m to {to} m (clear puts it back)",
+            extents(&short.have)
+        ));
+    }
+    let record = FloorRecord {
+        handle: floor,
+        size: short.have,
+    };
+    if read(scene)?.is_none_or(|r| r.handle != floor)
+        && let Some(values) = record.encode()
+    {
+        let signals: Vec<(&str, Option<i32>)> = FLOOR_SIGNALS
+            .iter()
+            .zip(values)
+            .map(|(n, v)| (*n, Some(v)))
+            .collect();
+        scene.set_int_signals(&signals)?;
+    }
+    if let Some(authoring) = scene.authoring() {
+        authoring.scale(floor, factors)?;
+    }
+    Ok(format!(
+        "resized `{name}` from {} m to {to} m (clear puts it back)",
+        extents(&short.have)
+    ))
+}
+
+/// Puts the floor `floor` (named `name`) back to its size before the first `apply
+/// --resize-floor`, if a record of it exists, and deletes the record; over the legacy
+/// remote API, which cannot resize, says how to instead and keeps the record. With
+/// `dry_run` nothing is sent. Returns the report's line, `None` without a record.
+pub fn restore(
+    scene: &mut dyn Backend,
+    floor: i32,
+    name: &str,
+    dry_run: bool,
+) -> Result<Option<String>, DrawError> {
+    let Some(record) = read(scene)?.filter(|r| r.handle == floor) else {
+        return Ok(None);
+    };
+    let was = extents(&record.size);
+    if scene.authoring().is_none() {
+        return Ok(Some(format!(
+            "left `{name}` as it is: apply --resize-floor grew it from {was} m, and the legacy remote API cannot resize it back; run clear over the ZeroMQ remote API (--api zmq) to restore it"
+        )));
+    }
+    let now = scene.sizes(&[floor])?.first().copied().flatten();
+    let factors = now.and_then(|now| {
+        let f = [record.size[0] / now[0], record.size[1] / now[1], 1.0];
+        f.iter().all(|x| x.is_finite() && *x > 0.0).then_some(f)
+    });
+    let Some(factors) = factors else {
+        return Ok(Some(format!(
+            "left `{name}` as it is: the simulator did not give its size, so it cannot be put back to {was} m, its size before apply --resize-floor"
+        )));
+    };
+    if dry_run {
+        return Ok(Some(format!(
+            "would put `{name}` back to {was} m, its size before apply --resize-floor"
+        )));
+    }
+    if factors.iter().any(|f| (f - 1.0).abs() > 1e-9)
+        && let Some(authoring) = scene.authoring()
+    {
+        authoring.scale(floor, factors)?;
+    }
+    forget(scene)?;
+    Ok(Some(format!(
+        "put `{name}` back to {was} m, its size before apply --resize-floor"
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_round_trips_to_the_millimetre_and_a_bad_size_is_not_kept() {
+        let record = FloorRecord {
+            handle: 7,
+            size: [10.0, 4.5],
+        };
+        let values = record.encode().unwrap().map(Some);
+        assert_eq!(FloorRecord::decode(&values), Some(record));
+        assert_eq!(FloorRecord::decode(&[Some(7), None, Some(1)]), None);
+        for bad in [f64::NAN, 0.0, -1.0, 3e6] {
+            let bad = FloorRecord {
+                size: [bad, 1.0],
+                ..record
+            };
+            assert_eq!(bad.encode(), None);
+        }
+        assert!(FLOOR_SIGNALS.iter().all(|n| {
+            n.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.')
+        }));
+    }
+}
