@@ -876,17 +876,14 @@ impl Drawer<'_, '_> {
         let mut short = None;
         for (part, copies) in parts.iter().zip(&mut drawn) {
             let mut done = 0;
+            // what is pasted from: only the template and the copies this run pasted from
+            // it, never an earlier copy (a user's recoloured look-alike would spread)
+            let mut sources = vec![part.template];
             while done < part.plan.paste {
                 self.checkpoint("while pasting the lines")?;
                 let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
-                // with nothing drawn yet (walls, posts), the first copy is the template's
-                let sources = if copies.is_empty() {
-                    std::slice::from_ref(&part.template)
-                } else {
-                    &copies[..]
-                };
                 let groups = paste_round(
-                    sources,
+                    &sources,
                     (part.plan.paste - done).min(budget),
                     self.opts.paste_blocks_per_round,
                 );
@@ -896,6 +893,7 @@ impl Drawer<'_, '_> {
                 let carried = std::mem::take(&mut placed_now);
                 let mut new_lines = 0;
                 for new in self.scene.copy_paste(&groups)? {
+                    sources.extend(&new);
                     for handle in new {
                         if let Some(want) = part.poses.get(copies.len()) {
                             edits.extend(place(

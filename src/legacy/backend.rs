@@ -181,9 +181,21 @@ impl LegacyBackend {
             ..Default::default()
         };
         let templates = templates_of(names, handles);
+        // the record first: a named object it holds is one of our copies (refused as a
+        // template or marker), a listed one of its template's type is ours
+        traits.recorded = handles
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|h| record.get(*h).is_some())
+            .collect();
         let mut doubtful = Vec::new();
         let mut sized: Vec<i32> = Vec::new();
         for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+            if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias)
+            {
+                traits.recorded.insert(o.handle);
+            }
             if kind_matches(&traits, o.handle, *template)
                 && is_copy_name(&o.name, name)
                 && record.get(o.handle) != Some(alias)
@@ -239,7 +251,7 @@ fn templates_of<'n>(names: &[&'n str], handles: &[Option<i32>]) -> Vec<(&'n str,
         .enumerate()
         .filter(|(i, _)| *i == 2 || *i >= 5)
         .filter_map(|(_, (n, h))| {
-            let alias = n.rsplit('/').next().unwrap_or(n).to_string();
+            let alias = plan::family(n).to_string();
             h.map(|h| (*n, alias, h))
         })
         .collect()

@@ -113,7 +113,7 @@ pub fn object_path(name: &str) -> String {
 
 fn alias_of(name: &str) -> &str {
     let last = name.rsplit('/').next().unwrap_or(name);
-    last.split('[').next().unwrap_or(last)
+    last.split(['[', '{']).next().unwrap_or(last)
 }
 
 /// A plane to create: size x, y; RGB colour (0..1); height above the floor.
@@ -482,6 +482,15 @@ impl ZmqBackend {
             .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
             .collect();
         let mut record = self.copy_record()?;
+        // the record first: a named object it holds is one of our copies (refused as a
+        // template or marker), a listed one of its template's type is ours
+        found.recorded.extend(
+            known
+                .named
+                .iter()
+                .map(|(_, h)| *h)
+                .filter(|h| record.get(*h).is_some()),
+        );
         let mut present = Vec::new();
         let mut numbered = vec![0; templates.len()];
         let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
@@ -507,8 +516,11 @@ impl ZmqBackend {
             if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
                 backend.doubt(h, template, tree, found)?;
             }
-            Ok(template_kinds.get(alias) == Some(&kind)
-                && !plan::contradicts_copy(found, h, template))
+            let of_type = template_kinds.get(alias) == Some(&kind);
+            if of_type && record.get(h) == Some(alias) {
+                found.recorded.insert(h);
+            }
+            Ok(of_type && !plan::contradicts_copy(found, h, template))
         };
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself; the shapes
@@ -625,6 +637,20 @@ impl ZmqBackend {
         for h in [template, handle] {
             if let Some(size) = self.extents(h)? {
                 found.sizes.insert(h, size);
+            }
+        }
+        // a shape's colour (one call each, the template's once a survey): a user's red copy
+        // of `Line` is no line of the maze
+        let shapes = [template, handle]
+            .into_iter()
+            .filter(|h| self.traits.get(h).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE))
+            .filter(|h| !found.colours.contains_key(h))
+            .collect::<Vec<_>>();
+        if !shapes.is_empty()
+            && let Some(colours) = self.shape_colours(&shapes)?
+        {
+            for (h, c) in shapes.into_iter().zip(colours) {
+                found.colours.extend(c.map(|c| (h, c)));
             }
         }
         let deep = match (tree, self.deep) {
