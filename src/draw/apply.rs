@@ -88,8 +88,12 @@ pub struct ApplyReport {
     pub reused: usize,
     /// Copies pasted.
     pub pasted: usize,
-    /// Earlier copies removed (the surplus, another style's copies, an earlier mesh maze).
+    /// Earlier copies removed (the surplus, another style's copies); mesh mode: the
+    /// earlier meshes and copies removed.
     pub removed: usize,
+    /// Copies mode: the objects of an earlier mesh maze removed (its meshes and their
+    /// holder), counted apart from the copies.
+    pub removed_meshes: usize,
     /// Lines and posts kept (the template, reused copies) that were already in place: no
     /// edit sent. Mesh mode: the meshes kept.
     pub unchanged: usize,
@@ -127,6 +131,7 @@ impl ApplyReport {
     pub fn nothing_to_do(&self) -> bool {
         self.pasted == 0
             && self.removed == 0
+            && self.removed_meshes == 0
             && self.placed == 0
             && self.markers_placed == 0
             && !self.simulation_running
@@ -196,9 +201,17 @@ impl std::fmt::Display for ApplyReport {
                 self.unchanged, self.placed
             )
         };
+        let meshes = if self.removed_meshes > 0 {
+            format!(
+                "; an earlier mesh maze removed ({} object(s): its meshes and their holder)",
+                self.removed_meshes
+            )
+        } else {
+            String::new()
+        };
         write!(
             f,
-            "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed; {cost}",
+            "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed{meshes}; {cost}",
             self.lines,
             self.style.name(),
             self.pasted,
@@ -371,15 +384,18 @@ fn apply_claimed(
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
     let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    let meshes: Vec<i32> = leftovers.iter().map(|(x, _)| *x).collect();
+    report.left_alone.extend(leftovers.left_alone.iter().cloned());
+    let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
+    // the holder, ours or the user's, is never a line
+    let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
     let mut existing = maze_lines(objects, &h, names.template(style), &others);
-    existing.retain(|x| !meshes.contains(x));
+    existing.retain(|x| !mesh_maze(x));
     let earlier = EarlierLines::of(
         match style {
             super::Style::Lines => !existing.is_empty(),
             super::Style::Walls => has_line_copies(objects, &h, &names.line),
         },
-        leftovers.iter().map(|(_, name)| name.as_str()),
+        leftovers.ours.iter().map(|(_, name)| name.as_str()),
     );
     let copies_needed = drawing
         .lines
@@ -403,7 +419,8 @@ fn apply_claimed(
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
     // its posts unless this maze has posts too
     let mut foreign = foreign_copies(objects, &h, &names.foreign(style, posts));
-    foreign.retain(|x| !meshes.contains(x));
+    foreign.retain(|x| !mesh_maze(x));
+    report.removed_meshes = meshes.len();
     foreign.extend(meshes);
     if !drawing.template_drawn() {
         let floor = objects
@@ -422,11 +439,11 @@ fn apply_claimed(
         report.removed += part.plan.remove.len();
         report.pasted += part.plan.paste;
     }
-    report.removed += foreign.len();
+    report.removed += foreign.len() - report.removed_meshes;
     let kept: usize = parts.iter().map(|part| part.plan.reuse.len()).sum();
     progress(Stage::Planned(super::estimate::CopiesWork {
         objects: survey.objects.len(),
-        removed: report.removed,
+        removed: report.removed + report.removed_meshes,
         placed: kept + usize::from(drawing.template_drawn()) + 2,
         pasted: report.pasted,
         kept_children: kept,
@@ -470,6 +487,7 @@ fn apply_claimed(
         objects_in_scene: survey.objects.len(),
         placed: 0,
         traits: &survey.traits,
+        holder: leftovers.holder,
     };
     run.draw(objects, &parts, &foreign)?;
     Ok(report)
@@ -836,6 +854,8 @@ struct Drawer<'a, 'p> {
     placed: usize,
     /// What the survey read of copies and the user's objects ([`plan::sort_out`]).
     traits: &'a plan::Traits,
+    /// The holder of a mesh maze the user keeps (their objects under it): no line.
+    holder: Option<i32>,
 }
 
 impl Drawer<'_, '_> {
@@ -938,7 +958,9 @@ impl Drawer<'_, '_> {
             self.scene.objects()?
         };
         self.claim.check(self.scene, "while verifying")?;
-        let after = plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+        let mut after =
+            plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+        after.retain(|o| Some(o.handle) != self.holder);
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());
             drawn.get(p).map_or(&[][..], |d| &d[..poses.min(d.len())])

@@ -146,8 +146,10 @@ fn clear_claimed(
     let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));
     // a mesh maze (`--draw mesh`): its meshes and holder, ours by name
-    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d));
+    let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    let meshes = &leftovers.ours;
+    // the holder, ours or the user's, is never a copy
+    doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d) && Some(*d) != leftovers.holder);
     let names_by_handle: HashMap<i32, &str> = sorted
         .objects
         .iter()
@@ -200,6 +202,10 @@ fn clear_claimed(
         round_trips: 0,
         restored_idle_fps: None,
         stopped_simulation,
-        left_alone: sorted.strangers,
+        left_alone: sorted
+            .strangers
+            .into_iter()
+            .chain(leftovers.left_alone)
+            .collect(),
     })
 }

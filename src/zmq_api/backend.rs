@@ -1271,6 +1271,8 @@ impl Authoring for ZmqBackend {
 
 /// An object `create_missing` makes.
 enum Make {
+    /// A floor plane, 10 m x 10 m, respondable.
+    Floor,
     /// The maze dummy.
     Dummy,
     /// A plane: size, colour, height.
@@ -1288,23 +1290,8 @@ impl ZmqBackend {
         names: &ObjectNames,
         walls: Option<([f64; 3], Option<[f64; 3]>)>,
     ) -> Result<Vec<String>, BackendError> {
-        let mut created = Vec::new();
-        let mut floor = self.handle_of(&object_path(&names.floor))?;
-        if floor.is_none() {
-            check_alias(&names.floor)?;
-            // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
-            let h = self.create_plane(
-                &names.floor,
-                [10.0, 10.0],
-                [0.5, 0.5, 0.5],
-                0.0,
-                HANDLE_WORLD,
-                true,
-            )?;
-            floor = Some(h);
-            created.push(names.floor.clone());
-        }
-        let mut specs: Vec<(&str, Make)> = vec![(&names.parent, Make::Dummy)];
+        let mut specs: Vec<(&str, Make)> = vec![(&names.floor, Make::Floor)];
+        specs.push((&names.parent, Make::Dummy));
         match walls {
             None => specs.push((
                 &names.line,
@@ -1328,46 +1315,120 @@ impl ZmqBackend {
                 Make::Plane(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002)),
             ),
         ]);
-        for (name, shape) in specs {
-            if self.handle_of(&object_path(name))?.is_some() {
+        let names_asked: Vec<&str> = specs.iter().map(|(n, _)| *n).collect();
+        let found = self.handles_of(&names_asked)?;
+        let mut floor = found[0];
+        // every name checked before anything is made: a failure leaves the scene as it was
+        let mut missing = Vec::new();
+        for ((name, shape), handle) in specs.into_iter().zip(&found) {
+            if handle.is_some() {
                 continue;
             }
             check_alias(name)?;
-            let alias = alias_of(name);
-            let h = match shape {
-                Make::Dummy => {
-                    let h = self
-                        .client
-                        .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
-                    self.call(
-                        "sim.setObjectAlias",
-                        vec![int(h.into()), Value::Text(alias.into())],
-                    )?;
-                    h
-                }
-                Make::Plane((size, colour, z)) => {
-                    self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
-                }
-                Make::Cuboid(size, at) => {
-                    self.create_cuboid(name, size, at, floor.unwrap_or(HANDLE_WORLD))?
-                }
-            };
-            let parent_path = name
+            let parent = name
                 .rsplit_once('/')
                 .map(|(p, _)| p)
                 .filter(|p| !p.is_empty());
-            if let Some(p) = parent_path {
-                let ph = self.handle_of(p)?.ok_or_else(|| {
-                    BackendError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
-                })?;
-                self.call(
-                    "sim.setObjectParent",
-                    vec![int(h.into()), int(ph.into()), Value::Bool(true)],
-                )?;
+            if let Some(p) = parent {
+                let made_first = missing
+                    .iter()
+                    .any(|(n, _, _): &(&str, Make, _)| object_path(n) == object_path(p));
+                if !made_first && self.handle_of(p)?.is_none() {
+                    return Err(BackendError::Remote(format!(
+                        "cannot create `{name}`: `{p}` does not exist (nothing was created)"
+                    )));
+                }
             }
-            created.push(name.to_string());
+            missing.push((name, shape, parent));
         }
-        Ok(created)
+        let mut created: Vec<(String, i32)> = Vec::new();
+        for (name, shape, parent) in missing {
+            let h = match self.make(name, shape, &mut floor) {
+                Ok(h) => h,
+                Err(e) => return Err(self.undo_creation(&created, e)),
+            };
+            created.push((name.to_string(), h));
+            if let Some(p) = parent
+                && let Err(e) = self.parent_to(h, name, p)
+            {
+                return Err(self.undo_creation(&created, e));
+            }
+        }
+        Ok(created.into_iter().map(|(n, _)| n).collect())
+    }
+
+    /// Makes one object of [`ZmqBackend::create_course`]: `shape` named `name`, on `floor`
+    /// (which a new floor becomes).
+    fn make(
+        &mut self,
+        name: &str,
+        shape: Make,
+        floor: &mut Option<i32>,
+    ) -> Result<i32, BackendError> {
+        let alias = alias_of(name);
+        let h = match shape {
+            Make::Floor => {
+                // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
+                let h = self.create_plane(
+                    name,
+                    [10.0, 10.0],
+                    [0.5, 0.5, 0.5],
+                    0.0,
+                    HANDLE_WORLD,
+                    true,
+                )?;
+                *floor = Some(h);
+                h
+            }
+            Make::Dummy => {
+                let h = self
+                    .client
+                    .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
+                self.call(
+                    "sim.setObjectAlias",
+                    vec![int(h.into()), Value::Text(alias.into())],
+                )?;
+                h
+            }
+            Make::Plane((size, colour, z)) => {
+                self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
+            }
+            Make::Cuboid(size, at) => {
+                self.create_cuboid(name, size, at, floor.unwrap_or(HANDLE_WORLD))?
+            }
+        };
+        Ok(h)
+    }
+
+    /// Puts the new object `h` (named `name`) under the object `parent` names.
+    fn parent_to(&mut self, h: i32, name: &str, parent: &str) -> Result<(), BackendError> {
+        let ph = self.handle_of(parent)?.ok_or_else(|| {
+            BackendError::Remote(format!("cannot create `{name}`: `{parent}` does not exist"))
+        })?;
+        self.call(
+            "sim.setObjectParent",
+            vec![int(h.into()), int(ph.into()), Value::Bool(true)],
+        )?;
+        Ok(())
+    }
+
+    /// After `error` stopped a creation, removes the objects it had made (`created`) and
+    /// says so, or says which are left if they could not be removed.
+    fn undo_creation(&mut self, created: &[(String, i32)], error: BackendError) -> BackendError {
+        if created.is_empty() {
+            return error;
+        }
+        let handles: Vec<i32> = created.iter().map(|(_, h)| *h).collect();
+        let names: Vec<&str> = created.iter().map(|(n, _)| n.as_str()).collect();
+        let (status, text) = match self.remove(&handles) {
+            Ok(()) => ("removed again", names.join(", ")),
+            Err(e) => ("left in the scene", format!("{} ({e})", names.join(", "))),
+        };
+        let message = format!("{error}; what it had created was {status}: {text}");
+        match error {
+            BackendError::Transport(_) => BackendError::Transport(message),
+            BackendError::Remote(_) => BackendError::Remote(message),
+        }
     }
 
     /// The wall or post template `name`: a dark grey cuboid of `size`, static and

@@ -73,20 +73,66 @@ pub struct FoundMesh {
 /// The holder and what it holds.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FoundMeshes {
-    /// The holder dummy, if the scene has one under the maze dummy.
+    /// The dummy named [`HOLDER`] under the maze dummy, if the scene has one.
     pub holder: Option<i32>,
-    /// Every object under the holder: meshes of ours are named by
-    /// [`parse_mesh_name`]; anything else was put there by hand.
+    /// The meshes of ours under the holder: named by [`parse_mesh_name`] (as a backend
+    /// finds them, everything under it, until [`FoundMeshes::sorted`]).
     pub meshes: Vec<FoundMesh>,
+    /// The user's objects under the holder: anything not named as a mesh of ours
+    /// ([`FoundMeshes::sorted`]). Never removed; while there are any, the holder is the
+    /// user's too ([`FoundMeshes::holder_is_ours`]).
+    pub users: Vec<FoundMesh>,
 }
 
 impl FoundMeshes {
-    /// The holder and everything under it: what removing a mesh maze removes.
-    pub fn all_handles(&self) -> Vec<i32> {
+    /// Sorts what a backend found under the holder: a mesh of ours is named by
+    /// [`parse_mesh_name`] (a fingerprint no one types by chance), anything else (a cuboid
+    /// put there by hand) is the user's.
+    pub fn sorted(self) -> FoundMeshes {
+        let (meshes, mut users): (Vec<FoundMesh>, Vec<FoundMesh>) = self
+            .meshes
+            .into_iter()
+            .partition(|m| parse_mesh_name(&m.name).is_some());
+        users.extend(self.users);
+        FoundMeshes {
+            holder: self.holder,
+            meshes,
+            users,
+        }
+    }
+
+    /// `true` if the scene has a holder and it holds nothing but meshes of ours: a holder
+    /// holding the user's objects (or the user's own dummy named [`HOLDER`]) is left with
+    /// them.
+    pub fn holder_is_ours(&self) -> bool {
+        self.holder.is_some() && self.users.is_empty()
+    }
+
+    /// `true` if the scene holds a mesh maze of ours: a mesh, or a holder of ours.
+    pub fn is_mesh_maze(&self) -> bool {
+        !self.meshes.is_empty() || self.holder_is_ours()
+    }
+
+    /// What removing a mesh maze removes: our meshes, then the holder if it is ours.
+    pub fn ours(&self) -> Vec<(i32, String)> {
         self.meshes
             .iter()
-            .map(|m| m.handle)
-            .chain(self.holder)
+            .map(|m| (m.handle, m.name.clone()))
+            .chain(
+                self.holder
+                    .filter(|_| self.holder_is_ours())
+                    .map(|h| (h, HOLDER.to_string())),
+            )
+            .collect()
+    }
+
+    /// The names of what is left alone under the maze dummy: the holder, when it is the
+    /// user's, and the user's objects under it.
+    pub fn left_alone(&self) -> Vec<String> {
+        let holder = (self.holder.is_some() && !self.holder_is_ours()).then(|| HOLDER.to_string());
+        holder
+            .into_iter()
+            .chain(self.users.iter().map(|m| m.name.clone()))
             .collect()
     }
 }
