@@ -81,7 +81,7 @@ fn send_home(
         }])?;
     }
     Ok(Some(format!(
-        "no record of where `{template}` stood before the first apply (a maze drawn by an older vrep-maze): {verb} it below the floor at ({:.3}, {:.3}), out of sight; move it where you want it",
+        "no record of where `{template}` stood before the first apply (the record lives in the scene's signals, which a scene file does not keep: a scene saved and loaded again, or a maze drawn by an older vrep-maze): {verb} it below the floor at ({:.3}, {:.3}), out of sight; move it where you want it",
         position[0], position[1]
     )))
 }
@@ -155,7 +155,7 @@ fn clear_claimed(
         .iter()
         .map(|o| (o.handle, o.name.as_str()))
         .collect();
-    let removed = doomed
+    let removed: Vec<String> = doomed
         .iter()
         .map(|d| {
             names_by_handle
@@ -183,15 +183,13 @@ fn clear_claimed(
             scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
         }
     }
+    // the template lay on the first line only of a line maze: copies of it, or line meshes
+    let line_maze = removed.iter().any(|n: &String| plan::is_copy_name(n, &names.line))
+        || meshes.iter().any(|(_, n)| {
+            super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
+        });
     let template = if style == Style::Lines {
-        send_home(
-            scene,
-            &h,
-            &sorted.objects,
-            !doomed.is_empty(),
-            names,
-            dry_run,
-        )?
+        send_home(scene, &h, &sorted.objects, line_maze, names, dry_run)?
     } else {
         None
     };

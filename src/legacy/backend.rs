@@ -153,7 +153,10 @@ impl LegacyBackend {
                 copies.insert(o.handle, alias.clone());
             }
         }
-        let mut changed = record.retain(|h| copies.contains_key(&h));
+        // a named object the record holds stays in it: refused as a template or marker,
+        // it is still our copy
+        let mut changed =
+            record.retain(|h| copies.contains_key(&h) || traits.recorded.contains(&h));
         for (h, alias) in &copies {
             changed |= record.insert(*h, alias);
         }

@@ -601,7 +601,12 @@ impl ZmqBackend {
             seen.insert(h);
             found.kinds.insert(h, kind);
             let name = copy_name(&alias);
-            if judge(self, (h, None), &name, &alias, kind, &mut found)? {
+            // a copy at the root stays in the record if it is there (pasted by an
+            // interrupted run), but none is added by its alias: the root also holds the
+            // user's template when a name found one of our copies instead
+            if judge(self, (h, None), &name, &alias, kind, &mut found)?
+                && record.get(h) == Some(alias.as_str())
+            {
                 present.push((h, alias.clone()));
             }
             lines.push((h, name, None));
@@ -611,7 +616,10 @@ impl ZmqBackend {
         // alias are added (a maze drawn without a record pays its reads once), handles no
         // longer there are dropped
         if known.parent.is_some() {
-            let mut changed = record.retain(|h| present.iter().any(|(p, _)| *p == h));
+            // a named object the record holds stays in it: refused as a template or marker,
+            // it is still our copy
+            let mut changed = record
+                .retain(|h| present.iter().any(|(p, _)| *p == h) || found.recorded.contains(&h));
             for (h, alias) in &present {
                 changed |= record.insert(*h, alias);
             }

@@ -38,6 +38,7 @@ mod solve;
 mod texture;
 mod trust;
 mod trust_draw;
+mod trust_ours;
 mod validate;
 mod walls;
 mod zmq_client_server;
