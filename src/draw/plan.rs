@@ -529,6 +529,46 @@ mod tests {
         assert!(is_copy_name("/Line[1]", "Line") && is_copy_name("/Line[12]", "/Line"));
         assert!(!is_copy_name("/Line", "Line") && !is_copy_name("/Line[x]", "Line"));
         assert!(is_copy_name("Seg#1", "Seg#0"));
+        // a path to the template names its alias's family, index or not
+        for template in ["/Line[0]", "/Line", "/Line{0}", "./Line", "/Course/Line[2]"] {
+            assert_eq!(family(template), "Line", "{template}");
+            for copy in ["/Line[1]", "Line#4", "Line7"] {
+                assert!(is_copy_name(copy, template), "{copy} of {template}");
+            }
+            assert!(!is_copy_name("Line", template) && !is_copy_name("/Line", template));
+        }
+        assert_eq!(family("Line[0]"), "Line[0]", "a plain name is a name");
+    }
+
+    #[test]
+    fn the_record_decides_first_then_colour_and_size() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "Line1", Some(2)),
+            obj(8, "Line2", Some(2)),
+            obj(9, "Renamed", Some(2)),
+        ];
+        let (green, red) = ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
+        let traits = Traits {
+            kinds: (3..=9).map(|h| (h, 0)).collect(),
+            // 7 is a red look-alike; 8 is within the dialogs' step of green
+            colours: [(3, green), (6, green), (7, red), (8, [0.0, 0.995, 0.0]), (9, red)]
+                .into_iter()
+                .collect(),
+            // 9 was pasted by us and renamed; a recorded copy is never doubted
+            recorded: [9].into_iter().collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line"], &traits);
+        assert_eq!(sorted.strangers, vec!["Line1"]);
+        assert!(sorted.objects.iter().any(|o| o.handle == 9));
+        assert!(!same_colour(green, [f64::NAN, 1.0, 0.0]));
     }
 
     /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
@@ -669,6 +709,7 @@ mod tests {
             .into_iter()
             .collect(),
             with_children: [9].into_iter().collect(),
+            ..Default::default()
         };
         let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
         let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();

@@ -179,3 +179,45 @@ pub trait MeshDrawing {
         self.read(handle)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn under(handle: i32, name: &str) -> FoundMesh {
+        FoundMesh {
+            handle,
+            name: name.into(),
+            parent: Some(9),
+        }
+    }
+
+    #[test]
+    fn only_our_mesh_names_are_ours_and_a_holder_with_the_users_objects_is_theirs() {
+        let ours = mesh_name(MeshKind::Lines, 0x0123_4567_89ab_cdef);
+        let found = |meshes: Vec<FoundMesh>| {
+            FoundMeshes {
+                holder: Some(9),
+                meshes,
+                users: Vec::new(),
+            }
+            .sorted()
+        };
+        let mixed = found(vec![under(10, &ours), under(11, "Cuboid")]);
+        assert_eq!(mixed.meshes, vec![under(10, &ours)]);
+        assert!(!mixed.holder_is_ours() && mixed.is_mesh_maze());
+        assert_eq!(mixed.ours(), vec![(10, ours.clone())]);
+        assert_eq!(mixed.left_alone(), vec![HOLDER.to_string(), "Cuboid".into()]);
+        let users = found(vec![under(11, "Cuboid")]);
+        assert!(!users.is_mesh_maze() && users.ours().is_empty());
+        let mesh_maze = found(vec![under(10, &ours)]);
+        assert_eq!(
+            mesh_maze.ours(),
+            vec![(10, ours.clone()), (9, HOLDER.to_string())]
+        );
+        assert!(mesh_maze.left_alone().is_empty());
+        // an empty holder is ours (an interrupted mesh draw); no holder is no mesh maze
+        assert!(found(vec![]).is_mesh_maze());
+        assert!(!FoundMeshes::default().is_mesh_maze());
+    }
+}
