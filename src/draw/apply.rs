@@ -203,7 +203,7 @@ impl std::fmt::Display for ApplyReport {
         };
         let meshes = if self.removed_meshes > 0 {
             format!(
-                "; an earlier mesh maze removed ({} object(s): its meshes and their holder)",
+                "; {} object(s) of an earlier mesh maze removed",
                 self.removed_meshes
             )
         } else {
@@ -384,7 +384,9 @@ fn apply_claimed(
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
     let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    report.left_alone.extend(leftovers.left_alone.iter().cloned());
+    report
+        .left_alone
+        .extend(leftovers.left_alone.iter().cloned());
     let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
     // the holder, ours or the user's, is never a line
     let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;

@@ -184,7 +184,9 @@ fn clear_claimed(
         }
     }
     // the template lay on the first line only of a line maze: copies of it, or line meshes
-    let line_maze = removed.iter().any(|n: &String| plan::is_copy_name(n, &names.line))
+    let line_maze = removed
+        .iter()
+        .any(|n: &String| plan::is_copy_name(n, &names.line))
         || meshes.iter().any(|(_, n)| {
             super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
         });

@@ -558,9 +558,15 @@ mod tests {
         let traits = Traits {
             kinds: (3..=9).map(|h| (h, 0)).collect(),
             // 7 is a red look-alike; 8 is within the dialogs' step of green
-            colours: [(3, green), (6, green), (7, red), (8, [0.0, 0.995, 0.0]), (9, red)]
-                .into_iter()
-                .collect(),
+            colours: [
+                (3, green),
+                (6, green),
+                (7, red),
+                (8, [0.0, 0.995, 0.0]),
+                (9, red),
+            ]
+            .into_iter()
+            .collect(),
             // 9 was pasted by us and renamed; a recorded copy is never doubted
             recorded: [9].into_iter().collect(),
             ..Default::default()

@@ -195,8 +195,7 @@ impl LegacyBackend {
         let mut doubtful = Vec::new();
         let mut sized: Vec<i32> = Vec::new();
         for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
-            if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias)
-            {
+            if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias) {
                 traits.recorded.insert(o.handle);
             }
             if kind_matches(&traits, o.handle, *template)

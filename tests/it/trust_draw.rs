@@ -367,7 +367,11 @@ fn a_stray_copy_of_the_template_never_verifies() {
         s.with_sim(|sim| {
             let maze = sim.scene.resolve("Maze").unwrap();
             // the template's colour too: a copy in every way the APIs read
-            let green = sim.scene.get(sim.scene.resolve("Line").unwrap()).unwrap().colour;
+            let green = sim
+                .scene
+                .get(sim.scene.resolve("Line").unwrap())
+                .unwrap()
+                .colour;
             sim.scene.add(
                 "Line77",
                 NewObject {

@@ -207,7 +207,10 @@ mod tests {
         assert_eq!(mixed.meshes, vec![under(10, &ours)]);
         assert!(!mixed.holder_is_ours() && mixed.is_mesh_maze());
         assert_eq!(mixed.ours(), vec![(10, ours.clone())]);
-        assert_eq!(mixed.left_alone(), vec![HOLDER.to_string(), "Cuboid".into()]);
+        assert_eq!(
+            mixed.left_alone(),
+            vec![HOLDER.to_string(), "Cuboid".into()]
+        );
         let users = found(vec![under(11, "Cuboid")]);
         assert!(!users.is_mesh_maze() && users.ours().is_empty());
         let mesh_maze = found(vec![under(10, &ours)]);
