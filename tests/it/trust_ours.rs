@@ -227,7 +227,9 @@ fn a_users_dummy_named_like_the_mesh_holder_is_left_alone(kind: Kind) {
     assert!(r.left_alone.contains(&"Cuboid".to_string()), "{k}: {r:?}");
     draw::mesh::verify(&mut *b, &maze_meshes, &ObjectNames::default()).unwrap();
     assert!(exists(cuboid), "{k}: mesh apply");
-    draw::clear(&mut *b, &ClearOptions::default()).unwrap();
+    let c = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
+    let meshes: Vec<String> = maze_meshes.meshes.iter().map(|m| m.name()).collect();
+    assert_eq!(c.removed_meshes, meshes, "{k}: ours, not the user's holder");
     assert!(
         exists(holder) && exists(cuboid),
         "{k}: clear of a mesh maze"
