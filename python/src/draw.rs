@@ -39,6 +39,8 @@ pub struct ApplyReport {
     pasted: usize,
     /// Earlier copies removed.
     removed: usize,
+    /// Objects of an earlier mesh maze a copies draw removed (its meshes and their holder).
+    removed_meshes: usize,
     /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
     /// `lines + posts == unchanged + placed + pasted` (copies).
     unchanged: usize,
@@ -273,6 +275,7 @@ pub fn apply(
             reused: report.reused,
             pasted: report.pasted,
             removed: report.removed,
+            removed_meshes: report.removed_meshes,
             unchanged: report.unchanged,
             placed: report.placed,
             markers_unchanged: report.markers_unchanged,

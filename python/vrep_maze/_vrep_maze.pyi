@@ -75,6 +75,7 @@ class ApplyReport:
     reused: int
     pasted: int
     removed: int
+    removed_meshes: int
     unchanged: int
     placed: int
     markers_unchanged: int

@@ -523,6 +523,7 @@ fn apply_json(
         reused: report.reused,
         pasted: report.pasted,
         removed: report.removed,
+        removed_meshes: report.removed_meshes,
         unchanged: report.unchanged,
         placed: report.placed,
         markers_unchanged: report.markers_unchanged,

@@ -146,9 +146,14 @@ fn mesh_line(verb: &str, removed: &[String]) -> Option<String> {
     } else {
         String::new()
     };
+    // the holder goes only if it is ours (it holds none of the user's objects)
+    let holder = if meshes.len() < removed.len() {
+        format!(" and their holder `{}`", crate::draw::mesh::HOLDER)
+    } else {
+        String::new()
+    };
     Some(format!(
-        "{verb} a mesh maze: {} mesh(es) ({shown}{more}) and their holder `{}`",
+        "{verb} a mesh maze: {} mesh(es) ({shown}{more}){holder}",
         meshes.len(),
-        crate::draw::mesh::HOLDER
     ))
 }

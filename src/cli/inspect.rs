@@ -214,6 +214,8 @@ fn inspect(
         .filter_map(|m| parse_mesh_name(&m.name).map(|(kind, _)| kind))
         .collect();
     maze.meshes = meshes.meshes.iter().map(|m| m.name.clone()).collect();
+    // the user's holder (a dummy of theirs named like ours) and their objects under it
+    maze.not_ours.extend(meshes.left_alone());
     for o in objects.iter().filter(|o| Some(o.handle) != meshes.holder) {
         let under_maze = parent.is_some() && o.parent == parent;
         // named, typed and (where read) sized like a template's copy, as drawing judges
@@ -302,7 +304,7 @@ fn compare(
     layout: &crate::layout::Layout,
     meshes: &FoundMeshes,
 ) -> Result<(), DrawError> {
-    if meshes.holder.is_none() {
+    if !meshes.is_mesh_maze() {
         return verify_read_only(scene, drawing, names);
     }
     let maze = MeshMaze::try_from(layout).map_err(|e| DrawError::Verify(vec![e.to_string()]))?;

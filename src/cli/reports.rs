@@ -131,8 +131,11 @@ pub struct ApplyJson {
     pub reused: usize,
     /// Copies pasted (`--draw mesh`: meshes created).
     pub pasted: usize,
-    /// Earlier copies removed.
+    /// Earlier copies removed (`--draw mesh`: earlier meshes and copies).
     pub removed: usize,
+    /// Objects of an earlier mesh maze a copies draw removed (its meshes and their holder),
+    /// counted apart from `removed`.
+    pub removed_meshes: usize,
     /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
     pub unchanged: usize,
     /// Lines and posts kept whose pose (or parent) was sent.

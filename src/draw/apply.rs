@@ -93,8 +93,12 @@ pub struct ApplyReport {
     pub reused: usize,
     /// Copies pasted.
     pub pasted: usize,
-    /// Earlier copies removed (the surplus, another style's copies, an earlier mesh maze).
+    /// Earlier copies removed (the surplus, another style's copies); mesh mode: the
+    /// earlier meshes and copies removed.
     pub removed: usize,
+    /// Copies mode: the objects of an earlier mesh maze removed (its meshes and their
+    /// holder), counted apart from the copies.
+    pub removed_meshes: usize,
     /// Lines and posts kept (the template, reused copies) that were already in place: no
     /// edit sent. Mesh mode: the meshes kept.
     pub unchanged: usize,
@@ -135,6 +139,7 @@ impl ApplyReport {
     pub fn nothing_to_do(&self) -> bool {
         self.pasted == 0
             && self.removed == 0
+            && self.removed_meshes == 0
             && self.placed == 0
             && self.markers_placed == 0
             && !self.simulation_running
@@ -205,9 +210,17 @@ impl std::fmt::Display for ApplyReport {
                 self.unchanged, self.placed
             )
         };
+        let meshes = if self.removed_meshes > 0 {
+            format!(
+                "; {} object(s) of an earlier mesh maze removed",
+                self.removed_meshes
+            )
+        } else {
+            String::new()
+        };
         write!(
             f,
-            "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed; {cost}",
+            "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed{meshes}; {cost}",
             self.lines,
             self.style.name(),
             self.pasted,
@@ -388,15 +401,20 @@ fn apply_claimed(
     let others = names.others(style);
     // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
     let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    let meshes: Vec<i32> = leftovers.iter().map(|(x, _)| *x).collect();
+    report
+        .left_alone
+        .extend(leftovers.left_alone.iter().cloned());
+    let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
+    // the holder, ours or the user's, is never a line
+    let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
     let mut existing = maze_lines(objects, &h, names.template(style), &others);
-    existing.retain(|x| !meshes.contains(x));
+    existing.retain(|x| !mesh_maze(x));
     let earlier = EarlierLines::of(
         match style {
             super::Style::Lines => !existing.is_empty(),
             super::Style::Walls => has_line_copies(objects, &h, &names.line),
         },
-        leftovers.iter().map(|(_, name)| name.as_str()),
+        leftovers.ours.iter().map(|(_, name)| name.as_str()),
     );
     let copies_needed = drawing
         .lines
@@ -420,7 +438,8 @@ fn apply_claimed(
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
     // its posts unless this maze has posts too
     let mut foreign = foreign_copies(objects, &h, &names.foreign(style, posts));
-    foreign.retain(|x| !meshes.contains(x));
+    foreign.retain(|x| !mesh_maze(x));
+    report.removed_meshes = meshes.len();
     foreign.extend(meshes);
     if !drawing.template_drawn() {
         let floor = objects
@@ -439,11 +458,11 @@ fn apply_claimed(
         report.removed += part.plan.remove.len();
         report.pasted += part.plan.paste;
     }
-    report.removed += foreign.len();
+    report.removed += foreign.len() - report.removed_meshes;
     let kept: usize = parts.iter().map(|part| part.plan.reuse.len()).sum();
     progress(Stage::Planned(super::estimate::CopiesWork {
         objects: survey.objects.len(),
-        removed: report.removed,
+        removed: report.removed + report.removed_meshes,
         placed: kept + usize::from(drawing.template_drawn()) + 2,
         pasted: report.pasted,
         kept_children: kept,
@@ -488,6 +507,7 @@ fn apply_claimed(
         objects_in_scene: survey.objects.len(),
         placed: 0,
         traits: &survey.traits,
+        holder: leftovers.holder,
     };
     run.draw(objects, &parts, &foreign)?;
     Ok(report)
@@ -935,6 +955,8 @@ struct Drawer<'a, 'p> {
     placed: usize,
     /// What the survey read of copies and the user's objects ([`plan::sort_out`]).
     traits: &'a plan::Traits,
+    /// The holder of a mesh maze the user keeps (their objects under it): no line.
+    holder: Option<i32>,
 }
 
 impl Drawer<'_, '_> {
@@ -975,17 +997,14 @@ impl Drawer<'_, '_> {
         let mut short = None;
         for (part, copies) in parts.iter().zip(&mut drawn) {
             let mut done = 0;
+            // what is pasted from: only the template and the copies this run pasted from
+            // it, never an earlier copy (a user's recoloured look-alike would spread)
+            let mut sources = vec![part.template];
             while done < part.plan.paste {
                 self.checkpoint("while pasting the lines")?;
                 let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
-                // with nothing drawn yet (walls, posts), the first copy is the template's
-                let sources = if copies.is_empty() {
-                    std::slice::from_ref(&part.template)
-                } else {
-                    &copies[..]
-                };
                 let groups = paste_round(
-                    sources,
+                    &sources,
                     (part.plan.paste - done).min(budget),
                     self.opts.paste_blocks_per_round,
                 );
@@ -995,6 +1014,7 @@ impl Drawer<'_, '_> {
                 let carried = std::mem::take(&mut placed_now);
                 let mut new_lines = 0;
                 for new in self.scene.copy_paste(&groups)? {
+                    sources.extend(&new);
                     for handle in new {
                         if let Some(want) = part.poses.get(copies.len()) {
                             edits.extend(place(
@@ -1039,7 +1059,9 @@ impl Drawer<'_, '_> {
             self.scene.objects()?
         };
         self.claim.check(self.scene, "while verifying")?;
-        let after = plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+        let mut after =
+            plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+        after.retain(|o| Some(o.handle) != self.holder);
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());
             drawn.get(p).map_or(&[][..], |d| &d[..poses.min(d.len())])

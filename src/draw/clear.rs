@@ -103,7 +103,7 @@ fn send_home(
         }])?;
     }
     let why = if kept {
-        "a maze drawn by an older vrep-maze"
+        "the record lives in the scene's signals, which a scene file does not keep: a scene saved and loaded again, or a maze drawn by an older vrep-maze"
     } else {
         "the simulator keeps no signals"
     };
@@ -173,14 +173,16 @@ fn clear_claimed(
     let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));
     // a mesh maze (`--draw mesh`): its meshes and holder, ours by name
-    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d));
+    let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    let meshes = &leftovers.ours;
+    // the holder, ours or the user's, is never a copy
+    doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d) && Some(*d) != leftovers.holder);
     let names_by_handle: HashMap<i32, &str> = sorted
         .objects
         .iter()
         .map(|o| (o.handle, o.name.as_str()))
         .collect();
-    let removed = doomed
+    let removed: Vec<String> = doomed
         .iter()
         .map(|d| {
             names_by_handle
@@ -208,13 +210,20 @@ fn clear_claimed(
             scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
         }
     }
+    // the template lay on the first line only of a line maze: copies of it, or line meshes
+    let line_maze = removed
+        .iter()
+        .any(|n: &String| plan::is_copy_name(n, &names.line))
+        || meshes.iter().any(|(_, n)| {
+            super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
+        });
     let template = if style == Style::Lines {
         send_home(
             scene,
             claim.signals_kept(),
             &h,
             &sorted.objects,
-            !doomed.is_empty(),
+            line_maze,
             names,
             dry_run,
         )?
@@ -230,7 +239,11 @@ fn clear_claimed(
         round_trips: 0,
         restored_idle_fps: None,
         stopped_simulation,
-        left_alone: sorted.strangers,
+        left_alone: sorted
+            .strangers
+            .into_iter()
+            .chain(leftovers.left_alone)
+            .collect(),
         warnings: claim.warning().map(str::to_string).into_iter().collect(),
     })
 }

@@ -613,6 +613,18 @@ pub enum DrawError {
         /// The second role, with its option.
         second: &'static str,
     },
+    /// A name given for a template or a marker found one of the copies this tool pasted
+    /// (the copy record holds it: `--line /Maze/Line`, `--start '/Maze/Line[3]'`): refused
+    /// before any edit, since drawing would move, copy or hide a line of the maze.
+    #[error("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")]
+    OurCopy {
+        /// The name as given.
+        name: String,
+        /// The role, with its option.
+        role: &'static str,
+        /// What the role needs: "the template", "a marker".
+        what: &'static str,
+    },
     /// The scene's templates are not the size the layout was generated for
     /// ([`fit::check_sizes`]): refused before any edit, one line per template with what
     /// to change.
@@ -705,6 +717,9 @@ impl DrawError {
             DrawError::Sizes(_) => vec![
                 "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
             ],
+            DrawError::OurCopy { .. } => vec![
+                "name the object itself (the course scene's `Line`, `Start`, `End`): a path into the maze dummy (`/Maze/Line`, `/Line[1]`) finds a copy, whose path changes with every draw".into(),
+            ],
             DrawError::SameObject { .. } => vec![
                 "give each role its own object: pass the right name to one of the two options (see --help for the defaults)".into(),
             ],
@@ -750,6 +765,21 @@ pub fn resolve_handles(
                 second,
             });
         }
+    }
+    // a name that found one of our copies: never a template or a marker
+    let recorded = asked
+        .iter()
+        .zip(&survey.handles)
+        .zip(roles)
+        .skip(2)
+        .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
+    if let Some(((name, _), role)) = recorded {
+        let marker = *name == names.start || *name == names.end;
+        return Err(DrawError::OurCopy {
+            name: name.to_string(),
+            role,
+            what: if marker { "a marker" } else { "the template" },
+        });
     }
     let post = survey.handles.get(POST_IN_SURVEY).copied().flatten();
     let mut missing: Vec<String> = names

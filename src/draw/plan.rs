@@ -11,12 +11,27 @@ pub const POSITION_TOLERANCE: f64 = 1e-4;
 /// Tolerance on angles (radians).
 pub const ANGLE_TOLERANCE: f64 = 1e-4;
 
+/// The name a template's copies are named after, from the reference that names it: a
+/// plain name as it is (`Line`, `Line5`, `Seg#0`), a path (`/Line[0]`, `/Maze/Line{2}`,
+/// `./Line`) by its last alias without the index (`Line`): a copy keeps its original's
+/// alias, wherever the path found it.
+pub fn family(template: &str) -> &str {
+    if !template.starts_with(['/', '.', ':']) {
+        return template;
+    }
+    let last = template.rsplit('/').next().unwrap_or(template);
+    let last = last.trim_start_matches(['.', ':']);
+    last.split(['[', '{']).next().unwrap_or(last)
+}
+
 /// True if `name` is a pasted copy of the template named `template`: `Line0`, `Line17`
 /// (plain naming) or `Line#0` (hash naming). A template named `Line5` has copies `Line6`...
+/// A template named by a path (`/Line[0]`) has the copies of its alias ([`family`]).
 pub fn is_copy_name(name: &str, template: &str) -> bool {
     if name == template {
         return false;
     }
+    let template = family(template);
     let base = template.trim_end_matches(|c: char| c.is_ascii_digit());
     let hash_base = template.rsplit_once('#').map(|(b, n)| {
         if n.bytes().all(|c| c.is_ascii_digit()) {
@@ -61,7 +76,18 @@ pub struct Traits {
     /// Copy candidates the backend found to have children of their own (a pasted copy has
     /// none: the copies are pasted without their trees).
     pub with_children: HashSet<i32>,
+    /// Ambient-diffuse colours (RGB, 0..1) by handle: the copy candidates the backend read
+    /// them of (an API that reads colours), and their templates.
+    pub colours: HashMap<i32, [f64; 3]>,
+    /// The surveyed objects (named ones included) that the scene's copy record
+    /// ([`super::record`]) holds as this tool's copies, as the survey found it: ours, first
+    /// of all, and never a template or a marker ([`super::resolve_handles`]).
+    pub recorded: HashSet<i32>,
 }
+
+/// How far apart (per channel, 0..1) two colours may be and still be one: a copy has its
+/// template's colour exactly; the colour dialogs step by 0.01.
+pub const COLOUR_TOLERANCE: f64 = 0.01;
 
 /// `true` if `a` and `b` are the same extents within [`SIZE_TOLERANCE`] along each axis
 /// (never with a NaN): a copy has exactly its template's bounding box, both kept in single
@@ -72,14 +98,32 @@ pub fn same_extents(a: [f64; 3], b: [f64; 3]) -> bool {
 
 /// `true` if what a backend read of `handle` ([`Traits`]) says it is no copy of the
 /// template `template`, though named and typed like one: it has children of its own, or
-/// both sizes were read and differ ([`same_extents`]).
+/// both sizes were read and differ ([`same_extents`]), or both colours were read and differ
+/// (a user's red copy of `Line` is no line of the maze, nor a source to paste from). A
+/// copy the record holds ([`Traits::recorded`]) is never contradicted: the record decides
+/// first.
 pub fn contradicts_copy(traits: &Traits, handle: i32, template: Option<i32>) -> bool {
+    if traits.recorded.contains(&handle) {
+        return false;
+    }
     let size = |h: i32| traits.sizes.get(&h).copied();
+    let colour = |h: i32| traits.colours.get(&h).copied();
     traits.with_children.contains(&handle)
         || matches!(
             (size(handle), template.and_then(size)),
             (Some(a), Some(b)) if !same_extents(a, b)
         )
+        || matches!(
+            (colour(handle), template.and_then(colour)),
+            (Some(a), Some(b)) if !same_colour(a, b)
+        )
+}
+
+/// `true` if two colours are one within [`COLOUR_TOLERANCE`] per channel (never with NaN).
+pub fn same_colour(a: [f64; 3], b: [f64; 3]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| (x - y).abs() <= COLOUR_TOLERANCE)
 }
 
 /// `true` if `o` is a copy of the template named `template` (handle `template_handle`, if
@@ -96,7 +140,7 @@ pub fn is_copy_of(
     traits: &Traits,
 ) -> bool {
     let template_kind = template_handle.and_then(|t| traits.kinds.get(&t));
-    is_copy_name(&o.name, template)
+    (is_copy_name(&o.name, template) || traits.recorded.contains(&o.handle))
         && match (traits.kinds.get(&o.handle), template_kind) {
             (Some(kind), Some(template_kind)) => kind == template_kind,
             _ => true,
@@ -356,6 +400,52 @@ mod tests {
         assert!(is_copy_name("/Line[1]", "Line") && is_copy_name("/Line[12]", "/Line"));
         assert!(!is_copy_name("/Line", "Line") && !is_copy_name("/Line[x]", "Line"));
         assert!(is_copy_name("Seg#1", "Seg#0"));
+        // a path to the template names its alias's family, index or not
+        for template in ["/Line[0]", "/Line", "/Line{0}", "./Line", "/Course/Line[2]"] {
+            assert_eq!(family(template), "Line", "{template}");
+            for copy in ["/Line[1]", "Line#4", "Line7"] {
+                assert!(is_copy_name(copy, template), "{copy} of {template}");
+            }
+            assert!(!is_copy_name("Line", template) && !is_copy_name("/Line", template));
+        }
+        assert_eq!(family("Line[0]"), "Line[0]", "a plain name is a name");
+    }
+
+    #[test]
+    fn the_record_decides_first_then_colour_and_size() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "Line1", Some(2)),
+            obj(8, "Line2", Some(2)),
+            obj(9, "Renamed", Some(2)),
+        ];
+        let (green, red) = ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
+        let traits = Traits {
+            kinds: (3..=9).map(|h| (h, 0)).collect(),
+            // 7 is a red look-alike; 8 is within the dialogs' step of green
+            colours: [
+                (3, green),
+                (6, green),
+                (7, red),
+                (8, [0.0, 0.995, 0.0]),
+                (9, red),
+            ]
+            .into_iter()
+            .collect(),
+            // 9 was pasted by us and renamed; a recorded copy is never doubted
+            recorded: [9].into_iter().collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line"], &traits);
+        assert_eq!(sorted.strangers, vec!["Line1"]);
+        assert!(sorted.objects.iter().any(|o| o.handle == 9));
+        assert!(!same_colour(green, [f64::NAN, 1.0, 0.0]));
     }
 
     /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
@@ -496,6 +586,7 @@ mod tests {
             .into_iter()
             .collect(),
             with_children: [9].into_iter().collect(),
+            ..Default::default()
         };
         let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
         let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();

@@ -243,12 +243,13 @@ fn verify_raised(
     } else {
         vec![]
     };
-    pool.extend(maze_lines(
-        objects,
-        &h,
-        names.template(style),
-        &names.others(style),
-    ));
+    // an earlier mesh maze is stray; the holder is no line, and the user's holder stays
+    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    pool.extend(
+        maze_lines(objects, &h, names.template(style), &names.others(style))
+            .into_iter()
+            .filter(|x| Some(*x) != meshes.holder),
+    );
     let mut problems = Vec::new();
     problems.extend(broken_frames(objects, &h, names));
     let mut stray = Vec::new();
@@ -275,9 +276,11 @@ fn verify_raised(
         &h,
         &names.foreign(style, with_posts),
     ));
+    stray.retain(|x| Some(*x) != meshes.holder);
     let stray: Vec<&str> = stray
         .into_iter()
         .filter_map(|c| by_handle.get(&c).map(|o| o.name.as_str()))
+        .chain(meshes.ours.iter().map(|(_, name)| name.as_str()))
         .collect();
     if !stray.is_empty() {
         problems.push(stray_problem(&stray));

@@ -158,7 +158,10 @@ impl LegacyBackend {
                 copies.insert(o.handle, alias.clone());
             }
         }
-        let mut changed = record.retain(|h| copies.contains_key(&h));
+        // a named object the record holds stays in it: refused as a template or marker,
+        // it is still our copy
+        let mut changed =
+            record.retain(|h| copies.contains_key(&h) || traits.recorded.contains(&h));
         for (h, alias) in &copies {
             changed |= record.insert(*h, alias);
         }
@@ -186,9 +189,20 @@ impl LegacyBackend {
             ..Default::default()
         };
         let templates = templates_of(names, handles);
+        // the record first: a named object it holds is one of our copies (refused as a
+        // template or marker), a listed one of its template's type is ours
+        traits.recorded = handles
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|h| record.get(*h).is_some())
+            .collect();
         let mut doubtful = Vec::new();
         let mut sized: Vec<i32> = Vec::new();
         for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+            if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias) {
+                traits.recorded.insert(o.handle);
+            }
             if kind_matches(&traits, o.handle, *template)
                 && is_copy_name(&o.name, name)
                 && record.get(o.handle) != Some(alias)
@@ -244,7 +258,7 @@ fn templates_of<'n>(names: &[&'n str], handles: &[Option<i32>]) -> Vec<(&'n str,
         .enumerate()
         .filter(|(i, _)| *i == 2 || *i >= 5)
         .filter_map(|(_, (n, h))| {
-            let alias = n.rsplit('/').next().unwrap_or(n).to_string();
+            let alias = plan::family(n).to_string();
             h.map(|h| (*n, alias, h))
         })
         .collect()

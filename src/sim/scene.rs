@@ -542,20 +542,30 @@ impl Scene {
     }
 
     /// Resolves a name like `simGetObjectHandle`: an exact object name (`Line`, `Line0`, or
-    /// `Line#0` in hash naming), or an alias path `/Line`, `/Line[2]`, `/Maze/Line`.
+    /// `Line#0` in hash naming), or an alias path `/Line`, `/Line[2]`, `/Line{2}`,
+    /// `/Maze/Line`. As a real 4.5.1 resolves them (`../shared/spec/zmq-remote-api.md`,
+    /// "Name resolution in 4.x"; measured with the template at the root and 159 copies under
+    /// `Maze`): `alias{n}` is the n-th object of that alias in the scope, in handle order;
+    /// `alias[n]` the n-th of one hierarchy level, the first level (nearest the scope) that
+    /// has more than n of them (so `/Line[1]` is `/Maze/Line[1]` there); `alias` is both's
+    /// first.
     pub fn resolve(&self, name: &str) -> Result<i32, SimError> {
         let missing = || SimError::NoSuchName(name.to_string());
         if let Some(path) = name.strip_prefix('/') {
             let mut scope: Option<i32> = None;
             for comp in path.split('/') {
-                let (alias, index) = parse_path_component(comp).ok_or_else(missing)?;
-                let found = self
+                let (alias, index, level) = parse_path_component(comp).ok_or_else(missing)?;
+                let matches: Vec<i32> = self
                     .index
                     .with_alias(alias)
                     .filter(|&h| scope.is_none_or(|s| self.is_descendant(h, s)))
-                    .nth(index)
-                    .ok_or_else(missing)?;
-                scope = Some(found);
+                    .collect();
+                let found = if level {
+                    self.nth_of_a_level(&matches, index)
+                } else {
+                    matches.get(index).copied()
+                };
+                scope = Some(found.ok_or_else(missing)?);
             }
             scope.ok_or_else(missing)
         } else {
@@ -563,10 +573,30 @@ impl Scene {
         }
     }
 
+    /// The `n`-th of `matches` (handle order) among those of one hierarchy level: the
+    /// levels by depth, the first that holds more than `n` of them.
+    fn nth_of_a_level(&self, matches: &[i32], n: usize) -> Option<i32> {
+        let mut levels: BTreeMap<usize, Vec<i32>> = BTreeMap::new();
+        for &h in matches {
+            levels.entry(self.depth(h)).or_default().push(h);
+        }
+        levels.values().find_map(|level| level.get(n).copied())
+    }
+
+    /// How many ancestors `handle` has (0 at the scene root).
+    fn depth(&self, mut handle: i32) -> usize {
+        let mut d = 0;
+        while let Some(p) = self.objects.get(&handle).and_then(|o| o.parent) {
+            d += 1;
+            handle = p;
+        }
+        d
+    }
+
     /// The path of an object: its ancestors' aliases then its own, e.g. `/Line[2]` or
     /// `/Maze/Line[1]`, where `[n]` (omitted for 0) counts the objects of the same alias, in
-    /// handle order, in the whole scene (root objects) or under the parent. [`Scene::resolve`]
-    /// maps it back to the object.
+    /// handle order, at its hierarchy level (the root objects, or the parent's children).
+    /// [`Scene::resolve`] maps it back to the object.
     pub fn path(&self, handle: i32) -> Result<String, SimError> {
         let o = self.get(handle)?;
         let mut chain = vec![];
@@ -588,11 +618,14 @@ impl Scene {
             out.push('/');
             out.push_str(alias);
         }
+        // counted within its hierarchy level, as [`Scene::resolve`] reads `[n]`
+        let level = chain.len();
         let index = self
             .index
             .with_alias(&o.alias)
             .take_while(|&x| x <= handle)
             .filter(|&x| scope.is_none_or(|s| self.is_descendant(x, s)))
+            .filter(|&x| self.depth(x) == level)
             .position(|x| x == handle)
             .unwrap_or(0);
         out.push('/');
@@ -885,14 +918,19 @@ impl Scene {
     }
 }
 
-fn parse_path_component(comp: &str) -> Option<(&str, usize)> {
+/// A path component: its alias, index and whether the index counts within a hierarchy
+/// level (`Line[2]`, and a bare `Line`) or the whole scope (`Line{2}`).
+fn parse_path_component(comp: &str) -> Option<(&str, usize, bool)> {
     if comp.is_empty() {
         return None;
     }
-    match comp.strip_suffix(']').and_then(|c| c.split_once('[')) {
-        Some((alias, n)) => Some((alias, n.parse().ok()?)),
-        None => Some((comp, 0)),
+    if let Some((alias, n)) = comp.strip_suffix(']').and_then(|c| c.split_once('[')) {
+        return Some((alias, n.parse().ok()?, true));
     }
+    if let Some((alias, n)) = comp.strip_suffix('}').and_then(|c| c.split_once('{')) {
+        return Some((alias, n.parse().ok()?, false));
+    }
+    Some((comp, 0, true))
 }
 
 #[cfg(test)]
@@ -914,6 +952,31 @@ mod tests {
         assert_eq!(o.bounding_box(), ([3.0, 0.0, 0.0], [5.0, 1.0, 0.0]));
         let got: Vec<f64> = (15..=20).map(|p| o.float_param(p).unwrap()).collect();
         assert_eq!(got, [-1.0, -0.5, 0.0, 1.0, 0.5, 0.0]);
+    }
+
+    #[test]
+    fn paths_resolve_as_a_real_4_5_1_resolves_them() {
+        let mut s = Scene::course();
+        let line = s.resolve("Line").unwrap();
+        let maze = s.resolve("Maze").unwrap();
+        let copies: Vec<i32> = (0..3).map(|_| s.copy_paste(&[line]).unwrap()[0]).collect();
+        for &c in &copies {
+            s.set_parent(c, Some(maze), true).unwrap();
+        }
+        // measured on 4.5.1 with the template at the root and 159 copies under Maze
+        assert_eq!(s.resolve("/Line").unwrap(), line);
+        assert_eq!(s.resolve("/Line[0]").unwrap(), line);
+        assert_eq!(s.resolve("/Line[1]").unwrap(), copies[1]);
+        assert_eq!(s.resolve("/Line[2]").unwrap(), copies[2]);
+        assert!(s.resolve("/Line[3]").is_err());
+        assert_eq!(s.resolve("/Line{1}").unwrap(), copies[0]);
+        assert_eq!(s.resolve("/Line{3}").unwrap(), copies[2]);
+        assert!(s.resolve("/Line{4}").is_err());
+        assert_eq!(s.resolve("/Maze/Line").unwrap(), copies[0]);
+        assert_eq!(s.resolve("/Maze/Line{2}").unwrap(), copies[2]);
+        for &h in copies.iter().chain([&line]) {
+            assert_eq!(s.resolve(&s.path(h).unwrap()).unwrap(), h);
+        }
     }
 
     #[test]

@@ -123,7 +123,7 @@ pub fn object_path(name: &str) -> String {
 
 fn alias_of(name: &str) -> &str {
     let last = name.rsplit('/').next().unwrap_or(name);
-    last.split('[').next().unwrap_or(last)
+    last.split(['[', '{']).next().unwrap_or(last)
 }
 
 /// A plane to create: size x, y; RGB colour (0..1); height above the floor.
@@ -496,6 +496,15 @@ impl ZmqBackend {
             .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
             .collect();
         let mut record = self.copy_record()?;
+        // the record first: a named object it holds is one of our copies (refused as a
+        // template or marker), a listed one of its template's type is ours
+        found.recorded.extend(
+            known
+                .named
+                .iter()
+                .map(|(_, h)| *h)
+                .filter(|h| record.get(*h).is_some()),
+        );
         let mut present = Vec::new();
         let mut numbered = vec![0; templates.len()];
         let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
@@ -521,8 +530,11 @@ impl ZmqBackend {
             if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
                 backend.doubt(h, template, tree, found)?;
             }
-            Ok(template_kinds.get(alias) == Some(&kind)
-                && !plan::contradicts_copy(found, h, template))
+            let of_type = template_kinds.get(alias) == Some(&kind);
+            if of_type && record.get(h) == Some(alias) {
+                found.recorded.insert(h);
+            }
+            Ok(of_type && !plan::contradicts_copy(found, h, template))
         };
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself; the shapes
@@ -603,7 +615,12 @@ impl ZmqBackend {
             seen.insert(h);
             found.kinds.insert(h, kind);
             let name = copy_name(&alias);
-            if judge(self, (h, None), &name, &alias, kind, &mut found)? {
+            // a copy at the root stays in the record if it is there (pasted by an
+            // interrupted run), but none is added by its alias: the root also holds the
+            // user's template when a name found one of our copies instead
+            if judge(self, (h, None), &name, &alias, kind, &mut found)?
+                && record.get(h) == Some(alias.as_str())
+            {
                 present.push((h, alias.clone()));
             }
             lines.push((h, name, None));
@@ -613,7 +630,10 @@ impl ZmqBackend {
         // alias are added (a maze drawn without a record pays its reads once), handles no
         // longer there are dropped
         if known.parent.is_some() {
-            let mut changed = record.retain(|h| present.iter().any(|(p, _)| *p == h));
+            // a named object the record holds stays in it: refused as a template or marker,
+            // it is still our copy
+            let mut changed = record
+                .retain(|h| present.iter().any(|(p, _)| *p == h) || found.recorded.contains(&h));
             for (h, alias) in &present {
                 changed |= record.insert(*h, alias);
             }
@@ -639,6 +659,20 @@ impl ZmqBackend {
         for h in [template, handle] {
             if let Some(size) = self.extents(h)? {
                 found.sizes.insert(h, size);
+            }
+        }
+        // a shape's colour (one call each, the template's once a survey): a user's red copy
+        // of `Line` is no line of the maze
+        let shapes = [template, handle]
+            .into_iter()
+            .filter(|h| self.traits.get(h).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE))
+            .filter(|h| !found.colours.contains_key(h))
+            .collect::<Vec<_>>();
+        if !shapes.is_empty()
+            && let Some(colours) = self.shape_colours(&shapes)?
+        {
+            for (h, c) in shapes.into_iter().zip(colours) {
+                found.colours.extend(c.map(|c| (h, c)));
             }
         }
         let deep = match (tree, self.deep) {
@@ -1347,6 +1381,8 @@ impl Authoring for ZmqBackend {
 
 /// An object `create_missing` makes.
 enum Make {
+    /// A floor plane, 10 m x 10 m, respondable.
+    Floor,
     /// The maze dummy.
     Dummy,
     /// A plane: size, colour, height.
@@ -1364,23 +1400,8 @@ impl ZmqBackend {
         names: &ObjectNames,
         walls: Option<([f64; 3], Option<[f64; 3]>)>,
     ) -> Result<Vec<String>, BackendError> {
-        let mut created = Vec::new();
-        let mut floor = self.handle_of(&object_path(&names.floor))?;
-        if floor.is_none() {
-            check_alias(&names.floor)?;
-            // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
-            let h = self.create_plane(
-                &names.floor,
-                [10.0, 10.0],
-                [0.5, 0.5, 0.5],
-                0.0,
-                HANDLE_WORLD,
-                true,
-            )?;
-            floor = Some(h);
-            created.push(names.floor.clone());
-        }
-        let mut specs: Vec<(&str, Make)> = vec![(&names.parent, Make::Dummy)];
+        let mut specs: Vec<(&str, Make)> = vec![(&names.floor, Make::Floor)];
+        specs.push((&names.parent, Make::Dummy));
         match walls {
             None => specs.push((
                 &names.line,
@@ -1404,46 +1425,120 @@ impl ZmqBackend {
                 Make::Plane(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002)),
             ),
         ]);
-        for (name, shape) in specs {
-            if self.handle_of(&object_path(name))?.is_some() {
+        let names_asked: Vec<&str> = specs.iter().map(|(n, _)| *n).collect();
+        let found = self.handles_of(&names_asked)?;
+        let mut floor = found[0];
+        // every name checked before anything is made: a failure leaves the scene as it was
+        let mut missing = Vec::new();
+        for ((name, shape), handle) in specs.into_iter().zip(&found) {
+            if handle.is_some() {
                 continue;
             }
             check_alias(name)?;
-            let alias = alias_of(name);
-            let h = match shape {
-                Make::Dummy => {
-                    let h = self
-                        .client
-                        .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
-                    self.call(
-                        "sim.setObjectAlias",
-                        vec![int(h.into()), Value::Text(alias.into())],
-                    )?;
-                    h
-                }
-                Make::Plane((size, colour, z)) => {
-                    self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
-                }
-                Make::Cuboid(size, at) => {
-                    self.create_cuboid(name, size, at, floor.unwrap_or(HANDLE_WORLD))?
-                }
-            };
-            let parent_path = name
+            let parent = name
                 .rsplit_once('/')
                 .map(|(p, _)| p)
                 .filter(|p| !p.is_empty());
-            if let Some(p) = parent_path {
-                let ph = self.handle_of(p)?.ok_or_else(|| {
-                    BackendError::Remote(format!("cannot create `{name}`: `{p}` does not exist"))
-                })?;
-                self.call(
-                    "sim.setObjectParent",
-                    vec![int(h.into()), int(ph.into()), Value::Bool(true)],
-                )?;
+            if let Some(p) = parent {
+                let made_first = missing
+                    .iter()
+                    .any(|(n, _, _): &(&str, Make, _)| object_path(n) == object_path(p));
+                if !made_first && self.handle_of(p)?.is_none() {
+                    return Err(BackendError::Remote(format!(
+                        "cannot create `{name}`: `{p}` does not exist (nothing was created)"
+                    )));
+                }
             }
-            created.push(name.to_string());
+            missing.push((name, shape, parent));
         }
-        Ok(created)
+        let mut created: Vec<(String, i32)> = Vec::new();
+        for (name, shape, parent) in missing {
+            let h = match self.make(name, shape, &mut floor) {
+                Ok(h) => h,
+                Err(e) => return Err(self.undo_creation(&created, e)),
+            };
+            created.push((name.to_string(), h));
+            if let Some(p) = parent
+                && let Err(e) = self.parent_to(h, name, p)
+            {
+                return Err(self.undo_creation(&created, e));
+            }
+        }
+        Ok(created.into_iter().map(|(n, _)| n).collect())
+    }
+
+    /// Makes one object of [`ZmqBackend::create_course`]: `shape` named `name`, on `floor`
+    /// (which a new floor becomes).
+    fn make(
+        &mut self,
+        name: &str,
+        shape: Make,
+        floor: &mut Option<i32>,
+    ) -> Result<i32, BackendError> {
+        let alias = alias_of(name);
+        let h = match shape {
+            Make::Floor => {
+                // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
+                let h = self.create_plane(
+                    name,
+                    [10.0, 10.0],
+                    [0.5, 0.5, 0.5],
+                    0.0,
+                    HANDLE_WORLD,
+                    true,
+                )?;
+                *floor = Some(h);
+                h
+            }
+            Make::Dummy => {
+                let h = self
+                    .client
+                    .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
+                self.call(
+                    "sim.setObjectAlias",
+                    vec![int(h.into()), Value::Text(alias.into())],
+                )?;
+                h
+            }
+            Make::Plane((size, colour, z)) => {
+                self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
+            }
+            Make::Cuboid(size, at) => {
+                self.create_cuboid(name, size, at, floor.unwrap_or(HANDLE_WORLD))?
+            }
+        };
+        Ok(h)
+    }
+
+    /// Puts the new object `h` (named `name`) under the object `parent` names.
+    fn parent_to(&mut self, h: i32, name: &str, parent: &str) -> Result<(), BackendError> {
+        let ph = self.handle_of(parent)?.ok_or_else(|| {
+            BackendError::Remote(format!("cannot create `{name}`: `{parent}` does not exist"))
+        })?;
+        self.call(
+            "sim.setObjectParent",
+            vec![int(h.into()), int(ph.into()), Value::Bool(true)],
+        )?;
+        Ok(())
+    }
+
+    /// After `error` stopped a creation, removes the objects it had made (`created`) and
+    /// says so, or says which are left if they could not be removed.
+    fn undo_creation(&mut self, created: &[(String, i32)], error: BackendError) -> BackendError {
+        if created.is_empty() {
+            return error;
+        }
+        let handles: Vec<i32> = created.iter().map(|(_, h)| *h).collect();
+        let names: Vec<&str> = created.iter().map(|(n, _)| n.as_str()).collect();
+        let (status, text) = match self.remove(&handles) {
+            Ok(()) => ("removed again", names.join(", ")),
+            Err(e) => ("left in the scene", format!("{} ({e})", names.join(", "))),
+        };
+        let message = format!("{error}; what it had created was {status}: {text}");
+        match error {
+            BackendError::Transport(_) => BackendError::Transport(message),
+            BackendError::Remote(_) => BackendError::Remote(message),
+        }
     }
 
     /// The wall or post template `name`: a dark grey cuboid of `size`, static and

@@ -41,6 +41,7 @@ mod texture;
 mod time_wait;
 mod trust;
 mod trust_draw;
+mod trust_ours;
 mod validate;
 mod walls;
 mod zmq_client_server;

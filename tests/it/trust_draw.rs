@@ -366,14 +366,23 @@ fn a_stray_copy_of_the_template_never_verifies() {
         apply(&mut *b, &d).unwrap();
         s.with_sim(|sim| {
             let maze = sim.scene.resolve("Maze").unwrap();
+            // the template's colour too: a copy in every way the APIs read
+            let green = sim
+                .scene
+                .get(sim.scene.resolve("Line").unwrap())
+                .unwrap()
+                .colour;
             sim.scene.add(
                 "Line77",
-                object(
-                    ObjectType::Shape,
-                    Some(maze),
-                    [9.0, 9.0, 0.001],
-                    [0.6, 0.1, 0.0],
-                ),
+                NewObject {
+                    colour: green,
+                    ..object(
+                        ObjectType::Shape,
+                        Some(maze),
+                        [9.0, 9.0, 0.001],
+                        [0.6, 0.1, 0.0],
+                    )
+                },
             );
         });
         let e = draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_err();

@@ -33,8 +33,19 @@ fn port(scene: &mut dyn Backend) -> Result<&mut dyn MeshDrawing, DrawError> {
 
 /// The holder of a mesh maze under the maze dummy `parent` and what it holds, found through
 /// the backend's mesh capability or, without one, among `objects` (the holder by its name
-/// under the maze dummy, the meshes as its children).
+/// under the maze dummy, the meshes as its children), sorted into our meshes and the user's
+/// objects ([`FoundMeshes::sorted`]).
 pub fn found(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    parent: i32,
+    objects: &[ObjectInfo],
+) -> Result<FoundMeshes, DrawError> {
+    Ok(found_unsorted(scene, names, parent, objects)?.sorted())
+}
+
+/// [`found`] before sorting: everything under the holder in `meshes`.
+fn found_unsorted(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     parent: i32,
@@ -61,27 +72,37 @@ pub fn found(
                     .collect()
             })
             .unwrap_or_default(),
+        users: Vec::new(),
     })
 }
 
-/// The holder of an earlier mesh maze and everything under it ([`found`]), with their names:
-/// what a copies-mode draw or a clear removes. Never the templates.
+/// What a copies-mode draw or a clear finds of an earlier mesh maze ([`found`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Leftovers {
+    /// Our meshes, then the holder if it is ours, with their names: removed. Never the
+    /// templates.
+    pub ours: Vec<(i32, String)>,
+    /// The holder, ours or not: never a line or a copy of a template.
+    pub holder: Option<i32>,
+    /// The user's holder and the user's objects under it, by name: left alone.
+    pub left_alone: Vec<String>,
+}
+
+/// The earlier mesh maze in the scene ([`Leftovers`]).
 pub fn leftovers(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     h: &Handles,
     objects: &[ObjectInfo],
-) -> Result<Vec<(i32, String)>, DrawError> {
+) -> Result<Leftovers, DrawError> {
     let found = found(scene, names, h.parent, objects)?;
     let templates = h.templates();
     let ours = |x: &i32| !templates.contains(x) && Some(*x) != h.post && *x != h.floor;
-    Ok(found
-        .meshes
-        .iter()
-        .map(|m| (m.handle, m.name.clone()))
-        .chain(found.holder.map(|x| (x, HOLDER.to_string())))
-        .filter(|(x, _)| ours(x))
-        .collect())
+    Ok(Leftovers {
+        ours: found.ours().into_iter().filter(|(x, _)| ours(x)).collect(),
+        holder: found.holder,
+        left_alone: found.left_alone(),
+    })
 }
 
 /// Draws `maze` as meshes into `scene`, as [`crate::draw::apply()`] draws copies: the idle rate
@@ -140,7 +161,9 @@ fn apply_claimed(
         mut report,
         objects,
     } = begin(scene, opts, &maze.template_use(), false, counts, progress)?;
-    let found = port(scene)?.find(names, h.parent)?;
+    let found = found(scene, names, h.parent, &survey.objects)?;
+    // the user's objects under the holder (and the user's holder) stay, named
+    report.left_alone.extend(found.left_alone());
     // an earlier maze's copies of any template go; the user's objects under the maze dummy
     // stay ([`plan::sort_out`])
     let others = names.others(style);
@@ -436,7 +459,7 @@ fn verify_raised(
         &survey.traits,
     )
     .objects;
-    let found = port(scene)?.find(names, h.parent)?;
+    let found = found(scene, names, h.parent, &objects)?;
     let mut problems = name_problems(maze, &found);
     let others = names.others(style);
     let stray: Vec<String> = maze_lines(&objects, &h, names.template(style), &others)

@@ -73,20 +73,66 @@ pub struct FoundMesh {
 /// The holder and what it holds.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FoundMeshes {
-    /// The holder dummy, if the scene has one under the maze dummy.
+    /// The dummy named [`HOLDER`] under the maze dummy, if the scene has one.
     pub holder: Option<i32>,
-    /// Every object under the holder: meshes of ours are named by
-    /// [`parse_mesh_name`]; anything else was put there by hand.
+    /// The meshes of ours under the holder: named by [`parse_mesh_name`] (as a backend
+    /// finds them, everything under it, until [`FoundMeshes::sorted`]).
     pub meshes: Vec<FoundMesh>,
+    /// The user's objects under the holder: anything not named as a mesh of ours
+    /// ([`FoundMeshes::sorted`]). Never removed; while there are any, the holder is the
+    /// user's too ([`FoundMeshes::holder_is_ours`]).
+    pub users: Vec<FoundMesh>,
 }
 
 impl FoundMeshes {
-    /// The holder and everything under it: what removing a mesh maze removes.
-    pub fn all_handles(&self) -> Vec<i32> {
+    /// Sorts what a backend found under the holder: a mesh of ours is named by
+    /// [`parse_mesh_name`] (a fingerprint no one types by chance), anything else (a cuboid
+    /// put there by hand) is the user's.
+    pub fn sorted(self) -> FoundMeshes {
+        let (meshes, mut users): (Vec<FoundMesh>, Vec<FoundMesh>) = self
+            .meshes
+            .into_iter()
+            .partition(|m| parse_mesh_name(&m.name).is_some());
+        users.extend(self.users);
+        FoundMeshes {
+            holder: self.holder,
+            meshes,
+            users,
+        }
+    }
+
+    /// `true` if the scene has a holder and it holds nothing but meshes of ours: a holder
+    /// holding the user's objects (or the user's own dummy named [`HOLDER`]) is left with
+    /// them.
+    pub fn holder_is_ours(&self) -> bool {
+        self.holder.is_some() && self.users.is_empty()
+    }
+
+    /// `true` if the scene holds a mesh maze of ours: a mesh, or a holder of ours.
+    pub fn is_mesh_maze(&self) -> bool {
+        !self.meshes.is_empty() || self.holder_is_ours()
+    }
+
+    /// What removing a mesh maze removes: our meshes, then the holder if it is ours.
+    pub fn ours(&self) -> Vec<(i32, String)> {
         self.meshes
             .iter()
-            .map(|m| m.handle)
-            .chain(self.holder)
+            .map(|m| (m.handle, m.name.clone()))
+            .chain(
+                self.holder
+                    .filter(|_| self.holder_is_ours())
+                    .map(|h| (h, HOLDER.to_string())),
+            )
+            .collect()
+    }
+
+    /// The names of what is left alone under the maze dummy: the holder, when it is the
+    /// user's, and the user's objects under it.
+    pub fn left_alone(&self) -> Vec<String> {
+        let holder = (self.holder.is_some() && !self.holder_is_ours()).then(|| HOLDER.to_string());
+        holder
+            .into_iter()
+            .chain(self.users.iter().map(|m| m.name.clone()))
             .collect()
     }
 }
@@ -131,5 +177,50 @@ pub trait MeshDrawing {
     /// meshes it has just created and dressed; by default all of [`MeshDrawing::read`].
     fn read_shape(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
         self.read(handle)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn under(handle: i32, name: &str) -> FoundMesh {
+        FoundMesh {
+            handle,
+            name: name.into(),
+            parent: Some(9),
+        }
+    }
+
+    #[test]
+    fn only_our_mesh_names_are_ours_and_a_holder_with_the_users_objects_is_theirs() {
+        let ours = mesh_name(MeshKind::Lines, 0x0123_4567_89ab_cdef);
+        let found = |meshes: Vec<FoundMesh>| {
+            FoundMeshes {
+                holder: Some(9),
+                meshes,
+                users: Vec::new(),
+            }
+            .sorted()
+        };
+        let mixed = found(vec![under(10, &ours), under(11, "Cuboid")]);
+        assert_eq!(mixed.meshes, vec![under(10, &ours)]);
+        assert!(!mixed.holder_is_ours() && mixed.is_mesh_maze());
+        assert_eq!(mixed.ours(), vec![(10, ours.clone())]);
+        assert_eq!(
+            mixed.left_alone(),
+            vec![HOLDER.to_string(), "Cuboid".into()]
+        );
+        let users = found(vec![under(11, "Cuboid")]);
+        assert!(!users.is_mesh_maze() && users.ours().is_empty());
+        let mesh_maze = found(vec![under(10, &ours)]);
+        assert_eq!(
+            mesh_maze.ours(),
+            vec![(10, ours.clone()), (9, HOLDER.to_string())]
+        );
+        assert!(mesh_maze.left_alone().is_empty());
+        // an empty holder is ours (an interrupted mesh draw); no holder is no mesh maze
+        assert!(found(vec![]).is_mesh_maze());
+        assert!(!FoundMeshes::default().is_mesh_maze());
     }
 }

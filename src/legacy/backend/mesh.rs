@@ -219,6 +219,7 @@ impl MeshDrawing for LegacyBackend {
         Ok(FoundMeshes {
             holder: Some(holder),
             meshes,
+            users: Vec::new(),
         })
     }
 

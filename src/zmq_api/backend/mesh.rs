@@ -108,6 +108,7 @@ impl MeshDrawing for ZmqBackend {
         Ok(FoundMeshes {
             holder: Some(holder),
             meshes,
+            users: Vec::new(),
         })
     }
 

@@ -66,7 +66,46 @@ on_every_target!(
     dry_runs_change_nothing,
     runs_back_to_back_each_connect_at_once,
     score_follows_a_scripted_robot,
+    a_red_look_alike_under_the_maze_never_spreads,
 );
+
+/// Issue 30, item 1: the user copies `Line` under `Maze` and colours the copy red; apply
+/// pastes only from the template and its own copies, so the user's stays the one red
+/// object under `Maze`, drawn after drawn (read back through `sim.getShapeColor`).
+/// Over ZeroMQ only: the legacy API reads no colours, so there the red copy is a copy by
+/// every trait it can read (`trust_ours` checks that it still never spreads).
+fn a_red_look_alike_under_the_maze_never_spreads(target: Target) {
+    if target.legacy() {
+        return;
+    }
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let (m, _) = generate(dir.path(), "m", &["--seed", "42"]);
+    let line = obs.handle("/Line");
+    let maze = obs.handle("/Maze");
+    let red = [1.0, 0.0, 0.0];
+    let users = obs.coloured_copy(line, maze, red);
+    for run in 0..2 {
+        ok(&sim, &["apply", "-q", &m]);
+        let look = obs.look();
+        let handles: Vec<i32> = look.below(maze).iter().map(|o| o.handle).collect();
+        let reds: Vec<i32> = handles
+            .into_iter()
+            .filter(|&h| {
+                obs.colour(h)
+                    .iter()
+                    .zip(red)
+                    .all(|(a, b)| (a - b).abs() < 0.01)
+            })
+            .collect();
+        assert_eq!(
+            reds,
+            vec![users],
+            "{target:?} run {run}: only the user's is red"
+        );
+    }
+}
 
 /// What a command printed.
 struct Ran {

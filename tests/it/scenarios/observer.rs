@@ -236,6 +236,45 @@ impl Observer {
         }
     }
 
+    /// A user's copy of the shape `template` under `parent`, coloured `colour` (RGB 0..1):
+    /// copy, re-parent (kept in place) and colour, as a person does it in the simulator.
+    pub fn coloured_copy(&mut self, template: i32, parent: i32, colour: [f64; 3]) -> i32 {
+        let c = &mut self.client;
+        let v = call(
+            c,
+            "sim.copyPasteObjects",
+            vec![Value::Array(vec![int(template.into())]), int(0)],
+        );
+        let copy = ints(&v[0])[0] as i32;
+        call(
+            c,
+            "sim.setObjectParent",
+            vec![int(copy.into()), int(parent.into()), Value::Bool(true)],
+        );
+        call(
+            c,
+            "sim.setShapeColor",
+            vec![
+                int(copy.into()),
+                text(""),
+                int(0),
+                cbor::float_array(&colour),
+            ],
+        );
+        copy
+    }
+
+    /// The ambient-diffuse colour of the shape `handle` (`sim.getShapeColor`).
+    pub fn colour(&mut self, handle: i32) -> [f64; 3] {
+        let v = call(
+            &mut self.client,
+            "sim.getShapeColor",
+            vec![int(handle.into()), text(""), int(0)],
+        );
+        let c = floats(&v[1]);
+        [c[0], c[1], c[2]]
+    }
+
     /// Everything in the scene, read at idle rate 0 and the user's rate put back after.
     pub fn look(&mut self) -> Look {
         let idle_fps = self.idle_fps();

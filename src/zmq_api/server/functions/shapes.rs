@@ -310,7 +310,12 @@ mod tests {
             ],
         ));
         assert_eq!(cbor::number(&one), Some(1.0));
-        let bb = ret1(run_on(&mut sim, Protocol::V1, "sim.getShapeBB", vec![floor]));
+        let bb = ret1(run_on(
+            &mut sim,
+            Protocol::V1,
+            "sim.getShapeBB",
+            vec![floor],
+        ));
         assert_eq!(cbor::numbers::<3>(&bb), Some([45.0, 45.0, 0.0]));
         let h = sim.scene.resolve("Floor").unwrap();
         assert_eq!(sim.scene.get(h).unwrap().position, before);
