@@ -9,6 +9,7 @@ mod demo;
 mod escape;
 mod export;
 mod generate;
+mod hinted;
 mod import;
 mod input;
 mod inspect;
@@ -321,9 +322,11 @@ pub fn hints(error: &anyhow::Error) -> Vec<String> {
         .flat_map(|cause| {
             let draw = cause.downcast_ref::<crate::draw::DrawError>();
             let connect = cause.downcast_ref::<connect::ConnectError>();
+            let hinted = cause.downcast_ref::<hinted::Hinted>();
             draw.map(|e| e.hints())
                 .into_iter()
                 .chain(connect.map(|e| e.hints()))
+                .chain(hinted.map(|e| e.hints()))
                 .flatten()
         })
         .collect()
