@@ -49,7 +49,9 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
         text.push_str("\n  hint: ");
         text.push_str(hint);
     }
-    if error.chain().any(|cause| cause.is::<UsageError>()) {
+    if error.downcast_ref::<UsageError>().is_some()
+        || error.chain().any(|cause| cause.is::<UsageError>())
+    {
         return PyValueError::new_err(text);
     }
     with_attributes(py, SimulatorError::new_err(text), |e| {

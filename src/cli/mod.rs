@@ -146,7 +146,10 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
             for hint in hints(&error) {
                 eprintln!("  hint: {}", shorten(&escape::escaped(&hint)));
             }
-            if error.chain().any(|cause| cause.is::<UsageError>()) {
+            // a usage error can be the context of another (which keeps that one's hints)
+            if error.downcast_ref::<UsageError>().is_some()
+                || error.chain().any(|cause| cause.is::<UsageError>())
+            {
                 ExitCode::from(USAGE_EXIT_CODE)
             } else {
                 ExitCode::FAILURE

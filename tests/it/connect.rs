@@ -490,3 +490,26 @@ fn a_default_port_from_the_environment_that_is_not_a_port_is_a_usage_error() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn two_roles_on_one_name_are_conflicting_options_in_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "6", "prim");
+    let port = free_port();
+    for args in [
+        vec!["clear", "--line", "Maze"],
+        vec!["apply", m.as_str(), "--line", "Maze"],
+        vec!["inspect", "--start", "Floor"],
+        vec!["score", m.as_str(), "--robot", "Floor"],
+    ] {
+        let (code, stderr, took) = run(&[&args[..], &["--port", &port]].concat());
+        assert_eq!(code, Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("one object cannot play two roles"),
+            "{stderr}"
+        );
+        // refused before connecting
+        assert!(!stderr.contains("connecting to"), "{stderr}");
+        assert!(took < Duration::from_secs(5), "{took:?}");
+    }
+}
