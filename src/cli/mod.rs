@@ -62,7 +62,8 @@ pub enum Command {
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
-    /// Write a layout as a CoppeliaSim XML model (.simmodel.xml) or scene (.simscene.xml).
+    /// Write a layout as a file a simulator loads: CoppeliaSim XML model or scene, MuJoCo,
+    /// Gazebo (SDF), URDF or Webots.
     Export(export::ExportArgs),
     /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
     Solve(solve::SolveArgs),

@@ -82,11 +82,8 @@ impl ScoreArgs {
         interrupt: Arc<AtomicBool>,
         connected: &AtomicBool,
     ) -> Result<Scored> {
-        super::ensure_usage!(
-            self.robot != self.scene.floor,
-            "`{}` would be both the robot (--robot) and the floor (--floor): one object cannot play two roles",
-            self.robot
-        );
+        // the maze's roles on one name are conflicting options here too
+        self.scene.check_roles()?;
         super::ensure_usage!(
             self.run_timeout.is_finite() && self.run_timeout > 0.0 && self.run_timeout <= 86_400.0,
             "--timeout must be a number of seconds, more than 0 and at most a day, got {}",

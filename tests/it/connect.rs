@@ -500,7 +500,7 @@ fn two_roles_on_one_name_are_conflicting_options_in_every_command() {
         vec!["clear", "--line", "Maze"],
         vec!["apply", m.as_str(), "--line", "Maze"],
         vec!["inspect", "--start", "Floor"],
-        vec!["score", m.as_str(), "--robot", "Floor"],
+        vec!["score", m.as_str(), "--end", "Start"],
     ] {
         let (code, stderr, took) = run(&[&args[..], &["--port", &port]].concat());
         assert_eq!(code, Some(2), "{args:?}: {stderr}");
