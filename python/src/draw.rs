@@ -406,9 +406,11 @@ pub fn clear(
         let result = draw::clear(backend.as_mut(), &opts);
         let _ = backend.close();
         match result {
-            Err(DrawError::Interrupted { .. }) => Ok(Finished::Stopped {
-                message: "interrupted: some maze lines may remain; the idle rate is restored"
-                    .into(),
+            Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
+                message: format!(
+                    "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
+                    total - placed
+                ),
                 counts: None,
             }),
             other => Ok(Finished::Done(other?)),

@@ -74,6 +74,15 @@ impl ConnectArgs {
         }
     }
 
+    /// Refuses two roles given one name, as conflicting options are: a usage error (exit 2)
+    /// before anything is sent, with the draw error's hints.
+    pub fn check_roles(&self) -> anyhow::Result<()> {
+        self.names().check_roles().map_err(|e| {
+            let message = e.to_string();
+            anyhow::Error::new(e).context(super::UsageError(message))
+        })
+    }
+
     /// Connects to the simulator over the chosen API, saying on standard error what it
     /// tries; with `auto` (and over ZeroMQ) says on standard output which API and version
     /// answered.
@@ -284,7 +293,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
         "--resize-floor needs the ZeroMQ remote API (--api zmq): the legacy API cannot resize objects"
     );
     // two roles on one object: refused at once, before connecting
-    args.scene.names().check_roles()?;
+    args.scene.check_roles()?;
     let layout = crate::layout::read_layout(&args.layout)?;
     let nothing_drawn = || format!("{}: nothing was drawn", args.layout.display());
     match args.draw {

@@ -31,7 +31,7 @@ pub struct ClearArgs {
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     say::set_json(args.json);
-    args.scene.names().check_roles()?;
+    args.scene.check_roles()?;
     let interrupt = Interrupt::install()?;
     let Connected {
         mut backend,
@@ -44,9 +44,12 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         interrupt: Some(interrupt.shared()),
     };
     let result = draw::clear(backend.as_mut(), &opts);
-    if let Err(DrawError::Interrupted { .. }) = &result {
+    if let Err(DrawError::Interrupted { placed, total }) = &result {
         let _ = backend.close();
-        eprintln!("interrupted: some maze lines may remain; the idle rate is restored");
+        eprintln!(
+            "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
+            total - placed
+        );
         eprintln!("  hint: run the same clear again to finish");
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }

@@ -46,6 +46,38 @@ pub enum Api {
 pub const LEGACY_PORT: u16 = 19997;
 /// The ZeroMQ remote API's default port.
 pub const ZMQ_PORT: u16 = 23000;
+/// Environment variable that moves the legacy default port (a simulator configured
+/// elsewhere, or a test suite that must not touch the user's CoppeliaSim).
+pub const LEGACY_PORT_VAR: &str = "VREP_MAZE_LEGACY_PORT";
+/// Environment variable that moves the ZeroMQ default port, as [`LEGACY_PORT_VAR`].
+pub const ZMQ_PORT_VAR: &str = "VREP_MAZE_ZMQ_PORT";
+
+/// The legacy port used without `--port`: [`LEGACY_PORT_VAR`] if set, else [`LEGACY_PORT`].
+pub fn legacy_port() -> anyhow::Result<u16> {
+    port_from(LEGACY_PORT_VAR, LEGACY_PORT)
+}
+
+/// The ZeroMQ port used without `--port`: [`ZMQ_PORT_VAR`] if set, else [`ZMQ_PORT`].
+pub fn zmq_port() -> anyhow::Result<u16> {
+    port_from(ZMQ_PORT_VAR, ZMQ_PORT)
+}
+
+/// The port in the environment variable `var`, or `default` when it is unset; a value
+/// that is not a port is a usage error.
+fn port_from(var: &str, default: u16) -> anyhow::Result<u16> {
+    match std::env::var(var) {
+        Err(std::env::VarError::NotPresent) => Ok(default),
+        Ok(v) => match v.trim().parse::<u16>() {
+            Ok(p) if p > 0 => Ok(p),
+            _ => Err(super::usage(format!(
+                "{var}={v:?} is not a port (1..=65535); unset it to use {default}"
+            ))),
+        },
+        Err(_) => Err(super::usage(format!(
+            "{var} is not valid text; unset it to use {default}"
+        ))),
+    }
+}
 
 /// Connect wait of the legacy API when an earlier run ended with its session open: longer
 /// than the minute (60–65 s measured) for which CoppeliaSim may then refuse connections.
@@ -69,6 +101,8 @@ const PROBE_TIMEOUT: Duration = Duration::from_secs(1);
 pub(crate) struct ConnectError {
     message: String,
     hints: Vec<String>,
+    /// Nothing accepted a connection (rather than something that is not the API answering).
+    nothing_listens: bool,
 }
 
 impl ConnectError {
@@ -79,7 +113,19 @@ impl ConnectError {
 }
 
 fn connect_error(message: String, hints: Vec<String>) -> anyhow::Error {
-    anyhow::Error::new(ConnectError { message, hints })
+    anyhow::Error::new(ConnectError {
+        message,
+        hints,
+        nothing_listens: false,
+    })
+}
+
+/// Whether `error` is a legacy connection that nothing accepted (where CoppeliaSim's minute
+/// of refusal can be the cause), not something else answering.
+fn nothing_listened(error: &anyhow::Error) -> bool {
+    error
+        .downcast_ref::<ConnectError>()
+        .is_some_and(|e| e.nothing_listens)
 }
 
 /// A connected backend and the line that names it (`legacy remote API at host:port`).
@@ -197,21 +243,27 @@ fn open<T: Opened>(
     match api {
         Api::Legacy => legacy(
             host,
-            port.unwrap_or(LEGACY_PORT),
+            port.map_or_else(legacy_port, Ok)?,
             timeout,
             connect_timeout,
-            true,
+            Some(ZmqProbe {
+                port: zmq_port()?,
+                with_port: port.is_some(),
+            }),
             stop,
         ),
         Api::Zmq => T::zmq(
             host,
-            port.unwrap_or(ZMQ_PORT),
+            port.map_or_else(zmq_port, Ok)?,
             timeout,
             connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
         ),
         Api::Auto => {
             // with --port, both APIs are tried on that port
-            let (legacy_port, zmq_port) = port.map_or((LEGACY_PORT, ZMQ_PORT), |p| (p, p));
+            let (legacy_port, zmq_port) = match port {
+                Some(p) => (p, p),
+                None => (legacy_port()?, zmq_port()?),
+            };
             let refusal = SessionMarker::for_address(host, legacy_port)
                 .left_abruptly()
                 .is_some();
@@ -221,7 +273,7 @@ fn open<T: Opened>(
                 None if refusal => LEGACY_REFUSAL_WAIT,
                 None => AUTO_LEGACY_WAIT,
             };
-            let legacy_err = match legacy(host, legacy_port, timeout, Some(wait), false, stop) {
+            let legacy_err = match legacy(host, legacy_port, timeout, Some(wait), None, stop) {
                 Ok(c) => return Ok(c),
                 Err(e) if e.is::<Interrupted>() => return Err(e),
                 Err(e) => e,
@@ -232,20 +284,31 @@ fn open<T: Opened>(
             ));
             let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
             T::zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
+                let refused = nothing_listened(&legacy_err);
+                let mut hints = vec![if refused
+                    && matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }))
+                {
+                    "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into()
+                } else {
+                    // something answered that speaks neither API: no simulator to wait for
+                    format!(
+                        "something other than CoppeliaSim listens there: check --port (CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT})"
+                    )
+                }];
+                if refused {
+                    hints.push(format!(
+                        "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
+                        seconds(wait),
+                        LEGACY_REFUSAL_WAIT.as_secs()
+                    ));
+                }
                 connect_error(
                     format!(
                         "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
                         one_line(&legacy_err),
                         one_line(&zmq_err)
                     ),
-                    vec![
-                        "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into(),
-                        format!(
-                            "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
-                            seconds(wait),
-                            LEGACY_REFUSAL_WAIT.as_secs()
-                        ),
-                    ],
+                    hints,
                 )
             })
         }
@@ -271,15 +334,35 @@ fn seconds(d: Duration) -> String {
     }
 }
 
+/// Where a failed legacy connection looks for the ZeroMQ remote API, for a hint.
+#[derive(Clone, Copy)]
+struct ZmqProbe {
+    /// The ZeroMQ default port.
+    port: u16,
+    /// Whether the user gave `--port` (then the hint names the ZeroMQ port too).
+    with_port: bool,
+}
+
+impl ZmqProbe {
+    /// The options that reach the ZeroMQ remote API found there.
+    fn option(self) -> String {
+        if self.with_port {
+            format!("--api zmq --port {}", self.port)
+        } else {
+            "--api zmq".into()
+        }
+    }
+}
+
 /// Connects to the legacy remote API at `host:port`, waiting out CoppeliaSim's one-minute
-/// refusal when an earlier run left abruptly; `probe_zmq`: a failure looks whether the
+/// refusal when an earlier run left abruptly; `zmq_probe`: a failure looks whether the
 /// ZeroMQ port answers, for a hint.
 fn legacy<T: Opened>(
     host: &str,
     port: u16,
     timeout: Duration,
     connect_timeout: Option<Duration>,
-    probe_zmq: bool,
+    zmq_probe: Option<ZmqProbe>,
     stop: Option<&AtomicBool>,
 ) -> anyhow::Result<T> {
     let addr = socket_addr(host, port);
@@ -293,14 +376,6 @@ fn legacy<T: Opened>(
     super::say::note(format!(
         "connecting to CoppeliaSim's legacy remote API at {addr} ..."
     ));
-    if let Some(earlier) = earlier {
-        eprintln!(
-            "an earlier vrep-maze run (process {}) ended with its session at {} open; if CoppeliaSim closed it first, it refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
-            earlier.pid,
-            super::escape::escaped(&addr),
-            seconds(connect_timeout)
-        );
-    }
     let opts = legacy::ClientOptions {
         connect_timeout,
         reply_timeout: timeout,
@@ -308,11 +383,24 @@ fn legacy<T: Opened>(
     };
     let mut countdown = Countdown::default();
     let mut said_nothing_listens = false;
+    let mut said_earlier = false;
     let result = legacy::Client::connect_with(addr.as_str(), opts, &mut |r| {
         if stop.is_some_and(|s| s.load(Ordering::SeqCst)) {
             return false;
         }
-        if earlier.is_some() {
+        if let Some(earlier) = &earlier {
+            // said only once the port refuses: a simulator that restarted since answers at
+            // once, and the earlier run is no cause then
+            if !said_earlier {
+                said_earlier = true;
+                eprintln!(
+                    "{} refuses ({}); an earlier vrep-maze run (process {}) ended with its session there open, and if CoppeliaSim closed it first it refuses connections for about a minute: waiting up to {} s (Ctrl-C to stop)",
+                    super::escape::escaped(&addr),
+                    r.why,
+                    earlier.pid,
+                    seconds(connect_timeout)
+                );
+            }
             countdown.retrying(r);
         } else if !said_nothing_listens && r.waited >= NOTHING_LISTENS_AFTER {
             said_nothing_listens = true;
@@ -320,8 +408,10 @@ fn legacy<T: Opened>(
                 "nothing listens on {} ({}){}; trying until {} s",
                 super::escape::escaped(&addr),
                 r.why,
-                if probe_zmq && port != ZMQ_PORT && !accepts_tcp(host, ZMQ_PORT) {
-                    format!(", nor on the ZeroMQ port {ZMQ_PORT}")
+                if let Some(z) = zmq_probe.filter(|z| z.port != port)
+                    && !accepts_tcp(host, z.port)
+                {
+                    format!(", nor on the ZeroMQ port {}", z.port)
                 } else {
                     String::new()
                 },
@@ -361,19 +451,23 @@ fn legacy<T: Opened>(
                     LEGACY_REFUSAL_WAIT.as_secs()
                 ));
             }
-            if probe_zmq && port != ZMQ_PORT && zmq_answers(host, ZMQ_PORT) {
+            if let Some(z) = zmq_probe.filter(|z| z.port != port)
+                && zmq_answers(host, z.port)
+            {
                 hints.push(format!(
-                    "the ZeroMQ remote API answers on {}: try --api zmq",
-                    socket_addr(host, ZMQ_PORT)
+                    "the ZeroMQ remote API answers on {}: try {}",
+                    socket_addr(host, z.port),
+                    z.option()
                 ));
             }
-            connect_error(
-                format!(
+            anyhow::Error::new(ConnectError {
+                message: format!(
                     "cannot connect to {addr}: nothing accepted a connection within {} s ({why})",
                     seconds(connect_timeout)
                 ),
                 hints,
-            )
+                nothing_listens: true,
+            })
         }
         ClientError::ZeroMqPeer { .. } => connect_error(
             format!("port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"),

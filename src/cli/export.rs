@@ -43,5 +43,12 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
     export(format, &layout, &mut text)
         .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
     write_output(Some(&args.output), |w| w.write_all(&text))?;
+    // said as `render` says what it wrote
+    super::say::note(format!(
+        "wrote {}: {} of {}",
+        args.output.display(),
+        format.label(),
+        super::validate::describe(&layout, layout.segments.len())
+    ));
     Ok(ExitCode::SUCCESS)
 }

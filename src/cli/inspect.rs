@@ -43,7 +43,8 @@ pub struct InspectArgs {
 /// Runs `inspect`.
 pub fn run(args: InspectArgs) -> Result<ExitCode> {
     say::set_json(args.json);
-    // A layout that cannot be drawn is refused before connecting.
+    // two roles on one object, or a layout that cannot be drawn: refused before connecting
+    args.scene.check_roles()?;
     let wanted = match &args.layout {
         Some(path) => {
             let layout = crate::layout::read_layout(path)?;

@@ -9,6 +9,7 @@ mod demo;
 mod escape;
 mod export;
 mod generate;
+mod hinted;
 mod import;
 mod input;
 mod inspect;
@@ -61,7 +62,8 @@ pub enum Command {
     Validate(validate::ValidateArgs),
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
-    /// Write a layout as a CoppeliaSim XML model (.simmodel.xml) or scene (.simscene.xml).
+    /// Write a layout as a file a simulator loads: CoppeliaSim XML model or scene, MuJoCo,
+    /// Gazebo (SDF), URDF or Webots.
     Export(export::ExportArgs),
     /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
     Solve(solve::SolveArgs),
@@ -145,7 +147,10 @@ pub fn main_with_args(args: impl IntoIterator<Item = OsString>) -> ExitCode {
             for hint in hints(&error) {
                 eprintln!("  hint: {}", shorten(&escape::escaped(&hint)));
             }
-            if error.chain().any(|cause| cause.is::<UsageError>()) {
+            // a usage error can be the context of another (which keeps that one's hints)
+            if error.downcast_ref::<UsageError>().is_some()
+                || error.chain().any(|cause| cause.is::<UsageError>())
+            {
                 ExitCode::from(USAGE_EXIT_CODE)
             } else {
                 ExitCode::FAILURE
@@ -321,9 +326,11 @@ pub fn hints(error: &anyhow::Error) -> Vec<String> {
         .flat_map(|cause| {
             let draw = cause.downcast_ref::<crate::draw::DrawError>();
             let connect = cause.downcast_ref::<connect::ConnectError>();
+            let hinted = cause.downcast_ref::<hinted::Hinted>();
             draw.map(|e| e.hints())
                 .into_iter()
                 .chain(connect.map(|e| e.hints()))
+                .chain(hinted.map(|e| e.hints()))
                 .flatten()
         })
         .collect()

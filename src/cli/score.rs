@@ -16,7 +16,7 @@ use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::output::write_output;
 use crate::layout::Layout;
 use crate::legacy::follow::LegacyFollower;
-use crate::score::follow::{FollowOptions, Follower, Until, follow};
+use crate::score::follow::{FollowError, FollowOptions, Follower, Until, follow};
 use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, Sample, trajectory};
 use crate::zmq_api::follow::ZmqFollower;
 
@@ -82,6 +82,8 @@ impl ScoreArgs {
         interrupt: Arc<AtomicBool>,
         connected: &AtomicBool,
     ) -> Result<Scored> {
+        // the maze's roles on one name are conflicting options here too
+        self.scene.check_roles()?;
         super::ensure_usage!(
             self.run_timeout.is_finite() && self.run_timeout > 0.0 && self.run_timeout <= 86_400.0,
             "--timeout must be a number of seconds, more than 0 and at most a day, got {}",
@@ -114,6 +116,11 @@ impl ScoreArgs {
             interrupt: Some(interrupt),
             grade,
         };
+        // a missing robot is said at once, before any wait for the simulation
+        if let Err(e) = follower.find(&self.robot, &self.scene.floor) {
+            follower.close();
+            return Err(missing_robot(e, &self.robot)).context("nothing was scored");
+        }
         if !self.start_simulation {
             eprintln!(
                 "waiting for the simulation to run (at most {} s) ...",
@@ -158,6 +165,21 @@ pub fn run(args: ScoreArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(INCOMPLETE_EXIT_CODE)
     })
+}
+
+/// `error` with what to do when it is the missing robot `robot`: name the robot, or give the
+/// emulator one.
+fn missing_robot(error: FollowError, robot: &str) -> anyhow::Error {
+    match error {
+        FollowError::NoSuchObject(name) if name == robot => super::hinted::hinted(
+            FollowError::NoSuchObject(name),
+            vec![
+                "pass --robot NAME with the name of your robot's object in the scene".into(),
+                "without a robot of your own: `vrep-maze serve --robot PATH.csv` drives one named Robot along a path file (t,x,y,yaw)".into(),
+            ],
+        ),
+        other => anyhow::Error::new(other),
+    }
 }
 
 /// Connects a follower over the API `args` chooses (auto: legacy briefly, then ZeroMQ), as

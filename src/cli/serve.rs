@@ -25,8 +25,12 @@ pub struct ServeArgs {
     /// one shared scene.
     #[arg(long, value_enum, default_value = "legacy")]
     pub api: ServeApi,
-    /// Address to listen on [default: 127.0.0.1:19997 for legacy and both, 127.0.0.1:23000
-    /// for zmq]. Loopback by default.
+    /// Port to listen on at 127.0.0.1, as every client's `--port` [default: 19997 for legacy
+    /// and both, 23000 for zmq; or $VREP_MAZE_LEGACY_PORT, $VREP_MAZE_ZMQ_PORT].
+    #[arg(long, conflicts_with = "listen")]
+    pub port: Option<u16>,
+    /// Address to listen on [default: 127.0.0.1 and the port of `--port`]. Loopback by
+    /// default.
     #[arg(long)]
     pub listen: Option<SocketAddr>,
     /// With `--api both`: the ZeroMQ address [default: 127.0.0.1:23000].
@@ -149,14 +153,19 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         );
         timing.reconnect_penalty = std::time::Duration::from_secs_f64(secs);
     }
-    let legacy_listen = args
-        .listen
-        .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 19997)));
-    let zmq_listen = match args.api {
+    let loopback = |port| SocketAddr::from(([127, 0, 0, 1], port));
+    let listen = args.listen.or(args.port.map(loopback));
+    let legacy_listen = match listen {
+        Some(a) => a,
+        None => loopback(super::connect::legacy_port()?),
+    };
+    let zmq_listen = match match args.api {
         ServeApi::Both => args.zmq_listen,
-        _ => args.listen,
-    }
-    .unwrap_or(SocketAddr::from(([127, 0, 0, 1], 23000)));
+        _ => listen,
+    } {
+        Some(a) => a,
+        None => loopback(super::connect::zmq_port()?),
+    };
     ensure_usage!(
         args.zmq_listen.is_none() || args.api == ServeApi::Both,
         "--zmq-listen is for --api both; use --listen with --api zmq"
@@ -203,7 +212,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         sim.robot = Some(robot_path(&mut sim.scene, path)?);
     }
     let in_use = |addr: SocketAddr| {
-        format!("cannot listen on {addr} (port in use? try --listen 127.0.0.1:0)")
+        format!("cannot listen on {addr} (port in use? try --port 0 for a free one)")
     };
     let zmq_line = |s: &zmq_api::ServerHandle| {
         outln!(

@@ -105,6 +105,9 @@ pub struct ApplyReport {
     /// Lines and posts kept whose pose (or parent) was sent: found elsewhere, or a pose the
     /// backend had not read (ZeroMQ sends a reused copy's pose rather than read it first).
     pub placed: usize,
+    /// Of `placed`: poses sent unread, perhaps in place already (ZeroMQ reads a copy's pose
+    /// no more cheaply than it sets it, one round trip each, so it sets it unread).
+    pub unread: usize,
     /// Markers already in place: `Start`, `End` and the line template where it is not a
     /// line (hidden under `Start` in a one-cell maze; in mesh mode, on the first line).
     pub markers_unchanged: usize,
@@ -205,9 +208,18 @@ impl std::fmt::Display for ApplyReport {
         let kept = if kept == 0 {
             "0 kept".to_string()
         } else {
+            let unread = if self.unread > 0 {
+                format!(
+                    ", {} set unread, as reading costs what setting does",
+                    self.unread
+                )
+            } else {
+                String::new()
+            };
             format!(
-                "{kept} kept ({of}{} already in place, {} placed)",
-                self.unchanged, self.placed
+                "{kept} kept ({of}{} already in place, {} placed{unread})",
+                self.unchanged,
+                self.placed - self.unread
             )
         };
         let meshes = if self.removed_meshes > 0 {
@@ -553,11 +565,15 @@ fn placements(
         copies.extend(&part.plan.reuse);
         for (i, (&handle, want)) in copies.iter().zip(part.poses).enumerate() {
             let parent = (i > 0 || !part.template_drawn).then_some(h.parent);
-            let edits = place(known(handle), &floor, h.floor, handle, want, parent);
+            let current = known(handle);
+            let edits = place(current, &floor, h.floor, handle, want, parent);
             if edits.is_empty() {
                 report.unchanged += 1;
             } else {
                 report.placed += 1;
+                if current.is_some_and(|o| o.position.iter().any(|x| x.is_nan())) {
+                    report.unread += 1;
+                }
             }
             out.edits.extend(edits);
             out.kept += 1;

@@ -195,15 +195,16 @@ fn clear_claimed(
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)
         let per_request = scene.lines_per_request(survey.objects.len()).max(1);
-        for chunk in doomed.chunks(per_request) {
+        for (i, chunk) in doomed.chunks(per_request).enumerate() {
             if opts
                 .interrupt
                 .as_ref()
                 .is_some_and(|flag| flag.load(Ordering::SeqCst))
             {
+                // `placed` counts the objects removed so far, `total` those to remove
                 return Err(DrawError::Interrupted {
-                    placed: 0,
-                    total: 0,
+                    placed: i * per_request,
+                    total: doomed.len(),
                 });
             }
             claim.check(scene, "while removing the lines")?;

@@ -133,7 +133,7 @@ pub fn slow_draw_warning(api: RemoteApi, work: &CopiesWork) -> Option<String> {
     let t = copies_draw(api, work);
     (t > SLOW_DRAW).then(|| {
         format!(
-            "warning: drawing this maze as copies takes about {:.0} s on a real CoppeliaSim 4.5.1 (its work grows with the objects in the scene); --draw mesh draws one mesh instead",
+            "warning: drawing this maze as copies takes about {:.0} s on a real CoppeliaSim 4.5.1 (its work grows with the objects in the scene); --draw mesh draws it as a few meshes instead",
             t.as_secs_f64()
         )
     })

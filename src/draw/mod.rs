@@ -656,9 +656,9 @@ pub enum DrawError {
     /// was restored and the connection can be closed cleanly.
     #[error("interrupted with {placed} of {total} copies placed")]
     Interrupted {
-        /// Lines placed before the interrupt.
+        /// Lines placed before the interrupt ([`clear()`]: objects removed).
         placed: usize,
-        /// Lines in the drawing.
+        /// Lines in the drawing ([`clear()`]: objects to remove).
         total: usize,
     },
     /// Backend failure.

@@ -60,6 +60,18 @@ impl Format {
         Format::Webots,
     ];
 
+    /// What it is, for a person (`CoppeliaSim XML model`, `MuJoCo MJCF`, ...).
+    pub const fn label(self) -> &'static str {
+        match self {
+            Format::CoppeliaModel => "a CoppeliaSim XML model",
+            Format::CoppeliaScene => "a CoppeliaSim XML scene",
+            Format::Mjcf => "a MuJoCo MJCF model",
+            Format::Sdf => "a Gazebo SDFormat world",
+            Format::Urdf => "a URDF robot description",
+            Format::Webots => "a Webots world",
+        }
+    }
+
     /// The file name endings that choose it.
     pub const fn file_endings(self) -> &'static [&'static str] {
         match self {

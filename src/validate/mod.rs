@@ -111,6 +111,8 @@ pub fn validate(layout: &Layout) -> Report {
 pub struct Validator {
     /// Lines or walls: a wall layout has no segments.
     style: Style,
+    /// The one cause of the many problems that follow, said first ([`cell_size_edited`]).
+    cause: Problems,
     /// The generator's and the head's numbers.
     head: Problems,
     /// The segments' own numbers.
@@ -121,6 +123,35 @@ pub struct Validator {
     segments: usize,
     /// What is checked once the numbers are sound.
     placed: Option<Placed>,
+}
+
+/// When `grid.cell_size` disagrees with the cell size the start and end markers were placed
+/// for (their distance over their cells' distance, whatever the rotation), as after a hand
+/// edit: the line that says so and how to get a layout of that size. Every segment and
+/// marker problem that follows has this one cause.
+fn cell_size_edited(layout: &Layout) -> Option<String> {
+    let (a, b) = (&layout.start, &layout.end);
+    let cells = (f64::from(a.cell[0]) - f64::from(b.cell[0]))
+        .hypot(f64::from(a.cell[1]) - f64::from(b.cell[1]));
+    let metres = (a.pose.x - b.pose.x).hypot(a.pose.y - b.pose.y);
+    let placed_for = metres / cells;
+    let size = layout.grid.cell_size;
+    let differs = (placed_for - size).abs() > 1e-6 * size.abs().max(1.0);
+    // and both markers are where their cells are with that size (not a hand-moved marker)
+    let (sin, cos) = layout.grid.rotation.sin_cos();
+    let [ox, oy] = layout.grid.origin;
+    let fits = |e: &crate::layout::Endpoint| {
+        let [cx, cy] = e.cell.map(|c| f64::from(c) * placed_for);
+        (ox + cx * cos - cy * sin - e.pose.x).hypot(oy + cx * sin + cy * cos - e.pose.y) < 1e-3
+    };
+    let markers_fit = fits(a) && fits(b);
+    let plausible = cells > 0.0 && placed_for.is_finite() && placed_for > 0.0 && size > 0.0;
+    (plausible && differs && markers_fit).then(|| {
+        format!(
+            "is {size} m, but the maze was made for cells of {} m (its start and end markers are that far apart): edit it back, or make the maze anew with `vrep-maze generate --cell-size {size}` and the rest of its options",
+            (placed_for * 1e6).round() / 1e6
+        )
+    })
 }
 
 /// The checks that need a sound geometry.
@@ -151,8 +182,13 @@ impl Validator {
         head::check_generator(layout, &mut head);
         let geometry = head::check_numbers(layout, &mut head);
         let placed = geometry.map(|geometry| placed(layout, &geometry));
+        let mut cause = Problems::default();
+        if let Some(line) = cell_size_edited(layout) {
+            cause.add("grid.cell_size", line);
+        }
         Self {
             style: layout.style,
+            cause,
             head,
             numbers: Problems::default(),
             number_checks: segment::Numbers::new(layout),
@@ -169,7 +205,8 @@ impl Validator {
 
     /// The report: every problem, in the order of the layout's fields.
     pub fn finish(self) -> Report {
-        let mut problems = self.head;
+        let mut problems = self.cause;
+        problems.append(self.head);
         if self.style == Style::Walls && self.segments > 0 {
             problems.add(
                 "segments",

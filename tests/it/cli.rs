@@ -410,7 +410,17 @@ fn export_writes_coppeliasim_models_and_scenes_chosen_by_the_ending() {
             .arg("-o")
             .arg(&out)
             .assert()
-            .success();
+            .success()
+            // said as render says what it wrote
+            .stderr(contains(format!(
+                "wrote {}: a CoppeliaSim XML {} of 4x3",
+                out.display(),
+                if filetype == "exhaustiveModel" {
+                    "model"
+                } else {
+                    "scene"
+                }
+            )));
         let text = fs::read_to_string(&out).unwrap();
         assert!(text.contains(&format!("<filetype>{filetype}</filetype>")));
         assert!(text.contains("<alias>MazeMesh_l_"), "{name}");

@@ -419,6 +419,7 @@ fn run_into(args: &[String], sink: Sink) -> (Option<i32>, String) {
     let bin = assert_cmd::cargo::cargo_bin("vrep-maze");
     let mut command = Command::new(&bin);
     command
+        .envs(crate::support::cli::away_from_defaults())
         .args(args)
         .stdin(Stdio::null())
         .stderr(Stdio::piped());
@@ -458,6 +459,7 @@ fn run_endless(args: &[&str], input: &'static [u8], head: &'static [u8]) -> (Opt
     use std::io::Write;
     use std::process::{Command, Stdio};
     let mut child = Command::new(assert_cmd::cargo::cargo_bin("vrep-maze"))
+        .envs(crate::support::cli::away_from_defaults())
         .args(args)
         .stdin(Stdio::piped())
         .stdout(Stdio::null())

@@ -10,10 +10,8 @@ use std::net::TcpListener;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use assert_cmd::cargo::CommandCargoExt;
-
 use crate::support::bin;
-use crate::support::cli::{DEFAULT_PORTS, Serve, generate, interrupt};
+use crate::support::cli::{Serve, generate, interrupt, spawnable};
 
 /// A loopback port where nothing listens (bound, then released).
 fn free_port() -> String {
@@ -61,8 +59,7 @@ fn the_first_line_says_what_is_tried_before_any_wait() {
     let m = generate(dir.path(), "1", "kruskal");
     let port = free_port();
     let started = Instant::now();
-    let mut child = Command::cargo_bin("vrep-maze")
-        .unwrap()
+    let mut child = spawnable()
         .args(on(
             &["apply", &m],
             "legacy",
@@ -141,8 +138,6 @@ fn score_connects_as_apply_does_with_the_same_hints() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "2", "prim");
     let port = free_port();
-    // a failed legacy connection looks at the ZeroMQ port 23000 for a hint: held still
-    let _ports = DEFAULT_PORTS.lock();
     let hints = |command: &str| {
         let args = ["--api", "legacy", "--port", &port, "--connect-timeout", "1"];
         let (code, stderr, _) = run(&[&[command, m.as_str()][..], &args].concat());
@@ -265,7 +260,7 @@ fn a_refused_legacy_connection_is_retried_without_a_countdown_off_a_terminal() {
 
 /// `vrep-maze args` with its session markers in `markers` (a directory of its own).
 fn command_with_markers(markers: &std::path::Path, args: &[&str]) -> Command {
-    let mut command = Command::cargo_bin("vrep-maze").unwrap();
+    let mut command = spawnable();
     command.env("XDG_RUNTIME_DIR", markers).args(args);
     command
 }
@@ -315,8 +310,9 @@ fn an_abruptly_left_session_is_waited_out_and_ctrl_c_ends_the_wait_at_once() {
         stderr.read_line(&mut said).unwrap();
     }
     assert!(
-        said.contains("an earlier vrep-maze run (process 4194305) ended with its session")
-            && said.contains("waiting up to 75 s"),
+        said.contains(
+            "an earlier vrep-maze run (process 4194305) ended with its session there open"
+        ) && said.contains("waiting up to 75 s"),
         "{said}"
     );
     interrupt(child.id());
@@ -385,7 +381,7 @@ fn a_clean_session_leaves_no_marker_and_a_killed_one_is_named_by_the_next_run() 
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains(&format!(
-            "an earlier vrep-maze run (process {}) ended with its session at 127.0.0.1:{port} open",
+            "127.0.0.1:{port} refuses (Connection refused (os error 111)); an earlier vrep-maze run (process {}) ended with its session there open",
             child.id()
         )),
         "{stderr}"
@@ -441,5 +437,79 @@ fn a_web_server_on_the_legacy_port_is_named_as_not_coppeliasim() {
             "eager {eager}: {stderr}"
         );
         assert!(!stderr.contains("another client"), "{stderr}");
+    }
+}
+
+#[test]
+fn a_legacy_failure_hints_the_zeromq_port_it_found_with_its_port() {
+    use crate::support::cli::default_ports;
+    let s = Serve::start(&["--api", "zmq", "--port", "0", "--idle-fps", "0"], 1);
+    let zmq = s.ports[0];
+    let port = free_port();
+    let out = bin()
+        .envs(default_ports(crate::support::cli::free_port(), zmq))
+        .args(["inspect", "--api", "legacy", "--port", &port])
+        .args(["--connect-timeout", "1"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains(&format!(
+            "hint: the ZeroMQ remote API answers on 127.0.0.1:{zmq}: try --api zmq --port {zmq}"
+        )),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn auto_on_a_web_server_says_it_is_not_coppeliasim_without_the_refusal_hints() {
+    let port = web_server(true);
+    let (code, stderr, _) = run(&["inspect", "--port", &port, "--connect-timeout", "2"]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(
+        stderr.contains("hint: something other than CoppeliaSim listens there: check --port"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("refuses"), "{stderr}");
+    assert!(!stderr.contains("is CoppeliaSim running"), "{stderr}");
+}
+
+#[test]
+fn a_default_port_from_the_environment_that_is_not_a_port_is_a_usage_error() {
+    let out = bin()
+        .env("VREP_MAZE_LEGACY_PORT", "19997x")
+        .args(["inspect", "--api", "legacy"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&out.stderr)
+            .contains("VREP_MAZE_LEGACY_PORT=\"19997x\" is not a port"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn two_roles_on_one_name_are_conflicting_options_in_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "6", "prim");
+    let port = free_port();
+    for args in [
+        vec!["clear", "--line", "Maze"],
+        vec!["apply", m.as_str(), "--line", "Maze"],
+        vec!["inspect", "--start", "Floor"],
+        vec!["score", m.as_str(), "--end", "Start"],
+    ] {
+        let (code, stderr, took) = run(&[&args[..], &["--port", &port]].concat());
+        assert_eq!(code, Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains("one object cannot play two roles"),
+            "{stderr}"
+        );
+        // refused before connecting
+        assert!(!stderr.contains("connecting to"), "{stderr}");
+        assert!(took < Duration::from_secs(5), "{took:?}");
     }
 }

@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use assert_cmd::cargo::CommandCargoExt;
 use tempfile::TempDir;
 
 use crate::support::backend::{Kind, TIMEOUT};
@@ -29,7 +28,7 @@ fn layout(dir: &TempDir, seed: &str, size: &str) -> PathBuf {
 
 /// `vrep-maze apply layout --port port`, its standard error piped, ready to spawn.
 fn apply_command(layout: &Path, port: &str) -> Command {
-    let mut command = Command::cargo_bin("vrep-maze").unwrap();
+    let mut command = crate::support::cli::spawnable();
     command
         .args(["apply", layout.to_str().unwrap(), "--port", port])
         .stdout(Stdio::null())

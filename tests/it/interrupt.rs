@@ -18,6 +18,7 @@ backend_tests!(
     proxy_counts_a_turn_per_request,
     interrupted_apply_is_repaired_by_apply_and_by_clear,
     idle_rate_left_at_zero_by_an_interrupted_apply_is_restored,
+    an_interrupted_clear_counts_what_it_removed,
 );
 
 /// Connects through `proxy` and applies `d`; any failure (connecting included) is an error.
@@ -335,5 +336,25 @@ fn idle_rate_cut_between_raising_and_recording_it() {
         drop(b);
         assert_eq!(s.idle_fps(), 8, "{}: user's rate restored", kind.name());
         s.shutdown();
+    }
+}
+
+/// A clear interrupted before its first removal says so with the counts, as an interrupted
+/// apply does: none of the maze's objects removed, all of them left.
+fn an_interrupted_clear_counts_what_it_removed(kind: Kind) {
+    let d = drawing_with(Algorithm::Dfs, 3, 4);
+    let s = kind.serve(scene_with(kind, &d), 0);
+    let mut b = s.connect();
+    let opts = draw::ClearOptions {
+        interrupt: Some(std::sync::Arc::new(std::sync::atomic::AtomicBool::new(
+            true,
+        ))),
+        ..Default::default()
+    };
+    match draw::clear(&mut *b, &opts) {
+        Err(draw::DrawError::Interrupted { placed, total }) => {
+            assert_eq!((placed, total), (0, d.lines.len() - 1), "{}", kind.name());
+        }
+        other => panic!("{}: {other:?}", kind.name()),
     }
 }

@@ -70,6 +70,7 @@ fn as_nobody(args: &[String]) -> (Option<i32>, String) {
     let out = Command::new("setpriv")
         .args(["--reuid=65534", "--regid=65534", "--clear-groups"])
         .arg(assert_cmd::cargo::cargo_bin("vrep-maze"))
+        .envs(crate::support::cli::away_from_defaults())
         .args(args)
         .output()
         .unwrap();

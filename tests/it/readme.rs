@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use assert_cmd::cargo::CommandCargoExt;
 
-use crate::support::cli::DEFAULT_PORTS;
+use crate::support::cli::{default_ports, free_port};
 
 /// The command lines of the section's first `sh` block, comments dropped.
 fn thirty_seconds() -> Vec<String> {
@@ -39,12 +39,11 @@ impl Drop for Background {
     }
 }
 
+/// The path runs on default ports moved to free ones: whatever listens on 19997 or 23000
+/// (the user's CoppeliaSim) is neither needed nor touched.
 #[test]
 fn the_thirty_second_path_works_word_for_word() {
-    let _ports = DEFAULT_PORTS.lock();
-    if TcpStream::connect("127.0.0.1:19997").is_ok() {
-        panic!("something already listens on 127.0.0.1:19997: the README's path needs that port");
-    }
+    let (legacy, zmq) = (free_port(), free_port());
     let lines = thirty_seconds();
     assert_eq!(
         lines.first().map(String::as_str),
@@ -62,16 +61,19 @@ fn the_thirty_second_path_works_word_for_word() {
         let words: Vec<&str> = line.split_whitespace().collect();
         assert_eq!(words[0], "vrep-maze", "{line}");
         let mut command = Command::cargo_bin("vrep-maze").unwrap();
-        command.args(&words[1..]).current_dir(dir.path());
+        command
+            .args(&words[1..])
+            .envs(default_ports(legacy, zmq))
+            .current_dir(dir.path());
         if in_background {
             let child = command.stdout(Stdio::null()).spawn().unwrap();
             background.push(Background(child));
             // bounded: until the emulator listens, at most 10 s
             let listening = (0..100).any(|_| {
                 std::thread::sleep(Duration::from_millis(100));
-                TcpStream::connect("127.0.0.1:19997").is_ok()
+                TcpStream::connect(("127.0.0.1", legacy)).is_ok()
             });
-            assert!(listening, "`{line}` does not listen on 19997");
+            assert!(listening, "`{line}` does not listen on its default port");
             continue;
         }
         let out = command.output().unwrap();

@@ -190,6 +190,23 @@ fn a_missing_robot_and_a_simulation_that_never_starts_are_errors() {
         .stderr(predicates::str::contains(
             "the scene has no object named `Robot`",
         ));
+    // without --start-simulation too: said at once with the remedies, before any wait
+    let out = bin()
+        .args(["score", &maze, "--api", "zmq", "--port", &port])
+        .args(["--timeout", "60"])
+        .timeout(std::time::Duration::from_secs(20))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("waiting for the simulation"), "{stderr}");
+    assert!(
+        stderr.contains("the scene has no object named `Robot`")
+            && stderr.contains("hint: pass --robot NAME")
+            && stderr
+                .contains("hint: without a robot of your own: `vrep-maze serve --robot PATH.csv`"),
+        "{stderr}"
+    );
     bin()
         .args([
             "score",

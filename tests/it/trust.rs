@@ -3,9 +3,8 @@
 //! floods or writes where it should not.
 
 use std::io::Read;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 
-use assert_cmd::cargo::CommandCargoExt;
 use tempfile::TempDir;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, ObjectNames};
@@ -257,8 +256,7 @@ fn a_closed_output_pipe_ends_quietly_with_success() {
             concat!(env!("CARGO_MANIFEST_DIR"), "/mazes/prim-20x15-seed7.json"),
         ],
     ] {
-        let mut child = Command::cargo_bin("vrep-maze")
-            .unwrap()
+        let mut child = crate::support::cli::spawnable()
             .args(args)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())

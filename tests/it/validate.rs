@@ -202,3 +202,31 @@ fn rotated_and_offset_mazes_validate() {
     assert_eq!(layout.segments.len(), 2 * layout.metrics.passages as usize);
     assert!(validate(&layout).is_ok());
 }
+
+#[test]
+fn a_hand_edited_cell_size_is_named_first_as_the_one_cause_with_the_generate_option() {
+    for (size, rotation) in [(2.0, 0.0), (0.5, 0.7)] {
+        let mut spec = vrep_maze::layout::GenerateSpec::course(
+            vrep_maze::maze::Grid::new(9, 9).unwrap(),
+            Algorithm::Dfs,
+            4,
+        );
+        spec.geometry.rotation = rotation;
+        let mut layout = vrep_maze::layout::build_layout(&spec).unwrap();
+        layout.grid.cell_size = size;
+        let all = messages(&layout);
+        assert!(
+            all[0].starts_with(&format!(
+                "grid.cell_size: is {size} m, but the maze was made for cells of 1 m"
+            )) && all[0].contains(&format!("vrep-maze generate --cell-size {size}")),
+            "{all:#?}"
+        );
+        assert_eq!(
+            all.iter().filter(|m| m.contains("cell_size")).count(),
+            1,
+            "{all:#?}"
+        );
+    }
+    // an untouched layout says nothing of it
+    assert!(messages(&course_layout(Algorithm::Dfs, 9, 9, 4)).is_empty());
+}

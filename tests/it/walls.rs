@@ -647,7 +647,7 @@ fn posts_cli_apply_into_serve_over_both_apis_then_a_line_maze_replaces_them() {
         .assert()
         .success()
         .stdout(predicates::str::contains(
-            "drew 100 walls and 100 posts: 200 kept (200 earlier copies: 0 already in place, 200 placed), 0 pasted",
+            "drew 100 walls and 100 posts: 200 kept (200 earlier copies: 0 already in place, 0 placed, 200 set unread, as reading costs what setting does), 0 pasted",
         ));
     bin()
         .args(["apply", &lines, "--api", "zmq", "--port", &zmq])

@@ -366,7 +366,7 @@ fn interrupted_applies_are_repaired(target: Target) {
     let (b, lb) = generate(dir.path(), "b", &["--seed", "2", "--algo", "dfs"]);
     ok(&sim, &["apply", &a]);
     for delay_ms in [150, 300, 500, 800] {
-        let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("vrep-maze"))
+        let child = crate::support::cli::spawnable()
             .args(["apply", "-q", &b])
             .args(sim.api_args())
             .stdout(std::process::Stdio::null())

@@ -6,12 +6,42 @@ use std::process::{Child, Command, Stdio};
 
 use assert_cmd::cargo::CommandCargoExt;
 
-/// Held by a test that uses the default ports (19997, 23000), so no two of them meet there.
-pub static DEFAULT_PORTS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+/// A loopback port where nothing listens (bound, then released).
+pub fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
+}
 
-/// The `vrep-maze` binary under test.
+/// The environment that moves the binary's default ports (19997, 23000) to `legacy` and
+/// `zmq`.
+pub fn default_ports(legacy: u16, zmq: u16) -> [(&'static str, String); 2] {
+    [
+        ("VREP_MAZE_LEGACY_PORT", legacy.to_string()),
+        ("VREP_MAZE_ZMQ_PORT", zmq.to_string()),
+    ]
+}
+
+/// The environment that moves the default ports where nothing listens: a command without
+/// `--port` never reaches a CoppeliaSim the suite did not start.
+pub fn away_from_defaults() -> [(&'static str, String); 2] {
+    default_ports(free_port(), free_port())
+}
+
+/// The `vrep-maze` binary under test, away from the default ports.
 pub fn bin() -> assert_cmd::Command {
-    assert_cmd::Command::cargo_bin("vrep-maze").expect("binary built")
+    let mut command = assert_cmd::Command::cargo_bin("vrep-maze").expect("binary built");
+    command.envs(away_from_defaults());
+    command
+}
+
+/// The `vrep-maze` binary as a [`Command`] to spawn, away from the default ports.
+pub fn spawnable() -> Command {
+    let mut command = Command::cargo_bin("vrep-maze").expect("binary built");
+    command.envs(away_from_defaults());
+    command
 }
 
 /// Writes `generate --seed seed --algo algo` into `dir`; returns the file's path.
@@ -47,8 +77,7 @@ pub struct Serve {
 impl Serve {
     /// Starts `vrep-maze serve args` and reads the `lines` lines that name its addresses.
     pub fn start(args: &[&str], lines: usize) -> Serve {
-        let mut child = Command::cargo_bin("vrep-maze")
-            .unwrap()
+        let mut child = spawnable()
             .arg("serve")
             .args(args)
             .stdout(Stdio::piped())

@@ -56,7 +56,7 @@ pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
         return;
     }
     // the summary line's own numbers add up: "N lines[ and P posts]: K kept (…: I already in
-    // place, M placed), X pasted; markers: A already in place, B placed; …"
+    // place, M placed[, U set unread…]), X pasted; markers: A already in place, B placed; …"
     let text = r.to_string();
     let number_before = |word: &str| -> usize {
         let at = text
@@ -79,11 +79,17 @@ pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
     let kept = number_before(" kept");
     assert_eq!(whole, kept + number_before(" pasted;"), "{text}");
     if kept > 0 {
+        let unread = if text.contains(" set unread") {
+            number_before(" set unread")
+        } else {
+            0
+        };
         let (in_place, placed) = (
             number_before(" already in place, "),
-            number_before(" placed)"),
+            number_before(" placed"),
         );
-        assert_eq!(kept, in_place + placed, "{text}");
+        assert_eq!(kept, in_place + placed + unread, "{text}");
+        assert_eq!(r.unread, unread, "{text}");
     }
     // the template is named with the markers when it is counted with them (one cell)
     let label = ["markers: ", "Start, End and the line template: "]
