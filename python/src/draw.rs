@@ -395,7 +395,6 @@ pub fn clear(
         names: args.scene.names(),
         stop_simulation: args.stop_simulation,
         dry_run: args.dry_run,
-        resize_floor: args.resize_floor,
         interrupt: Some(stop.requested.clone()),
     };
     let scene = args.scene;
