@@ -1005,7 +1005,7 @@ fn meshes_drawn_over_one_api_verify_over_the_other() {
     let posts = dir.path().join("posts.json");
     bin()
         .args([
-            "generate", "--style", "walls", "--posts", "--seed", "7", "--size", "12x12", "-o",
+            "generate", "--style", "walls", "--posts", "--seed", "7", "--size", "9x9", "-o",
         ])
         .arg(&posts)
         .assert()
