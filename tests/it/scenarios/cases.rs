@@ -72,12 +72,9 @@ on_every_target!(
 /// Issue 30, item 1: the user copies `Line` under `Maze` and colours the copy red; apply
 /// pastes only from the template and its own copies, so the user's stays the one red
 /// object under `Maze`, drawn after drawn (read back through `sim.getShapeColor`).
-/// Over ZeroMQ only: the legacy API reads no colours, so there the red copy is a copy by
-/// every trait it can read (`trust_ours` checks that it still never spreads).
+/// The legacy API reads no colours, so there the red copy is a copy by every trait it can
+/// read and may be reused as a line, but it still never spreads.
 fn a_red_look_alike_under_the_maze_never_spreads(target: Target) {
-    if target.legacy() {
-        return;
-    }
     let sim = target.start();
     let dir = tempfile::tempdir().unwrap();
     let mut obs = Observer::connect(sim.zmq);
@@ -90,20 +87,21 @@ fn a_red_look_alike_under_the_maze_never_spreads(target: Target) {
         ok(&sim, &["apply", "-q", &m]);
         let look = obs.look();
         let handles: Vec<i32> = look.below(maze).iter().map(|o| o.handle).collect();
+        let colours = obs.colours(&handles);
         let reds: Vec<i32> = handles
             .into_iter()
-            .filter(|&h| {
-                obs.colour(h)
-                    .iter()
-                    .zip(red)
-                    .all(|(a, b)| (a - b).abs() < 0.01)
-            })
+            .zip(colours)
+            .filter(|(_, c)| c.iter().zip(red).all(|(a, b)| (a - b).abs() < 0.01))
+            .map(|(h, _)| h)
             .collect();
-        assert_eq!(
-            reds,
-            vec![users],
-            "{target:?} run {run}: only the user's is red"
-        );
+        // the legacy API reads no colours: the look-alike passes for a copy there (it may be
+        // reused as a line), but it is never pasted from
+        let want = if target.legacy() && reds.is_empty() {
+            vec![]
+        } else {
+            vec![users]
+        };
+        assert_eq!(reds, want, "{target:?} run {run}: only the user's is red");
     }
 }
 

@@ -264,15 +264,25 @@ impl Observer {
         copy
     }
 
-    /// The ambient-diffuse colour of the shape `handle` (`sim.getShapeColor`).
-    pub fn colour(&mut self, handle: i32) -> [f64; 3] {
-        let v = call(
-            &mut self.client,
-            "sim.getShapeColor",
-            vec![int(handle.into()), text(""), int(0)],
-        );
-        let c = floats(&v[1]);
-        [c[0], c[1], c[2]]
+    /// The ambient-diffuse colours of the shapes `handles` (`sim.getShapeColor`), read at
+    /// idle rate 0 and the user's rate put back after.
+    pub fn colours(&mut self, handles: &[i32]) -> Vec<[f64; 3]> {
+        let idle_fps = self.idle_fps();
+        self.set_idle_fps(0);
+        let colours = handles
+            .iter()
+            .map(|&h| {
+                let v = call(
+                    &mut self.client,
+                    "sim.getShapeColor",
+                    vec![int(h.into()), text(""), int(0)],
+                );
+                let c = floats(&v[1]);
+                [c[0], c[1], c[2]]
+            })
+            .collect();
+        self.set_idle_fps(idle_fps);
+        colours
     }
 
     /// Everything in the scene, read at idle rate 0 and the user's rate put back after.
