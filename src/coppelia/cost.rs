@@ -209,12 +209,16 @@ impl CostModel {
     }
 
     /// What CoppeliaSim 4.10 takes: as [`CostModel::measured`] but for its meshes
-    /// ([`MeshCosts::V4_10`]; `docs/measurements.md` "Mesh calls on the real builds"). The
-    /// scene work of copies was timed on 4.5.1 only; 4.10's copies rows
-    /// (`../shared/spec/real-coppeliasim-4.10.md` "Timings") are priced with it.
+    /// ([`MeshCosts::V4_10`]; `docs/measurements.md` "Mesh calls on the real builds") and its
+    /// quicker calls: 0.1-0.3 ms a call at idle fps 0, median 0.1-0.2 ms
+    /// (`docs/measurements.md` "ZeroMQ calls on 4.10"). The scene work of copies was timed on
+    /// 4.5.1 only; 4.10's copies rows (`../shared/spec/real-coppeliasim-4.10.md` "Timings")
+    /// are priced with it.
     pub fn v4_10() -> CostModel {
         CostModel {
             mesh: MeshCosts::V4_10,
+            zmq_call: Duration::from_micros(150),
+            zmq_set: Duration::from_micros(150),
             ..CostModel::measured()
         }
     }

@@ -45,15 +45,15 @@ impl MeshCosts {
         read_per_vertex: Duration::from_nanos(9_200),
     };
 
-    /// CoppeliaSim 4.10.0, `sim.createShape`, the same meshes: lines made in about 700 ms and
-    /// read back in 1,170 ms, walls and posts in 1,900 ms and 5,300 ms: slower than 4.5.1 and
-    /// far more sensitive to the machine's load (same section). Reading back costs the same
-    /// per triangle for both (110 and 116 µs).
+    /// CoppeliaSim 4.10.0, `sim.createShape`, the same meshes on a freshly started simulator
+    /// (as the bench starts one): lines made in about 390 ms and read back in 660 ms, walls
+    /// and posts in about 1,100 ms (989-1,854) and 2,700 ms: slower than 4.5.1, and slower
+    /// still in a simulator that has made and removed many meshes before (same section).
     pub const V4_10: MeshCosts = MeshCosts {
-        create_per_triangle: Duration::from_nanos(29_600),
-        create_per_vertex: Duration::from_nanos(17_900),
-        read_per_triangle: Duration::from_nanos(113_000),
-        read_per_vertex: Duration::ZERO,
+        create_per_triangle: Duration::from_nanos(17_900),
+        create_per_vertex: Duration::from_nanos(9_300),
+        read_per_triangle: Duration::from_nanos(57_800),
+        read_per_vertex: Duration::from_nanos(2_000),
     };
 
     /// Server time of creating a mesh of `triangles` triangles and `vertices` vertices.
@@ -99,10 +99,10 @@ mod tests {
             (MeshCosts::V4_5_1, 10_680, 21_360, 0.227, 0.475),
             (MeshCosts::V4_5_1, 45_660, 30_440, 0.619, 1.451),
             (MeshCosts::V4_5_1, 45_660, 30_440, 0.711, 1.709),
-            (MeshCosts::V4_10, 10_680, 21_360, 0.702, 1.094),
-            (MeshCosts::V4_10, 10_680, 21_360, 0.698, 1.259),
-            (MeshCosts::V4_10, 45_660, 30_440, 1.765, 5.421),
-            (MeshCosts::V4_10, 45_660, 30_440, 2.076, 5.219),
+            (MeshCosts::V4_10, 10_680, 21_360, 0.396, 0.663),
+            (MeshCosts::V4_10, 10_680, 21_360, 0.387, 0.655),
+            (MeshCosts::V4_10, 45_660, 30_440, 0.989, 2.588),
+            (MeshCosts::V4_10, 45_660, 30_440, 1.25, 2.892),
         ];
         for (costs, t, v, create, read) in rows {
             let (c, r) = (costs.create(t, v), costs.read(t, v));

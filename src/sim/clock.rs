@@ -5,8 +5,8 @@
 //! CoppeliaSim executes remote API work once per main-loop pass. While the simulation is
 //! stopped (or paused) a pass lasts 1000 / `idle_fps` ms, at least 20 ms, at idle fps above 0
 //! (`sim_intparam_idle_fps`, default 8: a legacy blocking call takes 125 ms, "Pacing"); at
-//! idle fps 0 there is no sleep, so a request is served as soon as it arrives (9–10 ms legacy,
-//! 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
+//! idle fps 0 there is no sleep, so a request is served as soon as it arrives (2.1–2.4 ms
+//! legacy, `docs/measurements.md` "Legacy calls at idle fps 0"; 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
 //! simulation runs, it passes once per simulation step. The servers only wait on the answers
 //! of [`Clock`] and [`ZmqPacer`]; nothing else in them decides time.
 
@@ -38,6 +38,13 @@ pub struct Clock {
     /// The same window while the simulation runs, per connected client (same lines: 2 ms ×
     /// clients; the emulator counts one client).
     pub running_window: Duration,
+    /// Protocol 1 (4.5.1): the add-on looks at its queue twice a pass, in
+    /// `sysCall_beforeMainScript` and again in `sysCall_nonSimulation`
+    /// (zmqRemoteApi@coppeliasim-v4.5.1-rev4 `simAddOnZMQ remote API server.lua:165-179`), so
+    /// a lock-step client's next request is served by the same pass when it arrives this soon
+    /// after the reply (`docs/measurements.md` "Two looks at the queue a pass": vrep-maze's
+    /// next batch, sent about 0.2 ms after the replies, made it in one of two runs).
+    pub second_look: Duration,
 }
 
 impl Default for Clock {
@@ -46,6 +53,7 @@ impl Default for Clock {
             step: Duration::from_millis(50),
             busy_window: Duration::from_millis(50),
             running_window: Duration::from_millis(2),
+            second_look: Duration::from_millis(1),
         }
     }
 }
@@ -99,6 +107,10 @@ pub struct ZmqPacer {
     origin: Instant,
     /// Start of the pass that served the latest request.
     served_pass: Option<Instant>,
+    /// When the latest request's work ended.
+    last_done: Option<Instant>,
+    /// The served pass has had its second look at the queue ([`Clock::second_look`]).
+    second_used: bool,
 }
 
 impl ZmqPacer {
@@ -107,6 +119,8 @@ impl ZmqPacer {
         ZmqPacer {
             origin,
             served_pass: None,
+            last_done: None,
+            second_used: false,
         }
     }
 
@@ -120,7 +134,9 @@ impl ZmqPacer {
     /// When a request that arrived at `arrived` is served. At idle fps 0 (no period): at
     /// once. Otherwise at the first pass that begins at or after `arrived` and after the pass
     /// that served the previous request; protocol 2 also serves it at once if it arrives
-    /// within the window of a pass that has served one already.
+    /// within the window of a pass that has served one already; protocol 1 at once if it
+    /// arrives within [`Clock::second_look`] of the latest reply of a pass that has not had
+    /// its second look yet.
     pub fn serve_at(
         &self,
         clock: &Clock,
@@ -139,6 +155,15 @@ impl ZmqPacer {
         {
             return arrived;
         }
+        if pacing == ZmqPacing::OnePerPass
+            && self.served_pass == Some(start)
+            && !self.second_used
+            && self
+                .last_done
+                .is_some_and(|d| arrived >= d && arrived < d + clock.second_look)
+        {
+            return arrived;
+        }
         let mut at = if start == arrived { start } else { start + p };
         if let Some(prev) = self.served_pass
             && at <= prev
@@ -154,21 +179,28 @@ impl ZmqPacer {
     /// request raised the idle rate, the next pass follows one period after it, and over
     /// protocol 2 a request arriving within the window is still served by it (measured on
     /// 4.10.0: after `apply` restores idle fps 8 its last calls are answered in 0.1-0.3 ms,
-    /// `docs/measurements.md` "Pacing after the idle rate is restored").
+    /// `docs/measurements.md` "Pacing after the idle rate is restored"). `queued`: it was
+    /// served with the requests queued before it, not by a look of its own.
     pub fn served(
         &mut self,
         clock: &Clock,
         state: SimState,
         idle_fps: i32,
-        at: Instant,
-        done: Instant,
+        (at, done): (Instant, Instant),
+        queued: bool,
     ) {
+        self.last_done = Some(done);
         let Some(p) = clock.period(state, idle_fps) else {
             self.origin = at;
             self.served_pass = Some(at);
+            self.second_used = false;
             return;
         };
         let start = self.pass_start(p, at);
+        if !queued {
+            // a look of its own: the pass's second if the pass served one already
+            self.second_used = self.served_pass == Some(start);
+        }
         if done >= start + p {
             self.origin = done;
             self.served_pass = Some(done.checked_sub(p).unwrap_or(done));
@@ -222,7 +254,7 @@ mod tests {
             let at = pacer.serve_at(&c, pacing, state, fps, t);
             assert!(at >= t);
             let done = at + MS / 2;
-            pacer.served(&c, state, fps, at, done);
+            pacer.served(&c, state, fps, (at, done), false);
             replies.push(done);
             t = done + MS; // the client thinks 1 ms
         }
@@ -240,6 +272,29 @@ mod tests {
         // idle fps 0: no sleep, served at once
         let gaps = lock_step(ZmqPacing::OnePerPass, SimState::Stopped, 0, 4);
         assert!(gaps.iter().all(|g| *g == 3 * MS / 2), "{gaps:?}");
+    }
+
+    #[test]
+    fn protocol_1_serves_a_quick_next_request_at_its_second_look() {
+        let (c, t0) = (Clock::default(), Instant::now());
+        let mut pacer = ZmqPacer::new(t0);
+        let serve =
+            |p: &ZmqPacer, t| p.serve_at(&c, ZmqPacing::OnePerPass, SimState::Stopped, 8, t);
+        // the first look of the pass at 125 ms serves a request (1 ms of work)
+        let at = serve(&pacer, t0 + 3 * MS);
+        assert_eq!(at, t0 + 125 * MS);
+        pacer.served(&c, SimState::Stopped, 8, (at, at + MS), false);
+        // the next one, 0.3 ms after the reply, is served by the second look
+        let next = at + MS + MS * 3 / 10;
+        assert_eq!(serve(&pacer, next), next);
+        pacer.served(&c, SimState::Stopped, 8, (next, next + MS), false);
+        // a third, as quick, waits for the next pass: that pass has looked twice
+        let third = next + MS + MS * 3 / 10;
+        assert_eq!(serve(&pacer, third), t0 + 250 * MS);
+        // and a request 2 ms after a reply is too late for the second look
+        let mut fresh = ZmqPacer::new(t0);
+        fresh.served(&c, SimState::Stopped, 8, (at, at + MS), false);
+        assert_eq!(serve(&fresh, at + 3 * MS), t0 + 250 * MS);
     }
 
     #[test]
@@ -295,7 +350,7 @@ mod tests {
             pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 0, at),
             at
         );
-        pacer.served(&c, SimState::Stopped, 0, at, at + MS);
+        pacer.served(&c, SimState::Stopped, 0, (at, at + MS), false);
         // protocol 2: the next request, 2 ms later, is served by the same pass's window
         let next = at + 2 * MS;
         let served = |pacing| pacer.serve_at(&c, pacing, SimState::Stopped, 8, next);
@@ -311,7 +366,7 @@ mod tests {
         let mut pacer = ZmqPacer::new(t0);
         let at = pacer.serve_at(&c, ZmqPacing::OnePerPass, SimState::Stopped, 8, t0);
         assert_eq!(at, t0);
-        pacer.served(&c, SimState::Stopped, 8, at, t0 + 300 * MS);
+        pacer.served(&c, SimState::Stopped, 8, (at, t0 + 300 * MS), false);
         let next = pacer.serve_at(
             &c,
             ZmqPacing::OnePerPass,
