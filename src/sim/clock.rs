@@ -179,20 +179,28 @@ impl ZmqPacer {
     /// request raised the idle rate, the next pass follows one period after it, and over
     /// protocol 2 a request arriving within the window is still served by it (measured on
     /// 4.10.0: after `apply` restores idle fps 8 its last calls are answered in 0.1-0.3 ms,
-    /// `docs/measurements.md` "Pacing after the idle rate is restored"). `queued`: it was
-    /// served with the requests queued before it, not by a look of its own.
+    /// `docs/measurements.md` "Pacing after the idle rate is restored"). Over protocol 2 that
+    /// pass began with the first request after the previous pass's window closed: at idle fps
+    /// 0 a pass serves every request arriving within its window (the 4.10 add-on's
+    /// `handleQueue`, `ZMQ remote API server.lua:455-516` of the build: it polls until 50 ms
+    /// after it began, once it has served one). `queued`: it was served with the requests
+    /// queued before it, not by a look of its own.
     pub fn served(
         &mut self,
         clock: &Clock,
-        state: SimState,
-        idle_fps: i32,
+        (pacing, state, idle_fps): (ZmqPacing, SimState, i32),
         (at, done): (Instant, Instant),
         queued: bool,
     ) {
         self.last_done = Some(done);
         let Some(p) = clock.period(state, idle_fps) else {
-            self.origin = at;
-            self.served_pass = Some(at);
+            let window = clock.window(state);
+            let same_pass = pacing == ZmqPacing::Window
+                && self.served_pass.is_some_and(|s| at >= s && at < s + window);
+            if !same_pass {
+                self.origin = at;
+                self.served_pass = Some(at);
+            }
             self.second_used = false;
             return;
         };
@@ -215,6 +223,9 @@ mod tests {
     use super::*;
 
     const MS: Duration = Duration::from_millis(1);
+
+    /// Protocol 1, stopped, idle fps 8.
+    const P1_STOPPED_8: (ZmqPacing, SimState, i32) = (ZmqPacing::OnePerPass, SimState::Stopped, 8);
 
     #[test]
     fn the_idle_rate_sets_the_period_while_stopped_or_paused() {
@@ -254,7 +265,7 @@ mod tests {
             let at = pacer.serve_at(&c, pacing, state, fps, t);
             assert!(at >= t);
             let done = at + MS / 2;
-            pacer.served(&c, state, fps, (at, done), false);
+            pacer.served(&c, (pacing, state, fps), (at, done), false);
             replies.push(done);
             t = done + MS; // the client thinks 1 ms
         }
@@ -283,17 +294,17 @@ mod tests {
         // the first look of the pass at 125 ms serves a request (1 ms of work)
         let at = serve(&pacer, t0 + 3 * MS);
         assert_eq!(at, t0 + 125 * MS);
-        pacer.served(&c, SimState::Stopped, 8, (at, at + MS), false);
+        pacer.served(&c, P1_STOPPED_8, (at, at + MS), false);
         // the next one, 0.3 ms after the reply, is served by the second look
         let next = at + MS + MS * 3 / 10;
         assert_eq!(serve(&pacer, next), next);
-        pacer.served(&c, SimState::Stopped, 8, (next, next + MS), false);
+        pacer.served(&c, P1_STOPPED_8, (next, next + MS), false);
         // a third, as quick, waits for the next pass: that pass has looked twice
         let third = next + MS + MS * 3 / 10;
         assert_eq!(serve(&pacer, third), t0 + 250 * MS);
         // and a request 2 ms after a reply is too late for the second look
         let mut fresh = ZmqPacer::new(t0);
-        fresh.served(&c, SimState::Stopped, 8, (at, at + MS), false);
+        fresh.served(&c, P1_STOPPED_8, (at, at + MS), false);
         assert_eq!(serve(&fresh, at + 3 * MS), t0 + 250 * MS);
     }
 
@@ -350,7 +361,12 @@ mod tests {
             pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 0, at),
             at
         );
-        pacer.served(&c, SimState::Stopped, 0, (at, at + MS), false);
+        pacer.served(
+            &c,
+            (ZmqPacing::Window, SimState::Stopped, 0),
+            (at, at + MS),
+            false,
+        );
         // protocol 2: the next request, 2 ms later, is served by the same pass's window
         let next = at + 2 * MS;
         let served = |pacing| pacer.serve_at(&c, pacing, SimState::Stopped, 8, next);
@@ -360,13 +376,41 @@ mod tests {
     }
 
     #[test]
+    fn at_idle_fps_0_a_protocol_2_pass_serves_its_window() {
+        let c = Clock::default();
+        let t0 = Instant::now();
+        let mut pacer = ZmqPacer::new(t0);
+        let idle0 = (ZmqPacing::Window, SimState::Stopped, 0);
+        // requests every 10 ms at idle fps 0: the pass that began with the first serves
+        // them until 50 ms after it began
+        for k in 0..5 {
+            let at = t0 + 10 * MS * k;
+            pacer.served(&c, idle0, (at, at + MS / 2), false);
+        }
+        // the last one raised the idle rate: a request 20 ms later (60 ms after the pass
+        // began) waits for the next pass, one period after the pass began
+        let late = t0 + 60 * MS;
+        let at = pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 8, late);
+        assert_eq!(at, t0 + 125 * MS);
+        // one 5 ms after it, within the window, is served at once
+        let soon = t0 + 45 * MS;
+        let at = pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 8, soon);
+        assert_eq!(at, soon);
+    }
+
+    #[test]
     fn a_pass_that_overruns_delays_the_next() {
         let c = Clock::default();
         let t0 = Instant::now();
         let mut pacer = ZmqPacer::new(t0);
         let at = pacer.serve_at(&c, ZmqPacing::OnePerPass, SimState::Stopped, 8, t0);
         assert_eq!(at, t0);
-        pacer.served(&c, SimState::Stopped, 8, (at, t0 + 300 * MS), false);
+        pacer.served(
+            &c,
+            (ZmqPacing::OnePerPass, SimState::Stopped, 8),
+            (at, t0 + 300 * MS),
+            false,
+        );
         let next = pacer.serve_at(
             &c,
             ZmqPacing::OnePerPass,

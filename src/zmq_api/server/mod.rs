@@ -342,8 +342,7 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         let _ = socket.send_multipart(frames, 0);
         pacer.served(
             &clock,
-            sim_state,
-            fps,
+            (pacing, sim_state, fps),
             (at, Instant::now()),
             queued.is_some(),
         );
