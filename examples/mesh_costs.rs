@@ -69,12 +69,19 @@ fn main() {
     let (mut create, mut reps, mut boxes, mut sizes) = ("sim.createMeshShape", 3, false, vec![]);
     let mut scale = 0.1;
     let mut layout = None;
+    let mut lockstep = 0;
     while let Some(a) = args.next() {
         match a.as_str() {
             "--create-shape" => create = "sim.createShape",
             "--reps" => reps = args.next().and_then(|n| n.parse().ok()).expect("--reps N"),
             "--boxes" => boxes = true,
             "--layout" => layout = args.next(),
+            "--lockstep" => {
+                lockstep = args
+                    .next()
+                    .and_then(|n| n.parse().ok())
+                    .expect("--lockstep N")
+            }
             "--scale" => scale = args.next().and_then(|n| n.parse().ok()).expect("--scale S"),
             n => sizes.push(n.parse::<usize>().expect("a size")),
         }
@@ -90,6 +97,18 @@ fn main() {
     let fps = c
         .call_int("sim.getInt32Param", vec![int(INTPARAM_IDLE_FPS.into())])
         .expect("idle fps");
+    if lockstep > 0 {
+        // lock-step calls at the simulator's idle rate, each timed
+        let times: Vec<String> = (0..lockstep)
+            .map(|_| {
+                let t = Instant::now();
+                c.call("sim.getSimulationState", vec![]).expect("call");
+                format!("{:.1}", ms(t.elapsed()))
+            })
+            .collect();
+        println!("lock-step calls at idle fps {fps}, ms: {}", times.join(" "));
+        return;
+    }
     let set_fps = |c: &mut Client, f: i32| {
         c.call(
             "sim.setInt32Param",

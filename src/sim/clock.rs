@@ -38,13 +38,6 @@ pub struct Clock {
     /// The same window while the simulation runs, per connected client (same lines: 2 ms ×
     /// clients; the emulator counts one client).
     pub running_window: Duration,
-    /// Protocol 1 (4.5.1): the add-on looks at its queue twice a pass, in
-    /// `sysCall_beforeMainScript` and again in `sysCall_nonSimulation`
-    /// (zmqRemoteApi@coppeliasim-v4.5.1-rev4 `simAddOnZMQ remote API server.lua:165-179`), so
-    /// a lock-step client's next request is served by the same pass when it arrives this soon
-    /// after the reply (`docs/measurements.md` "Two looks at the queue a pass": vrep-maze's
-    /// next batch, sent about 0.2 ms after the replies, made it in one of two runs).
-    pub second_look: Duration,
 }
 
 impl Default for Clock {
@@ -53,7 +46,6 @@ impl Default for Clock {
             step: Duration::from_millis(50),
             busy_window: Duration::from_millis(50),
             running_window: Duration::from_millis(2),
-            second_look: Duration::from_millis(1),
         }
     }
 }
@@ -107,10 +99,6 @@ pub struct ZmqPacer {
     origin: Instant,
     /// Start of the pass that served the latest request.
     served_pass: Option<Instant>,
-    /// When the latest request's work ended.
-    last_done: Option<Instant>,
-    /// The served pass has had its second look at the queue ([`Clock::second_look`]).
-    second_used: bool,
 }
 
 impl ZmqPacer {
@@ -119,8 +107,6 @@ impl ZmqPacer {
         ZmqPacer {
             origin,
             served_pass: None,
-            last_done: None,
-            second_used: false,
         }
     }
 
@@ -134,9 +120,7 @@ impl ZmqPacer {
     /// When a request that arrived at `arrived` is served. At idle fps 0 (no period): at
     /// once. Otherwise at the first pass that begins at or after `arrived` and after the pass
     /// that served the previous request; protocol 2 also serves it at once if it arrives
-    /// within the window of a pass that has served one already; protocol 1 at once if it
-    /// arrives within [`Clock::second_look`] of the latest reply of a pass that has not had
-    /// its second look yet.
+    /// within the window of a pass that has served one already.
     pub fn serve_at(
         &self,
         clock: &Clock,
@@ -152,15 +136,6 @@ impl ZmqPacer {
         if pacing == ZmqPacing::Window
             && self.served_pass == Some(start)
             && arrived < start + clock.window(state)
-        {
-            return arrived;
-        }
-        if pacing == ZmqPacing::OnePerPass
-            && self.served_pass == Some(start)
-            && !self.second_used
-            && self
-                .last_done
-                .is_some_and(|d| arrived >= d && arrived < d + clock.second_look)
         {
             return arrived;
         }
@@ -183,16 +158,13 @@ impl ZmqPacer {
     /// pass began with the first request after the previous pass's window closed: at idle fps
     /// 0 a pass serves every request arriving within its window (the 4.10 add-on's
     /// `handleQueue`, `ZMQ remote API server.lua:455-516` of the build: it polls until 50 ms
-    /// after it began, once it has served one). `queued`: it was served with the requests
-    /// queued before it, not by a look of its own.
+    /// after it began, once it has served one).
     pub fn served(
         &mut self,
         clock: &Clock,
         (pacing, state, idle_fps): (ZmqPacing, SimState, i32),
         (at, done): (Instant, Instant),
-        queued: bool,
     ) {
-        self.last_done = Some(done);
         let Some(p) = clock.period(state, idle_fps) else {
             let window = clock.window(state);
             let same_pass = pacing == ZmqPacing::Window
@@ -201,14 +173,9 @@ impl ZmqPacer {
                 self.origin = at;
                 self.served_pass = Some(at);
             }
-            self.second_used = false;
             return;
         };
         let start = self.pass_start(p, at);
-        if !queued {
-            // a look of its own: the pass's second if the pass served one already
-            self.second_used = self.served_pass == Some(start);
-        }
         if done >= start + p {
             self.origin = done;
             self.served_pass = Some(done.checked_sub(p).unwrap_or(done));
@@ -223,9 +190,6 @@ mod tests {
     use super::*;
 
     const MS: Duration = Duration::from_millis(1);
-
-    /// Protocol 1, stopped, idle fps 8.
-    const P1_STOPPED_8: (ZmqPacing, SimState, i32) = (ZmqPacing::OnePerPass, SimState::Stopped, 8);
 
     #[test]
     fn the_idle_rate_sets_the_period_while_stopped_or_paused() {
@@ -265,7 +229,7 @@ mod tests {
             let at = pacer.serve_at(&c, pacing, state, fps, t);
             assert!(at >= t);
             let done = at + MS / 2;
-            pacer.served(&c, (pacing, state, fps), (at, done), false);
+            pacer.served(&c, (pacing, state, fps), (at, done));
             replies.push(done);
             t = done + MS; // the client thinks 1 ms
         }
@@ -283,29 +247,6 @@ mod tests {
         // idle fps 0: no sleep, served at once
         let gaps = lock_step(ZmqPacing::OnePerPass, SimState::Stopped, 0, 4);
         assert!(gaps.iter().all(|g| *g == 3 * MS / 2), "{gaps:?}");
-    }
-
-    #[test]
-    fn protocol_1_serves_a_quick_next_request_at_its_second_look() {
-        let (c, t0) = (Clock::default(), Instant::now());
-        let mut pacer = ZmqPacer::new(t0);
-        let serve =
-            |p: &ZmqPacer, t| p.serve_at(&c, ZmqPacing::OnePerPass, SimState::Stopped, 8, t);
-        // the first look of the pass at 125 ms serves a request (1 ms of work)
-        let at = serve(&pacer, t0 + 3 * MS);
-        assert_eq!(at, t0 + 125 * MS);
-        pacer.served(&c, P1_STOPPED_8, (at, at + MS), false);
-        // the next one, 0.3 ms after the reply, is served by the second look
-        let next = at + MS + MS * 3 / 10;
-        assert_eq!(serve(&pacer, next), next);
-        pacer.served(&c, P1_STOPPED_8, (next, next + MS), false);
-        // a third, as quick, waits for the next pass: that pass has looked twice
-        let third = next + MS + MS * 3 / 10;
-        assert_eq!(serve(&pacer, third), t0 + 250 * MS);
-        // and a request 2 ms after a reply is too late for the second look
-        let mut fresh = ZmqPacer::new(t0);
-        fresh.served(&c, P1_STOPPED_8, (at, at + MS), false);
-        assert_eq!(serve(&fresh, at + 3 * MS), t0 + 250 * MS);
     }
 
     #[test]
@@ -361,12 +302,7 @@ mod tests {
             pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 0, at),
             at
         );
-        pacer.served(
-            &c,
-            (ZmqPacing::Window, SimState::Stopped, 0),
-            (at, at + MS),
-            false,
-        );
+        pacer.served(&c, (ZmqPacing::Window, SimState::Stopped, 0), (at, at + MS));
         // protocol 2: the next request, 2 ms later, is served by the same pass's window
         let next = at + 2 * MS;
         let served = |pacing| pacer.serve_at(&c, pacing, SimState::Stopped, 8, next);
@@ -385,7 +321,7 @@ mod tests {
         // them until 50 ms after it began
         for k in 0..5 {
             let at = t0 + 10 * MS * k;
-            pacer.served(&c, idle0, (at, at + MS / 2), false);
+            pacer.served(&c, idle0, (at, at + MS / 2));
         }
         // the last one raised the idle rate: a request 20 ms later (60 ms after the pass
         // began) waits for the next pass, one period after the pass began
@@ -409,7 +345,6 @@ mod tests {
             &c,
             (ZmqPacing::OnePerPass, SimState::Stopped, 8),
             (at, t0 + 300 * MS),
-            false,
         );
         let next = pacer.serve_at(
             &c,

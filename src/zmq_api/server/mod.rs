@@ -340,12 +340,7 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         let mut frames = incoming.envelope;
         frames.push(cbor::encode(&reply));
         let _ = socket.send_multipart(frames, 0);
-        pacer.served(
-            &clock,
-            (pacing, sim_state, fps),
-            (at, Instant::now()),
-            queued.is_some(),
-        );
+        pacer.served(&clock, (pacing, sim_state, fps), (at, Instant::now()));
         // the add-on polls again and serves a request already queued in the same pass,
         // until its time slot is spent (the modeled time of the calls it served, not the
         // emulator's own, which a debug build makes longer). At idle fps 0 every request has
