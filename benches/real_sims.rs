@@ -12,6 +12,7 @@
 //!     ... cargo bench --bench real_sims -- 4.10 inspect              # rows containing a word
 //!     ... cargo bench --bench real_sims -- --runs 3                  # median of 3 per row
 //!     ... cargo bench --bench real_sims -- --big                     # also the 300x300 rows
+//!     VREP_MAZE_BENCH_BIN=/tmp/x/vrep-maze ... # run that binary instead of cargo's
 
 #[path = "../tests/common/real_sim.rs"]
 mod real_sim;
@@ -25,7 +26,11 @@ use real_sim::{RealSim, real_sims_dir};
 use vrep_maze::coppelia::INTPARAM_IDLE_FPS;
 use vrep_maze::zmq_api::{Client, ClientOptions, cbor};
 
-const BIN: &str = env!("CARGO_BIN_EXE_vrep-maze");
+/// The `vrep-maze` binary run: `VREP_MAZE_BENCH_BIN` if set (a private copy, safe from
+/// other builds of a shared target folder), else the release binary cargo built.
+fn bin() -> String {
+    std::env::var("VREP_MAZE_BENCH_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_vrep-maze").into())
+}
 
 /// A simulator version and the API drawn through.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -267,7 +272,7 @@ struct Served {
 
 impl Served {
     fn start(version: &str) -> Served {
-        let mut cmd = Command::new(BIN);
+        let mut cmd = Command::new(bin());
         cmd.args(["serve", "--timing", "realistic", "--listen", "127.0.0.1:0"]);
         let lines = if version == "4.5.1" {
             cmd.args([
@@ -315,7 +320,7 @@ impl Drop for Served {
 
 /// Runs `vrep-maze args` in `dir` against the ports; its wall time, or its error.
 fn run(dir: &Path, args: &[&str], on: On, legacy: Option<u16>, zmq: u16) -> Result<f64, String> {
-    let mut cmd = Command::new(BIN);
+    let mut cmd = Command::new(bin());
     cmd.current_dir(dir).args(args).arg("-q");
     let creates = args.contains(&"--create-missing");
     match (on, legacy) {
@@ -436,7 +441,7 @@ fn main() {
         if file.contains("300") && !big {
             continue;
         }
-        let ok = Command::new(BIN)
+        let ok = Command::new(bin())
             .current_dir(dir.path())
             .stdout(Stdio::null())
             .arg("generate")

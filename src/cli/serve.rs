@@ -71,8 +71,8 @@ pub struct ServeArgs {
     /// plugin sleeps 0.5 s before it binds the port again), 0 with instant].
     #[arg(long, value_name = "MS")]
     pub rebind_delay_ms: Option<u64>,
-    /// `realistic`: take the time a real CoppeliaSim 4.5.1 takes (modeled server work of each
-    /// call, the legacy port's re-creation and TIME_WAIT); `instant`: none of them (the main
+    /// `realistic`: take the time a real CoppeliaSim takes (4.5.1, or 4.10 with `--protocol
+    /// 2`: modeled server work of each call, the legacy port's re-creation and TIME_WAIT); `instant`: none of them (the main
     /// loop still passes at the idle rate).
     #[arg(long, value_enum, default_value = "realistic")]
     pub timing: TimingMode,
@@ -143,6 +143,9 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         args.idle_fps
     );
     let mut timing = match args.timing {
+        // protocol 2 is served as 4.10 (`../shared/spec/real-coppeliasim-4.10.md`), whose
+        // meshes cost more (`docs/measurements.md` "Mesh calls on the real builds")
+        TimingMode::Realistic if args.protocol == 2 => Timing::realistic_v4_10(),
         TimingMode::Realistic => Timing::realistic(),
         TimingMode::Instant => Timing::instant(),
     };

@@ -5,8 +5,8 @@
 //! CoppeliaSim executes remote API work once per main-loop pass. While the simulation is
 //! stopped (or paused) a pass lasts 1000 / `idle_fps` ms, at least 20 ms, at idle fps above 0
 //! (`sim_intparam_idle_fps`, default 8: a legacy blocking call takes 125 ms, "Pacing"); at
-//! idle fps 0 there is no sleep, so a request is served as soon as it arrives (9–10 ms legacy,
-//! 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
+//! idle fps 0 there is no sleep, so a request is served as soon as it arrives (2.1–2.4 ms
+//! legacy, `docs/measurements.md` "Legacy calls at idle fps 0"; 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
 //! simulation runs, it passes once per simulation step. The servers only wait on the answers
 //! of [`Clock`] and [`ZmqPacer`]; nothing else in them decides time.
 
@@ -150,17 +150,29 @@ impl ZmqPacer {
 
     /// A request was served at `at` and its work ended at `done`: remember the pass that
     /// served it; a pass that overran its period delays the next one (the grid restarts at
-    /// `done`).
+    /// `done`). At idle fps 0 each request has a pass of its own, beginning at `at`: if the
+    /// request raised the idle rate, the next pass follows one period after it, and over
+    /// protocol 2 a request arriving within the window is still served by it (measured on
+    /// 4.10.0: after `apply` restores idle fps 8 its last calls are answered in 0.1-0.3 ms,
+    /// `docs/measurements.md` "Pacing after the idle rate is restored"). Over protocol 2 that
+    /// pass began with the first request after the previous pass's window closed: at idle fps
+    /// 0 a pass serves every request arriving within its window (the 4.10 add-on's
+    /// `handleQueue`, `ZMQ remote API server.lua:455-516` of the build: it polls until 50 ms
+    /// after it began, once it has served one).
     pub fn served(
         &mut self,
         clock: &Clock,
-        state: SimState,
-        idle_fps: i32,
-        at: Instant,
-        done: Instant,
+        (pacing, state, idle_fps): (ZmqPacing, SimState, i32),
+        (at, done): (Instant, Instant),
     ) {
         let Some(p) = clock.period(state, idle_fps) else {
-            self.served_pass = None;
+            let window = clock.window(state);
+            let same_pass = pacing == ZmqPacing::Window
+                && self.served_pass.is_some_and(|s| at >= s && at < s + window);
+            if !same_pass {
+                self.origin = at;
+                self.served_pass = Some(at);
+            }
             return;
         };
         let start = self.pass_start(p, at);
@@ -217,7 +229,7 @@ mod tests {
             let at = pacer.serve_at(&c, pacing, state, fps, t);
             assert!(at >= t);
             let done = at + MS / 2;
-            pacer.served(&c, state, fps, at, done);
+            pacer.served(&c, (pacing, state, fps), (at, done));
             replies.push(done);
             t = done + MS; // the client thinks 1 ms
         }
@@ -280,13 +292,60 @@ mod tests {
     }
 
     #[test]
+    fn a_request_that_raises_the_idle_rate_keeps_its_pass_window() {
+        let c = Clock::default();
+        let t0 = Instant::now();
+        let mut pacer = ZmqPacer::new(t0);
+        // served at once at idle fps 0 (the request set idle fps 8)
+        let at = t0 + 1000 * MS + MS / 3;
+        assert_eq!(
+            pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 0, at),
+            at
+        );
+        pacer.served(&c, (ZmqPacing::Window, SimState::Stopped, 0), (at, at + MS));
+        // protocol 2: the next request, 2 ms later, is served by the same pass's window
+        let next = at + 2 * MS;
+        let served = |pacing| pacer.serve_at(&c, pacing, SimState::Stopped, 8, next);
+        assert_eq!(served(ZmqPacing::Window), next);
+        // protocol 1: it waits for the next pass, one period after that pass began
+        assert_eq!(served(ZmqPacing::OnePerPass), at + 125 * MS);
+    }
+
+    #[test]
+    fn at_idle_fps_0_a_protocol_2_pass_serves_its_window() {
+        let c = Clock::default();
+        let t0 = Instant::now();
+        let mut pacer = ZmqPacer::new(t0);
+        let idle0 = (ZmqPacing::Window, SimState::Stopped, 0);
+        // requests every 10 ms at idle fps 0: the pass that began with the first serves
+        // them until 50 ms after it began
+        for k in 0..5 {
+            let at = t0 + 10 * MS * k;
+            pacer.served(&c, idle0, (at, at + MS / 2));
+        }
+        // the last one raised the idle rate: a request 20 ms later (60 ms after the pass
+        // began) waits for the next pass, one period after the pass began
+        let late = t0 + 60 * MS;
+        let at = pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 8, late);
+        assert_eq!(at, t0 + 125 * MS);
+        // one 5 ms after it, within the window, is served at once
+        let soon = t0 + 45 * MS;
+        let at = pacer.serve_at(&c, ZmqPacing::Window, SimState::Stopped, 8, soon);
+        assert_eq!(at, soon);
+    }
+
+    #[test]
     fn a_pass_that_overruns_delays_the_next() {
         let c = Clock::default();
         let t0 = Instant::now();
         let mut pacer = ZmqPacer::new(t0);
         let at = pacer.serve_at(&c, ZmqPacing::OnePerPass, SimState::Stopped, 8, t0);
         assert_eq!(at, t0);
-        pacer.served(&c, SimState::Stopped, 8, at, t0 + 300 * MS);
+        pacer.served(
+            &c,
+            (ZmqPacing::OnePerPass, SimState::Stopped, 8),
+            (at, t0 + 300 * MS),
+        );
         let next = pacer.serve_at(
             &c,
             ZmqPacing::OnePerPass,

@@ -52,6 +52,15 @@ impl Timing {
         }
     }
 
+    /// What a real CoppeliaSim 4.10 takes: [`Timing::realistic`] with its mesh costs
+    /// ([`CostModel::v4_10`]). It has no legacy API, so the reconnect penalty never applies.
+    pub fn realistic_v4_10() -> Timing {
+        Timing {
+            costs: Some(CostModel::v4_10()),
+            ..Timing::realistic()
+        }
+    }
+
     /// The modeled cost, or zero when instant.
     pub fn cost(&self, f: impl FnOnce(&CostModel) -> Duration) -> Duration {
         self.costs.as_ref().map_or(Duration::ZERO, f)

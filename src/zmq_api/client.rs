@@ -426,6 +426,13 @@ impl Client {
                     });
                 }
             };
+            if std::env::var_os("VREP_MAZE_TRACE").is_some() {
+                eprintln!(
+                    "zmq: {func} answered {:.1} ms after the send ({} bytes)",
+                    (Instant::now() + wait - deadline).as_secs_f64() * 1000.0,
+                    bytes.len()
+                );
+            }
             match cbor::decode(&bytes) {
                 Ok(value) => replies.push(value),
                 Err(CborError(detail)) => {

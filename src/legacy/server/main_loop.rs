@@ -10,8 +10,8 @@
 //! With realistic [`Timing`](crate::sim::Timing), a pass also takes the modeled server work of
 //! the commands it executed ([`super::execute::execute_with_ops`] priced by `crate::coppelia::cost`), at least
 //! [`CostModel::legacy_pass_floor`](crate::sim::CostModel::legacy_pass_floor) at idle fps 0
-//! (`../shared/spec/real-coppeliasim-4.5.1.md`, "Pacing": a legacy blocking call at idle fps 0
-//! takes 9–10 ms): its results are held back until then, replies meanwhile carry none (message
+//! (2 ms: `docs/measurements.md` "Legacy calls at idle fps 0"; the spec's "Pacing" gives 9–10
+//! ms, timed with other clients): its results are held back until then, replies meanwhile carry none (message
 //! ID -1, as while no pass happened), and the next pass waits for it. A big pass checks the
 //! stop flag between commands, so the server stops promptly even in the middle of one. Every
 //! pass that executed commands is also appended to the simulator's ledger when it keeps one
@@ -495,7 +495,7 @@ mod tests {
             &real,
             &AtomicBool::new(false),
         );
-        // at idle fps 0 a pass lasts at least the floor (spec "Pacing": 9–10 ms)
+        // at idle fps 0 a pass lasts at least the floor (docs/measurements.md: 2 ms)
         let pasted = m.ops(&[
             Op::LegacyCommand,
             Op::Paste {

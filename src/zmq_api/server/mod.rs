@@ -340,12 +340,17 @@ fn serve(socket: &zmq::Socket, state: &mut State, stop: &AtomicBool, requests: &
         let mut frames = incoming.envelope;
         frames.push(cbor::encode(&reply));
         let _ = socket.send_multipart(frames, 0);
-        pacer.served(&clock, sim_state, fps, at, Instant::now());
+        pacer.served(&clock, (pacing, sim_state, fps), (at, Instant::now()));
         // the add-on polls again and serves a request already queued in the same pass,
         // until its time slot is spent (the modeled time of the calls it served, not the
-        // emulator's own, which a debug build makes longer)
+        // emulator's own, which a debug build makes longer). At idle fps 0 every request has
+        // a pass of its own: a request queued behind one that raised the idle rate waits for
+        // the next pass (4.5.1: `apply`'s last call, sent with the one restoring idle fps 8,
+        // was answered 125.8 ms later; `docs/measurements.md` "Pacing after the idle rate is
+        // restored")
         let spent = spent + work;
-        if backlog.front().is_some_and(|r| r.queued) && spent < ZMQ_TIME_SLOT {
+        let paced = clock.period(sim_state, fps).is_some();
+        if paced && backlog.front().is_some_and(|r| r.queued) && spent < ZMQ_TIME_SLOT {
             queue_pass = Some((pass, spent));
         }
     }
@@ -431,19 +436,28 @@ fn tree_ops(outcome: &Outcome) -> Vec<Op> {
 }
 
 /// The work of mesh shapes beyond a call's own cost (`crate::coppelia::shape_cost`), from
-/// the scene after the call: a created mesh by its triangles, a merge by the triangles of
-/// the shape it made.
+/// the scene after the call: a created mesh by its triangles and the vertices given, a mesh
+/// read back by its triangles and vertices, a merge by the triangles of the shape it made.
 fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> Option<Op> {
     let Outcome::Ret(values) = outcome else {
         return None;
     };
     match func {
-        "sim.createMeshShape" | "sim.createShape" => match args.get(3) {
-            Some(Value::Array(indices)) => Some(Op::CreateMesh {
+        "sim.createMeshShape" | "sim.createShape" => match (args.get(2), args.get(3)) {
+            (Some(Value::Array(vertices)), Some(Value::Array(indices))) => Some(Op::CreateMesh {
                 triangles: indices.len() / 3,
+                vertices: vertices.len() / 3,
             }),
             _ => None,
         },
+        "sim.getShapeMesh" => {
+            let h = args.first().and_then(cbor::int32)?;
+            let mesh = sim.scene.get(h).ok()?.shape_mesh()?;
+            Some(Op::ReadMesh {
+                triangles: mesh.triangles(),
+                vertices: mesh.vertices.len() / 3,
+            })
+        }
         "sim.groupShapes" => {
             let h = values.first().and_then(cbor::int32)?;
             let triangles = sim.scene.get(h).ok()?.shape_mesh()?.triangles();
