@@ -79,6 +79,26 @@ def imported_goldens():
             if json.loads(path.read_text())["generator"]["algorithm"] == "import"]
 
 
+def big_course_scene(folder: Path) -> str:
+    """The course scene with a 500 m `Floor` as a `serve --scene` file in `folder`, for mazes
+    larger than the course's 10 m floor (which `apply` refuses to draw beyond)."""
+    objects = {
+        "10": ("Floor", "shape", [0.0, 0.0, 0.0], [500.0, 500.0, 0.0], [128, 128, 128]),
+        "11": ("Maze", "dummy", [0.0, 0.0, 0.0], [0.01, 0.01, 0.01], [255, 255, 0]),
+        "12": ("Line", "shape", [0.0, 0.0, 0.001], [0.6, 0.1, 0.0], [0, 255, 0]),
+        "13": ("Start", "shape", [-4.0, -4.0, 0.002], [1.0, 1.0, 0.0], [0, 0, 255]),
+        "14": ("End", "shape", [4.0, 4.0, 0.002], [1.0, 1.0, 0.0], [255, 0, 0]),
+    }
+    scene = {"naming": "plain", "next_handle": 15, "objects": {
+        key: {"alias": name, "name": name, "handle": int(key), "type": kind, "parent": None,
+              "position": position, "orientation": [0.0, 0.0, 0.0], "size": size,
+              "colour": colour}
+        for key, (name, kind, position, size, colour) in objects.items()}}
+    path = folder / "big-course.json"
+    path.write_text(json.dumps({"scene": scene}))
+    return str(path)
+
+
 class Serve:
     """A `vrep-maze serve --api both` process (one scene behind both APIs), instant timing."""
 

@@ -9,7 +9,7 @@ import time
 import pytest
 
 import vrep_maze
-from conftest import Serve
+from conftest import Serve, big_course_scene
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="sends SIGINT")
 
@@ -40,8 +40,8 @@ def test_ctrl_c_during_a_long_generation_raises_keyboard_interrupt_at_once():
 
 # sizes that take several seconds on the emulated real CoppeliaSim's timing
 @pytest.mark.parametrize("api, size", [("legacy", 40), ("zmq", 30)])
-def test_ctrl_c_during_apply_stops_cleanly_and_the_same_call_finishes_the_maze(api, size):
-    server = Serve("--timing", "realistic")
+def test_ctrl_c_during_apply_stops_cleanly_and_the_same_call_finishes_the_maze(api, size, tmp_path):
+    server = Serve("--timing", "realistic", "--scene", big_course_scene(tmp_path))
     try:
         process = start(f"""
             import sys, vrep_maze
