@@ -90,6 +90,19 @@ impl ConnectArgs {
         Ok(self.connect_until(None)?.backend)
     }
 
+    /// Each object-name option and the name it was given.
+    fn named(&self) -> [(&'static str, &String); 7] {
+        [
+            ("--floor", &self.floor),
+            ("--parent", &self.parent),
+            ("--line", &self.line),
+            ("--wall", &self.wall),
+            ("--post", &self.post),
+            ("--start", &self.start),
+            ("--end", &self.end),
+        ]
+    }
+
     /// [`ConnectArgs::connect`], keeping the description of what answered (for `--json`),
     /// ending the connection wait at once when `stop` is set (Ctrl-C) with
     /// [`super::interrupt::Interrupted`].
@@ -98,15 +111,7 @@ impl ConnectArgs {
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
         self.check_host()?;
-        for (option, name) in [
-            ("--floor", &self.floor),
-            ("--parent", &self.parent),
-            ("--line", &self.line),
-            ("--wall", &self.wall),
-            ("--post", &self.post),
-            ("--start", &self.start),
-            ("--end", &self.end),
-        ] {
+        for (option, name) in self.named() {
             ensure_usage!(
                 !name.trim().is_empty(),
                 "{option} needs the name of an object in the scene, not an empty one"
@@ -165,17 +170,7 @@ impl ConnectArgs {
             add("--port", port.to_string());
         }
         let defaults = ObjectNames::default();
-        for ((option, name), default) in [
-            ("--floor", &self.floor),
-            ("--parent", &self.parent),
-            ("--line", &self.line),
-            ("--wall", &self.wall),
-            ("--post", &self.post),
-            ("--start", &self.start),
-            ("--end", &self.end),
-        ]
-        .into_iter()
-        .zip([
+        for ((option, name), default) in self.named().into_iter().zip([
             &defaults.floor,
             &defaults.parent,
             &defaults.line,
