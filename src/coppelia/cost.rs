@@ -113,6 +113,12 @@ pub enum Op {
         /// Vertices of the mesh.
         vertices: usize,
     },
+    /// Meshes of `triangles` triangles in all read and packed in one `sim.executeLuaCode`
+    /// ([`super::lua`], [`super::shape_cost`]).
+    ReadMeshesPacked {
+        /// Triangles of the meshes.
+        triangles: usize,
+    },
     /// `sim.groupShapes` merging shapes of `triangles` triangles in all
     /// ([`super::shape_cost`]).
     MergeShapes {
@@ -258,6 +264,7 @@ impl CostModel {
                 triangles,
                 vertices,
             } => self.mesh.read(triangles, vertices),
+            Op::ReadMeshesPacked { triangles } => self.mesh.packed_read(triangles),
             Op::MergeShapes { triangles } => super::shape_cost::merge_shapes(triangles),
             Op::LoadModel { triangles } => super::model_cost::model_load(triangles),
         }

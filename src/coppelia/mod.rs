@@ -8,6 +8,7 @@
 
 pub mod cost;
 pub mod frame;
+pub mod lua;
 pub mod model_cost;
 pub mod shape_cost;
 pub mod xml;

@@ -30,6 +30,9 @@ pub struct MeshCosts {
     pub read_per_triangle: Duration,
     /// `sim.getShapeMesh`, per vertex returned.
     pub read_per_vertex: Duration,
+    /// Meshes read inside the simulator and packed as binary strings, in one
+    /// `sim.executeLuaCode` ([`crate::coppelia::lua`]), per triangle.
+    pub packed_read_per_triangle: Duration,
 }
 
 impl MeshCosts {
@@ -43,6 +46,9 @@ impl MeshCosts {
         create_per_vertex: Duration::from_nanos(7_200),
         read_per_triangle: Duration::from_nanos(28_500),
         read_per_vertex: Duration::from_nanos(9_200),
+        // the 47 meshes of the 50x50 walls in 33-38 ms at idle fps 0 (`docs/measurements.md`,
+        // "Meshes read back in one request")
+        packed_read_per_triangle: Duration::from_nanos(740),
     };
 
     /// CoppeliaSim 4.10.0, `sim.createShape`, the same meshes on a freshly started simulator
@@ -54,6 +60,8 @@ impl MeshCosts {
         create_per_vertex: Duration::from_nanos(9_300),
         read_per_triangle: Duration::from_nanos(57_800),
         read_per_vertex: Duration::from_nanos(2_000),
+        // the same 47 meshes in 35-46 ms (same section)
+        packed_read_per_triangle: Duration::from_nanos(920),
     };
 
     /// Server time of creating a mesh of `triangles` triangles and `vertices` vertices.
@@ -65,6 +73,12 @@ impl MeshCosts {
     /// vertices.
     pub fn read(&self, triangles: usize, vertices: usize) -> Duration {
         per(self.read_per_triangle, triangles) + per(self.read_per_vertex, vertices)
+    }
+
+    /// Server time of reading meshes of `triangles` triangles in all in one
+    /// `sim.executeLuaCode`.
+    pub fn packed_read(&self, triangles: usize) -> Duration {
+        per(self.packed_read_per_triangle, triangles)
     }
 }
 

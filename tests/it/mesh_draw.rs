@@ -22,6 +22,7 @@ backend_tests!(
     verify_finds_a_changed_mesh_and_a_stray_copy,
     ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored,
     the_users_objects_under_the_maze_outlive_a_mesh_maze,
+    zeromq_reads_every_mesh_back_in_one_request,
 );
 
 /// The user's objects under `Maze` (a dummy, a cuboid, a 1 m plane, a dummy and a 1 m plane
@@ -312,6 +313,40 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
     let r = apply_mesh(&mut b, &m).unwrap();
     assert_eq!(r.removed, 1, "{r}");
     assert_eq!(s.line_count(), 1);
+    b.close().unwrap();
+    s.shutdown();
+}
+
+/// Over ZeroMQ, the triangles of all the meshes come back in one request (one
+/// `sim.executeLuaCode`, `vrep_maze::coppelia::lua`), the same as one `sim.getShapeMesh`
+/// each; the legacy API reads boxes, one mesh at a time.
+fn zeromq_reads_every_mesh_back_in_one_request(kind: Kind) {
+    let s = kind.serve(crate::support::layouts::big_course(), 0);
+    let mut b = s.connect();
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Dfs, 30, 30, 3)).unwrap();
+    assert!(m.meshes.len() >= 2, "{} meshes", m.meshes.len());
+    apply_mesh(&mut b, &m).unwrap();
+    let handles: Vec<i32> = s.with_sim(|sim| {
+        sim.scene
+            .objects()
+            .filter(|o| parse_mesh_name(&o.alias).is_some())
+            .map(|o| o.handle)
+            .collect()
+    });
+    assert_eq!(handles.len(), m.meshes.len());
+    let before = b.round_trips();
+    let together = b.meshes().unwrap().read_shapes(&handles).unwrap();
+    let requests = b.round_trips() - before;
+    let one_by_one: Vec<_> = handles
+        .iter()
+        .map(|&h| b.meshes().unwrap().read_shape(h).unwrap())
+        .collect();
+    assert_eq!(together, one_by_one);
+    if kind == Kind::Legacy {
+        assert!(requests >= handles.len(), "{requests} requests");
+    } else {
+        assert_eq!(requests, 1, "{kind:?}");
+    }
     b.close().unwrap();
     s.shutdown();
 }

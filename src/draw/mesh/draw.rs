@@ -5,7 +5,9 @@
 use std::collections::{HashMap, HashSet};
 
 use super::compare::{bounds, mesh_differences};
-use super::{FoundMeshes, HOLDER, Look, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh};
+use super::{
+    FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
+};
 use crate::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use crate::draw::apply::{
     ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, has_line_copies, keep_home,
@@ -315,12 +317,20 @@ fn apply_claimed(
     // and were found under the holder); the colours, poses and the markers' poses are the
     // ones just set, acknowledged; `verify` reads everything
     let mut problems = Vec::new();
-    for &i in &missing {
-        let (mesh, Some(handle)) = (&maze.meshes[i], have[i]) else {
-            problems.push(format!("mesh `{}` was not created", maze.meshes[i].name()));
-            continue;
-        };
-        let back = port(scene)?.read_shape(handle)?;
+    let created: Vec<(usize, i32)> = missing
+        .iter()
+        .filter_map(|&i| {
+            let handle = have[i];
+            if handle.is_none() {
+                problems.push(format!("mesh `{}` was not created", maze.meshes[i].name()));
+            }
+            Some(i).zip(handle)
+        })
+        .collect();
+    let handles: Vec<i32> = created.iter().map(|&(_, h)| h).collect();
+    let backs = port(scene)?.read_shapes(&handles)?;
+    for (&(i, _), back) in created.iter().zip(backs) {
+        let mesh = &maze.meshes[i];
         if let (Some(v), Some(t)) = (&back.vertices, &back.indices)
             && let Some(d) = mesh_differences(mesh, v, t)
         {
@@ -528,12 +538,15 @@ fn mesh_problems(
         z: 0.0,
         yaw: 0.0,
     };
-    for mesh in &maze.meshes {
+    let present: Vec<(&MazeMesh, i32)> = maze
+        .meshes
+        .iter()
+        .filter_map(|mesh| Some(mesh).zip(by_name.get(mesh.name().as_str()).copied()))
+        .collect();
+    let handles: Vec<i32> = present.iter().map(|&(_, h)| h).collect();
+    let backs = port(scene)?.read_all(&handles)?;
+    for (&(mesh, handle), back) in present.iter().zip(backs) {
         let name = mesh.name();
-        let Some(&handle) = by_name.get(name.as_str()) else {
-            continue;
-        };
-        let back = port(scene)?.read(handle)?;
         let info = ObjectInfo {
             handle,
             name: name.clone(),

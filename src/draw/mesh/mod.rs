@@ -178,6 +178,16 @@ pub trait MeshDrawing {
     fn read_shape(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
         self.read(handle)
     }
+    /// Reads the meshes `handles` back (as [`MeshDrawing::read`]), in order; a backend that
+    /// can reads their triangles in one request.
+    fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        handles.iter().map(|&h| self.read(h)).collect()
+    }
+    /// Reads back the triangles of the meshes `handles` (as [`MeshDrawing::read_shape`]), in
+    /// order; a backend that can reads them in one request.
+    fn read_shapes(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        handles.iter().map(|&h| self.read_shape(h)).collect()
+    }
 }
 
 #[cfg(test)]

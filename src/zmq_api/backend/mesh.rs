@@ -5,6 +5,7 @@
 use ciborium::Value;
 
 use super::{ZmqBackend, object_path};
+use crate::coppelia::lua;
 use crate::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
 };
@@ -12,6 +13,7 @@ use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
 };
 use crate::draw::{BackendError, ObjectNames};
+use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
 
 /// Shading angle of the meshes (CoppeliaSim's usual 20 degrees; flat faces show no edge).
@@ -27,7 +29,51 @@ const CREATE_SHAPE_SINCE: i32 = 40600;
 /// Positions within this of the origin, and angles within this of zero, are the identity.
 const IDENTITY: f64 = 1e-9;
 
+/// The meshes of a [`lua::read_meshes_code`] answer, `(true, {v1, i1, ...})`: `None` for a
+/// failure or an answer of another shape.
+fn packed_meshes(values: &[Value], count: usize) -> Option<Vec<MeshReadback>> {
+    let (Some(Value::Bool(true)), Some(Value::Array(packed))) = (values.first(), values.get(1))
+    else {
+        return None;
+    };
+    if packed.len() != 2 * count {
+        return None;
+    }
+    packed
+        .chunks_exact(2)
+        .map(|pair| match pair {
+            [Value::Bytes(v), Value::Bytes(i)] => Some(MeshReadback {
+                vertices: Some(lua::unpack_floats(v)?),
+                indices: Some(lua::unpack_int32s(i)?),
+                ..Default::default()
+            }),
+            _ => None,
+        })
+        .collect()
+}
+
 impl ZmqBackend {
+    /// `shape` with the colour and world pose of the mesh `handle`.
+    fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
+        let colour = self
+            .call(
+                "sim.getShapeColor",
+                vec![
+                    int(handle.into()),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                ],
+            )?
+            .get(1)
+            .and_then(cbor::numbers::<3>);
+        let pose = self.world_pose(handle)?;
+        Ok(MeshReadback {
+            colour,
+            pose,
+            ..shape
+        })
+    }
+
     /// Whether the floor's world pose, as last read, is the world frame: a new mesh (at the
     /// world origin) is then on the floor already and needs no pose call.
     fn floor_is_world(&self, floor: i32) -> bool {
@@ -184,23 +230,35 @@ impl MeshDrawing for ZmqBackend {
 
     fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
         let shape = self.read_shape(handle)?;
-        let colour = self
-            .call(
-                "sim.getShapeColor",
-                vec![
-                    int(handle.into()),
-                    Value::Text(String::new()),
-                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                ],
-            )?
-            .get(1)
-            .and_then(cbor::numbers::<3>);
-        let pose = self.world_pose(handle)?;
-        Ok(MeshReadback {
-            colour,
-            pose,
-            ..shape
-        })
+        self.dressed(handle, shape)
+    }
+
+    fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        let shapes = self.read_shapes(handles)?;
+        handles
+            .iter()
+            .zip(shapes)
+            .map(|(&h, shape)| self.dressed(h, shape))
+            .collect()
+    }
+
+    /// Every mesh's triangles in one `sim.executeLuaCode` ([`lua::read_meshes_code`]); where
+    /// that fails (a simulator without the function, a handle that is no shape), one
+    /// `sim.getShapeMesh` each, which names the mesh at fault.
+    fn read_shapes(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        if handles.len() > 1 {
+            let code = Value::Text(lua::read_meshes_code(handles));
+            match self.client.call("sim.executeLuaCode", vec![code]) {
+                Ok(values) => {
+                    if let Some(shapes) = packed_meshes(&values, handles.len()) {
+                        return Ok(shapes);
+                    }
+                }
+                Err(ZmqError::Remote { .. }) => {}
+                Err(e) => return Err(e.into()),
+            }
+        }
+        handles.iter().map(|&h| self.read_shape(h)).collect()
     }
 
     /// `sim.getShapeMesh` alone; the pose is left at the origin.

@@ -458,6 +458,14 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
                 vertices: mesh.vertices.len() / 3,
             })
         }
+        "sim.executeLuaCode" => {
+            let code = args.first().and_then(cbor::text)?;
+            let triangles = crate::coppelia::lua::parse_read_meshes(code)?
+                .into_iter()
+                .filter_map(|h| Some(sim.scene.get(h).ok()?.shape_mesh()?.triangles()))
+                .sum();
+            Some(Op::ReadMeshesPacked { triangles })
+        }
         "sim.groupShapes" => {
             let h = values.first().and_then(cbor::int32)?;
             let triangles = sim.scene.get(h).ok()?.shape_mesh()?.triangles();

@@ -6,7 +6,7 @@
 //! [`poses`] (positions, orientations, poses), [`state`] (simulation state, integer parameters
 //! and signals), [`authoring`] (creating, naming and dressing objects, saving the scene) and
 //! [`shapes`] (mesh shapes: creating, reading back, merging) and [`models`] (model bases,
-//! saving and loading XML models).
+//! saving and loading XML models) and [`lua`] (the one Lua program our client sends).
 //! Argument orders of both CoppeliaSim generations are accepted where they differ
 //! (`sim.setObjectPosition(h, rel, pos)` up to 4.5, `(h, pos, rel)` from 4.6). Objects'
 //! special properties and shape parameters live in [`Extras`], beside the protocol-neutral scene.
@@ -14,6 +14,7 @@
 mod args;
 mod authoring;
 mod constants;
+mod lua;
 mod models;
 mod objects;
 mod poses;
@@ -159,6 +160,7 @@ const REGISTRY: &[(&str, Handler)] = &[
     ("sim.getModelProperty", models::get_model_property),
     ("sim.saveModel", models::save_model),
     ("sim.loadModel", models::load_model),
+    ("sim.executeLuaCode", lua::execute_lua_code),
 ];
 
 /// Calls one function. `func` is the full dotted name (`sim.getObject`); a name the registry
