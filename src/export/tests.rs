@@ -1,12 +1,11 @@
 //! Exports of the golden layouts: structure against the files a real CoppeliaSim 4.5.1
-//! wrote, and loaded back by the emulator.
+//! wrote (`tests/it/export_model_load.rs` loads them into the emulator).
 
 use std::path::Path;
 
 use super::*;
 use crate::coppelia::xml::tests::structure;
-use crate::coppelia::xml::{Body, FileKind, read};
-use crate::sim::{Scene, model};
+use crate::coppelia::xml::{Body, read};
 
 const COURSE: &str = include_str!("../../tests/coppeliasim-xml/course-4.5.1.simscene.xml");
 const TWO_RECTS: &str =
@@ -115,40 +114,6 @@ fn every_object_has_the_structure_coppeliasim_writes_for_its_type() {
             assert_eq!(s, want, "{name} {format:?}: a {kind}");
         }
         assert!(objects.iter().any(|(k, _)| k == "shape"));
-    }
-}
-
-#[test]
-fn the_emulator_loads_the_exported_model_with_every_triangle() {
-    let layout = golden("dfs-9x9-seed42.json");
-    let maze = MeshMaze::try_from(&layout).unwrap();
-    let text = exported(Format::CoppeliaModel, &layout);
-    assert_eq!(
-        text,
-        exported(Format::CoppeliaModel, &layout),
-        "deterministic"
-    );
-    let doc = read(&text).unwrap();
-    assert_eq!(doc.kind, FileKind::Model);
-    let mut scene = Scene::course();
-    let loaded = model::load(&mut scene, &doc).unwrap();
-    let base = scene.get(loaded.base).unwrap();
-    assert_eq!((base.alias.as_str(), base.name.as_str()), ("Maze", "Maze0"));
-    let triangles: usize = maze.meshes.iter().map(|m| m.triangles()).sum();
-    assert_eq!(loaded.triangles, triangles);
-    assert_eq!(loaded.handles.len(), 2 + maze.meshes.len());
-    for (m, h) in maze.meshes.iter().zip(&loaded.handles[2..]) {
-        let o = scene.get(*h).unwrap();
-        assert_eq!(o.alias, m.name());
-        let mesh = o.mesh.as_ref().unwrap();
-        assert_eq!(mesh.indices, m.indices);
-        let off = mesh
-            .vertices
-            .iter()
-            .zip(&m.vertices)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
-        assert!(off < 1e-6, "vertices back within float precision: {off}");
     }
 }
 
