@@ -23,7 +23,6 @@ mod golden;
 mod hints;
 mod inspect;
 mod interrupt;
-mod layering;
 mod legacy_client_server;
 mod legacy_draw;
 mod mesh_draw;

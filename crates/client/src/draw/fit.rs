@@ -1,0 +1,501 @@
+//! Whether the scene's templates, markers and floor have the sizes a drawing asks of them:
+//! a template's full extents (a line lies flat on the floor, a wall and a post are boxes),
+//! the markers flat and no wider than a cell, and the floor at least as large as the
+//! layout's. Pure: a backend reads the sizes, [`check_sizes`] judges them.
+
+use super::plan::{SIZE_TOLERANCE, same_size};
+use super::{DrawError, ObjectNames, Style, TemplateUse};
+use vrep_maze_core::layout::Geometry;
+use vrep_maze_core::layout::limits::{self, Naming};
+
+/// The bounding-box extents (x, y, z, metres) a backend read of each object a drawing
+/// checks; `None`: not read (the simulator gave none).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Measured {
+    /// The style's template: `Line`, or `Wall` in a wall maze.
+    pub template: Option<[f64; 3]>,
+    /// The post template (a wall maze with posts).
+    pub post: Option<[f64; 3]>,
+    /// The start marker.
+    pub start: Option<[f64; 3]>,
+    /// The end marker.
+    pub end: Option<[f64; 3]>,
+    /// The floor.
+    pub floor: Option<[f64; 3]>,
+}
+
+/// The scene's floor is smaller than the layout's along x or y.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FloorShort {
+    /// The scene's floor (x, y), metres.
+    pub have: [f64; 2],
+    /// The layout's floor (x, y), metres.
+    pub need: [f64; 2],
+}
+
+impl FloorShort {
+    /// The floor after `apply --resize-floor`: the layout's size along each axis where the
+    /// scene's is smaller, the scene's elsewhere (a floor is never made smaller).
+    pub fn resized(&self) -> [f64; 2] {
+        [0, 1].map(|k| self.have[k].max(self.need[k]))
+    }
+
+    /// The scale factors (x, y, z) from the scene's floor to [`FloorShort::resized`]; z
+    /// stays. `None` for a floor without extent along x or y, which no factor makes larger.
+    pub fn factors(&self) -> Option<[f64; 3]> {
+        let to = self.resized();
+        (self.have.iter().all(|h| *h > SIZE_TOLERANCE))
+            .then(|| [to[0] / self.have[0], to[1] / self.have[1], 1.0])
+    }
+
+    /// "the scene's `Floor` is 10 x 10 m but the layout's floor is 45 x 45 m".
+    pub fn describe(&self, floor: &str) -> String {
+        format!(
+            "the scene's `{floor}` is {} m but the layout's floor is {} m",
+            extents(&self.have),
+            extents(&self.need)
+        )
+    }
+}
+
+/// What [`check_sizes`] found: refusals (the drawing would not be the layout), warnings,
+/// and a floor smaller than the layout's (refused unless `apply --resize-floor` grows it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SizeCheck {
+    /// One line per template or marker that contradicts the layout, with what to change.
+    pub refusals: Vec<String>,
+    /// Markers larger than a cell, sizes that could not be read.
+    pub warnings: Vec<String>,
+    /// The scene's floor, if smaller than the layout's.
+    pub floor: Option<FloorShort>,
+}
+
+impl SizeCheck {
+    /// The refusal of a drawing or a comparison (`apply`, `verify`, `inspect`): every line
+    /// of [`SizeCheck::refusals`], and the floor's when templates are refused too (alone,
+    /// a short floor is [`DrawError::Floor`], which `apply --resize-floor` answers).
+    pub fn refused(&self, names: &ObjectNames) -> Option<DrawError> {
+        if self.refusals.is_empty() {
+            return None;
+        }
+        self.differences(names)
+    }
+
+    /// What a comparison with the layout (`verify`, `inspect --layout`) reports: every
+    /// refusal and a floor smaller than the layout's, `None` when there is neither.
+    pub fn differences(&self, names: &ObjectNames) -> Option<DrawError> {
+        let mut lines = self.refusals.clone();
+        lines.extend(self.floor.map(|f| f.describe(&names.floor)));
+        (!lines.is_empty()).then_some(DrawError::Sizes(lines))
+    }
+}
+
+/// A length for messages: metres with at most 4 decimals (`0.6`, `0.05`).
+pub fn metres(v: f64) -> String {
+    format!("{}", (v * 1e4).round() / 1e4)
+}
+
+/// `a x b [x c]` metres.
+pub(crate) fn extents(v: &[f64]) -> String {
+    v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
+}
+
+/// The most a flat object lying at height `z` (its centre) may measure along z: twice `z`,
+/// so it does not reach below the floor, and never less than [`SIZE_TOLERANCE`].
+fn flat_limit(z: f64) -> f64 {
+    (2.0 * z).max(0.0) + SIZE_TOLERANCE
+}
+
+/// "the scene's `Line` is 0.3 m high but ...": a refusal for an object that must lie flat
+/// at height `z` (a line, a marker) and measures `have`, or `None` if it is flat enough.
+fn too_high(name: &str, what: &str, have: [f64; 3], z: f64) -> Option<String> {
+    // NaN is never flat
+    (have[2].is_nan() || have[2] > flat_limit(z)).then(|| {
+        format!(
+            "the scene's `{name}` is {} m high but {what} lies flat on the floor (at z = {} m it may be at most {} m thick): make it a plane, or resize `{name}` to {} x 0 m",
+            metres(have[2]),
+            metres(z),
+            metres(2.0 * z.max(0.0)),
+            extents(&have[..2])
+        )
+    })
+}
+
+/// What `generate` says of a line template of `have` (length x width) on the drawing's
+/// cells: `Ok` with the options if it would generate with them, else why not.
+fn line_options(drawing: &TemplateUse<'_>, have: [f64; 3]) -> Result<String, String> {
+    let sizes = drawing.sizes;
+    let geometry = Geometry {
+        cell_size: sizes.cell,
+        origin: [0.0, 0.0],
+        rotation: 0.0,
+        line_length: have[0],
+        line_width: have[1],
+        line_z: sizes.line_z,
+        marker_z: sizes.marker_z[0],
+    };
+    match limits::check_template(&geometry, Naming::Options).first() {
+        None => Ok(format!(
+            "--line-length {} --line-width {}",
+            metres(have[0]),
+            metres(have[1])
+        )),
+        Some(v) => Err(v.to_string()),
+    }
+}
+
+/// What `generate --style walls` says of a wall template of `wall` and, in a maze with
+/// posts, a post template of side `post`, on the drawing's cells: `Ok` with the options if
+/// it would generate with them, else why not.
+fn wall_options(
+    drawing: &TemplateUse<'_>,
+    wall: [f64; 3],
+    post: Option<f64>,
+) -> Result<String, String> {
+    let cell = drawing.sizes.cell;
+    let found = vrep_maze_core::layout::walls::check_template(
+        cell,
+        wall[0],
+        wall[1],
+        wall[2],
+        post,
+        Naming::Options,
+    );
+    match found.first() {
+        None => Ok(format!(
+            "--wall-length {} --wall-thickness {} --wall-height {}{}",
+            metres(wall[0]),
+            metres(wall[1]),
+            metres(wall[2]),
+            post.map(|p| format!(" --posts --post-size {}", metres(p)))
+                .unwrap_or_default()
+        )),
+        Some(v) => Err(v.to_string()),
+    }
+}
+
+/// What `generate --style walls --posts` says of a post template of `post` (x, y, z) with
+/// the layout's walls, as high as the post, on the drawing's cells (`scene_wall`: the
+/// scene's wall template, which must be as high): `Ok` with the options if it would
+/// generate with them, else why not.
+fn post_options(
+    drawing: &TemplateUse<'_>,
+    scene_wall: Option<[f64; 3]>,
+    post: [f64; 3],
+) -> Result<String, String> {
+    let sizes = drawing.sizes;
+    let Some(wall) = sizes.wall else {
+        return Err("the layout has no walls".into());
+    };
+    let height = scene_wall.map_or(wall[2], |w| w[2]);
+    if !same_size(height, post[2]) {
+        return Err(format!(
+            "a post is as high as the walls, and the wall template is {} m high",
+            metres(height)
+        ));
+    }
+    let side = post[0].max(post[1]);
+    let found = vrep_maze_core::layout::walls::check_template(
+        sizes.cell,
+        wall[0],
+        wall[1],
+        post[2],
+        Some(side),
+        Naming::Options,
+    );
+    match found.first() {
+        None => Ok(format!(
+            "--posts --post-size {} --wall-height {}",
+            metres(side),
+            metres(post[2])
+        )),
+        Some(v) => Err(v.to_string()),
+    }
+}
+
+/// "generate with OPTIONS, or resize ...", or where `generate` refuses those options
+/// (`options` is the reason), only the resize, with the reason.
+fn remedy(options: Result<String, String>, resize: String) -> String {
+    match options {
+        Ok(options) => {
+            format!("generate with {options} (and the layout's other options), or {resize}")
+        }
+        Err(why) => format!("{resize} (no layout is generated for it as it is: {why})"),
+    }
+}
+
+/// Compares the bounding boxes the scene gave (`m`) with the sizes `drawing` was
+/// generated for. A template drawn from ([`TemplateUse::template`] or
+/// [`TemplateUse::posts`]) must have the layout's extents within [`SIZE_TOLERANCE`]: a line
+/// template its length along x and width along y and lying flat (at most twice its height
+/// above the floor thick); a wall and a post template all three, except that a wall
+/// between posts may be as long as a cell side, its ends hidden in the posts. The markers
+/// lie flat as well. A refusal says what to change: the options to generate with (only
+/// those `generate` accepts) or the size to give the object. A marker wider than a cell is
+/// a warning (it hides the neighbouring cells), as is a size the simulator did not give. A
+/// floor smaller than the layout's along x or y is [`SizeCheck::floor`].
+pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured) -> SizeCheck {
+    let mut check = SizeCheck::default();
+    let sizes = drawing.sizes;
+    let differs = |scene: &[f64], layout: &[f64]| {
+        scene
+            .iter()
+            .zip(layout)
+            // NaN is never the same size
+            .any(|(s, l)| !same_size(*s, *l))
+    };
+    let unread = |name: &str, check: &mut SizeCheck| {
+        check.warnings.push(format!(
+            "the simulator did not give the size of `{name}`: not compared with the layout"
+        ));
+    };
+    let template_name = names.template(drawing.style);
+    // a line maze's template is its first line, a wall maze's is copied for every wall
+    if drawing.template {
+        match (m.template, drawing.style, sizes.wall) {
+            (None, ..) => unread(template_name, &mut check),
+            (Some(have), Style::Lines, _) => {
+                if differs(&have[..2], &sizes.line) {
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: {}",
+                        extents(&have[..2]),
+                        metres(sizes.line[0]),
+                        metres(sizes.line[1]),
+                        remedy(
+                            line_options(drawing, have),
+                            format!("resize `{template_name}` to {} m", extents(&sizes.line))
+                        )
+                    ));
+                }
+                check
+                    .refusals
+                    .extend(too_high(template_name, "a line", have, sizes.line_z));
+            }
+            (Some(have), Style::Walls, Some(wall)) => {
+                // between posts a wall may reach into them, up to their centres (a whole
+                // cell side): its ends are hidden inside the posts
+                let longest = if !drawing.posts {
+                    wall[0]
+                } else {
+                    sizes.cell.max(wall[0])
+                };
+                let length_ok =
+                    have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
+                if !length_ok || differs(&have[1..], &wall[1..]) {
+                    let post = sizes.post.filter(|_| drawing.posts).map(|p| p[0]);
+                    check.refusals.push(format!(
+                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): {}",
+                        extents(&have),
+                        extents(&wall),
+                        remedy(
+                            wall_options(drawing, have, post),
+                            format!("resize `{template_name}` to {} m", extents(&wall))
+                        )
+                    ));
+                }
+            }
+            (Some(_), Style::Walls, None) => {}
+        }
+    }
+    if let (Some(want), true) = (sizes.post, drawing.posts) {
+        match m.post {
+            None => unread(&names.post, &mut check),
+            Some(have) => {
+                if differs(&have, &want) {
+                    let options = post_options(drawing, m.template, have);
+                    check.refusals.push(format!(
+                        "the scene's `{}` is {} m but the layout's posts are {} m: {}",
+                        names.post,
+                        extents(&have),
+                        extents(&want),
+                        remedy(
+                            options,
+                            format!("resize `{}` to {} m", names.post, extents(&want))
+                        )
+                    ));
+                }
+            }
+        }
+    }
+    for ((name, b), z) in [(&names.start, m.start), (&names.end, m.end)]
+        .into_iter()
+        .zip(sizes.marker_z)
+    {
+        match b {
+            None => unread(name, &mut check),
+            Some(have) => {
+                check.refusals.extend(too_high(name, "a marker", have, z));
+                if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
+                    check.warnings.push(format!(
+                        "the scene's `{name}` is {} m but the cells are {} m: it covers the neighbouring cells; resize `{name}` to at most {} x {} m",
+                        extents(&have[..2]),
+                        metres(sizes.cell),
+                        metres(sizes.cell),
+                        metres(sizes.cell)
+                    ));
+                }
+            }
+        }
+    }
+    match m.floor {
+        None => unread(&names.floor, &mut check),
+        Some(have) => {
+            let have = [have[0], have[1]];
+            // NaN is never large enough
+            let short =
+                (0..2).any(|k| have[k].is_nan() || have[k] < sizes.floor[k] - SIZE_TOLERANCE);
+            if short {
+                check.floor = Some(FloorShort {
+                    have,
+                    need: sizes.floor,
+                });
+            }
+        }
+    }
+    check
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::draw::Drawing;
+
+    /// A size the simulator gave.
+    fn bbox(size: [f64; 3]) -> Option<[f64; 3]> {
+        Some(size)
+    }
+
+    fn course_drawing() -> Drawing {
+        let layout =
+            vrep_maze_core::layout::build_layout(&vrep_maze_core::layout::GenerateSpec::course(
+                vrep_maze_core::maze::Grid::new(3, 3).unwrap(),
+                vrep_maze_core::generate::Algorithm::Prim,
+                1,
+            ))
+            .unwrap();
+        Drawing::try_from(&layout).unwrap()
+    }
+
+    /// The course's markers and floor, and `template` as the template.
+    fn course(template: [f64; 3]) -> Measured {
+        Measured {
+            template: bbox(template),
+            post: None,
+            start: bbox([1.0, 1.0, 0.0]),
+            end: bbox([1.0, 1.0, 0.0]),
+            floor: bbox([10.0, 10.0, 0.0]),
+        }
+    }
+
+    #[test]
+    fn sizes_within_half_a_millimetre_fit_and_others_are_refused_with_the_fix() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        let check = |line: [f64; 3]| check_sizes(&d.template_use(), &names, &course(line));
+        assert_eq!(check([0.6, 0.1, 0.0]), SizeCheck::default());
+        // single precision and millimetre dialogs: within 0.5 mm is the same size
+        assert_eq!(
+            check([0.6 + 4.9e-4, 0.1 - 4.9e-4, 0.0]),
+            SizeCheck::default()
+        );
+        let refused = check([0.6 + 6e-4, 0.1, 0.0]);
+        assert_eq!(refused.refusals.len(), 1, "{refused:?}");
+        let refused = check([0.3, 0.05, 0.0]).refusals.join("");
+        assert!(
+            refused.contains("`Line` is 0.3 x 0.05 m")
+                && refused.contains("generate with --line-length 0.3 --line-width 0.05")
+                && refused.contains("resize `Line` to 0.6 x 0.1 m"),
+            "{refused}"
+        );
+        assert_eq!(
+            check([f64::NAN, 0.1, 0.0]).refusals.len(),
+            1,
+            "NaN never fits"
+        );
+        // a marker wider than a cell is a warning; a size not read is said
+        let wide = check_sizes(
+            &d.template_use(),
+            &names,
+            &Measured {
+                start: bbox([1.2, 1.0, 0.0]),
+                end: None,
+                ..course([0.6, 0.1, 0.0])
+            },
+        );
+        assert!(wide.refusals.is_empty());
+        assert_eq!(wide.warnings.len(), 2, "{wide:?}");
+        assert!(wide.warnings[0].contains("`Start` is 1.2 x 1 m but the cells are 1 m"));
+        assert!(wide.warnings[1].contains("did not give the size of `End`"));
+    }
+
+    #[test]
+    fn a_tall_line_or_marker_is_refused_and_a_flat_one_fits() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        // lines at z = 0.001 may be 2 mm thick (within half a millimetre)
+        let thin = check_sizes(&d.template_use(), &names, &course([0.6, 0.1, 0.0024]));
+        assert_eq!(thin, SizeCheck::default());
+        let tall = check_sizes(&d.template_use(), &names, &course([0.6, 0.1, 0.3]));
+        assert_eq!(tall.refusals.len(), 1, "{tall:?}");
+        assert!(
+            tall.refusals[0].starts_with("the scene's `Line` is 0.3 m high but a line lies flat")
+                && tall.refusals[0].contains("resize `Line` to 0.6 x 0.1 x 0 m"),
+            "{tall:?}"
+        );
+        let start = check_sizes(
+            &d.template_use(),
+            &names,
+            &Measured {
+                start: bbox([1.0, 1.0, 0.5]),
+                ..course([0.6, 0.1, 0.0])
+            },
+        );
+        assert_eq!(start.refusals.len(), 1, "{start:?}");
+        assert!(
+            start.refusals[0].contains("`Start` is 0.5 m high but a marker lies flat"),
+            "{start:?}"
+        );
+    }
+
+    #[test]
+    fn a_floor_smaller_than_the_layouts_is_found_and_a_larger_one_fits() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        let on = |floor: [f64; 3]| {
+            check_sizes(
+                &d.template_use(),
+                &names,
+                &Measured {
+                    floor: bbox(floor),
+                    ..course([0.6, 0.1, 0.0])
+                },
+            )
+        };
+        assert_eq!(on([10.0, 10.0, 0.0]), SizeCheck::default());
+        assert_eq!(on([50.0, 12.0, 0.0]), SizeCheck::default());
+        let short = on([4.0, 12.0, 0.0]).floor.unwrap();
+        assert_eq!(short.resized(), [10.0, 12.0]);
+        assert_eq!(short.factors(), Some([2.5, 1.0, 1.0]));
+        assert_eq!(
+            short.describe("Floor"),
+            "the scene's `Floor` is 4 x 12 m but the layout's floor is 10 x 10 m"
+        );
+        assert!(on([f64::NAN, 10.0, 0.0]).floor.is_some(), "NaN never fits");
+        assert_eq!(on([0.0, 10.0, 0.0]).floor.unwrap().factors(), None);
+    }
+
+    #[test]
+    fn generate_options_are_offered_only_where_generate_takes_them() {
+        let d = course_drawing();
+        let names = ObjectNames::default();
+        // a template turned a quarter: 0.1 along x, 0.6 along y
+        let turned = check_sizes(&d.template_use(), &names, &course([0.1, 0.6, 0.0]));
+        let refusal = turned.refusals.join("");
+        assert!(
+            !refusal.contains("generate with")
+                && refusal.contains("resize `Line` to 0.6 x 0.1 m (no layout is generated for it as it is: --line-width 0.6 m is not narrower")
+                    | refusal.contains("resize `Line` to 0.6 x 0.1 m (no layout is generated for it as it is: --line-length 0.1 m is not longer"),
+            "{refusal}"
+        );
+    }
+}

@@ -1,0 +1,599 @@
+//! `apply --draw mesh`, and its `verify`: draw a [`MeshMaze`] (keep the meshes in place by
+//! fingerprint, create the missing ones, remove everything else of an earlier maze, copies
+//! included), place the template and markers, check; and read a drawn mesh maze back.
+
+use std::collections::{HashMap, HashSet};
+
+use super::compare::{bounds, mesh_differences};
+use super::{
+    FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
+};
+use crate::draw::apply::{
+    ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, has_line_copies, keep_home,
+    raised, raised_and_claimed, sizes_of, surveyed,
+};
+use crate::draw::lease::Claim;
+use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::{
+    Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
+};
+use vrep_maze_core::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
+
+/// Meshes created per request to [`MeshDrawing::create`], between two checks for Ctrl-C and
+/// for another run (about 4,000 rectangles: 1 to 2 s on CoppeliaSim 4.5.1).
+const MESHES_PER_CREATE: usize = 8;
+
+/// The mesh capability of `scene`, or the error that says this API has none.
+fn port(scene: &mut dyn Backend) -> Result<&mut dyn MeshDrawing, DrawError> {
+    let api = scene.describe();
+    scene.meshes().ok_or_else(|| {
+        DrawError::Backend(BackendError::Remote(format!(
+            "--draw mesh is not available over this API ({api})"
+        )))
+    })
+}
+
+/// The holder of a mesh maze under the maze dummy `parent` and what it holds, found through
+/// the backend's mesh capability or, without one, among `objects` (the holder by its name
+/// under the maze dummy, the meshes as its children), sorted into our meshes and the user's
+/// objects ([`FoundMeshes::sorted`]).
+pub fn found(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    parent: i32,
+    objects: &[ObjectInfo],
+) -> Result<FoundMeshes, DrawError> {
+    Ok(found_unsorted(scene, names, parent, objects)?.sorted())
+}
+
+/// [`found`] before sorting: everything under the holder in `meshes`.
+fn found_unsorted(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    parent: i32,
+    objects: &[ObjectInfo],
+) -> Result<FoundMeshes, DrawError> {
+    if let Some(port) = scene.meshes() {
+        return Ok(port.find(names, parent)?);
+    }
+    let holder = objects
+        .iter()
+        .find(|o| o.parent == Some(parent) && o.name.rsplit('/').next() == Some(HOLDER));
+    Ok(FoundMeshes {
+        holder: holder.map(|o| o.handle),
+        meshes: holder
+            .map(|holder| {
+                objects
+                    .iter()
+                    .filter(|o| o.parent == Some(holder.handle))
+                    .map(|o| super::FoundMesh {
+                        handle: o.handle,
+                        name: o.name.clone(),
+                        parent: o.parent,
+                    })
+                    .collect()
+            })
+            .unwrap_or_default(),
+        users: Vec::new(),
+    })
+}
+
+/// What a copies-mode draw or a clear finds of an earlier mesh maze ([`found`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Leftovers {
+    /// Our meshes, then the holder if it is ours, with their names: removed. Never the
+    /// templates.
+    pub ours: Vec<(i32, String)>,
+    /// The holder, ours or not: never a line or a copy of a template.
+    pub holder: Option<i32>,
+    /// The user's holder and the user's objects under it, by name: left alone.
+    pub left_alone: Vec<String>,
+}
+
+/// The earlier mesh maze in the scene ([`Leftovers`]).
+pub fn leftovers(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    h: &Handles,
+    objects: &[ObjectInfo],
+) -> Result<Leftovers, DrawError> {
+    let found = found(scene, names, h.parent, objects)?;
+    let templates = h.templates();
+    let ours = |x: &i32| !templates.contains(x) && Some(*x) != h.post && *x != h.floor;
+    Ok(Leftovers {
+        ours: found.ours().into_iter().filter(|(x, _)| ours(x)).collect(),
+        holder: found.holder,
+        left_alone: found.left_alone(),
+    })
+}
+
+/// Draws `maze` as meshes into `scene`, as [`crate::draw::apply()`] draws copies: the idle rate
+/// raised, the scene claimed, Ctrl-C honoured between requests, the result checked (names,
+/// parents, the template's and markers' poses; [`verify`] reads the meshes back).
+pub fn apply(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<ApplyReport, DrawError> {
+    raised_and_claimed(scene, opts.dry_run, |scene, claim| {
+        apply_claimed(scene, maze, opts, progress, claim)
+    })
+}
+
+/// Pieces of `kind` in `maze`.
+fn pieces_of(maze: &MeshMaze, kinds: &[MeshKind]) -> usize {
+    maze.meshes
+        .iter()
+        .filter(|m| kinds.contains(&m.kind))
+        .map(|m| m.pieces.len())
+        .sum()
+}
+
+/// The special properties a mesh of `kind` gets: the template's, renderable (the robot's
+/// camera sees it) and, for walls and posts, detectable by proximity sensors.
+fn special(kind: MeshKind, look: &Look) -> i32 {
+    let extra = if kind.respondable() {
+        SPECIAL_DETECTABLE
+    } else {
+        0
+    };
+    look.special | SPECIAL_RENDERABLE | extra
+}
+
+fn apply_claimed(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+    claim: &Claim,
+) -> Result<ApplyReport, DrawError> {
+    let (style, names) = (maze.style, &opts.names);
+    let counts = ApplyReport {
+        style,
+        lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
+        posts: pieces_of(maze, &[MeshKind::Posts]),
+        meshes: maze.meshes.len(),
+        ..Default::default()
+    };
+    // the line template lies on the first line: it must have the layout's line size
+    let Begun {
+        survey,
+        h,
+        mut report,
+        objects,
+    } = begin(scene, opts, &maze.template_use(), false, counts, progress)?;
+    let found = found(scene, names, h.parent, &survey.objects)?;
+    // the user's objects under the holder (and the user's holder) stay, named
+    report.left_alone.extend(found.left_alone());
+    // an earlier maze's copies of any template go; the user's objects under the maze dummy
+    // stay ([`plan::sort_out`])
+    let others = names.others(style);
+    let mut doomed: Vec<i32> = maze_lines(&objects, &h, names.template(style), &others)
+        .into_iter()
+        .chain(foreign_copies(&objects, &h, &others))
+        .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
+        .collect();
+    let wanted: HashMap<String, usize> = maze
+        .meshes
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.name(), i))
+        .collect();
+    let mut have: Vec<Option<i32>> = vec![None; maze.meshes.len()];
+    for m in &found.meshes {
+        match wanted.get(&m.name) {
+            Some(&i) if have[i].is_none() && m.parent == found.holder => have[i] = Some(m.handle),
+            _ => doomed.push(m.handle),
+        }
+    }
+    let missing: Vec<usize> = (0..maze.meshes.len())
+        .filter(|&i| have[i].is_none())
+        .collect();
+    report.reused = maze.meshes.len() - missing.len();
+    report.pasted = missing.len();
+    report.removed = doomed.len();
+    report.unchanged = report.reused;
+    // the template lies on the first line (or under Start), the markers on their cells
+    let by_handle: HashMap<i32, &ObjectInfo> =
+        survey.objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = by_handle
+        .get(&h.floor)
+        .map(|o| world_frame(o))
+        .unwrap_or_default();
+    let mut edits = Vec::new();
+    for (handle, want) in markers(maze, &h) {
+        let in_place = by_handle
+            .get(&handle)
+            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
+        if in_place {
+            report.markers_unchanged += 1;
+        } else {
+            report.markers_placed += 1;
+            edits.push(Edit::SetPose {
+                handle,
+                relative_to: h.floor,
+                position: crate::draw::position(&want),
+                orientation: crate::draw::euler(&want),
+            });
+        }
+    }
+    if opts.dry_run {
+        return Ok(report);
+    }
+    // where the line template stood before it goes onto the first line, for `clear`
+    keep_home(
+        scene,
+        claim.signals_kept(),
+        style == Style::Lines,
+        &h,
+        &survey.objects,
+        EarlierLines::of(
+            match style {
+                Style::Lines => maze_lines(&objects, &h, &names.line, &others)
+                    .iter()
+                    .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
+                Style::Walls => has_line_copies(&objects, &h, &names.line),
+            },
+            found.meshes.iter().map(|m| m.name.as_str()),
+        ),
+        survey.handles.get(5).copied().flatten(),
+        names,
+        &mut report,
+    )?;
+    let checkpoint = |scene: &mut dyn Backend, placed: usize, phase| {
+        if opts.interrupted() {
+            return Err(DrawError::Interrupted {
+                placed,
+                total: maze.pieces(),
+            });
+        }
+        claim.check(scene, phase)
+    };
+    let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+    for chunk in doomed.chunks(per_request) {
+        checkpoint(scene, 0, "while removing the earlier maze")?;
+        let removals: Vec<Edit> = chunk.iter().map(|&d| Edit::Remove(d)).collect();
+        scene.edit(&removals)?;
+        report.edits += removals.len();
+    }
+    let template_look = port(scene)?.look(h.line)?;
+    let post_look = match h.post.filter(|_| report.posts > 0) {
+        Some(p) => port(scene)?.look(p)?,
+        None => template_look,
+    };
+    let mut place = MeshPlace {
+        parent: h.parent,
+        holder: found.holder,
+        floor: h.floor,
+    };
+    let mut placed = report.unchanged_pieces(maze, &have);
+    let total = maze.pieces();
+    progress(Stage::Placing {
+        done: placed,
+        total,
+    });
+    for batch in missing.chunks(MESHES_PER_CREATE) {
+        checkpoint(scene, placed, "while creating the meshes")?;
+        let names: Vec<String> = batch.iter().map(|&i| maze.meshes[i].name()).collect();
+        let new: Vec<NewMesh<'_>> = batch
+            .iter()
+            .zip(&names)
+            .map(|(&i, name)| {
+                let m = &maze.meshes[i];
+                let look = if m.kind == MeshKind::Posts {
+                    post_look
+                } else {
+                    template_look
+                };
+                NewMesh {
+                    name,
+                    vertices: &m.vertices,
+                    indices: &m.indices,
+                    look: Look {
+                        colour: look.colour,
+                        special: special(m.kind, &look),
+                    },
+                    respondable: m.kind.respondable(),
+                }
+            })
+            .collect();
+        let (holder, handles) = port(scene)?.create(&place, &new)?;
+        place.holder = Some(holder);
+        for (&i, handle) in batch.iter().zip(handles) {
+            have[i] = Some(handle);
+            placed += maze.meshes[i].pieces.len();
+        }
+        progress(Stage::Placing {
+            done: placed,
+            total,
+        });
+    }
+    checkpoint(scene, placed, "while placing the markers")?;
+    scene.edit(&edits)?;
+    report.edits += edits.len();
+    progress(Stage::Verifying);
+    // the meshes created now read back (those kept carry the fingerprint of what they hold,
+    // and were found under the holder); the colours, poses and the markers' poses are the
+    // ones just set, acknowledged; `verify` reads everything
+    let mut problems = Vec::new();
+    let created: Vec<(usize, i32)> = missing
+        .iter()
+        .filter_map(|&i| {
+            let handle = have[i];
+            if handle.is_none() {
+                problems.push(format!("mesh `{}` was not created", maze.meshes[i].name()));
+            }
+            Some(i).zip(handle)
+        })
+        .collect();
+    let handles: Vec<i32> = created.iter().map(|&(_, h)| h).collect();
+    let backs = port(scene)?.read_shapes(&handles)?;
+    for (&(i, _), back) in created.iter().zip(backs) {
+        let mesh = &maze.meshes[i];
+        if let (Some(v), Some(t)) = (&back.vertices, &back.indices)
+            && let Some(d) = mesh_differences(mesh, v, t)
+        {
+            problems.push(format!("mesh `{}` {d}", mesh.name()));
+        }
+    }
+    claim.check(scene, "while verifying")?;
+    if problems.is_empty() {
+        Ok(report)
+    } else {
+        Err(DrawError::Verify(problems))
+    }
+}
+
+impl ApplyReport {
+    /// Pieces held by the meshes kept.
+    fn unchanged_pieces(&self, maze: &MeshMaze, have: &[Option<i32>]) -> usize {
+        maze.meshes
+            .iter()
+            .zip(have)
+            .filter(|(_, h)| h.is_some())
+            .map(|(m, _)| m.pieces.len())
+            .sum()
+    }
+}
+
+/// Where the template (a line maze's: on the first line, or under `Start` when there is
+/// none) and the markers go.
+fn markers(maze: &MeshMaze, h: &Handles) -> Vec<(i32, Pose)> {
+    let mut out = Vec::new();
+    if maze.style == Style::Lines {
+        let hidden = Pose {
+            z: (maze.start.z - 0.001).max(0.0),
+            ..maze.start
+        };
+        out.push((h.line, maze.template.unwrap_or(hidden)));
+    }
+    out.push((h.start, maze.start));
+    out.push((h.end, maze.end));
+    out
+}
+
+/// What differs between the meshes `found` and those of `maze`, by name and parent.
+fn name_problems(maze: &MeshMaze, found: &FoundMeshes) -> Vec<String> {
+    let wanted: HashSet<String> = maze.meshes.iter().map(|m| m.name()).collect();
+    let mut problems = Vec::new();
+    let mut seen = HashSet::new();
+    let mut stray = Vec::new();
+    for m in &found.meshes {
+        if wanted.contains(&m.name) && seen.insert(m.name.clone()) {
+            if m.parent != found.holder {
+                problems.push(format!("mesh `{}` is not a child of `{HOLDER}`", m.name));
+            }
+        } else {
+            stray.push(m.name.as_str());
+        }
+    }
+    let missing = wanted.iter().filter(|n| !seen.contains(*n)).count();
+    if missing > 0 {
+        problems.push(format!("{missing} of {} mesh(es) missing", wanted.len()));
+    }
+    if !stray.is_empty() {
+        problems.push(format!(
+            "{} stray object(s) under `{HOLDER}`: {}",
+            stray.len(),
+            stray.iter().take(5).copied().collect::<Vec<_>>().join(", ")
+        ));
+    }
+    problems
+}
+
+/// The template's and markers' pose differences.
+fn marker_problems(maze: &MeshMaze, h: &Handles, objects: &[ObjectInfo]) -> Vec<String> {
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = by_handle
+        .get(&h.floor)
+        .map(|o| world_frame(o))
+        .unwrap_or_default();
+    markers(maze, h)
+        .into_iter()
+        .filter_map(|(handle, want)| {
+            let what = if handle == h.start {
+                "start"
+            } else if handle == h.end {
+                "end"
+            } else {
+                "the line template"
+            };
+            match by_handle.get(&handle) {
+                None => Some(format!("{what} is missing")),
+                Some(o) => pose_differences(&floor, o, &want).map(|d| format!("{what} {d}")),
+            }
+        })
+        .collect()
+}
+
+/// Reads a mesh maze back and compares it with `maze`: every mesh by name (its fingerprint)
+/// under the holder, its triangles (where the API reads them, within
+/// [`super::compare::VERTEX_TOLERANCE`]) or its bounding box, its frame on the Floor's, its
+/// colour the template's; nothing else under the holder or the maze dummy but the templates;
+/// the template and markers in place.
+pub fn verify(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    raised(scene, false, |scene| verify_raised(scene, maze, names)).map(|(ok, _)| ok)
+}
+
+/// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
+/// itself (what `inspect` compares with, [`crate::draw::apply::raised_to_read`]).
+pub fn verify_read_only(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    verify_raised(scene, maze, names)
+}
+
+fn verify_raised(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    let style = maze.style;
+    let (survey, h) = surveyed(scene, names, style, false)?;
+    let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
+    if let Some(differences) = sizes.differences(names) {
+        return Err(differences);
+    }
+    // the user's objects under the maze dummy are no stray maze objects
+    let objects = plan::sort_out(
+        &scene.objects_from_scene()?,
+        &h,
+        &names.templates(),
+        &survey.traits,
+    )
+    .objects;
+    let found = found(scene, names, h.parent, &objects)?;
+    let mut problems = name_problems(maze, &found);
+    let others = names.others(style);
+    let stray: Vec<String> = maze_lines(&objects, &h, names.template(style), &others)
+        .into_iter()
+        .chain(foreign_copies(&objects, &h, &others))
+        .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
+        .filter_map(|x| objects.iter().find(|o| o.handle == x))
+        .map(|o| o.name.clone())
+        .collect();
+    if !stray.is_empty() {
+        problems.push(format!(
+            "{} stray maze object(s) beside the meshes: {}",
+            stray.len(),
+            stray.iter().take(5).cloned().collect::<Vec<_>>().join(", ")
+        ));
+    }
+    let floor = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+        .unwrap_or_default();
+    let template_look = port(scene)?.look(h.line)?;
+    let post_look = match h
+        .post
+        .filter(|_| maze.meshes.iter().any(|m| m.kind == MeshKind::Posts))
+    {
+        Some(p) => port(scene)?.look(p)?,
+        None => template_look,
+    };
+    let looks = (template_look, post_look);
+    problems.extend(mesh_problems(scene, maze, &found, None, &floor, looks)?);
+    problems.extend(marker_problems(maze, &h, &objects));
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(DrawError::Verify(problems))
+    }
+}
+
+/// `x x y x z`, in metres to the micrometre.
+fn extents(size: [f64; 3]) -> String {
+    size.map(|v| format!("{:.6}", v + 0.0)).join(" x ")
+}
+
+/// Reads back the meshes of `maze` that `found` holds (with `only`, those among them) and
+/// compares each with what was drawn: its frame on the `floor`, its triangles or bounding
+/// box, its colour the template's (`looks`: the style's template, the post template).
+fn mesh_problems(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    found: &FoundMeshes,
+    only: Option<&HashSet<i32>>,
+    floor: &vrep_maze_core::coppelia::frame::Frame,
+    (template_look, post_look): (Look, Look),
+) -> Result<Vec<String>, DrawError> {
+    let mut problems = Vec::new();
+    let by_name: HashMap<&str, i32> = found
+        .meshes
+        .iter()
+        .filter(|m| only.is_none_or(|only| only.contains(&m.handle)))
+        .map(|m| (m.name.as_str(), m.handle))
+        .collect();
+    let on_floor = Pose {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+        yaw: 0.0,
+    };
+    let present: Vec<(&MazeMesh, i32)> = maze
+        .meshes
+        .iter()
+        .filter_map(|mesh| Some(mesh).zip(by_name.get(mesh.name().as_str()).copied()))
+        .collect();
+    let handles: Vec<i32> = present.iter().map(|&(_, h)| h).collect();
+    let backs = port(scene)?.read_all(&handles)?;
+    for (&(mesh, handle), back) in present.iter().zip(backs) {
+        let name = mesh.name();
+        let info = ObjectInfo {
+            handle,
+            name: name.clone(),
+            parent: None,
+            position: back.pose.0,
+            orientation: back.pose.1,
+        };
+        if let Some(d) = pose_differences(floor, &info, &on_floor) {
+            problems.push(format!("mesh `{name}`'s frame is not the floor's: {d}"));
+        }
+        if let (Some(v), Some(i)) = (&back.vertices, &back.indices)
+            && let Some(d) = mesh_differences(mesh, v, i)
+        {
+            problems.push(format!("mesh `{name}` {d}"));
+        }
+        if let Some((min, max)) = back.bounding_box {
+            // CoppeliaSim gives a mesh's box as half-extents about its centre, not in the
+            // shape's frame (spec "Meshes on the real 4.5.1"): compare sizes, which both
+            // conventions share
+            let (want_min, want_max) = bounds(mesh);
+            let size = [0, 1, 2].map(|k| max[k] - min[k]);
+            let want = [0, 1, 2].map(|k| want_max[k] - want_min[k]);
+            if size
+                .iter()
+                .zip(&want)
+                .any(|(a, b)| (a - b).abs() > 2.0 * super::compare::VERTEX_TOLERANCE)
+            {
+                problems.push(format!(
+                    "mesh `{name}`'s bounding box is {} m, expected {} m",
+                    extents(size),
+                    extents(want)
+                ));
+            }
+        }
+        let look = if mesh.kind == MeshKind::Posts {
+            post_look
+        } else {
+            template_look
+        };
+        if let Some(c) = back.colour
+            && c.iter().zip(look.colour).any(|(a, b)| (a - b).abs() > 0.01)
+        {
+            problems.push(format!(
+                "mesh `{name}` is coloured {c:?}, the template {:?}",
+                look.colour
+            ));
+        }
+    }
+    Ok(problems)
+}

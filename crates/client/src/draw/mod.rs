@@ -1,0 +1,774 @@
+//! Backend-neutral drawing of a maze into a CoppeliaSim scene.
+//!
+//! A backend ([`crate::legacy::LegacyBackend`], [`crate::zmq_api::ZmqBackend`]) implements
+//! [`Backend`]: a handful of scene operations, batched where the protocol allows. [`apply()`] draws a
+//! [`Drawing`] (reusing earlier copies of the `Line` template, or of `Wall` and `Post`, pasting
+//! only the missing ones, removing the surplus), [`clear()`] removes a drawn maze and
+//! [`verify()`] compares the scene with a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
+//! paste) so they can be tested without a simulator.
+
+pub mod apply;
+pub mod clear;
+pub mod estimate;
+pub mod first_line;
+pub mod fit;
+pub mod floor;
+pub mod home;
+pub mod lease;
+pub mod mesh;
+pub mod plan;
+pub mod record;
+pub mod signals;
+pub mod verify;
+
+pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
+pub use clear::{ClearOptions, ClearReport, clear};
+pub use lease::{Claimed, Lease};
+pub use verify::verify;
+pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
+
+pub use vrep_maze_core::layout::{Pose, Style};
+
+/// Position of a pose as an array.
+pub fn position(p: &Pose) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}
+
+/// CoppeliaSim Euler angles of a pose (roll = pitch = 0).
+pub fn euler(p: &Pose) -> [f64; 3] {
+    [0.0, 0.0, p.yaw]
+}
+
+/// What to draw: one pose per copy of the style's template (`Line`: the template itself is
+/// the first; `Wall`: copies only, the template stays where the scene has it), one per copy
+/// of `Post` in a wall maze with posts (copies only, as walls), plus where `Start` and `End`
+/// go. All in the Floor frame. Made only from a valid layout
+/// (`Drawing::try_from(&layout)`), so its fields can be read but not assembled by hand.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Drawing {
+    /// Lines or walls: which template is copied.
+    pub style: Style,
+    /// Poses of the copies, in the layout's order (`segments`, or `walls`).
+    pub lines: Vec<Pose>,
+    /// Poses of the `Post` copies (`posts`): empty unless the maze has posts.
+    pub posts: Vec<Pose>,
+    /// Pose of the start marker.
+    pub start: Pose,
+    /// Pose of the end marker.
+    pub end: Pose,
+    /// The sizes the layout was generated for, which the templates and markers must have.
+    pub sizes: Sizes,
+}
+
+/// Names of the scene objects a drawing needs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ObjectNames {
+    /// Reference frame of every coordinate (`Floor`).
+    pub floor: String,
+    /// Dummy every line is a child of (`Maze`).
+    pub parent: String,
+    /// Line template (`Line`).
+    pub line: String,
+    /// Start marker (`Start`).
+    pub start: String,
+    /// End marker (`End`).
+    pub end: String,
+    /// Wall template (`Wall`), the template of wall mazes.
+    pub wall: String,
+    /// Post template (`Post`), standing at the lattice corners of wall mazes with posts.
+    pub post: String,
+}
+
+impl Drawing {
+    /// What this drawing asks of the templates: the style's template is the first line (or
+    /// copied for every wall) when there is any, the post template for every post.
+    pub fn template_use(&self) -> TemplateUse<'_> {
+        TemplateUse {
+            style: self.style,
+            sizes: &self.sizes,
+            template: !self.lines.is_empty(),
+            posts: !self.posts.is_empty(),
+        }
+    }
+
+    /// `true` when the template itself is the first copy drawn (lines); a wall template
+    /// stays where the scene has it and every wall is a copy.
+    pub fn template_drawn(&self) -> bool {
+        self.style == Style::Lines
+    }
+
+    /// Lines, or walls and posts: the objects placed, as progress counts them.
+    pub fn copies(&self) -> usize {
+        self.lines.len() + self.posts.len()
+    }
+}
+
+impl Default for ObjectNames {
+    fn default() -> Self {
+        ObjectNames {
+            floor: "Floor".into(),
+            parent: "Maze".into(),
+            line: "Line".into(),
+            start: "Start".into(),
+            end: "End".into(),
+            wall: "Wall".into(),
+            post: "Post".into(),
+        }
+    }
+}
+
+impl ObjectNames {
+    /// Names in the order floor, parent, line, start, end.
+    pub fn all(&self) -> [&str; 5] {
+        self.for_style(Style::Lines)
+    }
+
+    /// Every template: line, wall, post ([`plan::sort_out`] keeps their copies).
+    pub fn templates(&self) -> [&str; 3] {
+        [&self.line, &self.wall, &self.post]
+    }
+
+    /// The template `style` copies.
+    pub fn template(&self, style: Style) -> &str {
+        match style {
+            Style::Lines => &self.line,
+            Style::Walls => &self.wall,
+        }
+    }
+
+    /// Names in the order floor, parent, the style's template, start, end.
+    pub fn for_style(&self, style: Style) -> [&str; 5] {
+        [
+            &self.floor,
+            &self.parent,
+            self.template(style),
+            &self.start,
+            &self.end,
+        ]
+    }
+
+    /// The templates other than `style`'s: the other style's, then the post template. Their
+    /// copies in the maze are never reused as the style's (a wall is no line, a post no
+    /// wall), and they themselves are never touched.
+    pub fn others(&self, style: Style) -> Vec<&str> {
+        match style {
+            Style::Lines => vec![&self.wall, &self.post],
+            Style::Walls => vec![&self.line, &self.post],
+        }
+    }
+
+    /// The templates whose copies in the maze drawing `style` removes: [`ObjectNames::others`],
+    /// less the post template when the drawing has `posts` (its copies are the drawing's).
+    pub fn foreign(&self, style: Style, posts: bool) -> Vec<&str> {
+        let mut others = self.others(style);
+        if posts {
+            others.truncate(1);
+        }
+        others
+    }
+
+    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`],
+    /// then [`ObjectNames::others`] (optional; the post template at [`POST_IN_SURVEY`]).
+    pub fn survey(&self, style: Style) -> Vec<&str> {
+        let mut names = self.for_style(style).to_vec();
+        names.extend(self.others(style));
+        names
+    }
+
+    /// Every role with the option that names its object and that name: floor, parent,
+    /// line, wall, post, start, end.
+    pub fn roles(&self) -> [(&'static str, &str); 7] {
+        [
+            ("the floor (--floor)", &self.floor),
+            ("the maze dummy (--parent)", &self.parent),
+            ("the line template (--line)", &self.line),
+            ("the wall template (--wall)", &self.wall),
+            ("the post template (--post)", &self.post),
+            ("the start marker (--start)", &self.start),
+            ("the end marker (--end)", &self.end),
+        ]
+    }
+
+    /// The roles of [`ObjectNames::survey`]'s names, in its order.
+    fn survey_roles(&self, style: Style) -> [&'static str; 7] {
+        let [floor, parent, line, wall, post, start, end] = self.roles().map(|(r, _)| r);
+        match style {
+            Style::Lines => [floor, parent, line, start, end, wall, post],
+            Style::Walls => [floor, parent, wall, start, end, line, post],
+        }
+    }
+
+    /// Refuses two roles given one name (`Maze` and `/Maze` are one name: a ZeroMQ path
+    /// of the scene root): one object cannot be the floor and the maze dummy, a template
+    /// and a marker, ... Pure, so it is checked before anything is sent.
+    pub fn check_roles(&self) -> Result<(), DrawError> {
+        let roles = self.roles();
+        let key = |n: &str| n.strip_prefix('/').unwrap_or(n).to_string();
+        for (i, (first, a)) in roles.iter().enumerate() {
+            if let Some((second, b)) = roles[i + 1..].iter().find(|(_, b)| key(a) == key(b)) {
+                return Err(DrawError::SameObject {
+                    names: if a == b {
+                        format!("`{a}`")
+                    } else {
+                        format!("`{a}` and `{b}`")
+                    },
+                    first,
+                    second,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// What a missing object is and how to create it (one line).
+    pub fn how_to_create(&self, name: &str) -> String {
+        let role = if name == self.floor {
+            "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`; the maze needs >= 10 m x 10 m)"
+        } else if name == self.parent {
+            "a dummy that holds the maze lines (Add > Dummy, then rename it)"
+        } else if name == self.line {
+            "the line template: a plane 0.6 m x 0.1 m, pure green, at z = 0.001 (Add > Primitive shape > Plane)"
+        } else if name == self.wall {
+            "the wall template: a cuboid as long as a cell side, e.g. 1 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+        } else if name == self.post {
+            "the post template: a cuboid as wide as the walls are thick and as high as them, e.g. 0.05 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+        } else if name == self.start {
+            "the start marker: a plane 1 m x 1 m, pure blue, at z = 0.002"
+        } else {
+            "the end marker: a plane 1 m x 1 m, pure red, at z = 0.002"
+        };
+        format!("`{name}`: {role}")
+    }
+}
+
+/// Where [`ObjectNames::survey`] puts the post template: after floor, parent, template,
+/// start, end and the other style's template.
+pub const POST_IN_SURVEY: usize = 6;
+
+/// "left alone: N object(s) of yours under `Maze` that are no copies of a template: a, b,
+/// ..." naming at most the first few, for the reports of `apply` and `clear` (`None` when
+/// there are none).
+pub fn left_alone_line(left_alone: &[String], parent: &str) -> Option<String> {
+    const NAMED: usize = 8;
+    if left_alone.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = left_alone.iter().take(NAMED).map(String::as_str).collect();
+    let more = if left_alone.len() > NAMED {
+        format!(", ... ({} more)", left_alone.len() - NAMED)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "left alone: {} object(s) under `{parent}` or at the scene root that are no copies of a template (not the maze's): {}{more}",
+        left_alone.len(),
+        shown.join(", ")
+    ))
+}
+
+/// Handles of the objects [`ObjectNames`] names, resolved in one scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Handles {
+    /// The floor: every pose is relative to it.
+    pub floor: i32,
+    /// The dummy every maze line is a child of.
+    pub parent: i32,
+    /// The template copied: `Line` (also the first line of the maze) or, for walls, `Wall`.
+    pub line: i32,
+    /// The start marker.
+    pub start: i32,
+    /// The end marker.
+    pub end: i32,
+    /// The post template, if the scene has one (a drawing with posts needs it).
+    pub post: Option<i32>,
+}
+
+impl Handles {
+    /// The templates that are never removed.
+    pub fn templates(&self) -> [i32; 3] {
+        [self.line, self.start, self.end]
+    }
+}
+
+/// One scene object as a backend reports it: world pose.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectInfo {
+    /// The object's handle in this scene.
+    pub handle: i32,
+    /// Object name.
+    pub name: String,
+    /// Parent handle.
+    pub parent: Option<i32>,
+    /// World position.
+    pub position: [f64; 3],
+    /// World Euler angles.
+    pub orientation: [f64; 3],
+}
+
+/// An object's bounding box in its own frame (`sim_objfloatparam_objbbox_*`, parameters
+/// 15..20), as a simulator reports it: single precision, so compare sizes with
+/// [`plan::SIZE_TOLERANCE`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundingBox {
+    /// Minimum x, y, z.
+    pub min: [f64; 3],
+    /// Maximum x, y, z.
+    pub max: [f64; 3],
+}
+
+impl BoundingBox {
+    /// Extent along x, y and z (a plane has z = 0).
+    pub fn size(&self) -> [f64; 3] {
+        [0, 1, 2].map(|k| self.max[k] - self.min[k])
+    }
+}
+
+/// Everything [`apply()`] needs to know first, in one round trip.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Survey {
+    /// Handle of each requested name (same order), `None` if missing.
+    pub handles: Vec<Option<i32>>,
+    /// The scene objects drawing needs: the named ones, the children of the maze dummy and
+    /// parentless copies of the line template (a backend may list more). A pose a backend
+    /// did not read is NaN: never in place, so it is set.
+    pub objects: Vec<ObjectInfo>,
+    /// Simulation not stopped.
+    pub simulation_running: bool,
+    /// What the backend read that tells a template's copy from the user's object named like
+    /// one ([`plan::Traits`]: types, and sizes and children where the name, type and copy
+    /// record leave a doubt).
+    pub traits: plan::Traits,
+}
+
+/// The idle rate now and the user's rate recorded by an interrupted run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct IdleRates {
+    /// Current `sim_intparam_idle_fps`.
+    pub current: i32,
+    /// The user's idle rate recorded by an `apply` that was interrupted before restoring it
+    /// (the simulator keeps it as the integer signal [`signals::SAVED_IDLE_FPS`]).
+    pub saved: Option<i32>,
+}
+
+/// A scene edit; [`Backend::edit`] applies a list of them in order, in one round trip.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Edit {
+    /// Set the parent (`None` = no parent).
+    SetParent {
+        /// The object to move in the hierarchy.
+        handle: i32,
+        /// Its new parent, `None` for the scene root.
+        parent: Option<i32>,
+        /// Keep the world pose (else the local pose is kept and the object moves).
+        keep_in_place: bool,
+    },
+    /// Set position and orientation relative to another object.
+    SetPose {
+        /// The object to place.
+        handle: i32,
+        /// The object whose frame the pose is in (the floor).
+        relative_to: i32,
+        /// Position in that frame, metres.
+        position: [f64; 3],
+        /// CoppeliaSim Euler angles in that frame, radians.
+        orientation: [f64; 3],
+    },
+    /// Remove an object.
+    Remove(i32),
+}
+
+/// A failed backend operation.
+#[derive(Debug, thiserror::Error)]
+pub enum BackendError {
+    /// Connection or protocol failure.
+    #[error("{0}")]
+    Transport(String),
+    /// The simulator refused an operation.
+    #[error("the simulator refused: {0}")]
+    Remote(String),
+}
+
+/// A connection to a simulator that can draw: the operations [`apply()`], [`clear()`] and
+/// [`verify()`] need.
+///
+/// Contract: each operation uses as few messages as its protocol allows (the legacy API sends
+/// each call as one batched request; the ZeroMQ API has no batching and sends one call per
+/// object where it must); [`Backend::round_trips`] reports the cost so far. Errors leave the
+/// scene in a state that a later [`apply()`] or [`clear()`] repairs.
+pub trait Backend {
+    /// Reads the idle rate and the record of the user's rate ([`IdleRates`]).
+    fn idle_rates(&mut self) -> Result<IdleRates, BackendError>;
+    /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
+    /// simulation state. `names` are [`ObjectNames::for_style`] (floor, parent, template,
+    /// start, end), then optional other templates ([`ObjectNames::others`]): objects are
+    /// listed only when the first five exist, and the maze's copies of the other templates
+    /// are named after them (so [`plan::foreign_copies`] can tell them apart).
+    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError>;
+    /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
+    /// backend may give a pose it set itself, acknowledged by the simulator, without reading
+    /// it back (ZeroMQ, where each read is a call).
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError>;
+    /// [`Backend::objects`], every pose read from the scene now.
+    fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        self.objects()
+    }
+    /// The bounding boxes of `handles` ([`BoundingBox`]), in the same order, `None` for an
+    /// object that has none (gone, or a simulator that does not say): legacy in one request
+    /// for all, ZeroMQ one call per parameter and object.
+    fn bounding_boxes(&mut self, handles: &[i32])
+    -> Result<Vec<Option<BoundingBox>>, BackendError>;
+    /// The sizes (bounding-box extents x, y, z) of `handles`, in the same order, `None` for
+    /// an object that has none; by default from [`Backend::bounding_boxes`].
+    fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
+        Ok(self
+            .bounding_boxes(handles)?
+            .into_iter()
+            .map(|b| b.map(|b| b.size()))
+            .collect())
+    }
+    /// The ambient-diffuse colours (RGB, 0..1) of the shapes `handles`, in the same order,
+    /// `None` for one the simulator gives none of; `Ok(None)` from an API that cannot read
+    /// colours (the legacy API has no call for it).
+    fn shape_colours(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Option<Vec<Option<[f64; 3]>>>, BackendError> {
+        let _ = handles;
+        Ok(None)
+    }
+    /// Reads the integer signals `names` (`None`: not set), legacy in one request.
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError>;
+    /// Sets (`Some`) or clears (`None`) integer signals in order, legacy in one request.
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError>;
+    /// Copy-pastes each group; returns the new handles of each group.
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError>;
+    /// Applies edits in order.
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError>;
+    /// Sets `sim_intparam_idle_fps` and, in the same request, records `saved` (the user's
+    /// rate, so that a later run can restore it if this one is interrupted) or, with `None`,
+    /// deletes the record.
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError>;
+    /// Stops the simulation and waits until it is stopped.
+    fn stop_simulation(&mut self) -> Result<(), BackendError>;
+    /// Messages exchanged with the simulator so far (requests with their replies).
+    fn round_trips(&self) -> usize;
+    /// How many lines (a copy, or a parent and a pose) one request may carry so that the
+    /// simulator answers in bounded time, given the objects in the scene (its per-object
+    /// costs grow with them). Unbounded where each call is its own request (ZeroMQ).
+    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
+        let _ = objects_in_scene;
+        usize::MAX
+    }
+    /// One line naming the API, where it answered and, if known, the simulator's version.
+    fn describe(&self) -> String;
+    /// Which remote API this is, for [`estimate::copies_draw`]; `None` for a backend that is
+    /// neither (nothing is estimated).
+    fn remote_api(&self) -> Option<estimate::RemoteApi> {
+        None
+    }
+    /// Ends the connection the way the official client does, so the simulator is ready for
+    /// the next client at once. Dropping a backend closes it too, ignoring errors.
+    fn close(&mut self) -> Result<(), BackendError> {
+        Ok(())
+    }
+    /// The scene-side record that tells concurrent runs apart ([`lease`]). APIs that serve
+    /// several clients at once (ZeroMQ) have one; the legacy server serves one client at a
+    /// time, so it needs none.
+    fn lease(&mut self) -> Option<&mut dyn Lease> {
+        None
+    }
+    /// What this backend can do beyond drawing, if anything (the ZeroMQ API can create
+    /// objects and save the scene; the legacy API cannot).
+    fn authoring(&mut self) -> Option<&mut dyn Authoring> {
+        None
+    }
+    /// Drawing a maze as mesh shapes ([`mesh::MeshDrawing`]), if this backend can.
+    fn meshes(&mut self) -> Option<&mut dyn mesh::MeshDrawing> {
+        None
+    }
+}
+
+/// Scene authoring that only some APIs offer: see [`Backend::authoring`].
+pub trait Authoring {
+    /// Creates the objects of `names` that the scene lacks (the course's sizes and colours);
+    /// returns the names it created.
+    fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError>;
+    /// As [`Authoring::create_missing`] for a wall maze: the `Wall` template (a dark grey
+    /// cuboid of `wall` x, y, z metres, respondable and detectable) instead of `Line`, and
+    /// with `post`, the `Post` template, a cuboid of that size, as well.
+    fn create_missing_walls(
+        &mut self,
+        names: &ObjectNames,
+        wall: [f64; 3],
+        post: Option<[f64; 3]>,
+    ) -> Result<Vec<String>, BackendError>;
+    /// Saves the scene to `path` on the simulator's machine.
+    fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
+    /// Scales the object `handle` by `factors` along its x, y and z (`sim.scaleObject`: a
+    /// shape's mesh or primitive grows, its pose stays).
+    fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), BackendError>;
+}
+
+/// Creates the objects `layout` is drawn with that the scene lacks: the course's
+/// ([`Authoring::create_missing`]), or for a wall maze its `Wall` (and `Post`) cuboids at the
+/// layout's sizes ([`Authoring::create_missing_walls`]). Returns the names created.
+pub fn create_missing_for(
+    authoring: &mut dyn Authoring,
+    names: &ObjectNames,
+    layout: &vrep_maze_core::layout::Layout,
+) -> Result<Vec<String>, BackendError> {
+    match &layout.wall {
+        Some(wall) => authoring.create_missing_walls(
+            names,
+            [wall.length, wall.thickness, wall.height],
+            layout
+                .post
+                .as_ref()
+                .map(|post| [post.size, post.size, wall.height]),
+        ),
+        None => authoring.create_missing(names),
+    }
+}
+
+/// Errors of [`apply()`], [`clear()`] and [`verify()`].
+#[derive(Debug, thiserror::Error)]
+pub enum DrawError {
+    /// Named objects are missing; [`DrawError::hints`] says how to create each.
+    #[error("missing in the scene: {}", .names.join(", "))]
+    Missing {
+        /// The missing names.
+        names: Vec<String>,
+        /// How to create each, one line per name.
+        hints: Vec<String>,
+    },
+    /// Two roles name one object ([`ObjectNames::check_roles`], or two names the scene
+    /// resolves to one handle): refused before any edit.
+    #[error("{names} would be both {first} and {second}: one object cannot play two roles")]
+    SameObject {
+        /// The name, or the two names of the one object.
+        names: String,
+        /// The first role, with its option.
+        first: &'static str,
+        /// The second role, with its option.
+        second: &'static str,
+    },
+    /// A name given for a template or a marker found one of the copies this tool pasted
+    /// (the copy record holds it: `--line /Maze/Line`, `--start '/Maze/Line[3]'`): refused
+    /// before any edit, since drawing would move, copy or hide a line of the maze.
+    #[error("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")]
+    OurCopy {
+        /// The name as given.
+        name: String,
+        /// The role, with its option.
+        role: &'static str,
+        /// What the role needs: "the template", "a marker".
+        what: &'static str,
+    },
+    /// The scene's templates are not the size the layout was generated for
+    /// ([`fit::check_sizes`]): refused before any edit, one line per template with what
+    /// to change.
+    #[error("the scene's templates do not fit the layout: {}", .0.join("; "))]
+    Sizes(Vec<String>),
+    /// The scene's floor is smaller than the layout's ([`fit::SizeCheck::floor`]): refused
+    /// before any edit unless `apply --resize-floor` grows it ([`floor::resize`]).
+    #[error("{}", .short.describe(.floor))]
+    Floor {
+        /// The floor's name.
+        floor: String,
+        /// Its size and the layout's.
+        short: fit::FloorShort,
+        /// Whether this connection can resize it.
+        resize: floor::Resize,
+    },
+    /// The simulation runs; edits would be lost when it stops.
+    #[error("the simulation is running: changes made now would be discarded when it stops")]
+    SimulationRunning,
+    /// Another `apply` or `clear` claimed the scene while this one ran ([`lease`]).
+    #[error(
+        "another apply or clear started on this scene {phase}; it may now hold parts of both mazes"
+    )]
+    Concurrent {
+        /// When this run noticed, e.g. "before placing the lines".
+        phase: &'static str,
+    },
+    /// Ctrl-C (or SIGTERM, SIGHUP) stopped the run between two requests; the idle rate
+    /// was restored and the connection can be closed cleanly.
+    #[error("interrupted with {placed} of {total} copies placed")]
+    Interrupted {
+        /// Lines placed before the interrupt ([`clear()`]: objects removed).
+        placed: usize,
+        /// Lines in the drawing ([`clear()`]: objects to remove).
+        total: usize,
+    },
+    /// Backend failure.
+    #[error(transparent)]
+    Backend(#[from] BackendError),
+    /// The scene does not match the drawing after drawing it (the first ten differences).
+    #[error("verification failed, {} difference(s): {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("; "))]
+    Verify(Vec<String>),
+}
+
+impl DrawError {
+    /// What the user can do about the error, one remedy per line (not part of `Display`).
+    pub fn hints(&self) -> Vec<String> {
+        match self {
+            DrawError::Missing { names, hints } => {
+                let them = if names.len() == 1 { "it" } else { "them" };
+                let mut lines = vec![format!(
+                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --post, --start, --end"
+                )];
+                lines.extend(hints.iter().cloned());
+                lines
+            }
+            DrawError::Floor {
+                floor,
+                short,
+                resize,
+            } => {
+                let by_hand = format!(
+                    "or resize `{floor}` in CoppeliaSim to at least {} m",
+                    fit::extents(&short.resized())
+                );
+                let first = match resize {
+                    floor::Resize::Offered => format!(
+                        "pass --resize-floor: apply scales `{floor}` to {} m and clear puts it back to {} m",
+                        fit::extents(&short.resized()),
+                        fit::extents(&short.have)
+                    ),
+                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
+                    floor::Resize::NoExtent => format!(
+                        "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
+                    ),
+                };
+                vec![first, by_hand]
+            }
+            DrawError::SimulationRunning => {
+                vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
+            }
+            // the floor or the maze dummy at NaN: every copy reads back so
+            DrawError::Verify(problems)
+                if problems.iter().any(|p| p.contains(verify::BROKEN_POSE)) =>
+            {
+                vec![
+                "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
+            ]
+            }
+            DrawError::Sizes(_) => vec![
+                "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
+            ],
+            DrawError::OurCopy { .. } => vec![
+                "name the object itself (the course scene's `Line`, `Start`, `End`): a path into the maze dummy (`/Maze/Line`, `/Line[1]`) finds a copy, whose path changes with every draw".into(),
+            ],
+            DrawError::SameObject { .. } => vec![
+                "give each role its own object: pass the right name to one of the two options (see --help for the defaults)".into(),
+            ],
+            DrawError::Verify(_) => {
+                vec!["run the same command again: it repairs what differs".into()]
+            }
+            DrawError::Concurrent { .. } => vec![
+                "run one apply or clear at a time on a scene; running one again alone repairs it"
+                    .into(),
+            ],
+            DrawError::Interrupted { .. } => vec![
+                "the scene holds part of the maze; run the same apply again to finish it, or clear to remove it"
+                    .into(),
+            ],
+            DrawError::Backend(_) => vec![],
+        }
+    }
+}
+
+/// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
+/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
+/// `posts`, the post template is needed too.
+pub fn resolve_handles(
+    names: &ObjectNames,
+    style: Style,
+    survey: &Survey,
+    posts: bool,
+) -> Result<Handles, DrawError> {
+    names.check_roles()?;
+    let roles = names.survey_roles(style);
+    let asked = names.survey(style);
+    for (i, h) in survey.handles.iter().enumerate() {
+        let Some(h) = h else { continue };
+        if let Some(j) = survey.handles[i + 1..]
+            .iter()
+            .position(|other| *other == Some(*h))
+            .map(|k| i + 1 + k)
+            && let (Some(first), Some(second)) = (roles.get(i), roles.get(j))
+        {
+            return Err(DrawError::SameObject {
+                names: format!("`{}` and `{}`", asked[i], asked[j]),
+                first,
+                second,
+            });
+        }
+    }
+    // a name that found one of our copies: never a template or a marker
+    let recorded = asked
+        .iter()
+        .zip(&survey.handles)
+        .zip(roles)
+        .skip(2)
+        .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
+    if let Some(((name, _), role)) = recorded {
+        let marker = *name == names.start || *name == names.end;
+        return Err(DrawError::OurCopy {
+            name: name.to_string(),
+            role,
+            what: if marker { "a marker" } else { "the template" },
+        });
+    }
+    let post = survey.handles.get(POST_IN_SURVEY).copied().flatten();
+    let mut missing: Vec<String> = names
+        .for_style(style)
+        .iter()
+        .zip(&survey.handles)
+        .filter(|(_, h)| h.is_none())
+        .map(|(n, _)| n.to_string())
+        .collect();
+    if posts && post.is_none() {
+        missing.push(names.post.clone());
+    }
+    if !missing.is_empty() {
+        let hints = missing.iter().map(|n| names.how_to_create(n)).collect();
+        return Err(DrawError::Missing {
+            names: missing,
+            hints,
+        });
+    }
+    let h: Vec<i32> = survey.handles.iter().map(|h| h.unwrap_or(-1)).collect();
+    Ok(Handles {
+        floor: h[0],
+        parent: h[1],
+        line: h[2],
+        start: h[3],
+        end: h[4],
+        post,
+    })
+}
+
+impl TryFrom<&vrep_maze_core::layout::Layout> for Drawing {
+    type Error = vrep_maze_core::validate::Invalid;
+
+    /// The layout's segments (template first) or walls, posts, start and end poses, once
+    /// the layout has passed [`vrep_maze_core::validate::checked`]: the only way to make a drawing,
+    /// so nothing invalid is ever drawn.
+    fn try_from(layout: &vrep_maze_core::layout::Layout) -> Result<Drawing, Self::Error> {
+        vrep_maze_core::validate::checked(layout)?;
+        let lines = match layout.style {
+            Style::Lines => layout.segments.clone(),
+            Style::Walls => layout.walls.clone(),
+        };
+        Ok(Drawing {
+            style: layout.style,
+            lines,
+            posts: layout.posts.clone(),
+            start: layout.start.pose,
+            end: layout.end.pose,
+            sizes: Sizes::of(layout),
+        })
+    }
+}

@@ -1,0 +1,744 @@
+//! Pure drawing decisions: which objects belong to an earlier maze, and what to paste,
+//! reuse and remove.
+
+use std::collections::{HashMap, HashSet};
+
+use super::{Drawing, Handles, ObjectInfo, Pose};
+use vrep_maze_core::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
+
+/// Tolerance on positions (metres) for "already in place" and verification.
+pub const POSITION_TOLERANCE: f64 = 1e-4;
+/// Tolerance on angles (radians).
+pub const ANGLE_TOLERANCE: f64 = 1e-4;
+
+/// The name a template's copies are named after, from the reference that names it: a
+/// plain name as it is (`Line`, `Line5`, `Seg#0`), a path (`/Line[0]`, `/Maze/Line{2}`,
+/// `./Line`) by its last alias without the index (`Line`): a copy keeps its original's
+/// alias, wherever the path found it.
+pub fn family(template: &str) -> &str {
+    if !template.starts_with(['/', '.', ':']) {
+        return template;
+    }
+    let last = template.rsplit('/').next().unwrap_or(template);
+    let last = last.trim_start_matches(['.', ':']);
+    last.split(['[', '{']).next().unwrap_or(last)
+}
+
+/// True if `name` is a pasted copy of the template named `template`: `Line0`, `Line17`
+/// (plain naming) or `Line#0` (hash naming). A template named `Line5` has copies `Line6`...
+/// A template named by a path (`/Line[0]`) has the copies of its alias ([`family`]).
+pub fn is_copy_name(name: &str, template: &str) -> bool {
+    if name == template {
+        return false;
+    }
+    let template = family(template);
+    let base = template.trim_end_matches(|c: char| c.is_ascii_digit());
+    let hash_base = template.rsplit_once('#').map(|(b, n)| {
+        if n.bytes().all(|c| c.is_ascii_digit()) {
+            b
+        } else {
+            template
+        }
+    });
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|c| c.is_ascii_digit());
+    // ZeroMQ backend: copies keep the template's alias, so a root copy's path is `/Line[n]`
+    let alias = template.rsplit('/').next().unwrap_or(template);
+    let path_copy = name
+        .strip_prefix('/')
+        .and_then(|r| r.strip_prefix(alias))
+        .and_then(|r| r.strip_prefix('['))
+        .and_then(|r| r.strip_suffix(']'))
+        .is_some_and(digits);
+    path_copy
+        || name.strip_prefix(base).is_some_and(digits)
+        || name
+            .strip_prefix(hash_base.unwrap_or(template))
+            .and_then(|r| r.strip_prefix('#'))
+            .is_some_and(digits)
+}
+
+/// Object type codes by handle, as a survey read them ([`Traits::kinds`]).
+pub type Kinds = HashMap<i32, i32>;
+
+/// What a backend read of a survey's objects that tells a template's copy from the user's
+/// object named like one ([`super::Survey::traits`]). A backend reads sizes and children
+/// only where the name and type say "copy" and its record of the copies this tool pasted
+/// ([`super::record`]) does not already say so (normally none), and the sizes of those
+/// objects' templates: a fact not read is no evidence either way.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Traits {
+    /// Object type codes (`sim_object_*_type`: 0 shape, 4 dummy, ...) by handle: at least
+    /// the named objects and the objects that may be copies of a template.
+    pub kinds: Kinds,
+    /// Bounding-box extents (x, y, z, metres, [`super::BoundingBox::size`]) by handle: the
+    /// copy candidates the backend sized, and their templates.
+    pub sizes: HashMap<i32, [f64; 3]>,
+    /// Copy candidates the backend found to have children of their own (a pasted copy has
+    /// none: the copies are pasted without their trees).
+    pub with_children: HashSet<i32>,
+    /// Ambient-diffuse colours (RGB, 0..1) by handle: the copy candidates the backend read
+    /// them of (an API that reads colours), and their templates.
+    pub colours: HashMap<i32, [f64; 3]>,
+    /// The surveyed objects (named ones included) that the scene's copy record
+    /// ([`super::record`]) holds as this tool's copies, as the survey found it: ours, first
+    /// of all, and never a template or a marker ([`super::resolve_handles`]).
+    pub recorded: HashSet<i32>,
+}
+
+/// How far apart (per channel, 0..1) two colours may be and still be one: a copy has its
+/// template's colour exactly; the colour dialogs step by 0.01.
+pub const COLOUR_TOLERANCE: f64 = 0.01;
+
+/// `true` if `a` and `b` are the same extents within [`SIZE_TOLERANCE`] along each axis
+/// (never with a NaN): a copy has exactly its template's bounding box, both kept in single
+/// precision.
+pub fn same_extents(a: [f64; 3], b: [f64; 3]) -> bool {
+    a.iter().zip(b).all(|(x, y)| same_size(*x, y))
+}
+
+/// `true` if what a backend read of `handle` ([`Traits`]) says it is no copy of the
+/// template `template`, though named and typed like one: it has children of its own, or
+/// both sizes were read and differ ([`same_extents`]), or both colours were read and differ
+/// (a user's red copy of `Line` is no line of the maze, nor a source to paste from). A
+/// copy the record holds ([`Traits::recorded`]) is never contradicted: the record decides
+/// first.
+pub fn contradicts_copy(traits: &Traits, handle: i32, template: Option<i32>) -> bool {
+    if traits.recorded.contains(&handle) {
+        return false;
+    }
+    let size = |h: i32| traits.sizes.get(&h).copied();
+    let colour = |h: i32| traits.colours.get(&h).copied();
+    traits.with_children.contains(&handle)
+        || matches!(
+            (size(handle), template.and_then(size)),
+            (Some(a), Some(b)) if !same_extents(a, b)
+        )
+        || matches!(
+            (colour(handle), template.and_then(colour)),
+            (Some(a), Some(b)) if !same_colour(a, b)
+        )
+}
+
+/// `true` if two colours are one within [`COLOUR_TOLERANCE`] per channel (never with NaN).
+pub fn same_colour(a: [f64; 3], b: [f64; 3]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(x, y)| (x - y).abs() <= COLOUR_TOLERANCE)
+}
+
+/// `true` if `o` is a copy of the template named `template` (handle `template_handle`, if
+/// in the scene, whose type code is `template_kind`): named in its family (`Line0`,
+/// `Line#0`, `/Line[1]`, [`is_copy_name`]), of the template's type where both types are
+/// known (a dummy or a cuboid named `Line3` is no copy of the `Line` plane), and not
+/// contradicted by its size or children ([`contradicts_copy`]: a 1 m plane named `Line9` is
+/// no copy of the 0.6 m `Line`). The one test of what a drawing may reuse, move or remove:
+/// anything else is the user's.
+pub fn is_copy_of(
+    o: &ObjectInfo,
+    template: &str,
+    template_handle: Option<i32>,
+    traits: &Traits,
+) -> bool {
+    let template_kind = template_handle.and_then(|t| traits.kinds.get(&t));
+    (is_copy_name(&o.name, template) || traits.recorded.contains(&o.handle))
+        && match (traits.kinds.get(&o.handle), template_kind) {
+            (Some(kind), Some(template_kind)) => kind == template_kind,
+            _ => true,
+        }
+        && !contradicts_copy(traits, o.handle, template_handle)
+}
+
+/// The objects of a survey sorted into those a drawing may consider and those it must
+/// leave alone ([`sort_out`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sorted {
+    /// Every object but the user's under the maze dummy or at the scene root: the named
+    /// objects, the templates' copies, and objects elsewhere in the scene.
+    pub objects: Vec<ObjectInfo>,
+    /// Names of the user's objects that a drawing could have mistaken for its own: the maze
+    /// dummy's children that are no copy of a template, and root objects named like a copy
+    /// but of another type or size, or with children. Left alone, and named in reports.
+    pub strangers: Vec<String>,
+}
+
+/// Sorts `objects` ([`Sorted`]): an object that is a child of the maze dummy or has no
+/// parent, is not one of the handles of `h`, not named as one of `templates` (line, wall,
+/// post) and no copy of any of them ([`is_copy_of`], judged by what the backend read:
+/// `traits`) is the user's.
+pub fn sort_out(
+    objects: &[ObjectInfo],
+    h: &Handles,
+    templates: &[&str],
+    traits: &Traits,
+) -> Sorted {
+    let named = [h.floor, h.parent, h.line, h.start, h.end];
+    let handle_of = |name: &str| objects.iter().find(|o| o.name == name).map(|o| o.handle);
+    let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, handle_of(t))).collect();
+    let mut sorted = Sorted {
+        objects: Vec::with_capacity(objects.len()),
+        strangers: Vec::new(),
+    };
+    for o in objects {
+        let under_maze = o.parent == Some(h.parent);
+        let ours = !(under_maze || o.parent.is_none())
+            || named.contains(&o.handle)
+            || Some(o.handle) == h.post
+            || (under_maze && o.name.rsplit('/').next() == Some(super::mesh::HOLDER))
+            || families
+                .iter()
+                .any(|(t, handle)| o.name == *t || is_copy_of(o, t, *handle, traits));
+        if ours {
+            sorted.objects.push(o.clone());
+        } else if under_maze || families.iter().any(|(t, _)| is_copy_name(&o.name, t)) {
+            sorted.strangers.push(o.name.clone());
+        }
+    }
+    sorted
+}
+
+/// `true` if `o` is one of the `foreign` templates or named like a copy of one.
+fn is_foreign(o: &ObjectInfo, foreign: &[&str]) -> bool {
+    foreign
+        .iter()
+        .any(|f| o.name == *f || is_copy_name(&o.name, f))
+}
+
+/// The lines of an earlier maze: every child of the maze parent except the templates and
+/// the `foreign` templates' objects ([`foreign_copies`]), then every parentless object named
+/// like a copy of the line template (left by an interrupted run between pasting and
+/// re-parenting). Children first, each group in handle order.
+pub fn maze_lines(
+    objects: &[ObjectInfo],
+    h: &Handles,
+    template_name: &str,
+    foreign: &[&str],
+) -> Vec<i32> {
+    let templates = h.templates();
+    let eligible = |o: &&ObjectInfo| {
+        !templates.contains(&o.handle)
+            && o.handle != h.parent
+            && o.handle != h.floor
+            && !is_foreign(o, foreign)
+    };
+    let mut children: Vec<i32> = objects
+        .iter()
+        .filter(eligible)
+        .filter(|o| o.parent == Some(h.parent))
+        .map(|o| o.handle)
+        .collect();
+    let mut strays: Vec<i32> = objects
+        .iter()
+        .filter(eligible)
+        .filter(|o| o.parent.is_none() && is_copy_name(&o.name, template_name))
+        .map(|o| o.handle)
+        .collect();
+    children.sort_unstable();
+    strays.sort_unstable();
+    children.extend(strays);
+    children
+}
+
+/// Copies of the `foreign` templates (another style's: walls when drawing lines, lines when
+/// drawing walls) among the children of the maze parent and the parentless objects, in
+/// handle order: an earlier maze of the other style, removed and never reused. The
+/// templates themselves (named exactly so) are not among them.
+pub fn foreign_copies(objects: &[ObjectInfo], h: &Handles, foreign: &[&str]) -> Vec<i32> {
+    let mut copies: Vec<i32> = objects
+        .iter()
+        .filter(|o| o.parent == Some(h.parent) || o.parent.is_none())
+        .filter(|o| foreign.iter().any(|f| is_copy_name(&o.name, f)))
+        .map(|o| o.handle)
+        .collect();
+    copies.sort_unstable();
+    copies
+}
+
+/// What to do with existing copies.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Plan {
+    /// Existing copies kept (in segment order after the template).
+    pub reuse: Vec<i32>,
+    /// Existing copies removed.
+    pub remove: Vec<i32>,
+    /// Number of copies to paste.
+    pub paste: usize,
+}
+
+/// Reuses as many existing copies as needed, removes the rest, pastes the missing ones.
+pub fn plan(existing: &[i32], copies_needed: usize) -> Plan {
+    let keep = existing.len().min(copies_needed);
+    Plan {
+        reuse: existing[..keep].to_vec(),
+        remove: existing[keep..].to_vec(),
+        paste: copies_needed - keep,
+    }
+}
+
+/// One pasting round: up to `max_blocks` copy-paste commands, each copying (a prefix of) the
+/// lines available so far, together pasting at most `missing` copies. With `max_blocks` = 1
+/// this is plain doubling; with b blocks the set grows (b+1)-fold per round trip.
+pub fn paste_round(available: &[i32], missing: usize, max_blocks: usize) -> Vec<Vec<i32>> {
+    let mut groups = Vec::new();
+    let mut left = missing;
+    while left > 0 && groups.len() < max_blocks.max(1) && !available.is_empty() {
+        let n = left.min(available.len());
+        groups.push(available[..n].to_vec());
+        left -= n;
+    }
+    groups
+}
+
+/// Frame of an object from its world position and Euler angles.
+pub fn world_frame(o: &ObjectInfo) -> Frame {
+    frame(o.position, o.orientation)
+}
+
+/// Pose of `object` in the frame `floor` as (position, Euler).
+pub fn relative_pose(floor: &Frame, object: &ObjectInfo) -> ([f64; 3], [f64; 3]) {
+    position_euler(&(floor.inverse() * world_frame(object)))
+}
+
+/// Differences between an object's pose in the floor frame and the wanted pose (`None` if
+/// within tolerance; a flipped line (yaw + pi) is not accepted: Start/End and lines are
+/// compared exactly up to 2 pi). A non-finite number anywhere (object, floor or wanted pose)
+/// is always a difference: every comparison with NaN fails.
+pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Option<String> {
+    let (p, e) = relative_pose(floor, object);
+    let position_ok = p
+        .iter()
+        .zip(crate::draw::position(want))
+        .all(|(a, b)| (a - b).abs() <= POSITION_TOLERANCE);
+    let angles_ok = [
+        wrap_angle(e[0]),
+        wrap_angle(e[1]),
+        wrap_angle(e[2] - want.yaw),
+    ]
+    .iter()
+    .all(|a| a.abs() <= ANGLE_TOLERANCE);
+    if position_ok && angles_ok {
+        None
+    } else {
+        Some(format!(
+            "at ({:.4}, {:.4}, {:.4}) yaw {:.4} (roll {:.4}, pitch {:.4}), expected ({:.4}, {:.4}, {:.4}) yaw {:.4}",
+            p[0], p[1], p[2], e[2], e[0], e[1], want.x, want.y, want.z, want.yaw
+        ))
+    }
+}
+
+/// Tolerance on sizes (metres): a template's bounding box may differ from the layout's
+/// size by this much. CoppeliaSim keeps sizes in single precision (about 1e-7 relative: 0.1
+/// micrometre on a metre) and its object dialogs set sizes in millimetres, so half a
+/// millimetre is far above the simulator's noise and far below what a camera sees.
+pub const SIZE_TOLERANCE: f64 = 5e-4;
+
+/// `true` if two lengths are equal within [`SIZE_TOLERANCE`] (never with a NaN).
+pub(crate) fn same_size(a: f64, b: f64) -> bool {
+    (a - b).abs() <= SIZE_TOLERANCE
+}
+
+/// Warnings for the templates a wall maze copies (`templates`: name and handle) that stand
+/// on the maze: within half a cell of the area its walls and posts cover, at or above the
+/// floor. They stay where the scene has them, so there they show as walls the layout does
+/// not have.
+pub fn templates_on_the_maze(
+    drawing: &Drawing,
+    objects: &[ObjectInfo],
+    floor: &Frame,
+    templates: &[(&str, i32)],
+) -> Vec<String> {
+    let poses = drawing.lines.iter().chain(&drawing.posts);
+    let margin = drawing.sizes.cell / 2.0;
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in poses {
+        lo = [lo[0].min(p.x - margin), lo[1].min(p.y - margin)];
+        hi = [hi[0].max(p.x + margin), hi[1].max(p.y + margin)];
+    }
+    templates
+        .iter()
+        .filter_map(|(name, handle)| {
+            let o = objects.iter().find(|o| o.handle == *handle)?;
+            let (p, _) = relative_pose(floor, o);
+            let inside = (lo[0]..=hi[0]).contains(&p[0])
+                && (lo[1]..=hi[1]).contains(&p[1])
+                && p[2] >= 0.0;
+            inside.then(|| {
+                format!(
+                    "the template `{name}` stands on the maze at ({:.3}, {:.3}): it shows as a wall the layout does not have; move it off the maze (e.g. beside the floor)",
+                    p[0], p[1]
+                )
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::draw::ObjectNames;
+
+    fn obj(handle: i32, name: &str, parent: Option<i32>) -> ObjectInfo {
+        ObjectInfo {
+            handle,
+            name: name.into(),
+            parent,
+            position: [0.0; 3],
+            orientation: [0.0; 3],
+        }
+    }
+
+    #[test]
+    fn copy_names() {
+        for yes in ["Line0", "Line12", "Line#0", "Line#33"] {
+            assert!(is_copy_name(yes, "Line"), "{yes}");
+        }
+        for no in [
+            "Line", "Lines0", "Line#", "Line#x", "Start0", "MyLine0", "Line0a",
+        ] {
+            assert!(!is_copy_name(no, "Line"), "{no}");
+        }
+        assert!(is_copy_name("Line6", "Line5"));
+        assert!(is_copy_name("/Line[1]", "Line") && is_copy_name("/Line[12]", "/Line"));
+        assert!(!is_copy_name("/Line", "Line") && !is_copy_name("/Line[x]", "Line"));
+        assert!(is_copy_name("Seg#1", "Seg#0"));
+        // a path to the template names its alias's family, index or not
+        for template in ["/Line[0]", "/Line", "/Line{0}", "./Line", "/Course/Line[2]"] {
+            assert_eq!(family(template), "Line", "{template}");
+            for copy in ["/Line[1]", "Line#4", "Line7"] {
+                assert!(is_copy_name(copy, template), "{copy} of {template}");
+            }
+            assert!(!is_copy_name("Line", template) && !is_copy_name("/Line", template));
+        }
+        assert_eq!(family("Line[0]"), "Line[0]", "a plain name is a name");
+    }
+
+    #[test]
+    fn the_record_decides_first_then_colour_and_size() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "Line1", Some(2)),
+            obj(8, "Line2", Some(2)),
+            obj(9, "Renamed", Some(2)),
+        ];
+        let (green, red) = ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0]);
+        let traits = Traits {
+            kinds: (3..=9).map(|h| (h, 0)).collect(),
+            // 7 is a red look-alike; 8 is within the dialogs' step of green
+            colours: [
+                (3, green),
+                (6, green),
+                (7, red),
+                (8, [0.0, 0.995, 0.0]),
+                (9, red),
+            ]
+            .into_iter()
+            .collect(),
+            // 9 was pasted by us and renamed; a recorded copy is never doubted
+            recorded: [9].into_iter().collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line"], &traits);
+        assert_eq!(sorted.strangers, vec!["Line1"]);
+        assert!(sorted.objects.iter().any(|o| o.handle == 9));
+        assert!(!same_colour(green, [f64::NAN, 1.0, 0.0]));
+    }
+
+    /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
+    /// template.
+    fn handles() -> Handles {
+        Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+            post: None,
+        }
+    }
+
+    #[test]
+    fn maze_lines_are_children_and_parentless_copies() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", Some(2)),
+            obj(4, "Start", None),
+            obj(5, "End", Some(2)),
+            obj(9, "Line7", Some(2)),
+            obj(8, "Renamed", Some(2)),
+            obj(12, "Line#3", None),
+            obj(11, "Line2", None),
+            obj(13, "Line4", Some(1)),
+            obj(14, "Cuboid0", None),
+        ];
+        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![8, 9, 11, 12]);
+    }
+
+    #[test]
+    fn another_styles_copies_are_foreign_and_its_template_untouched() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(6, "Wall", Some(2)),
+            obj(7, "Wall0", Some(2)),
+            obj(8, "Line0", Some(2)),
+            obj(9, "/Wall[3]", None),
+            obj(10, "Wall1", Some(1)),
+        ];
+        assert_eq!(maze_lines(&objects, &h, "Line", &["Wall"]), vec![8]);
+        assert_eq!(foreign_copies(&objects, &h, &["Wall"]), vec![7, 9]);
+        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![6, 7, 8]);
+        // a wall maze with posts: the posts are neither walls nor lines
+        let mut objects = objects;
+        objects.extend([
+            obj(11, "Post", None),
+            obj(12, "Post0", Some(2)),
+            obj(13, "/Post[2]", None),
+            obj(14, "Wall2", Some(2)),
+        ]);
+        let walls = Handles { line: 6, ..h };
+        assert_eq!(
+            maze_lines(&objects, &walls, "Wall", &["Line", "Post"]),
+            vec![7, 14, 9]
+        );
+        assert_eq!(foreign_copies(&objects, &h, &["Post"]), vec![12, 13]);
+        assert_eq!(foreign_copies(&objects, &h, &["Line"]), vec![8]);
+    }
+
+    #[test]
+    fn only_copies_of_a_template_by_name_and_type_are_the_mazes() {
+        let h = handles();
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "MySensor", Some(2)),
+            obj(8, "Line1", Some(2)),
+            obj(9, "/Line[2]", None),
+            obj(10, "Line3", None),
+            obj(11, "Camera", None),
+            obj(12, "Wall0", Some(2)),
+            obj(13, "Other", Some(1)),
+        ];
+        // 0 shape, 4 dummy: Line1 and the root Line3 are dummies
+        let traits = Traits {
+            kinds: [(3, 0), (6, 0), (7, 4), (8, 4), (9, 0), (10, 4), (12, 0)]
+                .into_iter()
+                .collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
+        let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
+        assert_eq!(kept, vec![1, 2, 3, 4, 5, 6, 9, 12, 13]);
+        assert_eq!(sorted.strangers, vec!["MySensor", "Line1", "Line3"]);
+        // a type nobody read: the name decides
+        let sorted = sort_out(&objects, &h, &["Line"], &Traits::default());
+        assert_eq!(sorted.strangers, vec!["MySensor", "Wall0"]);
+    }
+
+    #[test]
+    fn a_copy_named_shape_of_another_size_or_with_children_is_the_users() {
+        let h = Handles {
+            floor: 1,
+            parent: 2,
+            line: 3,
+            start: 4,
+            end: 5,
+            post: None,
+        };
+        let objects = vec![
+            obj(1, "Floor", None),
+            obj(2, "Maze", None),
+            obj(3, "Line", None),
+            obj(4, "Start", None),
+            obj(5, "End", None),
+            obj(6, "Line0", Some(2)),
+            obj(7, "Line9", Some(2)),
+            obj(8, "/Line[3]", Some(2)),
+            obj(9, "Line4", Some(2)),
+            obj(10, "Line5", None),
+            obj(11, "Line6", Some(2)),
+        ];
+        let line = [0.6, 0.1, 0.0];
+        let traits = Traits {
+            kinds: (3..=11).map(|h| (h, 0)).collect(),
+            sizes: [
+                (3, line),
+                // single precision: within half a millimetre is the template's size
+                (6, [0.6 + 4e-4, 0.1 - 4e-4, 0.0]),
+                (7, [1.0, 1.0, 0.0]),
+                (8, [0.6, 0.1, 0.05]),
+                (9, line),
+                (10, [0.6 + 7e-4, 0.1, 0.0]),
+                (11, [f64::NAN, 0.1, 0.0]),
+            ]
+            .into_iter()
+            .collect(),
+            with_children: [9].into_iter().collect(),
+            ..Default::default()
+        };
+        let sorted = sort_out(&objects, &h, &["Line", "Wall", "Post"], &traits);
+        let kept: Vec<i32> = sorted.objects.iter().map(|o| o.handle).collect();
+        assert_eq!(kept, vec![1, 2, 3, 4, 5, 6]);
+        assert_eq!(
+            sorted.strangers,
+            vec!["Line9", "/Line[3]", "Line4", "Line5", "Line6"]
+        );
+        // a size read without its template's (or the other way round) is no evidence
+        let mut unread = traits.clone();
+        unread.sizes.remove(&3);
+        unread.with_children.clear();
+        assert_eq!(
+            sort_out(&objects, &h, &["Line"], &unread).objects.len(),
+            objects.len()
+        );
+        assert!(same_extents(line, [0.6, 0.1, 4.9e-4]));
+        assert!(!same_extents(line, [0.6, 0.1, 5.1e-4]));
+    }
+
+    #[test]
+    fn one_name_in_two_roles_is_refused_naming_both() {
+        assert!(ObjectNames::default().check_roles().is_ok());
+        let names = ObjectNames {
+            end: "/Floor".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.contains("`Floor` and `/Floor`") && e.contains("(--floor)") && e.contains("(--end)"),
+            "{e}"
+        );
+        let names = ObjectNames {
+            post: "Line".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "`Line` would be both the line template (--line) and the post template (--post)"
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn plan_reuses_pastes_removes() {
+        assert_eq!(
+            plan(&[7, 8, 9], 2),
+            Plan {
+                reuse: vec![7, 8],
+                remove: vec![9],
+                paste: 0
+            }
+        );
+        assert_eq!(
+            plan(&[7], 4),
+            Plan {
+                reuse: vec![7],
+                remove: vec![],
+                paste: 3
+            }
+        );
+        assert_eq!(paste_round(&[1], 5, 1), vec![vec![1]]);
+        assert_eq!(
+            paste_round(&[1, 2, 3], 5, 4),
+            vec![vec![1, 2, 3], vec![1, 2]]
+        );
+        assert_eq!(paste_round(&[1, 2], 0, 4), Vec::<Vec<i32>>::new());
+        // rounds needed for 1797 copies from one template with 16 blocks per round
+        let (mut have, mut rounds) = (1usize, 0);
+        while have < 1798 {
+            have += paste_round(&vec![0; have], 1798 - have, 16)
+                .iter()
+                .map(Vec::len)
+                .sum::<usize>();
+            rounds += 1;
+        }
+        assert_eq!((have, rounds), (1798, 3));
+    }
+
+    #[test]
+    fn pose_compare_in_a_rotated_floor() {
+        let floor_info = ObjectInfo {
+            position: [1.0, 2.0, 0.0],
+            orientation: [0.0, 0.0, 1.0],
+            ..obj(1, "Floor", None)
+        };
+        let floor = world_frame(&floor_info);
+        let want = Pose {
+            x: 0.25,
+            y: 1.0,
+            z: 0.001,
+            yaw: std::f64::consts::FRAC_PI_2,
+        };
+        let world = floor * frame(crate::draw::position(&want), crate::draw::euler(&want));
+        let (p, e) = position_euler(&world);
+        let o = ObjectInfo {
+            position: p,
+            orientation: e,
+            ..obj(5, "Line0", Some(2))
+        };
+        assert_eq!(pose_differences(&floor, &o, &want), None);
+        let moved = Pose { x: 0.2502, ..want };
+        assert!(pose_differences(&floor, &o, &moved).is_some());
+    }
+
+    #[test]
+    fn a_non_finite_pose_is_never_in_place() {
+        let floor = world_frame(&obj(1, "Floor", None));
+        let want = Pose {
+            x: 0.25,
+            y: 0.0,
+            z: 0.001,
+            yaw: 0.0,
+        };
+        let placed = ObjectInfo {
+            position: [0.25, 0.0, 0.001],
+            ..obj(5, "Line0", Some(2))
+        };
+        assert_eq!(pose_differences(&floor, &placed, &want), None);
+        for (i, bad) in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY]
+            .into_iter()
+            .enumerate()
+        {
+            for k in 0..3 {
+                let mut o = placed.clone();
+                o.position[k] = bad;
+                assert!(
+                    pose_differences(&floor, &o, &want).is_some(),
+                    "position[{k}] #{i}"
+                );
+                let mut o = placed.clone();
+                o.orientation[k] = bad;
+                assert!(
+                    pose_differences(&floor, &o, &want).is_some(),
+                    "orientation[{k}] #{i}"
+                );
+            }
+            let wanted = Pose { yaw: bad, ..want };
+            assert!(
+                pose_differences(&floor, &placed, &wanted).is_some(),
+                "wanted yaw #{i}"
+            );
+            let nan_floor = world_frame(&ObjectInfo {
+                position: [bad, 0.0, 0.0],
+                ..obj(1, "Floor", None)
+            });
+            assert!(
+                pose_differences(&nan_floor, &placed, &want).is_some(),
+                "floor #{i}"
+            );
+        }
+    }
+}

@@ -1,0 +1,372 @@
+//! Compare a scene with a drawing: every line (or wall and post), `Start` and `End` in place
+//! (1e-4 m, 1e-4 rad), copies parented to the maze dummy, and no other maze lines.
+
+use std::collections::{HashMap, HashSet};
+
+use super::apply::raised;
+use super::plan::{self, foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
+use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
+
+/// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
+/// `drawing.lines[i]` (`lines[0]` is the template in a line maze) and `posts[i]` the one
+/// drawn for `drawing.posts[i]`. Empty when the scene matches.
+pub fn check(
+    objects: &[ObjectInfo],
+    h: &Handles,
+    names: &ObjectNames,
+    lines: &[i32],
+    posts: &[i32],
+    drawing: &Drawing,
+) -> Vec<String> {
+    let mut problems = Vec::new();
+    let Some(floor) = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+    else {
+        return vec!["the floor object disappeared".into()];
+    };
+    problems.extend(broken_frames(objects, h, names));
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let get = |handle: i32| by_handle.get(&handle).copied();
+    let parts = [
+        (
+            noun(drawing.style),
+            lines,
+            &drawing.lines,
+            usize::from(drawing.template_drawn()),
+        ),
+        ("post", posts, &drawing.posts, 0),
+    ];
+    for (noun, drawn, wanted, first_copy) in parts {
+        if drawn.len() != wanted.len() {
+            problems.push(format!(
+                "{} {noun} objects for {} {noun}s",
+                drawn.len(),
+                wanted.len()
+            ));
+        }
+        for (i, (&handle, want)) in drawn.iter().zip(wanted).enumerate() {
+            match get(handle) {
+                None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
+                Some(o) => {
+                    if let Some(d) = pose_differences(&floor, o, want) {
+                        problems.push(format!("{noun} {i} `{}` {d}", o.name));
+                    }
+                    if i >= first_copy && o.parent != Some(h.parent) {
+                        problems.push(format!(
+                            "{noun} {i} `{}` has parent {:?}, expected {}",
+                            o.name, o.parent, h.parent
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    for (what, handle, want) in [
+        ("start", h.start, &drawing.start),
+        ("end", h.end, &drawing.end),
+    ] {
+        match get(handle) {
+            None => problems.push(format!("the {what} marker is missing")),
+            Some(o) => {
+                if let Some(d) = pose_differences(&floor, o, want) {
+                    problems.push(format!("{what} `{}` {d}", o.name));
+                }
+            }
+        }
+    }
+    let first_copy = usize::from(drawing.template_drawn());
+    let expected: HashSet<i32> = lines
+        .iter()
+        .skip(first_copy)
+        .chain(posts)
+        .copied()
+        .collect();
+    let with_posts = !drawing.posts.is_empty();
+    let stray: Vec<&str> = maze_lines(
+        objects,
+        h,
+        names.template(drawing.style),
+        &names.others(drawing.style),
+    )
+    .into_iter()
+    .chain(maze_posts(objects, h, names, with_posts))
+    .chain(foreign_copies(
+        objects,
+        h,
+        &names.foreign(drawing.style, with_posts),
+    ))
+    .filter(|x| !expected.contains(x))
+    .filter_map(|x| get(x).map(|o| o.name.as_str()))
+    .collect();
+    if !stray.is_empty() {
+        problems.push(stray_problem(&stray));
+    }
+    problems
+}
+
+/// What a problem of [`broken_frames`] says, which [`DrawError::hints`] recognises.
+pub(crate) const BROKEN_POSE: &str = "is at a pose that is not a number (NaN)";
+
+/// One problem for each of the floor and the maze dummy whose world pose in `objects` is not
+/// finite: every pose relative to the floor, and every copy under the dummy, reads back
+/// so, whatever a drawing sets, and vrep-maze never moves either object.
+fn broken_frames(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames) -> Vec<String> {
+    [
+        (
+            h.floor,
+            &names.floor,
+            "the floor, --floor",
+            "every pose relative to it",
+        ),
+        (
+            h.parent,
+            &names.parent,
+            "the maze dummy, --parent",
+            "every copy under it",
+        ),
+    ]
+    .into_iter()
+    .filter(|(handle, ..)| {
+        objects.iter().any(|o| {
+            o.handle == *handle
+                && !o
+                    .position
+                    .iter()
+                    .chain(&o.orientation)
+                    .all(|x| x.is_finite())
+        })
+    })
+    .map(|(_, name, role, what)| format!("`{name}` ({role}) {BROKEN_POSE}: so is {what}"))
+    .collect()
+}
+
+/// The maze's copies of the post template when the drawing has posts (else they are
+/// foreign, [`ObjectNames::foreign`]).
+fn maze_posts(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames, posts: bool) -> Vec<i32> {
+    if posts {
+        foreign_copies(objects, h, &[&names.post])
+    } else {
+        Vec::new()
+    }
+}
+
+/// What the copies of a style's template are called in messages: `line` or `wall`.
+fn noun(style: Style) -> &'static str {
+    match style {
+        Style::Lines => "line",
+        Style::Walls => "wall",
+    }
+}
+
+/// Side of the squares [`verify`] sorts objects into: far above the position tolerance, so
+/// a line in place is always in its segment's square or a neighbour.
+const BUCKET: f64 = 0.01;
+
+/// The square of the floor a position lies in (`None` for a non-finite one, never in place).
+fn bucket(position: [f64; 3]) -> Option<(i64, i64)> {
+    let (x, y) = (position[0] / BUCKET, position[1] / BUCKET);
+    (x.is_finite() && y.is_finite() && x.abs() < 1e15 && y.abs() < 1e15)
+        .then(|| (x.floor() as i64, y.floor() as i64))
+}
+
+/// "N stray maze object(s): a, b, c, ..." naming at most the first few.
+fn stray_problem(stray: &[&str]) -> String {
+    const NAMED: usize = 5;
+    let more = if stray.len() > NAMED {
+        format!(", ... ({} more)", stray.len() - NAMED)
+    } else {
+        String::new()
+    };
+    format!(
+        "{} stray maze object(s): {}{more}",
+        stray.len(),
+        stray[..stray.len().min(NAMED)].join(", ")
+    )
+}
+
+/// Verifies a scene against a drawing without knowing which copy is which line: every
+/// segment (wall, post) must be covered by a distinct maze copy of its template in place (a
+/// line maze's template may cover any segment), copies must be children of the maze dummy,
+/// no other maze copy may exist, and `Start`/`End` must be in place. Every pose is read
+/// from the scene, with the idle rate raised while reading (and restored).
+pub fn verify(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    names.check_roles()?;
+    raised(scene, false, |scene| verify_raised(scene, drawing, names)).map(|(ok, _)| ok)
+}
+
+/// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
+/// itself (`vrep-maze inspect`, [`super::apply::raised_to_read`]).
+pub fn verify_read_only(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    verify_raised(scene, drawing, names)
+}
+
+/// [`verify`] with the idle rate raised.
+fn verify_raised(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    names: &ObjectNames,
+) -> Result<(), DrawError> {
+    let style = drawing.style;
+    let with_posts = !drawing.posts.is_empty();
+    let (survey, h) = super::apply::surveyed(scene, names, style, with_posts)?;
+    let sizes = super::apply::sizes_of(scene, &drawing.template_use(), names, &h)?;
+    if let Some(differences) = sizes.differences(names) {
+        return Err(differences);
+    }
+    // every pose as the scene holds it now, not as a backend remembers setting it; the
+    // user's objects are no maze lines
+    let objects = &plan::sort_out(
+        &scene.objects_from_scene()?,
+        &h,
+        &names.templates(),
+        &survey.traits,
+    )
+    .objects;
+    let floor = objects
+        .iter()
+        .find(|o| o.handle == h.floor)
+        .map(world_frame)
+        .unwrap_or_default();
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let mut pool: Vec<i32> = if drawing.template_drawn() {
+        vec![h.line]
+    } else {
+        vec![]
+    };
+    // an earlier mesh maze is stray; the holder is no line, and the user's holder stays
+    let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
+    pool.extend(
+        maze_lines(objects, &h, names.template(style), &names.others(style))
+            .into_iter()
+            .filter(|x| Some(*x) != meshes.holder),
+    );
+    let mut problems = Vec::new();
+    problems.extend(broken_frames(objects, &h, names));
+    let mut stray = Vec::new();
+    let parts = [
+        (noun(style), pool, &drawing.lines),
+        (
+            "post",
+            maze_posts(objects, &h, names, with_posts),
+            &drawing.posts,
+        ),
+    ];
+    for (noun, pool, wanted) in parts {
+        let matched = Matching {
+            floor: &floor,
+            by_handle: &by_handle,
+            h: &h,
+            parent: &names.parent,
+            noun,
+        };
+        stray.extend(matched.run(&pool, wanted, &mut problems));
+    }
+    stray.extend(foreign_copies(
+        objects,
+        &h,
+        &names.foreign(style, with_posts),
+    ));
+    stray.retain(|x| Some(*x) != meshes.holder);
+    let stray: Vec<&str> = stray
+        .into_iter()
+        .filter_map(|c| by_handle.get(&c).map(|o| o.name.as_str()))
+        .chain(meshes.ours.iter().map(|(_, name)| name.as_str()))
+        .collect();
+    if !stray.is_empty() {
+        problems.push(stray_problem(&stray));
+    }
+    for (what, handle, want) in [
+        ("start", h.start, &drawing.start),
+        ("end", h.end, &drawing.end),
+    ] {
+        if let Some(d) = by_handle
+            .get(&handle)
+            .and_then(|o| pose_differences(&floor, o, want))
+        {
+            problems.push(format!("{what} {d}"));
+        }
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(DrawError::Verify(problems))
+    }
+}
+
+/// What [`verify`] matches one template's copies with.
+struct Matching<'a> {
+    floor: &'a vrep_maze_core::coppelia::frame::Frame,
+    by_handle: &'a HashMap<i32, &'a ObjectInfo>,
+    h: &'a Handles,
+    /// The maze dummy's name, for messages.
+    parent: &'a str,
+    /// What a copy is called in messages.
+    noun: &'static str,
+}
+
+impl Matching<'_> {
+    /// Finds a distinct object of `pool` in place for each of `wanted`, adding what is
+    /// missing or wrongly parented to `problems`; returns the copies of `pool` left over
+    /// (the line template, if in the pool, is never left over).
+    fn run(&self, pool: &[i32], wanted: &[Pose], problems: &mut Vec<String>) -> Vec<i32> {
+        let get = |handle: i32| self.by_handle.get(&handle).copied();
+        // the pool by where each object lies on the floor, so each segment finds its copy
+        // among a few neighbours instead of all of them
+        let mut near: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+        for (k, &c) in pool.iter().enumerate() {
+            if let Some(key) = get(c).and_then(|o| bucket(relative_pose(self.floor, o).0)) {
+                near.entry(key).or_default().push(k);
+            }
+        }
+        let mut used = vec![false; pool.len()];
+        for (i, want) in wanted.iter().enumerate() {
+            // the lowest pool index among the copies in place: the template first, as before
+            let hit = bucket(crate::draw::position(want)).and_then(|(bx, by)| {
+                (-1..=1)
+                    .flat_map(|dx| (-1..=1).map(move |dy| (bx + dx, by + dy)))
+                    .filter_map(|key| near.get(&key))
+                    .flatten()
+                    .copied()
+                    .filter(|&k| {
+                        !used[k]
+                            && get(pool[k])
+                                .is_some_and(|o| pose_differences(self.floor, o, want).is_none())
+                    })
+                    .min()
+            });
+            match hit {
+                Some(k) => {
+                    used[k] = true;
+                    let c = pool[k];
+                    if c != self.h.line && get(c).and_then(|o| o.parent) != Some(self.h.parent) {
+                        problems.push(format!(
+                            "{} {i} `{}` is not a child of `{}`",
+                            self.noun,
+                            get(c).map(|o| o.name.as_str()).unwrap_or("?"),
+                            self.parent
+                        ));
+                    }
+                }
+                None => problems.push(format!(
+                    "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
+                    self.noun, want.x, want.y, want.z, want.yaw
+                )),
+            }
+        }
+        pool.iter()
+            .zip(&used)
+            .filter(|&(&c, &u)| !u && c != self.h.line)
+            .map(|(&c, _)| c)
+            .collect()
+    }
+}

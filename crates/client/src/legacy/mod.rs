@@ -1,0 +1,17 @@
+//! CoppeliaSim's legacy remote API (port 19997): wire format, command set, a native client
+//! with its drawing backend, and an emulator of the server over [`crate::sim`].
+//!
+//! Layers: [`wire`] (packets, message header, command blocks) → [`command`] (command IDs and
+//! payloads), then on one side [`client`] → [`backend`] (the [`crate::draw::Backend`]
+//! implementation), on the other [`server`]. The two sides share only `wire`, `command` and
+//! [`vrep_maze_core::coppelia`]'s numbers: the client never imports the emulator, nor the emulator
+//! the client.
+
+pub mod backend;
+pub mod client;
+pub mod follow;
+
+pub use vrep_maze_wire::legacy::{command, wire};
+
+pub use backend::LegacyBackend;
+pub use client::{Client, ClientError, ClientOptions, Reply};

@@ -1,0 +1,289 @@
+//! [`MeshDrawing`] over the ZeroMQ remote API: `sim.createShape` (`sim.createMeshShape`
+//! before 4.6) per mesh, dressed and named with a few calls each, read back with
+//! `sim.getShapeMesh`.
+
+use ciborium::Value;
+
+use super::{ZmqBackend, object_path};
+use crate::draw::mesh::{
+    FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
+};
+use crate::draw::{BackendError, ObjectNames};
+use crate::zmq_api::ZmqError;
+use crate::zmq_api::cbor::{self, float_array, int};
+use vrep_maze_core::coppelia::lua;
+use vrep_maze_core::coppelia::{
+    COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
+};
+
+/// Shading angle of the meshes (CoppeliaSim's usual 20 degrees; flat faces show no edge).
+const SHADING_ANGLE: f64 = 0.349;
+
+/// The first program version whose add-on speaks protocol 2 (4.6.0): from it on meshes are
+/// made with `sim.createShape`, since 4.10 logs that `sim.createMeshShape` is deprecated
+/// (`../shared/spec/real-coppeliasim-4.10.md` "Other API changes that matter"). Both make the
+/// same shape, at the identity pose with its vertices as given (coppeliaSimLib@coppeliasim-v4.10.0-rev0
+/// `simInternal.cpp:6304-6408`); 4.5.1, where every timing was measured, keeps the older call.
+const CREATE_SHAPE_SINCE: i32 = 40600;
+
+/// Positions within this of the origin, and angles within this of zero, are the identity.
+const IDENTITY: f64 = 1e-9;
+
+/// The meshes of a [`lua::read_meshes_code`] answer, `(true, {v1, i1, ...})`: `None` for a
+/// failure or an answer of another shape.
+fn packed_meshes(values: &[Value], count: usize) -> Option<Vec<MeshReadback>> {
+    let (Some(Value::Bool(true)), Some(Value::Array(packed))) = (values.first(), values.get(1))
+    else {
+        return None;
+    };
+    if packed.len() != 2 * count {
+        return None;
+    }
+    packed
+        .chunks_exact(2)
+        .map(|pair| match pair {
+            [Value::Bytes(v), Value::Bytes(i)] => Some(MeshReadback {
+                vertices: Some(lua::unpack_floats(v)?),
+                indices: Some(lua::unpack_int32s(i)?),
+                ..Default::default()
+            }),
+            _ => None,
+        })
+        .collect()
+}
+
+impl ZmqBackend {
+    /// `shape` with the colour and world pose of the mesh `handle`.
+    fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
+        let colour = self
+            .call(
+                "sim.getShapeColor",
+                vec![
+                    int(handle.into()),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                ],
+            )?
+            .get(1)
+            .and_then(cbor::numbers::<3>);
+        let pose = self.world_pose(handle)?;
+        Ok(MeshReadback {
+            colour,
+            pose,
+            ..shape
+        })
+    }
+
+    /// Whether the floor's world pose, as last read, is the world frame: a new mesh (at the
+    /// world origin) is then on the floor already and needs no pose call.
+    fn floor_is_world(&self, floor: i32) -> bool {
+        self.poses
+            .get(&floor)
+            .is_some_and(|(p, e)| p.iter().chain(e).all(|x| x.abs() <= IDENTITY))
+    }
+
+    fn text_call(&mut self, func: &str, h: i32, param: i32) -> Result<String, BackendError> {
+        let v = self
+            .client
+            .call1(func, vec![int(h.into()), int(param.into())])?;
+        cbor::text(&v).map(str::to_string).ok_or_else(|| {
+            BackendError::Transport(format!("{func} of {h}: not a text: {}", cbor::describe(&v)))
+        })
+    }
+
+    /// Puts a new object's frame on the floor's (unless it is there, the world's) and under
+    /// `parent`, keeping it in place.
+    fn settle(&mut self, h: i32, floor: i32, parent: i32) -> Result<(), BackendError> {
+        if !self.floor_is_world(floor) {
+            self.set_pose(h, floor, [0.0; 3], [0.0; 3])?;
+        }
+        self.call(
+            "sim.setObjectParent",
+            vec![int(h.into()), int(parent.into()), Value::Bool(true)],
+        )?;
+        Ok(())
+    }
+}
+
+/// `sim.getShapeColor(h, "", 0)`: the ambient-diffuse colour of the shape `handle`.
+pub(super) fn shape_colour_call(handle: i32) -> (&'static str, Vec<Value>) {
+    (
+        "sim.getShapeColor",
+        vec![
+            int(handle.into()),
+            Value::Text(String::new()),
+            int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+        ],
+    )
+}
+
+/// The colour in the reply of [`shape_colour_call`] (`[1, [r, g, b]]`).
+pub(super) fn colour_of(values: &[Value]) -> Option<[f64; 3]> {
+    values.get(1).and_then(cbor::numbers::<3>)
+}
+
+impl MeshDrawing for ZmqBackend {
+    fn look(&mut self, template: i32) -> Result<Look, BackendError> {
+        let colours = crate::draw::Backend::shape_colours(self, &[template])?;
+        let colour = colours.into_iter().flatten().next().flatten();
+        let colour = colour.ok_or_else(|| {
+            BackendError::Transport(format!("sim.getShapeColor of {template}: no colour"))
+        })?;
+        let special = self
+            .client
+            .call_int("sim.getObjectSpecialProperty", vec![int(template.into())])?;
+        Ok(Look { colour, special })
+    }
+
+    fn find(&mut self, names: &ObjectNames, _parent: i32) -> Result<FoundMeshes, BackendError> {
+        let path = format!("{}/{HOLDER}", object_path(&names.parent));
+        let Some(holder) = self.handle_of(&path)? else {
+            return Ok(FoundMeshes::default());
+        };
+        let mut meshes = Vec::new();
+        // options 3: the holder's children, without the holder itself (removing the holder
+        // removes them; anything deeper moves up to its parent, as CoppeliaSim does)
+        for h in self.handles_in(holder, 3)? {
+            let name = self.text_call("sim.getObjectAlias", h, -1)?;
+            meshes.push(FoundMesh {
+                handle: h,
+                name,
+                parent: Some(holder),
+            });
+        }
+        Ok(FoundMeshes {
+            holder: Some(holder),
+            meshes,
+            users: Vec::new(),
+        })
+    }
+
+    fn create(
+        &mut self,
+        place: &MeshPlace,
+        meshes: &[NewMesh<'_>],
+    ) -> Result<(i32, Vec<i32>), BackendError> {
+        let holder = match place.holder {
+            Some(h) => h,
+            None => {
+                let h = self
+                    .client
+                    .call_int("sim.createDummy", vec![Value::Float(0.01)])?;
+                self.call(
+                    "sim.setObjectAlias",
+                    vec![int(h.into()), Value::Text(HOLDER.into())],
+                )?;
+                self.settle(h, place.floor, place.parent)?;
+                h
+            }
+        };
+        let mut created = Vec::with_capacity(meshes.len());
+        for mesh in meshes {
+            let vertices: Vec<f64> = mesh.vertices.iter().map(|&v| f64::from(v)).collect();
+            let indices = Value::Array(mesh.indices.iter().map(|&i| int(i.into())).collect());
+            let create = if self.version >= CREATE_SHAPE_SINCE {
+                "sim.createShape"
+            } else {
+                "sim.createMeshShape"
+            };
+            let h = self.client.call_int(
+                create,
+                vec![
+                    int(0),
+                    Value::Float(SHADING_ANGLE),
+                    float_array(&vertices),
+                    indices,
+                ],
+            )?;
+            let hv = || int(h.into());
+            self.call(
+                "sim.setShapeColor",
+                vec![
+                    hv(),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                    float_array(&mesh.look.colour),
+                ],
+            )?;
+            self.call(
+                "sim.setObjectSpecialProperty",
+                vec![hv(), int(mesh.look.special.into())],
+            )?;
+            for (param, on) in [
+                (SHAPEINTPARAM_STATIC, true),
+                (SHAPEINTPARAM_RESPONDABLE, mesh.respondable),
+            ] {
+                self.call(
+                    "sim.setObjectInt32Param",
+                    vec![hv(), int(param.into()), int(i64::from(on))],
+                )?;
+            }
+            self.call(
+                "sim.setObjectAlias",
+                vec![hv(), Value::Text(mesh.name.into())],
+            )?;
+            self.settle(h, place.floor, holder)?;
+            created.push(h);
+        }
+        Ok((holder, created))
+    }
+
+    fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
+        let shape = self.read_shape(handle)?;
+        self.dressed(handle, shape)
+    }
+
+    fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        let shapes = self.read_shapes(handles)?;
+        handles
+            .iter()
+            .zip(shapes)
+            .map(|(&h, shape)| self.dressed(h, shape))
+            .collect()
+    }
+
+    /// Every mesh's triangles in one `sim.executeLuaCode` ([`lua::read_meshes_code`]); where
+    /// that fails (a simulator without the function, a handle that is no shape), one
+    /// `sim.getShapeMesh` each, which names the mesh at fault.
+    fn read_shapes(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        if handles.len() > 1 {
+            let code = Value::Text(lua::read_meshes_code(handles));
+            match self.client.call("sim.executeLuaCode", vec![code]) {
+                Ok(values) => {
+                    if let Some(shapes) = packed_meshes(&values, handles.len()) {
+                        return Ok(shapes);
+                    }
+                }
+                Err(ZmqError::Remote { .. }) => {}
+                Err(e) => return Err(e.into()),
+            }
+        }
+        handles.iter().map(|&h| self.read_shape(h)).collect()
+    }
+
+    /// `sim.getShapeMesh` alone; the pose is left at the origin.
+    fn read_shape(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
+        let values = self.call("sim.getShapeMesh", vec![int(handle.into())])?;
+        let floats = |v: Option<&Value>| -> Option<Vec<f32>> {
+            cbor::array(v?)?
+                .iter()
+                .map(|x| cbor::number(x).map(|f| f as f32))
+                .collect()
+        };
+        let vertices = floats(values.first());
+        let indices = values
+            .get(1)
+            .and_then(cbor::array)
+            .and_then(|v| v.iter().map(cbor::int32).collect::<Option<Vec<i32>>>());
+        if vertices.is_none() || indices.is_none() {
+            return Err(BackendError::Transport(format!(
+                "sim.getShapeMesh of {handle}: not vertices and indices"
+            )));
+        }
+        Ok(MeshReadback {
+            vertices,
+            indices,
+            ..Default::default()
+        })
+    }
+}

@@ -1,0 +1,143 @@
+//! A layout as a file another program loads, one file per format, chosen by the output's
+//! ending ([`Format::from_path`]). Today CoppeliaSim's own XML: a model to drag into any scene
+//! ([`simmodel`]) and a complete scene ([`simscene`]), both loadable without any remote API
+//! (CoppeliaSim 4.11 has no legacy API). Both draw the maze as meshes
+//! ([`crate::mesh`]: one rectangle per run of lines, boxes for walls and
+//! posts), written by [`crate::coppelia::xml::write`], the writer the legacy mesh drawing uses.
+//!
+//! The robot simulators' own formats, MuJoCo MJCF ([`mjcf`]), Gazebo SDF ([`sdf`]), URDF
+//! ([`urdf`]) and Webots ([`webots`]), are written from one set of boxes ([`solids`]: a box
+//! per wall run, post, run of lines and marker, from the same mesh geometry).
+//!
+//! A new format is a file here with its `document` function and a [`Format`] variant with its
+//! arms in `ALL`, `file_endings` and [`export`].
+
+mod mjcf;
+mod sdf;
+mod simmodel;
+mod simscene;
+mod solids;
+mod urdf;
+mod webots;
+
+use std::io;
+use std::path::Path;
+
+use crate::layout::Layout;
+use crate::mesh::MeshMaze;
+use solids::Solids;
+
+/// The formats `export` writes (`--format` names them in kebab case: `coppelia-model`, ...).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// CoppeliaSim XML model (`.simmodel.xml`): the `Maze` dummy as model base holding the
+    /// meshes.
+    CoppeliaModel,
+    /// CoppeliaSim XML scene (`.simscene.xml`): Floor, Maze with the meshes, Start, End (and
+    /// the Line template of a line maze, so `apply` can draw into it).
+    CoppeliaScene,
+    /// MuJoCo MJCF (`.mjcf`, `.mujoco.xml`): the floor plane, box geoms in a body welded to
+    /// the world, `start` and `end` sites.
+    Mjcf,
+    /// Gazebo SDFormat world (`.sdf`, `.world`): a ground plane and the maze as one static
+    /// model.
+    Sdf,
+    /// URDF (`.urdf`): one link fixed to the world, a collision and a visual box per wall run
+    /// and post.
+    Urdf,
+    /// Webots world (`.wbt`): the floor and the maze as one static solid.
+    Webots,
+}
+
+impl Format {
+    /// Every format.
+    pub const ALL: [Format; 6] = [
+        Format::CoppeliaModel,
+        Format::CoppeliaScene,
+        Format::Mjcf,
+        Format::Sdf,
+        Format::Urdf,
+        Format::Webots,
+    ];
+
+    /// What it is, for a person (`CoppeliaSim XML model`, `MuJoCo MJCF`, ...).
+    pub const fn label(self) -> &'static str {
+        match self {
+            Format::CoppeliaModel => "a CoppeliaSim XML model",
+            Format::CoppeliaScene => "a CoppeliaSim XML scene",
+            Format::Mjcf => "a MuJoCo MJCF model",
+            Format::Sdf => "a Gazebo SDFormat world",
+            Format::Urdf => "a URDF robot description",
+            Format::Webots => "a Webots world",
+        }
+    }
+
+    /// The file name endings that choose it.
+    pub const fn file_endings(self) -> &'static [&'static str] {
+        match self {
+            Format::CoppeliaModel => &[".simmodel.xml"],
+            Format::CoppeliaScene => &[".simscene.xml"],
+            Format::Mjcf => &[".mjcf", ".mujoco.xml"],
+            Format::Sdf => &[".sdf", ".world"],
+            Format::Urdf => &[".urdf"],
+            Format::Webots => &[".wbt"],
+        }
+    }
+
+    /// The format a file name's ending names (case-insensitive), if any.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let name = path.file_name()?.to_str()?.to_ascii_lowercase();
+        Format::ALL.into_iter().find(|f| {
+            f.file_endings()
+                .iter()
+                .any(|e| name.ends_with(e) && name.len() > e.len())
+        })
+    }
+
+    /// Why `path` names no format, in one line: a bare `.xml` is ambiguous (CoppeliaSim or
+    /// MuJoCo), anything else unknown; both list every ending.
+    pub fn refusal(path: &Path) -> String {
+        let bare_xml = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        format!(
+            "{}: {}export writes {} files (the ending chooses the format, or --format NAME)",
+            path.display(),
+            if bare_xml {
+                "a bare .xml is ambiguous; "
+            } else {
+                ""
+            },
+            Format::endings()
+        )
+    }
+
+    /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`.
+    pub fn endings() -> String {
+        Format::ALL
+            .iter()
+            .flat_map(|f| f.file_endings())
+            .copied()
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+/// Writes `layout` in `format` to `out`. The layout must pass [`crate::validate::checked`]
+/// (checked here, before anything is written).
+pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> anyhow::Result<()> {
+    let maze = MeshMaze::try_from(layout)?;
+    let text = match format {
+        Format::CoppeliaModel => crate::coppelia::xml::write(&simmodel::document(&maze)),
+        Format::CoppeliaScene => crate::coppelia::xml::write(&simscene::document(layout, &maze)),
+        Format::Mjcf => mjcf::document(&Solids::new(layout, &maze)),
+        Format::Sdf => sdf::document(&Solids::new(layout, &maze)),
+        Format::Urdf => urdf::document(&Solids::new(layout, &maze)),
+        Format::Webots => webots::document(&Solids::new(layout, &maze)),
+    };
+    out.write_all(text.as_bytes())?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,29 @@
+#![warn(missing_docs)]
+//! vrep-maze's core: seeded, reproducible grid mazes and everything done with them without a
+//! simulator. It builds with no ZeroMQ and no C++ compiler.
+//!
+//! - [`maze`] (the compact grid maze and its analysis), [`rng`] (the only source of
+//!   randomness), [`generate`] (one file per algorithm), [`layout`] (the JSON layout:
+//!   geometry, segments, reading and writing), [`validate`] (every check a layout must pass),
+//!   [`render`] (ASCII, SVG, PNG), [`batch`] (many seeds at once) and [`atomic_file`] (files
+//!   written whole or not at all).
+//! - [`score`]: grading a robot's run (a trajectory) against a layout, and the `Follower`
+//!   port a simulator connection implements to watch a robot.
+//! - [`coppelia`]: CoppeliaSim's vocabulary: constants, Euler convention, XML format, what
+//!   its operations cost, the one Lua program our client sends.
+//! - [`mesh`]: a layout as a few mesh shapes (pure geometry), which the drawing and the
+//!   exports share.
+//! - [`export`]: a layout as a CoppeliaSim, MuJoCo, Gazebo (SDF), URDF or Webots file.
+
+pub mod atomic_file;
+pub mod batch;
+pub mod coppelia;
+pub mod export;
+pub mod generate;
+pub mod layout;
+pub mod maze;
+pub mod mesh;
+pub mod render;
+pub mod rng;
+pub mod score;
+pub mod validate;
