@@ -5,6 +5,7 @@ use std::collections::{HashMap, HashSet};
 
 use super::{Drawing, Handles, ObjectInfo, Pose};
 use vrep_maze_core::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
+use vrep_maze_core::coppelia::names;
 
 /// Tolerance on positions (metres) for "already in place" and verification.
 pub const POSITION_TOLERANCE: f64 = 1e-4;
@@ -32,15 +33,6 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
         return false;
     }
     let template = family(template);
-    let base = template.trim_end_matches(|c: char| c.is_ascii_digit());
-    let hash_base = template.rsplit_once('#').map(|(b, n)| {
-        if n.bytes().all(|c| c.is_ascii_digit()) {
-            b
-        } else {
-            template
-        }
-    });
-    let digits = |s: &str| !s.is_empty() && s.bytes().all(|c| c.is_ascii_digit());
     // ZeroMQ backend: copies keep the template's alias, so a root copy's path is `/Line[n]`
     let alias = template.rsplit('/').next().unwrap_or(template);
     let path_copy = name
@@ -48,13 +40,8 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
         .and_then(|r| r.strip_prefix(alias))
         .and_then(|r| r.strip_prefix('['))
         .and_then(|r| r.strip_suffix(']'))
-        .is_some_and(digits);
-    path_copy
-        || name.strip_prefix(base).is_some_and(digits)
-        || name
-            .strip_prefix(hash_base.unwrap_or(template))
-            .and_then(|r| r.strip_prefix('#'))
-            .is_some_and(digits)
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));
+    path_copy || names::is_copy_of(name, template)
 }
 
 /// Object type codes by handle, as a survey read them ([`Traits::kinds`]).

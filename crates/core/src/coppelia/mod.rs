@@ -10,6 +10,7 @@ pub mod cost;
 pub mod frame;
 pub mod lua;
 pub mod model_cost;
+pub mod names;
 pub mod shape_cost;
 pub mod xml;
 

@@ -5,6 +5,7 @@
 //! never serialized, rebuilt when a scene is read.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
+use vrep_maze_core::coppelia::names::{split_hash, split_plain};
 
 use super::scene::Object;
 
@@ -67,25 +68,6 @@ impl Runs {
     fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
-}
-
-/// `Line7` -> (`Line`, 7): a plain copy name (the digits must be how 7 is written).
-pub(super) fn split_plain(name: &str) -> Option<(&str, u64)> {
-    let base = name.trim_end_matches(|c: char| c.is_ascii_digit());
-    canonical(&name[base.len()..]).map(|n| (base, n))
-}
-
-/// `Line#7` -> (`Line`, 7): a hash copy name.
-pub(super) fn split_hash(name: &str) -> Option<(&str, u64)> {
-    let (base, digits) = name.rsplit_once('#')?;
-    canonical(digits).map(|n| (base, n))
-}
-
-/// The number `digits` writes, if `format!("{n}")` writes it the same way.
-fn canonical(digits: &str) -> Option<u64> {
-    let n: u64 = digits.parse().ok()?;
-    (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) && n.to_string() == digits)
-        .then_some(n)
 }
 
 /// Lookups over a scene's objects (object names are unique in a scene).
@@ -237,19 +219,5 @@ mod tests {
         assert_eq!(r.0, BTreeMap::from([(1, 1), (3, 4)]));
         r.insert(u64::MAX);
         assert_eq!(r.first_free(u64::MAX), u64::MAX);
-    }
-
-    #[test]
-    fn copy_names_split_only_as_they_are_written() {
-        assert_eq!(split_plain("Line12"), Some(("Line", 12)));
-        assert_eq!(split_plain("Line0"), Some(("Line", 0)));
-        assert_eq!(split_plain("Line"), None);
-        assert_eq!(split_plain("Line07"), None);
-        assert_eq!(split_plain("7"), Some(("", 7)));
-        assert_eq!(split_plain("L99999999999999999999999"), None);
-        assert_eq!(split_hash("Line#3"), Some(("Line", 3)));
-        assert_eq!(split_hash("A#b#0"), Some(("A#b", 0)));
-        assert_eq!(split_hash("Line#"), None);
-        assert_eq!(split_hash("Line3"), None);
     }
 }

@@ -1,6 +1,7 @@
 //! The scene: objects with handle, name, alias, type, parent, local pose, size and colour.
 
 use std::collections::BTreeMap;
+use vrep_maze_core::coppelia::names::{Naming, copy_parts};
 
 use serde::{Deserialize, Serialize};
 
@@ -811,24 +812,12 @@ impl Scene {
 
     /// (base, separator, first number to try) of the names of copies of `name`.
     fn copy_name_parts(&self, name: &str) -> (String, &'static str, u64) {
-        match self.naming {
-            NamingMode::Plain => {
-                let base = name.trim_end_matches(|c: char| c.is_ascii_digit());
-                let start = name[base.len()..]
-                    .parse::<u64>()
-                    .map(|n| n + 1)
-                    .unwrap_or(0);
-                (base.to_string(), "", start)
-            }
-            NamingMode::Hash => match name.rsplit_once('#') {
-                Some((b, n)) if !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()) => (
-                    b.to_string(),
-                    "#",
-                    n.parse::<u64>().map(|n| n + 1).unwrap_or(0),
-                ),
-                _ => (name.to_string(), "#", 0),
-            },
-        }
+        let naming = match self.naming {
+            NamingMode::Plain => Naming::Plain,
+            NamingMode::Hash => Naming::Hash,
+        };
+        let (base, sep, start) = copy_parts(name, naming);
+        (base.to_string(), sep, start)
     }
 
     /// JSON dump: the scene plus every object's world pose (for viewers).
