@@ -7,8 +7,9 @@
 //! (`sim_intparam_idle_fps`, default 8: a legacy blocking call takes 125 ms, "Pacing"); at
 //! idle fps 0 there is no sleep, so a request is served as soon as it arrives (2.1–2.4 ms
 //! legacy, `docs/measurements.md` "Legacy calls at idle fps 0"; 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
-//! simulation runs, it passes once per simulation step. The servers only wait on the answers
-//! of [`Clock`] and [`ZmqPacer`]; nothing else in them decides time.
+//! simulation runs, it passes once per simulation step. The servers ask [`Clock`] and
+//! [`ZmqPacer`] when a pass runs, and sleep the modelled work of what they serve
+//! (`super::cost`) besides.
 
 use std::time::{Duration, Instant};
 
