@@ -119,11 +119,6 @@ impl Default for ObjectNames {
 }
 
 impl ObjectNames {
-    /// Names in the order floor, parent, line, start, end.
-    pub fn all(&self) -> [&str; 5] {
-        self.for_style(Style::Lines)
-    }
-
     /// Every template: line, wall, post ([`plan::sort_out`] keeps their copies).
     pub fn templates(&self) -> [&str; 3] {
         [&self.line, &self.wall, &self.post]

@@ -151,13 +151,6 @@ impl ZmqBackend {
         ZmqBackend::with_first(client, options.timeout, outcomes)
     }
 
-    /// Wraps a connected client, making the first reads ([`ZmqBackend::first_calls`]) in one
-    /// exchange: over protocol 1 one main-loop pass for the four ([`Client::call_all`]).
-    pub fn new(mut client: Client, timeout: Duration) -> Result<ZmqBackend, BackendError> {
-        let outcomes = client.call_all(&ZmqBackend::first_calls())?;
-        ZmqBackend::with_first(client, timeout, outcomes)
-    }
-
     /// What a backend reads first: the program version (it decides the argument order of
     /// pose setters) and the idle rates ([`Backend::idle_rates`]).
     pub fn first_calls() -> Vec<(&'static str, Vec<Value>)> {
@@ -206,11 +199,6 @@ impl ZmqBackend {
     /// The client (for counters and the protocol generation).
     pub fn client(&self) -> &Client {
         &self.client
-    }
-
-    /// CoppeliaSim's program version, e.g. 40501 for 4.5.1.
-    pub fn version(&self) -> i32 {
-        self.version
     }
 
     fn call(&mut self, func: &str, args: Vec<Value>) -> Result<Vec<Value>, BackendError> {

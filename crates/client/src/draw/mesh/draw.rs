@@ -500,7 +500,7 @@ fn verify_raised(
         None => template_look,
     };
     let looks = (template_look, post_look);
-    problems.extend(mesh_problems(scene, maze, &found, None, &floor, looks)?);
+    problems.extend(mesh_problems(scene, maze, &found, &floor, looks)?);
     problems.extend(marker_problems(maze, &h, &objects));
     if problems.is_empty() {
         Ok(())
@@ -514,14 +514,13 @@ fn extents(size: [f64; 3]) -> String {
     size.map(|v| format!("{:.6}", v + 0.0)).join(" x ")
 }
 
-/// Reads back the meshes of `maze` that `found` holds (with `only`, those among them) and
+/// Reads back the meshes of `maze` that `found` holds and
 /// compares each with what was drawn: its frame on the `floor`, its triangles or bounding
 /// box, its colour the template's (`looks`: the style's template, the post template).
 fn mesh_problems(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
     found: &FoundMeshes,
-    only: Option<&HashSet<i32>>,
     floor: &vrep_maze_core::coppelia::frame::Frame,
     (template_look, post_look): (Look, Look),
 ) -> Result<Vec<String>, DrawError> {
@@ -529,7 +528,6 @@ fn mesh_problems(
     let by_name: HashMap<&str, i32> = found
         .meshes
         .iter()
-        .filter(|m| only.is_none_or(|only| only.contains(&m.handle)))
         .map(|m| (m.name.as_str(), m.handle))
         .collect();
     let on_floor = Pose {
