@@ -20,6 +20,7 @@ pub mod options;
 pub mod plan;
 pub mod record;
 pub mod report;
+pub mod run;
 pub mod session;
 pub mod signals;
 pub mod verify;
@@ -29,6 +30,7 @@ pub use clear::{ClearOptions, ClearReport, clear};
 pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
 pub use report::{ApplyReport, Stage};
+pub use run::{DrawMode, Job, Picture, Report, RunError, run};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
 

@@ -6,6 +6,8 @@ use std::time::Duration;
 /// Progress of [`super::apply()`], for a progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stage {
+    /// The missing objects were created ([`super::run::Job::create_missing`]): their names.
+    Created(Vec<String>),
     /// The scene has been read (names resolved, objects listed).
     Surveyed,
     /// Copies pasted so far / to paste.
