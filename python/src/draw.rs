@@ -284,7 +284,7 @@ pub fn apply(
             verified: !report.dry_run,
             created,
             saved_scene,
-            summary: report.to_string(),
+            summary: vrep_maze::cli::summary::apply_line(&report),
         }
     })
 }

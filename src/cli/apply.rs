@@ -477,7 +477,7 @@ fn drive(
     if let Some(line) = &report.floor {
         say(line)?;
     }
-    say(report)?;
+    say(super::summary::apply_line(report))?;
     if let Some(line) = draw::left_alone_line(&report.left_alone, &job.options.names.parent) {
         say(line)?;
     }
