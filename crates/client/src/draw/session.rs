@@ -2,8 +2,8 @@
 //! raised and restored ([`raised`], [`raised_to_read`]), the scene claimed ([`super::lease`]),
 //! the survey and the named handles ([`surveyed`]), the size checks ([`sizes_of`]), a running
 //! simulation dealt with, and the line template's home kept ([`keep_home`]). The copies
-//! ([`super::apply`]) and mesh ([`super::mesh::apply()`]) draws, [`super::verify`],
-//! [`super::clear`] and `inspect` each use what they need of it; nothing here calls them.
+//! ([`super::apply()`]) and mesh ([`super::mesh::apply()`]) draws, [`super::verify()`],
+//! [`super::clear()`] and `inspect` each use what they need of it; nothing here calls them.
 
 use std::time::Instant;
 

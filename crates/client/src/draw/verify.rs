@@ -201,7 +201,7 @@ pub fn verify(
 }
 
 /// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
-/// itself (`vrep-maze inspect`, [`super::apply::raised_to_read`]).
+/// itself (`vrep-maze inspect`, [`super::session::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     drawing: &Drawing,

@@ -442,7 +442,7 @@ pub fn verify(
 }
 
 /// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
-/// itself (what `inspect` compares with, [`crate::draw::apply::raised_to_read`]).
+/// itself (what `inspect` compares with, [`crate::draw::session::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
