@@ -213,7 +213,9 @@ def run_jobs(api: str, through_cli: bool, scene: str | None) -> list[dict]:
                 done = run_cli("apply", path, "--api", api, "--port", port, "--json", *words)
                 assert done.returncode == 0, done
                 document = json.loads(done.stdout.decode().strip().splitlines()[-1])
-                reports.append({k: document[k] for k in COMPARED})
+                # `--json` leaves out an empty `created` and an unsaved scene
+                absent = {"created": [], "saved_scene": None}
+                reports.append({k: document.get(k, absent.get(k)) for k in COMPARED})
             else:
                 report = vrep_maze.apply(vrep_maze.load(path), api=api, port=port, **options)
                 reports.append({k: getattr(report, k) for k in COMPARED})
