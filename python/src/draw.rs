@@ -11,12 +11,12 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context;
-use clap::ValueEnum;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vrep_maze::cli::Command;
-use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing};
+use vrep_maze::draw::run::Authored;
+use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Picture, RunError};
 
 use crate::errors;
 use crate::layout::Layout;
@@ -215,12 +215,7 @@ pub fn apply(
     let Command::Apply(args) = options::parse(argv)? else {
         return Err(PyRuntimeError::new_err("apply parsed as another command"));
     };
-    let legacy = args
-        .scene
-        .api
-        .to_possible_value()
-        .is_some_and(|v| v.get_name() == "legacy");
-    if (args.create_missing || args.save_scene.is_some()) && legacy {
+    if (args.create_missing || args.save_scene.is_some()) && args.scene.asks_legacy() {
         return Err(PyValueError::new_err(
             "create_missing=True and save_scene need the ZeroMQ remote API (api=\"zmq\"): the legacy API cannot create objects or save scenes",
         ));
@@ -234,30 +229,23 @@ pub fn apply(
         interrupt: Some(stop.requested.clone()),
         ..Default::default()
     };
-    let mesh = args
-        .draw
-        .to_possible_value()
-        .is_some_and(|v| v.get_name() == "mesh");
+    let mode = args.draw.into();
     let (create_missing, save_scene) = (args.create_missing, args.save_scene);
     let scene = args.scene;
     let layout = layout.layout.clone();
     let connected = stop.connected.clone();
     let job = move || {
-        let drawing = if mesh {
-            What::Mesh(draw::mesh::MeshMaze::try_from(&*layout).context("nothing was drawn")?)
-        } else {
-            What::Copies(Drawing::try_from(&*layout).context("nothing was drawn")?)
-        };
+        let picture = Picture::of(&layout, mode).context("nothing was drawn")?;
         let mut backend = scene.connect()?;
         connected.store(true, Ordering::SeqCst);
-        let result = draw_connected(
-            backend.as_mut(),
-            &layout,
-            &drawing,
-            &opts,
+        let job = draw::Job {
+            layout: &layout,
+            picture,
+            options: opts,
             create_missing,
-            save_scene.as_deref(),
-        );
+            save_scene,
+        };
+        let result = draw_connected(backend.as_mut(), &job);
         let closed = backend.close().is_ok();
         Ok(match result? {
             Finished::Stopped { message, counts } if closed => Finished::Stopped {
@@ -267,7 +255,12 @@ pub fn apply(
             finished => finished,
         })
     };
-    run_drawing(py, &stop, job, |(report, created, saved_scene)| {
+    run_drawing(py, &stop, job, |done| {
+        let draw::Report {
+            created,
+            drawn: report,
+            saved_scene,
+        } = done;
         ApplyReport {
             lines: report.lines,
             posts: report.posts,
@@ -291,83 +284,46 @@ pub fn apply(
             verified: !report.dry_run,
             created,
             saved_scene,
-            summary: report.to_string(),
+            summary: vrep_maze::cli::summary::apply_line(&report),
         }
     })
 }
 
-/// What a finished `apply` hands back: the library's report, the objects created, the
-/// scene saved.
-type Applied = (draw::ApplyReport, Vec<String>, Option<String>);
-
-/// What `apply` draws: copies of the templates, or meshes.
-enum What {
-    /// `draw="copies"`.
-    Copies(Drawing),
-    /// `draw="mesh"`.
-    Mesh(draw::mesh::MeshMaze),
-}
-
-/// `apply`'s work once connected, as `vrep-maze apply` does it: create what is missing,
-/// draw and verify, save the scene.
+/// `apply`'s work once connected ([`draw::run`]: create what is missing, draw and verify,
+/// save the scene), with its failures in the words `vrep-maze apply` uses.
 fn draw_connected(
     backend: &mut dyn Backend,
-    layout: &vrep_maze::layout::Layout,
-    drawing: &What,
-    opts: &ApplyOptions,
-    create_missing: bool,
-    save_scene: Option<&str>,
-) -> anyhow::Result<Finished<Applied>> {
-    let total = match drawing {
-        What::Copies(d) => d.lines.len(),
-        What::Mesh(m) => m.pieces(),
-    };
-    if opts
-        .interrupt
-        .as_ref()
-        .is_some_and(|i| i.load(Ordering::SeqCst))
-    {
+    job: &draw::Job<'_>,
+) -> anyhow::Result<Finished<draw::Report>> {
+    let total = job.picture.pieces();
+    if job.options.interrupted() {
         return Ok(Finished::Stopped {
             message: format!("interrupted: 0 of {total} copies placed; the idle rate is unchanged"),
             counts: Some((0, total)),
         });
     }
-    let mut created = Vec::new();
-    if create_missing && !opts.dry_run {
-        let authoring = backend.authoring().context(
-            "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)",
-        )?;
-        created = draw::create_missing_for(authoring, &opts.names, layout)
-            .context("creating the missing scene objects")?;
-    }
-    let drawn = match drawing {
-        What::Copies(d) => draw::apply(backend, d, opts, &mut |_| {}),
-        What::Mesh(m) => draw::mesh::apply(backend, m, opts, &mut |_| {}),
-    };
-    let report = match drawn {
-        Err(DrawError::Interrupted { placed, total }) => {
-            return Ok(Finished::Stopped {
-                message: format!(
-                    "interrupted: {placed} of {total} copies placed; the idle rate is restored"
-                ),
-                counts: Some((placed, total)),
-            });
+    match draw::run(backend, job, &mut |_| {}) {
+        Ok(done) => Ok(Finished::Done(done)),
+        Err(RunError::Draw(DrawError::Interrupted { placed, total })) => Ok(Finished::Stopped {
+            message: format!(
+                "interrupted: {placed} of {total} copies placed; the idle rate is restored"
+            ),
+            counts: Some((placed, total)),
+        }),
+        Err(RunError::NoAuthoring(Authored::CreateMissing)) => Err(anyhow::anyhow!(
+            "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+        )),
+        Err(RunError::NoAuthoring(Authored::SaveScene)) => Err(anyhow::anyhow!(
+            "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+        )),
+        Err(RunError::Create(e)) => {
+            Err(anyhow::Error::new(e).context("creating the missing scene objects"))
         }
-        other => other?,
-    };
-    let mut saved = None;
-    if let Some(path) = save_scene
-        && !opts.dry_run
-    {
-        let authoring = backend.authoring().context(
-            "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)",
-        )?;
-        authoring
-            .save_scene(path)
-            .with_context(|| format!("saving the scene to {path}"))?;
-        saved = Some(path.to_string());
+        Err(RunError::Draw(e)) => Err(e.into()),
+        Err(RunError::Save { path, source }) => {
+            Err(anyhow::Error::new(source).context(format!("saving the scene to {path}")))
+        }
     }
-    Ok(Finished::Done((report, created, saved)))
 }
 
 /// Removes a drawn maze from CoppeliaSim as `vrep-maze clear` does (the templates stay).

@@ -1,11 +1,12 @@
 """apply and clear against `vrep-maze serve`, over both remote APIs."""
 
+import json
 import re
 
 import pytest
 
 import vrep_maze
-from conftest import in_python_names, Serve, cli_error, run_cli
+from conftest import MAZES, in_python_names, Serve, cli_error, run_cli
 
 APIS = ["legacy", "zmq"]
 
@@ -173,3 +174,60 @@ def test_the_reports_carry_warnings_left_alone_and_the_template(api):
     finally:
         server.process.kill()
         server.process.wait()
+
+
+# The jobs both adapters run in turn on a fresh emulator each: a maze, the next one over it
+# (reuse), a dry run over that, the other draw mode over it, and a wall maze with posts.
+SAME_JOBS = [
+    ("prim-9x9-seed42.json", {}),
+    ("kruskal-9x9-seed42.json", {}),
+    ("kruskal-9x9-seed42.json", {"dry_run": True}),
+    ("dfs-9x9-seed42.json", {"draw": "mesh"}),
+    ("prim-9x9-seed42.json", {}),
+    ("dfs-9x9-seed42-walls.json", {"scene": "course-walls"}),
+]
+
+# The fields of `apply --json` that the Python report has under the same name.
+COMPARED = ["lines", "posts", "reused", "pasted", "removed", "removed_meshes", "unchanged",
+            "placed", "markers_unchanged", "markers_placed", "nothing_to_do", "edits",
+            "round_trips", "stopped_simulation", "dry_run", "verified", "created",
+            "saved_scene"]
+
+
+def run_jobs(api: str, through_cli: bool, scene: str | None) -> list[dict]:
+    """`SAME_JOBS` of `scene` on a fresh emulator through one adapter: the compared fields of
+    each report."""
+    extra = ["--scene", scene] if scene else []
+    server = Serve("--timing", "instant", *extra)
+    reports = []
+    try:
+        port = server.port(api)
+        for name, options in SAME_JOBS:
+            options = dict(options)
+            if options.pop("scene", None) != scene:
+                continue
+            path = MAZES / name
+            if through_cli:
+                words = [f"--{k.replace('_', '-')}" if v is True else f"--{k}={v}"
+                         for k, v in options.items()]
+                done = run_cli("apply", path, "--api", api, "--port", port, "--json", *words)
+                assert done.returncode == 0, done
+                document = json.loads(done.stdout.decode().strip().splitlines()[-1])
+                # `--json` leaves out an empty `created` and an unsaved scene
+                absent = {"created": [], "saved_scene": None}
+                reports.append({k: document.get(k, absent.get(k)) for k in COMPARED})
+            else:
+                report = vrep_maze.apply(vrep_maze.load(path), api=api, port=port, **options)
+                reports.append({k: getattr(report, k) for k in COMPARED})
+    finally:
+        server.stop()
+    return reports
+
+
+@pytest.mark.parametrize("scene", [None, "course-walls"])
+@pytest.mark.parametrize("api", APIS)
+def test_the_command_line_and_python_run_the_same_jobs_alike(api, scene):
+    # both are adapters over one `draw::run`: the same jobs give the same reports
+    by_cli = run_jobs(api, True, scene)
+    by_python = run_jobs(api, False, scene)
+    assert by_cli and by_cli == by_python

@@ -12,7 +12,8 @@ use super::connect::{Api, Connected, RawClient, connect, connect_client};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::{ApplyJson, REPORT_VERSION};
 use super::say::{self, say};
-use crate::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Stage};
+use crate::draw::run::Authored;
+use crate::draw::{self, ApplyOptions, Backend, DrawError, ObjectNames, Picture, RunError, Stage};
 
 /// Where the simulator is and what its objects are called (shared by `apply` and `clear`).
 #[derive(Debug, Clone, clap::Args)]
@@ -61,6 +62,11 @@ pub struct ConnectArgs {
 }
 
 impl ConnectArgs {
+    /// Whether `--api legacy` was asked (not the automatic choice).
+    pub fn asks_legacy(&self) -> bool {
+        self.api == Api::Legacy
+    }
+
     /// The object names.
     pub fn names(&self) -> ObjectNames {
         ObjectNames {
@@ -269,6 +275,15 @@ pub enum DrawMode {
     Mesh,
 }
 
+impl From<DrawMode> for draw::DrawMode {
+    fn from(mode: DrawMode) -> draw::DrawMode {
+        match mode {
+            DrawMode::Copies => draw::DrawMode::Copies,
+            DrawMode::Mesh => draw::DrawMode::Mesh,
+        }
+    }
+}
+
 /// Runs `apply`.
 pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::ExitCode> {
     say::set_json(args.json);
@@ -290,40 +305,29 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     // two roles on one object: refused at once, before connecting
     args.scene.check_roles()?;
     let layout = crate::layout::read_layout(&args.layout)?;
-    let nothing_drawn = || format!("{}: nothing was drawn", args.layout.display());
-    match args.draw {
-        DrawMode::Copies => {
-            let drawing = Drawing::try_from(&layout).with_context(nothing_drawn)?;
-            let mode = copies_mode(drawing);
-            drive(&args, bars, &layout, mode)
-        }
-        DrawMode::Mesh => {
-            let maze = draw::mesh::MeshMaze::try_from(&layout).with_context(nothing_drawn)?;
-            let mode = mesh_mode(maze);
-            drive(&args, bars, &layout, mode)
-        }
-    }
+    let picture = Picture::of(&layout, args.draw.into())
+        .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
+    let words = Words::of(&picture);
+    let job = draw::Job {
+        layout: &layout,
+        picture,
+        options: ApplyOptions {
+            names: args.scene.names(),
+            stop_simulation: args.stop_simulation,
+            dry_run: args.dry_run,
+            resize_floor: args.resize_floor,
+            ..Default::default()
+        },
+        create_missing: args.create_missing,
+        save_scene: args.save_scene.clone(),
+    };
+    drive(&args, bars, job, words)
 }
 
-/// A draw function of the library: [`draw::apply`] (copies) or [`draw::mesh::apply`].
-type DrawFn<D> = fn(
-    &mut dyn Backend,
-    &D,
-    &ApplyOptions,
-    &mut dyn FnMut(Stage),
-) -> Result<draw::ApplyReport, DrawError>;
-
-/// What one draw mode (`--draw`) supplies to [`drive`], which does the rest of `apply` the
-/// same way for both: the drawing, the function that draws it and the words it is told in.
-struct Mode<D> {
-    /// What is drawn, made from the layout.
-    drawing: D,
-    /// Draws it.
-    draw: DrawFn<D>,
+/// The words `apply` tells one draw mode's progress and outcome in.
+struct Words {
     /// What the progress bar counts ("lines", "wall runs and posts", ...).
     what: &'static str,
-    /// How many of them there are.
-    total: usize,
     /// The bar's message while pasting.
     pasting: String,
     /// The bar's message while placing.
@@ -336,63 +340,55 @@ struct Mode<D> {
     hints_create_missing: bool,
 }
 
-/// `--draw copies`: one copy of a template per line, wall or post.
-fn copies_mode(drawing: Drawing) -> Mode<Drawing> {
-    let (what, noun) = match (drawing.style, drawing.posts.is_empty()) {
-        (crate::layout::Style::Lines, _) => ("lines", "line"),
-        (crate::layout::Style::Walls, true) => ("walls", "wall"),
-        (crate::layout::Style::Walls, false) => ("walls and posts", "wall, post"),
-    };
-    Mode {
-        draw: draw::apply,
-        what,
-        total: drawing.copies(),
-        pasting: format!("pasting {what}"),
-        placing: format!("placing {what}"),
-        interrupted: "copies placed".into(),
-        verified: format!("verified: every {noun}, start and end in place"),
-        hints_create_missing: true,
-        drawing,
+impl Words {
+    /// The words of `picture`'s mode: `--draw copies` (one copy of a template per line,
+    /// wall or post) or `--draw mesh` (a few mesh shapes, one rectangle or box per run).
+    fn of(picture: &Picture) -> Words {
+        match picture {
+            Picture::Copies(drawing) => {
+                let (what, noun) = match (drawing.style, drawing.posts.is_empty()) {
+                    (crate::layout::Style::Lines, _) => ("lines", "line"),
+                    (crate::layout::Style::Walls, true) => ("walls", "wall"),
+                    (crate::layout::Style::Walls, false) => ("walls and posts", "wall, post"),
+                };
+                Words {
+                    what,
+                    pasting: format!("pasting {what}"),
+                    placing: format!("placing {what}"),
+                    interrupted: "copies placed".into(),
+                    verified: format!("verified: every {noun}, start and end in place"),
+                    hints_create_missing: true,
+                }
+            }
+            Picture::Mesh(maze) => {
+                let what = match maze.style {
+                    crate::layout::Style::Lines => "line runs",
+                    crate::layout::Style::Walls => "wall runs and posts",
+                };
+                Words {
+                    what,
+                    pasting: format!("creating the meshes of {what}"),
+                    placing: format!("creating the meshes of {what}"),
+                    interrupted: format!("{what} drawn"),
+                    verified: "verified: every mesh read back, start and end in place".into(),
+                    hints_create_missing: false,
+                }
+            }
+        }
     }
 }
 
-/// `--draw mesh`: a few mesh shapes, one rectangle or box per straight run.
-fn mesh_mode(maze: draw::mesh::MeshMaze) -> Mode<draw::mesh::MeshMaze> {
-    let what = match maze.style {
-        crate::layout::Style::Lines => "line runs",
-        crate::layout::Style::Walls => "wall runs and posts",
-    };
-    Mode {
-        draw: draw::mesh::apply,
-        what,
-        total: maze.pieces(),
-        pasting: format!("creating the meshes of {what}"),
-        placing: format!("creating the meshes of {what}"),
-        interrupted: format!("{what} drawn"),
-        verified: "verified: every mesh read back, start and end in place".into(),
-        hints_create_missing: false,
-        drawing: maze,
-    }
-}
-
-/// Runs `apply` in `mode` after the usage checks: connects (Ctrl-C ends the wait), creates
-/// the missing objects if asked, draws with a progress bar, saves the scene if asked and
-/// says what was done (`--json`: one document).
-fn drive<D>(
+/// Runs `apply` after the usage checks: connects (Ctrl-C ends the wait), runs the job
+/// ([`draw::run`]: creates the missing objects if asked, draws, saves the scene if asked)
+/// with a progress bar and says what was done (`--json`: one document).
+fn drive(
     args: &ApplyArgs,
     bars: Progress,
-    layout: &crate::layout::Layout,
-    mode: Mode<D>,
+    mut job: draw::Job<'_>,
+    words: Words,
 ) -> anyhow::Result<std::process::ExitCode> {
-    let mut opts = ApplyOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        resize_floor: args.resize_floor,
-        ..Default::default()
-    };
     let interrupt = Interrupt::install()?;
-    opts.interrupt = Some(interrupt.shared());
+    job.options.interrupt = Some(interrupt.shared());
     let Connected {
         mut backend,
         description: connection,
@@ -401,27 +397,20 @@ fn drive<D>(
         let _ = backend.close();
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
-    let mut created = Vec::new();
-    if args.create_missing && !args.dry_run {
-        let Some(authoring) = backend.authoring() else {
-            anyhow::bail!(
-                "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
-            );
-        };
-        created = draw::create_missing_for(authoring, &opts.names, layout)
-            .context("creating the missing scene objects")?;
-        if !created.is_empty() {
-            say(format!("created {}", created.join(", ")))?;
-        }
-    }
     let bar = bars.bar(
         "reading the scene",
-        mode.total as u64,
-        Unit::Items(mode.what),
+        job.picture.pieces() as u64,
+        Unit::Items(words.what),
     );
     let api = backend.remote_api();
     let dry_run = args.dry_run;
+    let mut said = Ok(());
     let mut progress = |stage: Stage| match stage {
+        Stage::Created(created) => {
+            if !created.is_empty() {
+                said = say(format!("created {}", created.join(", ")));
+            }
+        }
         Stage::Surveyed => bar.set_message("reading the scene"),
         Stage::Planned(work) => {
             let warning = api.and_then(|api| draw::estimate::slow_draw_warning(api, &work));
@@ -429,35 +418,36 @@ fn drive<D>(
                 bar.suspend(|| eprintln!("{line}"));
             }
         }
-        Stage::Pasting { .. } => bar.set_message(mode.pasting.clone()),
+        Stage::Pasting { .. } => bar.set_message(words.pasting.clone()),
         Stage::Placing { done, .. } => {
-            bar.set_message(mode.placing.clone());
+            bar.set_message(words.placing.clone());
             bar.set_position(done as u64);
         }
         Stage::Verifying => bar.set_message("verifying"),
     };
-    let result = (mode.draw)(backend.as_mut(), &mode.drawing, &opts, &mut progress);
+    let result = draw::run(backend.as_mut(), &job, &mut progress);
     bar.finish_and_clear();
+    said?;
     // over ZeroMQ the missing objects can be made: say so first
     let can_create =
-        mode.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
+        words.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
     let result = result.map_err(|e| match e {
-        DrawError::Missing { names, mut hints } if can_create => {
+        RunError::Draw(DrawError::Missing { names, mut hints }) if can_create => {
             hints.insert(
                 0,
                 "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the course's sizes and colours".into(),
             );
-            DrawError::Missing { names, hints }
+            RunError::Draw(DrawError::Missing { names, hints })
         }
         e => e,
     });
-    if let Err(DrawError::Interrupted { placed, total }) = &result {
+    if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
         let closed = backend.close();
         eprintln!(
             "interrupted: {placed} of {total} {}; the idle rate is restored{}",
-            mode.interrupted,
+            words.interrupted,
             if closed.is_ok() {
                 " and the connection closed cleanly"
             } else {
@@ -470,21 +460,12 @@ fn drive<D>(
         );
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
-    let report = result.with_context(|| format!("drawing {}", args.layout.display()))?;
+    let done = result.map_err(|e| run_error(e, &args.layout))?;
+    let report = &done.drawn;
     for warning in &report.warnings {
         eprintln!("warning: {}", super::escape::escaped(warning));
     }
-    if let Some(path) = &args.save_scene
-        && !args.dry_run
-    {
-        let Some(authoring) = backend.authoring() else {
-            anyhow::bail!(
-                "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
-            );
-        };
-        authoring
-            .save_scene(path)
-            .with_context(|| format!("saving the scene to {path}"))?;
+    if let Some(path) = &done.saved_scene {
         say(format!(
             "saved the scene to {path} (on the simulator's machine)"
         ))?;
@@ -496,26 +477,39 @@ fn drive<D>(
     if let Some(line) = &report.floor {
         say(line)?;
     }
-    say(&report)?;
-    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
+    say(super::summary::apply_line(report))?;
+    if let Some(line) = draw::left_alone_line(&report.left_alone, &job.options.names.parent) {
         say(line)?;
     }
     if !report.dry_run {
-        say(mode.verified)?;
+        say(&words.verified)?;
     }
     if args.json {
-        say::document(&apply_json(args, connection, &report, created))?;
+        say::document(&apply_json(args, connection, done))?;
     }
     Ok(std::process::ExitCode::SUCCESS)
 }
 
+/// A failed [`draw::run`] in the command line's words.
+fn run_error(e: RunError, layout: &std::path::Path) -> anyhow::Error {
+    match e {
+        RunError::NoAuthoring(Authored::CreateMissing) => anyhow::anyhow!(
+            "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+        ),
+        RunError::NoAuthoring(Authored::SaveScene) => anyhow::anyhow!(
+            "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
+        ),
+        RunError::Create(e) => anyhow::Error::new(e).context("creating the missing scene objects"),
+        RunError::Draw(e) => anyhow::Error::new(e).context(format!("drawing {}", layout.display())),
+        RunError::Save { path, source } => {
+            anyhow::Error::new(source).context(format!("saving the scene to {path}"))
+        }
+    }
+}
+
 /// The `--json` document of a finished apply (either draw mode).
-fn apply_json(
-    args: &ApplyArgs,
-    connection: String,
-    report: &draw::ApplyReport,
-    created: Vec<String>,
-) -> ApplyJson {
+fn apply_json(args: &ApplyArgs, connection: String, done: draw::Report) -> ApplyJson {
+    let report = &done.drawn;
     ApplyJson {
         format: "vrep-maze/apply".into(),
         version: REPORT_VERSION,
@@ -539,8 +533,8 @@ fn apply_json(
         stopped_simulation: report.stopped_simulation,
         dry_run: report.dry_run,
         verified: !report.dry_run,
-        created,
-        saved_scene: args.save_scene.clone().filter(|_| !args.dry_run),
+        created: done.created,
+        saved_scene: done.saved_scene,
     }
 }
 

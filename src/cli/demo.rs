@@ -88,7 +88,7 @@ fn draw_into_emulator(layout: &crate::layout::Layout) -> Result<()> {
         let mut scene = LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(10))?;
         let report = draw::apply(&mut scene, &drawing, &ApplyOptions::default(), &mut |_| {})?;
         draw::verify(&mut scene, &drawing, &ObjectNames::default())?;
-        Ok(report.to_string())
+        Ok(super::summary::apply_line(&report))
     })();
     let lines = server.with_sim(|sim| sim.scene.objects().filter(|o| o.alias == "Line").count());
     server.shutdown();

@@ -13,9 +13,9 @@ use super::reports::{DrawnMaze, InspectReport, LayoutMatch, REPORT_VERSION, Scen
 use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
-use crate::draw::apply::raised_to_read;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
 use crate::draw::plan::{is_copy_of, relative_pose, world_frame};
+use crate::draw::session::raised_to_read;
 use crate::draw::verify::verify_read_only;
 use crate::draw::{Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
 use crate::layout::Style;

@@ -24,6 +24,7 @@ mod serve;
 mod session_marker;
 mod solve;
 mod stdout;
+pub mod summary;
 mod validate;
 mod values;
 

@@ -96,7 +96,7 @@ fn apply_draws_verifies_and_reapplies_without_changes(kind: Kind) {
     assert_eq!(
         (again.pasted, again.removed, again.edits, again.reused),
         (0, 0, 0, 159),
-        "{again}"
+        "{again:?}"
     );
     let small = drawing(3, 2);
     let r = apply(&mut b, &small).unwrap();
@@ -275,7 +275,7 @@ fn idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs(kind: Ki
     assert_eq!(
         (r.pasted, r.reused),
         (d.lines.len() - 1 - left, left),
-        "{r}"
+        "{r:?}"
     );
     assert_eq!(s.line_count(), d.lines.len());
     drop(b);
@@ -368,7 +368,7 @@ fn template_inside_the_maze_dummy_is_kept_and_reused(kind: Kind) {
     let r = apply(&mut b, &d).unwrap();
     assert_eq!(r.pasted, d.lines.len() - 1);
     let again = apply(&mut b, &d).unwrap();
-    assert_eq!((again.pasted, again.edits), (0, 0), "{again}");
+    assert_eq!((again.pasted, again.edits), (0, 0), "{again:?}");
     let c = clear(&mut b);
     assert_eq!(c.removed.len(), d.lines.len() - 1);
     assert_eq!(s.line_count(), 1);
@@ -411,19 +411,19 @@ fn counts_add_up_in_every_kind_of_apply(kind: Kind) {
     let first = apply(&mut b, &d).unwrap();
     assert_counts_add_up(&first, &d);
     assert!(
-        first.to_string().starts_with(
+        vrep_maze::cli::summary::apply_line(&first).starts_with(
             "drew 160 lines: 1 kept (the template: 0 already in place, 1 placed), 159 pasted; markers: 1 already in place, 1 placed; 0 earlier copies removed; "
         ),
-        "{first}"
+        "{first:?}"
     );
     let again = apply(&mut b, &d).unwrap();
     assert_counts_add_up(&again, &d);
-    assert_eq!((again.unchanged, again.placed), (160, 0), "{again}");
+    assert_eq!((again.unchanged, again.placed), (160, 0), "{again:?}");
     drop(b);
     let mut b = s.connect();
     let fresh = apply(&mut b, &d).unwrap();
     assert_counts_add_up(&fresh, &d);
-    assert_eq!(fresh.reused, 159, "{fresh}");
+    assert_eq!(fresh.reused, 159, "{fresh:?}");
     drop(b);
     s.with_sim(|sim| {
         let copy = sim.scene.resolve("Line7").unwrap();
@@ -432,15 +432,15 @@ fn counts_add_up_in_every_kind_of_apply(kind: Kind) {
     let mut b = s.connect();
     let moved = apply(&mut b, &d).unwrap();
     assert_counts_add_up(&moved, &d);
-    assert!(moved.placed >= 1, "{moved}");
+    assert!(moved.placed >= 1, "{moved:?}");
     let small = drawing(3, 2);
     let smaller = apply(&mut b, &small).unwrap();
     assert_counts_add_up(&smaller, &small);
-    assert_eq!(smaller.removed, 160 - small.lines.len(), "{smaller}");
+    assert_eq!(smaller.removed, 160 - small.lines.len(), "{smaller:?}");
     let one = drawing(1, 1);
     let hidden = apply(&mut b, &one).unwrap();
     assert_counts_add_up(&hidden, &one);
-    assert_eq!((hidden.lines, hidden.markers_placed), (0, 3), "{hidden}");
+    assert_eq!((hidden.lines, hidden.markers_placed), (0, 3), "{hidden:?}");
     drop(b);
     s.shutdown();
 }
@@ -466,11 +466,11 @@ fn dry_run_over_a_matching_scene_has_nothing_to_do(kind: Kind) {
     assert_eq!(state(), before, "{}: a dry run writes nothing", kind.name());
     assert!(r.nothing_to_do(), "{}: {r:?}", kind.name());
     assert!(
-        r.to_string().starts_with(&format!(
+        vrep_maze::cli::summary::apply_line(&r).starts_with(&format!(
             "nothing to do: the scene already shows this layout ({} lines, markers in place); ",
             d.lines.len()
         )),
-        "{r}"
+        "{r:?}"
     );
     s.with_sim(|sim| {
         let copy = sim.scene.resolve("Line3").unwrap();
@@ -482,10 +482,10 @@ fn dry_run_over_a_matching_scene_has_nothing_to_do(kind: Kind) {
     drop(b);
     assert_eq!(state(), before, "{}: a dry run writes nothing", kind.name());
     assert_counts_add_up(&r, &d);
-    assert_eq!((r.placed, r.pasted, r.removed), (1, 0, 0), "{r}");
+    assert_eq!((r.placed, r.pasted, r.removed), (1, 0, 0), "{r:?}");
     assert!(
-        !r.nothing_to_do() && r.to_string().starts_with("would draw"),
-        "{r}"
+        !r.nothing_to_do() && vrep_maze::cli::summary::apply_line(&r).starts_with("would draw"),
+        "{r:?}"
     );
     s.shutdown();
 }

@@ -135,7 +135,7 @@ fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
     assert_eq!(
         (r.meshes, r.pasted, r.reused, r.removed),
         (1, 1, 0, 0),
-        "{r}"
+        "{r:?}"
     );
     assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
     let found = meshes(&s);
@@ -160,21 +160,21 @@ fn line_maze_draws_verifies_keeps_replaces_and_clears(kind: Kind) {
     assert_eq!(
         (again.pasted, again.reused, again.removed),
         (0, 1, 0),
-        "{again}"
+        "{again:?}"
     );
     // copies replace the meshes, and meshes the copies
     let copies = apply_copies(&mut b, &layout);
-    assert_eq!(copies.pasted, 159, "{copies}");
+    assert_eq!(copies.pasted, 159, "{copies:?}");
     assert!(meshes(&s).is_empty());
     assert_eq!(under_maze(&s), 159, "the copies only: no holder left");
     let other = MeshMaze::try_from(&course_layout(Algorithm::Prim, 9, 9, 7)).unwrap();
     let r = apply_mesh(&mut b, &other).unwrap();
-    assert_eq!(r.removed, 159, "{r}");
+    assert_eq!(r.removed, 159, "{r:?}");
     assert_eq!(s.line_count(), 1, "only the template is left of the copies");
     assert_eq!(under_maze(&s), 2, "the holder and one mesh");
     // another mesh maze replaces this one
     let r = apply_mesh(&mut b, &m).unwrap();
-    assert_eq!((r.pasted, r.removed), (1, 1), "{r}");
+    assert_eq!((r.pasted, r.removed), (1, 1), "{r:?}");
     assert!(matches!(
         verify_mesh(&mut b, &other),
         Err(DrawError::Verify(_))
@@ -227,7 +227,7 @@ fn wall_maze_with_posts_draws_boxes_that_copies_replace(kind: Kind) {
     assert_eq!(
         (r.meshes, r.pasted, r.posts),
         (m.meshes.len(), m.meshes.len(), 100),
-        "{r}"
+        "{r:?}"
     );
     verify_mesh(&mut b, &m).unwrap();
     let found = meshes(&s);
@@ -250,10 +250,10 @@ fn wall_maze_with_posts_draws_boxes_that_copies_replace(kind: Kind) {
         );
     });
     let copies = apply_copies(&mut b, &layout);
-    assert!(copies.pasted > 100, "{copies}");
+    assert!(copies.pasted > 100, "{copies:?}");
     assert!(meshes(&s).is_empty());
     let r = apply_mesh(&mut b, &m).unwrap();
-    assert_eq!(r.removed, copies.pasted, "{r}");
+    assert_eq!(r.removed, copies.pasted, "{r:?}");
     let c = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
     assert!(c.removed.is_empty(), "{:?}", c.removed);
     assert_eq!(c.removed_meshes.len(), m.meshes.len() + 1);
@@ -311,7 +311,7 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
     };
     assert!(problems.iter().any(|p| p.contains("stray")), "{problems:?}");
     let r = apply_mesh(&mut b, &m).unwrap();
-    assert_eq!(r.removed, 1, "{r}");
+    assert_eq!(r.removed, 1, "{r:?}");
     assert_eq!(s.line_count(), 1);
     b.close().unwrap();
     s.shutdown();
@@ -425,7 +425,7 @@ fn legacy_sends_the_mesh_model_with_transfer_file_to_a_remote_simulator() {
     );
     let m = MeshMaze::try_from(&course_layout(Algorithm::Prim, 9, 9, 42)).unwrap();
     let r = apply_mesh(&mut b, &m).unwrap();
-    assert_eq!((r.meshes, r.pasted), (1, 1), "{r}");
+    assert_eq!((r.meshes, r.pasted), (1, 1), "{r:?}");
     verify_mesh(&mut b, &m).unwrap();
     assert_eq!(meshes(&s).len(), 1);
     assert_eq!(

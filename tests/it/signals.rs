@@ -80,7 +80,7 @@ fn apply_reapply_and_clear_keep_their_signals_under_property_names(kind: Kind) {
     let mut b = s.connect();
     let again = drawing(9, 7);
     let r = apply(&mut *b, &again);
-    assert!(r.reused > 0, "{k}: {r}");
+    assert!(r.reused > 0, "{k}: {r:?}");
     draw::verify(&mut *b, &again, &ObjectNames::default()).unwrap();
     drop(b);
     let mut b = s.connect();
@@ -130,7 +130,7 @@ fn a_maze_an_older_version_drew_on_4_5_1_is_still_recognised() {
         let r = apply(&mut *s.connect(), &drawing(9, 7));
         assert!(
             r.reused > 0 && r.warnings.is_empty(),
-            "{k}: {r} {:?}",
+            "{k}: {r:?} {:?}",
             r.warnings
         );
         let names = signal_names(&s);

@@ -41,7 +41,7 @@ fn a_maze_dummy_moved_between_two_applies_is_repaired_by_the_second(kind: Kind) 
     let r = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
         .unwrap_or_else(|e| panic!("{k}: {e}"));
     // the template is no child of the dummy: it stays in place
-    assert_eq!(r.placed, d.lines.len() - 1, "{k}: {r}");
+    assert_eq!(r.placed, d.lines.len() - 1, "{k}: {r:?}");
     draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
     drop(b);
     s.shutdown();

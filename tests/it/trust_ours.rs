@@ -160,7 +160,7 @@ fn an_indexed_path_to_the_template_draws_and_clears_its_copies(kind: Kind) {
     assert_eq!(
         (again.pasted, again.removed),
         (0, 0),
-        "{k}: the copies are the maze's: {again}"
+        "{k}: the copies are the maze's: {again:?}"
     );
     assert_eq!(
         s.with_sim(|sim| sim.scene.len()),
@@ -209,7 +209,7 @@ fn a_users_dummy_named_like_the_mesh_holder_is_left_alone(kind: Kind) {
     let first = at(cuboid);
     let mut b = s.connect();
     let r = apply_with(&mut *b, &d, ObjectNames::default()).unwrap();
-    assert_eq!((r.removed, r.removed_meshes), (0, 0), "{k}: {r}");
+    assert_eq!((r.removed, r.removed_meshes), (0, 0), "{k}: {r:?}");
     assert!(
         r.left_alone.contains(&"MazeMeshes".to_string())
             && r.left_alone.contains(&"Cuboid".to_string()),
@@ -254,9 +254,9 @@ fn a_copies_apply_counts_an_earlier_mesh_maze_apart(kind: Kind) {
     assert_eq!(
         (r.removed, r.removed_meshes),
         (0, maze.meshes.len() + 1),
-        "{k}: {r}"
+        "{k}: {r:?}"
     );
-    let text = r.to_string();
+    let text = vrep_maze::cli::summary::apply_line(&r);
     assert!(
         text.contains(&format!(
             "0 earlier copies removed; {} object(s) of an earlier mesh maze removed;",

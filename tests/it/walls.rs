@@ -183,9 +183,8 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
         "{k}: every wall and post is a copy"
     );
     assert!(
-        r.to_string()
-            .contains(&format!("walls and {posts_n} posts")),
-        "{r}"
+        vrep_maze::cli::summary::apply_line(&r).contains(&format!("walls and {posts_n} posts")),
+        "{r:?}"
     );
     assert_eq!(wall_copies(&s), (walls_n, true), "{k}");
     assert_eq!(post_copies(&s), (posts_n, true), "{k}");

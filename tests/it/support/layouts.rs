@@ -48,16 +48,20 @@ pub fn drawing_with(algorithm: Algorithm, n: u64, seed: u64) -> Drawing {
 pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
     let template = usize::from(d.template_drawn() && !d.lines.is_empty());
     let hidden = usize::from(d.template_drawn() && d.lines.is_empty());
-    assert_eq!((r.lines, r.posts), (d.lines.len(), d.posts.len()), "{r}");
-    assert_eq!(r.lines + r.posts, r.unchanged + r.placed + r.pasted, "{r}");
-    assert_eq!(r.unchanged + r.placed, r.reused + template, "{r}");
-    assert_eq!(r.markers_unchanged + r.markers_placed, 2 + hidden, "{r}");
+    assert_eq!((r.lines, r.posts), (d.lines.len(), d.posts.len()), "{r:?}");
+    assert_eq!(
+        r.lines + r.posts,
+        r.unchanged + r.placed + r.pasted,
+        "{r:?}"
+    );
+    assert_eq!(r.unchanged + r.placed, r.reused + template, "{r:?}");
+    assert_eq!(r.markers_unchanged + r.markers_placed, 2 + hidden, "{r:?}");
     if r.dry_run && r.nothing_to_do() {
         return;
     }
     // the summary line's own numbers add up: "N lines[ and P posts]: K kept (…: I already in
     // place, M placed[, U set unread…]), X pasted; markers: A already in place, B placed; …"
-    let text = r.to_string();
+    let text = vrep_maze::cli::summary::apply_line(r);
     let number_before = |word: &str| -> usize {
         let at = text
             .find(word)

@@ -6,10 +6,10 @@ use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::apply::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::home;
 use super::lease::{Claim, claimed};
 use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
+use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
 
 /// What [`clear`] removed.

@@ -16,14 +16,21 @@ pub mod floor;
 pub mod home;
 pub mod lease;
 pub mod mesh;
+pub mod options;
 pub mod plan;
 pub mod record;
+pub mod report;
+pub mod run;
+pub mod session;
 pub mod signals;
 pub mod verify;
 
-pub use apply::{ApplyOptions, ApplyReport, Stage, apply};
+pub use apply::apply;
 pub use clear::{ClearOptions, ClearReport, clear};
 pub use lease::{Claimed, Lease};
+pub use options::ApplyOptions;
+pub use report::{ApplyReport, Stage};
+pub use run::{DrawMode, Job, Picture, Report, RunError, run};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
 

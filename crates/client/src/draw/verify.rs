@@ -3,8 +3,8 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::apply::raised;
 use super::plan::{self, foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
+use super::session::{raised, sizes_of, surveyed};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
 
 /// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
@@ -201,7 +201,7 @@ pub fn verify(
 }
 
 /// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
-/// itself (`vrep-maze inspect`, [`super::apply::raised_to_read`]).
+/// itself (`vrep-maze inspect`, [`super::session::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     drawing: &Drawing,
@@ -218,8 +218,8 @@ fn verify_raised(
 ) -> Result<(), DrawError> {
     let style = drawing.style;
     let with_posts = !drawing.posts.is_empty();
-    let (survey, h) = super::apply::surveyed(scene, names, style, with_posts)?;
-    let sizes = super::apply::sizes_of(scene, &drawing.template_use(), names, &h)?;
+    let (survey, h) = surveyed(scene, names, style, with_posts)?;
+    let sizes = sizes_of(scene, &drawing.template_use(), names, &h)?;
     if let Some(differences) = sizes.differences(names) {
         return Err(differences);
     }

@@ -7,7 +7,7 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use vrep_maze_core::coppelia::names::{split_hash, split_plain};
 
-use super::scene::Object;
+use super::object::Object;
 
 /// Used numbers as disjoint, non-adjacent inclusive runs `start -> end`.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]

@@ -9,6 +9,7 @@ pub mod cost;
 mod index;
 pub mod mesh;
 pub mod model;
+pub mod object;
 pub mod property;
 pub mod robot;
 pub mod scene;
@@ -21,8 +22,9 @@ use vrep_maze_core::coppelia::{INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION};
 pub use clock::{Clock, ZMQ_TIME_SLOT, ZmqPacer, ZmqPacing};
 pub use cost::{Charge, CostModel, Op, Served, Timing};
 pub use mesh::{Mesh, MeshError};
+pub use object::{Object, ObjectType};
 pub use robot::RobotPath;
-pub use scene::{NamingMode, NewObject, Object, ObjectType, Scene, SimError};
+pub use scene::{NamingMode, NewObject, Scene, SimError};
 
 /// The program version we report (CoppeliaSim 4.5.1).
 pub const PROGRAM_VERSION: i32 = 40501;

@@ -1,7 +1,8 @@
 //! The emulated robot (`serve --robot PATH.csv`): an object that, while the simulation runs,
 //! follows timed waypoints in the `Floor` frame, so a run can be graded without CoppeliaSim.
 
-use super::scene::{NewObject, ObjectType, Scene, SimError};
+use super::object::ObjectType;
+use super::scene::{NewObject, Scene, SimError};
 use vrep_maze_core::coppelia::HANDLE_WORLD;
 use vrep_maze_core::score::Sample;
 use vrep_maze_core::score::trajectory::interpolate;

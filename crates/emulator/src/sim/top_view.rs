@@ -6,7 +6,8 @@ use std::fmt::Write;
 
 use nalgebra::Point3;
 
-use super::scene::{ObjectType, Scene};
+use super::object::ObjectType;
+use super::scene::Scene;
 
 /// A shape's footprint: world z (drawing order), colour, corners in the xy plane.
 type Footprint = (f64, [u8; 3], [(f64, f64); 4]);

@@ -8,12 +8,13 @@ use super::compare::{bounds, mesh_differences};
 use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
 };
-use crate::draw::apply::{
-    ApplyOptions, ApplyReport, Begun, EarlierLines, Stage, begin, has_line_copies, keep_home,
-    raised, raised_and_claimed, sizes_of, surveyed,
-};
 use crate::draw::lease::Claim;
 use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::session::{
+    Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
+    surveyed,
+};
+use crate::draw::{ApplyOptions, ApplyReport, Stage};
 use crate::draw::{
     Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
 };
@@ -441,7 +442,7 @@ pub fn verify(
 }
 
 /// [`verify`] without touching the idle rate: only reads, for a caller that raised the rate
-/// itself (what `inspect` compares with, [`crate::draw::apply::raised_to_read`]).
+/// itself (what `inspect` compares with, [`crate::draw::session::raised_to_read`]).
 pub fn verify_read_only(
     scene: &mut dyn Backend,
     maze: &MeshMaze,

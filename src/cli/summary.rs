@@ -1,0 +1,91 @@
+//! The line `apply` ends with, in the command line's words (the Python package's
+//! `str(report)` is the same line).
+
+use crate::draw::ApplyReport;
+
+/// What `apply` did, in one line: the counts of [`ApplyReport`] and the cost.
+pub fn apply_line(report: &ApplyReport) -> String {
+    let posts = if report.posts > 0 {
+        format!(" and {} posts", report.posts)
+    } else {
+        String::new()
+    };
+    let cost = format!(
+        "{} round trip(s), {:.2} s",
+        report.round_trips,
+        report.elapsed.as_secs_f64()
+    );
+    if report.dry_run && report.nothing_to_do() {
+        let what = if report.meshes > 0 {
+            format!("{} mesh(es)", report.meshes)
+        } else {
+            format!("{} {}{posts}", report.lines, report.style.name())
+        };
+        return format!(
+            "nothing to do: the scene already shows this layout ({what}, markers in place); {cost}"
+        );
+    }
+    let verb = if report.dry_run { "would draw" } else { "drew" };
+    // Start and End, and the line template where it is no line of copies (on the first
+    // line of a mesh maze, under `Start` in a one-cell maze): counted with them
+    let what = if report.markers_unchanged + report.markers_placed > 2 {
+        "Start, End and the line template"
+    } else {
+        "markers"
+    };
+    let markers = format!(
+        "{what}: {} already in place, {} placed",
+        report.markers_unchanged, report.markers_placed
+    );
+    if report.meshes > 0 {
+        return format!(
+            "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created; {markers}; {} earlier object(s) removed; {cost}",
+            report.lines,
+            report.style.name().trim_end_matches('s'),
+            report.meshes,
+            report.reused,
+            report.pasted,
+            report.removed,
+        );
+    }
+    let kept = report.unchanged + report.placed;
+    let template = kept > report.reused;
+    let of = match (template, report.reused) {
+        (_, _) if kept == 0 => String::new(),
+        (true, 0) => "the template: ".to_string(),
+        (true, n) => format!("the template and {n} earlier copies: "),
+        (false, n) => format!("{n} earlier copies: "),
+    };
+    let kept = if kept == 0 {
+        "0 kept".to_string()
+    } else {
+        let unread = if report.unread > 0 {
+            format!(
+                ", {} set unread, as reading costs what setting does",
+                report.unread
+            )
+        } else {
+            String::new()
+        };
+        format!(
+            "{kept} kept ({of}{} already in place, {} placed{unread})",
+            report.unchanged,
+            report.placed - report.unread
+        )
+    };
+    let meshes = if report.removed_meshes > 0 {
+        format!(
+            "; {} object(s) of an earlier mesh maze removed",
+            report.removed_meshes
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed{meshes}; {cost}",
+        report.lines,
+        report.style.name(),
+        report.pasted,
+        report.removed,
+    )
+}
