@@ -53,7 +53,22 @@ fn the_thirty_second_path_works_word_for_word() {
     let dir = tempfile::tempdir().unwrap();
     let mut background = Vec::new();
     let mut outputs = Vec::new();
+    let mut stopped = false;
     for line in &lines[1..] {
+        if line == "kill %1" {
+            // the shell's job 1 is the first command started with `&`: `serve` stops on
+            // SIGTERM, saying so, and exits 0
+            let Background(serve) = background.first_mut().expect("a job to stop");
+            let killed = Command::new("kill")
+                .arg(serve.id().to_string())
+                .status()
+                .unwrap();
+            assert!(killed.success());
+            let status = serve.wait().unwrap();
+            assert!(status.success(), "serve stopped by kill exits {status}");
+            stopped = true;
+            continue;
+        }
         let (line, in_background) = match line.strip_suffix('&') {
             Some(l) => (l.trim(), true),
             None => (line.as_str(), false),
@@ -96,4 +111,42 @@ fn the_thirty_second_path_works_word_for_word() {
     let picture = said("vrep-maze render");
     assert!(picture.contains('S') && picture.contains('E') && picture.contains('.'));
     assert!(dir.path().join("maze.json").exists());
+    assert!(stopped, "the path says how to stop serve (`kill %1`)");
+}
+
+/// `serve` on a taken port, started in the background as the path does: it exits at once
+/// (non-zero) with one error line naming the address and a hint naming `--port`, instead
+/// of a server that never listens.
+#[test]
+fn serve_on_a_taken_port_fails_at_once_with_a_hint() {
+    let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let port = taken.local_addr().unwrap().port();
+    for (api, env) in [
+        ("legacy", "VREP_MAZE_LEGACY_PORT"),
+        ("zmq", "VREP_MAZE_ZMQ_PORT"),
+    ] {
+        let child = Command::cargo_bin("vrep-maze")
+            .unwrap()
+            .args(["serve", "--api", api])
+            .env(env, port.to_string())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{api}: {stderr}");
+        assert!(out.stdout.is_empty(), "{api}: announced no server");
+        let lines: Vec<&str> = stderr.lines().collect();
+        assert!(
+            lines[0].starts_with(&format!(
+                "error: cannot listen on 127.0.0.1:{port}: something already listens there"
+            )),
+            "{api}: {stderr}"
+        );
+        assert!(
+            lines.len() == 2 && lines[1].contains("hint:") && lines[1].contains("--port 0"),
+            "{api}: {stderr}"
+        );
+    }
 }
