@@ -531,6 +531,7 @@ fn apply_json(
         removed_meshes: report.removed_meshes,
         unchanged: report.unchanged,
         placed: report.placed,
+        placed_unread: report.unread,
         markers_unchanged: report.markers_unchanged,
         markers_placed: report.markers_placed,
         nothing_to_do: report.dry_run && report.nothing_to_do(),
