@@ -63,7 +63,8 @@ impl Scale {
 }
 
 /// The part of the floor a picture shows, `[x0, y0, x1, y1]` in floor metres: the whole
-/// floor, or with [`RenderOptions::crop`] the maze's bounding box.
+/// floor, or with [`RenderOptions::crop`] the maze's bounding box and below it a strip for
+/// the scale bar ([`figure::ScaleBar::strip`]), which would otherwise cover Start or walls.
 fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
     let [fx, fy] = layout.floor.size;
     if !options.crop {
@@ -103,6 +104,7 @@ fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
             bounds[3].max(py),
         ];
     }
+    bounds[1] -= figure::ScaleBar::for_window(bounds).strip();
     bounds
 }
 
