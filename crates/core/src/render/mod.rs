@@ -32,7 +32,8 @@ pub use svg::Svg;
 pub struct RenderOptions {
     /// Overlay the shortest path from start to end.
     pub solution: bool,
-    /// Show only the maze's bounding box (what is drawn, grid and walls), not the whole floor.
+    /// Show only the maze's bounding box (what is drawn, grid and walls) and below it the
+    /// scale bar's strip, not the whole floor.
     pub crop: bool,
     /// The picture's scale [default: the format's own].
     pub scale: Scale,
