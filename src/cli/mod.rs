@@ -6,6 +6,7 @@ mod clear;
 mod completions;
 mod connect;
 mod demo;
+mod drive;
 mod escape;
 mod export;
 mod generate;
@@ -81,6 +82,9 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Follow a robot while the simulation runs and grade its run against the maze.
     Score(score::ScoreArgs),
+    /// A robot to score at once: add a dummy `Robot` at Start (if none) and move it along
+    /// the solution while the simulation runs (ZeroMQ API).
+    Drive(drive::DriveArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -274,6 +278,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Clear(args) => clear::run(args),
         Command::Inspect(args) => inspect::run(args),
         Command::Score(args) => score::run(args),
+        Command::Drive(args) => drive::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }
