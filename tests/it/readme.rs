@@ -1,4 +1,5 @@
-//! The README's "In 30 seconds" section, followed word for word against `vrep-maze serve`.
+//! The README's front door: its two set-up commands, and its "In 30 seconds" section
+//! followed word for word against `vrep-maze serve`.
 
 use std::net::TcpStream;
 use std::path::Path;
@@ -9,14 +10,15 @@ use assert_cmd::cargo::CommandCargoExt;
 
 use crate::support::cli::{default_ports, free_port};
 
-/// The command lines of the section's first `sh` block, comments dropped.
-fn thirty_seconds() -> Vec<String> {
+/// The command lines of the first `sh` block of the README's section `heading`, comments
+/// dropped.
+fn commands(heading: &str) -> Vec<String> {
     let readme =
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
     let section = readme
-        .split("## In 30 seconds")
+        .split(&format!("## {heading}\n"))
         .nth(1)
-        .expect("the README has an 'In 30 seconds' section");
+        .unwrap_or_else(|| panic!("the README has a '{heading}' section"));
     let block = section
         .split("```sh\n")
         .nth(1)
@@ -27,6 +29,28 @@ fn thirty_seconds() -> Vec<String> {
         .map(|l| l.split(" #").next().unwrap().trim().to_string())
         .filter(|l| !l.is_empty())
         .collect()
+}
+
+/// The 30-second path's command lines.
+fn thirty_seconds() -> Vec<String> {
+    commands("In 30 seconds")
+}
+
+/// The set-up is two commands: the main job on its embedded default (`demo`, run by
+/// `cli::demo_runs_the_whole_job`) built in release, whose binary the 30-second path then
+/// uses, and the test suite as CI runs it (`.ci/run` calls `cargo test`).
+#[test]
+fn the_set_up_is_two_commands_ci_runs_the_second() {
+    assert_eq!(
+        commands("Set-up: two commands"),
+        ["cargo run --release -- demo", "cargo test"]
+    );
+    let ci =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(".ci/run")).unwrap();
+    assert!(
+        ci.lines().any(|l| l.trim() == "cargo test"),
+        ".ci/run runs `cargo test`"
+    );
 }
 
 /// A background process, killed at the end.
@@ -45,10 +69,12 @@ impl Drop for Background {
 fn the_thirty_second_path_works_word_for_word() {
     let (legacy, zmq) = (free_port(), free_port());
     let lines = thirty_seconds();
+    // the binary `cargo run --release` built, not a second build (this test runs the one
+    // cargo built for it)
     assert_eq!(
         lines.first().map(String::as_str),
-        Some("cargo install --path ."),
-        "the path starts by installing (this test runs the binary cargo built instead)"
+        Some(r#"export PATH="$PWD/target/release:$PATH""#),
+        "the path starts with the set-up's binary"
     );
     let dir = tempfile::tempdir().unwrap();
     let mut background = Vec::new();
