@@ -46,6 +46,9 @@ pub struct ApplyReport {
     unchanged: usize,
     /// Lines and posts kept whose pose (or parent) was sent.
     placed: usize,
+    /// Of `placed`: poses sent without reading them first (ZeroMQ: reading a pose costs
+    /// a round trip as setting it does; 0 over the legacy API).
+    placed_unread: usize,
     /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
     markers_unchanged: usize,
     /// Markers whose pose was sent (a dry run: would be).
@@ -271,6 +274,7 @@ pub fn apply(
             removed_meshes: report.removed_meshes,
             unchanged: report.unchanged,
             placed: report.placed,
+            placed_unread: report.unread,
             markers_unchanged: report.markers_unchanged,
             markers_placed: report.markers_placed,
             nothing_to_do: report.dry_run && report.nothing_to_do(),

@@ -1,4 +1,4 @@
-"""The README's Python example and examples/course_maze.py, run against `vrep-maze serve`."""
+"""The manual's Python example and examples/course_maze.py, run against `vrep-maze serve`."""
 
 import re
 import subprocess
@@ -8,14 +8,14 @@ from conftest import ROOT
 
 
 def readme_example() -> str:
-    """The Python code block of the README's Python section."""
-    section = ROOT.joinpath("README.md").read_text().split("\n## Python\n", 1)[1]
+    """The Python code block of the manual's Python section (docs/manual.md)."""
+    section = ROOT.joinpath("docs", "manual.md").read_text().split("\n## Python\n", 1)[1]
     return re.search(r"```python\n(.*?)```", section, re.S).group(1)
 
 
 def test_the_readme_example_works(serve, tmp_path):
     code = readme_example()
-    # the README draws into the default port; here the emulator listens on a free one
+    # the manual draws into the default port; here the emulator listens on a free one
     drawn = "vrep_maze.apply(maze)"
     assert drawn in code
     code = code.replace(drawn, f"vrep_maze.apply(maze, port={serve.legacy_port})")

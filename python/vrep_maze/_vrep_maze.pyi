@@ -78,6 +78,7 @@ class ApplyReport:
     removed_meshes: int
     unchanged: int
     placed: int
+    placed_unread: int
     markers_unchanged: int
     markers_placed: int
     nothing_to_do: bool

@@ -34,7 +34,8 @@ pub struct ConnectArgs {
     /// The dummy every maze line becomes a child of.
     #[arg(long, default_value = "Maze")]
     pub parent: String,
-    /// The line template (a 0.6 m x 0.1 m green plane).
+    /// The line template (a green plane of the layout's `line.length` x `line.width`: 0.6 m x
+    /// 0.1 m on the course).
     #[arg(long, default_value = "Line")]
     pub line: String,
     /// The wall template of wall mazes (a cuboid as long as a cell side; it stays where it is,
@@ -45,10 +46,10 @@ pub struct ConnectArgs {
     /// high; it stays where it is, every post is a copy).
     #[arg(long, default_value = "Post")]
     pub post: String,
-    /// The start marker (a 1 m x 1 m blue plane).
+    /// The start marker (a blue plane a cell wide: 1 m x 1 m on the course).
     #[arg(long, default_value = "Start")]
     pub start: String,
-    /// The end marker (a 1 m x 1 m red plane).
+    /// The end marker (a red plane a cell wide: 1 m x 1 m on the course).
     #[arg(long, default_value = "End")]
     pub end: String,
     /// Seconds to keep trying to connect [default: 10; 75 for legacy when an earlier run
@@ -435,7 +436,7 @@ fn drive(
         RunError::Draw(DrawError::Missing { names, mut hints }) if can_create => {
             hints.insert(
                 0,
-                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the course's sizes and colours".into(),
+                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the layout's sizes and the course's colours".into(),
             );
             RunError::Draw(DrawError::Missing { names, hints })
         }
@@ -524,6 +525,7 @@ fn apply_json(args: &ApplyArgs, connection: String, done: draw::Report) -> Apply
         removed_meshes: report.removed_meshes,
         unchanged: report.unchanged,
         placed: report.placed,
+        placed_unread: report.unread,
         markers_unchanged: report.markers_unchanged,
         markers_placed: report.markers_placed,
         nothing_to_do: report.dry_run && report.nothing_to_do(),

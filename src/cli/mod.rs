@@ -6,6 +6,7 @@ mod clear;
 mod completions;
 mod connect;
 mod demo;
+mod drive;
 mod escape;
 mod export;
 mod generate;
@@ -64,7 +65,7 @@ pub enum Command {
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
     /// Write a layout as a file a simulator loads: CoppeliaSim XML model or scene, MuJoCo,
-    /// Gazebo (SDF), URDF or Webots.
+    /// Gazebo (SDF), URDF, Webots, or a ROS map_server occupancy map (.yaml + .pgm).
     Export(export::ExportArgs),
     /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
     Solve(solve::SolveArgs),
@@ -82,6 +83,9 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Follow a robot while the simulation runs and grade its run against the maze.
     Score(score::ScoreArgs),
+    /// A robot to score at once: add a dummy `Robot` at Start (if none) and move it along
+    /// the solution while the simulation runs (ZeroMQ API).
+    Drive(drive::DriveArgs),
     /// Emulate CoppeliaSim's legacy and/or ZeroMQ remote API over an in-memory scene.
     Serve(serve::ServeArgs),
 }
@@ -275,6 +279,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Clear(args) => clear::run(args),
         Command::Inspect(args) => inspect::run(args),
         Command::Score(args) => score::run(args),
+        Command::Drive(args) => drive::run(args),
         Command::Serve(args) => serve::run(args),
     }
 }

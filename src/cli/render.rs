@@ -32,8 +32,8 @@ pub struct RenderArgs {
     /// Write the picture here instead of standard output.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// SVG and PNG: show only the maze (its bounding box, walls and lines included), not the
-    /// whole floor.
+    /// SVG and PNG: show only the maze (its bounding box, walls and lines included) and a
+    /// strip below it for the scale bar, not the whole floor.
     #[arg(long)]
     pub crop: bool,
     /// SVG and PNG: pixels a metre [default: 40 for SVG, 80 for PNG (less on a floor over

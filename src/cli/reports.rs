@@ -140,6 +140,10 @@ pub struct ApplyJson {
     pub unchanged: usize,
     /// Lines and posts kept whose pose (or parent) was sent.
     pub placed: usize,
+    /// Of `placed`: poses sent without reading them first, perhaps in place already (over
+    /// ZeroMQ reading a copy's pose costs a round trip as setting it does, so a re-apply
+    /// sets them unread; 0 over the legacy API, which reads them all at once).
+    pub placed_unread: usize,
     /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
     pub markers_unchanged: usize,
     /// Markers whose pose was sent.

@@ -175,7 +175,7 @@ fn missing_robot(error: FollowError, robot: &str) -> anyhow::Error {
             FollowError::NoSuchObject(name),
             vec![
                 "pass --robot NAME with the name of your robot's object in the scene".into(),
-                "without a robot of your own: `vrep-maze serve --robot PATH.csv` drives one named Robot along a path file (t,x,y,yaw)".into(),
+                "without a robot of your own: `vrep-maze drive LAYOUT --api zmq &` adds one named Robot at Start and drives it along the solution while the simulation runs (or `vrep-maze serve --robot PATH.csv` drives one along a path file)".into(),
             ],
         ),
         other => anyhow::Error::new(other),

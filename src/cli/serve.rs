@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 
 use super::ensure_usage;
+use super::hinted::hinted;
 use super::stdout::outln;
 
 use std::sync::Arc;
@@ -214,9 +215,6 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Some(path) = &args.robot {
         sim.robot = Some(robot_path(&mut sim.scene, path)?);
     }
-    let in_use = |addr: SocketAddr| {
-        format!("cannot listen on {addr} (port in use? try --port 0 for a free one)")
-    };
     let zmq_line = |s: &zmq_api::ServerHandle| {
         outln!(
             "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
@@ -227,7 +225,8 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
     };
     match args.api {
         ServeApi::Zmq => {
-            let server = zmq_api::spawn(zmq_config, sim).with_context(|| in_use(zmq_listen))?;
+            let server = zmq_api::spawn(zmq_config, sim)
+                .map_err(|e| cannot_listen(zmq_listen, "--port", &e))?;
             zmq_line(&server)?;
             let _ = rx.recv();
             let n = server.with_sim(|s| s.scene.len());
@@ -235,21 +234,25 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
             eprintln!("vrep-maze serve: stopped with {n} objects");
         }
         ServeApi::Legacy | ServeApi::Both => {
-            let server = spawn(config, sim).with_context(|| in_use(legacy_listen))?;
+            let server =
+                spawn(config, sim).map_err(|e| cannot_listen(legacy_listen, "--port", &e))?;
+            let server = Arc::new(server);
+            // both listen before either is announced: a refused port leaves no half server
+            let zmq = if args.api == ServeApi::Both {
+                let z = zmq_api::spawn_shared(zmq_config, server.clone())
+                    .map_err(|e| cannot_listen(zmq_listen, "--zmq-listen", &e))?;
+                Some(z)
+            } else {
+                None
+            };
             outln!(
                 "vrep-maze serve: legacy remote API on {} (idle fps {})",
                 server.local_addr(),
                 args.idle_fps
             )?;
-            let server = Arc::new(server);
-            let zmq = if args.api == ServeApi::Both {
-                let z = zmq_api::spawn_shared(zmq_config, server.clone())
-                    .with_context(|| in_use(zmq_listen))?;
-                zmq_line(&z)?;
-                Some(z)
-            } else {
-                None
-            };
+            if let Some(z) = &zmq {
+                zmq_line(z)?;
+            }
             let _ = rx.recv();
             if let Some(z) = zmq {
                 z.shutdown();
@@ -261,6 +264,29 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         }
     }
     Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// The error of a server that could not listen on `addr`: one line, and when the port is
+/// taken (a CoppeliaSim or another `serve` listens there) the hint to move it with `option`.
+fn cannot_listen(addr: SocketAddr, option: &str, error: &dyn std::fmt::Display) -> anyhow::Error {
+    let error = error.to_string();
+    let taken = error.to_lowercase().contains("in use");
+    let message = if taken {
+        format!("cannot listen on {addr}: something already listens there ({error})")
+    } else {
+        format!("cannot listen on {addr}: {error}")
+    };
+    let example = match option {
+        "--port" => "--port 0".to_string(),
+        _ => format!("{option} {}:0", addr.ip()),
+    };
+    let mut hints = Vec::new();
+    if taken {
+        hints.push(format!(
+            "a CoppeliaSim (or another `vrep-maze serve`) may hold it: use that one, stop it, or serve on another port with {option} (`{example}` picks a free one and prints it); clients then need the same --port"
+        ));
+    }
+    hinted(message, hints)
 }
 
 /// Reads a `--robot` path file and adds its robot to `scene`.

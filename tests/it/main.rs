@@ -16,6 +16,7 @@ mod ctrl_c;
 mod draw;
 mod export_model_load;
 mod export_robots;
+mod export_ros;
 mod first_hour;
 mod generation_gate;
 mod generators;

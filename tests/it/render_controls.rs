@@ -84,25 +84,27 @@ fn by_default_the_pictures_are_what_they_were() {
 
 #[test]
 fn crop_shows_the_maze_only() {
-    // 16 cells of 0.18 m and walls 0.012 m thick: 2.892 m at 80 px/m
+    // 16 cells of 0.18 m and walls 0.012 m thick: 2.892 m at 80 px/m, and below the maze
+    // the scale bar's strip, 0.4 m (four tenths of its 1 m bar)
     let whole = render("dfs-micromouse-seed42.json", "m.png", &[]);
     let cropped = render("dfs-micromouse-seed42.json", "m.png", &["--crop"]);
     assert_eq!(png_size(&whole), (800, 800));
-    assert_eq!(png_size(&cropped), (232, 232));
+    assert_eq!(png_size(&cropped), (232, 264));
     let wide = render(
         "dfs-micromouse-seed42.json",
         "m.png",
         &["--crop", "--width", "800"],
     );
-    assert_eq!(png_size(&wide), (800, 800));
-    // the 9x9 course maze with 0.1 m lines: 9.1 m, centred on the floor
+    assert_eq!(png_size(&wide), (800, 911));
+    // the 9x9 course maze with 0.1 m lines: 9.1 m, centred on the floor, and the bar's
+    // 0.4 m strip below
     let svg = render(
         "dfs-9x9-seed42.json",
         "m.svg",
         &["--crop", "--px-per-m", "100"],
     );
     let frame = svg_frame(&svg);
-    let expected = [910.0, 910.0, -4.55, -4.55, 9.1, 9.1];
+    let expected = [910.0, 950.0, -4.55, -4.55, 9.1, 9.5];
     for (got, want) in frame.iter().zip(expected) {
         assert!((got - want).abs() < 1e-3, "{frame:?}");
     }

@@ -260,6 +260,21 @@ mod json_output {
                 "apply-v1.schema.json",
             );
             assert_eq!(back["lines"], 160, "{api}: {back}");
+            // the same layout again: over ZeroMQ every kept copy's pose is sent unread
+            // (reading costs what setting does), over legacy every pose is read first
+            let again = document(
+                &["apply", &m, "--json", "--api", api, "--port", &port],
+                0,
+                "apply-v1.schema.json",
+            );
+            let (placed, unread) = (&again["placed"], &again["placed_unread"]);
+            match api {
+                "zmq" => assert!(
+                    unread.as_u64() > Some(0) && unread == placed,
+                    "zmq: {again}"
+                ),
+                _ => assert_eq!((placed, unread), (&0.into(), &0.into()), "legacy: {again}"),
+            }
             let c = document(
                 &["clear", "--json", "--api", api, "--port", &port],
                 0,

@@ -204,7 +204,7 @@ fn a_missing_robot_and_a_simulation_that_never_starts_are_errors() {
         stderr.contains("the scene has no object named `Robot`")
             && stderr.contains("hint: pass --robot NAME")
             && stderr
-                .contains("hint: without a robot of your own: `vrep-maze serve --robot PATH.csv`"),
+                .contains("hint: without a robot of your own: `vrep-maze drive LAYOUT --api zmq &` adds one named Robot"),
         "{stderr}"
     );
     bin()

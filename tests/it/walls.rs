@@ -5,7 +5,7 @@
 
 use std::fs;
 
-use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames};
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Sizes};
 use vrep_maze::layout::json::parse_layout;
 use vrep_maze::layout::walls::{WallOptions, into_walls, length_between_posts};
 use vrep_maze::layout::{Layout, Style, passages};
@@ -322,7 +322,7 @@ fn zmq_create_missing_makes_a_post_cuboid_too() {
     let created = b
         .authoring()
         .unwrap()
-        .create_missing_walls(&names, [0.95, 0.05, 0.2], Some([0.05, 0.05, 0.2]))
+        .create_missing(&names, &Sizes::of(&post_layout(3, 1)))
         .unwrap();
     assert_eq!(created, ["Floor", "Maze", "Wall", "Post", "Start", "End"]);
     let (size, position) = s.with_sim(|sim| {
@@ -347,10 +347,70 @@ fn walls_need_a_wall_template_and_say_how_to_make_one() {
     assert!(
         e.hints()
             .iter()
-            .any(|h| h.contains("Primitive shape > Cuboid")),
+            .any(|h| h.contains("a cuboid 1 x 0.05 x 0.2 m")
+                && h.contains("Primitive shape > Cuboid")),
         "{:?}",
         e.hints()
     );
+}
+
+/// The hint for a missing template or marker gives the layout's own sizes: a micromouse
+/// layout's `Wall` is 0.18 x 0.012 x 0.05 m, never the course's 1 m wall, which the size
+/// check would then refuse; its markers are a 0.18 m cell wide.
+#[test]
+fn a_missing_object_s_hint_gives_the_layout_s_sizes() {
+    let micromouse = parse_layout(
+        include_str!("../../mazes/dfs-micromouse-seed42.json"),
+        "dfs-micromouse-seed42.json",
+    )
+    .unwrap();
+    let s = Kind::Legacy.serve(Scene::empty(), 8);
+    let mut b = s.connect();
+    let e = apply(&mut b, &Drawing::try_from(&micromouse).unwrap()).unwrap_err();
+    let hints = e.hints().join("\n");
+    for says in [
+        "`Wall`: the wall template: a cuboid 0.18 x 0.012 x 0.05 m",
+        "`Start`: the start marker: a plane 0.18 m x 0.18 m (a cell), pure blue, at z = 0.002",
+        "`End`: the end marker: a plane 0.18 m x 0.18 m (a cell), pure red",
+        "the maze needs at least 10 x 10 m",
+    ] {
+        assert!(hints.contains(says), "{says:?} not in {hints}");
+    }
+    assert!(!hints.contains("1 x 0.05"), "{hints}");
+    let course = parse_layout(
+        include_str!("../../mazes/dfs-9x9-seed42.json"),
+        "dfs-9x9-seed42.json",
+    )
+    .unwrap();
+    let e = apply(&mut b, &Drawing::try_from(&course).unwrap()).unwrap_err();
+    let hints = e.hints().join("\n");
+    assert!(
+        hints.contains("`Line`: the line template: a plane 0.6 x 0.1 m, pure green, at z = 0.001"),
+        "{hints}"
+    );
+}
+
+/// `--create-missing` over ZeroMQ makes what a micromouse layout is drawn with at its own
+/// sizes, so the drawing that follows passes the size check.
+#[test]
+fn zmq_create_missing_makes_a_micromouse_layout_s_sizes() {
+    let micromouse = parse_layout(
+        include_str!("../../mazes/dfs-micromouse-seed42.json"),
+        "dfs-micromouse-seed42.json",
+    )
+    .unwrap();
+    let s = Kind::Zmq2.serve(Scene::empty(), 8);
+    let mut b = s.connect();
+    let created =
+        draw::create_missing_for(b.authoring().unwrap(), &ObjectNames::default(), &micromouse)
+            .unwrap();
+    assert_eq!(created, ["Floor", "Maze", "Wall", "Start", "End"]);
+    let sizes = s.with_sim(|sim| {
+        ["Wall", "Start"].map(|n| sim.scene.get(sim.scene.resolve(n).unwrap()).unwrap().size)
+    });
+    assert_eq!(sizes[0], [0.18, 0.012, 0.05]);
+    assert_eq!([sizes[1][0], sizes[1][1]], [0.18, 0.18]);
+    apply(&mut b, &Drawing::try_from(&micromouse).unwrap()).unwrap();
 }
 
 #[test]
@@ -361,7 +421,7 @@ fn zmq_create_missing_makes_a_wall_cuboid() {
     let created = b
         .authoring()
         .unwrap()
-        .create_missing_walls(&names, [1.0, 0.05, 0.2], None)
+        .create_missing(&names, &Sizes::of(&wall_layout(3, 1)))
         .unwrap();
     assert_eq!(created, ["Floor", "Maze", "Wall", "Start", "End"]);
     let size = s.with_sim(|sim| {

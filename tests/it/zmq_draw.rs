@@ -56,12 +56,16 @@ fn create_missing_in_an_empty_scene(kind: Kind) {
         }
         other => panic!("{other:?}"),
     }
-    let created = sc.authoring().unwrap().create_missing(&names).unwrap();
+    let created = sc
+        .authoring()
+        .unwrap()
+        .create_missing(&names, &d.sizes)
+        .unwrap();
     assert_eq!(created, ["Floor", "Maze", "Line", "Start", "End"]);
     assert!(
         sc.authoring()
             .unwrap()
-            .create_missing(&names)
+            .create_missing(&names, &d.sizes)
             .unwrap()
             .is_empty(),
         "idempotent"

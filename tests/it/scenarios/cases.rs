@@ -66,6 +66,7 @@ on_every_target!(
     dry_runs_change_nothing,
     runs_back_to_back_each_connect_at_once,
     score_follows_a_scripted_robot,
+    drive_gives_score_a_robot,
     a_red_look_alike_under_the_maze_never_spreads,
 );
 
@@ -507,4 +508,85 @@ fn score_follows_a_scripted_robot(target: Target) {
         0,
         "{target:?}: the simulation was left running"
     );
+}
+
+/// Issue 28, item 15: `vrep-maze drive` adds `Robot` at Start and moves it along the
+/// solution by remote calls while the simulation runs (over ZeroMQ, whatever API the
+/// scenario draws and scores through), so `score --start-simulation` grades a complete run
+/// on the shortest way; drive then says the simulation stopped and exits 0. On the real
+/// builds, `--real-time`: without physics they run far faster than remote calls follow.
+fn drive_gives_score_a_robot(target: Target) {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+
+    use assert_cmd::cargo::CommandCargoExt;
+
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let (maze, _) = generate(
+        dir.path(),
+        "m",
+        &["--size", "3x3", "--seed", "1", "--algo", "dfs"],
+    );
+    ok(&sim, &["apply", &maze]);
+    let zmq = sim.zmq.to_string();
+    let mut drive = Command::cargo_bin("vrep-maze").unwrap();
+    drive.args([
+        "drive",
+        &maze,
+        "--api",
+        "zmq",
+        "--port",
+        &zmq,
+        "--speed",
+        "4",
+        "--run-timeout",
+        "120",
+    ]);
+    if target.real() {
+        drive.arg("--real-time");
+    }
+    let mut driver = drive
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // score may start the simulation once the robot stands at Start
+    let mut said = String::new();
+    for line in BufReader::new(driver.stderr.take().unwrap()).lines() {
+        let line = line.unwrap();
+        said += &line;
+        said.push('\n');
+        if line.starts_with("waiting for the simulation") {
+            break;
+        }
+    }
+    assert!(
+        said.contains("added `Robot`, a dummy, at Start"),
+        "{target:?}: {said}"
+    );
+    let ran = ok(
+        &sim,
+        &[
+            "score",
+            &maze,
+            "--start-simulation",
+            "--json",
+            "--timeout",
+            "120",
+        ],
+    );
+    let driven = driver.wait_with_output().unwrap();
+    let out = String::from_utf8_lossy(&driven.stdout);
+    assert!(
+        driven.status.success() && out.contains("drove Robot along the solution"),
+        "{target:?}: drive exited {}: {out}",
+        driven.status
+    );
+    let report: serde_json::Value = serde_json::from_str(&ran.stdout)
+        .unwrap_or_else(|e| panic!("{target:?}: {e}: {}", ran.stdout));
+    assert_eq!(report["complete"], true, "{target:?}: {report}");
+    assert_eq!(report["reached_end"], true, "{target:?}: {report}");
+    let spl = report["spl"].as_f64().unwrap();
+    assert!(spl > 0.9, "{target:?}: SPL {spl}: {report}");
 }

@@ -160,7 +160,7 @@ fn clear_claimed(
         style = Style::Walls;
         survey = scene.survey(&names.survey(style))?;
     }
-    let h = resolve_handles(names, style, &survey, false)?;
+    let h = resolve_handles(names, style, &survey, false, None)?;
     let stopped_simulation = stop_running_simulation(
         scene,
         survey.simulation_running,

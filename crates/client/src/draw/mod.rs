@@ -223,22 +223,67 @@ impl ObjectNames {
         Ok(())
     }
 
-    /// What a missing object is and how to create it (one line).
-    pub fn how_to_create(&self, name: &str) -> String {
+    /// What a missing object is and how to create it (one line), at the layout's `sizes`
+    /// when a layout is drawn (`None`, as for `clear`: the sizes are the layout's, named by
+    /// its fields).
+    pub fn how_to_create(&self, name: &str, sizes: Option<&Sizes>) -> String {
+        let m = fit::metres;
         let role = if name == self.floor {
-            "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`; the maze needs >= 10 m x 10 m)"
+            let needs = match sizes {
+                Some(s) => format!("at least {} m", fit::extents(&s.floor)),
+                None => "at least the layout's `floor.size`".into(),
+            };
+            format!(
+                "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`, 10 m x 10 m; the maze needs {needs}; apply --resize-floor over ZeroMQ scales it)"
+            )
         } else if name == self.parent {
-            "a dummy that holds the maze lines (Add > Dummy, then rename it)"
+            "a dummy that holds the maze lines (Add > Dummy, then rename it)".into()
         } else if name == self.line {
-            "the line template: a plane 0.6 m x 0.1 m, pure green, at z = 0.001 (Add > Primitive shape > Plane)"
+            let plane = match sizes {
+                Some(s) => format!(
+                    "{} m, pure green, at z = {}",
+                    fit::extents(&s.line),
+                    m(s.line_z)
+                ),
+                None => {
+                    "the layout's `line.length` x `line.width`, pure green, at z = `line.z`".into()
+                }
+            };
+            format!("the line template: a plane {plane} (Add > Primitive shape > Plane)")
         } else if name == self.wall {
-            "the wall template: a cuboid as long as a cell side, e.g. 1 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+            let cuboid = match sizes.and_then(|s| s.wall) {
+                Some(wall) => format!("{} m", fit::extents(&wall)),
+                None => "the layout's `wall.length` x `wall.thickness` x `wall.height`".into(),
+            };
+            format!(
+                "the wall template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+            )
         } else if name == self.post {
-            "the post template: a cuboid as wide as the walls are thick and as high as them, e.g. 0.05 m x 0.05 m x 0.2 m, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
-        } else if name == self.start {
-            "the start marker: a plane 1 m x 1 m, pure blue, at z = 0.002"
+            let cuboid = match sizes.and_then(|s| s.post) {
+                Some(post) => format!("{} m", fit::extents(&post)),
+                None => "the layout's `post.size` x `post.size` x `wall.height`".into(),
+            };
+            format!(
+                "the post template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
+            )
         } else {
-            "the end marker: a plane 1 m x 1 m, pure red, at z = 0.002"
+            let (what, colour, i) = if name == self.start {
+                ("start", "blue", 0)
+            } else {
+                ("end", "red", 1)
+            };
+            let plane = match sizes {
+                Some(s) => format!(
+                    "{} m x {} m (a cell), pure {colour}, at z = {}",
+                    m(s.cell),
+                    m(s.cell),
+                    m(s.marker_z[i])
+                ),
+                None => {
+                    format!("a cell wide (`grid.cell_size`), pure {colour}, at z = `{what}.pose.z`")
+                }
+            };
+            format!("the {what} marker: a plane {plane}")
         };
         format!("`{name}`: {role}")
     }
@@ -493,17 +538,12 @@ pub trait Backend {
 
 /// Scene authoring that only some APIs offer: see [`Backend::authoring`].
 pub trait Authoring {
-    /// Creates the objects of `names` that the scene lacks (the course's sizes and colours);
-    /// returns the names it created.
-    fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError>;
-    /// As [`Authoring::create_missing`] for a wall maze: the `Wall` template (a dark grey
-    /// cuboid of `wall` x, y, z metres, respondable and detectable) instead of `Line`, and
-    /// with `post`, the `Post` template, a cuboid of that size, as well.
-    fn create_missing_walls(
+    /// Creates the objects of `names` that the scene lacks, at the layout's `sizes` (the
+    /// course's colours); returns the names it created.
+    fn create_missing(
         &mut self,
         names: &ObjectNames,
-        wall: [f64; 3],
-        post: Option<[f64; 3]>,
+        sizes: &Sizes,
     ) -> Result<Vec<String>, BackendError>;
     /// Saves the scene to `path` on the simulator's machine.
     fn save_scene(&mut self, path: &str) -> Result<(), BackendError>;
@@ -512,25 +552,14 @@ pub trait Authoring {
     fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), BackendError>;
 }
 
-/// Creates the objects `layout` is drawn with that the scene lacks: the course's
-/// ([`Authoring::create_missing`]), or for a wall maze its `Wall` (and `Post`) cuboids at the
-/// layout's sizes ([`Authoring::create_missing_walls`]). Returns the names created.
+/// Creates the objects `layout` is drawn with that the scene lacks, at the layout's sizes
+/// ([`Authoring::create_missing`]). Returns the names created.
 pub fn create_missing_for(
     authoring: &mut dyn Authoring,
     names: &ObjectNames,
     layout: &vrep_maze_core::layout::Layout,
 ) -> Result<Vec<String>, BackendError> {
-    match &layout.wall {
-        Some(wall) => authoring.create_missing_walls(
-            names,
-            [wall.length, wall.thickness, wall.height],
-            layout
-                .post
-                .as_ref()
-                .map(|post| [post.size, post.size, wall.height]),
-        ),
-        None => authoring.create_missing(names),
-    }
+    authoring.create_missing(names, &Sizes::of(layout))
 }
 
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
@@ -683,12 +712,14 @@ impl DrawError {
 
 /// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
 /// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
-/// `posts`, the post template is needed too.
+/// `posts`, the post template is needed too. A missing object's hint gives the layout's
+/// `sizes` when a layout is drawn.
 pub fn resolve_handles(
     names: &ObjectNames,
     style: Style,
     survey: &Survey,
     posts: bool,
+    sizes: Option<&Sizes>,
 ) -> Result<Handles, DrawError> {
     names.check_roles()?;
     let roles = names.survey_roles(style);
@@ -735,7 +766,10 @@ pub fn resolve_handles(
         missing.push(names.post.clone());
     }
     if !missing.is_empty() {
-        let hints = missing.iter().map(|n| names.how_to_create(n)).collect();
+        let hints = missing
+            .iter()
+            .map(|n| names.how_to_create(n, sizes))
+            .collect();
         return Err(DrawError::Missing {
             names: missing,
             hints,

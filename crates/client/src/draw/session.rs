@@ -41,16 +41,17 @@ pub(crate) fn raised_and_claimed(
     Ok(report)
 }
 
-/// Reads the scene for drawing `style` (with `posts`: the post template too): the survey
-/// and the handles of the named objects, or [`DrawError::Missing`].
+/// Reads the scene for drawing what `asks` says (with `posts`: the post template too): the
+/// survey and the handles of the named objects, or [`DrawError::Missing`] whose hints give
+/// the layout's sizes.
 pub fn surveyed(
     scene: &mut dyn Backend,
     names: &ObjectNames,
-    style: super::Style,
+    asks: &TemplateUse<'_>,
     posts: bool,
 ) -> Result<(Survey, Handles), DrawError> {
-    let survey = scene.survey(&names.survey(style))?;
-    let h = resolve_handles(names, style, &survey, posts)?;
+    let survey = scene.survey(&names.survey(asks.style))?;
+    let h = resolve_handles(names, asks.style, &survey, posts, Some(asks.sizes))?;
     Ok((survey, h))
 }
 
@@ -357,7 +358,7 @@ pub(crate) fn begin(
     progress: &mut dyn FnMut(Stage),
 ) -> Result<Begun, DrawError> {
     let names = &opts.names;
-    let (survey, h) = surveyed(scene, names, asks.style, posts)?;
+    let (survey, h) = surveyed(scene, names, asks, posts)?;
     let sizes = sizes_of(scene, asks, names, &h)?;
     let short = sizes.floor.filter(|_| sizes.refusals.is_empty());
     if let Some(refused) = sizes.refused(names) {

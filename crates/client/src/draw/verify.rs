@@ -218,8 +218,9 @@ fn verify_raised(
 ) -> Result<(), DrawError> {
     let style = drawing.style;
     let with_posts = !drawing.posts.is_empty();
-    let (survey, h) = surveyed(scene, names, style, with_posts)?;
-    let sizes = sizes_of(scene, &drawing.template_use(), names, &h)?;
+    let asks = drawing.template_use();
+    let (survey, h) = surveyed(scene, names, &asks, with_posts)?;
+    let sizes = sizes_of(scene, &asks, names, &h)?;
     if let Some(differences) = sizes.differences(names) {
         return Err(differences);
     }

@@ -19,7 +19,7 @@ use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, LEASE, SAVED_IDLE_FPS};
 use crate::draw::{
     Authoring, Backend, BackendError, BoundingBox, Claimed, Edit, IdleRates, Lease, ObjectInfo,
-    ObjectNames, Survey,
+    ObjectNames, Sizes, Survey,
 };
 use vrep_maze_core::coppelia::frame::{
     Frame, euler_from_rotation, frame, position_euler, rotation_from_euler,
@@ -1333,25 +1333,20 @@ impl Lease for ZmqBackend {
 }
 
 impl Authoring for ZmqBackend {
-    /// Creates the missing course objects: the maze dummy, and the line, start and end
-    /// planes (course sizes, pure colours, static, not respondable, not collidable, not
-    /// measurable, not detectable by proximity sensors, but seen by cameras), and a floor
-    /// plane when the scene has none. Returns the names created.
-    fn create_missing(&mut self, names: &ObjectNames) -> Result<Vec<String>, BackendError> {
-        self.create_course(names, None)
-    }
-
-    /// As [`ZmqBackend::create_missing`], with the `Wall` template, a dark grey cuboid
-    /// (static, respondable, collidable, measurable, detectable by proximity sensors, seen
-    /// by cameras), standing beside the course floor at (0, -6) instead of the line, and
-    /// with `post` the `Post` template, such a cuboid of that size, 0.25 m south of the wall.
-    fn create_missing_walls(
+    /// Creates the missing objects at the layout's `sizes`: the maze dummy, the line
+    /// template (or for a wall maze the `Wall` template, a dark grey cuboid: static,
+    /// respondable, collidable, measurable, detectable by proximity sensors, seen by cameras,
+    /// standing 1 m beside the floor's south edge, and with posts the `Post` template, such
+    /// a cuboid, 0.25 m south of it), start and end planes a cell wide (pure colours,
+    /// static, not respondable, not collidable, not measurable, not detectable by proximity
+    /// sensors, but seen by cameras), and a floor plane of the layout's floor when the
+    /// scene has none. Returns the names created.
+    fn create_missing(
         &mut self,
         names: &ObjectNames,
-        wall: [f64; 3],
-        post: Option<[f64; 3]>,
+        sizes: &Sizes,
     ) -> Result<Vec<String>, BackendError> {
-        self.create_course(names, Some((wall, post)))
+        self.create_course(names, sizes)
     }
 
     /// Saves the scene (`sim.saveScene`; the path is on the simulator's machine).
@@ -1369,8 +1364,8 @@ impl Authoring for ZmqBackend {
 
 /// An object `create_missing` makes.
 enum Make {
-    /// A floor plane, 10 m x 10 m, respondable.
-    Floor,
+    /// A floor plane of this size (x, y), respondable.
+    Floor([f64; 2]),
     /// The maze dummy.
     Dummy,
     /// A plane: size, colour, height.
@@ -1380,37 +1375,41 @@ enum Make {
 }
 
 impl ZmqBackend {
-    /// Creates what the course scene has and this one lacks: a floor, the maze dummy, the
-    /// line template (or, with `walls`, the wall template of that size and the post
-    /// template if a post size is given), start and end.
+    /// Creates what the course scene has and this one lacks, at the layout's `sizes`: a
+    /// floor, the maze dummy, the line template (or for a wall maze the wall template and
+    /// the post template if the layout has posts), start and end.
     fn create_course(
         &mut self,
         names: &ObjectNames,
-        walls: Option<([f64; 3], Option<[f64; 3]>)>,
+        sizes: &Sizes,
     ) -> Result<Vec<String>, BackendError> {
-        let mut specs: Vec<(&str, Make)> = vec![(&names.floor, Make::Floor)];
+        let mut specs: Vec<(&str, Make)> = vec![(&names.floor, Make::Floor(sizes.floor))];
         specs.push((&names.parent, Make::Dummy));
-        match walls {
+        match sizes.wall {
             None => specs.push((
                 &names.line,
-                Make::Plane(([0.6, 0.1], [0.0, 1.0, 0.0], 0.001)),
+                Make::Plane((sizes.line, [0.0, 1.0, 0.0], sizes.line_z)),
             )),
-            Some((wall, post)) => {
-                specs.push((&names.wall, Make::Cuboid(wall, [0.0, -6.0])));
-                if let Some(post) = post {
-                    let y = -6.0 - (wall[1] + post[1]) / 2.0 - 0.25;
+            Some(wall) => {
+                // off the maze: 1 m beside the floor's south edge
+                let beside = -sizes.floor[1] / 2.0 - 1.0;
+                specs.push((&names.wall, Make::Cuboid(wall, [0.0, beside])));
+                if let Some(post) = sizes.post {
+                    let y = beside - (wall[1] + post[1]) / 2.0 - 0.25;
                     specs.push((&names.post, Make::Cuboid(post, [0.0, y])));
                 }
             }
         }
+        let [start_z, end_z] = sizes.marker_z;
+        let cell = [sizes.cell, sizes.cell];
         specs.extend([
             (
                 names.start.as_str(),
-                Make::Plane(([1.0, 1.0], [0.0, 0.0, 1.0], 0.002)),
+                Make::Plane((cell, [0.0, 0.0, 1.0], start_z)),
             ),
             (
                 names.end.as_str(),
-                Make::Plane(([1.0, 1.0], [1.0, 0.0, 0.0], 0.002)),
+                Make::Plane((cell, [1.0, 0.0, 0.0], end_z)),
             ),
         ]);
         let names_asked: Vec<&str> = specs.iter().map(|(n, _)| *n).collect();
@@ -1465,16 +1464,9 @@ impl ZmqBackend {
     ) -> Result<i32, BackendError> {
         let alias = alias_of(name);
         let h = match shape {
-            Make::Floor => {
+            Make::Floor(size) => {
                 // a fresh CoppeliaSim scene has a floor; an empty `serve --scene empty` has none
-                let h = self.create_plane(
-                    name,
-                    [10.0, 10.0],
-                    [0.5, 0.5, 0.5],
-                    0.0,
-                    HANDLE_WORLD,
-                    true,
-                )?;
+                let h = self.create_plane(name, size, [0.5, 0.5, 0.5], 0.0, HANDLE_WORLD, true)?;
                 *floor = Some(h);
                 h
             }

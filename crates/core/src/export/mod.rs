@@ -9,10 +9,15 @@
 //! ([`urdf`]) and Webots ([`webots`]), are written from one set of boxes ([`solids`]: a box
 //! per wall run, post, run of lines and marker, from the same mesh geometry).
 //!
+//! A ROS `map_server` occupancy map ([`ros_map`]) is two files, a YAML and a PGM beside it,
+//! so it is no [`Format`]: `export -o maze.yaml` chooses it by its ending
+//! ([`ros_map::FILE_ENDINGS`]).
+//!
 //! A new format is a file here with its `document` function and a [`Format`] variant with its
 //! arms in `ALL`, `file_endings` and [`export`].
 
 mod mjcf;
+pub mod ros_map;
 mod sdf;
 mod simmodel;
 mod simscene;
@@ -112,11 +117,13 @@ impl Format {
         )
     }
 
-    /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`.
+    /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`,
+    /// and last the ROS map's ([`ros_map::FILE_ENDINGS`]).
     pub fn endings() -> String {
         Format::ALL
             .iter()
             .flat_map(|f| f.file_endings())
+            .chain(&ros_map::FILE_ENDINGS)
             .copied()
             .collect::<Vec<_>>()
             .join(", ")

@@ -64,7 +64,7 @@ fn endings_choose_the_format() {
     assert_eq!(of(".urdf"), None);
     assert_eq!(
         Format::endings(),
-        ".simmodel.xml, .simscene.xml, .mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt"
+        ".simmodel.xml, .simscene.xml, .mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt, .yaml, .yml"
     );
 }
 

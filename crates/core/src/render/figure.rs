@@ -29,10 +29,12 @@ pub(super) const GOAL: Colour = Colour([0xe6, 0xa0, 0xa0]);
 pub(crate) const START: Colour = Colour([0x00, 0x00, 0xff]);
 /// The end marker: pure red.
 pub const END: Colour = Colour([0xff, 0x00, 0x00]);
-/// The solution path, drawn at [`SOLUTION_OPACITY`].
-pub(super) const SOLUTION: Colour = Colour([0xff, 0xa5, 0x00]);
-/// Opacity of the solution path.
-pub(super) const SOLUTION_OPACITY: f64 = 0.8;
+/// The solution path, drawn at [`SOLUTION_OPACITY`]: a deep orange, as far in hue from the
+/// green lines as from the red End.
+pub(super) const SOLUTION: Colour = Colour([0xff, 0x80, 0x00]);
+/// Opacity of the solution path: opaque, since orange (#ffa500) at 0.8 over the green
+/// lines came out #ccb700, an olive that read as a darker line at the default scale.
+pub(super) const SOLUTION_OPACITY: f64 = 1.0;
 /// The scale bar.
 pub(super) const PAPER: Colour = Colour([0xff, 0xff, 0xff]);
 /// The scale bar's outline and label.
@@ -121,6 +123,13 @@ impl ScaleBar {
             length,
             unit,
         }
+    }
+
+    /// The height of the strip the bar and its label fill, a unit's margin on both sides:
+    /// below the maze in a cropped picture, the bar covers none of it.
+    pub fn strip(&self) -> f64 {
+        // the label's glyphs are two units high, above the bar's margin
+        4.0 * self.unit
     }
 
     /// Width of the bar's outline.

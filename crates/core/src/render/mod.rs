@@ -32,7 +32,8 @@ pub use svg::Svg;
 pub struct RenderOptions {
     /// Overlay the shortest path from start to end.
     pub solution: bool,
-    /// Show only the maze's bounding box (what is drawn, grid and walls), not the whole floor.
+    /// Show only the maze's bounding box (what is drawn, grid and walls) and below it the
+    /// scale bar's strip, not the whole floor.
     pub crop: bool,
     /// The picture's scale [default: the format's own].
     pub scale: Scale,
@@ -63,7 +64,8 @@ impl Scale {
 }
 
 /// The part of the floor a picture shows, `[x0, y0, x1, y1]` in floor metres: the whole
-/// floor, or with [`RenderOptions::crop`] the maze's bounding box.
+/// floor, or with [`RenderOptions::crop`] the maze's bounding box and below it a strip for
+/// the scale bar ([`figure::ScaleBar::strip`]), which would otherwise cover Start or walls.
 fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
     let [fx, fy] = layout.floor.size;
     if !options.crop {
@@ -103,6 +105,7 @@ fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
             bounds[3].max(py),
         ];
     }
+    bounds[1] -= figure::ScaleBar::for_window(bounds).strip();
     bounds
 }
 

@@ -852,6 +852,41 @@ mod tests {
         build_layout(&spec).unwrap()
     }
 
+    /// With `--crop`, the scale bar (black outline, white bar, black label) has a strip of
+    /// its own below the maze: no pixel over the maze's bounding box is the bar's, and the
+    /// strip holds it. Checked on the micromouse walls (whose Start is the south-west cell
+    /// the bar used to cover) and the course's lines.
+    #[test]
+    fn a_cropped_picture_s_scale_bar_covers_nothing_of_the_maze() {
+        let micromouse = crate::layout::json::parse_layout(
+            include_str!("../../../../mazes/dfs-micromouse-seed42.json"),
+            "dfs-micromouse-seed42.json",
+        )
+        .unwrap();
+        // the mazes' heights: 16 cells of 0.18 m and 0.012 m walls; 9 of 1 m and 0.1 m lines
+        for (layout, height) in [(micromouse, 2.892), (course(9, Algorithm::Dfs, 0.0), 9.1)] {
+            let options = RenderOptions {
+                crop: true,
+                solution: true,
+                ..Default::default()
+            };
+            let image = render(&layout, &options);
+            // the maze's rows at the top (80 px a metre), the strip's below
+            let maze_rows = (height * 80.0_f64).floor() as u32;
+            let is_bar = |p: (u8, u8, u8)| p == (0, 0, 0) || p == (255, 255, 255);
+            let covered = (0..maze_rows)
+                .flat_map(|y| (0..image.width).map(move |x| (x, y)))
+                .filter(|&(x, y)| is_bar(image.pixel(x, y)))
+                .count();
+            assert_eq!(covered, 0, "{}", layout.generator.algorithm);
+            let in_strip = (maze_rows..image.height)
+                .flat_map(|y| (0..image.width).map(move |x| (x, y)))
+                .filter(|&(x, y)| is_bar(image.pixel(x, y)))
+                .count();
+            assert!(in_strip > 100, "the bar is drawn in its strip: {in_strip}");
+        }
+    }
+
     #[test]
     fn the_png_shows_the_pure_colours_and_the_solution() {
         let layout = course(9, Algorithm::Dfs, 0.0);
@@ -893,10 +928,13 @@ mod tests {
             .0;
         let (x, y) = (ox + f64::from(off_path.x) + 0.5, oy + f64::from(off_path.y));
         assert_eq!(pixel(x, y), (0, 255, 0));
-        // Orange at 0.8 over green.
+        // Opaque orange over green: its red exceeds its green by half the range, where a
+        // line's green exceeds its red by all of it (orange at 0.8 was olive, 204, 183, 0)
         let on_path = view.solution[view.solution.len() / 2];
         let (x, y) = (ox + f64::from(on_path.x), oy + f64::from(on_path.y));
-        assert_eq!(pixel(x, y), (204, 183, 0));
+        let (r, g, b) = pixel(x, y);
+        assert_eq!((r, g, b), (255, 128, 0));
+        assert!(i32::from(r) - i32::from(g) >= 100, "{:?}", (r, g, b));
     }
 
     #[test]

@@ -457,8 +457,9 @@ fn verify_raised(
     names: &ObjectNames,
 ) -> Result<(), DrawError> {
     let style = maze.style;
-    let (survey, h) = surveyed(scene, names, style, false)?;
-    let sizes = sizes_of(scene, &maze.template_use(), names, &h)?;
+    let asks = maze.template_use();
+    let (survey, h) = surveyed(scene, names, &asks, false)?;
+    let sizes = sizes_of(scene, &asks, names, &h)?;
     if let Some(differences) = sizes.differences(names) {
         return Err(differences);
     }
