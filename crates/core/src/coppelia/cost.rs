@@ -31,8 +31,10 @@
 //!
 //! # What each request adds ("Pacing", "ZeroMQ costs at idle fps 0")
 //!
-//! A ZeroMQ call at idle fps 0 takes about 0.45 ms end to end ([`CostModel::zmq_call`]);
-//! `sim.setObjectParent` / `sim.setObjectPose` 0.33–0.45 ms ([`CostModel::zmq_set`]);
+//! A ZeroMQ call at idle fps 0 takes about 0.45 ms end to end in the spec ("Pacing"), but
+//! 0.10–0.19 ms on the real 4.5.1 build ([`CostModel::zmq_call`], `docs/measurements.md`
+//! "ZeroMQ calls on 4.5.1"; the real build decides); `sim.setObjectParent` /
+//! `sim.setObjectPose` 0.33–0.45 ms in the spec, 0.12–0.22 ms measured ([`CostModel::zmq_set`]);
 //! `sim.getObjectsInTree(Maze, -1, 3)` 0.3 ms, 0.9 ms with 500 children. A legacy blocking
 //! call at idle fps 0 took 9–10 ms in the spec's "Pacing" (timed with other clients), but
 //! 2.1–2.4 ms with vrep-maze's: a pass that executed commands takes
@@ -153,10 +155,13 @@ pub struct CostModel {
     /// (`docs/measurements.md` "Legacy calls at idle fps 0": 2.1–2.4 ms a call with
     /// vrep-maze's client; spec "Pacing" gives 9–10 ms, timed with other clients).
     pub legacy_pass_floor: Duration,
-    /// One ZeroMQ call at idle fps 0 (spec "Pacing": about 0.45 ms).
+    /// One ZeroMQ call at idle fps 0, end to end: 0.15 ms (`docs/measurements.md` "ZeroMQ
+    /// calls on 4.5.1": medians 0.10–0.19 ms on the real 4.5.1; the spec's "Pacing" says
+    /// about 0.45 ms, timed with an older client: the real build decides).
     pub zmq_call: Duration,
-    /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose` (spec "ZeroMQ costs at idle
-    /// fps 0": 0.33–0.45 ms per call, the middle of that range).
+    /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose`: 0.17 ms (`docs/measurements.md`
+    /// "ZeroMQ calls on 4.5.1": medians 0.12–0.22 ms; the spec's "ZeroMQ costs at idle fps 0"
+    /// says 0.33–0.45 ms).
     pub zmq_set: Duration,
     /// Serving one ZeroMQ call, per thousand objects in the scene. Not measured directly:
     /// the residue of the spec's "ZeroMQ: replace 9x9 by 100x100 (19,838 pasted, 40,107
@@ -167,6 +172,8 @@ pub struct CostModel {
     /// call is served in a main-loop pass, and a pass's own upkeep growing with the scene
     /// would explain it (a hypothesis: no measurement isolates it); the legacy API, which
     /// serves a whole request in one pass, shows no such residue.
+    /// Kept at the fit with the spec's 0.45 ms calls: with the real build's 0.15 ms the
+    /// spec's row is still reproduced within 0.75..1.33 (`tests/it/costs.rs`).
     pub zmq_call_per_thousand_objects: Duration,
     /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
     pub zmq_tree: Duration,
@@ -205,8 +212,8 @@ impl CostModel {
             pose_per_thousand_objects: Duration::from_nanos(260),
             legacy_command: Duration::from_micros(100),
             legacy_pass_floor: Duration::from_millis(2),
-            zmq_call: Duration::from_micros(450),
-            zmq_set: Duration::from_micros(390),
+            zmq_call: Duration::from_micros(150),
+            zmq_set: Duration::from_micros(170),
             zmq_call_per_thousand_objects: Duration::from_micros(40),
             zmq_tree: Duration::from_micros(300),
             zmq_tree_per_handle: Duration::from_nanos(1200),
@@ -385,10 +392,11 @@ mod tests {
     fn per_request_costs_follow_the_pacing_and_zeromq_tables() {
         let m = CostModel::measured();
         let ms = |d: Duration| d.as_secs_f64() * 1000.0;
-        // spec "Pacing": one call about 0.45 ms; docs/measurements.md "Legacy calls at idle
-        // fps 0": a legacy call 2.1–2.4 ms with our client
-        assert!((ms(m.op(&Op::ZmqCall)) - 0.45).abs() < 0.01);
-        assert!((0.33..=0.45).contains(&ms(m.op(&Op::ZmqSet))));
+        // docs/measurements.md "ZeroMQ calls on 4.5.1": medians 0.10-0.19 ms a call,
+        // 0.12-0.22 ms a set (the spec's "Pacing" 0.45 ms lost to the real build);
+        // "Legacy calls at idle fps 0": a legacy call 2.1–2.4 ms with our client
+        assert!((0.10..=0.19).contains(&ms(m.op(&Op::ZmqCall))));
+        assert!((0.12..=0.22).contains(&ms(m.op(&Op::ZmqSet))));
         assert_eq!(m.legacy_pass(&[], true), Duration::from_millis(2));
         assert_eq!(m.legacy_pass(&[Op::LegacyCommand], false), m.legacy_command);
         // spec "ZeroMQ costs": getObjectsInTree 0.3 ms, 0.9 ms with 500 children

@@ -6,7 +6,8 @@
 //! stopped (or paused) a pass lasts 1000 / `idle_fps` ms, at least 20 ms, at idle fps above 0
 //! (`sim_intparam_idle_fps`, default 8: a legacy blocking call takes 125 ms, "Pacing"); at
 //! idle fps 0 there is no sleep, so a request is served as soon as it arrives (2.1–2.4 ms
-//! legacy, `docs/measurements.md` "Legacy calls at idle fps 0"; 0.45 ms ZeroMQ, same table) (coppeliaSimLib `simThread.cpp:4612-4621`). While the
+//! legacy, `docs/measurements.md` "Legacy calls at idle fps 0"; 0.10-0.19 ms ZeroMQ, "ZeroMQ calls on
+//! 4.5.1") (coppeliaSimLib `simThread.cpp:4612-4621`). While the
 //! simulation runs, it passes once per simulation step. The servers ask [`Clock`] and
 //! [`ZmqPacer`] when a pass runs, and sleep the modelled work of what they serve
 //! (`super::cost`) besides.

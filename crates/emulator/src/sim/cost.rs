@@ -201,7 +201,7 @@ mod tests {
         assert_eq!(Timing::default(), Timing::instant());
         assert_eq!(Timing::instant().cost(|m| m.zmq_call), Duration::ZERO);
         let real = Timing::realistic();
-        assert_eq!(real.cost(|m| m.zmq_call), Duration::from_micros(450));
+        assert_eq!(real.cost(|m| m.zmq_call), Duration::from_micros(150));
         assert_eq!(real.reconnect_penalty, Duration::from_secs(60));
     }
 
