@@ -196,7 +196,8 @@ fn run_drawing<T: Send + 'static, R>(
 /// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `dry_run`,
 /// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
 /// (ZeroMQ only); `draw="copies"` (the default: one copy of the template per line) or
-/// `"mesh"` (a few mesh shapes, one rectangle or box per straight run; ZeroMQ). Returns an `ApplyReport`. A refused option raises `ValueError`, a
+/// `"mesh"` (a few mesh shapes, one rectangle or box per straight run; ZeroMQ creates them,
+/// the legacy API loads them as an XML model). Returns an `ApplyReport`. A refused option raises `ValueError`, a
 /// simulator that does not answer or refuses `SimulatorError` (with the command line's
 /// hints in `.hints`). Drawing runs without the GIL; Ctrl-C stops after the request in
 /// flight, restores the idle rate, closes the connection and raises `Interrupted` (running

@@ -440,8 +440,9 @@ pub enum BackendError {
 /// [`verify()`] need.
 ///
 /// Contract: each operation uses as few messages as its protocol allows (the legacy API sends
-/// each call as one batched request; the ZeroMQ API has no batching and sends one call per
-/// object where it must); [`Backend::round_trips`] reports the cost so far. Errors leave the
+/// each call as one batched request; the ZeroMQ API has one call per object, sent together
+/// where they do not depend on each other's answers, `Client::call_all`, and served by one
+/// main-loop pass); [`Backend::round_trips`] reports the cost so far (ZeroMQ: requests). Errors leave the
 /// scene in a state that a later [`apply()`] or [`clear()`] repairs.
 pub trait Backend {
     /// Reads the idle rate and the record of the user's rate ([`IdleRates`]).

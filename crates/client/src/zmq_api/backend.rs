@@ -4,7 +4,9 @@
 //! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry a template's alias
 //! (copies pasted by an interrupted run, reported by their path `/Line[n]`). Each pose is
 //! one `sim.setObjectPose` call; removals go in one `sim.removeObjects` call. The ZeroMQ API
-//! has no batching, so "one round trip" operations of the trait cost one call per object.
+//! has one call per object where the legacy API batches, so "one round trip" operations of
+//! the trait cost one call per object; calls that do not depend on each other's answers are
+//! sent together ([`Client::call_all`]) and served by one main-loop pass.
 
 use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
