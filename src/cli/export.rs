@@ -1,5 +1,6 @@
 //! `vrep-maze export`: a layout as a file another program loads: CoppeliaSim XML, MuJoCo
-//! MJCF, Gazebo SDF, URDF or a Webots world.
+//! MJCF, Gazebo SDF, URDF, a Webots world or
+//! Gymnasium-Robotics' PointMaze arguments.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -14,14 +15,14 @@ use crate::export::{Format, export};
 /// Options of `export`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots\n  vrep-maze export maze.json -o maze.xml --format mjcf   # any name, the format named"
+    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots\n  vrep-maze export maze.json -o maze.pointmaze.json # Gymnasium-Robotics PointMaze/AntMaze maze_map\n  vrep-maze export maze.json -o maze.xml --format mjcf   # any name, the format named"
 )]
 pub struct ExportArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
     /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model),
     /// .simscene.xml (CoppeliaSim scene), .mjcf or .mujoco.xml (MuJoCo), .sdf or .world
-    /// (Gazebo), .urdf, .wbt (Webots).
+    /// (Gazebo), .urdf, .wbt (Webots), .pointmaze.json (Gymnasium-Robotics PointMaze/AntMaze).
     #[arg(short, long)]
     pub output: PathBuf,
     /// The format, whatever the output's ending (for a bare `.xml`, say).

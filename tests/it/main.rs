@@ -15,6 +15,7 @@ mod costs;
 mod ctrl_c;
 mod draw;
 mod export_model_load;
+mod export_pointmaze;
 mod export_robots;
 mod first_hour;
 mod generation_gate;
