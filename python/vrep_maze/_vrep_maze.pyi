@@ -147,6 +147,7 @@ def batch(
     *,
     min_solution: Optional[int] = None,
     max_dead_ends: Optional[float] = None,
+    where_: Optional[str] = None,
     growing: Optional[str] = None,
     bias: Optional[str] = None,
     braid: Optional[float] = None,

@@ -4,6 +4,7 @@
 
 mod support;
 
+mod batch_where;
 mod cli;
 mod cli_fuzz;
 mod cli_legacy;

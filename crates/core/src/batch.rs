@@ -14,6 +14,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::atomic_file::{remove_stale_temporaries, write_atomically};
+use crate::condition::Condition;
 use crate::layout::json::to_string;
 use crate::layout::{GenerateSpec, Layout, build_layout};
 use crate::maze::Metrics;
@@ -22,12 +23,14 @@ use crate::maze::Metrics;
 pub const MAX_SEEDS: usize = 1_000_000;
 
 /// Which mazes a batch keeps.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Filter {
     /// Keep only mazes whose solution has at least this many cells.
     pub min_solution: Option<u64>,
     /// Keep only mazes whose dead ends are at most this percentage of the cells.
     pub max_dead_end_percent: Option<f64>,
+    /// Keep only mazes whose metrics meet this condition (`--where`).
+    pub condition: Option<Condition>,
 }
 
 impl Filter {
@@ -38,6 +41,7 @@ impl Filter {
             && self
                 .max_dead_end_percent
                 .is_none_or(|max| metrics.dead_end_percent() <= max)
+            && self.condition.as_ref().is_none_or(|c| c.accepts(metrics))
     }
 }
 
@@ -144,7 +148,7 @@ pub fn run_with(
             if stop.load(Ordering::SeqCst) {
                 return Ok(Made::Skipped);
             }
-            let result = make_one(make, seed, filter, out_dir);
+            let result = make_one(make, seed, &filter, out_dir);
             tick();
             result
         })
@@ -174,7 +178,7 @@ pub fn run_with(
     Ok(outcome)
 }
 
-fn make_one(make: &Maker<'_>, seed: u64, filter: Filter, out_dir: &Path) -> Result<Made, String> {
+fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Result<Made, String> {
     let (layout, file) = make(seed)?;
     // the gate every layout passes before anything is done with it
     crate::validate::checked(&layout).map_err(|e| {
@@ -366,7 +370,7 @@ mod tests {
         let median = lengths[6];
         let picky = Filter {
             min_solution: Some(median),
-            max_dead_end_percent: None,
+            ..Filter::default()
         };
         let out = tempfile::TempDir::new().unwrap();
         let filtered = run(&template, &seeds, picky, out.path(), &|| {}, &go()).unwrap();
@@ -377,5 +381,17 @@ mod tests {
             let value: serde_json::Value = serde_json::from_str(line).unwrap();
             assert!(value["metrics"]["solution_cells"].as_u64().unwrap() >= median);
         }
+
+        let condition = Filter {
+            condition: Some(format!("solution_cells >= {median}").parse().unwrap()),
+            ..Filter::default()
+        };
+        let out = tempfile::TempDir::new().unwrap();
+        let same = run(&template, &seeds, condition, out.path(), &|| {}, &go()).unwrap();
+        assert_eq!((same.written, same.filtered), (kept, 12 - kept));
+        assert_eq!(
+            fs::read_to_string(&same.manifest).unwrap(),
+            fs::read_to_string(&filtered.manifest).unwrap()
+        );
     }
 }
