@@ -27,8 +27,8 @@ def test_maze_map_is_the_block_grid_export_writes(tmp_path):
 @pytest.mark.parametrize("style", ["lines", "walls"])
 def test_pointmaze_reaches_our_goal_along_our_solution(style):
     layout = vrep_maze.generate(seed=3, size=(4, 3), style=style)
+    # PointMaze fixes its block size at 1 m (maze_size_scaling is not an argument of it)
     env = gymnasium.make("PointMaze_UMaze-v3", maze_map=layout.maze_map(),
-                         maze_size_scaling=layout.maze_size_scaling,
                          continuing_task=False, max_episode_steps=3000)
     maze = env.unwrapped.maze
     obs, _ = env.reset(seed=0)

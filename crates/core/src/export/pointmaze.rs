@@ -1,10 +1,12 @@
 //! Gymnasium-Robotics' PointMaze/AntMaze keyword arguments (`.pointmaze.json`): the layout's
 //! block grid ([`crate::layout::block_grid`]) as `maze_map`, one row a line, and the
-//! `maze_size_scaling` that keeps the layout's cell size.
+//! `maze_size_scaling` that would keep the layout's cell size.
 
 use crate::layout::block_grid::BlockGrid;
 
-/// The JSON object `gymnasium.make("PointMaze_UMaze-v3", **json.load(f))` takes.
+/// The JSON object: `maze_map` is what `gymnasium.make("PointMaze_UMaze-v3", maze_map=...)`
+/// takes; `maze_size_scaling` is for Gymnasium-Robotics' `MazeEnv` (PointMaze and AntMaze fix
+/// their own block size).
 pub fn document(blocks: &BlockGrid) -> String {
     let rows: Vec<String> = blocks
         .maze_map
