@@ -54,6 +54,9 @@ pub struct ManifestEntry {
     pub file: String,
     /// What it is like.
     pub metrics: Metrics,
+    /// Seeds drawn for it: 1 plus the seeds just before it (in seed order, since the previous
+    /// kept maze) whose maze the filter refused. 1 when nothing is filtered.
+    pub seeds_drawn: u64,
 }
 
 /// What a batch did.
@@ -159,19 +162,32 @@ pub fn run_with(
         ..Outcome::default()
     };
     let mut entries = Vec::new();
+    let mut drawn = 0;
     for result in made {
-        match result {
+        drawn += 1;
+        let kept = match result {
             Made::Written(entry) => {
                 outcome.written += 1;
-                entries.push(entry);
+                entry
             }
             Made::Unchanged(entry) => {
                 outcome.unchanged += 1;
-                entries.push(entry);
+                entry
             }
-            Made::Filtered => outcome.filtered += 1,
-            Made::Skipped => outcome.skipped += 1,
-        }
+            Made::Filtered => {
+                outcome.filtered += 1;
+                continue;
+            }
+            Made::Skipped => {
+                outcome.skipped += 1;
+                continue;
+            }
+        };
+        entries.push(ManifestEntry {
+            seeds_drawn: drawn,
+            ..kept
+        });
+        drawn = 0;
     }
     write_atomically(&outcome.manifest, |w| write_manifest(&entries, w))
         .map_err(|e| format!("{}: {e}", outcome.manifest.display()))?;
@@ -198,6 +214,7 @@ fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Res
         seed,
         file,
         metrics: layout.metrics,
+        seeds_drawn: 1,
     };
     if fs::read(&path).is_ok_and(|old| old == text.as_bytes()) {
         return Ok(Made::Unchanged(entry));
@@ -359,13 +376,14 @@ mod tests {
         assert_eq!((again.written, again.unchanged), (0, 12));
         assert_eq!(fs::read_to_string(&again.manifest).unwrap(), manifest);
 
-        let mut lengths: Vec<u64> = manifest
+        let lengths_by_seed: Vec<u64> = manifest
             .lines()
             .map(|line| {
                 let value: serde_json::Value = serde_json::from_str(line).unwrap();
                 value["metrics"]["solution_cells"].as_u64().unwrap()
             })
             .collect();
+        let mut lengths = lengths_by_seed.clone();
         lengths.sort_unstable();
         let median = lengths[6];
         let picky = Filter {
@@ -389,6 +407,14 @@ mod tests {
         let out = tempfile::TempDir::new().unwrap();
         let same = run(&template, &seeds, condition, out.path(), &|| {}, &go()).unwrap();
         assert_eq!((same.written, same.filtered), (kept, 12 - kept));
+        let drawn: u64 = fs::read_to_string(&same.manifest)
+            .unwrap()
+            .lines()
+            .map(|line| serde_json::from_str::<serde_json::Value>(line).unwrap())
+            .map(|entry| entry["seeds_drawn"].as_u64().unwrap())
+            .sum();
+        let last_kept = lengths_by_seed.iter().rposition(|&l| l >= median).unwrap() as u64;
+        assert_eq!(drawn, last_kept + 1);
         assert_eq!(
             fs::read_to_string(&same.manifest).unwrap(),
             fs::read_to_string(&filtered.manifest).unwrap()
