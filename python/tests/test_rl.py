@@ -75,3 +75,16 @@ def test_minigrid_walls_are_the_maze_map():
     for row, blocks in enumerate(layout.maze_map()):
         for column, block in enumerate(blocks):
             assert isinstance(env.unwrapped.grid.get(column, row), Wall) == (block == 1)
+
+
+def test_without_minigrid_the_import_error_names_the_extra():
+    import subprocess
+    import sys
+
+    code = ("import sys; sys.modules['minigrid'] = None\n"
+            "import vrep_maze\n"
+            "import vrep_maze.minigrid\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode != 0
+    assert "pip install vrep-maze[rl]" in done.stderr.splitlines()[-1]
