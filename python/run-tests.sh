@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Python package's tests, as CI runs them: `pip install .` (the README's command: maturin
+# The Python package's tests, as CI runs them: `pip install .[rl]` (the README's command: maturin
 # builds the release wheel) in a fresh virtual environment, then pytest on python/tests
 # against what it installed.
 # Prints pytest's summary last; exits non-zero on failure.
@@ -16,6 +16,8 @@ if ! python3 -m venv "$venv" 2>/dev/null; then
     python3 -m venv "$venv"
 fi
 "$venv/bin/pip" install --quiet pytest
-"$venv/bin/pip" install --quiet "$root"
+# with the `rl` extra (gymnasium-robotics, which brings MuJoCo, and minigrid: about a minute
+# to install) for tests/test_rl.py
+"$venv/bin/pip" install --quiet "$root[rl]"
 # from the repository root, so `import vrep_maze` is the installed wheel, not python/vrep_maze
 exec timeout 600 "$venv/bin/python" -m pytest -q python/tests

@@ -18,8 +18,8 @@ pub mod cli;
 
 pub use vrep_maze_client::draw;
 pub use vrep_maze_core::{
-    atomic_file, batch, coppelia, export, generate, layout, maze, mesh, render, rng, score,
-    validate,
+    atomic_file, batch, condition, coppelia, export, generate, layout, maze, mesh, render, rng,
+    score, validate,
 };
 pub use vrep_maze_emulator::sim;
 

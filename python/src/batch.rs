@@ -62,8 +62,8 @@ impl Batch {
                 .min(self.next + PER_CORE * rayon::current_num_threads());
             let seeds = self.seeds[self.next..end].to_vec();
             self.next = end;
-            let (maker, filter) = (self.make.clone(), self.filter);
-            let made = worker::run(py, move || make(&*maker, &seeds, filter), OnSignal::Raise)?;
+            let (maker, filter) = (self.make.clone(), self.filter.clone());
+            let made = worker::run(py, move || make(&*maker, &seeds, &filter), OnSignal::Raise)?;
             self.ready = made.map_err(PyValueError::new_err)?.into();
         }
     }
@@ -79,7 +79,7 @@ impl Batch {
 fn make(
     maker: &(dyn Fn(u64) -> Result<library::Layout, String> + Send + Sync),
     seeds: &[u64],
-    filter: Filter,
+    filter: &Filter,
 ) -> Result<Vec<library::Layout>, String> {
     let made: Vec<Option<library::Layout>> = seeds
         .par_iter()
@@ -98,7 +98,9 @@ fn make(
 /// `seeds` is an int, an iterable of ints (`range(1000)`), or the command line's text
 /// (`"0..1000"`, `"0..=99"`, `"1,5,9"`). The maze options are `generate`'s keywords
 /// (`algo`, `size`, `braid`, ...); `min_solution=N` keeps only mazes whose solution has at
-/// least N cells, `max_dead_ends=PCT` only those with at most PCT % dead ends. A refused
+/// least N cells, `max_dead_ends=PCT` only those with at most PCT % dead ends,
+/// `where_="solution_cells >= 40 and dead_ends <= 12"` only those meeting the condition of
+/// `vrep-maze batch --where`. A refused
 /// option raises `ValueError` with the command line's message. Mazes are made in parallel
 /// on all cores, a few per core at a time, without the GIL; Ctrl-C raises
 /// `KeyboardInterrupt` at once (nothing is written, so nothing is left half done).
@@ -135,6 +137,7 @@ pub fn batch(
         filter: Filter {
             min_solution: args.min_solution,
             max_dead_end_percent: args.max_dead_ends,
+            condition: args.condition,
         },
         ready: VecDeque::new(),
     })

@@ -12,6 +12,7 @@ use pyo3::types::{PyBytes, PyDict, PyString};
 use vrep_maze::atomic_file::write_atomically;
 use vrep_maze::cli::Command;
 use vrep_maze::export::{Format as ExportFormat, export};
+use vrep_maze::layout::block_grid::BlockGrid;
 use vrep_maze::layout::json::{parse_layout, to_string};
 use vrep_maze::layout::solution::solve;
 use vrep_maze::layout::{self as library, Pose, Style, build::Planned, passages, read_layout};
@@ -57,6 +58,11 @@ impl Layout {
             return Err(invalid_error(py, &headline, &invalid));
         }
         Layout::new(layout)
+    }
+
+    /// The layout as blocks (see `maze_map`).
+    fn block_grid(&self) -> PyResult<BlockGrid> {
+        BlockGrid::of(&self.layout).map_err(PyValueError::new_err)
     }
 
     fn cell(&self, cell: [u32; 2]) -> (u32, u32) {
@@ -183,6 +189,20 @@ impl Layout {
             .map(|i| grid.cell(i))
             .map(|c| (c.x, c.y))
             .collect())
+    }
+
+    /// The block grid of Gymnasium-Robotics' PointMaze/AntMaze (`maze_map=`): `2*height+1`
+    /// rows of `2*width+1` blocks, row 0 the north edge; `1` wall, `0` free, `"r"` the start,
+    /// `"g"` the end. Cell `(x, y)` is block `[2*(height-1-y)+1][2*x+1]`.
+    fn maze_map<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_value(py, &self.block_grid()?.maze_map)
+    }
+
+    /// PointMaze's `maze_size_scaling` for `maze_map()`: a block's side, half the cell size
+    /// (a cell and the wall beside it are two blocks), so a cell keeps the layout's size.
+    #[getter]
+    fn maze_size_scaling(&self) -> PyResult<f64> {
+        Ok(self.block_grid()?.maze_size_scaling)
     }
 
     /// The solution as floor waypoints, as `vrep-maze solve` writes them: a NumPy `float64`

@@ -37,7 +37,8 @@ pub fn command_line(
     argv.extend(fixed.iter().map(OsString::from));
     for (key, value) in options.iter() {
         let key: String = key.extract()?;
-        let long = key.replace('_', "-");
+        // a trailing underscore is Python's way round its own keywords: `where_` is `--where`
+        let long = key.trim_end_matches('_').replace('_', "-");
         let arg = sub
             .get_arguments()
             .find(|a| a.get_long() == Some(long.as_str()) && !NOT_KEYWORDS.contains(&long.as_str()))

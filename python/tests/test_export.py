@@ -7,7 +7,7 @@ from conftest import MAZES, run_cli
 
 GOLDEN = MAZES / "dfs-9x9-seed42-walls.json"
 ENDINGS = [".simmodel.xml", ".simscene.xml", ".mjcf", ".mujoco.xml", ".sdf", ".world",
-           ".urdf", ".wbt"]
+           ".urdf", ".wbt", ".pointmaze.json"]
 
 
 @pytest.mark.parametrize("ending", ENDINGS)

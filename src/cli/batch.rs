@@ -13,12 +13,13 @@ use super::progress::{Progress, Unit};
 use super::reports::{BatchReport, REPORT_VERSION};
 use super::say::{self, note};
 use crate::batch::{self, Filter, parse_seeds};
+use crate::condition::Condition;
 use crate::layout::build::Planned;
 
 /// Options of `batch`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --style walls --posts --seeds 0..100 --out-dir walls\n  vrep-maze batch --preset micromouse --seeds 0..100 --out-dir mice\n  vrep-maze batch --algo kruskal --braid 0.3 --size 15x15 --seeds 0..=99 --min-solution 40 --out-dir hard"
+    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --style walls --posts --seeds 0..100 --out-dir walls\n  vrep-maze batch --preset micromouse --seeds 0..100 --out-dir mice\n  vrep-maze batch --algo kruskal --braid 0.3 --size 15x15 --seeds 0..=99 --min-solution 40 --out-dir hard\n  vrep-maze batch --size 9x9 --seeds 0..100 --where \"solution_cells >= 40 and dead_ends <= 12\" --out-dir curriculum"
 )]
 pub struct BatchArgs {
     /// Seeds: N, A..B (B excluded), A..=B (B included), or a comma-separated list of these.
@@ -37,6 +38,11 @@ pub struct BatchArgs {
     /// Keep only mazes with at most this percentage of dead ends.
     #[arg(long, value_parser = super::values::parse_percent, allow_negative_numbers = true)]
     pub max_dead_ends: Option<f64>,
+    /// Keep only mazes whose metrics meet a condition: comparisons of a metric with a
+    /// number joined by `and`, e.g. "solution_cells >= 40 and dead_ends <= 12" (metrics:
+    /// those of the manifest, and dead_end_percent).
+    #[arg(long = "where", value_name = "CONDITION", value_parser = |s: &str| s.parse::<Condition>())]
+    pub condition: Option<Condition>,
     /// Print one JSON document on standard output (schema/batch-v1.schema.json).
     #[arg(long)]
     pub json: bool,
@@ -58,6 +64,7 @@ pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
     let filter = Filter {
         min_solution: args.min_solution,
         max_dead_end_percent: args.max_dead_ends,
+        condition: args.condition,
     };
     let started = Instant::now();
     let make = |seed| {
@@ -116,7 +123,7 @@ pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
     }
     anyhow::ensure!(
         outcome.filtered < seeds.len(),
-        "the filter refused all {} mazes: loosen --min-solution or --max-dead-ends, or use a larger --size",
+        "the filter refused all {} mazes: loosen --min-solution, --max-dead-ends or --where, or use a larger --size",
         seeds.len()
     );
     Ok(ExitCode::SUCCESS)

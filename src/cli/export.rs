@@ -1,5 +1,6 @@
 //! `vrep-maze export`: a layout as a file another program loads: CoppeliaSim XML, MuJoCo
-//! MJCF, Gazebo SDF, URDF, a Webots world or a ROS map_server occupancy map.
+//! MJCF, Gazebo SDF, URDF, a Webots world, Gymnasium-Robotics' PointMaze arguments or a ROS
+//! map_server occupancy map.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -14,15 +15,16 @@ use crate::export::{Format, export, ros_map};
 /// Options of `export`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots\n  vrep-maze export maze.json -o maze.yaml           # ROS map_server: maze.yaml + maze.pgm\n  vrep-maze export maze.json -o maze.xml --format mjcf   # any name, the format named"
+    after_help = "Examples:\n  vrep-maze export maze.json -o maze.simmodel.xml   # a model to drag into any scene\n  vrep-maze export maze.json -o maze.simscene.xml   # a complete scene: Floor, Maze, Start, End\n  vrep-maze export maze.json -o maze.mjcf           # MuJoCo\n  vrep-maze export maze.json -o maze.world          # Gazebo (SDF)\n  vrep-maze export maze.json -o maze.urdf           # URDF\n  vrep-maze export maze.json -o maze.wbt            # Webots\n  vrep-maze export maze.json -o maze.pointmaze.json # Gymnasium-Robotics PointMaze/AntMaze maze_map\n  vrep-maze export maze.json -o maze.yaml           # ROS map_server: maze.yaml + maze.pgm\n  vrep-maze export maze.json -o maze.xml --format mjcf   # any name, the format named"
 )]
 pub struct ExportArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
     /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model),
     /// .simscene.xml (CoppeliaSim scene), .mjcf or .mujoco.xml (MuJoCo), .sdf or .world
-    /// (Gazebo), .urdf, .wbt (Webots), .yaml or .yml (a ROS map_server occupancy map: the
-    /// YAML and beside it the PGM image of the same name).
+    /// (Gazebo), .urdf, .wbt (Webots), .pointmaze.json (Gymnasium-Robotics PointMaze/AntMaze),
+    /// .yaml or .yml (a ROS map_server occupancy map: the YAML and beside it the PGM image of
+    /// the same name).
     #[arg(short, long)]
     pub output: PathBuf,
     /// The format, whatever the output's ending (for a bare `.xml`, say).

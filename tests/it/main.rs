@@ -5,6 +5,7 @@
 mod support;
 
 mod architecture;
+mod batch_where;
 mod cli;
 mod cli_fuzz;
 mod cli_legacy;
@@ -16,6 +17,7 @@ mod costs;
 mod ctrl_c;
 mod draw;
 mod export_model_load;
+mod export_pointmaze;
 mod export_robots;
 mod export_ros;
 mod first_hour;

@@ -14,6 +14,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::atomic_file::{remove_stale_temporaries, write_atomically};
+use crate::condition::Condition;
 use crate::layout::json::to_string;
 use crate::layout::{GenerateSpec, Layout, build_layout};
 use crate::maze::Metrics;
@@ -22,12 +23,14 @@ use crate::maze::Metrics;
 pub const MAX_SEEDS: usize = 1_000_000;
 
 /// Which mazes a batch keeps.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Filter {
     /// Keep only mazes whose solution has at least this many cells.
     pub min_solution: Option<u64>,
     /// Keep only mazes whose dead ends are at most this percentage of the cells.
     pub max_dead_end_percent: Option<f64>,
+    /// Keep only mazes whose metrics meet this condition (`--where`).
+    pub condition: Option<Condition>,
 }
 
 impl Filter {
@@ -38,6 +41,7 @@ impl Filter {
             && self
                 .max_dead_end_percent
                 .is_none_or(|max| metrics.dead_end_percent() <= max)
+            && self.condition.as_ref().is_none_or(|c| c.accepts(metrics))
     }
 }
 
@@ -50,6 +54,9 @@ pub struct ManifestEntry {
     pub file: String,
     /// What it is like.
     pub metrics: Metrics,
+    /// Seeds drawn for it: 1 plus the seeds just before it (in seed order, since the previous
+    /// kept maze) whose maze the filter refused. 1 when nothing is filtered.
+    pub seeds_drawn: u64,
 }
 
 /// What a batch did.
@@ -144,7 +151,7 @@ pub fn run_with(
             if stop.load(Ordering::SeqCst) {
                 return Ok(Made::Skipped);
             }
-            let result = make_one(make, seed, filter, out_dir);
+            let result = make_one(make, seed, &filter, out_dir);
             tick();
             result
         })
@@ -155,26 +162,39 @@ pub fn run_with(
         ..Outcome::default()
     };
     let mut entries = Vec::new();
+    let mut drawn = 0;
     for result in made {
-        match result {
+        drawn += 1;
+        let kept = match result {
             Made::Written(entry) => {
                 outcome.written += 1;
-                entries.push(entry);
+                entry
             }
             Made::Unchanged(entry) => {
                 outcome.unchanged += 1;
-                entries.push(entry);
+                entry
             }
-            Made::Filtered => outcome.filtered += 1,
-            Made::Skipped => outcome.skipped += 1,
-        }
+            Made::Filtered => {
+                outcome.filtered += 1;
+                continue;
+            }
+            Made::Skipped => {
+                outcome.skipped += 1;
+                continue;
+            }
+        };
+        entries.push(ManifestEntry {
+            seeds_drawn: drawn,
+            ..kept
+        });
+        drawn = 0;
     }
     write_atomically(&outcome.manifest, |w| write_manifest(&entries, w))
         .map_err(|e| format!("{}: {e}", outcome.manifest.display()))?;
     Ok(outcome)
 }
 
-fn make_one(make: &Maker<'_>, seed: u64, filter: Filter, out_dir: &Path) -> Result<Made, String> {
+fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Result<Made, String> {
     let (layout, file) = make(seed)?;
     // the gate every layout passes before anything is done with it
     crate::validate::checked(&layout).map_err(|e| {
@@ -194,6 +214,7 @@ fn make_one(make: &Maker<'_>, seed: u64, filter: Filter, out_dir: &Path) -> Resu
         seed,
         file,
         metrics: layout.metrics,
+        seeds_drawn: 1,
     };
     if fs::read(&path).is_ok_and(|old| old == text.as_bytes()) {
         return Ok(Made::Unchanged(entry));
@@ -355,18 +376,19 @@ mod tests {
         assert_eq!((again.written, again.unchanged), (0, 12));
         assert_eq!(fs::read_to_string(&again.manifest).unwrap(), manifest);
 
-        let mut lengths: Vec<u64> = manifest
+        let lengths_by_seed: Vec<u64> = manifest
             .lines()
             .map(|line| {
                 let value: serde_json::Value = serde_json::from_str(line).unwrap();
                 value["metrics"]["solution_cells"].as_u64().unwrap()
             })
             .collect();
+        let mut lengths = lengths_by_seed.clone();
         lengths.sort_unstable();
         let median = lengths[6];
         let picky = Filter {
             min_solution: Some(median),
-            max_dead_end_percent: None,
+            ..Filter::default()
         };
         let out = tempfile::TempDir::new().unwrap();
         let filtered = run(&template, &seeds, picky, out.path(), &|| {}, &go()).unwrap();
@@ -377,5 +399,25 @@ mod tests {
             let value: serde_json::Value = serde_json::from_str(line).unwrap();
             assert!(value["metrics"]["solution_cells"].as_u64().unwrap() >= median);
         }
+
+        let condition = Filter {
+            condition: Some(format!("solution_cells >= {median}").parse().unwrap()),
+            ..Filter::default()
+        };
+        let out = tempfile::TempDir::new().unwrap();
+        let same = run(&template, &seeds, condition, out.path(), &|| {}, &go()).unwrap();
+        assert_eq!((same.written, same.filtered), (kept, 12 - kept));
+        let drawn: u64 = fs::read_to_string(&same.manifest)
+            .unwrap()
+            .lines()
+            .map(|line| serde_json::from_str::<serde_json::Value>(line).unwrap())
+            .map(|entry| entry["seeds_drawn"].as_u64().unwrap())
+            .sum();
+        let last_kept = lengths_by_seed.iter().rposition(|&l| l >= median).unwrap() as u64;
+        assert_eq!(drawn, last_kept + 1);
+        assert_eq!(
+            fs::read_to_string(&same.manifest).unwrap(),
+            fs::read_to_string(&filtered.manifest).unwrap()
+        );
     }
 }

@@ -17,6 +17,7 @@
 
 pub mod atomic_file;
 pub mod batch;
+pub mod condition;
 pub mod coppelia;
 pub mod export;
 pub mod generate;

@@ -17,6 +17,7 @@
 //! arms in `ALL`, `file_endings` and [`export`].
 
 mod mjcf;
+mod pointmaze;
 pub mod ros_map;
 mod sdf;
 mod simmodel;
@@ -29,6 +30,7 @@ use std::io;
 use std::path::Path;
 
 use crate::layout::Layout;
+use crate::layout::block_grid::BlockGrid;
 use crate::mesh::MeshMaze;
 use solids::Solids;
 
@@ -52,17 +54,21 @@ pub enum Format {
     Urdf,
     /// Webots world (`.wbt`): the floor and the maze as one static solid.
     Webots,
+    /// Gymnasium-Robotics PointMaze/AntMaze arguments (`.pointmaze.json`): `maze_map`, the
+    /// block grid of [`crate::layout::block_grid`], and `maze_size_scaling`.
+    PointMaze,
 }
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 6] = [
+    pub const ALL: [Format; 7] = [
         Format::CoppeliaModel,
         Format::CoppeliaScene,
         Format::Mjcf,
         Format::Sdf,
         Format::Urdf,
         Format::Webots,
+        Format::PointMaze,
     ];
 
     /// What it is, for a person (`CoppeliaSim XML model`, `MuJoCo MJCF`, ...).
@@ -74,6 +80,7 @@ impl Format {
             Format::Sdf => "a Gazebo SDFormat world",
             Format::Urdf => "a URDF robot description",
             Format::Webots => "a Webots world",
+            Format::PointMaze => "Gymnasium-Robotics PointMaze arguments",
         }
     }
 
@@ -86,6 +93,7 @@ impl Format {
             Format::Sdf => &[".sdf", ".world"],
             Format::Urdf => &[".urdf"],
             Format::Webots => &[".wbt"],
+            Format::PointMaze => &[".pointmaze.json"],
         }
     }
 
@@ -141,6 +149,9 @@ pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> anyho
         Format::Sdf => sdf::document(&Solids::new(layout, &maze)),
         Format::Urdf => urdf::document(&Solids::new(layout, &maze)),
         Format::Webots => webots::document(&Solids::new(layout, &maze)),
+        Format::PointMaze => {
+            pointmaze::document(&BlockGrid::of(layout).map_err(anyhow::Error::msg)?)
+        }
     };
     out.write_all(text.as_bytes())?;
     Ok(())

@@ -61,10 +61,12 @@ fn endings_choose_the_format() {
     assert_eq!(of("dir/m.world"), Some(Format::Sdf));
     assert_eq!(of("m.urdf"), Some(Format::Urdf));
     assert_eq!(of("m.wbt"), Some(Format::Webots));
+    assert_eq!(of("m.PointMaze.json"), Some(Format::PointMaze));
+    assert_eq!(of("m.json"), None);
     assert_eq!(of(".urdf"), None);
     assert_eq!(
         Format::endings(),
-        ".simmodel.xml, .simscene.xml, .mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt, .yaml, .yml"
+        ".simmodel.xml, .simscene.xml, .mjcf, .mujoco.xml, .sdf, .world, .urdf, .wbt, .pointmaze.json, .yaml, .yml"
     );
 }
 

@@ -4,6 +4,7 @@
 //! the schema; `schema/layout-v1.schema.json` is generated from these types. All lengths
 //! are metres and all angles radians, in the frame of the scene's `Floor` object.
 
+pub mod block_grid;
 pub mod build;
 pub mod endpoints;
 pub mod geometry;

@@ -1,0 +1,26 @@
+"""Curricula from Python: `vrep_maze.batch(..., where_=...)` keeps what `batch --where` keeps."""
+
+import json
+
+import pytest
+
+import vrep_maze
+from conftest import run_cli
+
+
+def test_where_keeps_what_the_command_keeps(tmp_path):
+    condition = "solution_cells >= 30 and dead_ends <= 9"
+    kept = list(vrep_maze.batch(range(12), size=(8, 8), where_=condition))
+    assert kept and len(kept) < 12
+    for layout in kept:
+        assert layout.metrics["solution_cells"] >= 30 and layout.metrics["dead_ends"] <= 9
+    done = run_cli("batch", "-q", "--size", "8x8", "--seeds", "0..12", "--where", condition,
+                   "--out-dir", tmp_path)
+    assert done.returncode == 0, done.stderr
+    manifest = [json.loads(line) for line in (tmp_path / "manifest.jsonl").read_text().splitlines()]
+    assert [entry["seed"] for entry in manifest] == [layout.seed for layout in kept]
+
+
+def test_a_bad_condition_is_a_value_error_naming_the_position():
+    with pytest.raises(ValueError, match="at position 0: unknown metric 'solution_length'"):
+        vrep_maze.batch(range(3), where_="solution_length >= 40")
