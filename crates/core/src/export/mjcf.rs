@@ -8,37 +8,30 @@
 
 use std::io;
 
-use quick_xml::Writer;
-
 use super::solids::{Part, Slab, Solids, num, nums};
+use super::xml::{self, XmlWriter};
 
 /// The MJCF document.
 pub(super) fn document(s: &Solids) -> String {
-    let mut xml = Writer::new_with_indent(Vec::new(), b' ', 2);
-    write(&mut xml, s).expect("writing to memory cannot fail");
-    let mut out = String::from_utf8(xml.into_inner()).expect("quick_xml writes the UTF-8 given");
-    out.push('\n');
-    out
-}
-
-fn write(xml: &mut Writer<Vec<u8>>, s: &Solids) -> io::Result<()> {
-    xml.create_element("mujoco")
-        .with_attribute(("model", s.title.as_str()))
-        .write_inner_content(|xml| {
-            xml.create_element("compiler")
-                .with_attribute(("angle", "radian"))
-                .write_empty()?;
-            xml.create_element("asset")
-                .write_inner_content(|xml| materials(xml, s))?;
-            xml.create_element("worldbody")
-                .write_inner_content(|xml| world(xml, s))?;
-            Ok(())
-        })?;
-    Ok(())
+    xml::document(|xml| {
+        xml.create_element("mujoco")
+            .with_attribute(("model", s.title.as_str()))
+            .write_inner_content(|xml| {
+                xml.create_element("compiler")
+                    .with_attribute(("angle", "radian"))
+                    .write_empty()?;
+                xml.create_element("asset")
+                    .write_inner_content(|xml| materials(xml, s))?;
+                xml.create_element("worldbody")
+                    .write_inner_content(|xml| world(xml, s))?;
+                Ok(())
+            })?;
+        Ok(())
+    })
 }
 
 /// The floor's material and one for each part the maze has (wall, post, line).
-fn materials(xml: &mut Writer<Vec<u8>>, s: &Solids) -> io::Result<()> {
+fn materials(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
     material(xml, "floor", &s.floor_rgb)?;
     for part in [Part::Wall, Part::Post, Part::Line] {
         if let Some(b) = s.maze.iter().find(|b| b.part == part) {
@@ -48,7 +41,7 @@ fn materials(xml: &mut Writer<Vec<u8>>, s: &Solids) -> io::Result<()> {
     Ok(())
 }
 
-fn material(xml: &mut Writer<Vec<u8>>, name: &str, rgb: &[f64; 3]) -> io::Result<()> {
+fn material(xml: &mut XmlWriter, name: &str, rgb: &[f64; 3]) -> io::Result<()> {
     xml.create_element("material")
         .with_attributes([("name", name), ("rgba", &format!("{} 1", nums(rgb)))])
         .write_empty()?;
@@ -56,7 +49,7 @@ fn material(xml: &mut Writer<Vec<u8>>, name: &str, rgb: &[f64; 3]) -> io::Result
 }
 
 /// The sun, the floor plane, the maze body with its boxes, and the start and end sites.
-fn world(xml: &mut Writer<Vec<u8>>, s: &Solids) -> io::Result<()> {
+fn world(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
     xml.create_element("light")
         .with_attributes([
             ("name", "sun"),

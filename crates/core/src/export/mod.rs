@@ -19,6 +19,7 @@ mod simscene;
 mod solids;
 mod urdf;
 mod webots;
+mod xml;
 
 use std::io;
 use std::path::Path;
