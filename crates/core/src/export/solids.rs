@@ -8,8 +8,6 @@
 //! every number is written rounded to the nanometre (or nanoradian) by [`num`], so the same
 //! layout always gives the same bytes.
 
-use std::fmt::Write;
-
 use crate::layout::geometry::round_half_away;
 use crate::layout::{Layout, Pose};
 use crate::mesh::{MeshKind, MeshMaze, Piece};
@@ -184,13 +182,6 @@ pub(super) fn nums(values: &[f64]) -> String {
         out.push_str(&num(*v));
     }
     out
-}
-
-/// Appends a formatted line to a document being built (writing to a `String` cannot fail).
-pub(super) fn line(out: &mut String, args: std::fmt::Arguments<'_>) {
-    out.write_fmt(args)
-        .expect("writing to a String cannot fail");
-    out.push('\n');
 }
 
 #[cfg(test)]
