@@ -3,6 +3,7 @@
 //! API, and show the result.
 
 use std::process::ExitCode;
+use std::str::FromStr;
 
 use std::net::SocketAddr;
 use std::time::Duration;
@@ -10,6 +11,7 @@ use std::time::Duration;
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 
+use super::listed::listed;
 use super::stdout::outln;
 use super::validate::{describe, print_metrics};
 use crate::coppelia::DEFAULT_IDLE_FPS;
@@ -32,7 +34,12 @@ pub struct DemoArgs {
     #[arg(long, default_value_t = 42, allow_negative_numbers = true)]
     pub seed: u64,
     /// Algorithm of the course maze (any of `generate --algo`).
-    #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
+    #[arg(
+        long,
+        default_value = "dfs",
+        value_parser = listed(Algorithm::from_str, Algorithm::ALL.map(Algorithm::name)),
+        hide_possible_values = true
+    )]
     pub algo: Algorithm,
 }
 

@@ -2,10 +2,12 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::str::FromStr;
 
 use anyhow::Result;
 use clap::Args;
 
+use super::listed::listed;
 use super::output::write_output;
 use super::progress::{Progress, Unit};
 use super::usage;
@@ -14,12 +16,12 @@ use super::values::{
 };
 use crate::generate::{Algorithm, Bias, GrowingMode};
 use crate::layout::build::{Planned, plan_layout};
-use crate::layout::endpoints::ENDPOINT_HELP;
+use crate::layout::endpoints::{END_WORDS, ENDPOINT_HELP, START_WORDS};
 use crate::layout::geometry::course;
 use crate::layout::json::write_layout_parts;
 use crate::layout::limits;
 use crate::layout::micromouse::{self, Preset};
-use crate::layout::walls::{self, Openings, WallOptions};
+use crate::layout::walls::{self, OPENINGS_WORDS, Openings, WallOptions};
 use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Style};
 use crate::maze::Grid;
 use crate::rng::os_seed;
@@ -103,15 +105,20 @@ impl LayoutArgs {
 pub struct MazeArgs {
     /// Algorithm: dfs, prim, kruskal, aldous-broder, wilson, hunt-and-kill, growing-tree,
     /// eller, sidewinder, binary-tree, recursive-division (textures in the README).
-    #[arg(long, default_value = "dfs", value_parser = clap::value_parser!(Algorithm))]
+    #[arg(
+        long,
+        default_value = "dfs",
+        value_parser = listed(Algorithm::from_str, Algorithm::ALL.map(Algorithm::name)),
+        hide_possible_values = true
+    )]
     pub algo: Algorithm,
     /// Growing tree only: which cell grows next, newest|oldest|random|middle|mix:P
     /// (newest with probability P, else random) [default: newest].
-    #[arg(long, value_parser = GrowingMode::parse)]
+    #[arg(long, value_parser = listed(GrowingMode::parse, GrowingMode::WORDS), hide_possible_values = true)]
     pub growing: Option<GrowingMode>,
     /// Binary tree only: the two directions every cell opens towards, ne|nw|se|sw
     /// [default: ne].
-    #[arg(long, value_parser = Bias::parse)]
+    #[arg(long, value_parser = listed(Bias::parse, Bias::ALL.map(Bias::name)), hide_possible_values = true)]
     pub bias: Option<Bias>,
     /// Braid: share (0 to 1) of dead ends to open into loops, so wall-following fails;
     /// 0 keeps the maze perfect.
@@ -121,10 +128,10 @@ pub struct MazeArgs {
     #[arg(long, default_value = "9x9", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u64, u64),
     /// Start cell: a cell 'x,y', a corner 'sw|se|nw|ne', or 'farthest-pair' (both ends of the longest path; then no --end).
-    #[arg(long, default_value = "sw", value_parser = parse_endpoint)]
+    #[arg(long, default_value = "sw", value_parser = listed(parse_endpoint, START_WORDS), hide_possible_values = true)]
     pub start: EndpointSpec,
     /// End cell: a cell 'x,y', a corner, or 'farthest' (farthest from the start along the maze).
-    #[arg(long, default_value = "farthest", value_parser = parse_endpoint)]
+    #[arg(long, default_value = "farthest", value_parser = listed(parse_endpoint, END_WORDS), hide_possible_values = true)]
     pub end: EndpointSpec,
     /// Side of a cell, metres: 0.001..10000, and at least line length - line width.
     #[arg(long, default_value_t = course::CELL_SIZE, value_parser = parse_metres, allow_hyphen_values = true)]
@@ -158,7 +165,7 @@ pub struct MazeArgs {
 pub struct StyleArgs {
     /// lines (Line copies on the floor, for line followers) or walls (a Wall cuboid on
     /// every closed side and around the grid, for robots that sense walls).
-    #[arg(long, default_value = "lines", value_parser = parse_style)]
+    #[arg(long, default_value = "lines", value_parser = listed(parse_style, Style::ALL.map(Style::name)), hide_possible_values = true)]
     pub style: Style,
     /// Walls only: length of the Wall template, metres, at most the cell size [default: 1].
     #[arg(long, value_parser = parse_metres, allow_hyphen_values = true)]
@@ -171,7 +178,7 @@ pub struct StyleArgs {
     pub wall_height: Option<f64>,
     /// Walls only: gaps in the outer wall beside the start and/or end cell: none, start,
     /// end or start,end (the cell must be on the edge) [default: none].
-    #[arg(long, value_parser = parse_openings)]
+    #[arg(long, value_parser = listed(parse_openings, OPENINGS_WORDS), hide_possible_values = true)]
     pub openings: Option<Openings>,
     /// Walls only (with --style walls or a --preset): a Post cuboid at every lattice corner,
     /// as high as the walls, so their joints are closed; the walls then fill the space
@@ -186,7 +193,7 @@ pub struct StyleArgs {
     /// high) or micromouse-half (32x32 of 0.09 m); start in the south-west corner opening
     /// one way, goal the 2x2 centre with a single entrance. With --posts, posts as thick as
     /// the walls and walls between them (0.168 m in the classic), as in competition mazes.
-    #[arg(long, value_parser = parse_preset, conflicts_with_all = [
+    #[arg(long, value_parser = listed(parse_preset, Preset::ALL.map(Preset::name)), hide_possible_values = true, conflicts_with_all = [
         "size", "cell_size", "start", "end", "braid", "line_length", "line_width",
         "style", "wall_length", "wall_thickness", "wall_height", "openings",
     ])]

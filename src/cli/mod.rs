@@ -15,6 +15,7 @@ mod import;
 mod input;
 mod inspect;
 mod interrupt;
+mod listed;
 mod output;
 mod progress;
 mod render;

@@ -3,10 +3,12 @@
 use std::io::{self, IsTerminal, Read};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::str::FromStr;
 
 use anyhow::{Context, Result};
 use clap::Args;
 
+use super::listed::listed;
 use super::output::write_output;
 use super::progress::{Progress, Unit};
 use super::say::note;
@@ -24,7 +26,11 @@ pub struct RenderArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
     /// ascii (terminal), svg or png [default: from the -o extension, else ascii].
-    #[arg(long, value_parser = clap::value_parser!(Format))]
+    #[arg(
+        long,
+        value_parser = listed(Format::from_str, Format::ALL.map(Format::name)),
+        hide_possible_values = true
+    )]
     pub format: Option<Format>,
     /// Overlay the shortest path from start to end.
     #[arg(long)]

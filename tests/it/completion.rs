@@ -63,4 +63,33 @@ fn bash_completes_subcommands_options_and_their_values() {
         ["json", "csv"]
     );
     assert!(c(&["vrep-maze", "inspect", "--la"]).contains(&"--layout".to_string()));
+    // Options parsed from text list their values too, forms with a parameter as a hint.
+    assert_eq!(
+        c(&["vrep-maze", "generate", "--growing", ""]),
+        ["newest", "oldest", "random", "middle", "mix:P"]
+    );
+    assert_eq!(
+        c(&["vrep-maze", "batch", "--growing", "m"]),
+        ["middle", "mix:P"]
+    );
+    assert_eq!(c(&["vrep-maze", "generate", "--bias", "n"]), ["ne", "nw"]);
+    assert_eq!(
+        c(&["vrep-maze", "generate", "--start", "f"]),
+        ["farthest-pair"]
+    );
+    assert_eq!(c(&["vrep-maze", "generate", "--end", "f"]), ["farthest"]);
+    assert_eq!(
+        c(&["vrep-maze", "generate", "--openings", "s"]),
+        ["start", "start,end"]
+    );
+    assert_eq!(
+        c(&["vrep-maze", "generate", "--preset", ""]),
+        ["micromouse", "micromouse-half"]
+    );
+    assert_eq!(c(&["vrep-maze", "demo", "--algo", "w"]), ["wilson"]);
+    assert_eq!(
+        c(&["vrep-maze", "export", "m.json", "--format", "u"]),
+        ["urdf"]
+    );
+    assert_eq!(c(&["vrep-maze", "score", "--until", ""]), ["end", "stop"]);
 }

@@ -16,6 +16,7 @@ mod copy_record;
 mod costs;
 mod ctrl_c;
 mod draw;
+mod export_golden;
 mod export_model_load;
 mod export_pointmaze;
 mod export_robots;

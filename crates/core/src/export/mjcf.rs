@@ -6,94 +6,100 @@
 //! MJCF box sizes are half-extents; angles are radians (`<compiler angle="radian"/>`), a
 //! box's yaw is `euler="0 0 yaw"`.
 
-use super::solids::{Part, Slab, Solids, line, num, nums, xml_escape};
+use std::io;
+
+use super::solids::{Part, Slab, Solids, num, nums};
+use super::xml::{self, XmlWriter};
 
 /// The MJCF document.
 pub(super) fn document(s: &Solids) -> String {
-    let mut out = String::new();
-    line(
-        &mut out,
-        format_args!("<mujoco model=\"{}\">", xml_escape(&s.title)),
-    );
-    line(&mut out, format_args!("  <compiler angle=\"radian\"/>"));
-    line(&mut out, format_args!("  <asset>"));
-    line(
-        &mut out,
-        format_args!(
-            "    <material name=\"floor\" rgba=\"{} 1\"/>",
-            nums(&s.floor_rgb)
-        ),
-    );
-    for part in [Part::Wall, Part::Post, Part::Line] {
-        if let Some(b) = s.maze.iter().find(|b| b.part == part) {
-            line(
-                &mut out,
-                format_args!(
-                    "    <material name=\"{}\" rgba=\"{} 1\"/>",
-                    part.material(),
-                    nums(&b.rgb)
-                ),
-            );
-        }
-    }
-    line(&mut out, format_args!("  </asset>"));
-    line(&mut out, format_args!("  <worldbody>"));
-    line(
-        &mut out,
-        format_args!(
-            "    <light name=\"sun\" pos=\"0 0 10\" dir=\"0 0 -1\" directional=\"true\"/>"
-        ),
-    );
-    line(
-        &mut out,
-        format_args!(
-            "    <geom name=\"floor\" type=\"plane\" size=\"{} {} 0.1\" material=\"floor\"/>",
-            num(s.floor[0] / 2.0),
-            num(s.floor[1] / 2.0)
-        ),
-    );
-    line(&mut out, format_args!("    <body name=\"maze\">"));
-    for b in &s.maze {
-        let contact = if b.part.collides() {
-            ""
-        } else {
-            " contype=\"0\" conaffinity=\"0\""
-        };
-        line(
-            &mut out,
-            format_args!(
-                "      <geom name=\"{}\" type=\"box\" {}{contact} material=\"{}\"/>",
-                b.name,
-                placement(b),
-                b.part.material()
-            ),
-        );
-    }
-    line(&mut out, format_args!("    </body>"));
-    for m in [&s.start, &s.end] {
-        line(
-            &mut out,
-            format_args!(
-                "    <site name=\"{}\" type=\"box\" {} rgba=\"{} 1\"/>",
-                m.name,
-                placement(m),
-                nums(&m.rgb)
-            ),
-        );
-    }
-    line(&mut out, format_args!("  </worldbody>"));
-    line(&mut out, format_args!("</mujoco>"));
-    out
+    xml::document(|xml| {
+        xml.create_element("mujoco")
+            .with_attribute(("model", s.title.as_str()))
+            .write_inner_content(|xml| {
+                xml.create_element("compiler")
+                    .with_attribute(("angle", "radian"))
+                    .write_empty()?;
+                xml.create_element("asset")
+                    .write_inner_content(|xml| materials(xml, s))?;
+                xml.create_element("worldbody")
+                    .write_inner_content(|xml| world(xml, s))?;
+                Ok(())
+            })?;
+        Ok(())
+    })
 }
 
-/// `pos="..." euler="0 0 yaw" size="..."`: centre, yaw and half-extents.
-fn placement(b: &Slab) -> String {
-    format!(
-        "pos=\"{}\" euler=\"0 0 {}\" size=\"{}\"",
-        nums(&b.centre),
-        num(b.yaw),
-        nums(&b.size.map(|v| v / 2.0))
-    )
+/// The floor's material and one for each part the maze has (wall, post, line).
+fn materials(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
+    material(xml, "floor", &s.floor_rgb)?;
+    for part in [Part::Wall, Part::Post, Part::Line] {
+        if let Some(b) = s.maze.iter().find(|b| b.part == part) {
+            material(xml, part.material(), &b.rgb)?;
+        }
+    }
+    Ok(())
+}
+
+fn material(xml: &mut XmlWriter, name: &str, rgb: &[f64; 3]) -> io::Result<()> {
+    xml.create_element("material")
+        .with_attributes([("name", name), ("rgba", &format!("{} 1", nums(rgb)))])
+        .write_empty()?;
+    Ok(())
+}
+
+/// The sun, the floor plane, the maze body with its boxes, and the start and end sites.
+fn world(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
+    xml.create_element("light")
+        .with_attributes([
+            ("name", "sun"),
+            ("pos", "0 0 10"),
+            ("dir", "0 0 -1"),
+            ("directional", "true"),
+        ])
+        .write_empty()?;
+    let size = format!("{} {} 0.1", num(s.floor[0] / 2.0), num(s.floor[1] / 2.0));
+    xml.create_element("geom")
+        .with_attributes([
+            ("name", "floor"),
+            ("type", "plane"),
+            ("size", &size),
+            ("material", "floor"),
+        ])
+        .write_empty()?;
+    xml.create_element("body")
+        .with_attribute(("name", "maze"))
+        .write_inner_content(|xml| {
+            for b in &s.maze {
+                let mut geom = xml
+                    .create_element("geom")
+                    .with_attributes([("name", b.name.as_str()), ("type", "box")])
+                    .with_attributes(placement(b).iter().map(|(k, v)| (*k, v.as_str())));
+                if !b.part.collides() {
+                    geom = geom.with_attributes([("contype", "0"), ("conaffinity", "0")]);
+                }
+                geom.with_attribute(("material", b.part.material()))
+                    .write_empty()?;
+            }
+            Ok(())
+        })?;
+    for m in [&s.start, &s.end] {
+        xml.create_element("site")
+            .with_attributes([("name", m.name.as_str()), ("type", "box")])
+            .with_attributes(placement(m).iter().map(|(k, v)| (*k, v.as_str())))
+            .with_attribute(("rgba", format!("{} 1", nums(&m.rgb)).as_str()))
+            .write_empty()?;
+    }
+    Ok(())
+}
+
+/// `pos`, `euler` (`0 0 yaw`) and `size`: centre, yaw and half-extents.
+fn placement(b: &Slab) -> [(&'static str, String); 3] {
+    [
+        ("pos", nums(&b.centre)),
+        ("euler", format!("0 0 {}", num(b.yaw))),
+        ("size", nums(&b.size.map(|v| v / 2.0))),
+    ]
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ mod simscene;
 mod solids;
 mod urdf;
 mod webots;
+mod xml;
 
 use std::io;
 use std::path::Path;
@@ -35,7 +36,8 @@ use crate::mesh::MeshMaze;
 use solids::Solids;
 
 /// The formats `export` writes (`--format` names them in kebab case: `coppelia-model`, ...).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Format {
     /// CoppeliaSim XML model (`.simmodel.xml`): the `Maze` dummy as model base holding the
     /// meshes.

@@ -7,89 +7,143 @@
 //! Names are unique among siblings (libsdformat's check): a box's visual is `wall_0`, its
 //! collision `wall_0_collision`.
 
-use super::solids::{Slab, Solids, line, num, nums, xml_escape};
+use std::io;
+
+use quick_xml::events::BytesText;
+
+use super::solids::{Slab, Solids, num, nums};
+use super::xml::{self, XmlWriter, declaration, same_line, title_comment};
 
 /// The SDF document.
 pub(super) fn document(s: &Solids) -> String {
-    let mut out = String::new();
-    line(&mut out, format_args!("<?xml version=\"1.0\"?>"));
-    line(&mut out, format_args!("<sdf version=\"1.6\">"));
-    line(&mut out, format_args!("  <world name=\"vrep_maze\">"));
-    line(
-        &mut out,
-        format_args!("    <!-- {} -->", xml_escape(&s.title).replace("--", "- -")),
-    );
-    for text in [
-        "    <light type=\"directional\" name=\"sun\">",
-        "      <cast_shadows>true</cast_shadows>",
-        "      <pose>0 0 10 0 0 0</pose>",
-        "      <diffuse>0.8 0.8 0.8 1</diffuse>",
-        "      <specular>0.2 0.2 0.2 1</specular>",
-        "      <direction>-0.5 0.1 -0.9</direction>",
-        "    </light>",
-        "    <model name=\"ground_plane\">",
-        "      <static>true</static>",
-        "      <link name=\"link\">",
-        "        <collision name=\"collision\">",
-    ] {
-        line(&mut out, format_args!("{text}"));
-    }
-    let plane = format!(
-        "<geometry><plane><normal>0 0 1</normal><size>{}</size></plane></geometry>",
-        nums(&s.floor)
-    );
-    line(&mut out, format_args!("          {plane}"));
-    line(&mut out, format_args!("        </collision>"));
-    line(&mut out, format_args!("        <visual name=\"visual\">"));
-    line(&mut out, format_args!("          {plane}"));
-    line(
-        &mut out,
-        format_args!("          {}", material(&s.floor_rgb)),
-    );
-    line(&mut out, format_args!("        </visual>"));
-    line(&mut out, format_args!("      </link>"));
-    line(&mut out, format_args!("    </model>"));
-    line(&mut out, format_args!("    <model name=\"maze\">"));
-    line(&mut out, format_args!("      <static>true</static>"));
-    line(&mut out, format_args!("      <link name=\"maze\">"));
-    for b in s.all() {
-        if b.part.collides() {
-            line(
-                &mut out,
-                format_args!("        <collision name=\"{}_collision\">", b.name),
-            );
-            line(&mut out, format_args!("          {}", pose_and_box(b)));
-            line(&mut out, format_args!("        </collision>"));
-        }
-        line(
-            &mut out,
-            format_args!("        <visual name=\"{}\">", b.name),
-        );
-        line(&mut out, format_args!("          {}", pose_and_box(b)));
-        line(&mut out, format_args!("          {}", material(&b.rgb)));
-        line(&mut out, format_args!("        </visual>"));
-    }
-    line(&mut out, format_args!("      </link>"));
-    line(&mut out, format_args!("    </model>"));
-    line(&mut out, format_args!("  </world>"));
-    line(&mut out, format_args!("</sdf>"));
-    out
+    xml::document(|xml| {
+        declaration(xml)?;
+        xml.create_element("sdf")
+            .with_attribute(("version", "1.6"))
+            .write_inner_content(|xml| {
+                xml.create_element("world")
+                    .with_attribute(("name", "vrep_maze"))
+                    .write_inner_content(|xml| world(xml, s))?;
+                Ok(())
+            })?;
+        Ok(())
+    })
 }
 
-/// `<pose>` and `<geometry><box>` of a box.
-fn pose_and_box(b: &Slab) -> String {
-    format!(
-        "<pose>{} 0 0 {}</pose><geometry><box><size>{}</size></box></geometry>",
-        nums(&b.centre),
-        num(b.yaw),
-        nums(&b.size)
-    )
+/// The title, the sun, the ground plane and the maze.
+fn world(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
+    title_comment(xml, &s.title)?;
+    xml.create_element("light")
+        .with_attributes([("type", "directional"), ("name", "sun")])
+        .write_inner_content(|xml| {
+            text(xml, "cast_shadows", "true")?;
+            text(xml, "pose", "0 0 10 0 0 0")?;
+            text(xml, "diffuse", "0.8 0.8 0.8 1")?;
+            text(xml, "specular", "0.2 0.2 0.2 1")?;
+            text(xml, "direction", "-0.5 0.1 -0.9")
+        })?;
+    xml.create_element("model")
+        .with_attribute(("name", "ground_plane"))
+        .write_inner_content(|xml| {
+            text(xml, "static", "true")?;
+            xml.create_element("link")
+                .with_attribute(("name", "link"))
+                .write_inner_content(|xml| {
+                    xml.create_element("collision")
+                        .with_attribute(("name", "collision"))
+                        .write_inner_content(|xml| plane(xml, &s.floor))?;
+                    xml.create_element("visual")
+                        .with_attribute(("name", "visual"))
+                        .write_inner_content(|xml| {
+                            plane(xml, &s.floor)?;
+                            material(xml, &s.floor_rgb)
+                        })?;
+                    Ok(())
+                })?;
+            Ok(())
+        })?;
+    xml.create_element("model")
+        .with_attribute(("name", "maze"))
+        .write_inner_content(|xml| {
+            text(xml, "static", "true")?;
+            xml.create_element("link")
+                .with_attribute(("name", "maze"))
+                .write_inner_content(|xml| s.all().try_for_each(|b| slab(xml, b)))?;
+            Ok(())
+        })?;
+    Ok(())
 }
 
-/// A plain material of one colour.
-fn material(rgb: &[f64; 3]) -> String {
-    let c = nums(rgb);
-    format!("<material><ambient>{c} 1</ambient><diffuse>{c} 1</diffuse></material>")
+/// A box's collision (if it collides) and its visual.
+fn slab(xml: &mut XmlWriter, b: &Slab) -> io::Result<()> {
+    if b.part.collides() {
+        xml.create_element("collision")
+            .with_attribute(("name", format!("{}_collision", b.name).as_str()))
+            .write_inner_content(|xml| pose_and_box(xml, b))?;
+    }
+    xml.create_element("visual")
+        .with_attribute(("name", b.name.as_str()))
+        .write_inner_content(|xml| {
+            pose_and_box(xml, b)?;
+            material(xml, &b.rgb)
+        })?;
+    Ok(())
+}
+
+/// `<name>text</name>`.
+fn text(xml: &mut XmlWriter, name: &str, text: &str) -> io::Result<()> {
+    xml.create_element(name)
+        .write_text_content(BytesText::new(text))?;
+    Ok(())
+}
+
+/// `<geometry><plane>` of the floor's size, on one line.
+fn plane(xml: &mut XmlWriter, floor: &[f64; 2]) -> io::Result<()> {
+    xml.create_element("geometry").write_inner_content(|xml| {
+        same_line(xml)?;
+        xml.create_element("plane").write_inner_content(|xml| {
+            same_line(xml)?;
+            text(xml, "normal", "0 0 1")?;
+            same_line(xml)?;
+            text(xml, "size", &nums(floor))?;
+            same_line(xml)
+        })?;
+        same_line(xml)
+    })?;
+    Ok(())
+}
+
+/// `<pose>` and `<geometry><box>` of a box, on one line.
+fn pose_and_box(xml: &mut XmlWriter, b: &Slab) -> io::Result<()> {
+    text(
+        xml,
+        "pose",
+        &format!("{} 0 0 {}", nums(&b.centre), num(b.yaw)),
+    )?;
+    same_line(xml)?;
+    xml.create_element("geometry").write_inner_content(|xml| {
+        same_line(xml)?;
+        xml.create_element("box").write_inner_content(|xml| {
+            same_line(xml)?;
+            text(xml, "size", &nums(&b.size))?;
+            same_line(xml)
+        })?;
+        same_line(xml)
+    })?;
+    Ok(())
+}
+
+/// A plain material of one colour, on one line.
+fn material(xml: &mut XmlWriter, rgb: &[f64; 3]) -> io::Result<()> {
+    let colour = format!("{} 1", nums(rgb));
+    xml.create_element("material").write_inner_content(|xml| {
+        same_line(xml)?;
+        text(xml, "ambient", &colour)?;
+        same_line(xml)?;
+        text(xml, "diffuse", &colour)?;
+        same_line(xml)
+    })?;
+    Ok(())
 }
 
 #[cfg(test)]

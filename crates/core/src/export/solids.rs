@@ -8,8 +8,6 @@
 //! every number is written rounded to the nanometre (or nanoradian) by [`num`], so the same
 //! layout always gives the same bytes.
 
-use std::fmt::Write;
-
 use crate::layout::geometry::round_half_away;
 use crate::layout::{Layout, Pose};
 use crate::mesh::{MeshKind, MeshMaze, Piece};
@@ -186,28 +184,6 @@ pub(super) fn nums(values: &[f64]) -> String {
     out
 }
 
-/// `text` with `&`, `<`, `>` and `"` escaped for an XML attribute or element.
-pub(super) fn xml_escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// Appends a formatted line to a document being built (writing to a `String` cannot fail).
-pub(super) fn line(out: &mut String, args: std::fmt::Arguments<'_>) {
-    out.write_fmt(args)
-        .expect("writing to a String cannot fail");
-    out.push('\n');
-}
-
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
@@ -252,7 +228,6 @@ pub(crate) mod tests {
         assert_eq!(num(2.0), "2");
         assert_eq!(num(-1.2345678915), "-1.234567892");
         assert_eq!(nums(&[1.0, 0.5, 0.0]), "1 0.5 0");
-        assert_eq!(xml_escape("a<&>\"b"), "a&lt;&amp;&gt;&quot;b");
     }
 
     #[test]

@@ -7,80 +7,125 @@
 //!
 //! Every `<origin>` is `xyz` in the world (the floor frame) and `rpy` radians.
 
-use super::solids::{Slab, Solids, line, num, nums, xml_escape};
+use std::io;
+
+use super::solids::{Part, Slab, Solids, num, nums};
+use super::xml::{self, XmlWriter, declaration, same_line, title_comment};
 
 /// The floor slab's thickness, metres: its top is at z = 0.
 const FLOOR_THICKNESS: f64 = 0.001;
 
 /// The URDF document.
 pub(super) fn document(s: &Solids) -> String {
-    let mut out = String::new();
-    line(&mut out, format_args!("<?xml version=\"1.0\"?>"));
-    line(
-        &mut out,
-        format_args!("<!-- {} -->", xml_escape(&s.title).replace("--", "- -")),
-    );
-    line(&mut out, format_args!("<robot name=\"vrep_maze\">"));
-    line(&mut out, format_args!("  <link name=\"world\"/>"));
-    line(
-        &mut out,
-        format_args!("  <joint name=\"maze_fixed\" type=\"fixed\">"),
-    );
-    line(&mut out, format_args!("    <parent link=\"world\"/>"));
-    line(&mut out, format_args!("    <child link=\"maze\"/>"));
-    line(&mut out, format_args!("  </joint>"));
-    line(&mut out, format_args!("  <link name=\"maze\">"));
-    line(&mut out, format_args!("    <inertial>"));
-    line(&mut out, format_args!("      <mass value=\"1\"/>"));
-    line(
-        &mut out,
-        format_args!(
-            "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>"
-        ),
-    );
-    line(&mut out, format_args!("    </inertial>"));
-    let floor = Slab {
-        name: "floor".to_string(),
-        part: super::solids::Part::Marker,
-        centre: [0.0, 0.0, -FLOOR_THICKNESS / 2.0],
-        size: [s.floor[0], s.floor[1], FLOOR_THICKNESS],
-        yaw: 0.0,
-        rgb: s.floor_rgb,
-    };
-    for b in std::iter::once(&floor).chain(s.all()) {
-        line(&mut out, format_args!("    <visual name=\"{}\">", b.name));
-        line(&mut out, format_args!("      {}", origin_and_box(b)));
-        line(
-            &mut out,
-            format_args!(
-                "      <material name=\"{}\"><color rgba=\"{} 1\"/></material>",
-                b.name,
-                nums(&b.rgb)
-            ),
-        );
-        line(&mut out, format_args!("    </visual>"));
-        if b.part.collides() {
-            line(
-                &mut out,
-                format_args!("    <collision name=\"{}_collision\">", b.name),
-            );
-            line(&mut out, format_args!("      {}", origin_and_box(b)));
-            line(&mut out, format_args!("    </collision>"));
-        }
-    }
-    line(&mut out, format_args!("  </link>"));
-    line(&mut out, format_args!("</robot>"));
-    out
+    xml::document(|xml| {
+        declaration(xml)?;
+        title_comment(xml, &s.title)?;
+        xml.create_element("robot")
+            .with_attribute(("name", "vrep_maze"))
+            .write_inner_content(|xml| robot(xml, s))?;
+        Ok(())
+    })
 }
 
-/// `<origin>` and `<geometry><box>` of a box.
-fn origin_and_box(b: &Slab) -> String {
-    format!(
-        "<origin xyz=\"{}\" rpy=\"0 0 {}\"/><geometry><box size=\"{}\"/></geometry>",
-        nums(&b.centre),
-        num(b.yaw),
-        nums(&b.size)
-    )
+/// The `world` link, the fixed joint, and the `maze` link with every box.
+fn robot(xml: &mut XmlWriter, s: &Solids) -> io::Result<()> {
+    xml.create_element("link")
+        .with_attribute(("name", "world"))
+        .write_empty()?;
+    xml.create_element("joint")
+        .with_attributes([("name", "maze_fixed"), ("type", "fixed")])
+        .write_inner_content(|xml| {
+            xml.create_element("parent")
+                .with_attribute(("link", "world"))
+                .write_empty()?;
+            xml.create_element("child")
+                .with_attribute(("link", "maze"))
+                .write_empty()?;
+            Ok(())
+        })?;
+    xml.create_element("link")
+        .with_attribute(("name", "maze"))
+        .write_inner_content(|xml| {
+            inertial(xml)?;
+            let floor = Slab {
+                name: "floor".to_string(),
+                part: Part::Marker,
+                centre: [0.0, 0.0, -FLOOR_THICKNESS / 2.0],
+                size: [s.floor[0], s.floor[1], FLOOR_THICKNESS],
+                yaw: 0.0,
+                rgb: s.floor_rgb,
+            };
+            for b in std::iter::once(&floor).chain(s.all()) {
+                slab(xml, b)?;
+            }
+            Ok(())
+        })?;
+    Ok(())
+}
+
+/// The nominal inertial: 1 kg, unit inertia.
+fn inertial(xml: &mut XmlWriter) -> io::Result<()> {
+    xml.create_element("inertial").write_inner_content(|xml| {
+        xml.create_element("mass")
+            .with_attribute(("value", "1"))
+            .write_empty()?;
+        xml.create_element("inertia")
+            .with_attributes([
+                ("ixx", "1"),
+                ("ixy", "0"),
+                ("ixz", "0"),
+                ("iyy", "1"),
+                ("iyz", "0"),
+                ("izz", "1"),
+            ])
+            .write_empty()?;
+        Ok(())
+    })?;
+    Ok(())
+}
+
+/// A box's visual (with its own material) and, if it collides, its collision.
+fn slab(xml: &mut XmlWriter, b: &Slab) -> io::Result<()> {
+    xml.create_element("visual")
+        .with_attribute(("name", b.name.as_str()))
+        .write_inner_content(|xml| {
+            origin_and_box(xml, b)?;
+            xml.create_element("material")
+                .with_attribute(("name", b.name.as_str()))
+                .write_inner_content(|xml| {
+                    same_line(xml)?;
+                    xml.create_element("color")
+                        .with_attribute(("rgba", format!("{} 1", nums(&b.rgb)).as_str()))
+                        .write_empty()?;
+                    same_line(xml)
+                })?;
+            Ok(())
+        })?;
+    if b.part.collides() {
+        xml.create_element("collision")
+            .with_attribute(("name", format!("{}_collision", b.name).as_str()))
+            .write_inner_content(|xml| origin_and_box(xml, b))?;
+    }
+    Ok(())
+}
+
+/// `<origin>` and `<geometry><box>` of a box, on one line.
+fn origin_and_box(xml: &mut XmlWriter, b: &Slab) -> io::Result<()> {
+    xml.create_element("origin")
+        .with_attributes([
+            ("xyz", nums(&b.centre).as_str()),
+            ("rpy", format!("0 0 {}", num(b.yaw)).as_str()),
+        ])
+        .write_empty()?;
+    same_line(xml)?;
+    xml.create_element("geometry").write_inner_content(|xml| {
+        same_line(xml)?;
+        xml.create_element("box")
+            .with_attribute(("size", nums(&b.size).as_str()))
+            .write_empty()?;
+        same_line(xml)
+    })?;
+    Ok(())
 }
 
 #[cfg(test)]

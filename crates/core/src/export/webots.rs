@@ -8,7 +8,9 @@
 //! Translations are metres, rotations axis-angle `0 0 1 yaw` in radians. No Webots parser
 //! can be installed from a package registry, so only the structure is tested.
 
-use super::solids::{Slab, Solids, line, num, nums};
+use std::fmt::Write;
+
+use super::solids::{Slab, Solids, num, nums};
 
 /// The Webots release whose node set the world uses (`Pose` appeared in R2023b).
 const RELEASE: &str = "R2023b";
@@ -122,6 +124,13 @@ fn look(rgb: &[f64; 3]) -> String {
 /// A VRML string literal.
 fn quoted(text: &str) -> String {
     format!("\"{}\"", text.replace('\\', "\\\\").replace('"', "\\\""))
+}
+
+/// Appends a formatted line to a document being built (writing to a `String` cannot fail).
+fn line(out: &mut String, args: std::fmt::Arguments<'_>) {
+    out.write_fmt(args)
+        .expect("writing to a String cannot fail");
+    out.push('\n');
 }
 
 #[cfg(test)]

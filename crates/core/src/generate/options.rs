@@ -120,6 +120,10 @@ pub enum GrowingMode {
 }
 
 impl GrowingMode {
+    /// The `--growing` words, `mix:P` standing for a mix with P a probability: for help,
+    /// errors and completions.
+    pub const WORDS: [&'static str; 5] = ["newest", "oldest", "random", "middle", "mix:P"];
+
     /// Parses a `--growing` value: `newest`, `oldest`, `random`, `middle` or `mix:P` with
     /// P a probability such as `0.75`.
     pub fn parse(s: &str) -> Result<Self, String> {
@@ -134,7 +138,8 @@ impl GrowingMode {
                     .map(Self::Mix)
                     .map_err(|e| format!("--growing mix:P: {e}")),
                 None => Err(format!(
-                    "unknown growing mode '{s}' (known: newest, oldest, random, middle, mix:P)"
+                    "unknown growing mode '{s}' (known: {})",
+                    Self::WORDS.join(", ")
                 )),
             },
         }
@@ -210,7 +215,10 @@ impl Bias {
         Self::ALL
             .into_iter()
             .find(|b| b.name().eq_ignore_ascii_case(s))
-            .ok_or_else(|| format!("unknown bias '{s}' (known: ne, nw, se, sw)"))
+            .ok_or_else(|| {
+                let known = Self::ALL.map(Bias::name).join(", ");
+                format!("unknown bias '{s}' (known: {known})")
+            })
     }
 }
 

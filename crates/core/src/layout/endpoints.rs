@@ -45,6 +45,12 @@ pub enum EndpointSpec {
     FarthestPair,
 }
 
+/// The `--start` words, `x,y` standing for a cell: for completions.
+pub const START_WORDS: [&str; 6] = ["sw", "se", "nw", "ne", "farthest-pair", "x,y"];
+
+/// The `--end` words, `x,y` standing for a cell: for completions.
+pub const END_WORDS: [&str; 6] = ["sw", "se", "nw", "ne", "farthest", "x,y"];
+
 /// The accepted words, for help and error texts.
 pub const ENDPOINT_HELP: &str = "a cell 'x,y' (column,row from 0), a corner 'sw|se|nw|ne', 'farthest' (end only) or 'farthest-pair' (start only)";
 

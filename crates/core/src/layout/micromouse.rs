@@ -26,6 +26,9 @@ pub enum Preset {
 }
 
 impl Preset {
+    /// Both presets, classic first.
+    pub const ALL: [Preset; 2] = [Preset::Micromouse, Preset::MicromouseHalf];
+
     /// The name on the command line and in `generator.options.preset`.
     pub fn name(self) -> &'static str {
         match self {
@@ -36,9 +39,7 @@ impl Preset {
 
     /// The preset a name stands for.
     pub fn from_name(name: &str) -> Option<Preset> {
-        [Preset::Micromouse, Preset::MicromouseHalf]
-            .into_iter()
-            .find(|p| p.name() == name)
+        Self::ALL.into_iter().find(|p| p.name() == name)
     }
 
     /// Cells per side.

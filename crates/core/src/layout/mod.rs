@@ -121,6 +121,9 @@ pub enum Style {
 }
 
 impl Style {
+    /// Both styles, lines first.
+    pub const ALL: [Style; 2] = [Style::Lines, Style::Walls];
+
     /// `true` for [`Style::Lines`] (the field is then left out of the layout).
     pub fn is_lines(&self) -> bool {
         *self == Style::Lines

@@ -54,6 +54,9 @@ pub struct Openings {
     pub end: bool,
 }
 
+/// The `--openings` values: for completions.
+pub const OPENINGS_WORDS: [&str; 4] = ["none", "start", "end", "start,end"];
+
 /// The accepted words, for help and error texts.
 pub const OPENINGS_HELP: &str = "'none', 'start', 'end' or 'start,end'";
 

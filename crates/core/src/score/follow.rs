@@ -67,7 +67,8 @@ pub trait Follower {
 pub const POLL: Duration = Duration::from_millis(10);
 
 /// When a run is over.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Until {
     /// When the robot reaches `End` (or the simulation stops first: then incomplete).
     End,
