@@ -279,6 +279,15 @@ fn inspect(
                 matches: false,
                 differences: vec![format!("missing in the scene: {}", names.join(", "))],
             },
+            // a floor smaller than the layout's is a difference of the scene, with its remedy
+            Err(DrawError::Floor { floor, short, .. }) => LayoutMatch {
+                file: file.clone(),
+                matches: false,
+                differences: vec![format!(
+                    "{} (`vrep-maze apply --resize-floor` grows it over ZeroMQ, and `clear` puts it back)",
+                    short.describe(&floor)
+                )],
+            },
             Err(e) => return Err(anyhow::Error::new(e).context(format!("comparing {file}"))),
         }),
     };

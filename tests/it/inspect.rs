@@ -357,3 +357,36 @@ fn inspect_raises_the_idle_rate_and_waits_for_few_passes() {
         }
     }
 }
+
+/// A layout whose floor is larger than the scene's is a difference of the scene, named with
+/// its remedy (the floor's, not the templates'), on every API; nothing is changed.
+#[test]
+fn inspect_names_a_floor_smaller_than_the_layouts() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.json").display().to_string();
+    bin()
+        .args([
+            "-q", "generate", "--seed", "1", "--size", "30x30", "-o", &big,
+        ])
+        .assert()
+        .success();
+    for kind in Kind::ALL {
+        let server = kind.serve(Scene::course(), 0);
+        let before = state(&server);
+        let report = inspect(kind, &server, &["--layout", &big], 1);
+        let differences = report["layout"]["differences"].as_array().unwrap();
+        assert_eq!(differences.len(), 1, "{kind:?}: {report}");
+        let text = differences[0].as_str().unwrap();
+        assert!(
+            text.contains("`Floor` is 10 x 10 m but the layout's floor is 35 x 35 m")
+                && text.contains("apply --resize-floor"),
+            "{kind:?}: {text}"
+        );
+        assert_eq!(
+            state(&server),
+            before,
+            "{kind:?}: inspect changed the scene"
+        );
+        server.shutdown();
+    }
+}

@@ -82,8 +82,21 @@ impl SizeCheck {
     }
 
     /// What a comparison with the layout (`verify`, `inspect --layout`) reports: every
-    /// refusal and a floor smaller than the layout's, `None` when there is neither.
+    /// refusal and a floor smaller than the layout's, `None` when there is neither. A short
+    /// floor alone is [`DrawError::Floor`], whose remedy is the floor's, not the templates'.
     pub fn differences(&self, names: &ObjectNames) -> Option<DrawError> {
+        if let (true, Some(short)) = (self.refusals.is_empty(), self.floor) {
+            let resize = if short.factors().is_none() {
+                super::floor::Resize::NoExtent
+            } else {
+                super::floor::Resize::Offered
+            };
+            return Some(DrawError::Floor {
+                floor: names.floor.clone(),
+                short,
+                resize,
+            });
+        }
         let mut lines = self.refusals.clone();
         lines.extend(self.floor.map(|f| f.describe(&names.floor)));
         (!lines.is_empty()).then_some(DrawError::Sizes(lines))
