@@ -11,6 +11,7 @@ mod pretty;
 mod read;
 mod scan;
 mod segment;
+mod sink;
 mod write;
 
 use std::io;
@@ -21,7 +22,8 @@ use serde::{Serialize, Serializer};
 use super::Layout;
 use super::geometry::round_um;
 
-pub use read::{Background, SegmentSink, read_from, read_layout_with};
+pub use read::{read_from, read_layout_with};
+pub use sink::{Background, SegmentSink};
 pub use write::{write_layout, write_layout_parts};
 
 /// Serializes an `f64` rounded to the micrometre.
