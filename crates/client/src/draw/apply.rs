@@ -148,7 +148,7 @@ fn apply_claimed(
         placements(&parts, drawing, &h, objects, &mut report);
         return Ok(report);
     }
-    let line_template = survey.handles.get(5).copied().flatten();
+    let line_template = survey.handles.other_template;
     keep_home(
         scene,
         claim.signals_kept(),

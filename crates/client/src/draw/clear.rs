@@ -156,7 +156,7 @@ fn clear_claimed(
     // serves when the scene has no line template
     let mut style = Style::Lines;
     let mut survey = scene.survey(&names.survey(style))?;
-    if survey.handles[2].is_none() && survey.handles.get(5).is_some_and(Option::is_some) {
+    if survey.handles.template.is_none() && survey.handles.other_template.is_some() {
         style = Style::Walls;
         survey = scene.survey(&names.survey(style))?;
     }

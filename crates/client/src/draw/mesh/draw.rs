@@ -238,7 +238,7 @@ fn apply_claimed(
             },
             found.meshes.iter().map(|m| m.name.as_str()),
         ),
-        survey.handles.get(5).copied().flatten(),
+        survey.handles.other_template,
         names,
         &mut report,
     )?;
