@@ -14,7 +14,7 @@ use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
-use crate::draw::plan::{is_copy_of, relative_pose, world_frame};
+use crate::draw::plan::{floor_frame, is_copy_of, relative_pose};
 use crate::draw::session::raised_to_read;
 use crate::draw::verify::verify_read_only;
 use crate::draw::{
@@ -146,7 +146,7 @@ fn inspect(
         .and_then(|(_, h)| h)
     };
     let by_handle = |h: i32| objects.iter().find(|o| o.handle == h);
-    let floor = handle(&names.floor).and_then(by_handle).map(world_frame);
+    let floor = survey.handles.floor.and_then(|f| floor_frame(objects, f));
     let roles = [
         ("floor", &names.floor),
         ("maze dummy", &names.parent),

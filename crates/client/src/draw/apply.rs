@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use super::home;
 use super::lease::Claim;
-use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
+use super::plan::{self, floor_frame, foreign_copies, maze_lines, paste_round, pose_differences};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
 use super::{
     ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
@@ -106,11 +106,7 @@ fn apply_claimed(
     report.removed_meshes = meshes.len();
     foreign.extend(meshes);
     if !drawing.template_drawn() {
-        let floor = objects
-            .iter()
-            .find(|o| o.handle == h.floor)
-            .map(world_frame)
-            .unwrap_or_default();
+        let floor = floor_frame(objects, h.floor).unwrap_or_default();
         let mut templates = vec![(names.template(style), h.line)];
         templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
         report.warnings.extend(plan::templates_on_the_maze(
@@ -201,7 +197,7 @@ fn placements(
 ) -> Placements {
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let known = |handle: i32| by_handle.get(&handle).copied();
-    let floor = known(h.floor).map(world_frame).unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let mut out = Placements {
         edits: Vec::new(),
         drawn: Vec::with_capacity(parts.len()),
@@ -330,11 +326,7 @@ impl Drawer<'_, '_> {
         parts: &[Part<'_>],
         foreign: &[i32],
     ) -> Result<(), DrawError> {
-        let floor = objects
-            .iter()
-            .find(|o| o.handle == self.h.floor)
-            .map(world_frame)
-            .unwrap_or_default();
+        let floor = floor_frame(objects, self.h.floor).unwrap_or_default();
         let (h, drawing) = (self.h, self.drawing);
         // the surplus goes first: fewer objects make every later copy cheaper
         let removals: Vec<Edit> = parts

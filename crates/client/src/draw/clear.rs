@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
+use super::plan::{self, floor_frame, foreign_copies, maze_lines, relative_pose};
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
 
@@ -71,11 +71,7 @@ fn send_home(
             format!("{verb} `{template}` back where it stood before the first apply")
         }));
     }
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let Some((position, _)) = objects
         .iter()
         .find(|o| o.handle == h.line)

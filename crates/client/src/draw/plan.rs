@@ -280,6 +280,11 @@ pub fn world_frame(o: &ObjectInfo) -> Frame {
     frame(o.position, o.orientation)
 }
 
+/// The frame of the floor (handle `floor`) among `objects`, `None` when they do not list it.
+pub fn floor_frame(objects: &[ObjectInfo], floor: i32) -> Option<Frame> {
+    objects.iter().find(|o| o.handle == floor).map(world_frame)
+}
+
 /// Pose of `object` in the frame `floor` as (position, Euler).
 pub fn relative_pose(floor: &Frame, object: &ObjectInfo) -> ([f64; 3], [f64; 3]) {
     position_euler(&(floor.inverse() * world_frame(object)))

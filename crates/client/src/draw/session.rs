@@ -10,7 +10,7 @@ use std::time::Instant;
 use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, world_frame};
+use super::plan::{self, floor_frame};
 use super::{
     ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Edit, Handles, IdleRates,
     ObjectInfo, ObjectNames, Stage, Survey, TemplateUse, resolve_handles,
@@ -191,11 +191,7 @@ pub(crate) fn keep_home(
         return Ok(());
     }
     let (record, old) = home::read(scene)?.unzip();
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     // an older version's record moves to the new names
     if let (Some(home), Some(true)) = (record, old) {
         home::write(scene, &home)?;

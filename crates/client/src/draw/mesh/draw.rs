@@ -9,7 +9,7 @@ use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
 };
 use crate::draw::lease::Claim;
-use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences};
 use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
@@ -198,10 +198,7 @@ fn apply_claimed(
     // the template lies on the first line (or under Start), the markers on their cells
     let by_handle: HashMap<i32, &ObjectInfo> =
         survey.objects.iter().map(|o| (o.handle, o)).collect();
-    let floor = by_handle
-        .get(&h.floor)
-        .map(|o| world_frame(o))
-        .unwrap_or_default();
+    let floor = floor_frame(&survey.objects, h.floor).unwrap_or_default();
     let mut edits = Vec::new();
     for (handle, want) in markers(maze, &h) {
         let in_place = by_handle
@@ -406,10 +403,7 @@ fn name_problems(maze: &MeshMaze, found: &FoundMeshes) -> Vec<String> {
 /// The template's and markers' pose differences.
 fn marker_problems(maze: &MeshMaze, h: &Handles, objects: &[ObjectInfo]) -> Vec<String> {
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
-    let floor = by_handle
-        .get(&h.floor)
-        .map(|o| world_frame(o))
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     markers(maze, h)
         .into_iter()
         .filter_map(|(handle, want)| {
@@ -487,11 +481,7 @@ fn verify_raised(
             stray.iter().take(5).cloned().collect::<Vec<_>>().join(", ")
         ));
     }
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(&objects, h.floor).unwrap_or_default();
     let template_look = port(scene)?.look(h.line)?;
     let post_look = match h
         .post
