@@ -85,7 +85,7 @@ fn apply_claimed(
         .len()
         .saturating_sub(usize::from(drawing.template_drawn()));
     let mut parts = vec![Part {
-        template: h.line,
+        template: h.template,
         template_drawn: drawing.template_drawn(),
         poses: &drawing.lines,
         plan: plan::plan(&existing, copies_needed),
@@ -107,7 +107,7 @@ fn apply_claimed(
     foreign.extend(meshes);
     if !drawing.template_drawn() {
         let floor = floor_frame(objects, h.floor).unwrap_or_default();
-        let mut templates = vec![(names.template(style), h.line)];
+        let mut templates = vec![(names.template(style), h.template)];
         templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
         report.warnings.extend(plan::templates_on_the_maze(
             drawing, objects, &floor, &templates,

@@ -56,7 +56,7 @@ fn send_home(
     let template = &names.line;
     let record = if kept { home::read(scene)? } else { None };
     let record = record.map(|(home, _)| home);
-    if let Some(home) = record.filter(|r| r.handle == h.line) {
+    if let Some(home) = record.filter(|r| r.handle == h.template) {
         if !dry_run {
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;
@@ -74,7 +74,7 @@ fn send_home(
     let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let Some((position, _)) = objects
         .iter()
-        .find(|o| o.handle == h.line)
+        .find(|o| o.handle == h.template)
         .map(|o| relative_pose(&floor, o))
     else {
         return Ok(None);
@@ -82,7 +82,7 @@ fn send_home(
     if !drawn || position[2] < 0.0 {
         return Ok(None);
     }
-    let template_info = objects.iter().find(|o| o.handle == h.line);
+    let template_info = objects.iter().find(|o| o.handle == h.template);
     if let Some(t) = template_info
         && !on_an_earlier_maze(scene, h, objects, t, template, &floor, EarlierLines::Copies)?
     {
@@ -92,7 +92,7 @@ fn send_home(
     let hidden = home::Home::hidden(position[0], position[1]);
     if !dry_run {
         scene.edit(&[Edit::SetPose {
-            handle: h.line,
+            handle: h.template,
             relative_to: h.floor,
             position: crate::draw::position(&hidden),
             orientation: crate::draw::euler(&hidden),

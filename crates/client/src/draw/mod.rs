@@ -295,8 +295,9 @@ pub struct Handles {
     pub floor: i32,
     /// The dummy every maze line is a child of.
     pub parent: i32,
-    /// The template copied: `Line` (also the first line of the maze) or, for walls, `Wall`.
-    pub line: i32,
+    /// The style's template, the one copied: `Line` (also the first line of the maze) or,
+    /// for walls, `Wall`.
+    pub template: i32,
     /// The start marker.
     pub start: i32,
     /// The end marker.
@@ -306,9 +307,10 @@ pub struct Handles {
 }
 
 impl Handles {
-    /// The templates that are never removed.
-    pub fn templates(&self) -> [i32; 3] {
-        [self.line, self.start, self.end]
+    /// The objects a drawing moves but never removes: the style's template and the start
+    /// and end markers.
+    pub fn never_removed(&self) -> [i32; 3] {
+        [self.template, self.start, self.end]
     }
 }
 
@@ -765,7 +767,7 @@ pub fn resolve_handles(
     Ok(Handles {
         floor: h.floor,
         parent: h.parent,
-        line: h.template,
+        template: h.template,
         start: h.start,
         end: h.end,
         post: found.post,

@@ -208,10 +208,10 @@ pub(crate) fn keep_home(
             record,
         );
     }
-    if record.is_some_and(|r| r.handle == h.line) {
+    if record.is_some_and(|r| r.handle == h.template) {
         return Ok(());
     }
-    let Some(template) = objects.iter().find(|o| o.handle == h.line) else {
+    let Some(template) = objects.iter().find(|o| o.handle == h.template) else {
         return Ok(());
     };
     let (position, orientation) = plan::relative_pose(&floor, template);
@@ -224,13 +224,13 @@ pub(crate) fn keep_home(
         }
         let hidden = home::Home::hidden(position[0], position[1]);
         home::Home {
-            handle: h.line,
+            handle: h.template,
             position: crate::draw::position(&hidden),
             orientation: crate::draw::euler(&hidden),
         }
     } else {
         home::Home {
-            handle: h.line,
+            handle: h.template,
             position,
             orientation,
         }
@@ -415,7 +415,7 @@ pub(crate) fn sizes_of(
     h: &Handles,
 ) -> Result<fit::SizeCheck, DrawError> {
     let post = h.post.filter(|_| drawing.posts);
-    let mut asked = vec![h.line, h.start, h.end, h.floor];
+    let mut asked = vec![h.template, h.start, h.end, h.floor];
     asked.extend(post);
     let sizes = scene.sizes(&asked)?;
     let get = |k: usize| sizes.get(k).copied().flatten();

@@ -231,7 +231,7 @@ fn verify_raised(
     let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let mut pool: Vec<i32> = if drawing.template_drawn() {
-        vec![h.line]
+        vec![h.template]
     } else {
         vec![]
     };
@@ -340,7 +340,8 @@ impl Matching<'_> {
                 Some(k) => {
                     used[k] = true;
                     let c = pool[k];
-                    if c != self.h.line && get(c).and_then(|o| o.parent) != Some(self.h.parent) {
+                    if c != self.h.template && get(c).and_then(|o| o.parent) != Some(self.h.parent)
+                    {
                         problems.push(format!(
                             "{} {i} `{}` is not a child of `{}`",
                             self.noun,
@@ -357,7 +358,7 @@ impl Matching<'_> {
         }
         pool.iter()
             .zip(&used)
-            .filter(|&(&c, &u)| !u && c != self.h.line)
+            .filter(|&(&c, &u)| !u && c != self.h.template)
             .map(|(&c, _)| c)
             .collect()
     }

@@ -99,8 +99,8 @@ pub fn leftovers(
     objects: &[ObjectInfo],
 ) -> Result<Leftovers, DrawError> {
     let found = found(scene, names, h.parent, objects)?;
-    let templates = h.templates();
-    let ours = |x: &i32| !templates.contains(x) && Some(*x) != h.post && *x != h.floor;
+    let never_removed = h.never_removed();
+    let ours = |x: &i32| !never_removed.contains(x) && Some(*x) != h.post && *x != h.floor;
     Ok(Leftovers {
         ours: found.ours().into_iter().filter(|(x, _)| ours(x)).collect(),
         holder: found.holder,
@@ -255,7 +255,7 @@ fn apply_claimed(
         scene.edit(&removals)?;
         report.edits += removals.len();
     }
-    let template_look = port(scene)?.look(h.line)?;
+    let template_look = port(scene)?.look(h.template)?;
     let post_look = match h.post.filter(|_| report.posts > 0) {
         Some(p) => port(scene)?.look(p)?,
         None => template_look,
@@ -364,7 +364,7 @@ fn markers(maze: &MeshMaze, h: &Handles) -> Vec<(i32, Pose)> {
             z: (maze.start.z - 0.001).max(0.0),
             ..maze.start
         };
-        out.push((h.line, maze.template.unwrap_or(hidden)));
+        out.push((h.template, maze.template.unwrap_or(hidden)));
     }
     out.push((h.start, maze.start));
     out.push((h.end, maze.end));
@@ -482,7 +482,7 @@ fn verify_raised(
         ));
     }
     let floor = floor_frame(&objects, h.floor).unwrap_or_default();
-    let template_look = port(scene)?.look(h.line)?;
+    let template_look = port(scene)?.look(h.template)?;
     let post_look = match h
         .post
         .filter(|_| maze.meshes.iter().any(|m| m.kind == MeshKind::Posts))
