@@ -14,7 +14,7 @@ use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
 };
-use crate::draw::{ApplyOptions, ApplyReport, Stage};
+use crate::draw::{ApplyOptions, ApplyReport, DrawMode, Stage};
 use crate::draw::{
     Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
 };
@@ -151,6 +151,7 @@ fn apply_claimed(
 ) -> Result<ApplyReport, DrawError> {
     let (style, names) = (maze.style, &opts.names);
     let counts = ApplyReport {
+        mode: DrawMode::Mesh,
         style,
         lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
         posts: pieces_of(maze, &[MeshKind::Posts]),
