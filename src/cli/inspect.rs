@@ -14,10 +14,12 @@ use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
-use crate::draw::plan::{is_copy_of, relative_pose, world_frame};
+use crate::draw::plan::{floor_frame, is_copy_of, relative_pose};
 use crate::draw::session::raised_to_read;
 use crate::draw::verify::verify_read_only;
-use crate::draw::{Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey};
+use crate::draw::{
+    Backend, BoundingBox, DrawError, Drawing, ObjectInfo, ObjectNames, Survey, SurveyHandles,
+};
 use crate::layout::Style;
 
 /// Show what the scene holds (API, version, simulation state, idle rate, the templates and
@@ -128,21 +130,23 @@ fn inspect(
     go_on()?;
     let objects = &survey.objects;
     let handle = |name: &str| {
-        let names = [
-            &names.floor,
-            &names.parent,
-            &names.line,
-            &names.start,
-            &names.end,
-            &names.wall,
-            &names.post,
-        ];
-        // the order of `ObjectNames::survey(Style::Lines)`
-        let index = names.iter().position(|n| *n == name)?;
-        survey.handles.get(index).copied().flatten()
+        // `survey`'s handles are by the roles of `ObjectNames::survey(Style::Lines)`
+        let h = survey.handles;
+        [
+            (&names.floor, h.floor),
+            (&names.parent, h.parent),
+            (&names.line, h.template),
+            (&names.start, h.start),
+            (&names.end, h.end),
+            (&names.wall, h.other_template),
+            (&names.post, h.post),
+        ]
+        .into_iter()
+        .find(|(n, _)| *n == name)
+        .and_then(|(_, h)| h)
     };
     let by_handle = |h: i32| objects.iter().find(|o| o.handle == h);
-    let floor = handle(&names.floor).and_then(by_handle).map(world_frame);
+    let floor = survey.handles.floor.and_then(|f| floor_frame(objects, f));
     let roles = [
         ("floor", &names.floor),
         ("maze dummy", &names.parent),
@@ -325,14 +329,18 @@ fn compare(
 /// through the wall template, since a backend lists objects only when the first five exist.
 fn survey(scene: &mut dyn Backend, names: &ObjectNames) -> Result<(Survey, Style), DrawError> {
     let lines = scene.survey(&names.survey(Style::Lines))?;
-    if lines.handles[2].is_some() || lines.handles[5].is_none() {
+    if lines.handles.template.is_some() || lines.handles.other_template.is_none() {
         return Ok((lines, Style::Lines));
     }
-    // floor, parent, wall, start, end, line, post: back into the lines order
+    // the wall template is the walls' template: back into the lines' roles
     let walls = scene.survey(&names.survey(Style::Walls))?;
-    let h = &walls.handles;
+    let h = walls.handles;
     let survey = Survey {
-        handles: vec![h[0], h[1], h[5], h[3], h[4], h[2], h[6]],
+        handles: SurveyHandles {
+            template: h.other_template,
+            other_template: h.template,
+            ..h
+        },
         ..walls
     };
     Ok((survey, Style::Walls))

@@ -1,7 +1,7 @@
 //! The line `apply` ends with, in the command line's words (the Python package's
 //! `str(report)` is the same line).
 
-use crate::draw::ApplyReport;
+use crate::draw::{ApplyReport, DrawMode};
 
 /// What `apply` did, in one line: the counts of [`ApplyReport`] and the cost.
 pub fn apply_line(report: &ApplyReport) -> String {
@@ -16,7 +16,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
         report.elapsed.as_secs_f64()
     );
     if report.dry_run && report.nothing_to_do() {
-        let what = if report.meshes > 0 {
+        let what = if report.mode == DrawMode::Mesh {
             format!("{} mesh(es)", report.meshes)
         } else {
             format!("{} {}{posts}", report.lines, report.style.name())
@@ -37,7 +37,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
         "{what}: {} already in place, {} placed",
         report.markers_unchanged, report.markers_placed
     );
-    if report.meshes > 0 {
+    if report.mode == DrawMode::Mesh {
         return format!(
             "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created; {markers}; {} earlier object(s) removed; {cost}",
             report.lines,

@@ -4,7 +4,8 @@
 
 use vrep_maze::draw::signals::COPIES;
 use vrep_maze::draw::{
-    self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Survey,
+    self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Style,
+    Survey, SurveyNames,
 };
 use vrep_maze::sim::Scene;
 
@@ -33,8 +34,13 @@ backend_tests!(
 fn bounding_boxes_are_read_as_the_simulator_gives_them(kind: Kind) {
     let s = kind.serve(Scene::course_walls(), 0);
     let mut b = s.connect();
-    let survey = b.survey(&["Line", "Start", "Maze", "Wall"]).unwrap();
-    let mut handles: Vec<i32> = survey.handles.iter().map(|h| h.unwrap()).collect();
+    let survey = b
+        .survey(&ObjectNames::default().survey(Style::Lines))
+        .unwrap();
+    let h = survey.handles;
+    let mut handles: Vec<i32> = [h.template, h.start, h.parent, h.other_template]
+        .map(Option::unwrap)
+        .to_vec();
     handles.push(987_654);
     let boxes = b.bounding_boxes(&handles).unwrap();
     let sizes: Vec<Option<[f64; 3]>> = boxes.iter().map(|b| b.map(|b| b.size())).collect();
@@ -219,7 +225,7 @@ impl Backend for FailingEdits {
     fn idle_rates(&mut self) -> Result<draw::IdleRates, BackendError> {
         self.0.idle_rates()
     }
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
         self.0.survey(names)
     }
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {

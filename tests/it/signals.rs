@@ -6,7 +6,7 @@
 use vrep_maze::draw::signals::{COPIES, HOME, LEASE, SAVED_IDLE_FPS, Signal};
 use vrep_maze::draw::{
     self, ApplyOptions, ApplyReport, Backend, BackendError, BoundingBox, Claimed, ClearOptions,
-    ClearReport, Drawing, Edit, IdleRates, Lease, ObjectInfo, ObjectNames, Survey,
+    ClearReport, Drawing, Edit, IdleRates, Lease, ObjectInfo, ObjectNames, Survey, SurveyNames,
 };
 use vrep_maze::sim::Scene;
 use vrep_maze::sim::property::is_property_name;
@@ -179,7 +179,7 @@ impl Backend for Forgetful {
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
         self.0.idle_rates()
     }
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
         self.0.survey(names)
     }
     fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {

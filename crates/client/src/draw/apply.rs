@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use super::home;
 use super::lease::Claim;
-use super::plan::{self, foreign_copies, maze_lines, paste_round, pose_differences, world_frame};
+use super::plan::{self, floor_frame, foreign_copies, maze_lines, paste_round, pose_differences};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
 use super::{
     ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
@@ -85,7 +85,7 @@ fn apply_claimed(
         .len()
         .saturating_sub(usize::from(drawing.template_drawn()));
     let mut parts = vec![Part {
-        template: h.line,
+        template: h.template,
         template_drawn: drawing.template_drawn(),
         poses: &drawing.lines,
         plan: plan::plan(&existing, copies_needed),
@@ -106,12 +106,8 @@ fn apply_claimed(
     report.removed_meshes = meshes.len();
     foreign.extend(meshes);
     if !drawing.template_drawn() {
-        let floor = objects
-            .iter()
-            .find(|o| o.handle == h.floor)
-            .map(world_frame)
-            .unwrap_or_default();
-        let mut templates = vec![(names.template(style), h.line)];
+        let floor = floor_frame(objects, h.floor).unwrap_or_default();
+        let mut templates = vec![(names.template(style), h.template)];
         templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
         report.warnings.extend(plan::templates_on_the_maze(
             drawing, objects, &floor, &templates,
@@ -148,7 +144,7 @@ fn apply_claimed(
         placements(&parts, drawing, &h, objects, &mut report);
         return Ok(report);
     }
-    let line_template = survey.handles.get(5).copied().flatten();
+    let line_template = survey.handles.other_template;
     keep_home(
         scene,
         claim.signals_kept(),
@@ -201,7 +197,7 @@ fn placements(
 ) -> Placements {
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let known = |handle: i32| by_handle.get(&handle).copied();
-    let floor = known(h.floor).map(world_frame).unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let mut out = Placements {
         edits: Vec::new(),
         drawn: Vec::with_capacity(parts.len()),
@@ -330,11 +326,7 @@ impl Drawer<'_, '_> {
         parts: &[Part<'_>],
         foreign: &[i32],
     ) -> Result<(), DrawError> {
-        let floor = objects
-            .iter()
-            .find(|o| o.handle == self.h.floor)
-            .map(world_frame)
-            .unwrap_or_default();
+        let floor = floor_frame(objects, self.h.floor).unwrap_or_default();
         let (h, drawing) = (self.h, self.drawing);
         // the surplus goes first: fewer objects make every later copy cheaper
         let removals: Vec<Edit> = parts

@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, foreign_copies, maze_lines, relative_pose, world_frame};
+use super::plan::{self, floor_frame, foreign_copies, maze_lines, relative_pose};
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
 
@@ -56,7 +56,7 @@ fn send_home(
     let template = &names.line;
     let record = if kept { home::read(scene)? } else { None };
     let record = record.map(|(home, _)| home);
-    if let Some(home) = record.filter(|r| r.handle == h.line) {
+    if let Some(home) = record.filter(|r| r.handle == h.template) {
         if !dry_run {
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;
@@ -71,14 +71,10 @@ fn send_home(
             format!("{verb} `{template}` back where it stood before the first apply")
         }));
     }
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let Some((position, _)) = objects
         .iter()
-        .find(|o| o.handle == h.line)
+        .find(|o| o.handle == h.template)
         .map(|o| relative_pose(&floor, o))
     else {
         return Ok(None);
@@ -86,7 +82,7 @@ fn send_home(
     if !drawn || position[2] < 0.0 {
         return Ok(None);
     }
-    let template_info = objects.iter().find(|o| o.handle == h.line);
+    let template_info = objects.iter().find(|o| o.handle == h.template);
     if let Some(t) = template_info
         && !on_an_earlier_maze(scene, h, objects, t, template, &floor, EarlierLines::Copies)?
     {
@@ -96,7 +92,7 @@ fn send_home(
     let hidden = home::Home::hidden(position[0], position[1]);
     if !dry_run {
         scene.edit(&[Edit::SetPose {
-            handle: h.line,
+            handle: h.template,
             relative_to: h.floor,
             position: crate::draw::position(&hidden),
             orientation: crate::draw::euler(&hidden),
@@ -156,7 +152,7 @@ fn clear_claimed(
     // serves when the scene has no line template
     let mut style = Style::Lines;
     let mut survey = scene.survey(&names.survey(style))?;
-    if survey.handles[2].is_none() && survey.handles.get(5).is_some_and(Option::is_some) {
+    if survey.handles.template.is_none() && survey.handles.other_template.is_some() {
         style = Style::Walls;
         survey = scene.survey(&names.survey(style))?;
     }

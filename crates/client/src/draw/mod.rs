@@ -23,6 +23,7 @@ pub mod report;
 pub mod run;
 pub mod session;
 pub mod signals;
+pub mod survey;
 pub mod verify;
 
 pub use apply::apply;
@@ -31,6 +32,7 @@ pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
 pub use report::{ApplyReport, Stage};
 pub use run::{DrawMode, Job, Picture, Report, RunError, run};
+pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
 
@@ -170,12 +172,24 @@ impl ObjectNames {
         others
     }
 
-    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`],
-    /// then [`ObjectNames::others`] (optional; the post template at [`POST_IN_SURVEY`]).
-    pub fn survey(&self, style: Style) -> Vec<&str> {
-        let mut names = self.for_style(style).to_vec();
-        names.extend(self.others(style));
-        names
+    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`]
+    /// by role, then [`ObjectNames::others`] (the other style's template and the post
+    /// template, optional).
+    pub fn survey(&self, style: Style) -> SurveyNames<'_> {
+        let [floor, parent, template, start, end] = self.for_style(style);
+        let [other_template, post] = match style {
+            Style::Lines => [&self.wall, &self.post],
+            Style::Walls => [&self.line, &self.post],
+        };
+        SurveyRoles {
+            floor,
+            parent,
+            template,
+            start,
+            end,
+            other_template,
+            post,
+        }
     }
 
     /// Every role with the option that names its object and that name: floor, parent,
@@ -192,12 +206,21 @@ impl ObjectNames {
         ]
     }
 
-    /// The roles of [`ObjectNames::survey`]'s names, in its order.
-    fn survey_roles(&self, style: Style) -> [&'static str; 7] {
+    /// The roles of [`ObjectNames::survey`]'s names.
+    fn survey_roles(&self, style: Style) -> SurveyRoles<&'static str> {
         let [floor, parent, line, wall, post, start, end] = self.roles().map(|(r, _)| r);
-        match style {
-            Style::Lines => [floor, parent, line, start, end, wall, post],
-            Style::Walls => [floor, parent, wall, start, end, line, post],
+        let (template, other_template) = match style {
+            Style::Lines => (line, wall),
+            Style::Walls => (wall, line),
+        };
+        SurveyRoles {
+            floor,
+            parent,
+            template,
+            start,
+            end,
+            other_template,
+            post,
         }
     }
 
@@ -289,10 +312,6 @@ impl ObjectNames {
     }
 }
 
-/// Where [`ObjectNames::survey`] puts the post template: after floor, parent, template,
-/// start, end and the other style's template.
-pub const POST_IN_SURVEY: usize = 6;
-
 /// "left alone: N object(s) of yours under `Maze` that are no copies of a template: a, b,
 /// ..." naming at most the first few, for the reports of `apply` and `clear` (`None` when
 /// there are none).
@@ -321,8 +340,9 @@ pub struct Handles {
     pub floor: i32,
     /// The dummy every maze line is a child of.
     pub parent: i32,
-    /// The template copied: `Line` (also the first line of the maze) or, for walls, `Wall`.
-    pub line: i32,
+    /// The style's template, the one copied: `Line` (also the first line of the maze) or,
+    /// for walls, `Wall`.
+    pub template: i32,
     /// The start marker.
     pub start: i32,
     /// The end marker.
@@ -332,9 +352,10 @@ pub struct Handles {
 }
 
 impl Handles {
-    /// The templates that are never removed.
-    pub fn templates(&self) -> [i32; 3] {
-        [self.line, self.start, self.end]
+    /// The objects a drawing moves but never removes: the style's template and the start
+    /// and end markers.
+    pub fn never_removed(&self) -> [i32; 3] {
+        [self.template, self.start, self.end]
     }
 }
 
@@ -374,8 +395,8 @@ impl BoundingBox {
 /// Everything [`apply()`] needs to know first, in one round trip.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Survey {
-    /// Handle of each requested name (same order), `None` if missing.
-    pub handles: Vec<Option<i32>>,
+    /// Handle of each name asked for, by role, `None` if missing.
+    pub handles: SurveyHandles,
     /// The scene objects drawing needs: the named ones, the children of the maze dummy and
     /// parentless copies of the line template (a backend may list more). A pose a backend
     /// did not read is NaN: never in place, so it is set.
@@ -448,11 +469,11 @@ pub trait Backend {
     /// Reads the idle rate and the record of the user's rate ([`IdleRates`]).
     fn idle_rates(&mut self) -> Result<IdleRates, BackendError>;
     /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
-    /// simulation state. `names` are [`ObjectNames::for_style`] (floor, parent, template,
-    /// start, end), then optional other templates ([`ObjectNames::others`]): objects are
-    /// listed only when the first five exist, and the maze's copies of the other templates
-    /// are named after them (so [`plan::foreign_copies`] can tell them apart).
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError>;
+    /// simulation state. `names` are [`ObjectNames::survey`]'s: objects are listed only
+    /// when the needed ones exist ([`SurveyHandles::needed_found`]), and the maze's copies
+    /// of the other templates are named after them (so [`plan::foreign_copies`] can tell
+    /// them apart).
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError>;
     /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
     /// backend may give a pose it set itself, acknowledged by the simulator, without reading
     /// it back (ZeroMQ, where each read is a call).
@@ -723,27 +744,28 @@ pub fn resolve_handles(
     sizes: Option<&Sizes>,
 ) -> Result<Handles, DrawError> {
     names.check_roles()?;
-    let roles = names.survey_roles(style);
-    let asked = names.survey(style);
-    for (i, h) in survey.handles.iter().enumerate() {
+    let found = survey.handles;
+    let roles = names.survey_roles(style).into_array();
+    let asked = names.survey(style).into_array();
+    let handles = found.into_array();
+    for (i, h) in handles.iter().enumerate() {
         let Some(h) = h else { continue };
-        if let Some(j) = survey.handles[i + 1..]
+        if let Some(j) = handles[i + 1..]
             .iter()
             .position(|other| *other == Some(*h))
             .map(|k| i + 1 + k)
-            && let (Some(first), Some(second)) = (roles.get(i), roles.get(j))
         {
             return Err(DrawError::SameObject {
                 names: format!("`{}` and `{}`", asked[i], asked[j]),
-                first,
-                second,
+                first: roles[i],
+                second: roles[j],
             });
         }
     }
     // a name that found one of our copies: never a template or a marker
     let recorded = asked
         .iter()
-        .zip(&survey.handles)
+        .zip(&handles)
         .zip(roles)
         .skip(2)
         .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
@@ -755,15 +777,15 @@ pub fn resolve_handles(
             what: if marker { "a marker" } else { "the template" },
         });
     }
-    let post = survey.handles.get(POST_IN_SURVEY).copied().flatten();
+    let (needed, _) = found.needed_and_optional();
     let mut missing: Vec<String> = names
         .for_style(style)
         .iter()
-        .zip(&survey.handles)
+        .zip(needed)
         .filter(|(_, h)| h.is_none())
         .map(|(n, _)| n.to_string())
         .collect();
-    if posts && post.is_none() {
+    if posts && found.post.is_none() {
         missing.push(names.post.clone());
     }
     if !missing.is_empty() {
@@ -776,14 +798,14 @@ pub fn resolve_handles(
             hints,
         });
     }
-    let h: Vec<i32> = survey.handles.iter().map(|h| h.unwrap_or(-1)).collect();
+    let h = found.map(|h| h.unwrap_or(-1));
     Ok(Handles {
-        floor: h[0],
-        parent: h[1],
-        line: h[2],
-        start: h[3],
-        end: h[4],
-        post,
+        floor: h.floor,
+        parent: h.parent,
+        template: h.template,
+        start: h.start,
+        end: h.end,
+        post: found.post,
     })
 }
 

@@ -158,7 +158,7 @@ pub fn sort_out(
     templates: &[&str],
     traits: &Traits,
 ) -> Sorted {
-    let named = [h.floor, h.parent, h.line, h.start, h.end];
+    let named = [h.floor, h.parent, h.template, h.start, h.end];
     let handle_of = |name: &str| objects.iter().find(|o| o.name == name).map(|o| o.handle);
     let families: Vec<(&str, Option<i32>)> = templates.iter().map(|t| (*t, handle_of(t))).collect();
     let mut sorted = Sorted {
@@ -200,9 +200,9 @@ pub fn maze_lines(
     template_name: &str,
     foreign: &[&str],
 ) -> Vec<i32> {
-    let templates = h.templates();
+    let never_removed = h.never_removed();
     let eligible = |o: &&ObjectInfo| {
-        !templates.contains(&o.handle)
+        !never_removed.contains(&o.handle)
             && o.handle != h.parent
             && o.handle != h.floor
             && !is_foreign(o, foreign)
@@ -278,6 +278,11 @@ pub fn paste_round(available: &[i32], missing: usize, max_blocks: usize) -> Vec<
 /// Frame of an object from its world position and Euler angles.
 pub fn world_frame(o: &ObjectInfo) -> Frame {
     frame(o.position, o.orientation)
+}
+
+/// The frame of the floor (handle `floor`) among `objects`, `None` when they do not list it.
+pub fn floor_frame(objects: &[ObjectInfo], floor: i32) -> Option<Frame> {
+    objects.iter().find(|o| o.handle == floor).map(world_frame)
 }
 
 /// Pose of `object` in the frame `floor` as (position, Euler).
@@ -441,7 +446,7 @@ mod tests {
         Handles {
             floor: 1,
             parent: 2,
-            line: 3,
+            template: 3,
             start: 4,
             end: 5,
             post: None,
@@ -491,7 +496,7 @@ mod tests {
             obj(13, "/Post[2]", None),
             obj(14, "Wall2", Some(2)),
         ]);
-        let walls = Handles { line: 6, ..h };
+        let walls = Handles { template: 6, ..h };
         assert_eq!(
             maze_lines(&objects, &walls, "Wall", &["Line", "Post"]),
             vec![7, 14, 9]
@@ -539,7 +544,7 @@ mod tests {
         let h = Handles {
             floor: 1,
             parent: 2,
-            line: 3,
+            template: 3,
             start: 4,
             end: 5,
             post: None,

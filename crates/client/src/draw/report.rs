@@ -3,6 +3,8 @@
 
 use std::time::Duration;
 
+use super::DrawMode;
+
 /// Progress of [`super::apply()`], for a progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stage {
@@ -35,6 +37,8 @@ pub enum Stage {
 /// plus the template itself in a line maze with lines; the markers are counted apart.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ApplyReport {
+    /// Copies or meshes: how the maze was drawn (what `meshes`, `reused` and `pasted` count).
+    pub mode: DrawMode,
     /// Lines or walls: what `lines` counts.
     pub style: super::Style,
     /// Lines drawn (template included), or walls.
@@ -45,9 +49,10 @@ pub struct ApplyReport {
     /// count rectangles and boxes, `reused` meshes kept, `pasted` meshes created); 0 in
     /// copies mode.
     pub meshes: usize,
-    /// Earlier copies reused (kept), the template not counted.
+    /// Earlier copies reused (kept), the template not counted; [`DrawMode::Mesh`]: meshes
+    /// kept.
     pub reused: usize,
-    /// Copies pasted.
+    /// Copies pasted; [`DrawMode::Mesh`]: meshes created.
     pub pasted: usize,
     /// Earlier copies removed (the surplus, another style's copies); mesh mode: the
     /// earlier meshes and copies removed.

@@ -10,7 +10,7 @@ use std::time::Instant;
 use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, world_frame};
+use super::plan::{self, floor_frame};
 use super::{
     ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Edit, Handles, IdleRates,
     ObjectInfo, ObjectNames, Stage, Survey, TemplateUse, resolve_handles,
@@ -192,11 +192,7 @@ pub(crate) fn keep_home(
         return Ok(());
     }
     let (record, old) = home::read(scene)?.unzip();
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     // an older version's record moves to the new names
     if let (Some(home), Some(true)) = (record, old) {
         home::write(scene, &home)?;
@@ -213,10 +209,10 @@ pub(crate) fn keep_home(
             record,
         );
     }
-    if record.is_some_and(|r| r.handle == h.line) {
+    if record.is_some_and(|r| r.handle == h.template) {
         return Ok(());
     }
-    let Some(template) = objects.iter().find(|o| o.handle == h.line) else {
+    let Some(template) = objects.iter().find(|o| o.handle == h.template) else {
         return Ok(());
     };
     let (position, orientation) = plan::relative_pose(&floor, template);
@@ -229,13 +225,13 @@ pub(crate) fn keep_home(
         }
         let hidden = home::Home::hidden(position[0], position[1]);
         home::Home {
-            handle: h.line,
+            handle: h.template,
             position: crate::draw::position(&hidden),
             orientation: crate::draw::euler(&hidden),
         }
     } else {
         home::Home {
-            handle: h.line,
+            handle: h.template,
             position,
             orientation,
         }
@@ -420,7 +416,7 @@ pub(crate) fn sizes_of(
     h: &Handles,
 ) -> Result<fit::SizeCheck, DrawError> {
     let post = h.post.filter(|_| drawing.posts);
-    let mut asked = vec![h.line, h.start, h.end, h.floor];
+    let mut asked = vec![h.template, h.start, h.end, h.floor];
     asked.extend(post);
     let sizes = scene.sizes(&asked)?;
     let get = |k: usize| sizes.get(k).copied().flatten();

@@ -3,7 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::plan::{self, foreign_copies, maze_lines, pose_differences, relative_pose, world_frame};
+use super::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
 
@@ -19,11 +19,7 @@ pub fn check(
     drawing: &Drawing,
 ) -> Vec<String> {
     let mut problems = Vec::new();
-    let Some(floor) = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-    else {
+    let Some(floor) = floor_frame(objects, h.floor) else {
         return vec!["the floor object disappeared".into()];
     };
     problems.extend(broken_frames(objects, h, names));
@@ -233,14 +229,10 @@ fn verify_raised(
         &survey.traits,
     )
     .objects;
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
     let mut pool: Vec<i32> = if drawing.template_drawn() {
-        vec![h.line]
+        vec![h.template]
     } else {
         vec![]
     };
@@ -349,7 +341,8 @@ impl Matching<'_> {
                 Some(k) => {
                     used[k] = true;
                     let c = pool[k];
-                    if c != self.h.line && get(c).and_then(|o| o.parent) != Some(self.h.parent) {
+                    if c != self.h.template && get(c).and_then(|o| o.parent) != Some(self.h.parent)
+                    {
                         problems.push(format!(
                             "{} {i} `{}` is not a child of `{}`",
                             self.noun,
@@ -366,7 +359,7 @@ impl Matching<'_> {
         }
         pool.iter()
             .zip(&used)
-            .filter(|&(&c, &u)| !u && c != self.h.line)
+            .filter(|&(&c, &u)| !u && c != self.h.template)
             .map(|(&c, _)| c)
             .collect()
     }

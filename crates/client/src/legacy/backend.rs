@@ -10,7 +10,10 @@ use super::command::{
 use crate::draw::plan::{self, Traits, is_copy_name};
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
-use crate::draw::{Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey};
+use crate::draw::{
+    Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey, SurveyHandles,
+    SurveyNames,
+};
 use vrep_maze_core::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
@@ -139,8 +142,8 @@ impl LegacyBackend {
     /// scene's) to those copies.
     fn learn_copies(
         &mut self,
-        names: &[&str],
-        handles: &[Option<i32>],
+        names: &SurveyNames<'_>,
+        handles: &SurveyHandles,
         objects: &[ObjectInfo],
         traits: &Traits,
         mut record: CopyRecord,
@@ -151,7 +154,7 @@ impl LegacyBackend {
             self.families.insert(*h, alias.clone());
         }
         let mut copies = HashMap::new();
-        for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+        for (o, (name, alias, template)) in maze_objects(handles.parent, objects, &templates) {
             let of_type = kind_matches(traits, o.handle, *template);
             let named = is_copy_name(&o.name, name) || record.get(o.handle) == Some(alias);
             if of_type && named && !plan::contradicts_copy(traits, o.handle, Some(*template)) {
@@ -178,8 +181,8 @@ impl LegacyBackend {
     /// [`SIZED_PER_REQUEST`] objects; children come with the survey's parents.
     fn traits(
         &mut self,
-        names: &[&str],
-        handles: &[Option<i32>],
+        names: &SurveyNames<'_>,
+        handles: &SurveyHandles,
         objects: &[ObjectInfo],
         kinds: HashMap<i32, i32>,
         record: &CopyRecord,
@@ -192,6 +195,7 @@ impl LegacyBackend {
         // the record first: a named object it holds is one of our copies (refused as a
         // template or marker), a listed one of its template's type is ours
         traits.recorded = handles
+            .into_array()
             .iter()
             .flatten()
             .copied()
@@ -199,7 +203,7 @@ impl LegacyBackend {
             .collect();
         let mut doubtful = Vec::new();
         let mut sized: Vec<i32> = Vec::new();
-        for (o, (name, alias, template)) in maze_objects(handles, objects, &templates) {
+        for (o, (name, alias, template)) in maze_objects(handles.parent, objects, &templates) {
             if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias) {
                 traits.recorded.insert(o.handle);
             }
@@ -248,31 +252,28 @@ impl Drop for LegacyBackend {
 /// commands each: about 0.2 MB a request).
 const SIZED_PER_REQUEST: usize = 1000;
 
-/// The templates a survey asked for and found (`names` in [`crate::draw::ObjectNames`]
-/// survey order: floor, parent, template, start, end, then the other templates): name,
-/// alias, handle.
-fn templates_of<'n>(names: &[&'n str], handles: &[Option<i32>]) -> Vec<(&'n str, String, i32)> {
+/// The templates a survey asked for and found (the style's, the other style's, the post
+/// template): name, alias, handle.
+fn templates_of<'n>(
+    names: &SurveyNames<'n>,
+    handles: &SurveyHandles,
+) -> Vec<(&'n str, String, i32)> {
     names
-        .iter()
-        .zip(handles)
-        .enumerate()
-        .filter(|(i, _)| *i == 2 || *i >= 5)
-        .filter_map(|(_, (n, h))| {
-            let alias = plan::family(n).to_string();
-            h.map(|h| (*n, alias, h))
-        })
+        .templates()
+        .into_iter()
+        .zip(handles.templates())
+        .filter_map(|(n, h)| h.map(|h| (n, plan::family(n).to_string(), h)))
         .collect()
 }
 
-/// The objects that may be a template's copy in the maze (children of the maze dummy, the
-/// second of `handles`, and parentless objects, but not the templates; none without a maze
-/// dummy), each paired with each of `templates`: callers test the family.
+/// The objects that may be a template's copy in the maze (children of the maze dummy
+/// `parent` and parentless objects, but not the templates; none without a maze dummy), each
+/// paired with each of `templates`: callers test the family.
 fn maze_objects<'a, 't>(
-    handles: &[Option<i32>],
+    parent: Option<i32>,
     objects: &'a [ObjectInfo],
     templates: &'t [(&str, String, i32)],
 ) -> impl Iterator<Item = (&'a ObjectInfo, &'t (&'t str, String, i32))> {
-    let parent = handles.get(1).copied().flatten();
     objects
         .iter()
         .filter(move |o| {
@@ -362,8 +363,9 @@ impl Backend for LegacyBackend {
         crate::draw::estimate::legacy_lines_per_request(objects_in_scene)
     }
 
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
-        let mut cmds: Vec<Command> = names
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
+        let asked = names.into_array();
+        let mut cmds: Vec<Command> = asked
             .iter()
             .map(|n| Command::GetObjectHandle(n.to_string()))
             .collect();
@@ -372,7 +374,7 @@ impl Backend for LegacyBackend {
         cmds.push(Command::GetStringSignal(COPIES.name.into()));
         cmds.push(Command::GetStringSignal(COPIES.old.into()));
         let r = self.call(&cmds)?;
-        let k = names.len();
+        let k = asked.len();
         // an unset signal (or a simulator without string signals) is a remote error
         let text = |at: usize| {
             r.get(at)
@@ -397,16 +399,14 @@ impl Backend for LegacyBackend {
                 ));
             }
         };
-        let handles: Vec<Option<i32>> = r[..k]
-            .iter()
-            .map(|r| {
-                if r.remote_error {
-                    None
-                } else {
-                    read_i32(&r.data, 0).filter(|&h| h >= 0)
-                }
-            })
-            .collect();
+        let handle = |r: &Reply| {
+            if r.remote_error {
+                None
+            } else {
+                read_i32(&r.data, 0).filter(|&h| h >= 0)
+            }
+        };
+        let handles = SurveyHandles::from_array(std::array::from_fn(|i| handle(&r[i])));
         let objects = parse_objects(&r[k..k + 3])?;
         // the simulation state of the survey's own reply (a second request may follow)
         let simulation_running = self.client()?.simulation_running().unwrap_or(false);

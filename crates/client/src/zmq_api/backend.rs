@@ -21,7 +21,7 @@ use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, LEASE, SAVED_IDLE_FPS};
 use crate::draw::{
     Authoring, Backend, BackendError, BoundingBox, Claimed, Edit, IdleRates, Lease, ObjectInfo,
-    ObjectNames, Sizes, Survey,
+    ObjectNames, Sizes, Survey, SurveyHandles, SurveyNames,
 };
 use vrep_maze_core::coppelia::frame::{
     Frame, euler_from_rotation, frame, position_euler, rotation_from_euler,
@@ -897,33 +897,35 @@ const FIRST_RATES_FRESH: Duration = Duration::from_secs(1);
 const ZMQ_PASTE_ROUND: usize = 1000;
 
 impl Backend for ZmqBackend {
-    fn survey(&mut self, names: &[&str]) -> Result<Survey, BackendError> {
-        let handles = self.handles_of(names)?;
-        // ObjectNames order: floor, parent, template, start, end, then the other templates
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
+        let asked = names.into_array();
+        let found: [Option<i32>; 7] = self
+            .handles_of(&asked)?
+            .try_into()
+            .map_err(|_| BackendError::Transport("a handle missing from the survey".into()))?;
+        let handles = SurveyHandles::from_array(found);
+        let (_, optional_names) = names.needed_and_optional();
+        let (_, optional_handles) = handles.needed_and_optional();
         self.known = Known {
-            foreign_aliases: names
+            foreign_aliases: optional_names
                 .iter()
-                .zip(&handles)
-                .skip(5)
+                .zip(optional_handles)
                 .filter(|(_, h)| h.is_some())
                 .map(|(n, _)| alias_of(n).to_string())
                 .collect(),
-            named: names
+            named: asked
                 .iter()
-                .zip(&handles)
+                .zip(found)
                 .filter_map(|(n, h)| h.map(|h| (n.to_string(), h)))
                 .collect(),
-            parent: handles.get(1).copied().flatten(),
-            line_alias: names
-                .get(2)
-                .map(|n| alias_of(n).to_string())
-                .unwrap_or_default(),
+            parent: handles.parent,
+            line_alias: alias_of(names.template).to_string(),
         };
         let state = self.client.call_int("sim.getSimulationState", vec![])?;
         self.extents.clear();
         self.children.clear();
         self.deep = None;
-        let (objects, traits) = if handles.iter().take(5).all(Option::is_some) {
+        let (objects, traits) = if handles.needed_found() {
             self.collect(LinePoses::Known)?
         } else {
             Default::default()

@@ -9,12 +9,12 @@ use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
 };
 use crate::draw::lease::Claim;
-use crate::draw::plan::{self, foreign_copies, maze_lines, pose_differences, world_frame};
+use crate::draw::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences};
 use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
 };
-use crate::draw::{ApplyOptions, ApplyReport, Stage};
+use crate::draw::{ApplyOptions, ApplyReport, DrawMode, Stage};
 use crate::draw::{
     Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
 };
@@ -99,8 +99,8 @@ pub fn leftovers(
     objects: &[ObjectInfo],
 ) -> Result<Leftovers, DrawError> {
     let found = found(scene, names, h.parent, objects)?;
-    let templates = h.templates();
-    let ours = |x: &i32| !templates.contains(x) && Some(*x) != h.post && *x != h.floor;
+    let never_removed = h.never_removed();
+    let ours = |x: &i32| !never_removed.contains(x) && Some(*x) != h.post && *x != h.floor;
     Ok(Leftovers {
         ours: found.ours().into_iter().filter(|(x, _)| ours(x)).collect(),
         holder: found.holder,
@@ -151,6 +151,7 @@ fn apply_claimed(
 ) -> Result<ApplyReport, DrawError> {
     let (style, names) = (maze.style, &opts.names);
     let counts = ApplyReport {
+        mode: DrawMode::Mesh,
         style,
         lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
         posts: pieces_of(maze, &[MeshKind::Posts]),
@@ -198,10 +199,7 @@ fn apply_claimed(
     // the template lies on the first line (or under Start), the markers on their cells
     let by_handle: HashMap<i32, &ObjectInfo> =
         survey.objects.iter().map(|o| (o.handle, o)).collect();
-    let floor = by_handle
-        .get(&h.floor)
-        .map(|o| world_frame(o))
-        .unwrap_or_default();
+    let floor = floor_frame(&survey.objects, h.floor).unwrap_or_default();
     let mut edits = Vec::new();
     for (handle, want) in markers(maze, &h) {
         let in_place = by_handle
@@ -238,7 +236,7 @@ fn apply_claimed(
             },
             found.meshes.iter().map(|m| m.name.as_str()),
         ),
-        survey.handles.get(5).copied().flatten(),
+        survey.handles.other_template,
         names,
         &mut report,
     )?;
@@ -258,7 +256,7 @@ fn apply_claimed(
         scene.edit(&removals)?;
         report.edits += removals.len();
     }
-    let template_look = port(scene)?.look(h.line)?;
+    let template_look = port(scene)?.look(h.template)?;
     let post_look = match h.post.filter(|_| report.posts > 0) {
         Some(p) => port(scene)?.look(p)?,
         None => template_look,
@@ -367,7 +365,7 @@ fn markers(maze: &MeshMaze, h: &Handles) -> Vec<(i32, Pose)> {
             z: (maze.start.z - 0.001).max(0.0),
             ..maze.start
         };
-        out.push((h.line, maze.template.unwrap_or(hidden)));
+        out.push((h.template, maze.template.unwrap_or(hidden)));
     }
     out.push((h.start, maze.start));
     out.push((h.end, maze.end));
@@ -406,10 +404,7 @@ fn name_problems(maze: &MeshMaze, found: &FoundMeshes) -> Vec<String> {
 /// The template's and markers' pose differences.
 fn marker_problems(maze: &MeshMaze, h: &Handles, objects: &[ObjectInfo]) -> Vec<String> {
     let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
-    let floor = by_handle
-        .get(&h.floor)
-        .map(|o| world_frame(o))
-        .unwrap_or_default();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
     markers(maze, h)
         .into_iter()
         .filter_map(|(handle, want)| {
@@ -488,12 +483,8 @@ fn verify_raised(
             stray.iter().take(5).cloned().collect::<Vec<_>>().join(", ")
         ));
     }
-    let floor = objects
-        .iter()
-        .find(|o| o.handle == h.floor)
-        .map(world_frame)
-        .unwrap_or_default();
-    let template_look = port(scene)?.look(h.line)?;
+    let floor = floor_frame(&objects, h.floor).unwrap_or_default();
+    let template_look = port(scene)?.look(h.template)?;
     let post_look = match h
         .post
         .filter(|_| maze.meshes.iter().any(|m| m.kind == MeshKind::Posts))
