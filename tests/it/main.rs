@@ -40,6 +40,7 @@ mod scenarios;
 mod schema;
 mod score;
 mod score_cli;
+mod session;
 mod signals;
 mod solve;
 mod texture;

@@ -9,6 +9,7 @@
 
 pub mod apply;
 pub mod clear;
+pub mod connection;
 pub mod estimate;
 pub mod first_line;
 pub mod fit;
@@ -28,6 +29,7 @@ pub mod verify;
 
 pub use apply::apply;
 pub use clear::{ClearOptions, ClearReport, clear};
+pub use connection::{Session, SessionError};
 pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
 pub use report::{ApplyReport, Stage};
