@@ -91,6 +91,42 @@ impl ApplyReport {
     }
 }
 
+impl From<draw::Report> for ApplyReport {
+    /// The report of a whole apply, with the command line's line.
+    fn from(done: draw::Report) -> ApplyReport {
+        let draw::Report {
+            created,
+            drawn: report,
+            saved_scene,
+        } = done;
+        ApplyReport {
+            lines: report.lines,
+            posts: report.posts,
+            meshes: report.meshes,
+            reused: report.reused,
+            pasted: report.pasted,
+            removed: report.removed,
+            removed_meshes: report.removed_meshes,
+            unchanged: report.unchanged,
+            placed: report.placed,
+            markers_unchanged: report.markers_unchanged,
+            markers_placed: report.markers_placed,
+            nothing_to_do: report.dry_run && report.nothing_to_do(),
+            warnings: report.warnings.clone(),
+            left_alone: report.left_alone.clone(),
+            edits: report.edits,
+            round_trips: report.round_trips,
+            elapsed: report.elapsed.as_secs_f64(),
+            stopped_simulation: report.stopped_simulation,
+            dry_run: report.dry_run,
+            verified: !report.dry_run,
+            created,
+            saved_scene,
+            summary: vrep_maze::cli::summary::apply_line(&report),
+        }
+    }
+}
+
 /// What `clear` did.
 #[pyclass(frozen, get_all, module = "vrep_maze")]
 pub struct ClearReport {
@@ -138,8 +174,25 @@ impl ClearReport {
     }
 }
 
+impl ClearReport {
+    /// The report of a clear (`dry_run` as asked).
+    pub(crate) fn of(report: draw::ClearReport, dry_run: bool) -> ClearReport {
+        ClearReport {
+            removed: report.removed,
+            removed_meshes: report.removed_meshes,
+            round_trips: report.round_trips,
+            restored_idle_fps: report.restored_idle_fps,
+            stopped_simulation: report.stopped_simulation,
+            dry_run,
+            left_alone: report.left_alone,
+            template: report.template,
+            warnings: report.warnings,
+        }
+    }
+}
+
 /// How a drawing job ended, short of an error.
-enum Finished<T> {
+pub(crate) enum Finished<T> {
     /// It did the whole job.
     Done(T),
     /// Ctrl-C stopped it cleanly: what the command line says, and (apply) lines placed of
@@ -152,16 +205,16 @@ enum Finished<T> {
 
 /// What a connection job needs to know about Ctrl-C.
 #[derive(Default)]
-struct Stop {
+pub(crate) struct Stop {
     /// Set at the first Ctrl-C: the job stops after the request in flight.
-    requested: Arc<AtomicBool>,
+    pub(crate) requested: Arc<AtomicBool>,
     /// Set once the connection is made (before that, Ctrl-C raises at once).
-    connected: Arc<AtomicBool>,
+    pub(crate) connected: Arc<AtomicBool>,
 }
 
 /// Runs a drawing `job` on a worker thread with Ctrl-C handled as the command line handles
 /// it, and turns its outcome into the Python result.
-fn run_drawing<T: Send + 'static, R>(
+pub(crate) fn run_drawing<T: Send + 'static, R>(
     py: Python<'_>,
     stop: &Stop,
     job: impl FnOnce() -> anyhow::Result<Finished<T>> + Send + 'static,
@@ -259,44 +312,12 @@ pub fn apply(
             finished => finished,
         })
     };
-    run_drawing(py, &stop, job, |done| {
-        let draw::Report {
-            created,
-            drawn: report,
-            saved_scene,
-        } = done;
-        ApplyReport {
-            lines: report.lines,
-            posts: report.posts,
-            meshes: report.meshes,
-            reused: report.reused,
-            pasted: report.pasted,
-            removed: report.removed,
-            removed_meshes: report.removed_meshes,
-            unchanged: report.unchanged,
-            placed: report.placed,
-            placed_unread: report.unread,
-            markers_unchanged: report.markers_unchanged,
-            markers_placed: report.markers_placed,
-            nothing_to_do: report.dry_run && report.nothing_to_do(),
-            warnings: report.warnings.clone(),
-            left_alone: report.left_alone.clone(),
-            edits: report.edits,
-            round_trips: report.round_trips,
-            elapsed: report.elapsed.as_secs_f64(),
-            stopped_simulation: report.stopped_simulation,
-            dry_run: report.dry_run,
-            verified: !report.dry_run,
-            created,
-            saved_scene,
-            summary: vrep_maze::cli::summary::apply_line(&report),
-        }
-    })
+    run_drawing(py, &stop, job, ApplyReport::from)
 }
 
 /// `apply`'s work once connected ([`draw::run`]: create what is missing, draw and verify,
 /// save the scene), with its failures in the words `vrep-maze apply` uses.
-fn draw_connected(
+pub(crate) fn draw_connected(
     backend: &mut dyn Backend,
     job: &draw::Job<'_>,
 ) -> anyhow::Result<Finished<draw::Report>> {
@@ -376,15 +397,5 @@ pub fn clear(
             other => Ok(Finished::Done(other?)),
         }
     };
-    run_drawing(py, &stop, job, |report| ClearReport {
-        removed: report.removed,
-        removed_meshes: report.removed_meshes,
-        round_trips: report.round_trips,
-        restored_idle_fps: report.restored_idle_fps,
-        stopped_simulation: report.stopped_simulation,
-        dry_run,
-        left_alone: report.left_alone,
-        template: report.template,
-        warnings: report.warnings,
-    })
+    run_drawing(py, &stop, job, |report| ClearReport::of(report, dry_run))
 }

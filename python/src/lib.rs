@@ -14,6 +14,7 @@ mod errors;
 mod layout;
 mod options;
 mod score;
+mod session;
 mod worker;
 
 use pyo3::prelude::*;
@@ -27,12 +28,14 @@ fn _vrep_maze(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(layout::load, m)?)?;
     m.add_function(wrap_pyfunction!(draw::apply, m)?)?;
     m.add_function(wrap_pyfunction!(draw::clear, m)?)?;
+    m.add_function(wrap_pyfunction!(session::connect, m)?)?;
     m.add_function(wrap_pyfunction!(batch::batch, m)?)?;
     m.add_function(wrap_pyfunction!(score::score, m)?)?;
     m.add_function(wrap_pyfunction!(cli::main, m)?)?;
     m.add_class::<layout::Layout>()?;
     m.add_class::<draw::ApplyReport>()?;
     m.add_class::<draw::ClearReport>()?;
+    m.add_class::<session::Session>()?;
     m.add_class::<batch::Batch>()?;
     m.add("ValidationError", py.get_type::<errors::ValidationError>())?;
     m.add("SimulatorError", py.get_type::<errors::SimulatorError>())?;

@@ -16,7 +16,8 @@ Example::
 - :func:`generate`, :func:`load`, :meth:`Layout.from_json` make a :class:`Layout`;
   :func:`batch` yields many.
 - :func:`apply` draws a layout into CoppeliaSim (or ``vrep-maze serve``) and verifies it;
-  :func:`clear` removes it. Both return a report.
+  :func:`clear` removes it. Both return a report. :func:`connect` keeps one connection
+  open for many (a :class:`Session`: a new maze every episode without reconnecting).
 - :func:`score` follows a robot while the simulation runs and grades its run: the report as
   a dict and the trajectory as an array.
 - Errors: ``ValueError`` (a refused option), :class:`ValidationError` (an invalid layout),
@@ -30,12 +31,14 @@ from ._vrep_maze import (
     ClearReport,
     Interrupted,
     Layout,
+    Session,
     SimulatorError,
     ValidationError,
     __version__,
     apply,
     batch,
     clear,
+    connect,
     generate,
     load,
     score,
@@ -47,12 +50,14 @@ __all__ = [
     "ClearReport",
     "Interrupted",
     "Layout",
+    "Session",
     "SimulatorError",
     "ValidationError",
     "__version__",
     "apply",
     "batch",
     "clear",
+    "connect",
     "generate",
     "load",
     "score",

@@ -197,6 +197,46 @@ def clear(
     stop_simulation: bool = False,
     dry_run: bool = False,
 ) -> ClearReport: ...
+class Session:
+    description: str
+    def apply(
+        self,
+        layout: Layout,
+        *,
+        floor: Optional[str] = None,
+        parent: Optional[str] = None,
+        line: Optional[str] = None,
+        start: Optional[str] = None,
+        end: Optional[str] = None,
+        stop_simulation: bool = False,
+        dry_run: bool = False,
+        create_missing: bool = False,
+        save_scene: Optional[str] = None,
+        draw: Optional[Literal["copies", "mesh"]] = None,
+    ) -> ApplyReport: ...
+    def clear(
+        self,
+        *,
+        floor: Optional[str] = None,
+        parent: Optional[str] = None,
+        line: Optional[str] = None,
+        start: Optional[str] = None,
+        end: Optional[str] = None,
+        stop_simulation: bool = False,
+        dry_run: bool = False,
+    ) -> ClearReport: ...
+    def close(self) -> None: ...
+    def __enter__(self) -> "Session": ...
+    def __exit__(self, *exc: object) -> bool: ...
+
+def connect(
+    api: Optional[Api] = None,
+    host: Optional[str] = None,
+    port: Optional[int] = None,
+    *,
+    connect_timeout: Optional[float] = None,
+    timeout: Optional[float] = None,
+) -> Session: ...
 def score(
     layout: Layout,
     robot: Optional[str] = None,

@@ -1,0 +1,219 @@
+//! `vrep_maze.connect(...)`: one connection kept open for many `apply` and `clear` calls
+//! (`draw::Session`), so a training loop that draws a maze every episode connects once.
+//!
+//! The connection lives on a thread of its own (a backend stays on the thread that made it);
+//! each call hands it a task and waits as `vrep_maze.apply` does, so Ctrl-C, a lost
+//! connection and a restarted simulator behave as there: the first Ctrl-C stops after the
+//! request in flight with the idle rate restored and raises `Interrupted` (the session stays
+//! open; the same call again finishes the maze), an error raises `SimulatorError` and leaves
+//! the scene as an interrupted `apply` does, for the next `apply` or `clear` to repair.
+
+use std::sync::Mutex;
+use std::sync::atomic::Ordering;
+use std::sync::mpsc::{self, Sender};
+
+use anyhow::Context;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use vrep_maze::cli::Command;
+use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, Picture};
+
+use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_drawing};
+use crate::layout::Layout;
+use crate::options;
+
+/// Work for the connection's thread.
+type Task = Box<dyn FnOnce(&mut draw::Session) + Send>;
+
+/// An open connection to CoppeliaSim: `with vrep_maze.connect(api="zmq") as sim:
+/// sim.apply(layout, draw="mesh")`. Closed by `close()` or at the end of the `with` block.
+#[pyclass(module = "vrep_maze")]
+pub struct Session {
+    /// The connection thread's queue; `None` once closed.
+    tasks: Mutex<Option<Sender<Task>>>,
+    /// Which API answered, where, and the simulator's version.
+    #[pyo3(get)]
+    description: String,
+}
+
+/// Connects to CoppeliaSim once for many calls; returns a `Session`.
+///
+/// Takes the connection keywords of `apply`: `api`, `host`, `port`, `connect_timeout`,
+/// `timeout`. Raises `SimulatorError` when nothing answers.
+#[pyfunction]
+#[pyo3(signature = (api=None, host=None, port=None, **options))]
+pub fn connect(
+    py: Python<'_>,
+    api: Option<Bound<'_, PyAny>>,
+    host: Option<Bound<'_, PyAny>>,
+    port: Option<Bound<'_, PyAny>>,
+    options: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Session> {
+    let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
+    let argv = options::command_line("clear", &[], &options)?;
+    let Command::Clear(args) = options::parse(argv)? else {
+        return Err(PyRuntimeError::new_err("connect parsed as another command"));
+    };
+    let scene = args.scene;
+    let (tasks, queue) = mpsc::channel::<Task>();
+    let stop = Stop::default();
+    let job = move || {
+        let (opened, made) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("vrep-maze session".into())
+            .spawn(move || {
+                let backend = match scene.connect() {
+                    Ok(backend) => backend,
+                    Err(e) => return drop(opened.send(Err(e))),
+                };
+                let mut session = draw::Session::new(backend);
+                let _ = opened.send(Ok(session.describe().unwrap_or_default()));
+                for task in queue {
+                    task(&mut session);
+                }
+                let _ = session.close();
+            })?;
+        let description = made.recv().context("the connection thread ended")??;
+        Ok(Finished::Done(description))
+    };
+    let description = run_drawing(py, &stop, job, |d| d)?;
+    Ok(Session {
+        tasks: Mutex::new(Some(tasks)),
+        description,
+    })
+}
+
+impl Session {
+    /// Runs `work` on the connection's thread as a drawing job (Ctrl-C handled as in
+    /// `apply`), its outcome made into the Python result by `report`.
+    fn run<T: Send + 'static, R>(
+        &self,
+        py: Python<'_>,
+        stop: &Stop,
+        work: impl FnOnce(&mut draw::Session) -> anyhow::Result<Finished<T>> + Send + 'static,
+        report: impl FnOnce(T) -> R,
+    ) -> PyResult<R> {
+        let tasks = self
+            .tasks
+            .lock()
+            .map_err(|_| PyRuntimeError::new_err("the session's lock is poisoned"))?
+            .clone()
+            .ok_or_else(|| PyValueError::new_err("the session is closed: connect again"))?;
+        stop.connected.store(true, Ordering::SeqCst);
+        let job = move || {
+            let (reply, answer) = mpsc::channel();
+            let task: Task = Box::new(move |session| {
+                let _ = reply.send(work(session));
+            });
+            tasks
+                .send(task)
+                .map_err(|_| anyhow::anyhow!("the session's connection thread ended"))?;
+            answer
+                .recv()
+                .map_err(|_| anyhow::anyhow!("the session's connection thread ended"))?
+        };
+        run_drawing(py, stop, job, report)
+    }
+}
+
+#[pymethods]
+impl Session {
+    /// Draws `layout` as `vrep_maze.apply` does, on this connection. Takes `apply`'s
+    /// keywords but the connection's (`draw`, the object names, `stop_simulation`,
+    /// `dry_run`, `create_missing`, `save_scene`, `resize_floor`). Returns an `ApplyReport`.
+    #[pyo3(signature = (layout, **options))]
+    fn apply(
+        &self,
+        py: Python<'_>,
+        layout: &Layout,
+        options: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<ApplyReport> {
+        let options = options::with(options, py, &[])?;
+        let argv = options::command_line("apply", &["-"], &options)?;
+        let Command::Apply(args) = options::parse(argv)? else {
+            return Err(PyRuntimeError::new_err("apply parsed as another command"));
+        };
+        let stop = Stop::default();
+        let opts = ApplyOptions {
+            names: args.scene.names(),
+            stop_simulation: args.stop_simulation,
+            dry_run: args.dry_run,
+            resize_floor: args.resize_floor,
+            interrupt: Some(stop.requested.clone()),
+            ..Default::default()
+        };
+        let mode = args.draw.into();
+        let (create_missing, save_scene) = (args.create_missing, args.save_scene);
+        let layout = layout.layout.clone();
+        let work = move |session: &mut draw::Session| {
+            let picture = Picture::of(&layout, mode).context("nothing was drawn")?;
+            let job = draw::Job {
+                layout: &layout,
+                picture,
+                options: opts,
+                create_missing,
+                save_scene,
+            };
+            draw_connected(session.backend()?, &job)
+        };
+        self.run(py, &stop, work, ApplyReport::from)
+    }
+
+    /// Removes the drawn maze as `vrep_maze.clear` does, on this connection (keywords: the
+    /// object names, `stop_simulation`, `dry_run`). Returns a `ClearReport`.
+    #[pyo3(signature = (**options))]
+    fn clear(&self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<ClearReport> {
+        let options = options::with(options, py, &[])?;
+        let argv = options::command_line("clear", &[], &options)?;
+        let Command::Clear(args) = options::parse(argv)? else {
+            return Err(PyRuntimeError::new_err("clear parsed as another command"));
+        };
+        let stop = Stop::default();
+        let dry_run = args.dry_run;
+        let opts = ClearOptions {
+            names: args.scene.names(),
+            stop_simulation: args.stop_simulation,
+            dry_run,
+            interrupt: Some(stop.requested.clone()),
+        };
+        let work = move |session: &mut draw::Session| match draw::clear(session.backend()?, &opts) {
+            Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
+                message: format!(
+                    "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
+                    total - placed
+                ),
+                counts: None,
+            }),
+            other => Ok(Finished::Done(other?)),
+        };
+        self.run(py, &stop, work, |report| ClearReport::of(report, dry_run))
+    }
+
+    /// Closes the connection (the official client's way); later calls raise `ValueError`.
+    /// Closing twice does nothing.
+    fn close(&self) -> PyResult<()> {
+        let tasks = self
+            .tasks
+            .lock()
+            .map_err(|_| PyRuntimeError::new_err("the session's lock is poisoned"))?
+            .take();
+        // the thread closes the connection once its queue ends
+        drop(tasks);
+        Ok(())
+    }
+
+    fn __enter__(slf: Py<Self>) -> Py<Self> {
+        slf
+    }
+
+    #[pyo3(signature = (*_exc))]
+    fn __exit__(&self, _exc: &Bound<'_, PyTuple>) -> PyResult<bool> {
+        self.close()?;
+        Ok(false)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<Session {}>", self.description)
+    }
+}

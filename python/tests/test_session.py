@@ -1,0 +1,56 @@
+"""`vrep_maze.connect`: one connection, many mazes; a lost connection and a restarted
+simulator raise `SimulatorError` and leave the scene repairable."""
+
+import subprocess
+
+import pytest
+
+import vrep_maze
+from conftest import command
+
+
+@pytest.mark.parametrize("api", ["legacy", "zmq"])
+def test_one_session_replaces_mazes_then_clears(serve, api):
+    with vrep_maze.connect(api=api, port=serve.port(api)) as sim:
+        assert api in sim.description.lower() or "zeromq" in sim.description.lower()
+        reports = [sim.apply(vrep_maze.generate(seed=seed), draw="mesh") for seed in (1, 2, 3)]
+        assert all(r.verified and r.meshes == 1 for r in reports), reports
+        assert [r.pasted for r in reports] == [1, 1, 1], "each maze replaces the last"
+        cleared = sim.clear()
+        assert cleared.removed_meshes, cleared
+    with pytest.raises(ValueError, match="the session is closed"):
+        sim.apply(vrep_maze.generate(seed=4))
+
+
+def test_a_stopped_simulator_raises_and_a_new_session_repairs(serve):
+    port = serve.zmq_port
+    sim = vrep_maze.connect(api="zmq", port=port, timeout=1)
+    sim.apply(vrep_maze.generate(seed=1), draw="mesh")
+    serve.stop()
+    with pytest.raises(vrep_maze.SimulatorError):
+        sim.apply(vrep_maze.generate(seed=2), draw="mesh")
+    sim.close()
+
+
+def test_a_restarted_simulator_on_the_same_port(serve):
+    port = serve.zmq_port
+    sim = vrep_maze.connect(api="zmq", port=port, timeout=1)
+    sim.apply(vrep_maze.generate(seed=1), draw="mesh")
+    serve.stop()
+    again = subprocess.Popen(
+        [command(), "serve", "--api", "zmq", "--listen", f"127.0.0.1:{port}", "--timing", "instant"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert str(port) in again.stdout.readline()
+        try:
+            # the new simulator's fresh scene: drawn and verified on the same session
+            assert sim.apply(vrep_maze.generate(seed=2), draw="mesh").verified
+        except vrep_maze.SimulatorError as e:
+            # or the request lost with the old one: said, and a new session draws
+            assert str(e)
+        with vrep_maze.connect(api="zmq", port=port) as fresh:
+            assert fresh.apply(vrep_maze.generate(seed=3), draw="mesh").verified
+    finally:
+        sim.close()
+        again.kill()
+        again.wait()
