@@ -22,6 +22,7 @@ use std::time::{Duration, Instant};
 use real_sim::{RealSim, real_sims_dir};
 use vrep_maze::draw::{ApplyOptions, Backend, DrawMode, Job, Picture, Session};
 use vrep_maze::layout::{Layout, read_layout};
+use vrep_maze::legacy::LegacyBackend;
 use vrep_maze::zmq_api::{ClientOptions, ZmqBackend};
 
 /// The `vrep-maze` binary cargo built (it serves and generates).
@@ -121,7 +122,8 @@ fn quantile(times: &mut [Duration], q: f64) -> f64 {
     times[k].as_secs_f64() * 1e3
 }
 
-/// Resets `session` through `mazes` (the first untimed, creating what is missing) and
+/// Resets `session` through `mazes` (the first untimed, creating what is missing over
+/// ZeroMQ) and
 /// prints a row.
 fn row(
     title: &str,
@@ -131,7 +133,9 @@ fn row(
     pid: Option<u32>,
     target: f64,
 ) {
-    session.apply(&job(&mazes[0], true), &mut |_| {}).unwrap();
+    // the legacy API creates nothing: the course scene has what a line maze needs
+    let create = session.backend().unwrap().authoring().is_some();
+    session.apply(&job(&mazes[0], create), &mut |_| {}).unwrap();
     let objects = |s: &mut Session| s.backend().unwrap().objects().unwrap().len();
     let (objects0, rss0) = (objects(session), rss_mib(pid));
     let mut times = Vec::with_capacity(mazes.len());
@@ -218,6 +222,13 @@ fn main() {
                 None,
                 25.0,
             );
+            if let Some(port) = real.legacy {
+                drop(session);
+                let backend = LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(30));
+                let mut session = Session::new(Box::new(backend.unwrap()));
+                let name = format!("real {version} legacy");
+                row("mesh 9x9 by 9x9", &name, &mut session, &nine, None, 15.0);
+            }
         }
     }
 }
