@@ -1,12 +1,16 @@
 """`vrep_maze.connect`: one connection, many mazes; a lost connection and a restarted
 simulator raise `SimulatorError` and leave the scene repairable."""
 
+import signal
 import subprocess
+import sys
+import textwrap
+import time
 
 import pytest
 
 import vrep_maze
-from conftest import command
+from conftest import Serve, big_course_scene, command
 
 
 @pytest.mark.parametrize("api", ["legacy", "zmq"])
@@ -54,3 +58,36 @@ def test_a_restarted_simulator_on_the_same_port(serve):
         sim.close()
         again.kill()
         again.wait()
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="sends SIGINT")
+def test_ctrl_c_in_a_session_stops_cleanly_and_the_session_finishes_the_maze(tmp_path):
+    server = Serve("--timing", "realistic", "--scene", big_course_scene(tmp_path))
+    try:
+        process = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
+            import vrep_maze
+            layout = vrep_maze.generate(seed=5, size=(30, 30))
+            with vrep_maze.connect(api="zmq", port={server.zmq_port}) as sim:
+                print("started", flush=True)
+                try:
+                    sim.apply(layout)
+                except vrep_maze.Interrupted as e:
+                    print("interrupted", e.placed, e.total, e, flush=True)
+                report = sim.apply(layout)
+                print("finished", report.verified, report.reused, flush=True)
+        """)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # connect says on standard output which API answered, then the script starts
+        lines = iter(process.stdout.readline, "")
+        assert "started" in (line.strip() for line in lines), process.stderr.read()
+        time.sleep(1.5)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=120)
+        assert process.returncode == 0, (out, err)
+        words = next(l for l in out.splitlines() if l.startswith("interrupted ")).split()
+        assert int(words[1]) < int(words[2]), out
+        assert "the idle rate is restored" in out
+        finished = next(l for l in out.splitlines() if l.startswith("finished ")).split()
+        assert finished[1] == "True" and int(finished[2]) > 0, out
+    finally:
+        server.process.kill()
+        server.process.wait()
