@@ -190,16 +190,27 @@ impl Session {
         self.run(py, &stop, work, |report| ClearReport::of(report, dry_run))
     }
 
-    /// Closes the connection (the official client's way); later calls raise `ValueError`.
-    /// Closing twice does nothing.
-    fn close(&self) -> PyResult<()> {
+    /// Closes the connection (the official client's way, so that the simulator is ready for
+    /// the next client at once) and waits until it is closed; later calls raise
+    /// `ValueError`. Closing twice does nothing.
+    fn close(&self, py: Python<'_>) -> PyResult<()> {
         let tasks = self
             .tasks
             .lock()
             .map_err(|_| PyRuntimeError::new_err("the session's lock is poisoned"))?
             .take();
-        // the thread closes the connection once its queue ends
-        drop(tasks);
+        let Some(tasks) = tasks else {
+            return Ok(());
+        };
+        let (reply, answer) = mpsc::channel();
+        let task: Task = Box::new(move |session| {
+            // a connection already lost has nothing left to close
+            let _ = reply.send(session.close());
+        });
+        if tasks.send(task).is_ok() {
+            drop(tasks);
+            let _ = py.detach(move || answer.recv());
+        }
         Ok(())
     }
 
@@ -208,8 +219,8 @@ impl Session {
     }
 
     #[pyo3(signature = (*_exc))]
-    fn __exit__(&self, _exc: &Bound<'_, PyTuple>) -> PyResult<bool> {
-        self.close()?;
+    fn __exit__(&self, py: Python<'_>, _exc: &Bound<'_, PyTuple>) -> PyResult<bool> {
+        self.close(py)?;
         Ok(false)
     }
 
