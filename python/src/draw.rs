@@ -109,6 +109,7 @@ impl From<draw::Report> for ApplyReport {
             removed_meshes: report.removed_meshes,
             unchanged: report.unchanged,
             placed: report.placed,
+            placed_unread: report.unread,
             markers_unchanged: report.markers_unchanged,
             markers_placed: report.markers_placed,
             nothing_to_do: report.dry_run && report.nothing_to_do(),
