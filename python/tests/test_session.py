@@ -66,7 +66,7 @@ def test_ctrl_c_in_a_session_stops_cleanly_and_the_session_finishes_the_maze(tmp
     try:
         process = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
             import vrep_maze
-            layout = vrep_maze.generate(seed=5, size=(30, 30))
+            layout = vrep_maze.generate(seed=5, size=(60, 60))
             with vrep_maze.connect(api="zmq", port={server.zmq_port}) as sim:
                 print("started", flush=True)
                 try:
@@ -76,6 +76,9 @@ def test_ctrl_c_in_a_session_stops_cleanly_and_the_session_finishes_the_maze(tmp
                 report = sim.apply(layout)
                 print("finished", report.verified, report.reused, flush=True)
         """)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # a 60x60 drawn as copies at realistic timing takes several seconds, so the Ctrl-C
+        # 1.5 s after the start lands in the first apply on a fast machine too (a 30x30 was
+        # sometimes drawn before it, and the signal then hit the second apply)
         # connect says on standard output which API answered, then the script starts
         lines = iter(process.stdout.readline, "")
         assert "started" in (line.strip() for line in lines), process.stderr.read()
