@@ -446,3 +446,62 @@ fn zmq_over_ipv6_loopback() {
     drop(c);
     s.shutdown();
 }
+
+/// A ROUTER fake of a protocol-2 add-on: answers `warm_up` lone requests at once, then for
+/// each of `batches` takes every request that arrives within 300 ms before it answers any,
+/// and returns how many requests each batch held.
+fn batching_server(warm_up: usize, batches: usize) -> (u16, std::thread::JoinHandle<Vec<usize>>) {
+    let ctx = zmq::Context::new();
+    let sock = ctx.socket(zmq::ROUTER).unwrap();
+    sock.set_linger(0).unwrap();
+    sock.bind("tcp://127.0.0.1:*").unwrap();
+    let endpoint = sock.get_last_endpoint().unwrap().unwrap();
+    let port: u16 = endpoint.rsplit(':').next().unwrap().parse().unwrap();
+    let t = std::thread::spawn(move || {
+        let _ctx = ctx;
+        let answer = |frames: &[Vec<u8>], k: i64| {
+            let body = cbor::encode(&cbor::map([("ret", Value::Array(vec![int(k)]))]));
+            sock.send_multipart([frames[0].clone(), vec![], body], 0)
+                .unwrap();
+        };
+        for k in 0..warm_up {
+            let frames = sock.recv_multipart(0).unwrap();
+            answer(&frames, k as i64);
+        }
+        let mut sizes = vec![];
+        for _ in 0..batches {
+            let mut held = vec![sock.recv_multipart(0).unwrap()];
+            while sock.poll(zmq::POLLIN, 300).unwrap() > 0 {
+                held.push(sock.recv_multipart(0).unwrap());
+            }
+            for (k, frames) in held.iter().enumerate() {
+                answer(frames, k as i64);
+            }
+            sizes.push(held.len());
+        }
+        sizes
+    });
+    (port, t)
+}
+
+/// Over protocol 2, `call_all` sends independent calls before reading any reply (a 4.10
+/// add-on answers each as it comes), but a call that may be answered `_*wait*_` (`sim.step`)
+/// goes on its own: the add-on would take the next queued request for its `_*executed*_`.
+#[test]
+fn zmq_protocol_2_calls_are_sent_together_unless_one_may_wait() {
+    let (port, t) = batching_server(1, 3);
+    let mut c = Client::open(&opts(port, 5000)).unwrap();
+    // the first reply, `{ret: [...]}`, tells protocol 2
+    c.call_int("sim.getSimulationState", vec![]).unwrap();
+    assert_eq!(c.protocol(), Some(Protocol::V2));
+    let read = |name: &str| ("sim.getInt32Signal", vec![text(name)]);
+    let outcomes = c.call_all(&[read("a"), read("b"), read("c")]).unwrap();
+    let got: Vec<i64> = outcomes
+        .into_iter()
+        .map(|o| cbor::int32(&o.unwrap()[0]).unwrap().into())
+        .collect();
+    assert_eq!(got, [0, 1, 2], "the replies in the order of the calls");
+    c.call_all(&[read("a"), ("sim.step", vec![])]).unwrap();
+    std::mem::forget(c); // no _*end*_ exchange with the finished fake
+    assert_eq!(t.join().unwrap(), [3, 1, 1]);
+}

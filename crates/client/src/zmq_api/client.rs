@@ -32,6 +32,18 @@ const MAX_IN_FLIGHT: usize = 200;
 /// How many `_*wait*_` / `_*repeat*_` / callback turns one call may take before we give up.
 const MAX_TURNS: usize = 10_000;
 
+/// Whether a protocol-2 add-on may answer `func` with `_*wait*_`: the stepping calls, which
+/// yield until the next simulation step (zmqRemoteApi@coppeliasim-v4.10.0-rev0 `ZMQ remote
+/// API server.lua:97-127`: `sim.step`, also named `sim.switchThread` and `sim.yield`), and
+/// `sim.wait`, which may step too. Such a call is never sent together with others
+/// ([`Client::call_all`]).
+pub fn may_wait(func: &str) -> bool {
+    matches!(
+        func,
+        "sim.step" | "sim.switchThread" | "sim.yield" | "sim.wait"
+    )
+}
+
 /// Client errors; each displays as one line naming the function or endpoint.
 #[derive(Debug, thiserror::Error)]
 pub enum ZmqError {
@@ -586,11 +598,20 @@ impl Client {
     /// the same main-loop pass, for up to 5 ms (zmqRemoteApi@coppeliasim-v4.5.1-rev4
     /// `simAddOnZMQ remote API server.lua:86-105`, `maxTimeSlot` 0.005 at line 127), where a
     /// lock-step client waits one pass per call (93-125 ms at idle fps 8,
-    /// `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing"). Protocol 2 (whose replies may ask
-    /// to wait or repeat) and an unknown protocol are called in turn: a 4.6+ add-on serves a
-    /// lock-step client's next request at once within 50 ms of a pass anyway.
+    /// `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing"). Against protocol 2 they are sent
+    /// together too unless one of them can block ([`may_wait`]): a 4.6+ add-on answers
+    /// `_*wait*_` only from a stepping call and then takes the next queued request for the
+    /// `_*executed*_` it waits for (zmqRemoteApi@coppeliasim-v4.10.0-rev0 `ZMQ remote API
+    /// server.lua:97-127`), while every other call is answered as it comes; sent together,
+    /// the client's own turn-around between calls goes (`docs/measurements.md` "ZeroMQ calls
+    /// sent together on 4.10"). An unknown protocol is called in turn.
     pub fn call_all(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
-        if self.protocol != Some(Protocol::V1) {
+        let together = match self.protocol {
+            Some(Protocol::V1) => true,
+            Some(Protocol::V2) => !calls.iter().any(|(func, _)| may_wait(func)),
+            None => false,
+        };
+        if !together {
             return calls
                 .iter()
                 .map(|(func, args)| outcome(self.call(func, args.clone())))
