@@ -12,6 +12,7 @@ use nalgebra::{Isometry2, Point2, Vector2};
 
 use crate::layout::runs::{OpenSides, for_each_run, for_each_wall_run, post_rect};
 use crate::layout::sizes::{Sizes, TemplateUse};
+use crate::layout::walls::WallAxis;
 use crate::layout::{Layout, Pose, Style, passages};
 use crate::maze::Grid;
 
@@ -187,15 +188,26 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
     match (&layout.style, &layout.wall) {
         (Style::Walls, Some(wall)) => {
             let open = OpenSides::of(&maze, &wall.openings);
+            // a run goes from corner to corner: a post at least as wide as the wall (as
+            // every valid layout's is) hides its ends
+            let ends_hidden = layout
+                .post
+                .as_ref()
+                .is_some_and(|p| p.size >= wall.thickness);
             let Ok(()) = for_each_wall_run::<std::convert::Infallible>(
                 &maze,
                 &open,
                 |run| {
+                    let sides = if ends_hidden {
+                        Sides::Long(run.axis)
+                    } else {
+                        Sides::All
+                    };
                     builder.add(
                         MeshKind::Walls,
                         run.rect(c, wall.thickness),
-                        0.0,
-                        wall.height,
+                        (0.0, wall.height),
+                        sides,
                     );
                     Ok(())
                 },
@@ -205,7 +217,7 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
                 for j in 0..=grid.height() {
                     for i in 0..=grid.width() {
                         let rect = post_rect([i, j], c, post.size);
-                        builder.add(MeshKind::Posts, rect, 0.0, wall.height);
+                        builder.add(MeshKind::Posts, rect, (0.0, wall.height), Sides::All);
                     }
                 }
             }
@@ -215,7 +227,7 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
             let Ok(()) = for_each_run::<std::convert::Infallible>(
                 &maze,
                 |run| {
-                    builder.add(MeshKind::Lines, run.rect(c, w), z, z);
+                    builder.add(MeshKind::Lines, run.rect(c, w), (z, z), Sides::All);
                     Ok(())
                 },
                 |_| {},
@@ -231,6 +243,29 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
         start: layout.start.pose,
         end: layout.end.pose,
         sizes: Sizes::of(layout),
+    }
+}
+
+/// The sides a box is drawn with, besides its top. What is never seen is left out, since
+/// CoppeliaSim 4.10 takes about 20 µs a triangle to create a mesh (`docs/measurements.md`
+/// "Creating meshes on 4.10"): the bottom, on the floor, always; the ends of a wall run where
+/// posts hide them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Sides {
+    /// All four sides: a post, or a wall run whose ends show.
+    All,
+    /// The two long sides of a wall run along this axis: its ends lie inside posts.
+    Long(WallAxis),
+}
+
+impl Sides {
+    /// Whether side `k` (0: y0, 1: x1, 2: y1, 3: x0) is drawn.
+    fn draws(self, k: i32) -> bool {
+        match self {
+            Sides::All => true,
+            Sides::Long(WallAxis::AlongX) => k % 2 == 0,
+            Sides::Long(WallAxis::AlongY) => k % 2 == 1,
+        }
     }
 }
 
@@ -251,10 +286,19 @@ impl Builder {
     }
 
     /// Adds the maze-frame rectangle `[x0, y0, x1, y1]` as a flat rectangle at `bottom`
-    /// (`bottom == top`) or a box from `bottom` to `top`.
-    fn add(&mut self, kind: MeshKind, [x0, y0, x1, y1]: [f64; 4], bottom: f64, top: f64) {
+    /// (`bottom == top`) or a box from `bottom` to `top` with its top and `sides` (never its
+    /// bottom, which stands on the floor).
+    fn add(
+        &mut self,
+        kind: MeshKind,
+        [x0, y0, x1, y1]: [f64; 4],
+        (bottom, top): (f64, f64),
+        sides: Sides,
+    ) {
         let flat = bottom == top;
-        let triangles = if flat { 2 } else { 12 };
+        // side k runs from corner k to corner k + 1: the y0, x1, y1 and x0 sides
+        let drawn: Vec<i32> = (0..4).filter(|&k| sides.draws(k)).collect();
+        let triangles = if flat { 2 } else { 2 + 2 * drawn.len() };
         let fits = self
             .open
             .as_ref()
@@ -285,8 +329,8 @@ impl Builder {
             mesh.indices.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
         } else {
             push(top);
-            let mut faces = vec![4, 5, 6, 4, 6, 7, 0, 2, 1, 0, 3, 2];
-            for i in 0..4 {
+            let mut faces = vec![4, 5, 6, 4, 6, 7];
+            for i in drawn {
                 let j = (i + 1) % 4;
                 faces.extend([i, j, j + 4, i, j + 4, i + 4]);
             }
@@ -404,9 +448,27 @@ mod tests {
         }
     }
 
+    /// Directed edges of `mesh`'s triangles, counted.
+    fn edges(mesh: &MazeMesh) -> std::collections::HashMap<(i32, i32), usize> {
+        let mut edges = std::collections::HashMap::new();
+        for t in mesh.indices.chunks(3) {
+            for k in 0..3 {
+                *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        edges
+    }
+
+    /// Whether the edge from vertex `a` to `b` of `mesh` lies on the floor (z = 0).
+    fn on_floor(mesh: &MazeMesh, (a, b): (i32, i32)) -> bool {
+        let z = |k: i32| mesh.vertices[k as usize * 3 + 2];
+        z(a) == 0.0 && z(b) == 0.0
+    }
+
     #[test]
-    fn walls_and_posts_are_closed_boxes() {
+    fn walls_without_posts_are_boxes_open_only_at_the_floor() {
         let layout = wall_layout(5, 4, 3, 0.0, "start");
+        assert!(layout.post.is_none());
         let m = MeshMaze::try_from(&layout).unwrap();
         let grid = Grid::new(5, 4).unwrap();
         let maze = passages::decode(grid, &layout.passages).unwrap();
@@ -415,21 +477,73 @@ mod tests {
         assert!(m.meshes.iter().all(|mesh| mesh.kind == MeshKind::Walls));
         assert_eq!(m.template, None);
         let mesh = &m.meshes[0];
-        assert_eq!(mesh.triangles(), mesh.pieces.len() * 12);
-        // every edge of a closed box is shared by exactly two triangles, in opposite directions
-        let mut edges = std::collections::HashMap::new();
-        for t in mesh.indices[..36].chunks(3) {
-            for k in 0..3 {
-                *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
-            }
+        // the top and four sides: a run's ends show where no post hides them
+        assert_eq!(mesh.triangles(), mesh.pieces.len() * 10);
+        // every edge above the floor is shared by two triangles, in opposite directions; the
+        // bottom, which stands on the floor, is left out
+        let edges = edges(mesh);
+        for (&(a, b), &n) in &edges {
+            let twin = edges.get(&(b, a)).copied();
+            assert_eq!(n, 1);
+            assert!(
+                twin == Some(1) || on_floor(mesh, (a, b)),
+                "open edge {a}-{b}"
+            );
         }
-        assert!(edges.keys().all(|&(a, b)| edges.get(&(b, a)) == Some(&1)));
         let height = layout.wall.as_ref().unwrap().height as f32;
         assert!(
             mesh.vertices
                 .chunks(3)
                 .all(|v| v[2] == 0.0 || v[2] == height)
         );
+    }
+
+    /// A 5x4 wall maze with a post of side `post` at every corner.
+    fn posts_layout(post: f64) -> Layout {
+        let grid = Grid::new(5, 4).unwrap();
+        let mut layout = build_layout(&GenerateSpec::course(grid, Algorithm::Prim, 3)).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let defaults = crate::layout::walls::WallOptions::default();
+        let options = crate::layout::walls::WallOptions {
+            length: layout.grid.cell_size - post,
+            posts: Some(post),
+            ..defaults
+        };
+        crate::layout::walls::into_walls(&mut layout, &maze, &options, true).unwrap();
+        layout
+    }
+
+    #[test]
+    fn posts_hide_the_ends_of_wall_runs_and_nothing_else_is_left_out() {
+        let thickness = crate::layout::walls::WallOptions::default().thickness;
+        let m = MeshMaze::try_from(&posts_layout(thickness)).unwrap();
+        assert!(m.meshes.iter().any(|mesh| mesh.kind == MeshKind::Posts));
+        for mesh in &m.meshes {
+            // walls: the top and the two long sides; posts: the top and four sides
+            let per_piece = if mesh.kind == MeshKind::Walls { 6 } else { 10 };
+            assert_eq!(
+                mesh.triangles(),
+                mesh.pieces.len() * per_piece,
+                "{:?}",
+                mesh.kind
+            );
+            for t in mesh.indices.chunks(3) {
+                let v = |k: i32| &mesh.vertices[k as usize * 3..k as usize * 3 + 3];
+                let (a, b, c) = (v(t[0]), v(t[1]), v(t[2]));
+                let horizontal = a[2] == b[2] && b[2] == c[2];
+                // no bottom: a horizontal triangle is a top
+                assert!(!horizontal || a[2] > 0.0);
+                if mesh.kind == MeshKind::Walls && !horizontal {
+                    // a wall's side spans its length: along x or along y
+                    let span = |i: usize| {
+                        let xs = [a[i], b[i], c[i]];
+                        xs.iter().copied().fold(f32::MIN, f32::max)
+                            - xs.iter().copied().fold(f32::MAX, f32::min)
+                    };
+                    assert!(span(0).max(span(1)) > 2.0 * thickness as f32, "an end cap");
+                }
+            }
+        }
     }
 
     #[test]
