@@ -505,3 +505,39 @@ fn zmq_protocol_2_calls_are_sent_together_unless_one_may_wait() {
     std::mem::forget(c); // no _*end*_ exchange with the finished fake
     assert_eq!(t.join().unwrap(), [3, 1, 1]);
 }
+
+/// A protocol-2 add-on charges a client's first request for making the client (7.5 ms on
+/// 4.10, `CostModel::zmq_new_client`): once per client, again for a client that left with
+/// `_*end*_` and came back, never over protocol 1.
+#[test]
+fn a_new_protocol_2_client_costs_once() {
+    use vrep_maze::sim::{Timing, cost::Op};
+    for (protocol, timing, per_client) in [
+        (Protocol::V2, Timing::realistic_v4_10(), 1),
+        (Protocol::V1, Timing::realistic(), 0),
+    ] {
+        let cfg = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            protocol,
+            timing,
+            ..Default::default()
+        };
+        let s = spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap();
+        s.with_sim(|sim| sim.ledger = Some(vec![]));
+        for _ in 0..2 {
+            let mut c = Client::connect(&opts(s.local_addr().port(), 3000)).unwrap();
+            for _ in 0..3 {
+                c.call_int("sim.getObject", vec![text("/Line")]).unwrap();
+            }
+            c.close();
+        }
+        let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
+        let new_clients = ledger
+            .iter()
+            .filter(|c| c.ops.contains(&Op::ZmqNewClient))
+            .count();
+        assert_eq!(new_clients, 2 * per_client, "{protocol:?}");
+        assert!(ledger.len() >= 8, "{} requests", ledger.len());
+        s.shutdown();
+    }
+}

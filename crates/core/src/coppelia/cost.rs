@@ -85,6 +85,9 @@ pub enum Op {
     },
     /// One ZeroMQ call (its transport and the add-on's dispatch).
     ZmqCall,
+    /// The first request of a ZeroMQ client the add-on has not seen (protocol 2: a new
+    /// uuid), besides its call.
+    ZmqNewClient,
     /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose` call, its own work aside.
     ZmqSet,
     /// What serving one ZeroMQ call adds in a scene of `objects` objects, besides the work
@@ -162,6 +165,12 @@ pub struct CostModel {
     /// calls on 4.5.1": medians 0.10–0.19 ms on the real 4.5.1; the spec's "Pacing" says
     /// about 0.45 ms, timed with an older client: the real build decides).
     pub zmq_call: Duration,
+    /// The first request of a new protocol-2 client, besides its call: 7.5 ms on 4.10
+    /// (`docs/measurements.md` "A new client on 4.10": 3.7-15.2 ms, median 7.9, within the
+    /// pass that serves it; the add-on makes the client a coroutine and its `require`
+    /// loads the module for it: `ZMQ remote API server.lua:477-490, 518-535` at
+    /// coppeliasim-v4.10.0-rev0). None on 4.5.1, whose protocol 1 keeps no clients.
+    pub zmq_new_client: Duration,
     /// One ZeroMQ `sim.setObjectParent` or `sim.setObjectPose`: 0.17 ms (`docs/measurements.md`
     /// "ZeroMQ calls on 4.5.1": medians 0.12–0.22 ms; the spec's "ZeroMQ costs at idle fps 0"
     /// says 0.33–0.45 ms).
@@ -217,6 +226,7 @@ impl CostModel {
             legacy_command: Duration::from_micros(100),
             legacy_pass_floor: Duration::from_millis(2),
             zmq_call: Duration::from_micros(150),
+            zmq_new_client: Duration::ZERO,
             zmq_set: Duration::from_micros(170),
             zmq_call_per_thousand_objects: Duration::from_micros(40),
             zmq_tree: Duration::from_micros(300),
@@ -236,6 +246,7 @@ impl CostModel {
         CostModel {
             mesh: MeshCosts::V4_10,
             paste_per_copy: Duration::from_micros(222),
+            zmq_new_client: Duration::from_micros(7_500),
             paste_per_object: Duration::from_nanos(200),
             zmq_call: Duration::from_micros(150),
             zmq_set: Duration::from_micros(150),
@@ -263,6 +274,7 @@ impl CostModel {
                 per(self.remove_per_object, walked(count, objects, false))
             }
             Op::ZmqCall => self.zmq_call,
+            Op::ZmqNewClient => self.zmq_new_client,
             Op::ZmqSet => self.zmq_set,
             Op::ZmqServe { objects } => {
                 per(self.zmq_call_per_thousand_objects, objects as f64 / 1000.0)
@@ -436,5 +448,18 @@ mod tests {
         }
         // 4.5.1 pays nothing a copy
         assert_eq!(CostModel::measured().paste_per_copy, Duration::ZERO);
+    }
+
+    /// `docs/measurements.md` "A new client on 4.10": a new client's first request, in the
+    /// pass that serves it, 3.7-15.2 ms, median 7.9 ms (one call's 0.2-0.4 ms included).
+    #[test]
+    fn a_new_client_costs_on_4_10_only() {
+        let first = |m: CostModel| m.ops(&[Op::ZmqCall, Op::ZmqNewClient]);
+        within(
+            "4.10: a new client's first call",
+            first(CostModel::v4_10()),
+            0.0079,
+        );
+        assert_eq!(first(CostModel::measured()), CostModel::measured().zmq_call);
     }
 }

@@ -195,6 +195,7 @@ pub fn spawn_shared(config: ServerConfig, host: Arc<dyn SimHost>) -> std::io::Re
         host: host.clone(),
         extras: Extras::default(),
         pending: HashMap::new(),
+        clients: Default::default(),
     };
     let (s, r) = (stop.clone(), requests.clone());
     let thread = std::thread::Builder::new()
@@ -221,6 +222,9 @@ struct State {
     extras: Extras,
     /// Protocol 2: results waiting for the client's `_*executed*_`, per uuid.
     pending: HashMap<String, Vec<Value>>,
+    /// Protocol 2: the clients seen and not gone (`_*end*_`), by uuid: a new one's first
+    /// request costs more ([`Op::ZmqNewClient`]).
+    clients: std::collections::HashSet<String>,
 }
 
 /// What a call to this emulator takes on loopback with no modeled cost (`--timing instant`:
@@ -381,9 +385,22 @@ fn handle(state: &mut State, bytes: &[u8]) -> (Value, Vec<Op>) {
         ]);
         return (reply, base);
     };
+    if req.func != END && state.clients.insert(uuid.clone()) {
+        let (reply, mut ops) = served_v2(state, &req, uuid);
+        ops.push(Op::ZmqNewClient);
+        return (reply, ops);
+    }
+    served_v2(state, &req, uuid)
+}
+
+/// Answers a protocol-2 request of the client `uuid`: its leaving, the `_*executed*_` a
+/// waiting call expects, or a call.
+fn served_v2(state: &mut State, req: &Request, uuid: String) -> (Value, Vec<Op>) {
+    let base = vec![Op::ZmqCall];
     match req.func.as_str() {
         END => {
             state.pending.remove(&uuid);
+            state.clients.remove(&uuid);
             (Value::Map(vec![]), base)
         }
         EXECUTED => (
@@ -393,7 +410,7 @@ fn handle(state: &mut State, bytes: &[u8]) -> (Value, Vec<Op>) {
             ),
             base,
         ),
-        _ => outcome_reply(state, Protocol::V2, &req, Some(uuid)),
+        _ => outcome_reply(state, Protocol::V2, req, Some(uuid)),
     }
 }
 
