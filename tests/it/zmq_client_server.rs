@@ -506,7 +506,7 @@ fn zmq_protocol_2_calls_are_sent_together_unless_one_may_wait() {
     assert_eq!(t.join().unwrap(), [3, 1, 1]);
 }
 
-/// A protocol-2 add-on charges a client's first request for making the client (7.5 ms on
+/// A protocol-2 add-on charges a client's first request for making the client (5.5 ms on
 /// 4.10, `CostModel::zmq_new_client`): once per client, again for a client that left with
 /// `_*end*_` and came back, never over protocol 1.
 #[test]
