@@ -4,8 +4,10 @@
 //! against `vrep-maze serve --timing realistic` as that version (4.5.1: `--api both --protocol
 //! 1`; 4.10: `--api zmq --protocol 2`) and, when `VREP_MAZE_REAL_SIMS` names the folder of
 //! `sim.sh`, against the real simulator beside it, each row on a fresh simulator whose earlier
-//! mazes are drawn first (not timed). Prints the spec's figure, both times, their ratio and
-//! issue 26's target.
+//! mazes are drawn first (not timed). Prints the spec's figure, both times (medians), their
+//! ratio, issue 26's target and the range of the runs (a row that starts at idle fps 8 may
+//! wait one main-loop pass more in one run than in another, on the real build too:
+//! `docs/measurements.md` "A new client on 4.10").
 //!
 //!     cargo bench --bench real_sims                                  # serve only
 //!     VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo bench --bench real_sims
@@ -452,7 +454,7 @@ fn main() {
         assert!(ok.success(), "generate {file}");
     }
     println!(
-        "{:<48} {:<14} {:>7} {:>8} {:>8} {:>9} {:>7}",
+        "{:<48} {:<14} {:>7} {:>8} {:>8} {:>9} {:>7}  range: real | serve",
         "step", "simulator", "spec", "real", "serve", "serve/real", "target"
     );
     for row in rows() {
@@ -460,13 +462,29 @@ fn main() {
         if (row.step.contains("300") && !big) || !words.iter().all(|w| title.contains(w.as_str())) {
             continue;
         }
-        let measure = |real: bool| -> Result<f64, String> {
-            let times: Result<Vec<f64>, String> =
-                (0..runs).map(|_| once(dir.path(), &row, real)).collect();
-            times.map(median)
+        // every run's time kept: a row that starts at idle fps 8 may wait one main-loop pass
+        // more in one run than in the next, on the real build as on `serve`
+        let measure = |real: bool| -> Result<Vec<f64>, String> {
+            (0..runs).map(|_| once(dir.path(), &row, real)).collect()
         };
-        let served = measure(false);
-        let really = if real { Some(measure(true)) } else { None };
+        let served_runs = measure(false);
+        let real_runs = if real { Some(measure(true)) } else { None };
+        let range = |r: &Option<Result<Vec<f64>, String>>| match r {
+            Some(Ok(v)) => {
+                let (lo, hi) = v
+                    .iter()
+                    .fold((f64::MAX, f64::MIN), |(lo, hi), t| (lo.min(*t), hi.max(*t)));
+                format!("{lo:.3}-{hi:.3}")
+            }
+            _ => "-".into(),
+        };
+        let spread = format!(
+            "{} | {}",
+            range(&real_runs),
+            range(&Some(served_runs.clone()))
+        );
+        let served = served_runs.map(median);
+        let really = real_runs.map(|r| r.map(median));
         let fmt = |r: &Option<Result<f64, String>>| match r {
             Some(Ok(s)) => format!("{s:.3}"),
             Some(Err(_)) => "FAILED".into(),
@@ -478,7 +496,7 @@ fn main() {
         };
         let opt = |v: Option<f64>| v.map_or("-".into(), |v| format!("{v}"));
         println!(
-            "{:<48} {:<14} {:>7} {:>8} {:>8} {:>9} {:>7}",
+            "{:<48} {:<14} {:>7} {:>8} {:>8} {:>9} {:>7}  {spread}",
             row.step,
             row.on.name(),
             opt(row.spec),
