@@ -16,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vrep_maze::cli::Command;
 use vrep_maze::draw::run::Authored;
-use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Picture, RunError};
+use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Picture, RunError};
 
 use crate::errors;
 use crate::layout::Layout;
@@ -374,12 +374,7 @@ pub fn clear(
     };
     let stop = Stop::default();
     let dry_run = args.dry_run;
-    let opts = ClearOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        interrupt: Some(stop.requested.clone()),
-    };
+    let opts = args.options(Some(stop.requested.clone()));
     let scene = args.scene;
     let connected = stop.connected.clone();
     let job = move || {
@@ -389,10 +384,7 @@ pub fn clear(
         let _ = backend.close();
         match result {
             Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
-                message: format!(
-                    "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
-                    total - placed
-                ),
+                message: vrep_maze::cli::summary::clear_interrupted(placed, total),
                 counts: None,
             }),
             other => Ok(Finished::Done(other?)),

@@ -17,7 +17,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::Command;
-use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, Picture};
+use vrep_maze::draw::{self, ApplyOptions, DrawError, Picture};
 
 use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_drawing};
 use crate::layout::Layout;
@@ -171,18 +171,10 @@ impl Session {
         };
         let stop = Stop::default();
         let dry_run = args.dry_run;
-        let opts = ClearOptions {
-            names: args.scene.names(),
-            stop_simulation: args.stop_simulation,
-            dry_run,
-            interrupt: Some(stop.requested.clone()),
-        };
+        let opts = args.options(Some(stop.requested.clone()));
         let work = move |session: &mut draw::Session| match draw::clear(session.backend()?, &opts) {
             Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
-                message: format!(
-                    "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
-                    total - placed
-                ),
+                message: vrep_maze::cli::summary::clear_interrupted(placed, total),
                 counts: None,
             }),
             other => Ok(Finished::Done(other?)),

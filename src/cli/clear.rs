@@ -1,5 +1,8 @@
 //! `vrep-maze clear`: remove a drawn maze from CoppeliaSim (templates stay).
 
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
 use super::apply::ConnectArgs;
 use super::connect::Connected;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
@@ -28,6 +31,18 @@ pub struct ClearArgs {
     pub json: bool,
 }
 
+impl ClearArgs {
+    /// The library's options for this command line, stopped by `interrupt` when it is set.
+    pub fn options(&self, interrupt: Option<Arc<AtomicBool>>) -> ClearOptions {
+        ClearOptions {
+            names: self.scene.names(),
+            stop_simulation: self.stop_simulation,
+            dry_run: self.dry_run,
+            interrupt,
+        }
+    }
+}
+
 /// Runs `clear`.
 pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     say::set_json(args.json);
@@ -37,19 +52,11 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         mut backend,
         description: connection,
     } = args.scene.connect_until(Some(interrupt.flag()))?;
-    let opts = ClearOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        interrupt: Some(interrupt.shared()),
-    };
+    let opts = args.options(Some(interrupt.shared()));
     let result = draw::clear(backend.as_mut(), &opts);
     if let Err(DrawError::Interrupted { placed, total }) = &result {
         let _ = backend.close();
-        eprintln!(
-            "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
-            total - placed
-        );
+        eprintln!("{}", super::summary::clear_interrupted(*placed, *total));
         eprintln!("  hint: run the same clear again to finish");
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }

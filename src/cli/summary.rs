@@ -1,7 +1,15 @@
-//! The line `apply` ends with, in the command line's words (the Python package's
-//! `str(report)` is the same line).
+//! The lines `apply` ends with and an interrupted `clear` says, in the command line's words
+//! (the Python package's `str(report)` and its interrupted message are the same lines).
 
 use crate::draw::{ApplyReport, DrawMode};
+
+/// What an interrupted `clear` did: `placed` of `total` maze objects removed.
+pub fn clear_interrupted(placed: usize, total: usize) -> String {
+    format!(
+        "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
+        total - placed
+    )
+}
 
 /// What `apply` did, in one line: the counts of [`ApplyReport`] and the cost.
 pub fn apply_line(report: &ApplyReport) -> String {
