@@ -7,7 +7,8 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt, PyRange, PyString};
 use rayon::prelude::*;
-use vrep_maze::batch::Filter;
+use std::sync::atomic::AtomicBool;
+use vrep_maze::batch::{Filter, with_percentiles};
 use vrep_maze::cli::Command;
 use vrep_maze::cli::one_line;
 use vrep_maze::layout::{self as library, build::Planned};
@@ -36,7 +37,8 @@ pub struct Batch {
     seeds: Vec<u64>,
     /// The index of the next seed to make.
     next: usize,
-    /// Which mazes to keep.
+    /// Which mazes to keep (its percentiles resolved over every seed before the first maze
+    /// is made: [`vrep_maze::batch::with_percentiles`]).
     filter: Filter,
     /// Made and kept, not yet yielded.
     ready: VecDeque<library::Layout>,
@@ -49,6 +51,22 @@ impl Batch {
     }
 
     fn __next__(&mut self, py: Python<'_>) -> PyResult<Option<Layout>> {
+        if self.next == 0
+            && self
+                .filter
+                .condition
+                .as_ref()
+                .is_some_and(|c| c.has_percentiles())
+        {
+            let (maker, filter, seeds) =
+                (self.make.clone(), self.filter.clone(), self.seeds.clone());
+            let resolve = move || {
+                let metrics_of = |seed| maker(seed).map(|layout| layout.metrics);
+                with_percentiles(filter, &seeds, &metrics_of, &AtomicBool::new(false))
+            };
+            let resolved = worker::run(py, resolve, OnSignal::Raise)?;
+            self.filter = resolved.map_err(PyValueError::new_err)?;
+        }
         loop {
             if let Some(layout) = self.ready.pop_front() {
                 return Layout::new(layout).map(Some);
@@ -100,7 +118,8 @@ fn make(
 /// (`algo`, `size`, `braid`, ...); `min_solution=N` keeps only mazes whose solution has at
 /// least N cells, `max_dead_ends=PCT` only those with at most PCT % dead ends,
 /// `where_="solution_cells >= 40 and dead_ends <= 12"` only those meeting the condition of
-/// `vrep-maze batch --where`. A refused
+/// `vrep-maze batch --where` (a percentile, `where_="solution_cells >= p80"`, is taken over
+/// every seed's maze before the first is yielded). A refused
 /// option raises `ValueError` with the command line's message. Mazes are made in parallel
 /// on all cores, a few per core at a time, without the GIL; Ctrl-C raises
 /// `KeyboardInterrupt` at once (nothing is written, so nothing is left half done).

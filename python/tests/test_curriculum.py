@@ -21,6 +21,22 @@ def test_where_keeps_what_the_command_keeps(tmp_path):
     assert [entry["seed"] for entry in manifest] == [layout.seed for layout in kept]
 
 
+def test_a_percentile_keeps_what_the_command_keeps(tmp_path):
+    condition = "solution_cells >= p75"
+    kept = list(vrep_maze.batch(range(12), size=(8, 8), where_=condition))
+    every = list(vrep_maze.batch(range(12), size=(8, 8)))
+    lengths = sorted(layout.metrics["solution_cells"] for layout in every)
+    # nearest rank: the 9th of 12
+    assert [l.seed for l in kept] == [
+        l.seed for l in every if l.metrics["solution_cells"] >= lengths[8]]
+    assert 3 <= len(kept) < 12
+    done = run_cli("batch", "-q", "--size", "8x8", "--seeds", "0..12", "--where", condition,
+                   "--out-dir", tmp_path)
+    assert done.returncode == 0, done.stderr
+    manifest = [json.loads(line) for line in (tmp_path / "manifest.jsonl").read_text().splitlines()]
+    assert [entry["seed"] for entry in manifest] == [layout.seed for layout in kept]
+
+
 def test_a_bad_condition_is_a_value_error_naming_the_position():
     with pytest.raises(ValueError, match="at position 0: unknown metric 'solution_length'"):
         vrep_maze.batch(range(3), where_="solution_length >= 40")

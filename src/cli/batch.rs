@@ -19,7 +19,7 @@ use crate::layout::build::Planned;
 /// Options of `batch`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --style walls --posts --seeds 0..100 --out-dir walls\n  vrep-maze batch --preset micromouse --seeds 0..100 --out-dir mice\n  vrep-maze batch --algo kruskal --braid 0.3 --size 15x15 --seeds 0..=99 --min-solution 40 --out-dir hard\n  vrep-maze batch --size 9x9 --seeds 0..100 --where \"solution_cells >= 40 and dead_ends <= 12\" --out-dir curriculum"
+    after_help = "Examples:\n  vrep-maze batch --algo prim --size 15x15 --seeds 0..1000 --out-dir dataset\n  vrep-maze batch --style walls --posts --seeds 0..100 --out-dir walls\n  vrep-maze batch --preset micromouse --seeds 0..100 --out-dir mice\n  vrep-maze batch --algo kruskal --braid 0.3 --size 15x15 --seeds 0..=99 --min-solution 40 --out-dir hard\n  vrep-maze batch --size 9x9 --seeds 0..100 --where \"solution_cells >= 40 and dead_ends <= 12\" --out-dir curriculum\n  vrep-maze batch --size 15x15 --seeds 0..1000 --where \"solution_cells >= p90\" --out-dir hardest"
 )]
 pub struct BatchArgs {
     /// Seeds: N, A..B (B excluded), A..=B (B included), or a comma-separated list of these.

@@ -61,3 +61,27 @@ fn a_bad_condition_names_the_metric_and_the_position() {
     }
     assert!(!dir.path().join("out").exists());
 }
+
+/// `pNN` compares with the metric's percentile over the batch's seeds: `solution_cells >= p75`
+/// keeps the longest quarter (ties included), and no dropped maze has a longer solution than
+/// a kept one.
+#[test]
+fn a_percentile_keeps_the_hardest_share_of_the_batch() {
+    let (all, hard) = (TempDir::new().unwrap(), TempDir::new().unwrap());
+    let every = manifest(all.path(), "cells >= 0");
+    assert_eq!(every.len(), 12);
+    let kept = manifest(hard.path(), "solution_cells >= p75");
+    let length = |e: &serde_json::Value| e["metrics"]["solution_cells"].as_u64().unwrap();
+    let mut lengths: Vec<u64> = every.iter().map(length).collect();
+    lengths.sort();
+    // nearest rank: the 9th of 12
+    let threshold = lengths[8];
+    let want: Vec<u64> = every
+        .iter()
+        .filter(|e| length(e) >= threshold)
+        .map(|e| e["seed"].as_u64().unwrap())
+        .collect();
+    let got: Vec<u64> = kept.iter().map(|e| e["seed"].as_u64().unwrap()).collect();
+    assert_eq!(got, want);
+    assert!((3..12).contains(&got.len()), "{got:?}");
+}

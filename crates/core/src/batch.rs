@@ -145,6 +145,8 @@ pub fn run_with(
     fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let stale_removed =
         remove_stale_temporaries(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
+    let metrics_of = |seed| make(seed).map(|(layout, _)| layout.metrics);
+    let filter = with_percentiles(filter, seeds, &metrics_of, stop)?;
     let made: Vec<Made> = seeds
         .par_iter()
         .map(|&seed| {
@@ -192,6 +194,29 @@ pub fn run_with(
     write_atomically(&outcome.manifest, |w| write_manifest(&entries, w))
         .map_err(|e| format!("{}: {e}", outcome.manifest.display()))?;
     Ok(outcome)
+}
+
+/// `filter` with its condition's percentiles ([`Condition::resolved`]) taken over the
+/// mazes of every seed (`metrics_of` makes each once more, in parallel, until `stop` is
+/// set); `filter` itself when it has none. The command line's and Python's `batch` both.
+pub fn with_percentiles(
+    filter: Filter,
+    seeds: &[u64],
+    metrics_of: &(dyn Fn(u64) -> Result<Metrics, String> + Sync),
+    stop: &AtomicBool,
+) -> Result<Filter, String> {
+    let Some(condition) = filter.condition.as_ref().filter(|c| c.has_percentiles()) else {
+        return Ok(filter);
+    };
+    let batch: Vec<Metrics> = seeds
+        .par_iter()
+        .filter(|_| !stop.load(Ordering::SeqCst))
+        .map(|&seed| metrics_of(seed).map_err(|e| format!("seed {seed}: {e}")))
+        .collect::<Result<_, String>>()?;
+    Ok(Filter {
+        condition: Some(condition.resolved(&batch)),
+        ..filter
+    })
 }
 
 fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Result<Made, String> {

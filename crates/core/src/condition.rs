@@ -1,7 +1,9 @@
 //! A condition over a maze's metrics, as `batch --where` takes it:
 //! `solution_cells >= 40 and dead_ends <= 12`. Comparisons (`<`, `<=`, `>`, `>=`, `==`,
 //! `!=`) of a metric with a number, joined by `and`. The metrics are the layout's
-//! ([`Metrics`]'s fields) and `dead_end_percent`.
+//! ([`Metrics`]'s fields) and `dead_end_percent`. A number may be a percentile of the same
+//! metric over the batch's mazes, `p0` to `p100` (`solution_cells >= p80`: the hardest fifth
+//! by solution length), which [`Condition::resolved`] turns into a number.
 
 use std::str::FromStr;
 
@@ -56,12 +58,21 @@ impl Operator {
     }
 }
 
+/// What a metric is compared with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Value {
+    /// A number.
+    Number(f64),
+    /// The metric's `p`th percentile over a batch (nearest rank), not yet resolved.
+    Percentile(u8),
+}
+
 /// One `metric operator number`.
 #[derive(Debug, Clone, PartialEq)]
 struct Comparison {
     metric: &'static str,
     operator: Operator,
-    value: f64,
+    value: Value,
 }
 
 /// Comparisons that must all hold.
@@ -72,11 +83,49 @@ pub struct Condition {
 }
 
 impl Condition {
-    /// `true` if every comparison holds for `metrics`.
+    /// `true` if every comparison holds for `metrics`. A percentile not yet
+    /// [resolved](Condition::resolved) holds for nothing.
     pub fn accepts(&self, metrics: &Metrics) -> bool {
+        self.comparisons.iter().all(|c| match c.value {
+            Value::Number(v) => c.operator.holds(value_of(metrics, c.metric), v),
+            Value::Percentile(_) => false,
+        })
+    }
+
+    /// Whether it compares with a percentile ([`Condition::resolved`] needs the batch).
+    pub fn has_percentiles(&self) -> bool {
         self.comparisons
             .iter()
-            .all(|c| c.operator.holds(value_of(metrics, c.metric), c.value))
+            .any(|c| matches!(c.value, Value::Percentile(_)))
+    }
+
+    /// This condition with every percentile replaced by its value over `batch` (nearest
+    /// rank: the smallest value at least `p`% of the mazes reach or stay under; the
+    /// smallest value for `p0`). An empty batch leaves nothing to compare with: the
+    /// percentile then holds for nothing.
+    pub fn resolved(&self, batch: &[Metrics]) -> Condition {
+        let comparisons = self
+            .comparisons
+            .iter()
+            .map(|c| match c.value {
+                Value::Percentile(p) => {
+                    let mut values: Vec<f64> =
+                        batch.iter().map(|m| value_of(m, c.metric)).collect();
+                    values.sort_by(f64::total_cmp);
+                    let rank = (f64::from(p) / 100.0 * values.len() as f64).ceil() as usize;
+                    let value = values.get(rank.max(1) - 1).copied();
+                    Comparison {
+                        value: value.map_or(Value::Percentile(p), Value::Number),
+                        ..c.clone()
+                    }
+                }
+                Value::Number(_) => c.clone(),
+            })
+            .collect();
+        Condition {
+            comparisons,
+            text: self.text.clone(),
+        }
     }
 
     /// The text it was parsed from.
@@ -155,11 +204,21 @@ fn comparison(text: &str, rest: &mut &str) -> Result<Comparison, String> {
     let number_end = number_text
         .find(char::is_whitespace)
         .unwrap_or(number_text.len());
-    let value: f64 = number_text[..number_end]
-        .parse()
-        .ok()
-        .filter(|v: &f64| v.is_finite())
-        .ok_or_else(|| at(text, number_text, "expected a number"))?;
+    let word = &number_text[..number_end];
+    let value = match word.strip_prefix('p') {
+        Some(digits) => digits
+            .parse::<u8>()
+            .ok()
+            .filter(|p| *p <= 100)
+            .map(Value::Percentile)
+            .ok_or_else(|| at(text, number_text, "expected a percentile p0 to p100"))?,
+        None => word
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite())
+            .map(Value::Number)
+            .ok_or_else(|| at(text, number_text, "expected a number or a percentile (p80)"))?,
+    };
     *rest = &number_text[number_end..];
     Ok(Comparison {
         metric,
@@ -226,12 +285,38 @@ mod tests {
         );
         assert_eq!(
             error("loops >= x"),
-            "'loops >= x' at position 9: expected a number"
+            "'loops >= x' at position 9: expected a number or a percentile (p80)"
+        );
+        assert_eq!(
+            error("loops >= p101"),
+            "'loops >= p101' at position 9: expected a percentile p0 to p100"
         );
         assert_eq!(error(""), "'' at position 0: expected a metric name");
         assert_eq!(
             error("loops >= 1 and"),
             "'loops >= 1 and' at position 11: expected 'and' or the end"
         );
+    }
+
+    #[test]
+    fn percentiles_are_resolved_over_the_batch_by_nearest_rank() {
+        let c: Condition = "solution_cells >= p80 and dead_ends <= 12".parse().unwrap();
+        assert!(c.has_percentiles());
+        // unresolved, a percentile holds for nothing
+        assert!(!c.accepts(&metrics(100, 0)));
+        let batch: Vec<Metrics> = (1..=10).map(|k| metrics(k * 10, k)).collect();
+        let r = c.resolved(&batch);
+        assert!(!r.has_percentiles());
+        // the 80th percentile of 10, 20, ..., 100 is 80 (rank 8 of 10)
+        assert!(r.accepts(&metrics(80, 3)) && !r.accepts(&metrics(79, 3)));
+        assert!(!r.accepts(&metrics(90, 13)));
+        let kept = batch.iter().filter(|m| r.accepts(m)).count();
+        assert_eq!(kept, 3);
+        let ends: Condition = "solution_cells <= p0".parse().unwrap();
+        let shortest = ends.resolved(&batch);
+        assert_eq!(batch.iter().filter(|m| shortest.accepts(m)).count(), 1);
+        // nothing to compare with: nothing is kept
+        assert!(!c.resolved(&[]).accepts(&metrics(100, 0)));
+        assert_eq!(r.text(), c.text());
     }
 }
