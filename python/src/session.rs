@@ -6,7 +6,9 @@
 //! connection and a restarted simulator behave as there: the first Ctrl-C stops after the
 //! request in flight with the idle rate restored and raises `Interrupted` (the session stays
 //! open; the same call again finishes the maze), an error raises `SimulatorError` and leaves
-//! the scene as an interrupted `apply` does, for the next `apply` or `clear` to repair.
+//! the scene as an interrupted `apply` does, for the next `apply` or `clear` to repair. The
+//! call after one that lost the connection connects again first
+//! (`draw::Session::reconnecting`).
 
 use std::sync::Mutex;
 use std::sync::atomic::Ordering;
@@ -17,7 +19,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::Command;
-use vrep_maze::draw::{self, ApplyOptions, DrawError, Picture};
+use vrep_maze::draw::{self, ApplyOptions, BackendError, DrawError, Picture};
 
 use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_drawing};
 use crate::layout::Layout;
@@ -67,7 +69,13 @@ pub fn connect(
                     Ok(backend) => backend,
                     Err(e) => return drop(opened.send(Err(e))),
                 };
-                let mut session = draw::Session::new(backend);
+                // after a call lost the connection, the next connects again as this did
+                let reconnect = move || {
+                    scene
+                        .connect()
+                        .map_err(|e| BackendError::Transport(format!("{e:#}")))
+                };
+                let mut session = draw::Session::reconnecting(backend, Box::new(reconnect));
                 let _ = opened.send(Ok(session.describe().unwrap_or_default()));
                 for task in queue {
                     task(&mut session);
@@ -104,7 +112,11 @@ impl Session {
         let job = move || {
             let (reply, answer) = mpsc::channel();
             let task: Task = Box::new(move |session| {
-                let _ = reply.send(work(session));
+                let result = work(session);
+                if result.as_ref().is_err_and(lost_connection) {
+                    session.mark_lost();
+                }
+                let _ = reply.send(result);
             });
             tasks
                 .send(task)
@@ -155,7 +167,7 @@ impl Session {
                 create_missing,
                 save_scene,
             };
-            draw_connected(session.backend()?, &job)
+            draw_connected(session.connected()?, &job)
         };
         self.run(py, &stop, work, ApplyReport::from)
     }
@@ -172,7 +184,8 @@ impl Session {
         let stop = Stop::default();
         let dry_run = args.dry_run;
         let opts = args.options(Some(stop.requested.clone()));
-        let work = move |session: &mut draw::Session| match draw::clear(session.backend()?, &opts) {
+        let work = move |session: &mut draw::Session| match draw::clear(session.connected()?, &opts)
+        {
             Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
                 message: vrep_maze::cli::summary::clear_interrupted(placed, total),
                 counts: None,
@@ -219,4 +232,14 @@ impl Session {
     fn __repr__(&self) -> String {
         format!("<Session {}>", self.description)
     }
+}
+
+/// Whether `error` is the connection's own failure (the simulator closed or killed), after
+/// which the session's next call connects again.
+fn lost_connection(error: &anyhow::Error) -> bool {
+    let transport = |e: &BackendError| matches!(e, BackendError::Transport(_));
+    error
+        .downcast_ref::<DrawError>()
+        .is_some_and(|e| matches!(e, DrawError::Backend(b) if transport(b)))
+        || error.downcast_ref::<BackendError>().is_some_and(transport)
 }

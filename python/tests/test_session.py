@@ -1,5 +1,6 @@
 """`vrep_maze.connect`: one connection, many mazes; a lost connection and a restarted
-simulator raise `SimulatorError` and leave the scene repairable."""
+simulator raise `SimulatorError` and leave the scene repairable; the call after one that
+lost the connection connects again."""
 
 import signal
 import subprocess
@@ -54,6 +55,30 @@ def test_a_restarted_simulator_on_the_same_port(serve):
         assert report.verified and report.pasted == 1 and report.reused == 0, report
         with vrep_maze.connect(api="zmq", port=port) as fresh:
             assert fresh.apply(vrep_maze.generate(seed=3), draw="mesh").verified
+    finally:
+        sim.close()
+        again.kill()
+        again.wait()
+
+
+@pytest.mark.parametrize("api", ["legacy", "zmq"])
+def test_a_call_that_failed_on_a_dead_simulator_leaves_the_session_to_reconnect(serve, api):
+    port = serve.port(api)
+    sim = vrep_maze.connect(api=api, port=port, timeout=1, connect_timeout=2)
+    sim.apply(vrep_maze.generate(seed=1), draw="mesh")
+    serve.stop()
+    with pytest.raises(vrep_maze.SimulatorError):
+        sim.apply(vrep_maze.generate(seed=2), draw="mesh")
+    again = subprocess.Popen(
+        [command(), "serve", "--api", api, "--listen", f"127.0.0.1:{port}", "--timing", "instant"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert str(port) in again.stdout.readline()
+        # the failed call lost the connection: the next one connects again and draws on
+        # the new simulator's fresh scene
+        report = sim.apply(vrep_maze.generate(seed=2), draw="mesh")
+        assert report.verified and report.pasted == 1 and report.reused == 0, report
+        assert sim.clear().removed_meshes
     finally:
         sim.close()
         again.kill()

@@ -58,3 +58,40 @@ fn one_session_replaces_mazes_as_separate_runs_would(kind: Kind) {
     let e = session.clear(&ClearOptions::default()).unwrap_err();
     assert_eq!(e.to_string(), "the session is closed: connect again", "{k}");
 }
+
+backend_tests!(a_call_that_lost_the_connection_leaves_the_next_to_connect_again);
+
+/// A session opened with a way to reconnect: the call that meets a dead simulator fails with
+/// the connection lost, and the next connects again and draws on the new simulator (here a
+/// second server, as a restarted CoppeliaSim would be).
+fn a_call_that_lost_the_connection_leaves_the_next_to_connect_again(kind: Kind) {
+    let k = kind.name();
+    let short = std::time::Duration::from_millis(500);
+    let (first, again) = (
+        kind.serve(Scene::course(), 0),
+        kind.serve(Scene::course(), 0),
+    );
+    let port = again.addr().port();
+    let backend = kind.connect(first.addr().port(), short).unwrap();
+    let reconnect = Box::new(move || kind.connect(port, short));
+    let mut session = Session::reconnecting(backend, reconnect);
+    let layout = course_layout(Algorithm::Prim, 9, 9, 1);
+    let job = Job {
+        layout: &layout,
+        picture: Picture::of(&layout, DrawMode::Mesh).unwrap(),
+        options: ApplyOptions::default(),
+        create_missing: false,
+        save_scene: None,
+    };
+    session.apply(&job, &mut |_| {}).unwrap();
+    first.shutdown();
+    let lost = session.apply(&job, &mut |_| {}).unwrap_err();
+    assert!(lost.lost_connection(), "{k}: {lost}");
+    let r = session
+        .apply(&job, &mut |_| {})
+        .unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!((r.drawn.meshes, r.drawn.pasted), (1, 1), "{k}: {r:?}");
+    assert!(again.snapshot().len() > Scene::course().len(), "{k}");
+    session.close().unwrap();
+    again.shutdown();
+}

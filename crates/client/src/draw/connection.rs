@@ -11,16 +11,28 @@
 //! and one within a call leaves it as an interrupted `apply` does: repaired by the next
 //! `apply` or `clear`. What the session does know for good is what the connection found
 //! once (the API, the simulator's version, its protocol): the backend holds it.
+//!
+//! A call that fails on the connection itself (the simulator closed or killed,
+//! [`BackendError::Transport`]) leaves the session to connect again before its next call, when
+//! it was opened with a way to ([`Session::reconnecting`]): a restarted simulator is then
+//! drawn on by the next call, as a new `apply` would.
 
 use super::run::{Job, Picture, Report, RunError, run};
 use super::{Backend, BackendError, ClearOptions, ClearReport, DrawError, ObjectNames};
 use super::{Stage, clear, verify};
+
+/// Makes a new connection to the same simulator ([`Session::reconnecting`]).
+pub type Reconnect = Box<dyn FnMut() -> Result<Box<dyn Backend>, BackendError> + Send>;
 
 /// A connected simulator that runs job after job ([`Session::apply`], [`Session::clear`],
 /// [`Session::verify`]) on one connection, closed by [`Session::close`] or on drop.
 pub struct Session {
     /// The connection; `None` once closed.
     backend: Option<Box<dyn Backend>>,
+    /// How to connect again after the connection was lost, if the session may.
+    reconnect: Option<Reconnect>,
+    /// A call failed on the connection itself: the next one connects again first.
+    lost: bool,
 }
 
 /// What a [`Session`] was asked after [`Session::close`].
@@ -33,7 +45,52 @@ impl Session {
     pub fn new(backend: Box<dyn Backend>) -> Session {
         Session {
             backend: Some(backend),
+            reconnect: None,
+            lost: false,
         }
+    }
+
+    /// A session on `backend` that connects again with `reconnect` before the call after
+    /// one that lost the connection.
+    pub fn reconnecting(backend: Box<dyn Backend>, reconnect: Reconnect) -> Session {
+        Session {
+            backend: Some(backend),
+            reconnect: Some(reconnect),
+            lost: false,
+        }
+    }
+
+    /// The connection for the next call: a new one if a call lost it ([`Session::mark_lost`])
+    /// and the session may connect again (a failed attempt leaves it lost, for the call
+    /// after). For what a session does not wrap, as [`Session::backend`].
+    pub fn connected(&mut self) -> Result<&mut dyn Backend, SessionError> {
+        if self.backend.is_none() {
+            return Err(Closed.into());
+        }
+        if self.lost
+            && let Some(reconnect) = self.reconnect.as_mut()
+        {
+            let fresh = reconnect().map_err(DrawError::Backend)?;
+            if let Some(mut old) = self.backend.replace(fresh) {
+                let _ = old.close();
+            }
+            self.lost = false;
+        }
+        Ok(self.backend()?)
+    }
+
+    /// Notes whether `result` lost the connection, and passes it on.
+    fn noted<T>(&mut self, result: Result<T, SessionError>) -> Result<T, SessionError> {
+        if let Err(e) = &result {
+            self.lost |= e.lost_connection();
+        }
+        result
+    }
+
+    /// A call made on [`Session::connected`] lost the connection: the next one connects
+    /// again first (a session opened with [`Session::reconnecting`]).
+    pub fn mark_lost(&mut self) {
+        self.lost = true;
     }
 
     /// The connection, for what a session does not wrap (`inspect`, `score`), or [`Closed`].
@@ -61,22 +118,28 @@ impl Session {
         job: &Job<'_>,
         progress: &mut dyn FnMut(Stage),
     ) -> Result<Report, SessionError> {
-        Ok(run(self.backend()?, job, progress)?)
+        let result = self
+            .connected()
+            .and_then(|scene| Ok(run(scene, job, progress)?));
+        self.noted(result)
     }
 
     /// Removes the drawn maze ([`clear()`]) on the open connection.
     pub fn clear(&mut self, opts: &ClearOptions) -> Result<ClearReport, SessionError> {
-        Ok(clear(self.backend()?, opts)?)
+        let result = self.connected().and_then(|scene| Ok(clear(scene, opts)?));
+        self.noted(result)
     }
 
     /// Checks the scene against `picture` ([`verify()`] or [`super::mesh::verify()`]) on the
     /// open connection.
     pub fn verify(&mut self, picture: &Picture, names: &ObjectNames) -> Result<(), SessionError> {
-        let scene = self.backend()?;
-        Ok(match picture {
-            Picture::Copies(drawing) => verify(scene, drawing, names),
-            Picture::Mesh(maze) => super::mesh::verify(scene, maze, names),
-        }?)
+        let result = self.connected().and_then(|scene| {
+            Ok(match picture {
+                Picture::Copies(drawing) => verify(scene, drawing, names),
+                Picture::Mesh(maze) => super::mesh::verify(scene, maze, names),
+            }?)
+        });
+        self.noted(result)
     }
 
     /// Ends the connection the way the official client does ([`Backend::close`]); later
@@ -93,6 +156,21 @@ impl Drop for Session {
     /// Closes the connection, ignoring errors (the backend's own drop would too).
     fn drop(&mut self) {
         let _ = self.close();
+    }
+}
+
+impl SessionError {
+    /// Whether the connection itself failed ([`BackendError::Transport`]), not the job.
+    pub fn lost_connection(&self) -> bool {
+        let transport = |e: &BackendError| matches!(e, BackendError::Transport(_));
+        match self {
+            SessionError::Closed(_) => false,
+            SessionError::Run(RunError::Draw(DrawError::Backend(e)))
+            | SessionError::Run(RunError::Create(e))
+            | SessionError::Run(RunError::Save { source: e, .. })
+            | SessionError::Draw(DrawError::Backend(e)) => transport(e),
+            SessionError::Run(_) | SessionError::Draw(_) => false,
+        }
     }
 }
 
