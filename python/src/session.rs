@@ -237,9 +237,10 @@ impl Session {
 /// Whether `error` is the connection's own failure (the simulator closed or killed), after
 /// which the session's next call connects again.
 fn lost_connection(error: &anyhow::Error) -> bool {
-    let transport = |e: &BackendError| matches!(e, BackendError::Transport(_));
     error
         .downcast_ref::<DrawError>()
-        .is_some_and(|e| matches!(e, DrawError::Backend(b) if transport(b)))
-        || error.downcast_ref::<BackendError>().is_some_and(transport)
+        .is_some_and(|e| matches!(e, DrawError::Backend(b) if b.lost_connection()))
+        || error
+            .downcast_ref::<BackendError>()
+            .is_some_and(BackendError::lost_connection)
 }

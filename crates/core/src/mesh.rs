@@ -188,12 +188,9 @@ fn mesh_maze(layout: &Layout) -> MeshMaze {
     match (&layout.style, &layout.wall) {
         (Style::Walls, Some(wall)) => {
             let open = OpenSides::of(&maze, &wall.openings);
-            // a run goes from corner to corner: a post at least as wide as the wall (as
-            // every valid layout's is) hides its ends
-            let ends_hidden = layout
-                .post
-                .as_ref()
-                .is_some_and(|p| p.size >= wall.thickness);
+            // a run goes from corner to corner: posts, never thinner than the walls in a
+            // valid layout, hide its ends
+            let ends_hidden = layout.post.is_some();
             let Ok(()) = for_each_wall_run::<std::convert::Infallible>(
                 &maze,
                 &open,
@@ -297,8 +294,12 @@ impl Builder {
     ) {
         let flat = bottom == top;
         // side k runs from corner k to corner k + 1: the y0, x1, y1 and x0 sides
-        let drawn: Vec<i32> = (0..4).filter(|&k| sides.draws(k)).collect();
-        let triangles = if flat { 2 } else { 2 + 2 * drawn.len() };
+        let drawn = (0..4).filter(move |&k| sides.draws(k));
+        let triangles = if flat {
+            2
+        } else {
+            2 + 2 * drawn.clone().count()
+        };
         let fits = self
             .open
             .as_ref()

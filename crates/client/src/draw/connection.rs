@@ -160,15 +160,14 @@ impl Drop for Session {
 }
 
 impl SessionError {
-    /// Whether the connection itself failed ([`BackendError::Transport`]), not the job.
+    /// Whether the connection itself failed ([`BackendError::lost_connection`]), not the job.
     pub fn lost_connection(&self) -> bool {
-        let transport = |e: &BackendError| matches!(e, BackendError::Transport(_));
         match self {
             SessionError::Closed(_) => false,
             SessionError::Run(RunError::Draw(DrawError::Backend(e)))
             | SessionError::Run(RunError::Create(e))
             | SessionError::Run(RunError::Save { source: e, .. })
-            | SessionError::Draw(DrawError::Backend(e)) => transport(e),
+            | SessionError::Draw(DrawError::Backend(e)) => e.lost_connection(),
             SessionError::Run(_) | SessionError::Draw(_) => false,
         }
     }

@@ -459,6 +459,13 @@ pub enum BackendError {
     Remote(String),
 }
 
+impl BackendError {
+    /// Whether the connection itself failed (the simulator closed or killed), not a request.
+    pub fn lost_connection(&self) -> bool {
+        matches!(self, BackendError::Transport(_))
+    }
+}
+
 /// A connection to a simulator that can draw: the operations [`apply()`], [`clear()`] and
 /// [`verify()`] need.
 ///
