@@ -5,15 +5,20 @@
 //! median of `--reps` of each, in milliseconds; what `docs/measurements.md` records.
 //!
 //!     cargo run --release --example mesh_costs -- PORT [--create-shape] [--reps N] [--boxes] [N...]
+//!     cargo run --release --example mesh_costs -- PORT [--create-shape] [--reps N] --layout FILE [--packed]
 //!
 //! Shape k sits at (k mod 100, k div 100) times `--scale` metres (default 0.1), 0.6 x 0.2
 //! times the scale. `--boxes` makes boxes (8 vertices, 12 triangles, as walls and posts) instead of flat
-//! rectangles (4 vertices, 2 triangles, as lines).
+//! rectangles (4 vertices, 2 triangles, as lines). `--layout` times the meshes `apply --draw
+//! mesh` makes of a layout: one create call each, or with `--packed` in batches of 8 by the
+//! one-request program `apply` sends (`vrep_maze::coppelia::lua::create`), median of `--reps`.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
 use vrep_maze::coppelia::INTPARAM_IDLE_FPS;
+use vrep_maze::coppelia::lua::{CreateMeshes, LuaMesh, create_meshes_code};
 use vrep_maze::zmq_api::cbor::{self, float_array, int};
 use vrep_maze::zmq_api::{Client, ClientOptions};
 
@@ -70,12 +75,14 @@ fn main() {
     let mut scale = 0.1;
     let mut layout = None;
     let mut lockstep = 0;
+    let mut packed = false;
     while let Some(a) = args.next() {
         match a.as_str() {
             "--create-shape" => create = "sim.createShape",
             "--reps" => reps = args.next().and_then(|n| n.parse().ok()).expect("--reps N"),
             "--boxes" => boxes = true,
             "--layout" => layout = args.next(),
+            "--packed" => packed = true,
             "--lockstep" => {
                 lockstep = args
                     .next()
@@ -118,7 +125,11 @@ fn main() {
     };
     set_fps(&mut c, 0);
     if let Some(path) = layout {
-        maze_meshes(&mut c, create, &path);
+        if packed {
+            packed_batches(&mut c, create, &path, reps);
+        } else {
+            maze_meshes(&mut c, create, &path);
+        }
         set_fps(&mut c, fps);
         c.close();
         return;
@@ -160,11 +171,65 @@ fn main() {
     c.close();
 }
 
-/// Creates, reads back and removes each mesh of the layout in `path`, timing each call.
-fn maze_meshes(c: &mut Client, create: &str, path: &str) {
+/// The meshes `apply --draw mesh` makes of the layout in `path`.
+fn layout_meshes(path: &str) -> vrep_maze::draw::mesh::MeshMaze {
     let text = std::fs::read_to_string(path).expect("layout file");
     let layout: vrep_maze::layout::Layout = serde_json::from_str(&text).expect("layout");
-    let maze = vrep_maze::draw::mesh::MeshMaze::try_from(&layout).expect("mesh maze");
+    vrep_maze::draw::mesh::MeshMaze::try_from(&layout).expect("mesh maze")
+}
+
+/// Creates the meshes of the layout in `path` in batches of 8 by the one-request program, under
+/// a dummy, and removes them, `reps` times: the median time of each batch.
+fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize) {
+    let maze = layout_meshes(path);
+    let holder = c
+        .call_int("sim.createDummy", vec![Value::Float(0.01)])
+        .expect("dummy");
+    println!("batch\tmeshes\ttriangles\tvertices\tcode KiB\tms");
+    for (k, batch) in maze.meshes.chunks(8).enumerate() {
+        let program = CreateMeshes {
+            since_4_6: create == "sim.createShape",
+            holder,
+            floor: None,
+            meshes: batch
+                .iter()
+                .map(|m| LuaMesh {
+                    name: Cow::Owned(m.name()),
+                    vertices: Cow::Borrowed(&m.vertices),
+                    indices: Cow::Borrowed(&m.indices),
+                    colour: [0.0, 1.0, 0.0],
+                    special: 0,
+                    respondable: false,
+                })
+                .collect(),
+        };
+        let code = create_meshes_code(&program);
+        let mut times = vec![];
+        for _ in 0..reps {
+            let t = Instant::now();
+            let answer = c
+                .call("sim.executeLuaCode", vec![Value::Text(code.clone())])
+                .expect("program");
+            times.push(ms(t.elapsed()));
+            let made = answer.get(1).cloned().expect("handles");
+            c.call("sim.removeObjects", vec![made]).expect("remove");
+        }
+        let triangles: usize = batch.iter().map(|m| m.triangles()).sum();
+        let vertices: usize = batch.iter().map(|m| m.vertices.len() / 3).sum();
+        println!(
+            "{k}\t{}\t{triangles}\t{vertices}\t{}\t{:.1}",
+            batch.len(),
+            code.len() / 1024,
+            median(times)
+        );
+    }
+    c.call("sim.removeObjects", vec![Value::Array(vec![int(holder.into())])])
+        .expect("remove");
+}
+
+/// Creates, reads back and removes each mesh of the layout in `path`, timing each call.
+fn maze_meshes(c: &mut Client, create: &str, path: &str) {
+    let maze = layout_meshes(path);
     println!("mesh\tkind\ttriangles\tvertices\t{create} ms\tgetShapeMesh ms\treply bytes");
     for (k, m) in maze.meshes.iter().enumerate() {
         let v: Vec<f64> = m.vertices.iter().map(|&x| f64::from(x)).collect();

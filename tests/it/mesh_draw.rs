@@ -15,7 +15,7 @@ use crate::support::backend_tests;
 use crate::support::layouts::course_layout;
 
 // every API draws meshes: the legacy API through an XML model loaded from a temporary
-// file, ZeroMQ protocols 1 and 2 with `sim.createMeshShape`
+// file, ZeroMQ protocols 1 and 2 with one Lua program per batch of meshes
 backend_tests!(
     line_maze_draws_verifies_keeps_replaces_and_clears,
     wall_maze_with_posts_draws_boxes_that_copies_replace,
@@ -23,6 +23,7 @@ backend_tests!(
     ctrl_c_stops_before_the_next_mesh_with_the_idle_rate_restored,
     the_users_objects_under_the_maze_outlive_a_mesh_maze,
     zeromq_reads_every_mesh_back_in_one_request,
+    zeromq_makes_each_batch_of_meshes_in_one_request,
 );
 
 /// The user's objects under `Maze` (a dummy, a cuboid, a 1 m plane, a dummy and a 1 m plane
@@ -346,6 +347,45 @@ fn zeromq_reads_every_mesh_back_in_one_request(kind: Kind) {
         assert!(requests >= handles.len(), "{requests} requests");
     } else {
         assert_eq!(requests, 1, "{kind:?}");
+    }
+    b.close().unwrap();
+    s.shutdown();
+}
+
+/// Over ZeroMQ, each batch of meshes `apply` creates is made and dressed by one request (one
+/// `sim.executeLuaCode`, `vrep_maze::coppelia::lua::create`), priced by its triangles and
+/// vertices, and no mesh by a `sim.createShape` of its own; the legacy API loads a model.
+fn zeromq_makes_each_batch_of_meshes_in_one_request(kind: Kind) {
+    use vrep_maze::sim::cost::Op;
+    let s = kind.serve(crate::support::layouts::big_course(), 0);
+    let mut b = s.connect();
+    let m = MeshMaze::try_from(&course_layout(Algorithm::Dfs, 100, 100, 5)).unwrap();
+    assert!(m.meshes.len() > 8, "{} meshes", m.meshes.len());
+    s.with_sim(|sim| sim.ledger = Some(vec![]));
+    apply_mesh(&mut b, &m).unwrap();
+    let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
+    let ops = || ledger.iter().flat_map(|c| &c.ops);
+    let packed: Vec<(usize, usize)> = ops()
+        .filter_map(|op| match *op {
+            Op::CreateMeshesPacked {
+                triangles,
+                vertices,
+            } => Some((triangles, vertices)),
+            _ => None,
+        })
+        .collect();
+    let one_by_one = ops()
+        .filter(|op| matches!(op, Op::CreateMesh { .. }))
+        .count();
+    assert_eq!(one_by_one, 0, "{kind:?}");
+    if kind == Kind::Legacy {
+        assert!(packed.is_empty());
+    } else {
+        assert_eq!(packed.len(), m.meshes.len().div_ceil(8), "{kind:?}");
+        let triangles: usize = m.meshes.iter().map(|x| x.triangles()).sum();
+        let vertices: usize = m.meshes.iter().map(|x| x.vertices.len() / 3).sum();
+        assert_eq!(packed.iter().map(|p| p.0).sum::<usize>(), triangles);
+        assert_eq!(packed.iter().map(|p| p.1).sum::<usize>(), vertices);
     }
     b.close().unwrap();
     s.shutdown();

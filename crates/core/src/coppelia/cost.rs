@@ -118,6 +118,14 @@ pub enum Op {
         /// Vertices of the mesh.
         vertices: usize,
     },
+    /// Meshes of `triangles` triangles and `vertices` vertices in all made and dressed by one
+    /// `sim.executeLuaCode` from packed data ([`super::lua::create`], [`super::shape_cost`]).
+    CreateMeshesPacked {
+        /// Triangles of the meshes.
+        triangles: usize,
+        /// Vertices given.
+        vertices: usize,
+    },
     /// Meshes of `triangles` triangles in all read and packed in one `sim.executeLuaCode`
     /// ([`super::lua`], [`super::shape_cost`]).
     ReadMeshesPacked {
@@ -291,6 +299,10 @@ impl CostModel {
                 triangles,
                 vertices,
             } => self.mesh.read(triangles, vertices),
+            Op::CreateMeshesPacked {
+                triangles,
+                vertices,
+            } => self.mesh.packed_create(triangles, vertices),
             Op::ReadMeshesPacked { triangles } => self.mesh.packed_read(triangles),
             Op::MergeShapes { triangles } => super::shape_cost::merge_shapes(triangles),
             Op::LoadModel { triangles } => super::model_cost::model_load(triangles),

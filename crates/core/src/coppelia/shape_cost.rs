@@ -30,6 +30,11 @@ pub struct MeshCosts {
     pub read_per_triangle: Duration,
     /// `sim.getShapeMesh`, per vertex returned.
     pub read_per_vertex: Duration,
+    /// Meshes made and dressed from packed data by one `sim.executeLuaCode`
+    /// ([`crate::coppelia::lua::create`]), per triangle.
+    pub packed_create_per_triangle: Duration,
+    /// The same, per vertex given.
+    pub packed_create_per_vertex: Duration,
     /// Meshes read inside the simulator and packed as binary strings, in one
     /// `sim.executeLuaCode` ([`crate::coppelia::lua`]), per triangle.
     pub packed_read_per_triangle: Duration,
@@ -49,6 +54,8 @@ impl MeshCosts {
         // the 47 meshes of the 50x50 walls in 33-38 ms at idle fps 0 (`docs/measurements.md`,
         // "Meshes read back in one request")
         packed_read_per_triangle: Duration::from_nanos(740),
+        packed_create_per_triangle: Duration::from_nanos(5_000),
+        packed_create_per_vertex: Duration::from_nanos(2_000),
     };
 
     /// CoppeliaSim 4.10.0, `sim.createShape`, the same meshes on a freshly started simulator
@@ -62,6 +69,8 @@ impl MeshCosts {
         read_per_vertex: Duration::from_nanos(2_000),
         // the same 47 meshes in 35-46 ms (same section)
         packed_read_per_triangle: Duration::from_nanos(920),
+        packed_create_per_triangle: Duration::from_nanos(8_000),
+        packed_create_per_vertex: Duration::from_nanos(2_000),
     };
 
     /// Server time of creating a mesh of `triangles` triangles and `vertices` vertices.
@@ -73,6 +82,13 @@ impl MeshCosts {
     /// vertices.
     pub fn read(&self, triangles: usize, vertices: usize) -> Duration {
         per(self.read_per_triangle, triangles) + per(self.read_per_vertex, vertices)
+    }
+
+    /// Server time of making and dressing meshes of `triangles` triangles and `vertices`
+    /// vertices in all in one `sim.executeLuaCode`.
+    pub fn packed_create(&self, triangles: usize, vertices: usize) -> Duration {
+        per(self.packed_create_per_triangle, triangles)
+            + per(self.packed_create_per_vertex, vertices)
     }
 
     /// Server time of reading meshes of `triangles` triangles in all in one

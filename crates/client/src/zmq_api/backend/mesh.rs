@@ -1,6 +1,9 @@
-//! [`MeshDrawing`] over the ZeroMQ remote API: `sim.createShape` (`sim.createMeshShape`
-//! before 4.6) per mesh, dressed and named with a few calls each, read back with
-//! `sim.getShapeMesh`.
+//! [`MeshDrawing`] over the ZeroMQ remote API: a batch of meshes made and dressed by one
+//! `sim.executeLuaCode` ([`lua::create`]), or where that fails `sim.createShape`
+//! (`sim.createMeshShape` before 4.6) per mesh, dressed and named with a few calls each; read
+//! back in one `sim.executeLuaCode` ([`lua::read`]) or `sim.getShapeMesh` each.
+
+use std::borrow::Cow;
 
 use ciborium::Value;
 
@@ -11,13 +14,10 @@ use crate::draw::mesh::{
 use crate::draw::{BackendError, ObjectNames};
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
-use vrep_maze_core::coppelia::lua;
+use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
 use vrep_maze_core::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
 };
-
-/// Shading angle of the meshes (CoppeliaSim's usual 20 degrees; flat faces show no edge).
-const SHADING_ANGLE: f64 = 0.349;
 
 /// The first program version whose add-on speaks protocol 2 (4.6.0): from it on meshes are
 /// made with `sim.createShape`, since 4.10 logs that `sim.createMeshShape` is deprecated
@@ -52,7 +52,62 @@ fn packed_meshes(values: &[Value], count: usize) -> Option<Vec<MeshReadback>> {
         .collect()
 }
 
+/// The handles in the answer of a [`lua::create_meshes_code`] program that made `count`
+/// meshes, `(true, {h1, h2, ...})`; `None` for a failure (which the program undid).
+fn created_handles(values: &[Value], count: usize) -> Result<Option<Vec<i32>>, BackendError> {
+    match (values.first(), values.get(1)) {
+        (Some(Value::Bool(true)), Some(Value::Array(handles))) if handles.len() == count => handles
+            .iter()
+            .map(|h| cbor::int32(h).map(Some))
+            .collect::<Option<Option<Vec<i32>>>>()
+            .ok_or_else(|| not_handles(values)),
+        (Some(Value::Bool(false)), _) => Ok(None),
+        _ => Err(not_handles(values)),
+    }
+}
+
+fn not_handles(values: &[Value]) -> BackendError {
+    BackendError::Transport(format!(
+        "sim.executeLuaCode creating meshes: not their handles: {}",
+        cbor::describe(&Value::Array(values.to_vec()))
+    ))
+}
+
 impl ZmqBackend {
+    /// `meshes` made, dressed, put in the floor's frame and under `holder` by one
+    /// `sim.executeLuaCode` ([`lua::create`]: about half the time of the separate calls);
+    /// `None` where the simulator could not run it (a failure the program undid, or no such
+    /// function), and the separate calls then name what fails.
+    fn created_in_one_request(
+        &mut self,
+        floor: i32,
+        holder: i32,
+        meshes: &[NewMesh<'_>],
+    ) -> Result<Option<Vec<i32>>, BackendError> {
+        let batch = CreateMeshes {
+            since_4_6: self.version >= CREATE_SHAPE_SINCE,
+            holder,
+            floor: (!self.floor_is_world(floor)).then_some(floor),
+            meshes: meshes
+                .iter()
+                .map(|m| LuaMesh {
+                    name: Cow::Borrowed(m.name),
+                    vertices: Cow::Borrowed(m.vertices),
+                    indices: Cow::Borrowed(m.indices),
+                    colour: m.look.colour,
+                    special: m.look.special,
+                    respondable: m.respondable,
+                })
+                .collect(),
+        };
+        let code = Value::Text(lua::create_meshes_code(&batch));
+        match self.client.call("sim.executeLuaCode", vec![code]) {
+            Ok(values) => created_handles(&values, meshes.len()),
+            Err(ZmqError::Remote { .. }) => Ok(None),
+            Err(e) => Err(e.into()),
+        }
+    }
+
     /// `shape` with the colour and world pose of the mesh `handle`.
     fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
         let colour = self
@@ -177,6 +232,9 @@ impl MeshDrawing for ZmqBackend {
                 h
             }
         };
+        if let Some(created) = self.created_in_one_request(place.floor, holder, meshes)? {
+            return Ok((holder, created));
+        }
         let mut created = Vec::with_capacity(meshes.len());
         for mesh in meshes {
             let vertices: Vec<f64> = mesh.vertices.iter().map(|&v| f64::from(v)).collect();

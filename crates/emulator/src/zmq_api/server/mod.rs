@@ -452,7 +452,8 @@ fn tree_ops(outcome: &Outcome) -> Vec<Op> {
 
 /// The work of mesh shapes beyond a call's own cost (`vrep_maze_core::coppelia::shape_cost`), from
 /// the scene after the call: a created mesh by its triangles and the vertices given, a mesh
-/// read back by its triangles and vertices, a merge by the triangles of the shape it made.
+/// read back by its triangles and vertices, our Lua programs by the meshes they made or read,
+/// a merge by the triangles of the shape it made.
 fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> Option<Op> {
     let Outcome::Ret(values) = outcome else {
         return None;
@@ -475,6 +476,16 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
         }
         "sim.executeLuaCode" => {
             let code = args.first().and_then(cbor::text)?;
+            if let Some(batch) = vrep_maze_core::coppelia::lua::parse_create_meshes(code) {
+                // priced by the meshes it made and the vertices given, as a mesh of its own
+                // (none when it failed and undid them)
+                let made = values.first() == Some(&Value::Bool(true));
+                let meshes = batch.meshes.iter().filter(|_| made);
+                return Some(Op::CreateMeshesPacked {
+                    triangles: meshes.clone().map(|m| m.indices.len() / 3).sum(),
+                    vertices: meshes.map(|m| m.vertices.len() / 3).sum(),
+                });
+            }
             let triangles = vrep_maze_core::coppelia::lua::parse_read_meshes(code)?
                 .into_iter()
                 .filter_map(|h| Some(sim.scene.get(h).ok()?.shape_mesh()?.triangles()))

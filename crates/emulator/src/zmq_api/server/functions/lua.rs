@@ -3,21 +3,34 @@
 //! measured: `return 1+1` answered `(true, 2)`, `error("boom")` `(false, '[string
 //! "error("boom")"]:1: boom')`, `return sim.getShapeMesh(999999)` `(false, '1: in
 //! sim.getShapeMesh: object does not exist.')` (`docs/measurements.md`, "Meshes read back in
-//! one request"). The emulator runs no Lua: it answers the one program our client sends
-//! ([`vrep_maze_core::coppelia::lua`]), and any other with a failure that says so.
+//! one request"). The emulator runs no Lua: it answers the programs our client sends
+//! ([`vrep_maze_core::coppelia::lua`]: reading meshes back, creating a batch of meshes), the
+//! second by making the calls the program makes, and any other with a failure that says so.
 
 use ciborium::Value;
 
 use super::args::Args;
-use super::{Ctx, Outcome, ret};
-use vrep_maze_core::coppelia::lua;
+use super::{Ctx, Outcome, call_in, ret};
+use crate::zmq_api::cbor::{self, float_array, int};
+use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
+use vrep_maze_core::coppelia::{
+    COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
+};
 
 /// `sim.executeLuaCode(code)`.
 pub(super) fn execute_lua_code(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
     let code = a.text(0)?;
-    let Some(handles) = lua::parse_read_meshes(code) else {
-        return failed("vrep-maze serve runs no Lua: it answers only vrep-maze's mesh read-back");
-    };
+    if let Some(handles) = lua::parse_read_meshes(code) {
+        return read_meshes(ctx, handles);
+    }
+    if let Some(batch) = lua::parse_create_meshes(code) {
+        return create_meshes(ctx, &batch);
+    }
+    failed("vrep-maze serve runs no Lua: it answers only vrep-maze's own mesh programs")
+}
+
+/// [`lua::read_meshes_code`]: every mesh packed as `sim.getShapeMesh` reads it.
+fn read_meshes(ctx: &mut Ctx<'_>, handles: Vec<i32>) -> Result<Outcome, String> {
     let mut packed = Vec::with_capacity(handles.len() * 2);
     for h in handles {
         let Ok(object) = ctx.sim.scene.get(h) else {
@@ -32,6 +45,105 @@ pub(super) fn execute_lua_code(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcom
     ret(vec![Value::Bool(true), Value::Array(packed)])
 }
 
+/// [`lua::create_meshes_code`]: each mesh made and dressed by the calls the program makes;
+/// on a failure, what it made is removed and the failure answered.
+fn create_meshes(ctx: &mut Ctx<'_>, batch: &CreateMeshes<'_>) -> Result<Outcome, String> {
+    let mut made = Vec::with_capacity(batch.meshes.len());
+    for mesh in &batch.meshes {
+        if let Err(e) = create_mesh(ctx, batch, mesh, &mut made) {
+            if !made.is_empty() {
+                let list = Value::Array(made.iter().map(|&h: &i32| int(h.into())).collect());
+                call_in(ctx, "sim.removeObjects", &[list]);
+            }
+            return failed(&e);
+        }
+    }
+    let handles = made.into_iter().map(|h| int(h.into())).collect();
+    ret(vec![Value::Bool(true), Value::Array(handles)])
+}
+
+/// One mesh of a batch, its handle pushed to `made` as soon as it exists.
+fn create_mesh(
+    ctx: &mut Ctx<'_>,
+    batch: &CreateMeshes<'_>,
+    mesh: &LuaMesh<'_>,
+    made: &mut Vec<i32>,
+) -> Result<(), String> {
+    let (create, pose) = if batch.since_4_6 {
+        ("sim.createShape", [1, 2])
+    } else {
+        ("sim.createMeshShape", [2, 1])
+    };
+    let vertices: Vec<f64> = mesh.vertices.iter().map(|&v| f64::from(v)).collect();
+    let indices = mesh.indices.iter().map(|&i| int(i.into())).collect();
+    let args = [
+        int(0),
+        Value::Float(SHADING_ANGLE),
+        float_array(&vertices),
+        Value::Array(indices),
+    ];
+    let values = succeeded(call_in(ctx, create, &args), create)?;
+    let h = values
+        .first()
+        .and_then(cbor::int32)
+        .ok_or_else(|| format!("in {create}: no handle"))?;
+    made.push(h);
+    let hv = int(h.into());
+    let mut calls = vec![
+        (
+            "sim.setShapeColor",
+            vec![
+                hv.clone(),
+                Value::Text(String::new()),
+                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                float_array(&mesh.colour),
+            ],
+        ),
+        (
+            "sim.setObjectSpecialProperty",
+            vec![hv.clone(), int(mesh.special.into())],
+        ),
+        (
+            "sim.setObjectInt32Param",
+            vec![hv.clone(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
+        ),
+        (
+            "sim.setObjectInt32Param",
+            vec![
+                hv.clone(),
+                int(SHAPEINTPARAM_RESPONDABLE.into()),
+                int(mesh.respondable.into()),
+            ],
+        ),
+        (
+            "sim.setObjectAlias",
+            vec![hv.clone(), Value::Text(mesh.name.to_string())],
+        ),
+    ];
+    if let Some(floor) = batch.floor {
+        let mut args = vec![hv.clone(), Value::Null, Value::Null];
+        args[pose[0]] = float_array(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        args[pose[1]] = int(floor.into());
+        calls.push(("sim.setObjectPose", args));
+    }
+    calls.push((
+        "sim.setObjectParent",
+        vec![hv, int(batch.holder.into()), Value::Bool(true)],
+    ));
+    for (func, args) in calls {
+        succeeded(call_in(ctx, func, &args), func)?;
+    }
+    Ok(())
+}
+
+/// A call's return values, or its failure as the program reports it.
+fn succeeded(outcome: Outcome, func: &str) -> Result<Vec<Value>, String> {
+    match outcome {
+        Outcome::Ret(values) | Outcome::WaitThen(values) => Ok(values),
+        Outcome::Err(e) => Err(format!("in {func}: {e}")),
+    }
+}
+
 /// The answer of a program that failed with `message`.
 fn failed(message: &str) -> Result<Outcome, String> {
     ret(vec![Value::Bool(false), Value::Text(message.into())])
@@ -39,10 +151,13 @@ fn failed(message: &str) -> Result<Outcome, String> {
 
 #[cfg(test)]
 mod tests {
+    use std::borrow::Cow;
+
     use super::super::testing::{ret1, run};
+    use super::super::{Extras, call};
     use super::*;
     use crate::sim::{Scene, Simulator};
-    use crate::zmq_api::cbor::{self, float_array, int};
+    use crate::zmq_api::message::Protocol;
     use vrep_maze_core::coppelia::DEFAULT_IDLE_FPS;
 
     fn execute(sim: &mut Simulator, code: String) -> Vec<Value> {
@@ -103,5 +218,143 @@ mod tests {
             let text = cbor::text(&answer[1]).unwrap();
             assert!(text.contains(says), "{text}");
         }
+    }
+
+    /// A batch of two meshes under a new holder, the floor's frame not the world's.
+    fn batch(sim: &mut Simulator, since_4_6: bool) -> CreateMeshes<'static> {
+        let holder = cbor::int32(&ret1(run(sim, "sim.createDummy", vec![Value::Float(0.01)])));
+        let floor = sim.scene.resolve("Floor").unwrap();
+        let mesh = |name: &str, z: f32, respondable| LuaMesh {
+            name: Cow::Owned(name.into()),
+            vertices: Cow::Owned(vec![0.0, 0.0, z, 1.5, 0.0, z, 1.5, -0.25, z, 0.0, -0.25, z]),
+            indices: Cow::Owned(vec![0, 1, 2, 0, 2, 3]),
+            colour: [0.1, 0.8, 0.2],
+            special: 176,
+            respondable,
+        };
+        CreateMeshes {
+            since_4_6,
+            holder: holder.unwrap(),
+            floor: Some(floor),
+            meshes: vec![
+                mesh("MazeMesh_l_1", 0.001, false),
+                mesh("MazeMesh_w_2", 0.1, true),
+            ],
+        }
+    }
+
+    /// What the remote API reads of object `h`: alias, parent, pose, mesh, colour, special
+    /// properties, static and respondable.
+    fn seen(sim: &mut Simulator, extras: &mut Extras, h: i32) -> Vec<Outcome> {
+        let hv = || int(h.into());
+        let calls: [(&str, Vec<Value>); 8] = [
+            ("sim.getObjectAlias", vec![hv()]),
+            ("sim.getObjectParent", vec![hv()]),
+            ("sim.getObjectPose", vec![hv(), int(-1)]),
+            ("sim.getShapeMesh", vec![hv()]),
+            (
+                "sim.getShapeColor",
+                vec![hv(), Value::Text(String::new()), int(0)],
+            ),
+            ("sim.getObjectSpecialProperty", vec![hv()]),
+            (
+                "sim.getObjectInt32Param",
+                vec![hv(), int(SHAPEINTPARAM_STATIC.into())],
+            ),
+            (
+                "sim.getObjectInt32Param",
+                vec![hv(), int(SHAPEINTPARAM_RESPONDABLE.into())],
+            ),
+        ];
+        calls
+            .into_iter()
+            .map(|(f, a)| call(sim, extras, Protocol::V2, f, &a))
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_made_by_our_program_is_what_the_separate_calls_make() {
+        for since_4_6 in [true, false] {
+            let protocol = if since_4_6 {
+                Protocol::V2
+            } else {
+                Protocol::V1
+            };
+            let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+            // the floor away from the world frame, so the pose call counts
+            let floor = sim.scene.resolve("Floor").unwrap();
+            let pose = float_array(&[0.5, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+            let args = if since_4_6 {
+                vec![int(floor.into()), pose, int(-1)]
+            } else {
+                vec![int(floor.into()), int(-1), pose]
+            };
+            let mut extras = Extras::default();
+            call(&mut sim, &mut extras, protocol, "sim.setObjectPose", &args);
+            let mut by_calls = sim.clone();
+            let b = batch(&mut sim, since_4_6);
+            assert_eq!(batch(&mut by_calls, since_4_6).holder, b.holder);
+            let code = Value::Text(lua::create_meshes_code(&b));
+            let answer = call(
+                &mut sim,
+                &mut extras,
+                protocol,
+                "sim.executeLuaCode",
+                &[code],
+            );
+            let Outcome::Ret(values) = answer else {
+                panic!("{answer:?}")
+            };
+            assert_eq!(values[0], Value::Bool(true), "{values:?}");
+            let made = cbor::handles(&values[1]).unwrap();
+            assert_eq!(made.len(), 2);
+            let mut calls_extras = extras.clone();
+            let mut separate = vec![];
+            for m in &b.meshes {
+                create_mesh(
+                    &mut Ctx {
+                        sim: &mut by_calls,
+                        extras: &mut calls_extras,
+                        protocol,
+                    },
+                    &b,
+                    m,
+                    &mut separate,
+                )
+                .unwrap();
+            }
+            assert_eq!(made, separate);
+            for &h in &made {
+                let program = seen(&mut sim, &mut extras, h);
+                assert_eq!(program, seen(&mut by_calls, &mut calls_extras, h));
+                // dressed: under the holder, in the floor's frame, respondable as asked
+                assert_eq!(program[1], Outcome::Ret(vec![int(b.holder.into())]));
+            }
+            let position = |o: &Outcome| match o {
+                Outcome::Ret(v) => cbor::numbers::<7>(&v[0]).unwrap()[..3].to_vec(),
+                other => panic!("{other:?}"),
+            };
+            assert_eq!(
+                position(&seen(&mut sim, &mut extras, made[0])[2]),
+                [0.5, -1.0, 0.0]
+            );
+            assert_eq!(
+                seen(&mut sim, &mut extras, made[1])[7],
+                Outcome::Ret(vec![int(1)])
+            );
+        }
+    }
+
+    #[test]
+    fn a_batch_that_fails_midway_leaves_nothing_behind() {
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let mut b = batch(&mut sim, true);
+        b.holder = 999_999;
+        let before = sim.scene.len();
+        let answer = execute(&mut sim, lua::create_meshes_code(&b));
+        assert_eq!(answer[0], Value::Bool(false));
+        let text = cbor::text(&answer[1]).unwrap();
+        assert!(text.contains("sim.setObjectParent"), "{text}");
+        assert_eq!(sim.scene.len(), before);
     }
 }

@@ -172,15 +172,20 @@ pub(super) fn call(
     func: &str,
     args: &[Value],
 ) -> Outcome {
-    let Some((_, handler)) = REGISTRY.iter().find(|(name, _)| *name == func) else {
-        return Outcome::Err(no_such_function(func));
-    };
     let mut ctx = Ctx {
         sim,
         extras,
         protocol,
     };
-    handler(&mut ctx, &Args::new(func, args)).unwrap_or_else(Outcome::Err)
+    call_in(&mut ctx, func, args)
+}
+
+/// Calls one function from within another (the calls of a Lua program, [`lua`]).
+fn call_in(ctx: &mut Ctx<'_>, func: &str, args: &[Value]) -> Outcome {
+    let Some((_, handler)) = REGISTRY.iter().find(|(name, _)| *name == func) else {
+        return Outcome::Err(no_such_function(func));
+    };
+    handler(ctx, &Args::new(func, args)).unwrap_or_else(Outcome::Err)
 }
 
 fn no_such_function(func: &str) -> String {
