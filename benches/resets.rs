@@ -4,8 +4,9 @@
 //! each `--resets N` times (default 200), against `vrep-maze serve --timing realistic` as
 //! 4.5.1 (ZeroMQ protocol 1) and as 4.10 (protocol 2) and, when `VREP_MAZE_REAL_SIMS` names
 //! the folder of `sim.sh`, the real builds beside it. Prints the median and 99th percentile
-//! per reset, the objects drawing sees (the survey) and, for `serve`, the simulator
-//! process's resident memory at the first reset and after the last (flat: no leak).
+//! per reset, the objects drawing sees (the survey) and the simulator process's resident
+//! memory (`serve`'s, or the real CoppeliaSim's) at the first reset and after the last (flat:
+//! no leak).
 //!
 //!     cargo bench --bench resets                         # serve only, 200 resets a row
 //!     cargo bench --bench resets -- --resets 1000        # the leak check
@@ -213,13 +214,14 @@ fn main() {
             let real = RealSim::start(&sims, version);
             let mut session = connect(real.zmq);
             let name = format!("real {version}");
-            row("mesh 9x9 by 9x9", &name, &mut session, &nine, None, 15.0);
+            let pid = real.pid();
+            row("mesh 9x9 by 9x9", &name, &mut session, &nine, pid, 15.0);
             row(
                 "micromouse walls (mesh)",
                 &name,
                 &mut session,
                 &mouse,
-                None,
+                pid,
                 25.0,
             );
             if let Some(port) = real.legacy {
@@ -227,7 +229,14 @@ fn main() {
                 let backend = LegacyBackend::connect("127.0.0.1", port, Duration::from_secs(30));
                 let mut session = Session::new(Box::new(backend.unwrap()));
                 let name = format!("real {version} legacy");
-                row("mesh 9x9 by 9x9", &name, &mut session, &nine, None, 15.0);
+                row(
+                    "mesh 9x9 by 9x9",
+                    &name,
+                    &mut session,
+                    &nine,
+                    real.pid(),
+                    15.0,
+                );
             }
         }
     }

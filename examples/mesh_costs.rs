@@ -223,8 +223,11 @@ fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize) {
             median(times)
         );
     }
-    c.call("sim.removeObjects", vec![Value::Array(vec![int(holder.into())])])
-        .expect("remove");
+    c.call(
+        "sim.removeObjects",
+        vec![Value::Array(vec![int(holder.into())])],
+    )
+    .expect("remove");
 }
 
 /// Creates, reads back and removes each mesh of the layout in `path`, timing each call.

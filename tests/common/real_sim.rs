@@ -96,12 +96,28 @@ impl RealSim {
         real
     }
 
-    /// The last lines of the simulator's log, for a failure message.
+    /// Its process id (`sim.sh` writes it beside the log), if readable.
+    pub fn pid(&self) -> Option<u32> {
+        let file = self.dir.path().join(format!("{}.pid", self.version));
+        std::fs::read_to_string(file).ok()?.trim().parse().ok()
+    }
+
+    /// Whether its process still runs, and the last lines of its log, for a failure message.
     pub fn log_tail(&self) -> String {
+        let process = match self.pid() {
+            Some(pid) if Path::new(&format!("/proc/{pid}")).exists() => {
+                format!("CoppeliaSim {} (pid {pid}) still runs", self.version)
+            }
+            Some(pid) => format!("CoppeliaSim {} (pid {pid}) has exited", self.version),
+            None => format!("CoppeliaSim {} has no process id on record", self.version),
+        };
         let log = std::fs::read_to_string(self.dir.path().join(format!("{}.log", self.version)))
             .unwrap_or_default();
         let lines: Vec<&str> = log.lines().collect();
-        lines[lines.len().saturating_sub(30)..].join("\n")
+        format!(
+            "{process}; its log ends:\n{}",
+            lines[lines.len().saturating_sub(30)..].join("\n")
+        )
     }
 }
 
