@@ -474,4 +474,48 @@ mod tests {
         );
         assert_eq!(first(CostModel::measured()), CostModel::measured().zmq_call);
     }
+
+    #[test]
+    fn batches_of_meshes_made_in_one_request_cost_what_they_cost_on_each_version() {
+        // docs/measurements.md "Meshes created in one request": the batches `apply --draw
+        // mesh` sends for a 9x9 line maze, a micromouse wall maze, a 100x100 line maze and a
+        // 50x50 wall maze, each request timed end to end at idle fps 0 (median of 5, two
+        // runs): (model, meshes' triangles, vertices, milliseconds measured)
+        let rows = [
+            (CostModel::v4_10(), 82, 164, [2.9, 2.7]),
+            (CostModel::v4_10(), 1260, 1008, [14.9, 16.2]),
+            (CostModel::v4_10(), 8000, 16000, [162.4, 157.8]),
+            (CostModel::v4_10(), 3798, 7596, [73.2, 70.3]),
+            (CostModel::v4_10(), 8000, 6400, [87.2, 84.3]),
+            (CostModel::v4_10(), 4370, 3496, [45.9, 44.7]),
+            (CostModel::measured(), 82, 164, [1.4, 1.0]),
+            (CostModel::measured(), 1260, 1008, [8.8, 8.4]),
+            (CostModel::measured(), 8000, 16000, [106.1, 105.7]),
+            (CostModel::measured(), 3798, 7596, [45.5, 43.9]),
+            (CostModel::measured(), 8000, 6400, [50.6, 52.0]),
+            (CostModel::measured(), 4370, 3496, [27.1, 27.8]),
+        ];
+        for (model, triangles, vertices, measured) in rows {
+            let op = Op::CreateMeshesPacked {
+                triangles,
+                vertices,
+            };
+            let modelled = model.ops(&[Op::ZmqCall, op]);
+            for ms in measured {
+                within(&format!("{triangles} triangles"), modelled, ms / 1000.0);
+            }
+            // about half of what the same meshes cost one call each
+            let one_call = model.ops(&[
+                Op::ZmqCall,
+                Op::CreateMesh {
+                    triangles,
+                    vertices,
+                },
+            ]);
+            assert!(
+                modelled < one_call,
+                "{triangles}: {modelled:?} vs {one_call:?}"
+            );
+        }
+    }
 }

@@ -31,9 +31,11 @@ pub struct MeshCosts {
     /// `sim.getShapeMesh`, per vertex returned.
     pub read_per_vertex: Duration,
     /// Meshes made and dressed from packed data by one `sim.executeLuaCode`
-    /// ([`crate::coppelia::lua::create`]), per triangle.
+    /// ([`crate::coppelia::lua::create`]): each program, whatever it makes ...
+    pub packed_create_per_program: Duration,
+    /// ... per triangle ...
     pub packed_create_per_triangle: Duration,
-    /// The same, per vertex given.
+    /// ... and per vertex given.
     pub packed_create_per_vertex: Duration,
     /// Meshes read inside the simulator and packed as binary strings, in one
     /// `sim.executeLuaCode` ([`crate::coppelia::lua`]), per triangle.
@@ -54,8 +56,11 @@ impl MeshCosts {
         // the 47 meshes of the 50x50 walls in 33-38 ms at idle fps 0 (`docs/measurements.md`,
         // "Meshes read back in one request")
         packed_read_per_triangle: Duration::from_nanos(740),
-        packed_create_per_triangle: Duration::from_nanos(5_000),
-        packed_create_per_vertex: Duration::from_nanos(2_000),
+        // batches of 1 to 8 meshes (82 to 8,000 triangles) in 1.0 to 106 ms at idle fps 0
+        // (`docs/measurements.md`, "Meshes created in one request")
+        packed_create_per_program: Duration::ZERO,
+        packed_create_per_triangle: Duration::from_nanos(1_700),
+        packed_create_per_vertex: Duration::from_nanos(5_800),
     };
 
     /// CoppeliaSim 4.10.0, `sim.createShape`, the same meshes on a freshly started simulator
@@ -69,8 +74,10 @@ impl MeshCosts {
         read_per_vertex: Duration::from_nanos(2_000),
         // the same 47 meshes in 35-46 ms (same section)
         packed_read_per_triangle: Duration::from_nanos(920),
-        packed_create_per_triangle: Duration::from_nanos(8_000),
-        packed_create_per_vertex: Duration::from_nanos(2_000),
+        // the same batches in 2.7 to 162 ms (same section)
+        packed_create_per_program: Duration::from_micros(750),
+        packed_create_per_triangle: Duration::from_nanos(4_700),
+        packed_create_per_vertex: Duration::from_nanos(7_800),
     };
 
     /// Server time of creating a mesh of `triangles` triangles and `vertices` vertices.
@@ -87,7 +94,8 @@ impl MeshCosts {
     /// Server time of making and dressing meshes of `triangles` triangles and `vertices`
     /// vertices in all in one `sim.executeLuaCode`.
     pub fn packed_create(&self, triangles: usize, vertices: usize) -> Duration {
-        per(self.packed_create_per_triangle, triangles)
+        self.packed_create_per_program
+            + per(self.packed_create_per_triangle, triangles)
             + per(self.packed_create_per_vertex, vertices)
     }
 
