@@ -1,5 +1,5 @@
-//! `vrep_maze.connect(...)`: one connection kept open for many `apply` and `clear` calls
-//! (`draw::Session`), so a training loop that draws a maze every episode connects once.
+//! `vrep_maze.connect(...)`: one connection kept open for many `apply`, `clear` and `inspect`
+//! calls (`draw::Session`), so a training loop that draws a maze every episode connects once.
 //!
 //! The connection lives on a thread of its own (a backend stays on the thread that made it);
 //! each call hands it a task and waits as `vrep_maze.apply` does, so Ctrl-C, a lost
@@ -18,10 +18,11 @@ use anyhow::Context;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use vrep_maze::cli::Command;
+use vrep_maze::cli::{Command, Interrupted, inspect};
 use vrep_maze::draw::{self, ApplyOptions, BackendError, DrawError, Picture};
 
 use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_drawing};
+use crate::errors;
 use crate::layout::Layout;
 use crate::options;
 
@@ -193,6 +194,59 @@ impl Session {
             other => Ok(Finished::Done(other?)),
         };
         self.run(py, &stop, work, |report| ClearReport::of(report, dry_run))
+    }
+
+    /// What the scene holds, as `vrep-maze inspect --json` reports it, as a dict (the same
+    /// keys: `connection`, `idle_fps`, `objects` (the templates and markers), `maze` (the
+    /// copies and meshes drawn), ...), on this connection; given a `layout`,
+    /// `report["layout"]["matches"]` says whether the drawn maze is that layout and
+    /// `report["layout"]["differences"]` lists what differs.
+    /// Keywords: the object names (`floor`, `parent`, `line`, ...). Only reads: the idle
+    /// rate is raised while reading and restored. Ctrl-C raises `Interrupted` (nothing was
+    /// changed).
+    #[pyo3(signature = (layout=None, **options))]
+    fn inspect<'py>(
+        &self,
+        py: Python<'py>,
+        layout: Option<&Layout>,
+        options: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let options = options::with(options, py, &[])?;
+        let argv = options::command_line("inspect", &[], &options)?;
+        let Command::Inspect(args) = options::parse(argv)? else {
+            return Err(PyRuntimeError::new_err("inspect parsed as another command"));
+        };
+        args.scene
+            .check_roles()
+            .map_err(|e| errors::from_anyhow(py, &e))?;
+        let names = args.scene.names();
+        let wanted = layout
+            .map(|l| inspect::Wanted::new("the layout".into(), (*l.layout).clone()))
+            .transpose()
+            .map_err(|e| errors::from_anyhow(py, &e))?;
+        let connection = self.description.clone();
+        let stop = Stop::default();
+        let flag = stop.requested.clone();
+        let work = move |session: &mut draw::Session| {
+            let read = inspect::read_report(
+                session.connected()?,
+                &names,
+                connection,
+                wanted.as_ref(),
+                &flag,
+            );
+            match read {
+                Err(e) if e.is::<Interrupted>() => Ok(Finished::Stopped {
+                    message: e.to_string(),
+                    counts: None,
+                }),
+                other => Ok(Finished::Done(other?)),
+            }
+        };
+        let report = self.run(py, &stop, work, |report| report)?;
+        let text = serde_json::to_string(&report)
+            .map_err(|e| PyRuntimeError::new_err(format!("the report: {e}")))?;
+        py.import("json")?.call_method1("loads", (text,))
     }
 
     /// Closes the connection (the official client's way, so that the simulator is ready for

@@ -1,7 +1,8 @@
 """`vrep_maze.connect`: one connection, many mazes; a lost connection and a restarted
 simulator raise `SimulatorError` and leave the scene repairable; the call after one that
-lost the connection connects again."""
+lost the connection connects again; `inspect` reports what `vrep-maze inspect --json` does."""
 
+import json
 import signal
 import subprocess
 import sys
@@ -11,7 +12,7 @@ import time
 import pytest
 
 import vrep_maze
-from conftest import Serve, big_course_scene, command
+from conftest import Serve, big_course_scene, command, run_cli
 
 
 @pytest.mark.parametrize("api", ["legacy", "zmq"])
@@ -25,6 +26,34 @@ def test_one_session_replaces_mazes_then_clears(serve, api):
         assert cleared.removed_meshes, cleared
     with pytest.raises(ValueError, match="the session is closed"):
         sim.apply(vrep_maze.generate(seed=4))
+
+
+@pytest.mark.parametrize("api", ["legacy", "zmq"])
+def test_inspect_in_a_session_reports_what_the_command_reports(serve, api, tmp_path):
+    maze = vrep_maze.generate(seed=5, size=(6, 5))
+    other = vrep_maze.generate(seed=6, size=(6, 5))
+    path = tmp_path / "maze.json"
+    maze.save(path)
+    with vrep_maze.connect(api=api, port=serve.port(api)) as sim:
+        empty = sim.inspect()
+        assert empty["maze"]["lines"] == 0 and empty["maze"]["meshes"] == [], empty["maze"]
+        assert "layout" not in empty
+        sim.apply(maze, draw="mesh")
+        report = sim.inspect(maze)
+        assert report["layout"]["matches"], report["layout"]
+        assert len(report["maze"]["meshes"]) == 1, report["maze"]
+        differs = sim.inspect(other)
+        assert not differs["layout"]["matches"] and differs["layout"]["differences"]
+        # the idle rate as the user left it, not as raised while reading
+        assert report["idle_fps"] == empty["idle_fps"]
+    done = run_cli("inspect", "--api", api, "--port", serve.port(api), "--layout", path, "--json")
+    assert done.returncode == 0, done.stderr
+    cli = json.loads(done.stdout)
+    # the same document but where the two name the connection and the layout's file
+    for r in (report, cli):
+        r.pop("connection")
+        r["layout"].pop("file")
+    assert report == cli
 
 
 def test_a_stopped_simulator_raises_and_the_session_closes(serve):

@@ -1,7 +1,7 @@
 """Type stubs of the extension module; see the docstrings for what each item does."""
 
 from os import PathLike
-from typing import Iterable, Iterator, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Iterable, Iterator, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -225,6 +225,16 @@ class Session:
         stop_simulation: bool = False,
         dry_run: bool = False,
     ) -> ClearReport: ...
+    def inspect(
+        self,
+        layout: Optional[Layout] = None,
+        *,
+        floor: Optional[str] = None,
+        parent: Optional[str] = None,
+        line: Optional[str] = None,
+        start: Optional[str] = None,
+        end: Optional[str] = None,
+    ) -> dict[str, Any]: ...
     def close(self) -> None: ...
     def __enter__(self) -> "Session": ...
     def __exit__(self, *exc: object) -> bool: ...

@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result};
 
@@ -48,16 +49,10 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
     // two roles on one object, or a layout that cannot be drawn: refused before connecting
     args.scene.check_roles()?;
     let wanted = match &args.layout {
-        Some(path) => {
-            let layout = crate::layout::read_layout(path)?;
-            let drawing = Drawing::try_from(&layout)
-                .with_context(|| format!("{}: cannot be compared", path.display()))?;
-            Some(Wanted {
-                file: path.display().to_string(),
-                drawing,
-                layout,
-            })
-        }
+        Some(path) => Some(Wanted::new(
+            path.display().to_string(),
+            crate::layout::read_layout(path)?,
+        )?),
         None => None,
     };
     let names = args.scene.names();
@@ -74,17 +69,15 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
         c.connect_timeout,
         Some(interrupt.flag()),
     )?;
-    // every read paced by the idle rate costs a main-loop pass (93-125 ms at the default 8
-    // fps, `../shared/spec/real-coppeliasim-4.5.1.md` "Pacing"): raised as apply raises it,
-    // and restored on every path, Ctrl-C and errors included
-    let read = raised_to_read(backend.as_mut(), |scene| {
-        inspect(scene, &names, description, wanted.as_ref(), &interrupt)
-    });
+    let read = read_report(
+        backend.as_mut(),
+        &names,
+        description,
+        wanted.as_ref(),
+        interrupt.flag(),
+    );
     let _ = backend.close();
-    let (mut report, rates) = read?;
-    // the rates as the user left them, not as raised while reading
-    report.idle_fps = rates.current;
-    report.saved_idle_fps = rates.saved;
+    let report = read?;
     if args.json {
         say::document(&report)?;
     } else {
@@ -99,7 +92,7 @@ pub fn run(args: InspectArgs) -> Result<ExitCode> {
 }
 
 /// A layout to compare the scene with.
-struct Wanted {
+pub struct Wanted {
     /// Its file, as the user named it.
     file: String,
     /// Drawn as copies of the templates.
@@ -108,17 +101,51 @@ struct Wanted {
     layout: crate::layout::Layout,
 }
 
+impl Wanted {
+    /// `layout`, named `file` in the report; refused when it cannot be drawn.
+    pub fn new(file: String, layout: crate::layout::Layout) -> Result<Wanted> {
+        let drawing =
+            Drawing::try_from(&layout).with_context(|| format!("{file}: cannot be compared"))?;
+        Ok(Wanted {
+            file,
+            drawing,
+            layout,
+        })
+    }
+}
+
+/// What `inspect` reports of the scene behind `backend`, described as `connection`, compared
+/// with `wanted` if given. Only reads: every read paced by the idle rate costs a main-loop
+/// pass (93-125 ms at the default 8 fps, `../shared/spec/real-coppeliasim-4.5.1.md`
+/// "Pacing"), so the rate is raised as apply raises it and restored on every path, errors
+/// and `stop` included; the report gives the rates as the user left them. Setting `stop`
+/// ends the reading between two requests ([`Interrupted`]).
+pub fn read_report(
+    backend: &mut dyn Backend,
+    names: &ObjectNames,
+    connection: String,
+    wanted: Option<&Wanted>,
+    stop: &AtomicBool,
+) -> Result<InspectReport> {
+    let (mut report, rates) = raised_to_read(backend, |scene| {
+        inspect(scene, names, connection, wanted, stop)
+    })?;
+    report.idle_fps = rates.current;
+    report.saved_idle_fps = rates.saved;
+    Ok(report)
+}
+
 /// Reads the scene through `scene` (reads only; the idle rates are left for the caller to
-/// fill in), stopping between requests once `interrupt` is set.
+/// fill in), stopping between requests once `stop` is set.
 fn inspect(
     scene: &mut dyn Backend,
     names: &ObjectNames,
     connection: String,
     wanted: Option<&Wanted>,
-    interrupt: &Interrupt,
+    stop: &AtomicBool,
 ) -> Result<InspectReport> {
     let go_on = || -> Result<()> {
-        if interrupt.requested() {
+        if stop.load(Ordering::SeqCst) {
             return Err(Interrupted(
                 "while reading the scene: nothing was changed, the idle rate is restored".into(),
             )

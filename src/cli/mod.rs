@@ -13,7 +13,7 @@ mod generate;
 mod hinted;
 mod import;
 mod input;
-mod inspect;
+pub mod inspect;
 mod interrupt;
 mod listed;
 mod output;
@@ -30,6 +30,7 @@ pub mod summary;
 mod validate;
 mod values;
 
+pub use interrupt::Interrupted;
 pub use stdout::note_closed_stdout;
 
 use std::ffi::OsString;
