@@ -202,6 +202,9 @@ pub(crate) enum Finished<T> {
         message: String,
         counts: Option<(usize, usize)>,
     },
+    /// Ctrl-C ended it early with a partial result, which the caller raises with (a
+    /// session's `score`).
+    Partial(T),
 }
 
 /// What a connection job needs to know about Ctrl-C.
@@ -238,7 +241,7 @@ pub(crate) fn run_drawing<T: Send + 'static, R>(
         (Finished::Stopped { message, counts }, _) => Err(errors::interrupted(py, message, counts)),
         // the job ended before it saw the Ctrl-C: the script stops all the same
         (Finished::Done(_), Some(ctrl_c)) => Err(ctrl_c),
-        (Finished::Done(done), None) => Ok(report(done)),
+        (Finished::Done(done), None) | (Finished::Partial(done), _) => Ok(report(done)),
     }
 }
 

@@ -82,31 +82,44 @@ pub fn score<'py>(
     let report = report_dict(py, &scored.report)?;
     let trajectory = samples_array(py, &scored.samples)?;
     if pending.is_some() {
-        let err = errors::interrupted(
-            py,
-            format!(
-                "interrupted: the run was followed for {} samples; the partial report and trajectory are in .report and .trajectory",
-                scored.samples.len()
-            ),
-            None,
-        );
-        let value = err.value(py);
-        value.setattr("report", &report)?;
-        value.setattr("trajectory", &trajectory)?;
-        return Err(err);
+        return Err(stopped_run(py, scored.samples.len(), report, trajectory)?);
     }
     Ok((report, trajectory))
 }
 
+/// The `Interrupted` of a run ended by Ctrl-C after `samples` samples, carrying the partial
+/// `report` and `trajectory`.
+pub(crate) fn stopped_run<'py>(
+    py: Python<'py>,
+    samples: usize,
+    report: Bound<'py, PyAny>,
+    trajectory: Bound<'py, PyArray2<f64>>,
+) -> PyResult<PyErr> {
+    let err = errors::interrupted(
+        py,
+        format!(
+            "interrupted: the run was followed for {samples} samples; the partial report and trajectory are in .report and .trajectory"
+        ),
+        None,
+    );
+    let value = err.value(py);
+    value.setattr("report", &report)?;
+    value.setattr("trajectory", &trajectory)?;
+    Ok(err)
+}
+
 /// The report as `--json` writes it, as a Python dict.
-fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(report)
         .map_err(|e| PyRuntimeError::new_err(format!("the report: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))
 }
 
 /// The samples as an `N x 4` array of `t, x, y, yaw`.
-fn samples_array<'py>(py: Python<'py>, samples: &[Sample]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+pub(crate) fn samples_array<'py>(
+    py: Python<'py>,
+    samples: &[Sample],
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let flat: Vec<f64> = samples
         .iter()
         .flat_map(|s| [s.t, s.x, s.y, s.yaw])

@@ -1,5 +1,5 @@
-//! `vrep_maze.connect(...)`: one connection kept open for many `apply`, `clear` and `inspect`
-//! calls (`draw::Session`), so a training loop that draws a maze every episode connects once.
+//! `vrep_maze.connect(...)`: one connection kept open for many `apply`, `clear`, `inspect`
+//! and `score` calls (`draw::Session`), so a training loop that draws a maze every episode connects once.
 //!
 //! The connection lives on a thread of its own (a backend stays on the thread that made it);
 //! each call hands it a task and waits as `vrep_maze.apply` does, so Ctrl-C, a lost
@@ -15,6 +15,7 @@ use std::sync::atomic::Ordering;
 use std::sync::mpsc::{self, Sender};
 
 use anyhow::Context;
+use numpy::PyArray2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
@@ -25,6 +26,7 @@ use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_
 use crate::errors;
 use crate::layout::Layout;
 use crate::options;
+use crate::score;
 
 /// Work for the connection's thread.
 type Task = Box<dyn FnOnce(&mut draw::Session) + Send>;
@@ -247,6 +249,55 @@ impl Session {
         let text = serde_json::to_string(&report)
             .map_err(|e| PyRuntimeError::new_err(format!("the report: {e}")))?;
         py.import("json")?.call_method1("loads", (text,))
+    }
+
+    /// Follows the robot while the simulation runs and grades its run through `layout`, as
+    /// `vrep_maze.score` does, on this connection (which stays open). Takes `score`'s
+    /// keywords but the connection's (`robot`, `floor`, `start_simulation`, `timeout`,
+    /// `until`, `robot_radius`, `end_size`). Returns `(report, trajectory)`; Ctrl-C ends
+    /// the run at the next look and raises `Interrupted` with `.report` and `.trajectory` of
+    /// the partial run.
+    #[pyo3(signature = (layout, robot=None, **options))]
+    fn score<'py>(
+        &self,
+        py: Python<'py>,
+        layout: &Layout,
+        robot: Option<Bound<'py, PyAny>>,
+        options: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyArray2<f64>>)> {
+        let options = options::with(options, py, &[("robot", robot)])?;
+        let argv = options::command_line("score", &["-"], &options)?;
+        let Command::Score(args) = options::parse(argv)? else {
+            return Err(PyRuntimeError::new_err("score parsed as another command"));
+        };
+        let stop = Stop::default();
+        let interrupt = stop.requested.clone();
+        let layout = layout.layout.clone();
+        let work = move |session: &mut draw::Session| {
+            let backend = session.connected()?;
+            let mut follower = backend
+                .follower()
+                .ok_or_else(|| anyhow::anyhow!("this connection cannot follow a robot"))?;
+            let scored = args.score_over(follower.as_mut(), &layout, interrupt.clone());
+            follower.close();
+            Ok(if interrupt.load(Ordering::SeqCst) {
+                Finished::Partial(scored?)
+            } else {
+                Finished::Done(scored?)
+            })
+        };
+        let scored = self.run(py, &stop, work, |scored| scored)?;
+        let report = score::report_dict(py, &scored.report)?;
+        let trajectory = score::samples_array(py, &scored.samples)?;
+        if stop.requested.load(Ordering::SeqCst) {
+            return Err(score::stopped_run(
+                py,
+                scored.samples.len(),
+                report,
+                trajectory,
+            )?);
+        }
+        Ok((report, trajectory))
     }
 
     /// Closes the connection (the official client's way, so that the simulator is ready for

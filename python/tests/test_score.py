@@ -45,6 +45,26 @@ def test_a_perfect_run_gives_the_report_and_the_trajectory(robot_serve, api):
     assert trajectory[-1, 1] == pytest.approx(1.0, abs=1e-6), "ends in End's column"
 
 
+@pytest.mark.parametrize("api", ["legacy", "zmq"])
+def test_a_session_draws_then_scores_on_one_connection(robot_serve, api):
+    # what a training loop does each episode: draw the maze, run, grade, on one connection
+    with vrep_maze.connect(api=api, port=robot_serve.port(api)) as sim:
+        sim.apply(maze(), draw="mesh")
+        report, trajectory = sim.score(maze(), start_simulation=True, timeout=60)
+        assert report["complete"] and report["reached_end"], report
+        assert report["spl"] == pytest.approx(1.0)
+        assert trajectory.shape == (report["samples"], 4)
+        # the connection stays open for the next episode's maze
+        assert sim.inspect(maze())["layout"]["matches"]
+        with pytest.raises(vrep_maze.SimulatorError, match="no object named `Rover`"):
+            sim.score(maze(), robot="Rover", start_simulation=True)
+    alone, _ = vrep_maze.score(maze(), api=api, port=robot_serve.port(api),
+                               start_simulation=True, timeout=60)
+    # the same report as the function's, run for run (the samples depend on timing)
+    assert report.keys() == alone.keys()
+    assert alone["complete"] and alone["shortest_length_m"] == report["shortest_length_m"]
+
+
 def test_a_missing_robot_and_a_bad_option_raise(serve):
     with pytest.raises(vrep_maze.SimulatorError, match="no object named `Rover`"):
         vrep_maze.score(maze(), robot="Rover", port=serve.port("legacy"), start_simulation=True)

@@ -235,6 +235,18 @@ class Session:
         start: Optional[str] = None,
         end: Optional[str] = None,
     ) -> dict[str, Any]: ...
+    def score(
+        self,
+        layout: Layout,
+        robot: Optional[str] = None,
+        *,
+        floor: Optional[str] = None,
+        start_simulation: bool = False,
+        timeout: Optional[float] = None,
+        until: Optional[Literal["end", "stop"]] = None,
+        robot_radius: Optional[float] = None,
+        end_size: Optional[float] = None,
+    ) -> Tuple[dict, npt.NDArray[np.float64]]: ...
     def close(self) -> None: ...
     def __enter__(self) -> "Session": ...
     def __exit__(self, *exc: object) -> bool: ...

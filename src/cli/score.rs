@@ -82,6 +82,28 @@ impl ScoreArgs {
         interrupt: Arc<AtomicBool>,
         connected: &AtomicBool,
     ) -> Result<Scored> {
+        let grader = self.grader(layout)?;
+        let mut follower = connect(&self.scene, &interrupt)?;
+        connected.store(true, Ordering::SeqCst);
+        let scored = self.follow(follower.as_mut(), &grader, interrupt);
+        follower.close();
+        scored
+    }
+
+    /// As [`ScoreArgs::score`], over a follower already connected (a session's: it is left
+    /// open); the connection options are not used.
+    pub fn score_over(
+        &self,
+        follower: &mut dyn Follower,
+        layout: &Layout,
+        interrupt: Arc<AtomicBool>,
+    ) -> Result<Scored> {
+        let grader = self.grader(layout)?;
+        self.follow(follower, &grader, interrupt)
+    }
+
+    /// The options and `layout` checked, and the grader of runs through `layout`.
+    fn grader(&self, layout: &Layout) -> Result<Grader> {
         // the maze's roles on one name are conflicting options here too
         self.scene.check_roles()?;
         super::ensure_usage!(
@@ -100,13 +122,20 @@ impl ScoreArgs {
             "--end-size must be more than 0 and at most 1000 m"
         );
         crate::validate::checked(layout).context("nothing was scored")?;
-        let grader = Grader::new(layout).map_err(|e| anyhow::anyhow!("{e}"))?;
+        Grader::new(layout).map_err(|e| anyhow::anyhow!("{e}"))
+    }
+
+    /// Finds the robot, follows its run over `follower` and grades it.
+    fn follow(
+        &self,
+        follower: &mut dyn Follower,
+        grader: &Grader,
+        interrupt: Arc<AtomicBool>,
+    ) -> Result<Scored> {
         let grade = GradeOptions {
             robot_radius: self.robot_radius,
             end_size: self.end_size,
         };
-        let mut follower = connect(&self.scene, &interrupt)?;
-        connected.store(true, Ordering::SeqCst);
         let options = FollowOptions {
             robot: self.robot.clone(),
             floor: self.scene.floor.clone(),
@@ -118,7 +147,6 @@ impl ScoreArgs {
         };
         // a missing robot is said at once, before any wait for the simulation
         if let Err(e) = follower.find(&self.robot, &self.scene.floor) {
-            follower.close();
             return Err(missing_robot(e, &self.robot)).context("nothing was scored");
         }
         if !self.start_simulation {
@@ -127,9 +155,7 @@ impl ScoreArgs {
                 self.run_timeout
             );
         }
-        let followed = follow(follower.as_mut(), &grader, &options);
-        follower.close();
-        let followed = followed.context("nothing was scored")?;
+        let followed = follow(follower, grader, &options).context("nothing was scored")?;
         let mut report = grader.grade(&followed.samples, &grade);
         report.complete = followed.incomplete.is_none();
         report.incomplete_reason = followed.incomplete;

@@ -5,5 +5,6 @@
 //! through the wire (`vrep-maze-wire`).
 
 pub mod draw;
+pub mod held;
 pub mod legacy;
 pub mod zmq_api;

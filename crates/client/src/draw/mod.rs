@@ -37,6 +37,7 @@ pub use run::{DrawMode, Job, Picture, Report, RunError, run};
 pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
+use vrep_maze_core::score::follow::Follower;
 
 pub use vrep_maze_core::layout::{Pose, Style};
 
@@ -563,6 +564,11 @@ pub trait Backend {
     }
     /// Drawing a maze as mesh shapes ([`mesh::MeshDrawing`]), if this backend can.
     fn meshes(&mut self) -> Option<&mut dyn mesh::MeshDrawing> {
+        None
+    }
+    /// A follower of a robot's run over this backend's connection, which stays open when
+    /// the follower is closed (`score` in a session), if this backend can lend it.
+    fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
         None
     }
 }

@@ -17,6 +17,7 @@ use crate::draw::{
 use vrep_maze_core::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };
+use vrep_maze_core::score::follow::Follower;
 
 mod mesh;
 
@@ -654,6 +655,11 @@ impl Backend for LegacyBackend {
 
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
+    }
+
+    fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
+        let client = self.client.as_mut()?;
+        Some(Box::new(super::follow::LegacyFollower::lent(client)))
     }
 
     /// Ends the session as `simxFinish` does ([`Client::close`]).

@@ -7,22 +7,32 @@
 
 use super::client::Client;
 use super::command::{Command, SimControl, read_f32x3, read_i32};
+use crate::held::Held;
 use vrep_maze_core::coppelia::frame::rotation_from_euler;
 use vrep_maze_core::score::Sample;
 use vrep_maze_core::score::follow::{FollowError, Follower, Look, heading};
 
 /// A [`Follower`] over a legacy connection.
-pub struct LegacyFollower {
-    client: Client,
+pub struct LegacyFollower<'a> {
+    client: Held<'a, Client>,
     /// Robot and floor handles, once found.
     handles: Option<(i32, i32)>,
     /// The pose streams were requested.
     streaming: bool,
 }
 
-impl LegacyFollower {
-    /// Follows over `client`.
+impl<'a> LegacyFollower<'a> {
+    /// Follows over `client`, closed when the follower is.
     pub fn new(client: Client) -> Self {
+        Self::over(Held::Owned(client))
+    }
+
+    /// Follows over a drawing backend's client, left open ([`crate::draw::Backend::follower`]).
+    pub fn lent(client: &'a mut Client) -> Self {
+        Self::over(Held::Lent(client))
+    }
+
+    fn over(client: Held<'a, Client>) -> Self {
         Self {
             client,
             handles: None,
@@ -58,7 +68,7 @@ impl LegacyFollower {
     }
 }
 
-impl Follower for LegacyFollower {
+impl Follower for LegacyFollower<'_> {
     fn find(&mut self, robot: &str, floor: &str) -> Result<(), FollowError> {
         let robot = self.handle(robot)?;
         let floor = self.handle(floor)?;
@@ -126,6 +136,8 @@ impl Follower for LegacyFollower {
         {
             let _ = self.client.discontinue(&streams);
         }
-        let _ = self.client.close();
+        if let Some(client) = self.client.into_owned() {
+            let _ = client.close();
+        }
     }
 }

@@ -32,6 +32,7 @@ use vrep_maze_core::coppelia::{
     PRIMITIVESHAPE_PLANE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SIMULATION_STOPPED,
     SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE, SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
+use vrep_maze_core::score::follow::Follower;
 
 mod mesh;
 
@@ -1284,6 +1285,10 @@ impl Backend for ZmqBackend {
 
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
+    }
+
+    fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
+        Some(Box::new(super::follow::ZmqFollower::lent(&mut self.client)))
     }
 }
 

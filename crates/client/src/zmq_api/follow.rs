@@ -18,22 +18,32 @@ use nalgebra::{Quaternion, UnitQuaternion};
 use super::backend::object_path;
 use super::cbor::{self, int};
 use super::client::{Client, ZmqError};
+use crate::held::Held;
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::score::Sample;
 use vrep_maze_core::score::follow::{FollowError, Follower, Look, heading};
 
 /// A [`Follower`] over a ZeroMQ connection.
-pub struct ZmqFollower {
-    client: Client,
+pub struct ZmqFollower<'a> {
+    client: Held<'a, Client>,
     /// Robot and floor handles, once found.
     handles: Option<(i32, i32)>,
     /// The simulation time read last (the "before" of the next look).
     time: Option<f64>,
 }
 
-impl ZmqFollower {
-    /// Follows over `client`.
+impl<'a> ZmqFollower<'a> {
+    /// Follows over `client`, closed when the follower is.
     pub fn new(client: Client) -> Self {
+        Self::over(Held::Owned(client))
+    }
+
+    /// Follows over a drawing backend's client, left open ([`crate::draw::Backend::follower`]).
+    pub fn lent(client: &'a mut Client) -> Self {
+        Self::over(Held::Lent(client))
+    }
+
+    fn over(client: Held<'a, Client>) -> Self {
         Self {
             client,
             handles: None,
@@ -64,7 +74,7 @@ impl ZmqFollower {
     }
 }
 
-impl Follower for ZmqFollower {
+impl Follower for ZmqFollower<'_> {
     fn find(&mut self, robot: &str, floor: &str) -> Result<(), FollowError> {
         let robot = self.handle(robot)?;
         let floor = self.handle(floor)?;
@@ -129,6 +139,8 @@ impl Follower for ZmqFollower {
     }
 
     fn close(self: Box<Self>) {
-        self.client.close();
+        if let Some(client) = self.client.into_owned() {
+            client.close();
+        }
     }
 }
