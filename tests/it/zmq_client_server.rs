@@ -506,6 +506,81 @@ fn zmq_protocol_2_calls_are_sent_together_unless_one_may_wait() {
     assert_eq!(t.join().unwrap(), [3, 1, 1]);
 }
 
+/// `read_all` makes several reads by one request (a Lua program, `zmq_api::calls`), each
+/// outcome what `call_all` gives: a handle, a failure naming the object, a missing function;
+/// over both protocols.
+#[test]
+fn reads_made_by_one_request_answer_what_separate_calls_answer() {
+    use vrep_maze::sim::cost::Op;
+    for protocol in [Protocol::V1, Protocol::V2] {
+        let cfg = ServerConfig {
+            listen: "127.0.0.1:0".parse().unwrap(),
+            protocol,
+            ..Default::default()
+        };
+        let s = spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap();
+        let mut c = Client::connect(&opts(s.local_addr().port(), 3000)).unwrap();
+        let no_error = || cbor::map([("noError", Value::Bool(true))]);
+        let reads = [
+            ("sim.getObject", vec![text("/Line"), no_error()]),
+            ("sim.getObject", vec![text("/Nothing"), no_error()]),
+            ("sim.getObjectPose", vec![int(999_999), int(-1)]),
+            ("sim.getInt32Signal", vec![text("vrep_maze_absent")]),
+            ("sim.noSuchFunction", vec![]),
+        ];
+        let before = c.stats().round_trips;
+        s.with_sim(|sim| sim.ledger = Some(vec![]));
+        let together = c.read_all(&reads).unwrap();
+        assert_eq!(c.stats().round_trips - before, 1, "{protocol:?}");
+        // priced as one request of five calls made inside the simulator
+        let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
+        assert_eq!(ledger.len(), 1);
+        let inside = ledger[0]
+            .ops
+            .iter()
+            .filter(|op| matches!(op, Op::ProgramCall { .. }))
+            .count();
+        assert_eq!(inside, reads.len());
+        let apart = c.call_all(&reads).unwrap();
+        assert_eq!(together.len(), apart.len());
+        for (k, (t, a)) in together.iter().zip(&apart).enumerate() {
+            match (t, a) {
+                (Ok(t), Ok(a)) => assert_eq!(t, a, "{protocol:?} read {k}"),
+                (Err(t), Err(a)) => {
+                    assert_eq!(t.is_no_such_function(), a.is_no_such_function());
+                    let said = |e: &ZmqError| e.to_string().contains("object does not exist");
+                    assert_eq!(said(t), said(a), "{protocol:?} read {k}: {t} / {a}");
+                }
+                other => panic!("{protocol:?} read {k}: {other:?}"),
+            }
+        }
+        assert!(together[4].as_ref().unwrap_err().is_no_such_function());
+        c.close();
+        s.shutdown();
+    }
+}
+
+/// Where the server cannot run the program (this fake answers `[k]` to everything),
+/// `read_all` sends the reads as `call_all` does, and sends no program again.
+#[test]
+fn reads_go_one_request_each_where_no_program_runs() {
+    let (port, t) = batching_server(1, 3);
+    let mut c = Client::open(&opts(port, 5000)).unwrap();
+    c.call_int("sim.getSimulationState", vec![]).unwrap();
+    let read = |name: &str| ("sim.getInt32Signal", vec![text(name)]);
+    for _ in 0..2 {
+        let outcomes = c.read_all(&[read("a"), read("b"), read("c")]).unwrap();
+        let got: Vec<i64> = outcomes
+            .into_iter()
+            .map(|o| cbor::int32(&o.unwrap()[0]).unwrap().into())
+            .collect();
+        assert_eq!(got, [0, 1, 2]);
+    }
+    std::mem::forget(c); // no _*end*_ exchange with the finished fake
+    // the program, then its reads sent together, then the next reads without a program
+    assert_eq!(t.join().unwrap(), [1, 3, 3]);
+}
+
 /// A protocol-2 add-on charges a client's first request for making the client (5.5 ms on
 /// 4.10, `CostModel::zmq_new_client`): once per client, again for a client that left with
 /// `_*end*_` and came back, never over protocol 1.

@@ -5,8 +5,9 @@
 //! (copies pasted by an interrupted run, reported by their path `/Line[n]`). Each pose is
 //! one `sim.setObjectPose` call; removals go in one `sim.removeObjects` call. The ZeroMQ API
 //! has one call per object where the legacy API batches, so "one round trip" operations of
-//! the trait cost one call per object; calls that do not depend on each other's answers are
-//! sent together ([`Client::call_all`]) and served by one main-loop pass.
+//! the trait cost one call per object; reads that do not depend on each other's answers are
+//! made by one request ([`Client::read_all`]), writes sent together ([`Client::call_all`])
+//! and served by one main-loop pass.
 
 use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
@@ -215,7 +216,7 @@ impl ZmqBackend {
 
     /// The handles of `names` ([`object_path`]), `None` for a name with no object (-1 with
     /// `noError`, or an error from a simulator that does not know the `noError` option),
-    /// the calls sent together ([`Client::call_all`]).
+    /// the calls made by one request ([`Client::read_all`]).
     fn handles_of(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
         let calls: Vec<(&str, Vec<Value>)> = names
             .iter()
@@ -225,7 +226,7 @@ impl ZmqBackend {
             })
             .collect();
         let mut out = Vec::with_capacity(names.len());
-        for outcome in self.client.call_all(&calls)? {
+        for outcome in self.client.read_all(&calls)? {
             out.push(match outcome {
                 Ok(values) => values.first().and_then(cbor::int32).filter(|&h| h >= 0),
                 Err(_) => None,
@@ -261,7 +262,7 @@ impl ZmqBackend {
 
     /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
     /// else read (`Read`) or NaN (`Known`, never in place); `Fresh` reads every one. The reads
-    /// are sent together ([`Client::call_all`]).
+    /// are made by one request ([`Client::read_all`]).
     fn line_infos(
         &mut self,
         lines: Vec<(i32, String, Option<i32>)>,
@@ -284,7 +285,7 @@ impl ZmqBackend {
             })
             .collect();
         let mut read_now = HashMap::with_capacity(read.len());
-        for (h, outcome) in read.iter().zip(self.client.call_all(&calls)?) {
+        for (h, outcome) in read.iter().zip(self.client.read_all(&calls)?) {
             let pose = match outcome {
                 Ok(values) => pose_of(*h, &values)?,
                 // listed a moment ago, gone now (another run removed it): never in place
@@ -313,7 +314,7 @@ impl ZmqBackend {
     }
 
     /// Reads the aliases of `handles` not known yet, and the type codes of those whose `kind`
-    /// is not given, together ([`Client::call_all`]): what [`ZmqBackend::traits`] and
+    /// is not given, in one request ([`Client::read_all`]): what [`ZmqBackend::traits`] and
     /// [`ZmqBackend::alias`] then find remembered (`with_types: false`: the aliases only). An
     /// object whose read fails is left unknown, for the one-by-one read to report.
     fn read_traits(
@@ -335,7 +336,7 @@ impl ZmqBackend {
                 calls.push(("sim.getObjectType", vec![int((*h).into())]));
             }
         }
-        let mut outcomes = self.client.call_all(&calls)?.into_iter();
+        let mut outcomes = self.client.read_all(&calls)?.into_iter();
         for (h, kind) in todo {
             let alias = outcomes.next().and_then(Result::ok);
             let alias = alias
@@ -364,7 +365,7 @@ impl ZmqBackend {
 
     /// The named objects with their parents and world poses, and their type codes (a named
     /// object's alias is its name's last part: only its type is read, once), the calls sent
-    /// together ([`Client::call_all`]).
+    /// in one request ([`Client::read_all`]).
     fn named_infos(
         &mut self,
         named: &[(String, i32)],
@@ -385,7 +386,7 @@ impl ZmqBackend {
                 calls.push(("sim.getObjectType", vec![handle]));
             }
         }
-        let mut outcomes = self.client.call_all(&calls)?.into_iter();
+        let mut outcomes = self.client.read_all(&calls)?.into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
         let mut out = Vec::with_capacity(named.len());
         for ((name, h), read_type) in named.iter().zip(read_type) {
@@ -717,7 +718,7 @@ impl ZmqBackend {
         let mut texts = Vec::with_capacity(2);
         for outcome in self
             .client
-            .call_all(&[call(COPIES.name), call(COPIES.old)])?
+            .read_all(&[call(COPIES.name), call(COPIES.old)])?
         {
             texts.push(match outcome {
                 Ok(values) => match values.first() {
@@ -948,7 +949,7 @@ impl Backend for ZmqBackend {
         }
         let mut outcomes = self
             .client
-            .call_all(&[
+            .read_all(&[
                 idle_rate_call(),
                 saved_rate_call(SAVED_IDLE_FPS.name),
                 saved_rate_call(SAVED_IDLE_FPS.old),
@@ -968,7 +969,7 @@ impl Backend for ZmqBackend {
         Ok(self.collect(LinePoses::Fresh)?.0)
     }
 
-    /// Six calls an object, sent together ([`Client::call_all`]).
+    /// Six calls an object, made by one request ([`Client::read_all`]).
     fn bounding_boxes(
         &mut self,
         handles: &[i32],
@@ -985,7 +986,7 @@ impl Backend for ZmqBackend {
                 })
             })
             .collect();
-        let outcomes = self.client.call_all(&calls)?;
+        let outcomes = self.client.read_all(&calls)?;
         Ok(outcomes
             .chunks(6)
             .map(|six| {
@@ -1003,7 +1004,7 @@ impl Backend for ZmqBackend {
     }
 
     /// A shape's size in one call (`sim.getShapeBB`), any other object's from its bounding
-    /// box (six calls); all sent together ([`Client::call_all`]).
+    /// box (six calls); all made by one request ([`Client::read_all`]).
     fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
         let shape = |b: &Self, h: &i32| b.traits.get(h).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE);
         let shapes: Vec<i32> = handles.iter().copied().filter(|h| shape(self, h)).collect();
@@ -1012,7 +1013,7 @@ impl Backend for ZmqBackend {
             .map(|&h| ("sim.getShapeBB", vec![int(h.into())]))
             .collect();
         let mut sizes: HashMap<i32, Option<[f64; 3]>> = HashMap::new();
-        for (h, outcome) in shapes.iter().zip(self.client.call_all(&calls)?) {
+        for (h, outcome) in shapes.iter().zip(self.client.read_all(&calls)?) {
             if let Ok(values) = outcome {
                 sizes.insert(*h, values.first().and_then(cbor::numbers::<3>));
             }
@@ -1032,7 +1033,7 @@ impl Backend for ZmqBackend {
             .collect())
     }
 
-    /// One call a shape, sent together ([`Client::call_all`]).
+    /// One call a shape, made by one request ([`Client::read_all`]).
     fn shape_colours(
         &mut self,
         handles: &[i32],
@@ -1041,7 +1042,7 @@ impl Backend for ZmqBackend {
             .iter()
             .map(|&h| mesh::shape_colour_call(h))
             .collect();
-        let outcomes = self.client.call_all(&calls)?;
+        let outcomes = self.client.read_all(&calls)?;
         Ok(Some(
             outcomes
                 .iter()
@@ -1050,14 +1051,14 @@ impl Backend for ZmqBackend {
         ))
     }
 
-    /// One call a signal, sent together ([`Client::call_all`]).
+    /// One call a signal, made by one request ([`Client::read_all`]).
     fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
         let calls: Vec<(&str, Vec<Value>)> = names
             .iter()
             .map(|name| ("sim.getInt32Signal", vec![Value::Text(name.to_string())]))
             .collect();
         let mut out = Vec::with_capacity(names.len());
-        for outcome in self.client.call_all(&calls)? {
+        for outcome in self.client.read_all(&calls)? {
             out.push(outcome?.first().and_then(cbor::int32));
         }
         Ok(out)

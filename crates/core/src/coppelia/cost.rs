@@ -101,6 +101,13 @@ pub enum Op {
         /// Handles returned.
         handles: usize,
     },
+    /// One call made inside one of our Lua programs (several calls in one request,
+    /// `vrep_maze_wire::zmq_api::calls`), returning `handles` handles (a tree's), its own work
+    /// aside.
+    ProgramCall {
+        /// Handles returned.
+        handles: usize,
+    },
     /// One legacy drawing command (paste, set-parent, set-position, set-orientation,
     /// remove), its own work aside.
     LegacyCommand,
@@ -195,6 +202,10 @@ pub struct CostModel {
     /// Kept at the fit with the spec's 0.45 ms calls: with the real build's 0.15 ms the
     /// spec's row is still reproduced within 0.75..1.33 (`tests/it/costs.rs`).
     pub zmq_call_per_thousand_objects: Duration,
+    /// One call inside one of our Lua programs: about 10 µs on both builds, where a request
+    /// of its own costs 0.1-0.2 ms (`docs/measurements.md` "Calls made in one request": ten
+    /// reads of parents and poses in 0.22-0.34 ms, an empty program 0.13-0.18 ms).
+    pub program_call: Duration,
     /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
     pub zmq_tree: Duration,
     /// ... and per handle returned (0.9 ms with 500 children).
@@ -237,6 +248,7 @@ impl CostModel {
             zmq_new_client: Duration::ZERO,
             zmq_set: Duration::from_micros(170),
             zmq_call_per_thousand_objects: Duration::from_micros(40),
+            program_call: Duration::from_micros(10),
             zmq_tree: Duration::from_micros(300),
             zmq_tree_per_handle: Duration::from_nanos(1200),
             mesh: MeshCosts::V4_5_1,
@@ -289,6 +301,9 @@ impl CostModel {
             }
             Op::ZmqTree { handles } => {
                 self.zmq_tree + per(self.zmq_tree_per_handle, handles as f64)
+            }
+            Op::ProgramCall { handles } => {
+                self.program_call + per(self.zmq_tree_per_handle, handles as f64)
             }
             Op::LegacyCommand => self.legacy_command,
             Op::CreateMesh {

@@ -25,6 +25,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
+use vrep_maze_wire::zmq_api::calls;
 
 use crate::sim::cost::{self, Op};
 use crate::sim::{
@@ -512,6 +513,38 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
     }
 }
 
+/// The work of the calls a program of several calls made (`vrep_maze_wire::zmq_api::calls`),
+/// from the scene after it: each call's own, and a call inside the program in place of a
+/// request ([`Op::ProgramCall`], by the handles a tree returned). Such programs only read,
+/// so the scene after is the scene each call saw.
+fn program_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> Vec<Op> {
+    let code = args.first().and_then(cbor::text);
+    let (Some(each), Outcome::Ret(values)) = (
+        code.filter(|_| func == "sim.executeLuaCode")
+            .and_then(calls::parse_calls),
+        outcome,
+    ) else {
+        return vec![];
+    };
+    let answers = calls::answers(values, each.len()).unwrap_or_default();
+    let mut ops = vec![];
+    for (k, (func, args)) in each.iter().enumerate() {
+        let handles = match answers.get(k) {
+            Some(Ok(results)) if func == "sim.getObjectsInTree" => {
+                results.first().and_then(cbor::array).map_or(0, <[_]>::len)
+            }
+            _ => 0,
+        };
+        ops.push(Op::ProgramCall { handles });
+        ops.extend(
+            call_ops(sim, func, args)
+                .into_iter()
+                .filter(|op| !matches!(op, Op::ZmqCall | Op::ZmqSet)),
+        );
+    }
+    ops
+}
+
 /// Calls the requested function and turns its outcome into the reply of `protocol`
 /// (protocol 2: a deferred result is parked under the request's uuid, answered `_*wait*_`).
 fn outcome_reply(
@@ -538,6 +571,7 @@ fn outcome_reply(
             work = tree_ops(&outcome);
         }
         work.extend(shape_ops(s, &req.func, &req.args, &outcome));
+        work.extend(program_ops(s, &req.func, &req.args, &outcome));
         work.push(Op::ZmqServe {
             objects: s.scene.len(),
         });

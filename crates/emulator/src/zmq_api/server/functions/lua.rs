@@ -4,8 +4,9 @@
 //! "error("boom")"]:1: boom')`, `return sim.getShapeMesh(999999)` `(false, '1: in
 //! sim.getShapeMesh: object does not exist.')` (`docs/measurements.md`, "Meshes read back in
 //! one request"). The emulator runs no Lua: it answers the programs our client sends
-//! ([`vrep_maze_core::coppelia::lua`]: reading meshes back, creating a batch of meshes), the
-//! second by making the calls the program makes, and any other with a failure that says so.
+//! ([`vrep_maze_core::coppelia::lua`]: reading meshes back, creating a batch of meshes;
+//! [`calls`]: several calls in one request), the last two by making the calls the program
+//! makes, and any other with a failure that says so.
 
 use ciborium::Value;
 
@@ -16,6 +17,7 @@ use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING
 use vrep_maze_core::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
 };
+use vrep_maze_wire::zmq_api::calls;
 
 /// `sim.executeLuaCode(code)`.
 pub(super) fn execute_lua_code(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
@@ -25,6 +27,9 @@ pub(super) fn execute_lua_code(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcom
     }
     if let Some(batch) = lua::parse_create_meshes(code) {
         return create_meshes(ctx, &batch);
+    }
+    if let Some(each) = calls::parse_calls(code) {
+        return make_calls(ctx, each);
     }
     failed("vrep-maze serve runs no Lua: it answers only vrep-maze's own mesh programs")
 }
@@ -43,6 +48,21 @@ fn read_meshes(ctx: &mut Ctx<'_>, handles: Vec<i32>) -> Result<Outcome, String> 
         packed.push(Value::Bytes(lua::pack_int32s(&mesh.indices)));
     }
     ret(vec![Value::Bool(true), Value::Array(packed)])
+}
+
+/// [`calls::calls_code`]: each call made in turn, its failure answered as `pcall` gives a
+/// C function's error inside a program (`-1: in sim.getObjectPose: object does not exist.`
+/// on both real builds, `docs/measurements.md` "Calls made in one request").
+fn make_calls(ctx: &mut Ctx<'_>, each: Vec<(String, Vec<Value>)>) -> Result<Outcome, String> {
+    let outcomes = each
+        .into_iter()
+        .map(|(func, args)| match call_in(ctx, &func, &args) {
+            Outcome::Ret(values) | Outcome::WaitThen(values) => Ok(values),
+            Outcome::Err(e) if e == calls::no_such_function(&func) => Err(e),
+            Outcome::Err(e) => Err(format!("-1: {e}")),
+        })
+        .collect();
+    ret(calls::answer(outcomes))
 }
 
 /// [`lua::create_meshes_code`]: each mesh made and dressed by the calls the program makes;
