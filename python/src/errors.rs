@@ -10,7 +10,8 @@ use std::io;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyBaseException, PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use vrep_maze::cli::{UsageError, details, hints, one_line};
+use vrep_maze::cli::{UsageError, details, hints, one_line, one_line_with};
+use vrep_maze::draw::DrawError;
 use vrep_maze::layout::json::ReadError;
 use vrep_maze::validate::Invalid;
 
@@ -40,7 +41,14 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
         return invalid_error(py, &one_line(error), invalid);
     }
     let hints: Vec<String> = hints(error).iter().map(|h| python_names(h)).collect();
-    let mut text = python_names(&one_line(error));
+    // a drawing error's text can still name options (a template size refused with
+    // `generate`'s), so the whole line is rewritten; its roles are Python's already
+    let mut text = python_names(&one_line_with(error, |cause| {
+        match cause.downcast_ref::<DrawError>() {
+            Some(draw) => crate::remedies::message(draw),
+            None => cause.to_string(),
+        }
+    }));
     for detail in details(error) {
         text.push_str("\n  ");
         text.push_str(&detail);

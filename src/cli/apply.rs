@@ -85,7 +85,7 @@ impl ConnectArgs {
     /// before anything is sent, with the draw error's hints.
     pub fn check_roles(&self) -> anyhow::Result<()> {
         self.names().check_roles().map_err(|e| {
-            let message = e.to_string();
+            let message = super::remedies::message(&e);
             anyhow::Error::new(e).context(super::UsageError(message))
         })
     }
@@ -97,19 +97,6 @@ impl ConnectArgs {
         Ok(self.connect_until(None)?.backend)
     }
 
-    /// Each object-name option and the name it was given.
-    fn named(&self) -> [(&'static str, &String); 7] {
-        [
-            ("--floor", &self.floor),
-            ("--parent", &self.parent),
-            ("--line", &self.line),
-            ("--wall", &self.wall),
-            ("--post", &self.post),
-            ("--start", &self.start),
-            ("--end", &self.end),
-        ]
-    }
-
     /// [`ConnectArgs::connect`], keeping the description of what answered (for `--json`),
     /// ending the connection wait at once when `stop` is set (Ctrl-C) with
     /// [`super::interrupt::Interrupted`].
@@ -118,10 +105,11 @@ impl ConnectArgs {
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
         self.check_host()?;
-        for (option, name) in self.named() {
+        for (role, name) in self.names().roles() {
             ensure_usage!(
                 !name.trim().is_empty(),
-                "{option} needs the name of an object in the scene, not an empty one"
+                "{} needs the name of an object in the scene, not an empty one",
+                super::remedies::option(role)
             );
         }
         let connected = connect(
@@ -176,18 +164,10 @@ impl ConnectArgs {
         if let Some(port) = self.port {
             add("--port", port.to_string());
         }
-        let defaults = ObjectNames::default();
-        for ((option, name), default) in self.named().into_iter().zip([
-            &defaults.floor,
-            &defaults.parent,
-            &defaults.line,
-            &defaults.wall,
-            &defaults.post,
-            &defaults.start,
-            &defaults.end,
-        ]) {
-            if name != default {
-                add(option, name.clone());
+        let (names, defaults) = (self.names(), ObjectNames::default());
+        for (role, name) in names.roles() {
+            if name != defaults.name(role) {
+                add(super::remedies::option(role), name.to_string());
             }
         }
         if let Some(wait) = self.connect_timeout {

@@ -18,6 +18,7 @@ mod interrupt;
 mod listed;
 mod output;
 mod progress;
+pub mod remedies;
 mod render;
 pub mod reports;
 mod say;
@@ -292,9 +293,18 @@ const MAX_CAUSE_CHARS: usize = 400;
 /// The error and its causes on one line, each cause once: a cause whose text the line
 /// already holds (an inner error that its context also printed) is not repeated.
 pub fn one_line(error: &anyhow::Error) -> String {
+    one_line_with(error, cause_text)
+}
+
+/// [`one_line`] with each cause's text from `text`: a program that embeds the command line
+/// (the Python package) says the drawing errors in its own words.
+pub fn one_line_with(
+    error: &anyhow::Error,
+    text: impl Fn(&(dyn std::error::Error + 'static)) -> String,
+) -> String {
     let mut line = String::new();
     for cause in error.chain() {
-        let text = shorten(&escape::escaped(&cause.to_string()));
+        let text = shorten(&escape::escaped(&text(cause)));
         if line.contains(&text) {
             continue;
         }
@@ -324,6 +334,15 @@ pub fn details(error: &anyhow::Error) -> Vec<String> {
         .flat_map(|invalid| invalid.shown())
         .map(|line| shorten(&escape::escaped(&line)))
         .collect()
+}
+
+/// One cause's text in the command line's words: a drawing error's roles with their options
+/// ([`remedies::message`]), any other cause as it displays itself.
+fn cause_text(cause: &(dyn std::error::Error + 'static)) -> String {
+    match cause.downcast_ref::<crate::draw::DrawError>() {
+        Some(draw) => remedies::message(draw),
+        None => cause.to_string(),
+    }
 }
 
 /// The remedies the error's causes know of, one per line, printed after the error line.

@@ -21,6 +21,7 @@ pub mod options;
 pub mod plan;
 pub mod record;
 pub mod report;
+pub mod role;
 pub mod run;
 pub mod session;
 pub mod signals;
@@ -33,6 +34,7 @@ pub use connection::{Session, SessionError};
 pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
 pub use report::{ApplyReport, Stage};
+pub use role::Role;
 pub use run::{DrawMode, Job, Picture, Report, RunError, run};
 pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
@@ -137,9 +139,19 @@ impl ObjectNames {
 
     /// The template `style` copies.
     pub fn template(&self, style: Style) -> &str {
-        match style {
-            Style::Lines => &self.line,
-            Style::Walls => &self.wall,
+        self.name(Role::template(style))
+    }
+
+    /// The name of `role`'s object.
+    pub fn name(&self, role: Role) -> &str {
+        match role {
+            Role::Floor => &self.floor,
+            Role::Parent => &self.parent,
+            Role::Line => &self.line,
+            Role::Wall => &self.wall,
+            Role::Post => &self.post,
+            Role::Start => &self.start,
+            Role::End => &self.end,
         }
     }
 
@@ -178,51 +190,28 @@ impl ObjectNames {
     /// by role, then [`ObjectNames::others`] (the other style's template and the post
     /// template, optional).
     pub fn survey(&self, style: Style) -> SurveyNames<'_> {
-        let [floor, parent, template, start, end] = self.for_style(style);
-        let [other_template, post] = match style {
-            Style::Lines => [&self.wall, &self.post],
-            Style::Walls => [&self.line, &self.post],
-        };
-        SurveyRoles {
-            floor,
-            parent,
-            template,
-            start,
-            end,
-            other_template,
-            post,
-        }
+        Self::survey_roles(style).map(|role| self.name(role))
     }
 
-    /// Every role with the option that names its object and that name: floor, parent,
-    /// line, wall, post, start, end.
-    pub fn roles(&self) -> [(&'static str, &str); 7] {
-        [
-            ("the floor (--floor)", &self.floor),
-            ("the maze dummy (--parent)", &self.parent),
-            ("the line template (--line)", &self.line),
-            ("the wall template (--wall)", &self.wall),
-            ("the post template (--post)", &self.post),
-            ("the start marker (--start)", &self.start),
-            ("the end marker (--end)", &self.end),
-        ]
+    /// Every role and the name of its object: floor, parent, line, wall, post, start, end.
+    pub fn roles(&self) -> [(Role, &str); 7] {
+        Role::ALL.map(|role| (role, self.name(role)))
     }
 
     /// The roles of [`ObjectNames::survey`]'s names.
-    fn survey_roles(&self, style: Style) -> SurveyRoles<&'static str> {
-        let [floor, parent, line, wall, post, start, end] = self.roles().map(|(r, _)| r);
+    fn survey_roles(style: Style) -> SurveyRoles<Role> {
         let (template, other_template) = match style {
-            Style::Lines => (line, wall),
-            Style::Walls => (wall, line),
+            Style::Lines => (Role::Line, Role::Wall),
+            Style::Walls => (Role::Wall, Role::Line),
         };
         SurveyRoles {
-            floor,
-            parent,
+            floor: Role::Floor,
+            parent: Role::Parent,
             template,
-            start,
-            end,
+            start: Role::Start,
+            end: Role::End,
             other_template,
-            post,
+            post: Role::Post,
         }
     }
 
@@ -240,8 +229,8 @@ impl ObjectNames {
                     } else {
                         format!("`{a}` and `{b}`")
                     },
-                    first,
-                    second,
+                    first: *first,
+                    second: *second,
                 });
             }
         }
@@ -606,24 +595,24 @@ pub enum DrawError {
     },
     /// Two roles name one object ([`ObjectNames::check_roles`], or two names the scene
     /// resolves to one handle): refused before any edit.
-    #[error("{names} would be both {first} and {second}: one object cannot play two roles")]
+    #[error("{}", two_roles(.names, .first, .second))]
     SameObject {
         /// The name, or the two names of the one object.
         names: String,
-        /// The first role, with its option.
-        first: &'static str,
-        /// The second role, with its option.
-        second: &'static str,
+        /// The first role.
+        first: Role,
+        /// The second role.
+        second: Role,
     },
     /// A name given for a template or a marker found one of the copies this tool pasted
     /// (the copy record holds it: `--line /Maze/Line`, `--start '/Maze/Line[3]'`): refused
     /// before any edit, since drawing would move, copy or hide a line of the maze.
-    #[error("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")]
+    #[error("{}", our_copy(.name, .role, .what))]
     OurCopy {
         /// The name as given.
         name: String,
-        /// The role, with its option.
-        role: &'static str,
+        /// The role it was given for.
+        role: Role,
         /// What the role needs: "the template", "a marker".
         what: &'static str,
     },
@@ -672,6 +661,25 @@ pub enum DrawError {
 }
 
 impl DrawError {
+    /// The error's line with each role it names said by `role` (an adapter's words, which
+    /// add the option that names the role's object); `Display` says a role plainly ("the
+    /// floor").
+    pub fn message(&self, role: impl Fn(Role) -> String) -> String {
+        match self {
+            DrawError::SameObject {
+                names,
+                first,
+                second,
+            } => two_roles(names, role(*first), role(*second)),
+            DrawError::OurCopy {
+                name,
+                role: given,
+                what,
+            } => our_copy(name, role(*given), what),
+            other => other.to_string(),
+        }
+    }
+
     /// What the user can do about the error, one remedy per line (not part of `Display`).
     pub fn hints(&self) -> Vec<String> {
         match self {
@@ -741,6 +749,16 @@ impl DrawError {
     }
 }
 
+/// [`DrawError::SameObject`]'s line, its roles as said.
+fn two_roles(names: &str, first: impl std::fmt::Display, second: impl std::fmt::Display) -> String {
+    format!("{names} would be both {first} and {second}: one object cannot play two roles")
+}
+
+/// [`DrawError::OurCopy`]'s line, its role as said.
+fn our_copy(name: &str, role: impl std::fmt::Display, what: &str) -> String {
+    format!("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")
+}
+
 /// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
 /// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
 /// `posts`, the post template is needed too. A missing object's hint gives the layout's
@@ -754,7 +772,7 @@ pub fn resolve_handles(
 ) -> Result<Handles, DrawError> {
     names.check_roles()?;
     let found = survey.handles;
-    let roles = names.survey_roles(style).into_array();
+    let roles = ObjectNames::survey_roles(style).into_array();
     let asked = names.survey(style).into_array();
     let handles = found.into_array();
     for (i, h) in handles.iter().enumerate() {
@@ -779,7 +797,7 @@ pub fn resolve_handles(
         .skip(2)
         .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
     if let Some(((name, _), role)) = recorded {
-        let marker = *name == names.start || *name == names.end;
+        let marker = matches!(role, Role::Start | Role::End);
         return Err(DrawError::OurCopy {
             name: name.to_string(),
             role,
