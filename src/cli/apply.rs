@@ -409,19 +409,9 @@ fn drive(
     let result = draw::run(backend.as_mut(), &job, &mut progress);
     bar.finish_and_clear();
     said?;
-    // over ZeroMQ the missing objects can be made: say so first
+    // over ZeroMQ the missing objects can be made: their hints say so
     let can_create =
         words.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
-    let result = result.map_err(|e| match e {
-        RunError::Draw(DrawError::Missing { names, mut hints }) if can_create => {
-            hints.insert(
-                0,
-                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the layout's sizes and the course's colours".into(),
-            );
-            RunError::Draw(DrawError::Missing { names, hints })
-        }
-        e => e,
-    });
     if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
@@ -441,7 +431,7 @@ fn drive(
         );
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
-    let done = result.map_err(|e| run_error(e, &args.layout))?;
+    let done = result.map_err(|e| run_error(e, &args.layout, can_create))?;
     let report = &done.drawn;
     for warning in &report.warnings {
         eprintln!("warning: {}", super::escape::escaped(warning));
@@ -471,8 +461,10 @@ fn drive(
     Ok(std::process::ExitCode::SUCCESS)
 }
 
-/// A failed [`draw::run`] in the command line's words.
-fn run_error(e: RunError, layout: &std::path::Path) -> anyhow::Error {
+/// A failed [`draw::run`] in the command line's words; with `can_create`, missing objects'
+/// hints offer `--create-missing` after the first.
+fn run_error(e: RunError, layout: &std::path::Path, can_create: bool) -> anyhow::Error {
+    let drawing = || format!("drawing {}", layout.display());
     match e {
         RunError::NoAuthoring(Authored::CreateMissing) => anyhow::anyhow!(
             "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
@@ -481,7 +473,15 @@ fn run_error(e: RunError, layout: &std::path::Path) -> anyhow::Error {
             "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
         ),
         RunError::Create(e) => anyhow::Error::new(e).context("creating the missing scene objects"),
-        RunError::Draw(e) => anyhow::Error::new(e).context(format!("drawing {}", layout.display())),
+        RunError::Draw(e @ DrawError::Missing { .. }) if can_create => {
+            let mut hints = super::remedies::hints(&e);
+            hints.insert(
+                1,
+                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the layout's sizes and the course's colours".into(),
+            );
+            super::hinted::hinted(super::remedies::message(&e), hints).context(drawing())
+        }
+        RunError::Draw(e) => anyhow::Error::new(e).context(drawing()),
         RunError::Save { path, source } => {
             anyhow::Error::new(source).context(format!("saving the scene to {path}"))
         }

@@ -347,18 +347,20 @@ fn cause_text(cause: &(dyn std::error::Error + 'static)) -> String {
 
 /// The remedies the error's causes know of, one per line, printed after the error line.
 pub fn hints(error: &anyhow::Error) -> Vec<String> {
-    error
-        .chain()
-        .flat_map(|cause| {
-            let draw = cause.downcast_ref::<crate::draw::DrawError>();
-            let connect = cause.downcast_ref::<connect::ConnectError>();
-            let hinted = cause.downcast_ref::<hinted::Hinted>();
-            draw.map(|e| e.hints())
-                .into_iter()
-                .chain(connect.map(|e| e.hints()))
-                .chain(hinted.map(|e| e.hints()))
-                .flatten()
-        })
+    error.chain().flat_map(cause_hints).collect()
+}
+
+/// The remedies one cause knows of, in the command line's words (a drawing error's from
+/// [`remedies::hints`]).
+pub fn cause_hints(cause: &(dyn std::error::Error + 'static)) -> Vec<String> {
+    let draw = cause.downcast_ref::<crate::draw::DrawError>();
+    let connect = cause.downcast_ref::<connect::ConnectError>();
+    let hinted = cause.downcast_ref::<hinted::Hinted>();
+    draw.map(remedies::hints)
+        .into_iter()
+        .chain(connect.map(|e| e.hints()))
+        .chain(hinted.map(|e| e.hints()))
+        .flatten()
         .collect()
 }
 
@@ -367,7 +369,7 @@ mod tests {
     use clap::CommandFactory;
 
     use super::*;
-    use crate::draw::DrawError;
+    use crate::draw::{DrawError, Role};
 
     #[test]
     fn a_cause_that_its_context_already_printed_is_not_repeated() {
@@ -390,8 +392,8 @@ mod tests {
     #[test]
     fn remedies_are_hints_on_their_own_lines_not_in_the_error_line() {
         let error = anyhow::Error::new(DrawError::Missing {
-            names: vec!["Floor".into(), "Line".into()],
-            hints: vec!["`Floor`: the floor".into(), "`Line`: the template".into()],
+            objects: vec![(Role::Floor, "Floor".into()), (Role::Line, "Line".into())],
+            sizes: None,
         })
         .context("drawing m.json");
         assert_eq!(

@@ -20,6 +20,7 @@ pub mod mesh;
 pub mod options;
 pub mod plan;
 pub mod record;
+pub mod remedy;
 pub mod report;
 pub mod role;
 pub mod run;
@@ -33,6 +34,7 @@ pub use clear::{ClearOptions, ClearReport, clear};
 pub use connection::{Session, SessionError};
 pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
+pub use remedy::Remedy;
 pub use report::{ApplyReport, Stage};
 pub use role::Role;
 pub use run::{DrawMode, Job, Picture, Report, RunError, run};
@@ -155,17 +157,6 @@ impl ObjectNames {
         }
     }
 
-    /// Names in the order floor, parent, the style's template, start, end.
-    pub fn for_style(&self, style: Style) -> [&str; 5] {
-        [
-            &self.floor,
-            &self.parent,
-            self.template(style),
-            &self.start,
-            &self.end,
-        ]
-    }
-
     /// The templates other than `style`'s: the other style's, then the post template. Their
     /// copies in the maze are never reused as the style's (a wall is no line, a post no
     /// wall), and they themselves are never touched.
@@ -186,9 +177,9 @@ impl ObjectNames {
         others
     }
 
-    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`]
-    /// by role, then [`ObjectNames::others`] (the other style's template and the post
-    /// template, optional).
+    /// What [`Backend::survey`] is asked for when drawing `style`: the names of the floor,
+    /// the parent, the style's template, start and end, then [`ObjectNames::others`] (the
+    /// other style's template and the post template, optional).
     pub fn survey(&self, style: Style) -> SurveyNames<'_> {
         Self::survey_roles(style).map(|role| self.name(role))
     }
@@ -235,71 +226,6 @@ impl ObjectNames {
             }
         }
         Ok(())
-    }
-
-    /// What a missing object is and how to create it (one line), at the layout's `sizes`
-    /// when a layout is drawn (`None`, as for `clear`: the sizes are the layout's, named by
-    /// its fields).
-    pub fn how_to_create(&self, name: &str, sizes: Option<&Sizes>) -> String {
-        let m = fit::metres;
-        let role = if name == self.floor {
-            let needs = match sizes {
-                Some(s) => format!("at least {} m", fit::extents(&s.floor)),
-                None => "at least the layout's `floor.size`".into(),
-            };
-            format!(
-                "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`, 10 m x 10 m; the maze needs {needs}; apply --resize-floor over ZeroMQ scales it)"
-            )
-        } else if name == self.parent {
-            "a dummy that holds the maze lines (Add > Dummy, then rename it)".into()
-        } else if name == self.line {
-            let plane = match sizes {
-                Some(s) => format!(
-                    "{} m, pure green, at z = {}",
-                    fit::extents(&s.line),
-                    m(s.line_z)
-                ),
-                None => {
-                    "the layout's `line.length` x `line.width`, pure green, at z = `line.z`".into()
-                }
-            };
-            format!("the line template: a plane {plane} (Add > Primitive shape > Plane)")
-        } else if name == self.wall {
-            let cuboid = match sizes.and_then(|s| s.wall) {
-                Some(wall) => format!("{} m", fit::extents(&wall)),
-                None => "the layout's `wall.length` x `wall.thickness` x `wall.height`".into(),
-            };
-            format!(
-                "the wall template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
-            )
-        } else if name == self.post {
-            let cuboid = match sizes.and_then(|s| s.post) {
-                Some(post) => format!("{} m", fit::extents(&post)),
-                None => "the layout's `post.size` x `post.size` x `wall.height`".into(),
-            };
-            format!(
-                "the post template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
-            )
-        } else {
-            let (what, colour, i) = if name == self.start {
-                ("start", "blue", 0)
-            } else {
-                ("end", "red", 1)
-            };
-            let plane = match sizes {
-                Some(s) => format!(
-                    "{} m x {} m (a cell), pure {colour}, at z = {}",
-                    m(s.cell),
-                    m(s.cell),
-                    m(s.marker_z[i])
-                ),
-                None => {
-                    format!("a cell wide (`grid.cell_size`), pure {colour}, at z = `{what}.pose.z`")
-                }
-            };
-            format!("the {what} marker: a plane {plane}")
-        };
-        format!("`{name}`: {role}")
     }
 }
 
@@ -585,13 +511,14 @@ pub fn create_missing_for(
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
-    /// Named objects are missing; [`DrawError::hints`] says how to create each.
-    #[error("missing in the scene: {}", .names.join(", "))]
+    /// Named objects are missing; [`DrawError::remedies`] says how to create each.
+    #[error("missing in the scene: {}", missing_names(.objects))]
     Missing {
-        /// The missing names.
-        names: Vec<String>,
-        /// How to create each, one line per name.
-        hints: Vec<String>,
+        /// The missing objects: each one's role and name.
+        objects: Vec<(Role, String)>,
+        /// The sizes of the layout drawn, which the objects are to have (`None` when no
+        /// layout is drawn, as for `clear`).
+        sizes: Option<Box<Sizes>>,
     },
     /// Two roles name one object ([`ObjectNames::check_roles`], or two names the scene
     /// resolves to one handle): refused before any edit.
@@ -679,74 +606,12 @@ impl DrawError {
             other => other.to_string(),
         }
     }
+}
 
-    /// What the user can do about the error, one remedy per line (not part of `Display`).
-    pub fn hints(&self) -> Vec<String> {
-        match self {
-            DrawError::Missing { names, hints } => {
-                let them = if names.len() == 1 { "it" } else { "them" };
-                let mut lines = vec![format!(
-                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --post, --start, --end"
-                )];
-                lines.extend(hints.iter().cloned());
-                lines
-            }
-            DrawError::Floor {
-                floor,
-                short,
-                resize,
-            } => {
-                let by_hand = format!(
-                    "or resize `{floor}` in CoppeliaSim to at least {} m",
-                    fit::extents(&short.resized())
-                );
-                let first = match resize {
-                    floor::Resize::Offered => format!(
-                        "pass --resize-floor: apply scales `{floor}` to {} m and clear puts it back to {} m",
-                        fit::extents(&short.resized()),
-                        fit::extents(&short.have)
-                    ),
-                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
-                    floor::Resize::NoExtent => format!(
-                        "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
-                    ),
-                };
-                vec![first, by_hand]
-            }
-            DrawError::SimulationRunning => {
-                vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
-            }
-            // the floor or the maze dummy at NaN: every copy reads back so
-            DrawError::Verify(problems)
-                if problems.iter().any(|p| p.contains(verify::BROKEN_POSE)) =>
-            {
-                vec![
-                "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
-            ]
-            }
-            DrawError::Sizes(_) => vec![
-                "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
-            ],
-            DrawError::OurCopy { .. } => vec![
-                "name the object itself (the course scene's `Line`, `Start`, `End`): a path into the maze dummy (`/Maze/Line`, `/Line[1]`) finds a copy, whose path changes with every draw".into(),
-            ],
-            DrawError::SameObject { .. } => vec![
-                "give each role its own object: pass the right name to one of the two options (see --help for the defaults)".into(),
-            ],
-            DrawError::Verify(_) => {
-                vec!["run the same command again: it repairs what differs".into()]
-            }
-            DrawError::Concurrent { .. } => vec![
-                "run one apply or clear at a time on a scene; running one again alone repairs it"
-                    .into(),
-            ],
-            DrawError::Interrupted { .. } => vec![
-                "the scene holds part of the maze; run the same apply again to finish it, or clear to remove it"
-                    .into(),
-            ],
-            DrawError::Backend(_) => vec![],
-        }
-    }
+/// "Floor, Line": the names of [`DrawError::Missing`]'s objects.
+fn missing_names(objects: &[(Role, String)]) -> String {
+    let names: Vec<&str> = objects.iter().map(|(_, name)| name.as_str()).collect();
+    names.join(", ")
 }
 
 /// [`DrawError::SameObject`]'s line, its roles as said.
@@ -761,7 +626,7 @@ fn our_copy(name: &str, role: impl std::fmt::Display, what: &str) -> String {
 
 /// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
 /// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
-/// `posts`, the post template is needed too. A missing object's hint gives the layout's
+/// `posts`, the post template is needed too. A missing object's remedy gives the layout's
 /// `sizes` when a layout is drawn.
 pub fn resolve_handles(
     names: &ObjectNames,
@@ -805,24 +670,20 @@ pub fn resolve_handles(
         });
     }
     let (needed, _) = found.needed_and_optional();
-    let mut missing: Vec<String> = names
-        .for_style(style)
-        .iter()
+    let (needed_roles, _) = ObjectNames::survey_roles(style).needed_and_optional();
+    let mut missing: Vec<(Role, String)> = needed_roles
+        .into_iter()
         .zip(needed)
         .filter(|(_, h)| h.is_none())
-        .map(|(n, _)| n.to_string())
+        .map(|(role, _)| (role, names.name(role).to_string()))
         .collect();
     if posts && found.post.is_none() {
-        missing.push(names.post.clone());
+        missing.push((Role::Post, names.post.clone()));
     }
     if !missing.is_empty() {
-        let hints = missing
-            .iter()
-            .map(|n| names.how_to_create(n, sizes))
-            .collect();
         return Err(DrawError::Missing {
-            names: missing,
-            hints,
+            objects: missing,
+            sizes: sizes.cloned().map(Box::new),
         });
     }
     let h = found.map(|h| h.unwrap_or(-1));
