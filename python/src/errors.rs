@@ -4,13 +4,17 @@
 //! invalid layout a `ValidationError` (a `ValueError`) listing its problems; a simulator
 //! that does not answer or refuses a `SimulatorError` carrying the remedies the command line
 //! prints as `hint:` lines; an interrupted drawing an `Interrupted` (a `KeyboardInterrupt`).
+//! A drawing error's roles and remedies come as data and are worded with Python's keywords
+//! (`remedies`); the rest of a message comes in the command line's words, its options
+//! rewritten as keywords ([`python_names`]).
 
 use std::io;
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyBaseException, PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use vrep_maze::cli::{UsageError, details, hints, one_line};
+use vrep_maze::cli::{UsageError, cause_hints, details, one_line, one_line_with};
+use vrep_maze::draw::DrawError;
 use vrep_maze::layout::json::ReadError;
 use vrep_maze::validate::Invalid;
 
@@ -39,8 +43,21 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
     if let Some(invalid) = error.chain().find_map(|c| c.downcast_ref::<Invalid>()) {
         return invalid_error(py, &one_line(error), invalid);
     }
-    let hints: Vec<String> = hints(error).iter().map(|h| python_names(h)).collect();
-    let mut text = python_names(&one_line(error));
+    let hints: Vec<String> = error
+        .chain()
+        .flat_map(|cause| match cause.downcast_ref::<DrawError>() {
+            Some(draw) => crate::remedies::hints(draw),
+            None => cause_hints(cause).iter().map(|h| python_names(h)).collect(),
+        })
+        .collect();
+    // a drawing error's text can still name options (a template size refused with
+    // `generate`'s), so the whole line is rewritten; its roles are Python's already
+    let mut text = python_names(&one_line_with(error, |cause| {
+        match cause.downcast_ref::<DrawError>() {
+            Some(draw) => crate::remedies::message(draw),
+            None => cause.to_string(),
+        }
+    }));
     for detail in details(error) {
         text.push_str("\n  ");
         text.push_str(&detail);
@@ -110,6 +127,12 @@ fn with_attributes(
 /// `invalid value 'prims' for '--algo <ALGO>'` becomes `invalid value algo='prims'`,
 /// `'--size <SIZE>'` becomes `size`, and a bare `--connect-timeout` `connect_timeout`
 /// (`--create-missing`, a flag, `create_missing=True`).
+///
+/// Only for the text that still comes in the command line's words: clap's parse errors,
+/// connection failures and their hints, the messages the command line's code words, and the
+/// drawing errors whose text names options (templates refused with `generate`'s options, a
+/// verify problem naming `--floor`). A drawing error's roles and remedies are worded in
+/// `remedies` instead.
 pub fn python_names(text: &str) -> String {
     let keyword = |option: &str| option.trim_start_matches("--").replace('-', "_");
     let mut out = String::with_capacity(text.len());

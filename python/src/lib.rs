@@ -13,6 +13,7 @@ mod draw;
 mod errors;
 mod layout;
 mod options;
+mod remedies;
 mod score;
 mod session;
 mod worker;

@@ -110,6 +110,22 @@ def test_missing_scene_objects_are_named_with_remedies(serve):
     assert not any("--" in hint for hint in raised.value.hints), raised.value.hints
 
 
+def test_a_small_floor_is_refused_with_remedies_in_keywords_that_work(serve):
+    layout = vrep_maze.generate(seed=1, size=(12, 12))
+    with pytest.raises(vrep_maze.SimulatorError) as raised:
+        vrep_maze.apply(layout, api="legacy", port=serve.legacy_port)
+    assert raised.value.hints[0].startswith(
+        'the legacy remote API cannot resize objects: pass resize_floor=True with api="zmq"'
+    ), raised.value.hints
+    with pytest.raises(vrep_maze.SimulatorError) as raised:
+        vrep_maze.apply(layout, api="zmq", port=serve.zmq_port)
+    assert raised.value.hints == [
+        "pass resize_floor=True: apply scales `Floor` to 15 x 15 m and clear puts it back to 10 x 10 m",
+        "or resize `Floor` in CoppeliaSim to at least 15 x 15 m",
+    ]
+    assert vrep_maze.apply(layout, api="zmq", port=serve.zmq_port, resize_floor=True).verified
+
+
 @pytest.mark.parametrize("api", APIS)
 def test_a_wall_maze_is_drawn_and_a_line_maze_replaces_it(api):
     scene = Serve("--timing", "instant", "--scene", "course-walls")

@@ -85,7 +85,7 @@ impl ConnectArgs {
     /// before anything is sent, with the draw error's hints.
     pub fn check_roles(&self) -> anyhow::Result<()> {
         self.names().check_roles().map_err(|e| {
-            let message = e.to_string();
+            let message = super::remedies::message(&e);
             anyhow::Error::new(e).context(super::UsageError(message))
         })
     }
@@ -97,19 +97,6 @@ impl ConnectArgs {
         Ok(self.connect_until(None)?.backend)
     }
 
-    /// Each object-name option and the name it was given.
-    fn named(&self) -> [(&'static str, &String); 7] {
-        [
-            ("--floor", &self.floor),
-            ("--parent", &self.parent),
-            ("--line", &self.line),
-            ("--wall", &self.wall),
-            ("--post", &self.post),
-            ("--start", &self.start),
-            ("--end", &self.end),
-        ]
-    }
-
     /// [`ConnectArgs::connect`], keeping the description of what answered (for `--json`),
     /// ending the connection wait at once when `stop` is set (Ctrl-C) with
     /// [`super::interrupt::Interrupted`].
@@ -118,10 +105,11 @@ impl ConnectArgs {
         stop: Option<&std::sync::atomic::AtomicBool>,
     ) -> anyhow::Result<Connected> {
         self.check_host()?;
-        for (option, name) in self.named() {
+        for (role, name) in self.names().roles() {
             ensure_usage!(
                 !name.trim().is_empty(),
-                "{option} needs the name of an object in the scene, not an empty one"
+                "{} needs the name of an object in the scene, not an empty one",
+                super::remedies::option(role)
             );
         }
         let connected = connect(
@@ -176,18 +164,10 @@ impl ConnectArgs {
         if let Some(port) = self.port {
             add("--port", port.to_string());
         }
-        let defaults = ObjectNames::default();
-        for ((option, name), default) in self.named().into_iter().zip([
-            &defaults.floor,
-            &defaults.parent,
-            &defaults.line,
-            &defaults.wall,
-            &defaults.post,
-            &defaults.start,
-            &defaults.end,
-        ]) {
-            if name != default {
-                add(option, name.clone());
+        let (names, defaults) = (self.names(), ObjectNames::default());
+        for (role, name) in names.roles() {
+            if name != defaults.name(role) {
+                add(super::remedies::option(role), name.to_string());
             }
         }
         if let Some(wait) = self.connect_timeout {
@@ -429,19 +409,9 @@ fn drive(
     let result = draw::run(backend.as_mut(), &job, &mut progress);
     bar.finish_and_clear();
     said?;
-    // over ZeroMQ the missing objects can be made: say so first
+    // over ZeroMQ the missing objects can be made: their hints say so
     let can_create =
         words.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
-    let result = result.map_err(|e| match e {
-        RunError::Draw(DrawError::Missing { names, mut hints }) if can_create => {
-            hints.insert(
-                0,
-                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the layout's sizes and the course's colours".into(),
-            );
-            RunError::Draw(DrawError::Missing { names, hints })
-        }
-        e => e,
-    });
     if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
@@ -461,7 +431,7 @@ fn drive(
         );
         return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
     }
-    let done = result.map_err(|e| run_error(e, &args.layout))?;
+    let done = result.map_err(|e| run_error(e, &args.layout, can_create))?;
     let report = &done.drawn;
     for warning in &report.warnings {
         eprintln!("warning: {}", super::escape::escaped(warning));
@@ -491,8 +461,10 @@ fn drive(
     Ok(std::process::ExitCode::SUCCESS)
 }
 
-/// A failed [`draw::run`] in the command line's words.
-fn run_error(e: RunError, layout: &std::path::Path) -> anyhow::Error {
+/// A failed [`draw::run`] in the command line's words; with `can_create`, missing objects'
+/// hints offer `--create-missing` after the first.
+fn run_error(e: RunError, layout: &std::path::Path, can_create: bool) -> anyhow::Error {
+    let drawing = || format!("drawing {}", layout.display());
     match e {
         RunError::NoAuthoring(Authored::CreateMissing) => anyhow::anyhow!(
             "--create-missing needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
@@ -501,7 +473,15 @@ fn run_error(e: RunError, layout: &std::path::Path) -> anyhow::Error {
             "--save-scene needs the ZeroMQ remote API, but the legacy API answered (use --api zmq)"
         ),
         RunError::Create(e) => anyhow::Error::new(e).context("creating the missing scene objects"),
-        RunError::Draw(e) => anyhow::Error::new(e).context(format!("drawing {}", layout.display())),
+        RunError::Draw(e @ DrawError::Missing { .. }) if can_create => {
+            let mut hints = super::remedies::hints(&e);
+            hints.insert(
+                1,
+                "or pass --create-missing: over the ZeroMQ API vrep-maze creates them with the layout's sizes and the course's colours".into(),
+            );
+            super::hinted::hinted(super::remedies::message(&e), hints).context(drawing())
+        }
+        RunError::Draw(e) => anyhow::Error::new(e).context(drawing()),
         RunError::Save { path, source } => {
             anyhow::Error::new(source).context(format!("saving the scene to {path}"))
         }

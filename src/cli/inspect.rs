@@ -305,10 +305,10 @@ fn inspect(
                 matches: false,
                 differences,
             },
-            Err(DrawError::Missing { names, .. }) => LayoutMatch {
+            Err(missing @ DrawError::Missing { .. }) => LayoutMatch {
                 file: file.clone(),
                 matches: false,
-                differences: vec![format!("missing in the scene: {}", names.join(", "))],
+                differences: vec![missing.to_string()],
             },
             // a floor smaller than the layout's is a difference of the scene, with its remedy
             Err(DrawError::Floor { floor, short, .. }) => LayoutMatch {

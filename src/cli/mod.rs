@@ -18,6 +18,7 @@ mod interrupt;
 mod listed;
 mod output;
 mod progress;
+pub mod remedies;
 mod render;
 pub mod reports;
 mod say;
@@ -293,9 +294,18 @@ const MAX_CAUSE_CHARS: usize = 400;
 /// The error and its causes on one line, each cause once: a cause whose text the line
 /// already holds (an inner error that its context also printed) is not repeated.
 pub fn one_line(error: &anyhow::Error) -> String {
+    one_line_with(error, cause_text)
+}
+
+/// [`one_line`] with each cause's text from `text`: a program that embeds the command line
+/// (the Python package) says the drawing errors in its own words.
+pub fn one_line_with(
+    error: &anyhow::Error,
+    text: impl Fn(&(dyn std::error::Error + 'static)) -> String,
+) -> String {
     let mut line = String::new();
     for cause in error.chain() {
-        let text = shorten(&escape::escaped(&cause.to_string()));
+        let text = shorten(&escape::escaped(&text(cause)));
         if line.contains(&text) {
             continue;
         }
@@ -327,20 +337,31 @@ pub fn details(error: &anyhow::Error) -> Vec<String> {
         .collect()
 }
 
+/// One cause's text in the command line's words: a drawing error's roles with their options
+/// ([`remedies::message`]), any other cause as it displays itself.
+fn cause_text(cause: &(dyn std::error::Error + 'static)) -> String {
+    match cause.downcast_ref::<crate::draw::DrawError>() {
+        Some(draw) => remedies::message(draw),
+        None => cause.to_string(),
+    }
+}
+
 /// The remedies the error's causes know of, one per line, printed after the error line.
 pub fn hints(error: &anyhow::Error) -> Vec<String> {
-    error
-        .chain()
-        .flat_map(|cause| {
-            let draw = cause.downcast_ref::<crate::draw::DrawError>();
-            let connect = cause.downcast_ref::<connect::ConnectError>();
-            let hinted = cause.downcast_ref::<hinted::Hinted>();
-            draw.map(|e| e.hints())
-                .into_iter()
-                .chain(connect.map(|e| e.hints()))
-                .chain(hinted.map(|e| e.hints()))
-                .flatten()
-        })
+    error.chain().flat_map(cause_hints).collect()
+}
+
+/// The remedies one cause knows of, in the command line's words (a drawing error's from
+/// [`remedies::hints`]).
+pub fn cause_hints(cause: &(dyn std::error::Error + 'static)) -> Vec<String> {
+    let draw = cause.downcast_ref::<crate::draw::DrawError>();
+    let connect = cause.downcast_ref::<connect::ConnectError>();
+    let hinted = cause.downcast_ref::<hinted::Hinted>();
+    draw.map(remedies::hints)
+        .into_iter()
+        .chain(connect.map(|e| e.hints()))
+        .chain(hinted.map(|e| e.hints()))
+        .flatten()
         .collect()
 }
 
@@ -349,7 +370,7 @@ mod tests {
     use clap::CommandFactory;
 
     use super::*;
-    use crate::draw::DrawError;
+    use crate::draw::{DrawError, Role};
 
     #[test]
     fn a_cause_that_its_context_already_printed_is_not_repeated() {
@@ -372,8 +393,8 @@ mod tests {
     #[test]
     fn remedies_are_hints_on_their_own_lines_not_in_the_error_line() {
         let error = anyhow::Error::new(DrawError::Missing {
-            names: vec!["Floor".into(), "Line".into()],
-            hints: vec!["`Floor`: the floor".into(), "`Line`: the template".into()],
+            objects: vec![(Role::Floor, "Floor".into()), (Role::Line, "Line".into())],
+            sizes: None,
         })
         .context("drawing m.json");
         assert_eq!(

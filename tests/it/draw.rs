@@ -2,6 +2,7 @@
 //! API and the ZeroMQ API in both protocols (`legacy_draw` and `zmq_draw` hold what only
 //! one API has).
 
+use vrep_maze::cli::remedies;
 use vrep_maze::draw::signals::COPIES;
 use vrep_maze::draw::{
     self, ApplyOptions, Backend, BackendError, DrawError, Edit, ObjectInfo, ObjectNames, Style,
@@ -170,9 +171,9 @@ fn apply_refuses_a_running_simulation_and_missing_objects(kind: Kind) {
     assert!(
         matches!(e, DrawError::Missing { .. })
             && msg.contains("Maze, End")
-            && e.hints().iter().any(|h| h.contains("dummy")),
+            && remedies::hints(&e).iter().any(|h| h.contains("dummy")),
         "{msg} / {:?}",
-        e.hints()
+        remedies::hints(&e)
     );
     drop(b);
     s.shutdown();

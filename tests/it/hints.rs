@@ -8,6 +8,7 @@ use std::process::{Command, Stdio};
 
 use assert_cmd::cargo::CommandCargoExt;
 use tempfile::TempDir;
+use vrep_maze::cli::remedies;
 use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing};
 use vrep_maze::layout::read_layout;
 use vrep_maze::sim::Scene;
@@ -132,7 +133,7 @@ fn a_small_floor_is_refused_with_hints_that_work(kind: Kind) {
         "the scene's `Floor` is 4 x 4 m but the layout's floor is 10 x 10 m",
         "{k}"
     );
-    let hints = e.hints();
+    let hints = remedies::hints(&e);
     let floor_size = |s: &Server| {
         s.with_sim(|sim| {
             let h = sim.scene.resolve("Floor").unwrap();

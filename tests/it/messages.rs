@@ -1,6 +1,7 @@
 //! Messages name the truth: what the user gave (the option, the character, the file), with
 //! every control character escaped, and refusals come before anything is drawn.
 
+use vrep_maze::cli::remedies;
 use vrep_maze::draw::{self, ApplyOptions, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
@@ -217,7 +218,7 @@ fn a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it(ki
                 matches!(e, draw::DrawError::Verify(_)) && e.to_string().contains(named),
                 "{k}: {object} {broken}: {e}"
             );
-            let hints = e.hints();
+            let hints = remedies::hints(&e);
             assert!(
                 hints.iter().any(|h| h.contains("not a number (NaN)")
                     && h.contains("does not repair")
@@ -231,7 +232,10 @@ fn a_parent_with_a_nan_pose_fails_with_a_hint_that_a_rerun_does_not_repair_it(ki
         }
         let e = draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_err();
         assert!(e.to_string().contains(named), "{k}: {e}");
-        assert!(e.hints()[0].contains("does not repair"), "{k}: {e}");
+        assert!(
+            remedies::hints(&e)[0].contains("does not repair"),
+            "{k}: {e}"
+        );
         // the same connection, the object repaired: the same apply draws and verifies
         set(false);
         draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})

@@ -6,6 +6,7 @@ use std::io::Read;
 use std::process::Stdio;
 
 use tempfile::TempDir;
+use vrep_maze::cli::remedies;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, ObjectNames};
 use vrep_maze::sim::{NewObject, ObjectType, Scene, SimState};
@@ -93,12 +94,12 @@ fn a_non_finite_pose_never_verifies_and_apply_repairs_it(kind: Kind) {
         );
         // its own pose, not the floor's or the maze dummy's: a re-run repairs it
         assert!(
-            e.hints()
+            remedies::hints(&e)
                 .iter()
                 .any(|h| h.contains("it repairs what differs")),
             "{}: {name}: {:?}",
             kind.name(),
-            e.hints()
+            remedies::hints(&e)
         );
         let r = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {}).unwrap();
         assert!(r.edits > 0, "{}: {name} was re-placed", kind.name());

@@ -4,6 +4,7 @@
 //! and no template is left lying on the floor, after `apply` or after `clear`.
 
 use tempfile::TempDir;
+use vrep_maze::cli::remedies;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::mesh::MeshMaze;
 use vrep_maze::draw::signals::HOME;
@@ -489,7 +490,7 @@ fn one_object_in_two_roles_is_refused_before_any_edit(kind: Kind) {
             ..Default::default()
         };
         let e = draw::apply(&mut *b, &d, &opts, &mut |_| {}).unwrap_err();
-        let text = e.to_string();
+        let text = remedies::message(&e);
         assert!(
             matches!(e, DrawError::SameObject { .. })
                 && text.contains(first)

@@ -5,6 +5,7 @@
 
 use std::fs;
 
+use vrep_maze::cli::remedies;
 use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Drawing, ObjectNames, Sizes};
 use vrep_maze::layout::json::parse_layout;
 use vrep_maze::layout::walls::{WallOptions, into_walls, length_between_posts};
@@ -304,11 +305,11 @@ fn posts_need_a_post_template_and_say_how_to_make_one() {
     let e = apply(&mut b, &posts).unwrap_err();
     assert_eq!(e.to_string(), "missing in the scene: Post");
     assert!(
-        e.hints()
+        remedies::hints(&e)
             .iter()
             .any(|h| h.contains("`Post`: the post template")),
         "{:?}",
-        e.hints()
+        remedies::hints(&e)
     );
     // a maze without posts needs none
     apply(&mut b, &Drawing::try_from(&wall_layout(3, 1)).unwrap()).unwrap();
@@ -345,12 +346,12 @@ fn walls_need_a_wall_template_and_say_how_to_make_one() {
     let e = apply(&mut b, &walls).unwrap_err();
     assert_eq!(e.to_string(), "missing in the scene: Wall");
     assert!(
-        e.hints()
+        remedies::hints(&e)
             .iter()
             .any(|h| h.contains("a cuboid 1 x 0.05 x 0.2 m")
                 && h.contains("Primitive shape > Cuboid")),
         "{:?}",
-        e.hints()
+        remedies::hints(&e)
     );
 }
 
@@ -367,7 +368,7 @@ fn a_missing_object_s_hint_gives_the_layout_s_sizes() {
     let s = Kind::Legacy.serve(Scene::empty(), 8);
     let mut b = s.connect();
     let e = apply(&mut b, &Drawing::try_from(&micromouse).unwrap()).unwrap_err();
-    let hints = e.hints().join("\n");
+    let hints = remedies::hints(&e).join("\n");
     for says in [
         "`Wall`: the wall template: a cuboid 0.18 x 0.012 x 0.05 m",
         "`Start`: the start marker: a plane 0.18 m x 0.18 m (a cell), pure blue, at z = 0.002",
@@ -383,7 +384,7 @@ fn a_missing_object_s_hint_gives_the_layout_s_sizes() {
     )
     .unwrap();
     let e = apply(&mut b, &Drawing::try_from(&course).unwrap()).unwrap_err();
-    let hints = e.hints().join("\n");
+    let hints = remedies::hints(&e).join("\n");
     assert!(
         hints.contains("`Line`: the line template: a plane 0.6 x 0.1 m, pure green, at z = 0.001"),
         "{hints}"

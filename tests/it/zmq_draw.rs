@@ -51,7 +51,8 @@ fn create_missing_in_an_empty_scene(kind: Kind) {
     let d = drawing(4, 1);
     let names = ObjectNames::default();
     match draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress) {
-        Err(DrawError::Missing { names, .. }) => {
+        Err(DrawError::Missing { objects, .. }) => {
+            let names: Vec<&str> = objects.iter().map(|(_, name)| name.as_str()).collect();
             assert_eq!(names, ["Floor", "Maze", "Line", "Start", "End"])
         }
         other => panic!("{other:?}"),

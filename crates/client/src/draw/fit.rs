@@ -109,7 +109,7 @@ pub fn metres(v: f64) -> String {
 }
 
 /// `a x b [x c]` metres.
-pub(crate) fn extents(v: &[f64]) -> String {
+pub fn extents(v: &[f64]) -> String {
     v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
 }
 

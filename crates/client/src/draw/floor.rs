@@ -50,7 +50,7 @@ fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
     scene.set_int_signals(&signals)
 }
 
-/// What stands in the way of resizing a floor, for [`DrawError::Floor`]'s hints.
+/// What stands in the way of resizing a floor, for [`DrawError::Floor`]'s remedies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Resize {
     /// The API can resize it: `--resize-floor` was not given.

@@ -20,7 +20,9 @@ pub mod mesh;
 pub mod options;
 pub mod plan;
 pub mod record;
+pub mod remedy;
 pub mod report;
+pub mod role;
 pub mod run;
 pub mod session;
 pub mod signals;
@@ -32,7 +34,9 @@ pub use clear::{ClearOptions, ClearReport, clear};
 pub use connection::{Session, SessionError};
 pub use lease::{Claimed, Lease};
 pub use options::ApplyOptions;
+pub use remedy::Remedy;
 pub use report::{ApplyReport, Stage};
+pub use role::Role;
 pub use run::{DrawMode, Job, Picture, Report, RunError, run};
 pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
@@ -138,21 +142,20 @@ impl ObjectNames {
 
     /// The template `style` copies.
     pub fn template(&self, style: Style) -> &str {
-        match style {
-            Style::Lines => &self.line,
-            Style::Walls => &self.wall,
-        }
+        self.name(Role::template(style))
     }
 
-    /// Names in the order floor, parent, the style's template, start, end.
-    pub fn for_style(&self, style: Style) -> [&str; 5] {
-        [
-            &self.floor,
-            &self.parent,
-            self.template(style),
-            &self.start,
-            &self.end,
-        ]
+    /// The name of `role`'s object.
+    pub fn name(&self, role: Role) -> &str {
+        match role {
+            Role::Floor => &self.floor,
+            Role::Parent => &self.parent,
+            Role::Line => &self.line,
+            Role::Wall => &self.wall,
+            Role::Post => &self.post,
+            Role::Start => &self.start,
+            Role::End => &self.end,
+        }
     }
 
     /// The templates other than `style`'s: the other style's, then the post template. Their
@@ -175,55 +178,32 @@ impl ObjectNames {
         others
     }
 
-    /// What [`Backend::survey`] is asked for when drawing `style`: [`ObjectNames::for_style`]
-    /// by role, then [`ObjectNames::others`] (the other style's template and the post
-    /// template, optional).
+    /// What [`Backend::survey`] is asked for when drawing `style`: the names of the floor,
+    /// the parent, the style's template, start and end, then [`ObjectNames::others`] (the
+    /// other style's template and the post template, optional).
     pub fn survey(&self, style: Style) -> SurveyNames<'_> {
-        let [floor, parent, template, start, end] = self.for_style(style);
-        let [other_template, post] = match style {
-            Style::Lines => [&self.wall, &self.post],
-            Style::Walls => [&self.line, &self.post],
-        };
-        SurveyRoles {
-            floor,
-            parent,
-            template,
-            start,
-            end,
-            other_template,
-            post,
-        }
+        Self::survey_roles(style).map(|role| self.name(role))
     }
 
-    /// Every role with the option that names its object and that name: floor, parent,
-    /// line, wall, post, start, end.
-    pub fn roles(&self) -> [(&'static str, &str); 7] {
-        [
-            ("the floor (--floor)", &self.floor),
-            ("the maze dummy (--parent)", &self.parent),
-            ("the line template (--line)", &self.line),
-            ("the wall template (--wall)", &self.wall),
-            ("the post template (--post)", &self.post),
-            ("the start marker (--start)", &self.start),
-            ("the end marker (--end)", &self.end),
-        ]
+    /// Every role and the name of its object: floor, parent, line, wall, post, start, end.
+    pub fn roles(&self) -> [(Role, &str); 7] {
+        Role::ALL.map(|role| (role, self.name(role)))
     }
 
     /// The roles of [`ObjectNames::survey`]'s names.
-    fn survey_roles(&self, style: Style) -> SurveyRoles<&'static str> {
-        let [floor, parent, line, wall, post, start, end] = self.roles().map(|(r, _)| r);
+    fn survey_roles(style: Style) -> SurveyRoles<Role> {
         let (template, other_template) = match style {
-            Style::Lines => (line, wall),
-            Style::Walls => (wall, line),
+            Style::Lines => (Role::Line, Role::Wall),
+            Style::Walls => (Role::Wall, Role::Line),
         };
         SurveyRoles {
-            floor,
-            parent,
+            floor: Role::Floor,
+            parent: Role::Parent,
             template,
-            start,
-            end,
+            start: Role::Start,
+            end: Role::End,
             other_template,
-            post,
+            post: Role::Post,
         }
     }
 
@@ -241,77 +221,12 @@ impl ObjectNames {
                     } else {
                         format!("`{a}` and `{b}`")
                     },
-                    first,
-                    second,
+                    first: *first,
+                    second: *second,
                 });
             }
         }
         Ok(())
-    }
-
-    /// What a missing object is and how to create it (one line), at the layout's `sizes`
-    /// when a layout is drawn (`None`, as for `clear`: the sizes are the layout's, named by
-    /// its fields).
-    pub fn how_to_create(&self, name: &str, sizes: Option<&Sizes>) -> String {
-        let m = fit::metres;
-        let role = if name == self.floor {
-            let needs = match sizes {
-                Some(s) => format!("at least {} m", fit::extents(&s.floor)),
-                None => "at least the layout's `floor.size`".into(),
-            };
-            format!(
-                "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`, 10 m x 10 m; the maze needs {needs}; apply --resize-floor over ZeroMQ scales it)"
-            )
-        } else if name == self.parent {
-            "a dummy that holds the maze lines (Add > Dummy, then rename it)".into()
-        } else if name == self.line {
-            let plane = match sizes {
-                Some(s) => format!(
-                    "{} m, pure green, at z = {}",
-                    fit::extents(&s.line),
-                    m(s.line_z)
-                ),
-                None => {
-                    "the layout's `line.length` x `line.width`, pure green, at z = `line.z`".into()
-                }
-            };
-            format!("the line template: a plane {plane} (Add > Primitive shape > Plane)")
-        } else if name == self.wall {
-            let cuboid = match sizes.and_then(|s| s.wall) {
-                Some(wall) => format!("{} m", fit::extents(&wall)),
-                None => "the layout's `wall.length` x `wall.thickness` x `wall.height`".into(),
-            };
-            format!(
-                "the wall template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
-            )
-        } else if name == self.post {
-            let cuboid = match sizes.and_then(|s| s.post) {
-                Some(post) => format!("{} m", fit::extents(&post)),
-                None => "the layout's `post.size` x `post.size` x `wall.height`".into(),
-            };
-            format!(
-                "the post template: a cuboid {cuboid}, dark grey, respondable and detectable (Add > Primitive shape > Cuboid); it stays where you put it, off the maze"
-            )
-        } else {
-            let (what, colour, i) = if name == self.start {
-                ("start", "blue", 0)
-            } else {
-                ("end", "red", 1)
-            };
-            let plane = match sizes {
-                Some(s) => format!(
-                    "{} m x {} m (a cell), pure {colour}, at z = {}",
-                    m(s.cell),
-                    m(s.cell),
-                    m(s.marker_z[i])
-                ),
-                None => {
-                    format!("a cell wide (`grid.cell_size`), pure {colour}, at z = `{what}.pose.z`")
-                }
-            };
-            format!("the {what} marker: a plane {plane}")
-        };
-        format!("`{name}`: {role}")
     }
 }
 
@@ -602,34 +517,35 @@ pub fn create_missing_for(
 /// Errors of [`apply()`], [`clear()`] and [`verify()`].
 #[derive(Debug, thiserror::Error)]
 pub enum DrawError {
-    /// Named objects are missing; [`DrawError::hints`] says how to create each.
-    #[error("missing in the scene: {}", .names.join(", "))]
+    /// Named objects are missing; [`DrawError::remedies`] says how to create each.
+    #[error("missing in the scene: {}", missing_names(.objects))]
     Missing {
-        /// The missing names.
-        names: Vec<String>,
-        /// How to create each, one line per name.
-        hints: Vec<String>,
+        /// The missing objects: each one's role and name.
+        objects: Vec<(Role, String)>,
+        /// The sizes of the layout drawn, which the objects are to have (`None` when no
+        /// layout is drawn, as for `clear`).
+        sizes: Option<Box<Sizes>>,
     },
     /// Two roles name one object ([`ObjectNames::check_roles`], or two names the scene
     /// resolves to one handle): refused before any edit.
-    #[error("{names} would be both {first} and {second}: one object cannot play two roles")]
+    #[error("{}", two_roles(.names, .first, .second))]
     SameObject {
         /// The name, or the two names of the one object.
         names: String,
-        /// The first role, with its option.
-        first: &'static str,
-        /// The second role, with its option.
-        second: &'static str,
+        /// The first role.
+        first: Role,
+        /// The second role.
+        second: Role,
     },
     /// A name given for a template or a marker found one of the copies this tool pasted
     /// (the copy record holds it: `--line /Maze/Line`, `--start '/Maze/Line[3]'`): refused
     /// before any edit, since drawing would move, copy or hide a line of the maze.
-    #[error("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")]
+    #[error("{}", our_copy(.name, .role, .what))]
     OurCopy {
         /// The name as given.
         name: String,
-        /// The role, with its option.
-        role: &'static str,
+        /// The role it was given for.
+        role: Role,
         /// What the role needs: "the template", "a marker".
         what: &'static str,
     },
@@ -678,78 +594,45 @@ pub enum DrawError {
 }
 
 impl DrawError {
-    /// What the user can do about the error, one remedy per line (not part of `Display`).
-    pub fn hints(&self) -> Vec<String> {
+    /// The error's line with each role it names said by `role` (an adapter's words, which
+    /// add the option that names the role's object); `Display` says a role plainly ("the
+    /// floor").
+    pub fn message(&self, role: impl Fn(Role) -> String) -> String {
         match self {
-            DrawError::Missing { names, hints } => {
-                let them = if names.len() == 1 { "it" } else { "them" };
-                let mut lines = vec![format!(
-                    "create {them} in CoppeliaSim, or pass the names your scene uses with --floor, --parent, --line, --wall, --post, --start, --end"
-                )];
-                lines.extend(hints.iter().cloned());
-                lines
-            }
-            DrawError::Floor {
-                floor,
-                short,
-                resize,
-            } => {
-                let by_hand = format!(
-                    "or resize `{floor}` in CoppeliaSim to at least {} m",
-                    fit::extents(&short.resized())
-                );
-                let first = match resize {
-                    floor::Resize::Offered => format!(
-                        "pass --resize-floor: apply scales `{floor}` to {} m and clear puts it back to {} m",
-                        fit::extents(&short.resized()),
-                        fit::extents(&short.have)
-                    ),
-                    floor::Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
-                    floor::Resize::NoExtent => format!(
-                        "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
-                    ),
-                };
-                vec![first, by_hand]
-            }
-            DrawError::SimulationRunning => {
-                vec!["stop it in CoppeliaSim, or pass --stop-simulation".into()]
-            }
-            // the floor or the maze dummy at NaN: every copy reads back so
-            DrawError::Verify(problems)
-                if problems.iter().any(|p| p.contains(verify::BROKEN_POSE)) =>
-            {
-                vec![
-                "a pose read back is not a number (NaN): the object the maze hangs from (the --parent dummy, or the --floor) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again".into(),
-            ]
-            }
-            DrawError::Sizes(_) => vec![
-                "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate --help`)".into(),
-            ],
-            DrawError::OurCopy { .. } => vec![
-                "name the object itself (the course scene's `Line`, `Start`, `End`): a path into the maze dummy (`/Maze/Line`, `/Line[1]`) finds a copy, whose path changes with every draw".into(),
-            ],
-            DrawError::SameObject { .. } => vec![
-                "give each role its own object: pass the right name to one of the two options (see --help for the defaults)".into(),
-            ],
-            DrawError::Verify(_) => {
-                vec!["run the same command again: it repairs what differs".into()]
-            }
-            DrawError::Concurrent { .. } => vec![
-                "run one apply or clear at a time on a scene; running one again alone repairs it"
-                    .into(),
-            ],
-            DrawError::Interrupted { .. } => vec![
-                "the scene holds part of the maze; run the same apply again to finish it, or clear to remove it"
-                    .into(),
-            ],
-            DrawError::Backend(_) => vec![],
+            DrawError::SameObject {
+                names,
+                first,
+                second,
+            } => two_roles(names, role(*first), role(*second)),
+            DrawError::OurCopy {
+                name,
+                role: given,
+                what,
+            } => our_copy(name, role(*given), what),
+            other => other.to_string(),
         }
     }
 }
 
+/// "Floor, Line": the names of [`DrawError::Missing`]'s objects.
+fn missing_names(objects: &[(Role, String)]) -> String {
+    let names: Vec<&str> = objects.iter().map(|(_, name)| name.as_str()).collect();
+    names.join(", ")
+}
+
+/// [`DrawError::SameObject`]'s line, its roles as said.
+fn two_roles(names: &str, first: impl std::fmt::Display, second: impl std::fmt::Display) -> String {
+    format!("{names} would be both {first} and {second}: one object cannot play two roles")
+}
+
+/// [`DrawError::OurCopy`]'s line, its role as said.
+fn our_copy(name: &str, role: impl std::fmt::Display, what: &str) -> String {
+    format!("`{name}` ({role}) is a copy vrep-maze pasted into the maze, not {what}")
+}
+
 /// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
 /// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
-/// `posts`, the post template is needed too. A missing object's hint gives the layout's
+/// `posts`, the post template is needed too. A missing object's remedy gives the layout's
 /// `sizes` when a layout is drawn.
 pub fn resolve_handles(
     names: &ObjectNames,
@@ -760,7 +643,7 @@ pub fn resolve_handles(
 ) -> Result<Handles, DrawError> {
     names.check_roles()?;
     let found = survey.handles;
-    let roles = names.survey_roles(style).into_array();
+    let roles = ObjectNames::survey_roles(style).into_array();
     let asked = names.survey(style).into_array();
     let handles = found.into_array();
     for (i, h) in handles.iter().enumerate() {
@@ -785,7 +668,7 @@ pub fn resolve_handles(
         .skip(2)
         .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
     if let Some(((name, _), role)) = recorded {
-        let marker = *name == names.start || *name == names.end;
+        let marker = matches!(role, Role::Start | Role::End);
         return Err(DrawError::OurCopy {
             name: name.to_string(),
             role,
@@ -793,24 +676,20 @@ pub fn resolve_handles(
         });
     }
     let (needed, _) = found.needed_and_optional();
-    let mut missing: Vec<String> = names
-        .for_style(style)
-        .iter()
+    let (needed_roles, _) = ObjectNames::survey_roles(style).needed_and_optional();
+    let mut missing: Vec<(Role, String)> = needed_roles
+        .into_iter()
         .zip(needed)
         .filter(|(_, h)| h.is_none())
-        .map(|(n, _)| n.to_string())
+        .map(|(role, _)| (role, names.name(role).to_string()))
         .collect();
     if posts && found.post.is_none() {
-        missing.push(names.post.clone());
+        missing.push((Role::Post, names.post.clone()));
     }
     if !missing.is_empty() {
-        let hints = missing
-            .iter()
-            .map(|n| names.how_to_create(n, sizes))
-            .collect();
         return Err(DrawError::Missing {
-            names: missing,
-            hints,
+            objects: missing,
+            sizes: sizes.cloned().map(Box::new),
         });
     }
     let h = found.map(|h| h.unwrap_or(-1));

@@ -42,7 +42,7 @@ pub(crate) fn raised_and_claimed(
 }
 
 /// Reads the scene for drawing what `asks` says (with `posts`: the post template too): the
-/// survey and the handles of the named objects, or [`DrawError::Missing`] whose hints give
+/// survey and the handles of the named objects, or [`DrawError::Missing`] whose remedies give
 /// the layout's sizes.
 pub fn surveyed(
     scene: &mut dyn Backend,

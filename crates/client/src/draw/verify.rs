@@ -102,7 +102,7 @@ pub fn check(
     problems
 }
 
-/// What a problem of [`broken_frames`] says, which [`DrawError::hints`] recognises.
+/// What a problem of [`broken_frames`] says, which [`DrawError::remedies`] recognises.
 pub(crate) const BROKEN_POSE: &str = "is at a pose that is not a number (NaN)";
 
 /// One problem for each of the floor and the maze dummy whose world pose in `objects` is not
