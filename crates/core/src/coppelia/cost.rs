@@ -202,9 +202,9 @@ pub struct CostModel {
     /// Kept at the fit with the spec's 0.45 ms calls: with the real build's 0.15 ms the
     /// spec's row is still reproduced within 0.75..1.33 (`tests/it/costs.rs`).
     pub zmq_call_per_thousand_objects: Duration,
-    /// One call inside one of our Lua programs: about 10 µs on both builds, where a request
-    /// of its own costs 0.1-0.2 ms (`docs/measurements.md` "Calls made in one request": ten
-    /// reads of parents and poses in 0.22-0.34 ms, an empty program 0.13-0.18 ms).
+    /// One call inside one of our Lua programs: 5-10 µs on both builds, where a request of
+    /// its own costs 0.1-0.2 ms (`docs/measurements.md` "Calls made in one request": ten
+    /// reads of parents and poses in 0.20-0.26 ms, an empty program 0.12-0.17 ms).
     pub program_call: Duration,
     /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
     pub zmq_tree: Duration,
@@ -248,7 +248,7 @@ impl CostModel {
             zmq_new_client: Duration::ZERO,
             zmq_set: Duration::from_micros(170),
             zmq_call_per_thousand_objects: Duration::from_micros(40),
-            program_call: Duration::from_micros(10),
+            program_call: Duration::from_micros(8),
             zmq_tree: Duration::from_micros(300),
             zmq_tree_per_handle: Duration::from_nanos(1200),
             mesh: MeshCosts::V4_5_1,
