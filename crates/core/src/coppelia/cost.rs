@@ -206,7 +206,10 @@ pub struct CostModel {
     /// its own costs 0.1-0.2 ms (`docs/measurements.md` "Calls made in one request": ten
     /// reads of parents and poses in 0.20-0.26 ms, an empty program 0.12-0.17 ms).
     pub program_call: Duration,
-    /// ZeroMQ `sim.getObjectsInTree`: the call (spec "ZeroMQ costs": 0.3 ms) ...
+    /// ZeroMQ `sim.getObjectsInTree`: the call, 0.15 ms (each of the four a reset makes
+    /// answered in 0.1-0.2 ms on both real builds at idle fps 0, `docs/measurements.md` "Calls
+    /// made in one request"; the spec's "ZeroMQ costs" says 0.3 ms, timed with an older
+    /// client whose every call took 0.45 ms: the real build decides) ...
     pub zmq_tree: Duration,
     /// ... and per handle returned (0.9 ms with 500 children).
     pub zmq_tree_per_handle: Duration,
@@ -249,7 +252,7 @@ impl CostModel {
             zmq_set: Duration::from_micros(170),
             zmq_call_per_thousand_objects: Duration::from_micros(40),
             program_call: Duration::from_micros(8),
-            zmq_tree: Duration::from_micros(300),
+            zmq_tree: Duration::from_micros(150),
             zmq_tree_per_handle: Duration::from_nanos(1200),
             mesh: MeshCosts::V4_5_1,
         }
@@ -446,9 +449,12 @@ mod tests {
         assert!((0.12..=0.22).contains(&ms(m.op(&Op::ZmqSet))));
         assert_eq!(m.legacy_pass(&[], true), Duration::from_millis(2));
         assert_eq!(m.legacy_pass(&[Op::LegacyCommand], false), m.legacy_command);
-        // spec "ZeroMQ costs": getObjectsInTree 0.3 ms, 0.9 ms with 500 children
-        assert!((ms(m.op(&Op::ZmqTree { handles: 0 })) - 0.3).abs() < 0.01);
-        assert!((ms(m.op(&Op::ZmqTree { handles: 500 })) - 0.9).abs() < 0.01);
+        // getObjectsInTree: 0.1-0.2 ms a call on both real builds ("Calls made in one
+        // request"; the spec's "ZeroMQ costs" 0.3 ms lost to the real build), and the spec's
+        // 0.6 ms more with 500 children
+        assert!((0.10..=0.20).contains(&ms(m.op(&Op::ZmqTree { handles: 0 }))));
+        let children = m.op(&Op::ZmqTree { handles: 500 }) - m.op(&Op::ZmqTree { handles: 0 });
+        assert!((ms(children) - 0.6).abs() < 0.01);
     }
 
     /// `docs/measurements.md` "Pasting on 4.10": `copyPasteObjects` of k distinct copies of

@@ -304,7 +304,7 @@ impl MeshDrawing for ZmqBackend {
     /// that fails (a simulator without the function, a handle that is no shape), one
     /// `sim.getShapeMesh` each, which names the mesh at fault.
     fn read_shapes(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
-        if handles.len() > 1 {
+        if !handles.is_empty() {
             let code = Value::Text(lua::read_meshes_code(handles));
             match self.client.call("sim.executeLuaCode", vec![code]) {
                 Ok(values) => {
