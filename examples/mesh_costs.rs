@@ -5,13 +5,15 @@
 //! median of `--reps` of each, in milliseconds; what `docs/measurements.md` records.
 //!
 //!     cargo run --release --example mesh_costs -- PORT [--create-shape] [--reps N] [--boxes] [N...]
-//!     cargo run --release --example mesh_costs -- PORT [--create-shape] [--reps N] --layout FILE [--packed]
+//!     cargo run --release --example mesh_costs -- PORT [--create-shape] [--reps N] --layout FILE [--packed [--stride K]]
 //!
 //! Shape k sits at (k mod 100, k div 100) times `--scale` metres (default 0.1), 0.6 x 0.2
 //! times the scale. `--boxes` makes boxes (8 vertices, 12 triangles, as walls and posts) instead of flat
 //! rectangles (4 vertices, 2 triangles, as lines). `--layout` times the meshes `apply --draw
 //! mesh` makes of a layout: one create call each, or with `--packed` in batches of 8 by the
-//! one-request program `apply` sends (`vrep_maze::coppelia::lua::create`), median of `--reps`.
+//! one-request program `apply` sends (`vrep_maze::coppelia::lua::create`), median of `--reps`;
+//! `--stride K` sends each mesh's vertices reordered (vertex k at k·K mod n; 0: shuffled), to
+//! see what the order costs the simulator.
 
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
@@ -76,6 +78,7 @@ fn main() {
     let mut layout = None;
     let mut lockstep = 0;
     let mut packed = false;
+    let mut stride = 1;
     while let Some(a) = args.next() {
         match a.as_str() {
             "--create-shape" => create = "sim.createShape",
@@ -83,6 +86,12 @@ fn main() {
             "--boxes" => boxes = true,
             "--layout" => layout = args.next(),
             "--packed" => packed = true,
+            "--stride" => {
+                stride = args
+                    .next()
+                    .and_then(|n| n.parse().ok())
+                    .expect("--stride N")
+            }
             "--lockstep" => {
                 lockstep = args
                     .next()
@@ -126,7 +135,7 @@ fn main() {
     set_fps(&mut c, 0);
     if let Some(path) = layout {
         if packed {
-            packed_batches(&mut c, create, &path, reps);
+            packed_batches(&mut c, create, &path, reps, stride);
         } else {
             maze_meshes(&mut c, create, &path);
         }
@@ -180,8 +189,11 @@ fn layout_meshes(path: &str) -> vrep_maze::draw::mesh::MeshMaze {
 
 /// Creates the meshes of the layout in `path` in batches of 8 by the one-request program, under
 /// a dummy, and removes them, `reps` times: the median time of each batch.
-fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize) {
-    let maze = layout_meshes(path);
+fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize, stride: usize) {
+    let mut maze = layout_meshes(path);
+    for m in &mut maze.meshes {
+        reorder(&mut m.vertices, &mut m.indices, stride);
+    }
     let holder = c
         .call_int("sim.createDummy", vec![Value::Float(0.01)])
         .expect("dummy");
@@ -228,6 +240,39 @@ fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize) {
         vec![Value::Array(vec![int(holder.into())])],
     )
     .expect("remove");
+}
+
+/// The same mesh with vertex k moved to (k * stride) mod n (a permutation when stride and n
+/// share no factor; left as it is otherwise).
+fn reorder(vertices: &mut Vec<f32>, indices: &mut [i32], stride: usize) {
+    let n = vertices.len() / 3;
+    if stride == 1 || n == 0 || (stride > 1 && gcd(stride, n) != 1) {
+        return;
+    }
+    // stride 0: a shuffle (xorshift, fixed seed)
+    let mut order: Vec<usize> = (0..n).map(|k| (k * stride.max(1)) % n).collect();
+    if stride == 0 {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for k in (1..n).rev() {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            order.swap(k, (x % (k as u64 + 1)) as usize);
+        }
+    }
+    let mut moved = vec![0.0f32; vertices.len()];
+    for k in 0..n {
+        let to = order[k];
+        moved[3 * to..3 * to + 3].copy_from_slice(&vertices[3 * k..3 * k + 3]);
+    }
+    *vertices = moved;
+    for i in indices.iter_mut() {
+        *i = order[*i as usize] as i32;
+    }
+}
+
+fn gcd(a: usize, b: usize) -> usize {
+    if b == 0 { a } else { gcd(b, a % b) }
 }
 
 /// Creates, reads back and removes each mesh of the layout in `path`, timing each call.
