@@ -1,0 +1,448 @@
+//! What a survey finds over the ZeroMQ remote API: the objects drawing needs, their names,
+//! types, parents and world poses, read in as few requests as the answers allow and
+//! remembered for the connection (aliases, types, poses this connection set), and the
+//! copies an interrupted run may have left at the scene root.
+
+use std::collections::{HashMap, HashSet};
+
+use ciborium::Value;
+
+use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
+use crate::draw::{Backend, BackendError, ObjectInfo, plan};
+use crate::zmq_api::ZmqError;
+use crate::zmq_api::cbor::{self, int};
+use vrep_maze_core::coppelia::{HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE};
+
+impl ZmqBackend {
+    /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
+    /// else read (`Read`) or NaN (`Known`, never in place); `Fresh` reads every one. The reads
+    /// are made by one request ([`Client::read_all`]).
+    fn line_infos(
+        &mut self,
+        lines: Vec<(i32, String, Option<i32>)>,
+        poses: LinePoses,
+    ) -> Result<Vec<ObjectInfo>, BackendError> {
+        let unknown = ([f64::NAN; 3], [f64::NAN; 3]);
+        let read: Vec<i32> = lines
+            .iter()
+            .map(|(h, _, _)| *h)
+            .filter(|h| match (self.poses.contains_key(h), poses) {
+                (true, LinePoses::Known | LinePoses::Read) | (false, LinePoses::Known) => false,
+                (_, LinePoses::Read | LinePoses::Fresh) => true,
+            })
+            .collect();
+        let calls: Vec<(&str, Vec<Value>)> = read
+            .iter()
+            .map(|h| {
+                let args = vec![int((*h).into()), int(HANDLE_WORLD.into())];
+                ("sim.getObjectPose", args)
+            })
+            .collect();
+        let mut read_now = HashMap::with_capacity(read.len());
+        for (h, outcome) in read.iter().zip(self.client.read_all(&calls)?) {
+            let pose = match outcome {
+                Ok(values) => pose_of(*h, &values)?,
+                // listed a moment ago, gone now (another run removed it): never in place
+                Err(ZmqError::Remote { .. }) => unknown,
+                Err(e) => return Err(e.into()),
+            };
+            read_now.insert(*h, pose);
+        }
+        Ok(lines
+            .into_iter()
+            .map(|(handle, name, parent)| {
+                let (position, orientation) = read_now
+                    .get(&handle)
+                    .or_else(|| self.poses.get(&handle))
+                    .copied()
+                    .unwrap_or(unknown);
+                ObjectInfo {
+                    handle,
+                    name,
+                    parent,
+                    position,
+                    orientation,
+                }
+            })
+            .collect())
+    }
+
+    /// Reads the aliases of `handles` not known yet, and the type codes of those whose `kind`
+    /// is not given, in one request ([`Client::read_all`]): what [`ZmqBackend::traits`] and
+    /// [`ZmqBackend::alias`] then find remembered (`with_types: false`: the aliases only). An
+    /// object whose read fails is left unknown, for the one-by-one read to report.
+    fn read_traits(
+        &mut self,
+        handles: &[(i32, Option<i32>)],
+        with_types: bool,
+    ) -> Result<(), BackendError> {
+        let todo: Vec<(i32, Option<i32>)> = handles
+            .iter()
+            .copied()
+            .filter(|(h, _)| {
+                !self.traits.contains_key(h) && (with_types || !self.aliases.contains_key(h))
+            })
+            .collect();
+        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
+        for (h, kind) in &todo {
+            calls.push(("sim.getObjectAlias", vec![int((*h).into()), int(-1)]));
+            if with_types && kind.is_none() {
+                calls.push(("sim.getObjectType", vec![int((*h).into())]));
+            }
+        }
+        let mut outcomes = self.client.read_all(&calls)?.into_iter();
+        for (h, kind) in todo {
+            let alias = outcomes.next().and_then(Result::ok);
+            let alias = alias
+                .as_ref()
+                .and_then(|v| v.first())
+                .map(|v| cbor::text(v).unwrap_or_default().to_string());
+            let kind = match kind {
+                Some(k) => Some(k),
+                None if with_types => outcomes
+                    .next()
+                    .and_then(|o| int_result("sim.getObjectType", o).ok()),
+                None => None,
+            };
+            match (alias, kind) {
+                (Some(alias), Some(kind)) if with_types => {
+                    self.traits.insert(h, (alias, kind));
+                }
+                (Some(alias), _) if !with_types => {
+                    self.aliases.insert(h, alias);
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// The named objects with their parents and world poses, and their type codes (a named
+    /// object's alias is its name's last part: only its type is read, once), the calls sent
+    /// in one request ([`Client::read_all`]).
+    fn named_infos(
+        &mut self,
+        named: &[(String, i32)],
+    ) -> Result<Vec<(ObjectInfo, i32)>, BackendError> {
+        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
+        // one type read an object (two names may resolve to one object)
+        let mut typed: HashSet<i32> = self.traits.keys().copied().collect();
+        let mut read_type = Vec::with_capacity(named.len());
+        for (_, h) in named {
+            let handle = int((*h).into());
+            calls.push(("sim.getObjectParent", vec![handle.clone()]));
+            calls.push((
+                "sim.getObjectPose",
+                vec![handle.clone(), int(HANDLE_WORLD.into())],
+            ));
+            read_type.push(typed.insert(*h));
+            if read_type[read_type.len() - 1] {
+                calls.push(("sim.getObjectType", vec![handle]));
+            }
+        }
+        let mut outcomes = self.client.read_all(&calls)?.into_iter();
+        let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
+        let mut out = Vec::with_capacity(named.len());
+        for ((name, h), read_type) in named.iter().zip(read_type) {
+            let parent = int_result("sim.getObjectParent", next())?;
+            let (position, orientation) = pose_of(*h, &next()?)?;
+            if read_type {
+                let kind = int_result("sim.getObjectType", next())?;
+                self.traits.insert(*h, (alias_of(name).to_string(), kind));
+            }
+            self.poses.insert(*h, (position, orientation));
+            let info = ObjectInfo {
+                handle: *h,
+                name: name.clone(),
+                parent: (parent >= 0).then_some(parent),
+                position,
+                orientation,
+            };
+            out.push((info, self.traits[h].1));
+        }
+        Ok(out)
+    }
+
+    /// The alias and type code of `handle`: remembered (read before, or a copy this
+    /// connection pasted), else read (`kind`, if given, is the type already known).
+    fn traits(&mut self, handle: i32, kind: Option<i32>) -> Result<(String, i32), BackendError> {
+        if let Some(t) = self.traits.get(&handle) {
+            return Ok(t.clone());
+        }
+        let alias = self.alias(handle)?;
+        let kind = match kind {
+            Some(k) => k,
+            None => self
+                .client
+                .call_int("sim.getObjectType", vec![int(handle.into())])?,
+        };
+        self.traits.insert(handle, (alias.clone(), kind));
+        Ok((alias, kind))
+    }
+
+    /// The alias of `handle`: remembered, else read.
+    fn alias(&mut self, handle: i32) -> Result<String, BackendError> {
+        if let Some(alias) = self
+            .traits
+            .get(&handle)
+            .map(|t| &t.0)
+            .or_else(|| self.aliases.get(&handle))
+        {
+            return Ok(alias.clone());
+        }
+        let alias = self
+            .client
+            .call1("sim.getObjectAlias", vec![int(handle.into()), int(-1)])?;
+        let alias = cbor::text(&alias).unwrap_or_default().to_string();
+        self.aliases.insert(handle, alias.clone());
+        Ok(alias)
+    }
+
+    /// The named objects (read), the maze dummy's children and root copies of the templates
+    /// found (their poses as `poses` says), with what tells copies from the user's objects
+    /// ([`plan::Traits`]). A child carrying a template's alias is named as a copy of it
+    /// (`/Line[k]`), any other by its alias, so that only the templates' copies are taken
+    /// for the maze's. A child the copy record names and of its template's type is known
+    /// without reading its alias; one that is not recorded but named and typed like a copy
+    /// is sized and asked for children ([`ZmqBackend::doubt`]: normally none). The record
+    /// is then brought up to date (written with the next edit or paste). The poses this
+    /// connection set for the maze dummy's children are trusted only while the dummy is
+    /// where it was when they were set, at a finite pose (a child of a dummy at NaN is at
+    /// NaN, whatever was set).
+    pub(super) fn collect(
+        &mut self,
+        poses: LinePoses,
+    ) -> Result<(Vec<ObjectInfo>, plan::Traits), BackendError> {
+        let known = self.known.clone();
+        let mut out = Vec::new();
+        let mut found = plan::Traits::default();
+        let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
+        for (info, kind) in self.named_infos(&known.named)? {
+            found.kinds.insert(info.handle, kind);
+            out.push(info);
+        }
+        let parent_now = known.parent.and_then(|p| self.poses.get(&p).copied());
+        let finite = |(p, e): WorldPose| p.iter().chain(&e).all(|x| x.is_finite());
+        let distrust =
+            parent_now.is_some_and(|now| !finite(now) || parent_before.is_some_and(|b| b != now));
+        let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
+        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
+            .chain(known.foreign_aliases.iter().map(String::as_str))
+            .collect();
+        // the templates' handles and types by alias: a recorded copy must still be of its
+        // template's type
+        let template_handles: HashMap<&str, i32> = known
+            .named
+            .iter()
+            .filter(|(name, _)| templates.contains(&alias_of(name)))
+            .map(|(name, h)| (alias_of(name), *h))
+            .collect();
+        let template_kinds: HashMap<&str, i32> = template_handles
+            .iter()
+            .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
+            .collect();
+        let mut record = self.copy_record()?;
+        // the record first: a named object it holds is one of our copies (refused as a
+        // template or marker), a listed one of its template's type is ours
+        found.recorded.extend(
+            known
+                .named
+                .iter()
+                .map(|(_, h)| *h)
+                .filter(|h| record.get(*h).is_some()),
+        );
+        let mut present = Vec::new();
+        let mut numbered = vec![0; templates.len()];
+        let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
+            Some(t) => {
+                numbered[t] += 1;
+                format!("/{alias}[{}]", numbered[t])
+            }
+            None => alias.to_string(),
+        };
+        // a copy of a template by alias and type, unless the record does not hold it and
+        // what `doubt` reads of an object named and typed like a copy says otherwise
+        let judge = |backend: &mut Self,
+                     (h, tree): (i32, Option<(i32, &[i32])>),
+                     name: &str,
+                     alias: &str,
+                     kind: i32,
+                     found: &mut plan::Traits|
+         -> Result<bool, BackendError> {
+            let family = templates
+                .iter()
+                .find(|t| plan::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind));
+            let template = family.and_then(|t| template_handles.get(t).copied());
+            if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
+                backend.doubt(h, template, tree, found)?;
+            }
+            let of_type = template_kinds.get(alias) == Some(&kind);
+            if of_type && record.get(h) == Some(alias) {
+                found.recorded.insert(h);
+            }
+            Ok(of_type && !plan::contradicts_copy(found, h, template))
+        };
+        if let Some(parent) = known.parent {
+            // options 3: first-level children only, without the dummy itself; the shapes
+            // among them in one call, so only the other children's types are asked
+            let shapes: HashSet<i32> = self
+                .client
+                .call1(
+                    "sim.getObjectsInTree",
+                    vec![int(parent.into()), int(OBJECT_SHAPE_TYPE.into()), int(3)],
+                )
+                .ok()
+                .as_ref()
+                .and_then(cbor::handles)
+                .unwrap_or_default()
+                .into_iter()
+                .collect();
+            let kids = self.handles_in(parent, 3)?;
+            let shape = |h: i32| shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
+            let new_kids: Vec<i32> = kids.iter().copied().filter(|h| !seen.contains(h)).collect();
+            for &h in &new_kids {
+                // a recorded copy that is (still) of its template's type is known without
+                // reading its alias
+                if let (Some(alias), Some(kind)) = (record.get(h), shape(h))
+                    && template_kinds.get(alias) == Some(&kind)
+                    && !self.traits.contains_key(&h)
+                {
+                    self.traits.insert(h, (alias.to_string(), kind));
+                }
+            }
+            // the others' aliases (and the non-shapes' types) together, not one by one
+            let unknown: Vec<(i32, Option<i32>)> =
+                new_kids.iter().map(|&h| (h, shape(h))).collect();
+            self.read_traits(&unknown, true)?;
+            let mut lines = Vec::new();
+            for &h in &kids {
+                if seen.insert(h) {
+                    let (alias, kind) = self.traits(h, shape(h))?;
+                    found.kinds.insert(h, kind);
+                    let name = copy_name(&alias);
+                    let tree = Some((parent, &kids[..]));
+                    if judge(self, (h, tree), &name, &alias, kind, &mut found)? {
+                        present.push((h, alias.clone()));
+                    }
+                    if distrust {
+                        self.poses.remove(&h);
+                    }
+                    lines.push((h, name, Some(parent)));
+                }
+            }
+            out.extend(self.line_infos(lines, poses)?);
+        }
+        // root objects carrying a template's alias: copies left parentless by an interrupted
+        // run (of this style's template, or of another found in the scene, which a drawing
+        // removes or, for posts, reuses). They are named `/Line[k]` whatever their path.
+        let roots: Vec<i32> = self
+            .handles_in(HANDLE_SCENE, 2)?
+            .into_iter()
+            .filter(|h| !seen.contains(h))
+            .collect();
+        let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
+        self.read_traits(&unknown, false)?;
+        let mut lines = Vec::new();
+        for h in roots {
+            if seen.contains(&h) {
+                continue;
+            }
+            // the type only of those carrying a template's alias
+            if !templates.contains(&self.alias(h)?.as_str()) {
+                continue;
+            }
+            let (alias, kind) = self.traits(h, None)?;
+            let parent = self
+                .client
+                .call_int("sim.getObjectParent", vec![int(h.into())])?;
+            if parent >= 0 {
+                continue; // not a root object after all
+            }
+            seen.insert(h);
+            found.kinds.insert(h, kind);
+            let name = copy_name(&alias);
+            // a copy at the root stays in the record if it is there (pasted by an
+            // interrupted run), but none is added by its alias: the root also holds the
+            // user's template when a name found one of our copies instead
+            if judge(self, (h, None), &name, &alias, kind, &mut found)?
+                && record.get(h) == Some(alias.as_str())
+            {
+                present.push((h, alias.clone()));
+            }
+            lines.push((h, name, None));
+        }
+        out.extend(self.line_infos(lines, poses)?);
+        // the record now holds exactly the templates' copies in the maze: those read by
+        // alias are added (a maze drawn without a record pays its reads once), handles no
+        // longer there are dropped
+        if known.parent.is_some() {
+            // a named object the record holds stays in it: refused as a template or marker,
+            // it is still our copy
+            let mut changed = record
+                .retain(|h| present.iter().any(|(p, _)| *p == h) || found.recorded.contains(&h));
+            for (h, alias) in &present {
+                changed |= record.insert(*h, alias);
+            }
+            self.record_changed |= changed;
+        }
+        self.record = Some(record);
+        Ok((out, found))
+    }
+
+    /// Reads what tells `handle`, named and typed like a copy of `template` but not in the
+    /// copy record, from a copy ([`plan::contradicts_copy`]) into `found`: its size and its
+    /// template's (a shape's `sim.getShapeBB`, one call; other objects' bounding box, six)
+    /// and whether it has children (`sim.getObjectsInTree`, one call, unless `tree`, the
+    /// maze dummy and its children it is one of, shows nothing below them: one call for
+    /// the whole maze). Read once per survey.
+    fn doubt(
+        &mut self,
+        handle: i32,
+        template: i32,
+        tree: Option<(i32, &[i32])>,
+        found: &mut plan::Traits,
+    ) -> Result<(), BackendError> {
+        for h in [template, handle] {
+            if let Some(size) = self.extents(h)? {
+                found.sizes.insert(h, size);
+            }
+        }
+        // a shape's colour (one call each, the template's once a survey): a user's red copy
+        // of `Line` is no line of the maze
+        let shapes = [template, handle]
+            .into_iter()
+            .filter(|h| self.traits.get(h).map(|t| t.1) == Some(OBJECT_SHAPE_TYPE))
+            .filter(|h| !found.colours.contains_key(h))
+            .collect::<Vec<_>>();
+        if !shapes.is_empty()
+            && let Some(colours) = self.shape_colours(&shapes)?
+        {
+            for (h, c) in shapes.into_iter().zip(colours) {
+                found.colours.extend(c.map(|c| (h, c)));
+            }
+        }
+        let deep = match (tree, self.deep) {
+            (None, _) => true,
+            (Some(_), Some(deep)) => deep,
+            (Some((parent, kids)), None) => {
+                // options 1: the whole tree without the dummy
+                let deep = self.handles_in(parent, 1)?.len() > kids.len();
+                self.deep = Some(deep);
+                deep
+            }
+        };
+        let children = match self.children.get(&handle) {
+            Some(&c) => c,
+            None if !deep => false,
+            None => {
+                let c = !self.handles_in(handle, 3)?.is_empty();
+                self.children.insert(handle, c);
+                c
+            }
+        };
+        if children {
+            found.with_children.insert(handle);
+        }
+        Ok(())
+    }
+}
