@@ -245,6 +245,19 @@ pub(crate) fn run_drawing<T: Send + 'static, R>(
     }
 }
 
+/// How a `clear` ended: an interrupt is a clean stop, said as the command line says it.
+pub(crate) fn cleared(
+    result: Result<draw::ClearReport, DrawError>,
+) -> anyhow::Result<Finished<draw::ClearReport>> {
+    match result {
+        Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
+            message: vrep_maze::cli::summary::clear_interrupted(placed, total),
+            counts: None,
+        }),
+        other => Ok(Finished::Done(other?)),
+    }
+}
+
 /// Draws `layout` into CoppeliaSim as `vrep-maze apply` does and verifies it.
 ///
 /// Every option of `apply` is a keyword: `api="auto"` (the default: port 19997 with the
@@ -371,10 +384,7 @@ pub fn clear(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<ClearReport> {
     let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
-    let argv = options::command_line("clear", &[], &options)?;
-    let Command::Clear(args) = options::parse(argv)? else {
-        return Err(PyRuntimeError::new_err("clear parsed as another command"));
-    };
+    let args = options::clear_args(&options)?;
     let stop = Stop::default();
     let dry_run = args.dry_run;
     let opts = args.options(Some(stop.requested.clone()));
@@ -385,13 +395,7 @@ pub fn clear(
         connected.store(true, Ordering::SeqCst);
         let result = draw::clear(backend.as_mut(), &opts);
         let _ = backend.close();
-        match result {
-            Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
-                message: vrep_maze::cli::summary::clear_interrupted(placed, total),
-                counts: None,
-            }),
-            other => Ok(Finished::Done(other?)),
-        }
+        cleared(result)
     };
     run_drawing(py, &stop, job, |report| ClearReport::of(report, dry_run))
 }

@@ -9,7 +9,7 @@
 use std::ffi::OsString;
 
 use clap::{CommandFactory, Parser};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use vrep_maze::cli::Cli;
@@ -106,6 +106,15 @@ pub fn parse(argv: Vec<OsString>) -> PyResult<vrep_maze::cli::Command> {
     Cli::try_parse_from(argv)
         .map(|cli| cli.command)
         .map_err(|e| PyValueError::new_err(clap_message(&e)))
+}
+
+/// `clear`'s options from Python keywords (the connection's and the object names): what
+/// `vrep_maze.clear`, `vrep_maze.connect` and a session's `clear` take.
+pub fn clear_args(options: &Bound<'_, PyDict>) -> PyResult<vrep_maze::cli::ClearArgs> {
+    match parse(command_line("clear", &[], options)?)? {
+        vrep_maze::cli::Command::Clear(args) => Ok(args),
+        _ => Err(PyRuntimeError::new_err("clear parsed as another command")),
+    }
 }
 
 /// The line `vrep-maze` prints for a usage error clap found, without its `error: `.

@@ -22,7 +22,7 @@ use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::{Command, Interrupted, inspect};
 use vrep_maze::draw::{self, ApplyOptions, BackendError, DrawError, Picture};
 
-use crate::draw::{ApplyReport, ClearReport, Finished, Stop, draw_connected, run_drawing};
+use crate::draw::{ApplyReport, ClearReport, Finished, Stop, cleared, draw_connected, run_drawing};
 use crate::errors;
 use crate::layout::Layout;
 use crate::options;
@@ -56,10 +56,7 @@ pub fn connect(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Session> {
     let options = options::with(options, py, &[("api", api), ("host", host), ("port", port)])?;
-    let argv = options::command_line("clear", &[], &options)?;
-    let Command::Clear(args) = options::parse(argv)? else {
-        return Err(PyRuntimeError::new_err("connect parsed as another command"));
-    };
+    let args = options::clear_args(&options)?;
     let scene = args.scene;
     let (tasks, queue) = mpsc::channel::<Task>();
     let stop = Stop::default();
@@ -180,21 +177,12 @@ impl Session {
     #[pyo3(signature = (**options))]
     fn clear(&self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<ClearReport> {
         let options = options::with(options, py, &[])?;
-        let argv = options::command_line("clear", &[], &options)?;
-        let Command::Clear(args) = options::parse(argv)? else {
-            return Err(PyRuntimeError::new_err("clear parsed as another command"));
-        };
+        let args = options::clear_args(&options)?;
         let stop = Stop::default();
         let dry_run = args.dry_run;
         let opts = args.options(Some(stop.requested.clone()));
-        let work = move |session: &mut draw::Session| match draw::clear(session.connected()?, &opts)
-        {
-            Err(DrawError::Interrupted { placed, total }) => Ok(Finished::Stopped {
-                message: vrep_maze::cli::summary::clear_interrupted(placed, total),
-                counts: None,
-            }),
-            other => Ok(Finished::Done(other?)),
-        };
+        let work =
+            move |session: &mut draw::Session| cleared(draw::clear(session.connected()?, &opts));
         self.run(py, &stop, work, |report| ClearReport::of(report, dry_run))
     }
 

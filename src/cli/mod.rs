@@ -31,6 +31,7 @@ pub mod summary;
 mod validate;
 mod values;
 
+pub use clear::ClearArgs;
 pub use interrupt::Interrupted;
 pub use stdout::note_closed_stdout;
 
