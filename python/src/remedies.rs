@@ -68,9 +68,8 @@ fn hint(remedy: &Remedy) -> String {
             keyword(Role::Parent),
             keyword(Role::Floor)
         ),
-        // the words Python has always shown (`vrep-maze generate --help` is the command)
-        Remedy::MatchTemplateSizes => "a drawing copies the templates as they are: their sizes must be the layout's (see `vrep-maze generate help`)".into(),
-        Remedy::OneObjectPerRole => "give each role its own object: pass the right name to one of the two options (see help for the defaults)".into(),
+        Remedy::MatchTemplateSizes => "a drawing copies the templates as they are: their sizes must be the layout's (see `help(vrep_maze.generate)`)".into(),
+        Remedy::OneObjectPerRole => "give each role its own object: pass the right name to one of the two keywords (see `help(vrep_maze.apply)` for the defaults)".into(),
         // these name no option
         Remedy::ResizeFloor {
             resize: Resize::NoExtent,

@@ -110,6 +110,18 @@ def test_missing_scene_objects_are_named_with_remedies(serve):
     assert not any("--" in hint for hint in raised.value.hints), raised.value.hints
 
 
+def test_remedies_that_point_to_help_point_to_pythons(serve):
+    layout = vrep_maze.generate(seed=1, size=(3, 3))
+    with pytest.raises((ValueError, vrep_maze.SimulatorError)) as raised:
+        vrep_maze.apply(layout, port=serve.legacy_port, line="Start")
+    hints = getattr(raised.value, "hints", None) or [str(raised.value)]
+    assert any("see `help(vrep_maze.apply)` for the defaults" in h for h in hints), hints
+    thick = vrep_maze.generate(seed=1, size=(3, 3), line_width=0.2)
+    with pytest.raises(vrep_maze.SimulatorError) as raised:
+        vrep_maze.apply(thick, port=serve.legacy_port)
+    assert any("(see `help(vrep_maze.generate)`)" in h for h in raised.value.hints), raised.value
+
+
 def test_a_small_floor_is_refused_with_remedies_in_keywords_that_work(serve):
     layout = vrep_maze.generate(seed=1, size=(12, 12))
     with pytest.raises(vrep_maze.SimulatorError) as raised:
