@@ -165,6 +165,9 @@ pub struct CostModel {
     pub parent_per_object: Duration,
     /// Removing one object, per object in the scene.
     pub remove_per_object: Duration,
+    /// Removing objects in one call, per pair of objects removed (none on 4.5.1; 0.24 µs on
+    /// 4.10, whose removals grow with the square of their count: [`CostModel::v4_10`]).
+    pub remove_per_pair: Duration,
     /// Setting one pose, besides [`CostModel::pose_per_object`] (spec "Costs that grow with
     /// the scene": 3 µs a pose among 1,000 copies, 8 µs among 20,000).
     pub pose: Duration,
@@ -243,6 +246,7 @@ impl CostModel {
             paste_per_copy: Duration::ZERO,
             parent_per_object: Duration::from_nanos(85),
             remove_per_object: Duration::from_nanos(144),
+            remove_per_pair: Duration::ZERO,
             pose: Duration::from_nanos(3600),
             pose_per_thousand_objects: Duration::from_nanos(260),
             legacy_command: Duration::from_micros(100),
@@ -264,9 +268,14 @@ impl CostModel {
     /// (`docs/measurements.md` "ZeroMQ calls on 4.10"), and its pastes: about 0.22 ms a copy
     /// plus 0.2 µs per object walked, where 4.5.1 takes 0.32 µs per object walked and nothing
     /// a copy (`docs/measurements.md` "Pasting on 4.10": 64 copies in 15.5 ms among 69
-    /// objects, 28.3 ms among 1,069).
+    /// objects, 28.3 ms among 1,069), its removals, which add about 0.24 µs per pair of
+    /// objects removed, and its trees, 2 µs a handle returned ("Removing and listing on
+    /// 4.10": 256 copies removed in 18.9 ms where 4.5.1 takes 3.6 ms; 1,005 handles listed in
+    /// 2.13 ms, 1.44 ms on 4.5.1).
     pub fn v4_10() -> CostModel {
         CostModel {
+            remove_per_pair: Duration::from_nanos(240),
+            zmq_tree_per_handle: Duration::from_nanos(2000),
             mesh: MeshCosts::V4_10,
             paste_per_copy: Duration::from_micros(222),
             zmq_new_client: Duration::from_micros(5_500),
@@ -295,6 +304,7 @@ impl CostModel {
             Op::HalfPose { objects } => self.op(&Op::Pose { objects }) / 2,
             Op::Remove { count, objects } => {
                 per(self.remove_per_object, walked(count, objects, false))
+                    + per(self.remove_per_pair, (count * count) as f64)
             }
             Op::ZmqCall => self.zmq_call,
             Op::ZmqNewClient => self.zmq_new_client,
@@ -538,5 +548,52 @@ mod tests {
                 "{triangles}: {modelled:?} vs {one_call:?}"
             );
         }
+    }
+
+    /// `docs/measurements.md` "Removing and listing on 4.10": `removeObjects` of k pasted
+    /// copies of `Line` in one call at idle fps 0, median of 7, in the course scene (5
+    /// objects) and with 1,000 more; `getObjectsInTree` of the scene, median of 11.
+    #[test]
+    fn removals_and_trees_follow_the_measured_tables() {
+        let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+        // (model, k removed, objects before, ms measured end to end)
+        let removals = [
+            (CostModel::v4_10(), 64, 69, 1.60),
+            (CostModel::v4_10(), 256, 261, 18.90),
+            (CostModel::measured(), 64, 69, 0.60),
+        ];
+        let ratio = |m: &CostModel, count, objects, want: f64| {
+            ms(m.ops(&[Op::ZmqCall, Op::Remove { count, objects }])) / want
+        };
+        for (m, count, objects, want) in removals {
+            let r = ratio(&m, count, objects, want);
+            assert!(
+                (0.75..=1.33).contains(&r),
+                "{count} among {objects}: x{r:.2}"
+            );
+        }
+        // A known gap: removing part of a scene costs the real builds less than the spec's
+        // fit (every object of a scene removed) says, 1.4-1.9 times over for 256 of 261 on
+        // 4.5.1 and among 1,000 objects on both (same section); the bound fails once the model
+        // is mended, to be tightened then.
+        let big = [
+            (CostModel::measured(), 256, 261, 3.57),
+            (CostModel::v4_10(), 64, 1069, 7.30),
+            (CostModel::v4_10(), 256, 1261, 39.39),
+            (CostModel::measured(), 64, 1069, 5.12),
+            (CostModel::measured(), 256, 1261, 21.76),
+        ];
+        for (m, count, objects, want) in big {
+            let r = ratio(&m, count, objects, want);
+            assert!(
+                (1.33..=2.0).contains(&r),
+                "{count} among {objects}: x{r:.2}"
+            );
+        }
+        let tree = |m: &CostModel, handles| ms(m.ops(&[Op::ZmqTree { handles }]));
+        let r = tree(&CostModel::v4_10(), 1005) / 2.13;
+        assert!((0.75..=1.33).contains(&r), "4.10 tree: x{r:.2}");
+        let r = tree(&CostModel::measured(), 1005) / 1.44;
+        assert!((0.75..=1.33).contains(&r), "4.5.1 tree: x{r:.2}");
     }
 }
