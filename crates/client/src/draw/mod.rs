@@ -409,7 +409,8 @@ pub trait Backend {
     }
     /// The bounding boxes of `handles` ([`BoundingBox`]), in the same order, `None` for an
     /// object that has none (gone, or a simulator that does not say): legacy in one request
-    /// for all, ZeroMQ one call per parameter and object.
+    /// for all, ZeroMQ one call per parameter and object, all made by one request where the
+    /// simulator runs our program of several calls.
     fn bounding_boxes(&mut self, handles: &[i32])
     -> Result<Vec<Option<BoundingBox>>, BackendError>;
     /// The sizes (bounding-box extents x, y, z) of `handles`, in the same order, `None` for
