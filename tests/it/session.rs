@@ -5,6 +5,7 @@
 
 use vrep_maze::draw::{ApplyOptions, ClearOptions, DrawMode, Job, Picture, Session};
 use vrep_maze::generate::Algorithm;
+use vrep_maze::layout::Layout;
 use vrep_maze::sim::Scene;
 
 use crate::support::backend::Kind;
@@ -12,6 +13,17 @@ use crate::support::backend_tests;
 use crate::support::layouts::course_layout;
 
 backend_tests!(one_session_replaces_mazes_as_separate_runs_would);
+
+/// `layout` drawn as meshes, nothing created, the scene not saved.
+fn mesh_job(layout: &Layout) -> Job<'_> {
+    Job {
+        layout,
+        picture: Picture::of(layout, DrawMode::Mesh).unwrap(),
+        options: ApplyOptions::default(),
+        create_missing: false,
+        save_scene: None,
+    }
+}
 
 fn one_session_replaces_mazes_as_separate_runs_would(kind: Kind) {
     let k = kind.name();
@@ -23,13 +35,7 @@ fn one_session_replaces_mazes_as_separate_runs_would(kind: Kind) {
     let mut user_fps = 8;
     for seed in [1, 2, 3, 4] {
         let layout = course_layout(Algorithm::Prim, 9, 9, seed);
-        let job = Job {
-            layout: &layout,
-            picture: Picture::of(&layout, DrawMode::Mesh).unwrap(),
-            options: ApplyOptions::default(),
-            create_missing: false,
-            save_scene: None,
-        };
+        let job = mesh_job(&layout);
         let r = session.apply(&job, &mut |_| {}).unwrap();
         assert_eq!(r.drawn.meshes, 1, "{k}: {r:?}");
         assert_eq!(
@@ -76,13 +82,7 @@ fn a_call_that_lost_the_connection_leaves_the_next_to_connect_again(kind: Kind) 
     let reconnect = Box::new(move || kind.connect(port, short));
     let mut session = Session::reconnecting(backend, reconnect);
     let layout = course_layout(Algorithm::Prim, 9, 9, 1);
-    let job = Job {
-        layout: &layout,
-        picture: Picture::of(&layout, DrawMode::Mesh).unwrap(),
-        options: ApplyOptions::default(),
-        create_missing: false,
-        save_scene: None,
-    };
+    let job = mesh_job(&layout);
     session.apply(&job, &mut |_| {}).unwrap();
     first.shutdown();
     let lost = session.apply(&job, &mut |_| {}).unwrap_err();

@@ -42,13 +42,26 @@ impl ZmqBackend {
         relative_to: i32,
         floor: bool,
     ) -> Result<i32, BackendError> {
+        let special = (!floor).then_some(SPECIAL_RENDERABLE);
+        let size = [size[0], size[1], 0.0];
+        let h = self.primitive(PRIMITIVESHAPE_PLANE, size, colour, special, floor)?;
+        self.place(h, name, relative_to, [0.0, 0.0, z])?;
+        Ok(h)
+    }
+
+    /// A static primitive shape of `kind` and `size`, coloured, with the special properties
+    /// `special` (the default ones when `None`), respondable or not.
+    fn primitive(
+        &mut self,
+        kind: i32,
+        size: [f64; 3],
+        colour: [f64; 3],
+        special: Option<i32>,
+        respondable: bool,
+    ) -> Result<i32, BackendError> {
         let h = self.client.call_int(
             "sim.createPrimitiveShape",
-            vec![
-                int(PRIMITIVESHAPE_PLANE.into()),
-                float_array(&[size[0], size[1], 0.0]),
-                int(0),
-            ],
+            vec![int(kind.into()), float_array(&size), int(0)],
         )?;
         let hv = || int(h.into());
         self.call(
@@ -60,30 +73,38 @@ impl ZmqBackend {
                 float_array(&colour),
             ],
         )?;
-        if !floor {
+        if let Some(special) = special {
             self.call(
                 "sim.setObjectSpecialProperty",
-                vec![hv(), int(SPECIAL_RENDERABLE.into())],
+                vec![hv(), int(special.into())],
             )?;
         }
-        self.call(
-            "sim.setObjectInt32Param",
-            vec![hv(), int(SHAPEINTPARAM_STATIC.into()), int(1)],
-        )?;
-        self.call(
-            "sim.setObjectInt32Param",
-            vec![
-                hv(),
-                int(SHAPEINTPARAM_RESPONDABLE.into()),
-                int(floor.into()),
-            ],
-        )?;
-        self.set_pose(h, relative_to, [0.0, 0.0, z], [0.0; 3])?;
+        for (param, on) in [
+            (SHAPEINTPARAM_STATIC, true),
+            (SHAPEINTPARAM_RESPONDABLE, respondable),
+        ] {
+            self.call(
+                "sim.setObjectInt32Param",
+                vec![hv(), int(param.into()), int(on.into())],
+            )?;
+        }
+        Ok(h)
+    }
+
+    /// A new object put at `position` in the frame `relative_to` and named `name`.
+    fn place(
+        &mut self,
+        h: i32,
+        name: &str,
+        relative_to: i32,
+        position: [f64; 3],
+    ) -> Result<(), BackendError> {
+        self.set_pose(h, relative_to, position, [0.0; 3])?;
         self.call(
             "sim.setObjectAlias",
-            vec![hv(), Value::Text(alias_of(name).into())],
+            vec![int(h.into()), Value::Text(alias_of(name).into())],
         )?;
-        Ok(h)
+        Ok(())
     }
 }
 
@@ -286,41 +307,11 @@ impl ZmqBackend {
         at: [f64; 2],
         relative_to: i32,
     ) -> Result<i32, BackendError> {
-        let h = self.client.call_int(
-            "sim.createPrimitiveShape",
-            vec![
-                int(PRIMITIVESHAPE_CUBOID.into()),
-                float_array(&size),
-                int(0),
-            ],
-        )?;
-        let hv = || int(h.into());
-        self.call(
-            "sim.setShapeColor",
-            vec![
-                hv(),
-                Value::Null,
-                int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                float_array(&[0.3, 0.3, 0.3]),
-            ],
-        )?;
         let special =
             SPECIAL_COLLIDABLE | SPECIAL_MEASURABLE | SPECIAL_DETECTABLE | SPECIAL_RENDERABLE;
-        self.call(
-            "sim.setObjectSpecialProperty",
-            vec![hv(), int(special.into())],
-        )?;
-        for param in [SHAPEINTPARAM_STATIC, SHAPEINTPARAM_RESPONDABLE] {
-            self.call(
-                "sim.setObjectInt32Param",
-                vec![hv(), int(param.into()), int(1)],
-            )?;
-        }
-        self.set_pose(h, relative_to, [at[0], at[1], size[2] / 2.0], [0.0; 3])?;
-        self.call(
-            "sim.setObjectAlias",
-            vec![hv(), Value::Text(alias_of(name).into())],
-        )?;
+        let grey = [0.3, 0.3, 0.3];
+        let h = self.primitive(PRIMITIVESHAPE_CUBOID, size, grey, Some(special), true)?;
+        self.place(h, name, relative_to, [at[0], at[1], size[2] / 2.0])?;
         Ok(h)
     }
 }
