@@ -13,7 +13,8 @@
 //! mesh` makes of a layout: one create call each, or with `--packed` in batches of 8 by the
 //! one-request program `apply` sends (`vrep_maze::coppelia::lua::create`), median of `--reps`;
 //! `--stride K` sends each mesh's vertices reordered (vertex k at k·K mod n; 0: shuffled), to
-//! see what the order costs the simulator.
+//! see what the order costs the simulator. Each mesh's or batch's steps of the simulator's
+//! search for coincident vertices (`vrep_maze::coppelia::vertex_merge`) are printed beside.
 
 use std::borrow::Cow;
 use std::time::{Duration, Instant};
@@ -21,6 +22,7 @@ use std::time::{Duration, Instant};
 use ciborium::Value;
 use vrep_maze::coppelia::INTPARAM_IDLE_FPS;
 use vrep_maze::coppelia::lua::{CreateMeshes, LuaMesh, create_meshes_code};
+use vrep_maze::coppelia::vertex_merge::merge_steps;
 use vrep_maze::zmq_api::cbor::{self, float_array, int};
 use vrep_maze::zmq_api::{Client, ClientOptions};
 
@@ -197,7 +199,7 @@ fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize, stride:
     let holder = c
         .call_int("sim.createDummy", vec![Value::Float(0.01)])
         .expect("dummy");
-    println!("batch\tmeshes\ttriangles\tvertices\tcode KiB\tms");
+    println!("batch\tmeshes\ttriangles\tvertices\tmerge steps\tcode KiB\tms");
     for (k, batch) in maze.meshes.chunks(8).enumerate() {
         let program = CreateMeshes {
             since_4_6: create == "sim.createShape",
@@ -228,8 +230,9 @@ fn packed_batches(c: &mut Client, create: &str, path: &str, reps: usize, stride:
         }
         let triangles: usize = batch.iter().map(|m| m.triangles()).sum();
         let vertices: usize = batch.iter().map(|m| m.vertices.len() / 3).sum();
+        let steps: u64 = batch.iter().map(|m| merge_steps(&m.vertices)).sum();
         println!(
-            "{k}\t{}\t{triangles}\t{vertices}\t{}\t{:.1}",
+            "{k}\t{}\t{triangles}\t{vertices}\t{steps}\t{}\t{:.1}",
             batch.len(),
             code.len() / 1024,
             median(times)
@@ -278,7 +281,9 @@ fn gcd(a: usize, b: usize) -> usize {
 /// Creates, reads back and removes each mesh of the layout in `path`, timing each call.
 fn maze_meshes(c: &mut Client, create: &str, path: &str) {
     let maze = layout_meshes(path);
-    println!("mesh\tkind\ttriangles\tvertices\t{create} ms\tgetShapeMesh ms\treply bytes");
+    println!(
+        "mesh\tkind\ttriangles\tvertices\tmerge steps\t{create} ms\tgetShapeMesh ms\treply bytes"
+    );
     for (k, m) in maze.meshes.iter().enumerate() {
         let v: Vec<f64> = m.vertices.iter().map(|&x| f64::from(x)).collect();
         let ix = Value::Array(m.indices.iter().map(|&i| int(i.into())).collect());
@@ -299,10 +304,11 @@ fn maze_meshes(c: &mut Client, create: &str, path: &str) {
         c.call("sim.removeObjects", vec![Value::Array(vec![int(h.into())])])
             .expect("remove");
         println!(
-            "{k}\t{:?}\t{}\t{}\t{made:.1}\t{read:.1}\t{bytes}",
+            "{k}\t{:?}\t{}\t{}\t{}\t{made:.1}\t{read:.1}\t{bytes}",
             m.kind,
             m.triangles(),
-            v.len() / 3
+            v.len() / 3,
+            merge_steps(&m.vertices)
         );
     }
 }

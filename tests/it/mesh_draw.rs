@@ -353,9 +353,11 @@ fn zeromq_reads_every_mesh_back_in_one_request(kind: Kind) {
 }
 
 /// Over ZeroMQ, each batch of meshes `apply` creates is made and dressed by one request (one
-/// `sim.executeLuaCode`, `vrep_maze::coppelia::lua::create`), priced by its triangles and
-/// vertices, and no mesh by a `sim.createShape` of its own; the legacy API loads a model.
+/// `sim.executeLuaCode`, `vrep_maze::coppelia::lua::create`), priced by its triangles, its
+/// vertices and the steps of the search for coincident vertices in what was sent, and no mesh
+/// by a `sim.createShape` of its own; the legacy API loads a model.
 fn zeromq_makes_each_batch_of_meshes_in_one_request(kind: Kind) {
+    use vrep_maze::coppelia::vertex_merge::merge_steps;
     use vrep_maze::sim::cost::Op;
     let s = kind.serve(crate::support::layouts::big_course(), 0);
     let mut b = s.connect();
@@ -365,12 +367,13 @@ fn zeromq_makes_each_batch_of_meshes_in_one_request(kind: Kind) {
     apply_mesh(&mut b, &m).unwrap();
     let ledger = s.with_sim(|sim| sim.ledger.take()).unwrap();
     let ops = || ledger.iter().flat_map(|c| &c.ops);
-    let packed: Vec<(usize, usize)> = ops()
+    let packed: Vec<(usize, usize, u64)> = ops()
         .filter_map(|op| match *op {
             Op::CreateMeshesPacked {
                 triangles,
                 vertices,
-            } => Some((triangles, vertices)),
+                merge_steps,
+            } => Some((triangles, vertices, merge_steps)),
             _ => None,
         })
         .collect();
@@ -386,6 +389,8 @@ fn zeromq_makes_each_batch_of_meshes_in_one_request(kind: Kind) {
         let vertices: usize = m.meshes.iter().map(|x| x.vertices.len() / 3).sum();
         assert_eq!(packed.iter().map(|p| p.0).sum::<usize>(), triangles);
         assert_eq!(packed.iter().map(|p| p.1).sum::<usize>(), vertices);
+        let steps: u64 = m.meshes.iter().map(|x| merge_steps(&x.vertices)).sum();
+        assert_eq!(packed.iter().map(|p| p.2).sum::<u64>(), steps);
     }
     b.close().unwrap();
     s.shutdown();

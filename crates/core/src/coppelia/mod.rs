@@ -12,6 +12,7 @@ pub mod lua;
 pub mod model_cost;
 pub mod names;
 pub mod shape_cost;
+pub mod vertex_merge;
 pub mod xml;
 
 /// `sim_handle_world`: "absolute" for poses, "no parent" for set-parent.

@@ -25,8 +25,10 @@ pub enum MeshError {
     BadIndices,
 }
 
-/// Vertices closer than this are one (CoppeliaSim's default `identicalVertexTolerance`).
-const IDENTICAL_VERTEX: f32 = 1e-4;
+/// Vertices closer than this are one: CoppeliaSim's default `identicalVertexTolerance`, 1e-6 m
+/// ([`vrep_maze_core::coppelia::vertex_merge::TOLERANCE`]; both real builds keep two corners
+/// 2 µm apart and merge them 0.5 µm apart).
+const IDENTICAL_VERTEX: f32 = vrep_maze_core::coppelia::vertex_merge::TOLERANCE as f32;
 
 impl Mesh {
     /// A mesh checked as `sim.createMeshShape` checks it, with duplicate vertices merged
@@ -49,23 +51,32 @@ impl Mesh {
         Ok(Mesh { vertices, indices }.merged())
     }
 
-    /// Duplicate vertices (within [`IDENTICAL_VERTEX`] on every axis, found on a grid of that
-    /// step) merged, unreferenced ones dropped, and each triangle kept once.
+    /// Duplicate vertices (closer than [`IDENTICAL_VERTEX`], each merged into the first kept
+    /// one it is that close to) merged, unreferenced ones dropped, and each triangle kept
+    /// once.
     fn merged(self) -> Mesh {
         use std::collections::{HashMap, HashSet};
-        let key = |v: &[f32]| {
-            v.iter()
-                .map(|c| (c / IDENTICAL_VERTEX).round() as i64)
-                .collect::<Vec<_>>()
-        };
-        let mut by_key: HashMap<Vec<i64>, i32> = HashMap::new();
-        let mut vertices = Vec::new();
+        // kept vertices by their cell on a grid of the tolerance's step: a vertex within the
+        // tolerance of another lies in the same cell or a neighbouring one
+        let cell = |v: &[f32]| [0, 1, 2].map(|k| (v[k] / IDENTICAL_VERTEX).floor() as i64);
+        let mut by_cell: HashMap<[i64; 3], Vec<i32>> = HashMap::new();
+        let mut vertices: Vec<f32> = Vec::new();
         let mut remap = Vec::with_capacity(self.vertices.len() / 3);
         for v in self.vertices.chunks_exact(3) {
-            let next = (vertices.len() / 3) as i32;
-            let id = *by_key.entry(key(v)).or_insert_with(|| {
+            let c = cell(v);
+            let near = (0..27).find_map(|n| {
+                let at = [c[0] + n % 3 - 1, c[1] + n / 3 % 3 - 1, c[2] + n / 9 - 1];
+                by_cell.get(&at)?.iter().copied().find(|&id| {
+                    let k = id as usize * 3;
+                    let d2: f32 = (0..3).map(|a| (vertices[k + a] - v[a]).powi(2)).sum();
+                    d2.sqrt() < IDENTICAL_VERTEX
+                })
+            });
+            let id = near.unwrap_or_else(|| {
+                let id = (vertices.len() / 3) as i32;
                 vertices.extend_from_slice(v);
-                next
+                by_cell.entry(c).or_default().push(id);
+                id
             });
             remap.push(id);
         }
@@ -139,13 +150,41 @@ mod tests {
     fn duplicates_merge_and_bad_input_is_refused() {
         // two squares sharing an edge: 8 vertices given, 6 kept
         let v = vec![
-            0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0, //
-            1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 2.0, 1.0, 0.0, 1.00001, 1.0, 0.0,
+            0.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            0.0,
+            1.0,
+            1.0,
+            0.0,
+            0.0,
+            1.0,
+            0.0, //
+            1.0,
+            0.0,
+            0.0,
+            2.0,
+            0.0,
+            0.0,
+            2.0,
+            1.0,
+            0.0,
+            1.000_000_5,
+            1.0,
+            0.0,
         ];
         let i = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 1, 2, 0];
         let m = Mesh::new(v, i).unwrap();
         assert_eq!((m.vertices.len() / 3, m.triangles()), (6, 4));
         assert_eq!(m.bounds(), ([0.0; 3], [2.0, 1.0, 0.0]));
+        // 10 µm apart is two vertices, as on both real builds
+        let apart = vec![
+            0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.00001, 0.0, 0.0,
+        ];
+        let m = Mesh::new(apart, vec![0, 1, 2, 0, 3, 2]).unwrap();
+        assert_eq!(m.vertices.len() / 3, 4);
         assert_eq!(
             Mesh::new(vec![0.0; 9], vec![0, 1]),
             Err(MeshError::BadIndices)

@@ -25,6 +25,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
+use vrep_maze_core::coppelia::vertex_merge::merge_steps;
 use vrep_maze_wire::zmq_api::calls;
 
 use crate::sim::cost::{self, Op};
@@ -461,10 +462,17 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
     };
     match func {
         "sim.createMeshShape" | "sim.createShape" => match (args.get(2), args.get(3)) {
-            (Some(Value::Array(vertices)), Some(Value::Array(indices))) => Some(Op::CreateMesh {
-                triangles: indices.len() / 3,
-                vertices: vertices.len() / 3,
-            }),
+            (Some(Value::Array(vertices)), Some(Value::Array(indices))) => {
+                let coordinates: Vec<f32> = vertices
+                    .iter()
+                    .map(|v| cbor::number(v).unwrap_or(0.0) as f32)
+                    .collect();
+                Some(Op::CreateMesh {
+                    triangles: indices.len() / 3,
+                    vertices: vertices.len() / 3,
+                    merge_steps: merge_steps(&coordinates),
+                })
+            }
             _ => None,
         },
         "sim.getShapeMesh" => {
@@ -484,7 +492,8 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
                 let meshes = batch.meshes.iter().filter(|_| made);
                 return Some(Op::CreateMeshesPacked {
                     triangles: meshes.clone().map(|m| m.indices.len() / 3).sum(),
-                    vertices: meshes.map(|m| m.vertices.len() / 3).sum(),
+                    vertices: meshes.clone().map(|m| m.vertices.len() / 3).sum(),
+                    merge_steps: meshes.map(|m| merge_steps(&m.vertices)).sum(),
                 });
             }
             let triangles = vrep_maze_core::coppelia::lua::parse_read_meshes(code)?
