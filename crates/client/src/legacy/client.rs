@@ -12,6 +12,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use super::command::{Command, opmode};
+use super::quick_ack::QuickAck;
 use super::wire::{
     Block, MAX_PACKET_SIZE, Message, MessageHeader, WireError, read_message, server_state, status,
     write_message,
@@ -337,7 +338,8 @@ impl Client {
             .map_err(|e| map_io(e, self.opts.reply_timeout))?;
         self.messages += 1;
         let reply = Message::decode(
-            &read_message(&mut self.stream).map_err(|e| map_io(e, self.opts.reply_timeout))?,
+            &read_message(&mut QuickAck(&self.stream))
+                .map_err(|e| map_io(e, self.opts.reply_timeout))?,
         )?;
         if reply.header.message_id != -1 {
             self.header = Some(reply.header);

@@ -10,6 +10,7 @@
 pub mod backend;
 pub mod client;
 pub mod follow;
+mod quick_ack;
 
 pub use vrep_maze_wire::legacy::{command, wire};
 

@@ -179,7 +179,11 @@ fn sleep_unless_stopped(stop: &AtomicBool, d: Duration) {
 /// Serves one client until it leaves; returns why the session ended, and how.
 fn session(shared: &Shared, stream: &mut TcpStream) -> (String, End) {
     let _ = stream.set_read_timeout(Some(shared.config.idle_timeout));
-    let _ = stream.set_nodelay(true);
+    // Nagle's algorithm stays on, as on the real server (`../shared/spec/legacy-remote-api.md`
+    // §2: no TCP_NODELAY): with one write a packet, a reply's second packet waits for the
+    // client's acknowledgement of the first, which a client that delays its acknowledgements
+    // (the C client; Linux waits up to 40 ms) makes late: the kernel does the modelling, so
+    // the socket keeps its default
     *shared.active.lock().unwrap_or_else(|e| e.into_inner()) = stream.try_clone().ok();
     shared.lock().end_session();
     loop {
