@@ -1,9 +1,11 @@
 """Times `sim.removeObjects` of k pasted copies of `Line` in one call (k = 1 to 256) at idle fps
 0, in the course scene and with 1,000 more objects, median of 7 each, in ms: what
-`docs/measurements.md` "Removing on 4.10" records. PROTOCOL is 1 (CoppeliaSim 4.3-4.5) or 2
-(4.6+); needs `pip install coppeliasim-zmqremoteapi-client`.
+`docs/measurements.md` "Removing and listing on 4.10" records. With `--all`, every copy of
+scenes of the course and n copies (n = 250 to 4,000), median of 3, as the spec's table of
+removing all n. PROTOCOL is 1 (CoppeliaSim 4.3-4.5) or 2 (4.6+); needs
+`pip install coppeliasim-zmqremoteapi-client`.
 
-    python examples/remove_costs.py PORT PROTOCOL
+    python examples/remove_costs.py PORT PROTOCOL [--all]
 """
 import statistics
 import sys
@@ -24,6 +26,16 @@ try:
             made += sim.copyPasteObjects(([line] + made)[:k - len(made)], 0)
         return made
 
+    if sys.argv[3:] == ['--all']:
+        for n in (250, 500, 1000, 2000, 4000):
+            ts = []
+            for _ in range(3):
+                made = copies(n)
+                s = time.perf_counter()
+                sim.removeObjects(made)
+                ts.append((time.perf_counter() - s) * 1e3)
+            print(f"all {n:5d} of {n + 5:5d}: {statistics.median(ts):8.2f}", flush=True)
+        sys.exit()
     for filler in (0, 1000):
         extra = copies(filler) if filler else []
         row = []
