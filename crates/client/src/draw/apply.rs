@@ -7,7 +7,9 @@ use std::collections::HashMap;
 
 use super::home;
 use super::lease::Claim;
-use super::plan::{self, floor_frame, foreign_copies, maze_lines, paste_round, pose_differences};
+use super::ownership::{self, foreign_copies, maze_lines};
+use super::paste::{self, paste_round};
+use super::pose::{self, floor_frame, pose_differences};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
 use super::{
     ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
@@ -88,7 +90,7 @@ fn apply_claimed(
         template: h.template,
         template_drawn: drawing.template_drawn(),
         poses: &drawing.lines,
-        plan: plan::plan(&existing, copies_needed),
+        plan: paste::plan(&existing, copies_needed),
     }];
     if let Some(template) = h.post.filter(|_| posts) {
         let existing = foreign_copies(objects, &h, &[&names.post]);
@@ -96,7 +98,7 @@ fn apply_claimed(
             template,
             template_drawn: false,
             poses: &drawing.posts,
-            plan: plan::plan(&existing, drawing.posts.len()),
+            plan: paste::plan(&existing, drawing.posts.len()),
         });
     }
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
@@ -109,7 +111,7 @@ fn apply_claimed(
         let floor = floor_frame(objects, h.floor).unwrap_or_default();
         let mut templates = vec![(names.template(style), h.template)];
         templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
-        report.warnings.extend(plan::templates_on_the_maze(
+        report.warnings.extend(pose::templates_on_the_maze(
             drawing, objects, &floor, &templates,
         ));
     }
@@ -136,7 +138,7 @@ fn apply_claimed(
             .any(|o| o.position.iter().any(|x| x.is_nan()));
         let read;
         let objects = if unread {
-            read = plan::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
+            read = ownership::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
             &read.objects
         } else {
             objects
@@ -293,7 +295,7 @@ struct Part<'a> {
     /// Where the copies go.
     poses: &'a [Pose],
     /// The earlier copies reused and removed, and how many to paste.
-    plan: plan::Plan,
+    plan: paste::Plan,
 }
 
 /// One apply's drawing state: what is sent, in requests of bounded server time.
@@ -309,8 +311,8 @@ struct Drawer<'a, 'p> {
     objects_in_scene: usize,
     /// Lines whose place has been sent (or found right).
     placed: usize,
-    /// What the survey read of copies and the user's objects ([`plan::sort_out`]).
-    traits: &'a plan::Traits,
+    /// What the survey read of copies and the user's objects ([`ownership::sort_out`]).
+    traits: &'a ownership::Traits,
     /// The holder of a mesh maze the user keeps (their objects under it): no line.
     holder: Option<i32>,
 }
@@ -412,7 +414,7 @@ impl Drawer<'_, '_> {
         };
         self.claim.check(self.scene, "while verifying")?;
         let mut after =
-            plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+            ownership::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
         after.retain(|o| Some(o.handle) != self.holder);
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());

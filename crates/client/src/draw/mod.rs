@@ -4,8 +4,10 @@
 //! [`Backend`]: a handful of scene operations, batched where the protocol allows. [`apply()`] draws a
 //! [`Drawing`] (reusing earlier copies of the `Line` template, or of `Wall` and `Post`, pasting
 //! only the missing ones, removing the surplus), [`clear()`] removes a drawn maze and
-//! [`verify()`] compares the scene with a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
-//! paste) so they can be tested without a simulator.
+//! [`verify()`] compares the scene with a drawing. The pure decisions are tested without a
+//! simulator: [`ownership`] (which objects belong to the maze), [`paste`] (what to reuse,
+//! paste and remove), [`pose`] (poses on the floor) and [`tolerance`] (what counts as the
+//! same).
 
 pub mod apply;
 pub mod clear;
@@ -18,7 +20,9 @@ pub mod home;
 pub mod lease;
 pub mod mesh;
 pub mod options;
-pub mod plan;
+pub mod ownership;
+pub mod paste;
+pub mod pose;
 pub mod record;
 pub mod remedy;
 pub mod report;
@@ -27,6 +31,7 @@ pub mod run;
 pub mod session;
 pub mod signals;
 pub mod survey;
+pub mod tolerance;
 pub mod verify;
 
 pub use apply::apply;
@@ -135,7 +140,7 @@ impl Default for ObjectNames {
 }
 
 impl ObjectNames {
-    /// Every template: line, wall, post ([`plan::sort_out`] keeps their copies).
+    /// Every template: line, wall, post ([`ownership::sort_out`] keeps their copies).
     pub fn templates(&self) -> [&str; 3] {
         [&self.line, &self.wall, &self.post]
     }
@@ -294,7 +299,7 @@ pub struct ObjectInfo {
 
 /// An object's bounding box in its own frame (`sim_objfloatparam_objbbox_*`, parameters
 /// 15..20), as a simulator reports it: single precision, so compare sizes with
-/// [`plan::SIZE_TOLERANCE`].
+/// [`tolerance::SIZE_TOLERANCE`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoundingBox {
     /// Minimum x, y, z.
@@ -322,9 +327,9 @@ pub struct Survey {
     /// Simulation not stopped.
     pub simulation_running: bool,
     /// What the backend read that tells a template's copy from the user's object named like
-    /// one ([`plan::Traits`]: types, and sizes and children where the name, type and copy
+    /// one ([`ownership::Traits`]: types, and sizes and children where the name, type and copy
     /// record leave a doubt).
-    pub traits: plan::Traits,
+    pub traits: ownership::Traits,
 }
 
 /// The idle rate now and the user's rate recorded by an interrupted run.
@@ -396,7 +401,7 @@ pub trait Backend {
     /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
     /// simulation state. `names` are [`ObjectNames::survey`]'s: objects are listed only
     /// when the needed ones exist ([`SurveyHandles::needed_found`]), and the maze's copies
-    /// of the other templates are named after them (so [`plan::foreign_copies`] can tell
+    /// of the other templates are named after them (so [`ownership::foreign_copies`] can tell
     /// them apart).
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError>;
     /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
@@ -724,5 +729,49 @@ impl TryFrom<&vrep_maze_core::layout::Layout> for Drawing {
             end: layout.end.pose,
             sizes: Sizes::of(layout),
         })
+    }
+}
+
+/// An object named `name` at the world origin, unturned: the unit tests' scenes.
+#[cfg(test)]
+pub(crate) fn object_at_origin(handle: i32, name: &str, parent: Option<i32>) -> ObjectInfo {
+    ObjectInfo {
+        handle,
+        name: name.into(),
+        parent,
+        position: [0.0; 3],
+        orientation: [0.0; 3],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_name_in_two_roles_is_refused_naming_both() {
+        assert!(ObjectNames::default().check_roles().is_ok());
+        let names = ObjectNames {
+            end: "/Floor".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err();
+        assert!(
+            matches!(
+                &e,
+                DrawError::SameObject { names, first: Role::Floor, second: Role::End }
+                    if names == "`Floor` and `/Floor`"
+            ),
+            "{e}"
+        );
+        let names = ObjectNames {
+            post: "Line".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.starts_with("`Line` would be both the line template and the post template"),
+            "{e}"
+        );
     }
 }

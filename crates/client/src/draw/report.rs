@@ -93,7 +93,7 @@ pub struct ApplyReport {
     /// line saying from what size to what.
     pub floor: Option<String>,
     /// The user's objects under the maze dummy (and root objects named like copies of a
-    /// template but of another type): left alone ([`super::plan::sort_out`]).
+    /// template but of another type): left alone ([`super::ownership::sort_out`]).
     pub left_alone: Vec<String>,
 }
 

@@ -3,7 +3,8 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences, relative_pose};
+use super::ownership::{self, foreign_copies, maze_lines};
+use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
 
@@ -222,7 +223,7 @@ fn verify_raised(
     }
     // every pose as the scene holds it now, not as a backend remembers setting it; the
     // user's objects are no maze lines
-    let objects = &plan::sort_out(
+    let objects = &ownership::sort_out(
         &scene.objects_from_scene()?,
         &h,
         &names.templates(),

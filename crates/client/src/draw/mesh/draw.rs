@@ -9,7 +9,8 @@ use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
 };
 use crate::draw::lease::Claim;
-use crate::draw::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences};
+use crate::draw::ownership::{self, foreign_copies, maze_lines};
+use crate::draw::pose::{floor_frame, pose_differences};
 use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
@@ -169,7 +170,7 @@ fn apply_claimed(
     // the user's objects under the holder (and the user's holder) stay, named
     report.left_alone.extend(found.left_alone());
     // an earlier maze's copies of any template go; the user's objects under the maze dummy
-    // stay ([`plan::sort_out`])
+    // stay ([`ownership::sort_out`])
     let others = names.others(style);
     let mut doomed: Vec<i32> = maze_lines(&objects, &h, names.template(style), &others)
         .into_iter()
@@ -459,7 +460,7 @@ fn verify_raised(
         return Err(differences);
     }
     // the user's objects under the maze dummy are no stray maze objects
-    let objects = plan::sort_out(
+    let objects = ownership::sort_out(
         &scene.objects_from_scene()?,
         &h,
         &names.templates(),
