@@ -658,4 +658,42 @@ mod tests {
         let err = read(&twice, 9).unwrap_err().to_string();
         assert!(err.contains("duplicate field `segments`"), "{err}");
     }
+
+    #[test]
+    fn the_heads_errors_name_the_fields_in_the_layouts_order() {
+        let text = to_string(&layout());
+        let error = |text: &str| read(text, 9).unwrap_err().to_string();
+        let unknown = text.replacen("{\n", "{\n  \"colour\": 1,\n", 1);
+        assert_eq!(
+            error(&unknown),
+            "t.json: unknown field `colour`, expected one of `format`, `version`, `style`, \
+             `generator`, `grid`, `floor`, `line`, `wall`, `post`, `start`, `end`, `metrics`, \
+             `passage_encoding`, `passages`, `segments`, `walls`, `posts`"
+        );
+        let mut object: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(&text).unwrap();
+        object.remove("passages");
+        object.remove("metrics");
+        let without = serde_json::to_string(&object).unwrap();
+        assert_eq!(error(&without), "t.json: missing field `metrics`");
+        object.remove("format");
+        let without = serde_json::to_string(&object).unwrap();
+        assert_eq!(
+            error(&without),
+            "t.json: no \"format\": \"vrep-maze/layout\" field: not a vrep-maze layout"
+        );
+        let twice = text.replacen("{\n", "{\n  \"version\": 1,\n", 1);
+        assert_eq!(error(&twice), "t.json:4:11: duplicate field `version`");
+        let null = text.replacen("\"format\": \"vrep-maze/layout\"", "\"format\": null", 1);
+        assert_eq!(
+            error(&null),
+            "t.json: format is null, not \"vrep-maze/layout\": not a vrep-maze layout"
+        );
+        let null_wall = text.replacen("{\n", "{\n  \"wall\": null,\n", 1);
+        assert!(
+            error(&null_wall).contains("invalid type: null"),
+            "{}",
+            error(&null_wall)
+        );
+    }
 }
