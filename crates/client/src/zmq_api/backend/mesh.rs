@@ -109,17 +109,8 @@ impl ZmqBackend {
 
     /// `shape` with the colour and world pose of the mesh `handle`.
     fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
-        let colour = self
-            .call(
-                "sim.getShapeColor",
-                vec![
-                    int(handle.into()),
-                    Value::Text(String::new()),
-                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                ],
-            )?
-            .get(1)
-            .and_then(cbor::numbers::<3>);
+        let (func, args) = shape_colour_call(handle);
+        let colour = colour_of(&self.call(func, args)?);
         let pose = self.world_pose(handle)?;
         Ok(MeshReadback {
             colour,
