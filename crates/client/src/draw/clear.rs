@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::home;
 use super::lease::{Claim, claimed};
-use super::ownership::{self, foreign_copies, maze_lines};
+use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, relative_pose};
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
@@ -167,7 +167,7 @@ fn clear_claimed(
     // only the templates' copies are the maze's: the user's objects stay as they are
     let sorted = ownership::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     let others = names.others(style);
-    let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
+    let mut doomed = maze_pieces(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));
     // a mesh maze (`--draw mesh`): its meshes and holder, ours by name
     let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
@@ -191,7 +191,7 @@ fn clear_claimed(
     doomed.extend(meshes.iter().map(|(m, _)| *m));
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)
-        let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+        let per_request = scene.pieces_per_request(survey.objects.len()).max(1);
         for (i, chunk) in doomed.chunks(per_request).enumerate() {
             if opts
                 .interrupt

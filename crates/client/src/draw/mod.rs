@@ -70,8 +70,10 @@ pub fn euler(p: &Pose) -> [f64; 3] {
 pub struct Drawing {
     /// Lines or walls: which template is copied.
     pub style: Style,
-    /// Poses of the copies, in the layout's order (`segments`, or `walls`).
-    pub lines: Vec<Pose>,
+    /// Poses of the pieces of the maze drawn as the style's template: the line segments
+    /// (`segments`, the first one the template itself) or the walls (`walls`, every one a
+    /// copy), in the layout's order. The posts are apart ([`Drawing::posts`]).
+    pub pieces: Vec<Pose>,
     /// Poses of the `Post` copies (`posts`): empty unless the maze has posts.
     pub posts: Vec<Pose>,
     /// Pose of the start marker.
@@ -108,7 +110,7 @@ impl Drawing {
         TemplateUse {
             style: self.style,
             sizes: &self.sizes,
-            template: !self.lines.is_empty(),
+            template: !self.pieces.is_empty(),
             posts: !self.posts.is_empty(),
         }
     }
@@ -121,7 +123,7 @@ impl Drawing {
 
     /// Lines, or walls and posts: the objects placed, as progress counts them.
     pub fn copies(&self) -> usize {
-        self.lines.len() + self.posts.len()
+        self.pieces.len() + self.posts.len()
     }
 }
 
@@ -453,10 +455,11 @@ pub trait Backend {
     fn stop_simulation(&mut self) -> Result<(), BackendError>;
     /// Messages exchanged with the simulator so far (requests with their replies).
     fn round_trips(&self) -> usize;
-    /// How many lines (a copy, or a parent and a pose) one request may carry so that the
+    /// How many pieces (lines, walls or posts: a copy, or a parent and a pose) one request
+    /// may carry so that the
     /// simulator answers in bounded time, given the objects in the scene (its per-object
     /// costs grow with them). Unbounded where each call is its own request (ZeroMQ).
-    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
+    fn pieces_per_request(&self, objects_in_scene: usize) -> usize {
         let _ = objects_in_scene;
         usize::MAX
     }
@@ -717,13 +720,13 @@ impl TryFrom<&vrep_maze_core::layout::Layout> for Drawing {
     /// so nothing invalid is ever drawn.
     fn try_from(layout: &vrep_maze_core::layout::Layout) -> Result<Drawing, Self::Error> {
         vrep_maze_core::validate::checked(layout)?;
-        let lines = match layout.style {
+        let pieces = match layout.style {
             Style::Lines => layout.segments.clone(),
             Style::Walls => layout.walls.clone(),
         };
         Ok(Drawing {
             style: layout.style,
-            lines,
+            pieces,
             posts: layout.posts.clone(),
             start: layout.start.pose,
             end: layout.end.pose,

@@ -173,7 +173,7 @@ fn is_foreign(o: &ObjectInfo, foreign: &[&str]) -> bool {
 /// the `foreign` templates' objects ([`foreign_copies`]), then every parentless object named
 /// like a copy of the line template (left by an interrupted run between pasting and
 /// re-parenting). Children first, each group in handle order.
-pub fn maze_lines(
+pub fn maze_pieces(
     objects: &[ObjectInfo],
     h: &Handles,
     template_name: &str,
@@ -304,7 +304,7 @@ mod tests {
     }
 
     #[test]
-    fn maze_lines_are_children_and_parentless_copies() {
+    fn maze_pieces_are_children_and_parentless_copies() {
         let h = handles();
         let mut objects = course([
             obj(9, "Line7", Some(2)),
@@ -317,7 +317,7 @@ mod tests {
         // the template and a marker under the maze dummy are none of its lines
         objects[2].parent = Some(2);
         objects[4].parent = Some(2);
-        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![8, 9, 11, 12]);
+        assert_eq!(maze_pieces(&objects, &h, "Line", &[]), vec![8, 9, 11, 12]);
     }
 
     #[test]
@@ -330,9 +330,9 @@ mod tests {
             obj(9, "/Wall[3]", None),
             obj(10, "Wall1", Some(1)),
         ]);
-        assert_eq!(maze_lines(&objects, &h, "Line", &["Wall"]), vec![8]);
+        assert_eq!(maze_pieces(&objects, &h, "Line", &["Wall"]), vec![8]);
         assert_eq!(foreign_copies(&objects, &h, &["Wall"]), vec![7, 9]);
-        assert_eq!(maze_lines(&objects, &h, "Line", &[]), vec![6, 7, 8]);
+        assert_eq!(maze_pieces(&objects, &h, "Line", &[]), vec![6, 7, 8]);
         // a wall maze with posts: the posts are neither walls nor lines
         objects.extend([
             obj(11, "Post", None),
@@ -342,7 +342,7 @@ mod tests {
         ]);
         let walls = Handles { template: 6, ..h };
         assert_eq!(
-            maze_lines(&objects, &walls, "Wall", &["Line", "Post"]),
+            maze_pieces(&objects, &walls, "Wall", &["Line", "Post"]),
             vec![7, 14, 9]
         );
         assert_eq!(foreign_copies(&objects, &h, &["Post"]), vec![12, 13]);

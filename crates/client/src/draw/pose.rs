@@ -57,7 +57,7 @@ pub fn templates_on_the_maze(
     floor: &Frame,
     templates: &[(&str, i32)],
 ) -> Vec<String> {
-    let poses = drawing.lines.iter().chain(&drawing.posts);
+    let poses = drawing.pieces.iter().chain(&drawing.posts);
     let margin = drawing.sizes.cell / 2.0;
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in poses {

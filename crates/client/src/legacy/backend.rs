@@ -360,8 +360,8 @@ impl Backend for LegacyBackend {
 
     /// Sized by the shared cost model (`vrep_maze_core::coppelia::cost`: pasting and re-parenting
     /// grow with the objects in the scene).
-    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
-        crate::draw::estimate::legacy_lines_per_request(objects_in_scene)
+    fn pieces_per_request(&self, objects_in_scene: usize) -> usize {
+        crate::draw::estimate::legacy_pieces_per_request(objects_in_scene)
     }
 
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
