@@ -70,7 +70,7 @@ fn baseline(d: &Drawing, fps: i32, sample: usize) -> (usize, Duration, Duration)
     let (floor, maze, line) = (h[0], h[1], h[2]);
     let setup = t.elapsed();
     let t = Instant::now();
-    for p in d.lines.iter().take(sample) {
+    for p in d.pieces.iter().take(sample) {
         let r = c.call1(Command::CopyPaste(vec![line])).unwrap();
         let copy = decode_handle_list(&r.data).unwrap()[0];
         c.call1(Command::SetObjectParent {
@@ -121,28 +121,28 @@ fn main() {
         for fps in [8, 0] {
             let (rt, wall) = ours(&d, fps);
             let sample = if full {
-                d.lines.len()
+                d.pieces.len()
             } else if fps == 0 {
-                100.min(d.lines.len())
+                100.min(d.pieces.len())
             } else {
                 10
             };
             let (brt, setup, lines) = baseline(&d, fps, sample);
             // extrapolate the baseline linearly in lines (5 look-ups, then 4 calls per line)
             let base_s =
-                setup.as_secs_f64() + lines.as_secs_f64() / sample as f64 * d.lines.len() as f64;
-            let base_rt = 5 + 4 * d.lines.len();
+                setup.as_secs_f64() + lines.as_secs_f64() / sample as f64 * d.pieces.len() as f64;
+            let base_rt = 5 + 4 * d.pieces.len();
             assert_eq!(brt, 5 + 4 * sample);
             println!(
                 "{:<6} {:>4} {:>6} | {:>9} {:>9.3} | {:>9} {:>10.2} {:>8} | {:>7.0}x {:>7.0}x",
                 format!("{n}x{n}"),
                 fps,
-                d.lines.len(),
+                d.pieces.len(),
                 rt,
                 wall.as_secs_f64(),
                 base_rt,
                 base_s,
-                if sample == d.lines.len() {
+                if sample == d.pieces.len() {
                     "all".to_string()
                 } else {
                     sample.to_string()

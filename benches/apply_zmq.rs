@@ -122,7 +122,7 @@ fn main() {
                     "{:<6} {:>4} {:>6} {:<12} | {:>7} {:>11} {:>8.3} | {:>15} {:>10.3}",
                     format!("{n}x{n}"),
                     fps,
-                    d.lines.len(),
+                    d.pieces.len(),
                     api,
                     r.calls,
                     r.round_trips,

@@ -100,7 +100,7 @@ impl From<draw::Report> for ApplyReport {
             saved_scene,
         } = done;
         ApplyReport {
-            lines: report.lines,
+            lines: report.pieces,
             posts: report.posts,
             meshes: report.meshes,
             reused: report.reused,

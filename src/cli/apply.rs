@@ -497,7 +497,7 @@ fn apply_json(args: &ApplyArgs, connection: String, done: draw::Report) -> Apply
         layout: args.layout.display().to_string(),
         connection,
         style: report.style,
-        lines: report.lines,
+        lines: report.pieces,
         posts: report.posts,
         reused: report.reused,
         pasted: report.pasted,

@@ -15,7 +15,8 @@ use super::say::{self, say};
 use crate::coppelia::OBJECT_SHAPE_TYPE;
 use crate::coppelia::frame::Frame;
 use crate::draw::mesh::{FoundMeshes, MeshKind, MeshMaze, parse_mesh_name};
-use crate::draw::plan::{floor_frame, is_copy_of, relative_pose};
+use crate::draw::ownership::is_copy_of;
+use crate::draw::pose::{floor_frame, relative_pose};
 use crate::draw::session::raised_to_read;
 use crate::draw::verify::verify_read_only;
 use crate::draw::{

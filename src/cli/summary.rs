@@ -27,7 +27,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
         let what = if report.mode == DrawMode::Mesh {
             format!("{} mesh(es)", report.meshes)
         } else {
-            format!("{} {}{posts}", report.lines, report.style.name())
+            format!("{} {}{posts}", report.pieces, report.style.name())
         };
         return format!(
             "nothing to do: the scene already shows this layout ({what}, markers in place); {cost}"
@@ -48,7 +48,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
     if report.mode == DrawMode::Mesh {
         return format!(
             "{verb} {} {} runs{posts} as {} mesh(es): {} kept, {} created; {markers}; {} earlier object(s) removed; {cost}",
-            report.lines,
+            report.pieces,
             report.style.name().trim_end_matches('s'),
             report.meshes,
             report.reused,
@@ -91,7 +91,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
     };
     format!(
         "{verb} {} {}{posts}: {kept}, {} pasted; {markers}; {} earlier copies removed{meshes}; {cost}",
-        report.lines,
+        report.pieces,
         report.style.name(),
         report.pasted,
         report.removed,

@@ -85,10 +85,10 @@ fn clear(b: &mut Box<dyn Backend>) -> draw::ClearReport {
 fn apply_draws_verifies_and_reapplies_without_changes(kind: Kind) {
     let s = kind.serve(Scene::course(), 8);
     let d = drawing(9, 42);
-    assert_eq!(d.lines.len(), 160);
+    assert_eq!(d.pieces.len(), 160);
     let mut b = s.connect();
     let r = apply(&mut b, &d).unwrap();
-    assert_eq!((r.lines, r.pasted, r.reused, r.removed), (160, 159, 0, 0));
+    assert_eq!((r.pieces, r.pasted, r.reused, r.removed), (160, 159, 0, 0));
     if let Some(bound) = kind.apply_round_trip_bound(9) {
         assert!(
             r.round_trips <= bound,
@@ -107,10 +107,10 @@ fn apply_draws_verifies_and_reapplies_without_changes(kind: Kind) {
     );
     let small = drawing(3, 2);
     let r = apply(&mut b, &small).unwrap();
-    assert_eq!((r.pasted, r.removed), (0, 160 - small.lines.len()));
+    assert_eq!((r.pasted, r.removed), (0, 160 - small.pieces.len()));
     assert!(matches!(verify(&mut b, &d), Err(DrawError::Verify(_))));
     let c = clear(&mut b);
-    assert_eq!(c.removed.len(), small.lines.len() - 1);
+    assert_eq!(c.removed.len(), small.pieces.len() - 1);
     assert_eq!(s.line_count(), 1, "only the template is left");
     assert!(clear(&mut b).removed.is_empty(), "idempotent");
     assert_eq!(s.idle_fps(), 8, "user's idle rate restored");
@@ -128,13 +128,13 @@ fn apply_replaces_a_bigger_maze_and_clear_removes_it(kind: Kind) {
     let r = apply(&mut b, &small).unwrap();
     assert_eq!(
         (r.pasted, r.removed),
-        (0, big.lines.len() - small.lines.len())
+        (0, big.pieces.len() - small.pieces.len())
     );
-    assert_eq!(s.line_count(), small.lines.len());
+    assert_eq!(s.line_count(), small.pieces.len());
     verify(&mut b, &small).unwrap();
     assert!(matches!(verify(&mut b, &big), Err(DrawError::Verify(_))));
     let c = clear(&mut b);
-    assert_eq!(c.removed.len(), small.lines.len() - 1);
+    assert_eq!(c.removed.len(), small.pieces.len() - 1);
     assert_eq!(s.line_count(), 1, "only the template is left");
     assert!(clear(&mut b).removed.is_empty(), "idempotent");
     s.shutdown();
@@ -155,7 +155,7 @@ fn apply_refuses_a_running_simulation_and_missing_objects(kind: Kind) {
     };
     let r = draw::apply(&mut *b, &d, &opts, &mut no_progress).unwrap();
     assert!(r.stopped_simulation);
-    assert_eq!(s.line_count(), d.lines.len());
+    assert_eq!(s.line_count(), d.pieces.len());
     drop(b);
     s.shutdown();
 
@@ -198,7 +198,7 @@ fn one_cell_maze_hides_the_template_under_start(kind: Kind) {
     let mut b = s.connect();
     apply(&mut b, &drawing(3, 1)).unwrap();
     let one = drawing(1, 1);
-    assert!(one.lines.is_empty());
+    assert!(one.pieces.is_empty());
     let r = apply(&mut b, &one).unwrap();
     assert_eq!(r.removed, 15);
     assert_eq!(s.line_count(), 1);
@@ -281,10 +281,10 @@ fn idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs(kind: Ki
     let r = apply(&mut b, &d).unwrap();
     assert_eq!(
         (r.pasted, r.reused),
-        (d.lines.len() - 1 - left, left),
+        (d.pieces.len() - 1 - left, left),
         "{r:?}"
     );
-    assert_eq!(s.line_count(), d.lines.len());
+    assert_eq!(s.line_count(), d.pieces.len());
     drop(b);
     s.shutdown();
 }
@@ -339,7 +339,7 @@ fn apply_in_a_moved_floor_with_templates_under_maze(kind: Kind) {
             .filter(|o| o.alias == "Line")
             .map(|o| o.handle)
             .collect();
-        d.lines.iter().all(|p| {
+        d.pieces.iter().all(|p| {
             lines.iter().any(|&l| {
                 let (q, e) = sim.scene.pose(l, floor).unwrap();
                 (q[0] - p.x).abs() < 1e-5
@@ -351,7 +351,7 @@ fn apply_in_a_moved_floor_with_templates_under_maze(kind: Kind) {
     });
     assert!(ok);
     let c = clear(&mut b);
-    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    assert_eq!(c.removed.len(), d.pieces.len() - 1);
     for t in ["Line", "Start", "End"] {
         assert!(
             s.with_sim(|sim| sim.scene.resolve(t).is_ok()),
@@ -373,11 +373,11 @@ fn template_inside_the_maze_dummy_is_kept_and_reused(kind: Kind) {
     let mut b = s.connect();
     let d = drawing(3, 4);
     let r = apply(&mut b, &d).unwrap();
-    assert_eq!(r.pasted, d.lines.len() - 1);
+    assert_eq!(r.pasted, d.pieces.len() - 1);
     let again = apply(&mut b, &d).unwrap();
     assert_eq!((again.pasted, again.edits), (0, 0), "{again:?}");
     let c = clear(&mut b);
-    assert_eq!(c.removed.len(), d.lines.len() - 1);
+    assert_eq!(c.removed.len(), d.pieces.len() - 1);
     assert_eq!(s.line_count(), 1);
     drop(b);
     s.shutdown();
@@ -443,11 +443,11 @@ fn counts_add_up_in_every_kind_of_apply(kind: Kind) {
     let small = drawing(3, 2);
     let smaller = apply(&mut b, &small).unwrap();
     assert_counts_add_up(&smaller, &small);
-    assert_eq!(smaller.removed, 160 - small.lines.len(), "{smaller:?}");
+    assert_eq!(smaller.removed, 160 - small.pieces.len(), "{smaller:?}");
     let one = drawing(1, 1);
     let hidden = apply(&mut b, &one).unwrap();
     assert_counts_add_up(&hidden, &one);
-    assert_eq!((hidden.lines, hidden.markers_placed), (0, 3), "{hidden:?}");
+    assert_eq!((hidden.pieces, hidden.markers_placed), (0, 3), "{hidden:?}");
     drop(b);
     s.shutdown();
 }
@@ -475,7 +475,7 @@ fn dry_run_over_a_matching_scene_has_nothing_to_do(kind: Kind) {
     assert!(
         vrep_maze::cli::summary::apply_line(&r).starts_with(&format!(
             "nothing to do: the scene already shows this layout ({} lines, markers in place); ",
-            d.lines.len()
+            d.pieces.len()
         )),
         "{r:?}"
     );

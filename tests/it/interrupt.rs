@@ -123,7 +123,7 @@ fn cut_and_repair(kind: Kind, scene: &Scene, d: &Drawing, k: usize, repair: Repa
                 .unwrap_or_else(|e| panic!("{at}: {e}"));
             draw::verify(&mut *b, d, &ObjectNames::default())
                 .unwrap_or_else(|e| panic!("{at}: {e}"));
-            assert_eq!(s.line_count(), d.lines.len(), "{at}");
+            assert_eq!(s.line_count(), d.pieces.len(), "{at}");
         }
     }
     drop(b);
@@ -347,7 +347,7 @@ fn an_interrupted_clear_counts_what_it_removed(kind: Kind) {
     };
     match draw::clear(&mut *b, &opts) {
         Err(draw::DrawError::Interrupted { placed, total }) => {
-            assert_eq!((placed, total), (0, d.lines.len() - 1), "{}", kind.name());
+            assert_eq!((placed, total), (0, d.pieces.len() - 1), "{}", kind.name());
         }
         other => panic!("{}: {other:?}", kind.name()),
     }

@@ -16,7 +16,7 @@ fn legacy_apply_round_trips_30x30() {
     let mut sc = s.connect();
     let d = drawing(30, 7);
     let r = draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
-    assert_eq!(r.lines, 1798);
+    assert_eq!(r.pieces, 1798);
     let bound = Kind::Legacy.apply_round_trip_bound(30).unwrap();
     assert_eq!(bound, 20);
     assert!(
@@ -41,7 +41,7 @@ fn legacy_apply_works_with_hash_names_and_repairs_parentless_copies() {
     let mut sc = s.connect();
     let d = drawing(2, 5);
     let r = draw::apply(&mut *sc, &d, &ApplyOptions::default(), &mut no_progress).unwrap();
-    assert_eq!((r.reused, r.pasted, r.removed), (3, d.lines.len() - 4, 0));
+    assert_eq!((r.reused, r.pasted, r.removed), (3, d.pieces.len() - 4, 0));
     let names: Vec<String> =
         s.with_sim(|sim| sim.scene.objects().map(|o| o.name.clone()).collect());
     assert!(names.iter().any(|n| n == "Line#3"), "{names:?}");

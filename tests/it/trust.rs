@@ -42,7 +42,7 @@ fn a_maze_dummy_moved_between_two_applies_is_repaired_by_the_second(kind: Kind) 
     let r = draw::apply(&mut *b, &d, &ApplyOptions::default(), &mut |_| {})
         .unwrap_or_else(|e| panic!("{k}: {e}"));
     // the template is no child of the dummy: it stays in place
-    assert_eq!(r.placed, d.lines.len() - 1, "{k}: {r:?}");
+    assert_eq!(r.placed, d.pieces.len() - 1, "{k}: {r:?}");
     draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
     drop(b);
     s.shutdown();
@@ -58,14 +58,14 @@ fn clear_refuses_a_running_simulation_or_stops_it_first(kind: Kind) {
     s.with_sim(|sim| sim.start());
     let refused = draw::clear(&mut *b, &ClearOptions::default()).unwrap_err();
     assert!(matches!(refused, DrawError::SimulationRunning), "{refused}");
-    assert_eq!(s.line_count(), d.lines.len(), "nothing removed");
+    assert_eq!(s.line_count(), d.pieces.len(), "nothing removed");
     let opts = ClearOptions {
         stop_simulation: true,
         ..Default::default()
     };
     let r = draw::clear(&mut *b, &opts).unwrap();
     assert!(r.stopped_simulation);
-    assert_eq!(r.removed.len(), d.lines.len() - 1);
+    assert_eq!(r.removed.len(), d.pieces.len() - 1);
     drop(b);
     let state = s.with_sim(|sim| sim.state);
     assert_eq!(state, SimState::Stopped);

@@ -179,14 +179,18 @@ fn objects_that_are_not_ours_are_left_alone_and_named(kind: Kind) {
     }
     assert_eq!(
         s.line_count(),
-        big.lines.len(),
+        big.pieces.len(),
         "{k}: only copies of Line drawn"
     );
     draw::verify(&mut *b, &big, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
     // a smaller maze over it removes copies only
     let small = drawing(3, 1);
     let r = apply(&mut *b, &small).unwrap_or_else(|e| panic!("{k}: {e}"));
-    assert_eq!(r.removed, big.lines.len() - small.lines.len(), "{k}: {r:?}");
+    assert_eq!(
+        r.removed,
+        big.pieces.len() - small.pieces.len(),
+        "{k}: {r:?}"
+    );
     assert_eq!(
         poses(&s, &mine),
         before,
@@ -207,7 +211,7 @@ fn objects_that_are_not_ours_are_left_alone_and_named(kind: Kind) {
     let cleared = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
     assert_eq!(
         cleared.removed.len(),
-        small.lines.len() - 1,
+        small.pieces.len() - 1,
         "{k}: {cleared:?}"
     );
     for name in &under_maze {
@@ -312,7 +316,11 @@ fn copy_named_objects_of_another_size_or_with_children_are_the_users(kind: Kind)
     draw::verify(&mut *b, &big, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
     let small = drawing(3, 1);
     let r = apply(&mut *b, &small).unwrap_or_else(|e| panic!("{k}: {e}"));
-    assert_eq!(r.removed, big.lines.len() - small.lines.len(), "{k}: {r:?}");
+    assert_eq!(
+        r.removed,
+        big.pieces.len() - small.pieces.len(),
+        "{k}: {r:?}"
+    );
     // a new connection knows them from the scene alone
     drop(b);
     let mut b = s.connect();
@@ -320,7 +328,7 @@ fn copy_named_objects_of_another_size_or_with_children_are_the_users(kind: Kind)
     let cleared = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
     assert_eq!(
         cleared.removed.len(),
-        small.lines.len() - 1,
+        small.pieces.len() - 1,
         "{k}: {cleared:?}"
     );
     assert!(named(&cleared.left_alone), "{k}: {:?}", cleared.left_alone);
@@ -353,7 +361,11 @@ fn a_small_cuboid_named_like_a_wall_copy_is_the_users(kind: Kind) {
     assert_eq!(r.left_alone, vec!["Wall3"], "{k}");
     draw::verify(&mut *b, &walls, &ObjectNames::default()).unwrap_or_else(|e| panic!("{k}: {e}"));
     let cleared = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
-    assert_eq!(cleared.removed.len(), walls.lines.len(), "{k}: {cleared:?}");
+    assert_eq!(
+        cleared.removed.len(),
+        walls.pieces.len(),
+        "{k}: {cleared:?}"
+    );
     assert_eq!(cleared.left_alone, vec!["Wall3"], "{k}");
     assert_eq!(poses_of(&s, &[cuboid]), before, "{k}: untouched");
     drop(b);

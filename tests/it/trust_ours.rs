@@ -92,7 +92,7 @@ fn a_red_look_alike_under_the_maze_never_spreads(kind: Kind) {
             assert_eq!(r.left_alone.len(), 1, "{k} run {run}: {:?}", r.left_alone);
             assert_eq!(
                 kids.len(),
-                d.lines.len(),
+                d.pieces.len(),
                 "{k} run {run}: 1 user's + copies"
             );
         }
@@ -164,7 +164,7 @@ fn an_indexed_path_to_the_template_draws_and_clears_its_copies(kind: Kind) {
     );
     assert_eq!(
         s.with_sim(|sim| sim.scene.len()),
-        objects + d.lines.len() - 1
+        objects + d.pieces.len() - 1
     );
     let r = draw::clear(
         &mut *b,
@@ -174,7 +174,7 @@ fn an_indexed_path_to_the_template_draws_and_clears_its_copies(kind: Kind) {
         },
     )
     .unwrap();
-    assert_eq!(r.removed.len(), d.lines.len() - 1, "{k}");
+    assert_eq!(r.removed.len(), d.pieces.len() - 1, "{k}");
     assert_eq!(s.with_sim(|sim| sim.scene.len()), objects, "{k}: all gone");
     drop(b);
     s.shutdown();

@@ -93,13 +93,13 @@ fn walls_apply_verify_then_lines_replace_them(kind: Kind) {
     let r = apply(&mut b, &walls).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
     assert_eq!(
         r.pasted,
-        walls.lines.len(),
+        walls.pieces.len(),
         "{}: every wall is a copy",
         kind.name()
     );
     assert_eq!(
         wall_copies(&s),
-        (walls.lines.len(), true),
+        (walls.pieces.len(), true),
         "{}",
         kind.name()
     );
@@ -128,15 +128,15 @@ fn walls_apply_verify_then_lines_replace_them(kind: Kind) {
     .unwrap();
     let r = apply(&mut b, &lines).unwrap_or_else(|e| panic!("{}: {e}", kind.name()));
     assert_eq!(r.reused, 0, "{}: no wall reused as a line", kind.name());
-    assert_eq!(r.removed, walls.lines.len(), "{}", kind.name());
+    assert_eq!(r.removed, walls.pieces.len(), "{}", kind.name());
     assert_eq!(wall_copies(&s).0, 0, "{}", kind.name());
-    assert_eq!(s.line_count(), lines.lines.len());
+    assert_eq!(s.line_count(), lines.pieces.len());
     draw::verify(&mut *b, &lines, &ObjectNames::default()).unwrap();
     // and walls over the lines again: every line copy goes
     let r = apply(&mut b, &walls).unwrap();
     assert_eq!(
         (r.reused, r.removed),
-        (0, lines.lines.len() - 1),
+        (0, lines.pieces.len() - 1),
         "{}",
         kind.name()
     );
@@ -155,7 +155,7 @@ fn clear_removes_walls_and_leaves_the_templates(kind: Kind) {
     let mut b = s.connect();
     apply(&mut b, &walls).unwrap();
     let report = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
-    assert_eq!(report.removed.len(), walls.lines.len(), "{}", kind.name());
+    assert_eq!(report.removed.len(), walls.pieces.len(), "{}", kind.name());
     assert_eq!(wall_copies(&s).0, 0);
     s.with_sim(|sim| {
         for name in ["Wall", "Line", "Start", "End", "Maze", "Floor"] {
@@ -172,12 +172,12 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
     let k = kind.name();
     let s = kind.serve(Scene::course_walls(), 8);
     let posts = Drawing::try_from(&post_layout(5, 3)).unwrap();
-    let (walls_n, posts_n) = (posts.lines.len(), posts.posts.len());
+    let (walls_n, posts_n) = (posts.pieces.len(), posts.posts.len());
     assert_eq!(posts_n, 36, "every corner of the 6 x 6 lattice");
     let mut b = s.connect();
     let r = apply(&mut b, &posts).unwrap_or_else(|e| panic!("{k}: {e}"));
     crate::support::layouts::assert_counts_add_up(&r, &posts);
-    assert_eq!((r.lines, r.posts), (walls_n, posts_n), "{k}");
+    assert_eq!((r.pieces, r.posts), (walls_n, posts_n), "{k}");
     assert_eq!(
         r.pasted,
         walls_n + posts_n,
@@ -206,7 +206,7 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
     crate::support::layouts::assert_counts_add_up(&again, &posts);
     // the same maze without posts: the walls stay (their centres are the same), the posts go
     let plain = Drawing::try_from(&wall_layout(5, 3)).unwrap();
-    assert_eq!(plain.lines.len(), walls_n);
+    assert_eq!(plain.pieces.len(), walls_n);
     let r = apply(&mut b, &plain).unwrap_or_else(|e| panic!("{k}: {e}"));
     assert_eq!(
         (r.reused, r.removed, r.pasted),
@@ -241,7 +241,7 @@ fn posts_apply_verify_then_plain_walls_and_lines_remove_them(kind: Kind) {
     draw::verify(&mut *b, &lines, &ObjectNames::default()).unwrap();
     // and posts over the lines: every line copy goes
     let r = apply(&mut b, &posts).unwrap();
-    assert_eq!((r.reused, r.removed), (0, lines.lines.len() - 1), "{k}");
+    assert_eq!((r.reused, r.removed), (0, lines.pieces.len() - 1), "{k}");
     assert_eq!(s.line_count(), 1, "{k}: only the line template is left");
     draw::verify(&mut *b, &posts, &ObjectNames::default()).unwrap();
 }
@@ -254,7 +254,7 @@ fn clear_removes_walls_and_posts(kind: Kind) {
     let report = draw::clear(&mut *b, &draw::ClearOptions::default()).unwrap();
     assert_eq!(
         report.removed.len(),
-        posts.lines.len() + posts.posts.len(),
+        posts.pieces.len() + posts.posts.len(),
         "{}",
         kind.name()
     );
@@ -283,7 +283,7 @@ fn parentless_post_copies_are_reused_or_removed(kind: Kind) {
     let r = apply(&mut b, &posts).unwrap_or_else(|e| panic!("{k}: {e}"));
     assert_eq!(
         (r.reused, r.pasted),
-        (2, posts.lines.len() + posts.posts.len() - 2),
+        (2, posts.pieces.len() + posts.posts.len() - 2),
         "{k}"
     );
     assert_eq!(post_copies(&s), (posts.posts.len(), true), "{k}");

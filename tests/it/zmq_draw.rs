@@ -120,7 +120,7 @@ fn create_missing_in_an_empty_scene(kind: Kind) {
         .save_scene(path.to_str().unwrap())
         .unwrap();
     let saved = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    assert_eq!(saved.len(), 4 + d.lines.len());
+    assert_eq!(saved.len(), 4 + d.pieces.len());
     let _ = std::fs::remove_file(path);
     s.shutdown();
 }
@@ -146,7 +146,7 @@ fn zmq_and_legacy_share_one_scene_with_api_both() {
         .unwrap();
     draw::verify(&mut l, &d, &ObjectNames::default()).unwrap();
     let cleared = draw::clear(&mut l, &draw::ClearOptions::default()).unwrap();
-    assert_eq!(cleared.removed.len(), d.lines.len() - 1);
+    assert_eq!(cleared.removed.len(), d.pieces.len() - 1);
     l.close().unwrap();
     let mut c = vrep_maze::zmq_api::Client::connect(&ClientOptions {
         port: z.local_addr().port(),

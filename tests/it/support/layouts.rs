@@ -46,11 +46,15 @@ pub fn drawing_with(algorithm: Algorithm, n: u64, seed: u64) -> Drawing {
 /// (already in place or placed) or pasted; the kept being the reused copies and, in a line
 /// maze with lines, the template; and each marker once. Its summary line says those numbers.
 pub fn assert_counts_add_up(r: &vrep_maze::draw::ApplyReport, d: &Drawing) {
-    let template = usize::from(d.template_drawn() && !d.lines.is_empty());
-    let hidden = usize::from(d.template_drawn() && d.lines.is_empty());
-    assert_eq!((r.lines, r.posts), (d.lines.len(), d.posts.len()), "{r:?}");
+    let template = usize::from(d.template_drawn() && !d.pieces.is_empty());
+    let hidden = usize::from(d.template_drawn() && d.pieces.is_empty());
     assert_eq!(
-        r.lines + r.posts,
+        (r.pieces, r.posts),
+        (d.pieces.len(), d.posts.len()),
+        "{r:?}"
+    );
+    assert_eq!(
+        r.pieces + r.posts,
         r.unchanged + r.placed + r.pasted,
         "{r:?}"
     );

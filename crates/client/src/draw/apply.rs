@@ -7,7 +7,9 @@ use std::collections::HashMap;
 
 use super::home;
 use super::lease::Claim;
-use super::plan::{self, floor_frame, foreign_copies, maze_lines, paste_round, pose_differences};
+use super::ownership::{self, foreign_copies, maze_pieces};
+use super::paste::{self, paste_round};
+use super::pose::{self, floor_frame, pose_differences};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
 use super::{
     ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
@@ -44,7 +46,7 @@ fn apply_claimed(
     let posts = !drawing.posts.is_empty();
     let counts = ApplyReport {
         style,
-        lines: drawing.lines.len(),
+        pieces: drawing.pieces.len(),
         posts: drawing.posts.len(),
         ..Default::default()
     };
@@ -71,7 +73,7 @@ fn apply_claimed(
     let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
     // the holder, ours or the user's, is never a line
     let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
-    let mut existing = maze_lines(objects, &h, names.template(style), &others);
+    let mut existing = maze_pieces(objects, &h, names.template(style), &others);
     existing.retain(|x| !mesh_maze(x));
     let earlier = EarlierLines::of(
         match style {
@@ -81,14 +83,14 @@ fn apply_claimed(
         leftovers.ours.iter().map(|(_, name)| name.as_str()),
     );
     let copies_needed = drawing
-        .lines
+        .pieces
         .len()
         .saturating_sub(usize::from(drawing.template_drawn()));
     let mut parts = vec![Part {
         template: h.template,
         template_drawn: drawing.template_drawn(),
-        poses: &drawing.lines,
-        plan: plan::plan(&existing, copies_needed),
+        poses: &drawing.pieces,
+        plan: paste::plan(&existing, copies_needed),
     }];
     if let Some(template) = h.post.filter(|_| posts) {
         let existing = foreign_copies(objects, &h, &[&names.post]);
@@ -96,7 +98,7 @@ fn apply_claimed(
             template,
             template_drawn: false,
             poses: &drawing.posts,
-            plan: plan::plan(&existing, drawing.posts.len()),
+            plan: paste::plan(&existing, drawing.posts.len()),
         });
     }
     // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
@@ -109,7 +111,7 @@ fn apply_claimed(
         let floor = floor_frame(objects, h.floor).unwrap_or_default();
         let mut templates = vec![(names.template(style), h.template)];
         templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
-        report.warnings.extend(plan::templates_on_the_maze(
+        report.warnings.extend(pose::templates_on_the_maze(
             drawing, objects, &floor, &templates,
         ));
     }
@@ -136,7 +138,7 @@ fn apply_claimed(
             .any(|o| o.position.iter().any(|x| x.is_nan()));
         let read;
         let objects = if unread {
-            read = plan::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
+            read = ownership::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
             &read.objects
         } else {
             objects
@@ -293,7 +295,7 @@ struct Part<'a> {
     /// Where the copies go.
     poses: &'a [Pose],
     /// The earlier copies reused and removed, and how many to paste.
-    plan: plan::Plan,
+    plan: paste::Plan,
 }
 
 /// One apply's drawing state: what is sent, in requests of bounded server time.
@@ -309,8 +311,8 @@ struct Drawer<'a, 'p> {
     objects_in_scene: usize,
     /// Lines whose place has been sent (or found right).
     placed: usize,
-    /// What the survey read of copies and the user's objects ([`plan::sort_out`]).
-    traits: &'a plan::Traits,
+    /// What the survey read of copies and the user's objects ([`ownership::sort_out`]).
+    traits: &'a ownership::Traits,
     /// The holder of a mesh maze the user keeps (their objects under it): no line.
     holder: Option<i32>,
 }
@@ -354,7 +356,7 @@ impl Drawer<'_, '_> {
             let mut sources = vec![part.template];
             while done < part.plan.paste {
                 self.checkpoint("while pasting the lines")?;
-                let budget = self.scene.lines_per_request(self.objects_in_scene).max(1);
+                let budget = self.scene.pieces_per_request(self.objects_in_scene).max(1);
                 let groups = paste_round(
                     &sources,
                     (part.plan.paste - done).min(budget),
@@ -364,7 +366,7 @@ impl Drawer<'_, '_> {
                     break;
                 }
                 let carried = std::mem::take(&mut placed_now);
-                let mut new_lines = 0;
+                let mut new_pieces = 0;
                 for new in self.scene.copy_paste(&groups)? {
                     sources.extend(&new);
                     for handle in new {
@@ -377,19 +379,19 @@ impl Drawer<'_, '_> {
                                 want,
                                 Some(h.parent),
                             ));
-                            new_lines += 1;
+                            new_pieces += 1;
                         }
                         copies.push(handle);
                         done += 1;
                         pasted += 1;
                     }
                 }
-                self.objects_in_scene += new_lines;
+                self.objects_in_scene += new_pieces;
                 (self.progress)(Stage::Pasting {
                     done: pasted,
                     total: to_paste,
                 });
-                self.send(&std::mem::take(&mut edits), carried + new_lines)?;
+                self.send(&std::mem::take(&mut edits), carried + new_pieces)?;
             }
             if done < part.plan.paste {
                 short.get_or_insert((done, part.plan.paste));
@@ -412,7 +414,7 @@ impl Drawer<'_, '_> {
         };
         self.claim.check(self.scene, "while verifying")?;
         let mut after =
-            plan::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
+            ownership::sort_out(&after, h, &self.opts.names.templates(), self.traits).objects;
         after.retain(|o| Some(o.handle) != self.holder);
         let drawn_of = |p: usize| {
             let poses = parts.get(p).map_or(0, |part| part.poses.len());
@@ -433,18 +435,18 @@ impl Drawer<'_, '_> {
         }
     }
 
-    /// Sends `edits`, which place `lines` lines, in requests the simulator finishes in
-    /// bounded time ([`Backend::lines_per_request`], about two edits a line) and the lease
+    /// Sends `edits`, which place `pieces` pieces, in requests the simulator finishes in
+    /// bounded time ([`Backend::pieces_per_request`], about two edits a piece) and the lease
     /// checks between them.
-    fn send(&mut self, edits: &[Edit], lines: usize) -> Result<(), DrawError> {
+    fn send(&mut self, edits: &[Edit], pieces: usize) -> Result<(), DrawError> {
         if edits.is_empty() {
-            self.placed += lines;
+            self.placed += pieces;
             return Ok(());
         }
         self.report.edits += edits.len();
         let per_request = self
             .scene
-            .lines_per_request(self.objects_in_scene)
+            .pieces_per_request(self.objects_in_scene)
             .saturating_mul(2)
             .min(self.claim.edits_per_check())
             .max(1);
@@ -453,13 +455,13 @@ impl Drawer<'_, '_> {
             self.checkpoint("while placing the lines")?;
             self.scene.edit(chunk)?;
             sent += chunk.len();
-            let done = self.placed + lines * sent / edits.len().max(1);
+            let done = self.placed + pieces * sent / edits.len().max(1);
             (self.progress)(Stage::Placing {
                 done: done.min(self.drawing.copies()),
                 total: self.drawing.copies(),
             });
         }
-        self.placed += lines;
+        self.placed += pieces;
         Ok(())
     }
 

@@ -8,7 +8,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, floor_frame, foreign_copies, maze_lines, relative_pose};
+use super::ownership::{self, foreign_copies, maze_pieces};
+use super::pose::{floor_frame, relative_pose};
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
 
@@ -26,7 +27,7 @@ pub struct ClearReport {
     pub restored_idle_fps: Option<i32>,
     /// The simulation was running and [`ClearOptions::stop_simulation`] stopped it first.
     pub stopped_simulation: bool,
-    /// The user's objects under the maze dummy: left alone ([`plan::sort_out`]).
+    /// The user's objects under the maze dummy: left alone ([`ownership::sort_out`]).
     pub left_alone: Vec<String>,
     /// Where the line template went (one line), if it moved: back home, or below the floor
     /// when its home was never recorded ([`home`]).
@@ -164,9 +165,9 @@ fn clear_claimed(
         dry_run,
     )?;
     // only the templates' copies are the maze's: the user's objects stay as they are
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
+    let sorted = ownership::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     let others = names.others(style);
-    let mut doomed = maze_lines(&sorted.objects, &h, names.template(style), &others);
+    let mut doomed = maze_pieces(&sorted.objects, &h, names.template(style), &others);
     doomed.extend(foreign_copies(&sorted.objects, &h, &others));
     // a mesh maze (`--draw mesh`): its meshes and holder, ours by name
     let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
@@ -190,7 +191,7 @@ fn clear_claimed(
     doomed.extend(meshes.iter().map(|(m, _)| *m));
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)
-        let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+        let per_request = scene.pieces_per_request(survey.objects.len()).max(1);
         for (i, chunk) in doomed.chunks(per_request).enumerate() {
             if opts
                 .interrupt
@@ -210,7 +211,7 @@ fn clear_claimed(
     // the template lay on the first line only of a line maze: copies of it, or line meshes
     let line_maze = removed
         .iter()
-        .any(|n: &String| plan::is_copy_name(n, &names.line))
+        .any(|n: &String| ownership::is_copy_name(n, &names.line))
         || meshes.iter().any(|(_, n)| {
             super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
         });

@@ -31,9 +31,10 @@ pub fn legacy_line(objects: usize) -> Duration {
     ]) + m.op(&Op::LegacyCommand) * 4
 }
 
-/// How many lines (a copy, or a parent and a pose) one legacy request may carry so that the
+/// How many pieces (lines, walls or posts: a copy, or a parent and a pose) one legacy request
+/// may carry so that the
 /// simulator answers within [`REQUEST_TIME`] in a scene of `objects` objects (at least one).
-pub fn legacy_lines_per_request(objects: usize) -> usize {
+pub fn legacy_pieces_per_request(objects: usize) -> usize {
     ((REQUEST_TIME.as_secs_f64() / legacy_line(objects).as_secs_f64()) as usize).max(1)
 }
 
@@ -66,7 +67,7 @@ pub struct CopiesWork {
 /// The modelled time of `work` over `api` on a real CoppeliaSim 4.5.1 at idle fps 0 (apply
 /// raises the idle rate first): removals first, then the pastes in rounds of
 /// `blocks_per_round + 1` times the copies so far (over legacy at most
-/// [`legacy_lines_per_request`] a round), each round's copies re-parented and placed before
+/// [`legacy_pieces_per_request`] a round), each round's copies re-parented and placed before
 /// the next. Legacy pass floors (9 ms a request) are left out.
 pub fn copies_draw(api: RemoteApi, work: &CopiesWork) -> Duration {
     let m = CostModel::measured();
@@ -102,7 +103,7 @@ pub fn copies_draw(api: RemoteApi, work: &CopiesWork) -> Duration {
     let mut left = work.pasted;
     while left > 0 {
         let budget = match api {
-            RemoteApi::Legacy => legacy_lines_per_request(objects),
+            RemoteApi::Legacy => legacy_pieces_per_request(objects),
             RemoteApi::Zmq => usize::MAX,
         };
         let round = left.min(sources * work.blocks_per_round.max(1)).min(budget);
@@ -181,14 +182,14 @@ mod tests {
     #[test]
     fn legacy_requests_carry_fewer_lines_as_the_scene_grows() {
         let (small, big) = (
-            legacy_lines_per_request(5),
-            legacy_lines_per_request(20_000),
+            legacy_pieces_per_request(5),
+            legacy_pieces_per_request(20_000),
         );
         assert!(small > 1_000 && (1..300).contains(&big), "{small} {big}");
         // a full request of lines stays within the budget
         let t = legacy_line(20_000) * big as u32;
         assert!(t <= REQUEST_TIME, "{t:?}");
-        assert_eq!(legacy_lines_per_request(usize::MAX / 2), 1);
+        assert_eq!(legacy_pieces_per_request(usize::MAX / 2), 1);
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! is recorded, and only a template that lies on a maze is hidden below the floor.
 
 use super::ObjectInfo;
-use super::plan::relative_pose;
+use super::pose::relative_pose;
 use vrep_maze_core::coppelia::frame::{Frame, wrap_angle};
 
 /// How far apart (metres, radians) two lines of one maze may be from touching exactly:

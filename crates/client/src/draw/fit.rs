@@ -3,7 +3,7 @@
 //! the markers flat and no wider than a cell, and the floor at least as large as the
 //! layout's. Pure: a backend reads the sizes, [`check_sizes`] judges them.
 
-use super::plan::{SIZE_TOLERANCE, same_size};
+use super::tolerance::{SIZE_TOLERANCE, same_size};
 use super::{DrawError, ObjectNames, Style, TemplateUse};
 use vrep_maze_core::layout::Geometry;
 use vrep_maze_core::layout::limits::{self, Naming};

@@ -4,8 +4,10 @@
 //! [`Backend`]: a handful of scene operations, batched where the protocol allows. [`apply()`] draws a
 //! [`Drawing`] (reusing earlier copies of the `Line` template, or of `Wall` and `Post`, pasting
 //! only the missing ones, removing the surplus), [`clear()`] removes a drawn maze and
-//! [`verify()`] compares the scene with a drawing. [`plan`] holds the pure decisions (which objects belong to the maze, what to
-//! paste) so they can be tested without a simulator.
+//! [`verify()`] compares the scene with a drawing. The pure decisions are tested without a
+//! simulator: [`ownership`] (which objects belong to the maze), [`paste`] (what to reuse,
+//! paste and remove), [`pose`] (poses on the floor) and [`tolerance`] (what counts as the
+//! same).
 
 pub mod apply;
 pub mod clear;
@@ -18,7 +20,9 @@ pub mod home;
 pub mod lease;
 pub mod mesh;
 pub mod options;
-pub mod plan;
+pub mod ownership;
+pub mod paste;
+pub mod pose;
 pub mod record;
 pub mod remedy;
 pub mod report;
@@ -27,6 +31,7 @@ pub mod run;
 pub mod session;
 pub mod signals;
 pub mod survey;
+pub mod tolerance;
 pub mod verify;
 
 pub use apply::apply;
@@ -65,8 +70,10 @@ pub fn euler(p: &Pose) -> [f64; 3] {
 pub struct Drawing {
     /// Lines or walls: which template is copied.
     pub style: Style,
-    /// Poses of the copies, in the layout's order (`segments`, or `walls`).
-    pub lines: Vec<Pose>,
+    /// Poses of the pieces of the maze drawn as the style's template: the line segments
+    /// (`segments`, the first one the template itself) or the walls (`walls`, every one a
+    /// copy), in the layout's order. The posts are apart ([`Drawing::posts`]).
+    pub pieces: Vec<Pose>,
     /// Poses of the `Post` copies (`posts`): empty unless the maze has posts.
     pub posts: Vec<Pose>,
     /// Pose of the start marker.
@@ -103,7 +110,7 @@ impl Drawing {
         TemplateUse {
             style: self.style,
             sizes: &self.sizes,
-            template: !self.lines.is_empty(),
+            template: !self.pieces.is_empty(),
             posts: !self.posts.is_empty(),
         }
     }
@@ -116,7 +123,7 @@ impl Drawing {
 
     /// Lines, or walls and posts: the objects placed, as progress counts them.
     pub fn copies(&self) -> usize {
-        self.lines.len() + self.posts.len()
+        self.pieces.len() + self.posts.len()
     }
 }
 
@@ -135,7 +142,7 @@ impl Default for ObjectNames {
 }
 
 impl ObjectNames {
-    /// Every template: line, wall, post ([`plan::sort_out`] keeps their copies).
+    /// Every template: line, wall, post ([`ownership::sort_out`] keeps their copies).
     pub fn templates(&self) -> [&str; 3] {
         [&self.line, &self.wall, &self.post]
     }
@@ -294,7 +301,7 @@ pub struct ObjectInfo {
 
 /// An object's bounding box in its own frame (`sim_objfloatparam_objbbox_*`, parameters
 /// 15..20), as a simulator reports it: single precision, so compare sizes with
-/// [`plan::SIZE_TOLERANCE`].
+/// [`tolerance::SIZE_TOLERANCE`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BoundingBox {
     /// Minimum x, y, z.
@@ -322,9 +329,9 @@ pub struct Survey {
     /// Simulation not stopped.
     pub simulation_running: bool,
     /// What the backend read that tells a template's copy from the user's object named like
-    /// one ([`plan::Traits`]: types, and sizes and children where the name, type and copy
+    /// one ([`ownership::Traits`]: types, and sizes and children where the name, type and copy
     /// record leave a doubt).
-    pub traits: plan::Traits,
+    pub traits: ownership::Traits,
 }
 
 /// The idle rate now and the user's rate recorded by an interrupted run.
@@ -396,7 +403,7 @@ pub trait Backend {
     /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
     /// simulation state. `names` are [`ObjectNames::survey`]'s: objects are listed only
     /// when the needed ones exist ([`SurveyHandles::needed_found`]), and the maze's copies
-    /// of the other templates are named after them (so [`plan::foreign_copies`] can tell
+    /// of the other templates are named after them (so [`ownership::foreign_copies`] can tell
     /// them apart).
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError>;
     /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
@@ -448,10 +455,11 @@ pub trait Backend {
     fn stop_simulation(&mut self) -> Result<(), BackendError>;
     /// Messages exchanged with the simulator so far (requests with their replies).
     fn round_trips(&self) -> usize;
-    /// How many lines (a copy, or a parent and a pose) one request may carry so that the
+    /// How many pieces (lines, walls or posts: a copy, or a parent and a pose) one request
+    /// may carry so that the
     /// simulator answers in bounded time, given the objects in the scene (its per-object
     /// costs grow with them). Unbounded where each call is its own request (ZeroMQ).
-    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
+    fn pieces_per_request(&self, objects_in_scene: usize) -> usize {
         let _ = objects_in_scene;
         usize::MAX
     }
@@ -712,17 +720,61 @@ impl TryFrom<&vrep_maze_core::layout::Layout> for Drawing {
     /// so nothing invalid is ever drawn.
     fn try_from(layout: &vrep_maze_core::layout::Layout) -> Result<Drawing, Self::Error> {
         vrep_maze_core::validate::checked(layout)?;
-        let lines = match layout.style {
+        let pieces = match layout.style {
             Style::Lines => layout.segments.clone(),
             Style::Walls => layout.walls.clone(),
         };
         Ok(Drawing {
             style: layout.style,
-            lines,
+            pieces,
             posts: layout.posts.clone(),
             start: layout.start.pose,
             end: layout.end.pose,
             sizes: Sizes::of(layout),
         })
+    }
+}
+
+/// An object named `name` at the world origin, unturned: the unit tests' scenes.
+#[cfg(test)]
+pub(crate) fn object_at_origin(handle: i32, name: &str, parent: Option<i32>) -> ObjectInfo {
+    ObjectInfo {
+        handle,
+        name: name.into(),
+        parent,
+        position: [0.0; 3],
+        orientation: [0.0; 3],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_name_in_two_roles_is_refused_naming_both() {
+        assert!(ObjectNames::default().check_roles().is_ok());
+        let names = ObjectNames {
+            end: "/Floor".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err();
+        assert!(
+            matches!(
+                &e,
+                DrawError::SameObject { names, first: Role::Floor, second: Role::End }
+                    if names == "`Floor` and `/Floor`"
+            ),
+            "{e}"
+        );
+        let names = ObjectNames {
+            post: "Line".into(),
+            ..Default::default()
+        };
+        let e = names.check_roles().unwrap_err().to_string();
+        assert!(
+            e.starts_with("`Line` would be both the line template and the post template"),
+            "{e}"
+        );
     }
 }

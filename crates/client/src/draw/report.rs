@@ -19,7 +19,8 @@ pub enum Stage {
         /// Copies this apply pastes in all.
         total: usize,
     },
-    /// Lines placed so far (parent and pose sent, or found in place) / in all.
+    /// Lines, or walls and posts, placed so far (parent and pose sent, or found in place) / in
+    /// all.
     Placing {
         /// Lines (or walls and posts) placed so far.
         done: usize,
@@ -32,20 +33,20 @@ pub enum Stage {
     Verifying,
 }
 
-/// What [`super::apply()`] did. In copies mode the counts add up: `lines + posts` = `unchanged +
+/// What [`super::apply()`] did. In copies mode the counts add up: `pieces + posts` = `unchanged +
 /// placed + pasted` (the drawing's lines and posts), and `unchanged + placed` = `reused`,
 /// plus the template itself in a line maze with lines; the markers are counted apart.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ApplyReport {
     /// Copies or meshes: how the maze was drawn (what `meshes`, `reused` and `pasted` count).
     pub mode: DrawMode,
-    /// Lines or walls: what `lines` counts.
+    /// Lines or walls: what `pieces` counts.
     pub style: super::Style,
     /// Lines drawn (template included), or walls.
-    pub lines: usize,
+    pub pieces: usize,
     /// Posts drawn (a wall maze with posts), else 0.
     pub posts: usize,
-    /// Mesh mode (`--draw mesh`): the meshes the maze is drawn as (then `lines` and `posts`
+    /// Mesh mode (`--draw mesh`): the meshes the maze is drawn as (then `pieces` and `posts`
     /// count rectangles and boxes, `reused` meshes kept, `pasted` meshes created); 0 in
     /// copies mode.
     pub meshes: usize,
@@ -93,7 +94,7 @@ pub struct ApplyReport {
     /// line saying from what size to what.
     pub floor: Option<String>,
     /// The user's objects under the maze dummy (and root objects named like copies of a
-    /// template but of another type): left alone ([`super::plan::sort_out`]).
+    /// template but of another type): left alone ([`super::ownership::sort_out`]).
     pub left_alone: Vec<String>,
 }
 

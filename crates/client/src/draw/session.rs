@@ -10,7 +10,9 @@ use std::time::Instant;
 use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
-use super::plan::{self, floor_frame};
+use super::ownership;
+use super::pose::{self, floor_frame};
+use super::tolerance::POSITION_TOLERANCE;
 use super::{
     ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Edit, Handles, IdleRates,
     ObjectInfo, ObjectNames, Stage, Survey, TemplateUse, resolve_handles,
@@ -164,7 +166,7 @@ impl EarlierLines {
 pub(crate) fn has_line_copies(objects: &[ObjectInfo], h: &Handles, line: &str) -> bool {
     objects
         .iter()
-        .any(|o| o.parent == Some(h.parent) && plan::is_copy_name(&o.name, line))
+        .any(|o| o.parent == Some(h.parent) && ownership::is_copy_name(&o.name, line))
 }
 
 /// Keeps the line template's home ([`home`]) before a drawing moves it: a line maze
@@ -215,7 +217,7 @@ pub(crate) fn keep_home(
     let Some(template) = objects.iter().find(|o| o.handle == h.template) else {
         return Ok(());
     };
-    let (position, orientation) = plan::relative_pose(&floor, template);
+    let (position, orientation) = pose::relative_pose(&floor, template);
     let home = if on_an_earlier_maze(scene, h, objects, template, &names.line, &floor, earlier)? {
         if earlier == EarlierLines::Copies {
             report.warnings.push(format!(
@@ -260,7 +262,7 @@ pub(crate) fn on_an_earlier_maze(
         EarlierLines::Copies => {
             let copies: Vec<&ObjectInfo> = objects
                 .iter()
-                .filter(|o| o.parent == Some(h.parent) && plan::is_copy_name(&o.name, line))
+                .filter(|o| o.parent == Some(h.parent) && ownership::is_copy_name(&o.name, line))
                 .collect();
             let length = scene.sizes(&[template.handle])?.first().copied().flatten();
             // a length not read: no evidence either way, so taken to be on it as before
@@ -291,7 +293,7 @@ fn hide_line_template(
     let Some(template) = line_template.and_then(|t| objects.iter().find(|o| o.handle == t)) else {
         return Ok(());
     };
-    let (position, orientation) = plan::relative_pose(floor, template);
+    let (position, orientation) = pose::relative_pose(floor, template);
     let home = match record.filter(|r| r.handle == template.handle) {
         Some(home) => home,
         None => {
@@ -317,7 +319,7 @@ fn hide_line_template(
     };
     let hidden = home::Home::hidden(home.position[0], home.position[1]);
     let want = crate::draw::position(&hidden);
-    if (0..3).any(|k| (position[k] - want[k]).abs() > plan::POSITION_TOLERANCE) {
+    if (0..3).any(|k| (position[k] - want[k]).abs() > POSITION_TOLERANCE) {
         scene.edit(&[Edit::SetPose {
             handle: template.handle,
             relative_to: h.floor,
@@ -337,7 +339,7 @@ pub(crate) struct Begun {
     /// The report so far: the counts given, the size warnings, the simulation state, the
     /// user's objects left alone.
     pub report: ApplyReport,
-    /// The survey's objects without the user's ([`plan::sort_out`]).
+    /// The survey's objects without the user's ([`ownership::sort_out`]).
     pub objects: Vec<ObjectInfo>,
 }
 
@@ -396,7 +398,7 @@ pub(crate) fn begin(
             opts.dry_run,
         )?);
     }
-    let sorted = plan::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
+    let sorted = ownership::sort_out(&survey.objects, &h, &names.templates(), &survey.traits);
     report.left_alone = sorted.strangers;
     Ok(Begun {
         survey,

@@ -3,18 +3,19 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences, relative_pose};
+use super::ownership::{self, foreign_copies, maze_pieces};
+use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
 
-/// Differences between `objects` and `drawing`, where `lines[i]` is the object drawn for
-/// `drawing.lines[i]` (`lines[0]` is the template in a line maze) and `posts[i]` the one
+/// Differences between `objects` and `drawing`, where `pieces[i]` is the object drawn for
+/// `drawing.pieces[i]` (`pieces[0]` is the template in a line maze) and `posts[i]` the one
 /// drawn for `drawing.posts[i]`. Empty when the scene matches.
 pub fn check(
     objects: &[ObjectInfo],
     h: &Handles,
     names: &ObjectNames,
-    lines: &[i32],
+    pieces: &[i32],
     posts: &[i32],
     drawing: &Drawing,
 ) -> Vec<String> {
@@ -28,8 +29,8 @@ pub fn check(
     let parts = [
         (
             noun(drawing.style),
-            lines,
-            &drawing.lines,
+            pieces,
+            &drawing.pieces,
             usize::from(drawing.template_drawn()),
         ),
         ("post", posts, &drawing.posts, 0),
@@ -73,14 +74,14 @@ pub fn check(
         }
     }
     let first_copy = usize::from(drawing.template_drawn());
-    let expected: HashSet<i32> = lines
+    let expected: HashSet<i32> = pieces
         .iter()
         .skip(first_copy)
         .chain(posts)
         .copied()
         .collect();
     let with_posts = !drawing.posts.is_empty();
-    let stray: Vec<&str> = maze_lines(
+    let stray: Vec<&str> = maze_pieces(
         objects,
         h,
         names.template(drawing.style),
@@ -222,7 +223,7 @@ fn verify_raised(
     }
     // every pose as the scene holds it now, not as a backend remembers setting it; the
     // user's objects are no maze lines
-    let objects = &plan::sort_out(
+    let objects = &ownership::sort_out(
         &scene.objects_from_scene()?,
         &h,
         &names.templates(),
@@ -239,7 +240,7 @@ fn verify_raised(
     // an earlier mesh maze is stray; the holder is no line, and the user's holder stays
     let meshes = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
     pool.extend(
-        maze_lines(objects, &h, names.template(style), &names.others(style))
+        maze_pieces(objects, &h, names.template(style), &names.others(style))
             .into_iter()
             .filter(|x| Some(*x) != meshes.holder),
     );
@@ -247,7 +248,7 @@ fn verify_raised(
     problems.extend(broken_frames(objects, &h, names));
     let mut stray = Vec::new();
     let parts = [
-        (noun(style), pool, &drawing.lines),
+        (noun(style), pool, &drawing.pieces),
         (
             "post",
             maze_posts(objects, &h, names, with_posts),

@@ -7,7 +7,7 @@ use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
-use crate::draw::plan::{self, Traits, is_copy_name};
+use crate::draw::ownership::{self, Traits, is_copy_name};
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
 use crate::draw::{
@@ -139,7 +139,7 @@ impl LegacyBackend {
 
     /// Learns from a survey which objects are the templates and their copies in the maze
     /// (named in a template's family and of its type, or recorded and of its type, and not
-    /// contradicted by `traits`: [`plan::contradicts_copy`]), and keeps `record` (the
+    /// contradicted by `traits`: [`ownership::contradicts_copy`]), and keeps `record` (the
     /// scene's) to those copies.
     fn learn_copies(
         &mut self,
@@ -158,7 +158,7 @@ impl LegacyBackend {
         for (o, (name, alias, template)) in maze_objects(handles.parent, objects, &templates) {
             let of_type = kind_matches(traits, o.handle, *template);
             let named = is_copy_name(&o.name, name) || record.get(o.handle) == Some(alias);
-            if of_type && named && !plan::contradicts_copy(traits, o.handle, Some(*template)) {
+            if of_type && named && !ownership::contradicts_copy(traits, o.handle, Some(*template)) {
                 copies.insert(o.handle, alias.clone());
             }
         }
@@ -263,7 +263,7 @@ fn templates_of<'n>(
         .templates()
         .into_iter()
         .zip(handles.templates())
-        .filter_map(|(n, h)| h.map(|h| (n, plan::family(n).to_string(), h)))
+        .filter_map(|(n, h)| h.map(|h| (n, ownership::family(n).to_string(), h)))
         .collect()
 }
 
@@ -360,8 +360,8 @@ impl Backend for LegacyBackend {
 
     /// Sized by the shared cost model (`vrep_maze_core::coppelia::cost`: pasting and re-parenting
     /// grow with the objects in the scene).
-    fn lines_per_request(&self, objects_in_scene: usize) -> usize {
-        crate::draw::estimate::legacy_lines_per_request(objects_in_scene)
+    fn pieces_per_request(&self, objects_in_scene: usize) -> usize {
+        crate::draw::estimate::legacy_pieces_per_request(objects_in_scene)
     }
 
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {

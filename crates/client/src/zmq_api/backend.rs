@@ -391,7 +391,7 @@ impl ZmqBackend {
 /// once; a connection kept longer reads them again (the user may have changed the rate).
 const FIRST_RATES_FRESH: Duration = Duration::from_secs(1);
 
-/// The most copies one paste round makes over ZeroMQ (see `lines_per_request`).
+/// The most copies one paste round makes over ZeroMQ (see `pieces_per_request`).
 const ZMQ_PASTE_ROUND: usize = 1000;
 
 impl Backend for ZmqBackend {
@@ -748,7 +748,7 @@ impl Backend for ZmqBackend {
     /// each such re-parenting (coppeliaSimLib@coppeliasim-v4.5.1-rev4
     /// `sceneObjectContainer.cpp:1133, 1146, 1281-1306`): rounds of at most
     /// [`ZMQ_PASTE_ROUND`] copies keep that walk short (the pastes cost the same).
-    fn lines_per_request(&self, _objects_in_scene: usize) -> usize {
+    fn pieces_per_request(&self, _objects_in_scene: usize) -> usize {
         ZMQ_PASTE_ROUND
     }
 

@@ -9,7 +9,8 @@ use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
 };
 use crate::draw::lease::Claim;
-use crate::draw::plan::{self, floor_frame, foreign_copies, maze_lines, pose_differences};
+use crate::draw::ownership::{self, foreign_copies, maze_pieces};
+use crate::draw::pose::{floor_frame, pose_differences};
 use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
@@ -153,7 +154,7 @@ fn apply_claimed(
     let counts = ApplyReport {
         mode: DrawMode::Mesh,
         style,
-        lines: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
+        pieces: pieces_of(maze, &[MeshKind::Lines, MeshKind::Walls]),
         posts: pieces_of(maze, &[MeshKind::Posts]),
         meshes: maze.meshes.len(),
         ..Default::default()
@@ -169,9 +170,9 @@ fn apply_claimed(
     // the user's objects under the holder (and the user's holder) stay, named
     report.left_alone.extend(found.left_alone());
     // an earlier maze's copies of any template go; the user's objects under the maze dummy
-    // stay ([`plan::sort_out`])
+    // stay ([`ownership::sort_out`])
     let others = names.others(style);
-    let mut doomed: Vec<i32> = maze_lines(&objects, &h, names.template(style), &others)
+    let mut doomed: Vec<i32> = maze_pieces(&objects, &h, names.template(style), &others)
         .into_iter()
         .chain(foreign_copies(&objects, &h, &others))
         .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
@@ -229,7 +230,7 @@ fn apply_claimed(
         &survey.objects,
         EarlierLines::of(
             match style {
-                Style::Lines => maze_lines(&objects, &h, &names.line, &others)
+                Style::Lines => maze_pieces(&objects, &h, &names.line, &others)
                     .iter()
                     .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
                 Style::Walls => has_line_copies(&objects, &h, &names.line),
@@ -249,7 +250,7 @@ fn apply_claimed(
         }
         claim.check(scene, phase)
     };
-    let per_request = scene.lines_per_request(survey.objects.len()).max(1);
+    let per_request = scene.pieces_per_request(survey.objects.len()).max(1);
     for chunk in doomed.chunks(per_request) {
         checkpoint(scene, 0, "while removing the earlier maze")?;
         let removals: Vec<Edit> = chunk.iter().map(|&d| Edit::Remove(d)).collect();
@@ -459,7 +460,7 @@ fn verify_raised(
         return Err(differences);
     }
     // the user's objects under the maze dummy are no stray maze objects
-    let objects = plan::sort_out(
+    let objects = ownership::sort_out(
         &scene.objects_from_scene()?,
         &h,
         &names.templates(),
@@ -469,7 +470,7 @@ fn verify_raised(
     let found = found(scene, names, h.parent, &objects)?;
     let mut problems = name_problems(maze, &found);
     let others = names.others(style);
-    let stray: Vec<String> = maze_lines(&objects, &h, names.template(style), &others)
+    let stray: Vec<String> = maze_pieces(&objects, &h, names.template(style), &others)
         .into_iter()
         .chain(foreign_copies(&objects, &h, &others))
         .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)

@@ -63,12 +63,30 @@ impl ZmqBackend {
             "sim.createPrimitiveShape",
             vec![int(kind.into()), float_array(&size), int(0)],
         )?;
+        self.dress(h, Value::Null, colour, special, respondable)?;
+        Ok(h)
+    }
+
+    /// Dresses the new shape `h`, made here or as a mesh ([`super::mesh`]), by the same calls
+    /// in the same order: its ambient-diffuse colour, its special properties `special` (the
+    /// default ones when `None`), static, respondable or not. `colour_name` is
+    /// `sim.setShapeColor`'s second argument: CoppeliaSim reads nil and `""` alike (the whole
+    /// shape) on 4.5.1 and 4.10 (`../shared/spec/real-coppeliasim-4.5.1.md` measured `""`;
+    /// `--create-missing` sends nil on both builds), so each caller keeps what it sent.
+    pub(super) fn dress(
+        &mut self,
+        h: i32,
+        colour_name: Value,
+        colour: [f64; 3],
+        special: Option<i32>,
+        respondable: bool,
+    ) -> Result<(), BackendError> {
         let hv = || int(h.into());
         self.call(
             "sim.setShapeColor",
             vec![
                 hv(),
-                Value::Null,
+                colour_name,
                 int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
                 float_array(&colour),
             ],
@@ -88,7 +106,7 @@ impl ZmqBackend {
                 vec![hv(), int(param.into()), int(on.into())],
             )?;
         }
-        Ok(h)
+        Ok(())
     }
 
     /// A new object put at `position` in the frame `relative_to` and named `name`.

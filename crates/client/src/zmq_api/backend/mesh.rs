@@ -1,7 +1,8 @@
 //! [`MeshDrawing`] over the ZeroMQ remote API: a batch of meshes made and dressed by one
 //! `sim.executeLuaCode` ([`lua::create`]), or where that fails `sim.createShape`
-//! (`sim.createMeshShape` before 4.6) per mesh, dressed and named with a few calls each; read
-//! back in one `sim.executeLuaCode` ([`lua::read`]) or `sim.getShapeMesh` each.
+//! (`sim.createMeshShape` before 4.6) per mesh, dressed by the calls that dress a created
+//! primitive shape (`ZmqBackend::dress`) and named; read back in one `sim.executeLuaCode`
+//! ([`lua::read`]) or `sim.getShapeMesh` each.
 
 use std::borrow::Cow;
 
@@ -14,10 +15,8 @@ use crate::draw::mesh::{
 use crate::draw::{BackendError, ObjectNames};
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
+use vrep_maze_core::coppelia::COLORCOMPONENT_AMBIENT_DIFFUSE;
 use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
-use vrep_maze_core::coppelia::{
-    COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
-};
 
 /// The first program version whose add-on speaks protocol 2 (4.6.0): from it on meshes are
 /// made with `sim.createShape`, since 4.10 logs that `sim.createMeshShape` is deprecated
@@ -110,17 +109,8 @@ impl ZmqBackend {
 
     /// `shape` with the colour and world pose of the mesh `handle`.
     fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
-        let colour = self
-            .call(
-                "sim.getShapeColor",
-                vec![
-                    int(handle.into()),
-                    Value::Text(String::new()),
-                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                ],
-            )?
-            .get(1)
-            .and_then(cbor::numbers::<3>);
+        let (func, args) = shape_colour_call(handle);
+        let colour = colour_of(&self.call(func, args)?);
         let pose = self.world_pose(handle)?;
         Ok(MeshReadback {
             colour,
@@ -253,32 +243,16 @@ impl MeshDrawing for ZmqBackend {
                     indices,
                 ],
             )?;
-            let hv = || int(h.into());
-            self.call(
-                "sim.setShapeColor",
-                vec![
-                    hv(),
-                    Value::Text(String::new()),
-                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
-                    float_array(&mesh.look.colour),
-                ],
+            self.dress(
+                h,
+                Value::Text(String::new()),
+                mesh.look.colour,
+                Some(mesh.look.special),
+                mesh.respondable,
             )?;
-            self.call(
-                "sim.setObjectSpecialProperty",
-                vec![hv(), int(mesh.look.special.into())],
-            )?;
-            for (param, on) in [
-                (SHAPEINTPARAM_STATIC, true),
-                (SHAPEINTPARAM_RESPONDABLE, mesh.respondable),
-            ] {
-                self.call(
-                    "sim.setObjectInt32Param",
-                    vec![hv(), int(param.into()), int(i64::from(on))],
-                )?;
-            }
             self.call(
                 "sim.setObjectAlias",
-                vec![hv(), Value::Text(mesh.name.into())],
+                vec![int(h.into()), Value::Text(mesh.name.into())],
             )?;
             self.settle(h, place.floor, holder)?;
             created.push(h);

@@ -8,7 +8,7 @@ use std::collections::{HashMap, HashSet};
 use ciborium::Value;
 
 use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
-use crate::draw::{Backend, BackendError, ObjectInfo, plan};
+use crate::draw::{Backend, BackendError, ObjectInfo, ownership};
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
 use vrep_maze_core::coppelia::{HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE};
@@ -200,7 +200,7 @@ impl ZmqBackend {
 
     /// The named objects (read), the maze dummy's children and root copies of the templates
     /// found (their poses as `poses` says), with what tells copies from the user's objects
-    /// ([`plan::Traits`]). A child carrying a template's alias is named as a copy of it
+    /// ([`ownership::Traits`]). A child carrying a template's alias is named as a copy of it
     /// (`/Line[k]`), any other by its alias, so that only the templates' copies are taken
     /// for the maze's. A child the copy record names and of its template's type is known
     /// without reading its alias; one that is not recorded but named and typed like a copy
@@ -212,10 +212,10 @@ impl ZmqBackend {
     pub(super) fn collect(
         &mut self,
         poses: LinePoses,
-    ) -> Result<(Vec<ObjectInfo>, plan::Traits), BackendError> {
+    ) -> Result<(Vec<ObjectInfo>, ownership::Traits), BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
-        let mut found = plan::Traits::default();
+        let mut found = ownership::Traits::default();
         let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
         for (info, kind) in self.named_infos(&known.named)? {
             found.kinds.insert(info.handle, kind);
@@ -267,11 +267,11 @@ impl ZmqBackend {
                      name: &str,
                      alias: &str,
                      kind: i32,
-                     found: &mut plan::Traits|
+                     found: &mut ownership::Traits|
          -> Result<bool, BackendError> {
-            let family = templates
-                .iter()
-                .find(|t| plan::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind));
+            let family = templates.iter().find(|t| {
+                ownership::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind)
+            });
             let template = family.and_then(|t| template_handles.get(t).copied());
             if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
                 backend.doubt(h, template, tree, found)?;
@@ -280,7 +280,7 @@ impl ZmqBackend {
             if of_type && record.get(h) == Some(alias) {
                 found.recorded.insert(h);
             }
-            Ok(of_type && !plan::contradicts_copy(found, h, template))
+            Ok(of_type && !ownership::contradicts_copy(found, h, template))
         };
         if let Some(parent) = known.parent {
             // options 3: first-level children only, without the dummy itself; the shapes
@@ -390,7 +390,7 @@ impl ZmqBackend {
     }
 
     /// Reads what tells `handle`, named and typed like a copy of `template` but not in the
-    /// copy record, from a copy ([`plan::contradicts_copy`]) into `found`: its size and its
+    /// copy record, from a copy ([`ownership::contradicts_copy`]) into `found`: its size and its
     /// template's (a shape's `sim.getShapeBB`, one call; other objects' bounding box, six)
     /// and whether it has children (`sim.getObjectsInTree`, one call, unless `tree`, the
     /// maze dummy and its children it is one of, shows nothing below them: one call for
@@ -400,7 +400,7 @@ impl ZmqBackend {
         handle: i32,
         template: i32,
         tree: Option<(i32, &[i32])>,
-        found: &mut plan::Traits,
+        found: &mut ownership::Traits,
     ) -> Result<(), BackendError> {
         for h in [template, handle] {
             if let Some(size) = self.extents(h)? {

@@ -262,68 +262,100 @@ fn parse_fields(bytes: &[u8], name: &str) -> Result<Fields, ReadError> {
         })
 }
 
-/// Every field of a layout, as serde's derived code would name them in errors.
-const FIELDS: &[&str] = &[
-    "format",
-    "version",
-    "style",
-    "generator",
-    "grid",
-    "floor",
-    "line",
-    "wall",
-    "post",
-    "start",
-    "end",
-    "metrics",
-    "passage_encoding",
-    "passages",
-    "segments",
-    "walls",
-    "posts",
-];
+/// What a field is to the reading of a layout's head.
+enum Kind {
+    /// `format` and `version`: checked first, and say whether the rest is read.
+    Header,
+    /// Needed for a layout: missing, it is the error.
+    Required,
+    /// A wall layout's own: absent in a line layout.
+    Optional,
+    /// The segment list: streamed when the scanner finds it, checked at the end.
+    Segments,
+}
 
-/// The fields read so far.
-#[derive(Default)]
-struct Fields {
-    format: Option<serde_json::Value>,
-    version: Option<serde_json::Value>,
-    style: Option<Style>,
-    generator: Option<GeneratorInfo>,
-    grid: Option<GridSpec>,
-    floor: Option<FloorSpec>,
-    line: Option<LineSpec>,
-    wall: Option<WallSpec>,
-    post: Option<PostSpec>,
-    start: Option<Endpoint>,
-    end: Option<Endpoint>,
-    metrics: Option<Metrics>,
-    passage_encoding: Option<String>,
-    passages: Option<Vec<String>>,
+/// Declares the layout's fields once, each with the type it is read as and its [`Kind`],
+/// in [`Layout`]'s order (the order serde's derived code names them in errors): [`Fields`]
+/// holds them, [`Fields::read`] reads them and [`FIELDS`] lists them.
+macro_rules! layout_fields {
+    ($($(#[$doc:meta])* $name:ident: $type:ty, $kind:ident;)*) => {
+        /// Every field of a layout and its kind, in [`Layout`]'s order.
+        const FIELDS: &[(&str, Kind)] = &[$((stringify!($name), Kind::$kind)),*];
+
+        /// The fields read so far.
+        #[derive(Default)]
+        struct Fields {
+            $($(#[$doc])* $name: Option<$type>,)*
+            /// The first key that is no layout field.
+            unknown: Option<String>,
+            /// Why this is not a layout this build reads (format or version).
+            refused: Option<String>,
+        }
+
+        impl Fields {
+            /// Reads the value of `key` from `map` if `key` names a layout field (a second
+            /// value for it is refused); `false` if it names none.
+            fn read<'de, A: MapAccess<'de>>(
+                &mut self,
+                key: &str,
+                map: &mut A,
+            ) -> Result<bool, A::Error> {
+                match key {
+                    $(stringify!($name) => {
+                        if self.$name.is_some() {
+                            return Err(de::Error::duplicate_field(stringify!($name)));
+                        }
+                        self.$name = Some(map.next_value()?);
+                    })*
+                    _ => return Ok(false),
+                }
+                Ok(true)
+            }
+
+            /// `true` if the field named `name` has been read.
+            fn has(&self, name: &str) -> bool {
+                match name {
+                    $(stringify!($name) => self.$name.is_some(),)*
+                    _ => false,
+                }
+            }
+        }
+    };
+}
+
+layout_fields! {
+    format: serde_json::Value, Header;
+    version: serde_json::Value, Header;
+    style: Style, Optional;
+    generator: GeneratorInfo, Required;
+    grid: GridSpec, Required;
+    floor: FloorSpec, Required;
+    line: LineSpec, Required;
+    wall: WallSpec, Optional;
+    post: PostSpec, Optional;
+    start: Endpoint, Required;
+    end: Endpoint, Required;
+    metrics: Metrics, Required;
+    passage_encoding: String, Required;
+    passages: Vec<String>, Required;
     /// Segments serde read (the list the scanner leaves out reads as empty).
-    segments: Option<Vec<Pose>>,
-    walls: Option<Vec<Pose>>,
-    posts: Option<Vec<Pose>>,
-    /// The first key that is no layout field.
-    unknown: Option<String>,
-    /// Why this is not a layout this build reads (format or version).
-    refused: Option<String>,
+    segments: Vec<Pose>, Segments;
+    walls: Vec<Pose>, Optional;
+    posts: Vec<Pose>, Optional;
 }
 
 impl Fields {
-    /// `true` once every field but `segments` has been read.
+    /// The first field a layout needs (the header's too) that has not been read.
+    fn missing(&self) -> Option<&'static str> {
+        FIELDS
+            .iter()
+            .find(|(name, kind)| matches!(kind, Kind::Header | Kind::Required) && !self.has(name))
+            .map(|(name, _)| *name)
+    }
+
+    /// `true` once every field a layout needs has been read.
     fn complete(&self) -> bool {
-        self.format.is_some()
-            && self.version.is_some()
-            && self.generator.is_some()
-            && self.grid.is_some()
-            && self.floor.is_some()
-            && self.line.is_some()
-            && self.start.is_some()
-            && self.end.is_some()
-            && self.metrics.is_some()
-            && self.passage_encoding.is_some()
-            && self.passages.is_some()
+        self.missing().is_none()
     }
 
     /// The layout without segments; a wrong format or version, an unknown field or a
@@ -332,30 +364,28 @@ impl Fields {
         let refuse = |message: String| format_error(name, message);
         let format = check_header(self.format.as_ref(), self.version.as_ref()).map_err(refuse)?;
         if let Some(key) = self.unknown {
+            let expected: Vec<String> = FIELDS.iter().map(|(f, _)| format!("`{f}`")).collect();
             return Err(refuse(format!(
                 "unknown field `{key}`, expected one of {}",
-                FIELDS
-                    .iter()
-                    .map(|f| format!("`{f}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                expected.join(", ")
             )));
         }
-        let missing = |field: &str| refuse(format!("missing field `{field}`"));
+        if let Some(field) = self.missing() {
+            return Err(refuse(format!("missing field `{field}`")));
+        }
+        let read = "read: nothing is missing";
         Ok(Layout {
             format,
             version: VERSION,
-            generator: self.generator.ok_or_else(|| missing("generator"))?,
-            grid: self.grid.ok_or_else(|| missing("grid"))?,
-            floor: self.floor.ok_or_else(|| missing("floor"))?,
-            line: self.line.ok_or_else(|| missing("line"))?,
-            start: self.start.ok_or_else(|| missing("start"))?,
-            end: self.end.ok_or_else(|| missing("end"))?,
-            metrics: self.metrics.ok_or_else(|| missing("metrics"))?,
-            passage_encoding: self
-                .passage_encoding
-                .ok_or_else(|| missing("passage_encoding"))?,
-            passages: self.passages.ok_or_else(|| missing("passages"))?,
+            generator: self.generator.expect(read),
+            grid: self.grid.expect(read),
+            floor: self.floor.expect(read),
+            line: self.line.expect(read),
+            start: self.start.expect(read),
+            end: self.end.expect(read),
+            metrics: self.metrics.expect(read),
+            passage_encoding: self.passage_encoding.expect(read),
+            passages: self.passages.expect(read),
             segments: Vec::new(),
             style: self.style.unwrap_or_default(),
             wall: self.wall,
@@ -417,39 +447,12 @@ impl<'de> Visitor<'de> for FieldsVisitor {
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Fields, A::Error> {
         let mut fields = Fields::default();
-        macro_rules! field {
-            ($name:ident) => {{
-                if fields.$name.is_some() {
-                    return Err(de::Error::duplicate_field(stringify!($name)));
-                }
-                fields.$name = Some(map.next_value()?);
-            }};
-        }
         while let Some(key) = map.next_key::<String>()? {
-            match key.as_str() {
-                "format" => field!(format),
-                "version" => field!(version),
-                "style" => field!(style),
-                "generator" => field!(generator),
-                "grid" => field!(grid),
-                "floor" => field!(floor),
-                "line" => field!(line),
-                "wall" => field!(wall),
-                "post" => field!(post),
-                "start" => field!(start),
-                "end" => field!(end),
-                "metrics" => field!(metrics),
-                "passage_encoding" => field!(passage_encoding),
-                "passages" => field!(passages),
-                "segments" => field!(segments),
-                "walls" => field!(walls),
-                "posts" => field!(posts),
-                _ => {
-                    // Not a layout field: an error, unless the file is no layout at all,
-                    // which the format check says better.
-                    fields.unknown.get_or_insert(key);
-                    map.next_value::<IgnoredAny>()?;
-                }
+            if !fields.read(&key, &mut map)? {
+                // Not a layout field: an error, unless the file is no layout at all,
+                // which the format check says better.
+                fields.unknown.get_or_insert(key);
+                map.next_value::<IgnoredAny>()?;
             }
             // Refuse a file that is no layout (or a newer one) before reading more.
             if let Some(message) = header_problem(&fields) {
@@ -657,5 +660,46 @@ mod tests {
         let twice = text.replacen("  ]\n}", "  ],\n  \"segments\": []\n}", 1);
         let err = read(&twice, 9).unwrap_err().to_string();
         assert!(err.contains("duplicate field `segments`"), "{err}");
+    }
+
+    #[test]
+    fn the_heads_errors_name_the_fields_in_the_layouts_order() {
+        let text = to_string(&layout());
+        let error = |text: &str| read(text, 9).unwrap_err().to_string();
+        let unknown = text.replacen("{\n", "{\n  \"colour\": 1,\n", 1);
+        assert_eq!(
+            error(&unknown),
+            "t.json: unknown field `colour`, expected one of `format`, `version`, `style`, \
+             `generator`, `grid`, `floor`, `line`, `wall`, `post`, `start`, `end`, `metrics`, \
+             `passage_encoding`, `passages`, `segments`, `walls`, `posts`"
+        );
+        // the list is the one serde's derived code for `Layout` gives
+        let serde_says = serde_json::from_str::<Layout>(&unknown).unwrap_err();
+        assert!(error(&unknown).ends_with(&super::super::strip_position(&serde_says.to_string())));
+        let mut object: serde_json::Map<String, serde_json::Value> =
+            serde_json::from_str(&text).unwrap();
+        object.remove("passages");
+        object.remove("metrics");
+        let without = serde_json::to_string(&object).unwrap();
+        assert_eq!(error(&without), "t.json: missing field `metrics`");
+        object.remove("format");
+        let without = serde_json::to_string(&object).unwrap();
+        assert_eq!(
+            error(&without),
+            "t.json: no \"format\": \"vrep-maze/layout\" field: not a vrep-maze layout"
+        );
+        let twice = text.replacen("{\n", "{\n  \"version\": 1,\n", 1);
+        assert_eq!(error(&twice), "t.json:4:11: duplicate field `version`");
+        let null = text.replacen("\"format\": \"vrep-maze/layout\"", "\"format\": null", 1);
+        assert_eq!(
+            error(&null),
+            "t.json: format is null, not \"vrep-maze/layout\": not a vrep-maze layout"
+        );
+        let null_wall = text.replacen("{\n", "{\n  \"wall\": null,\n", 1);
+        assert!(
+            error(&null_wall).contains("invalid type: null"),
+            "{}",
+            error(&null_wall)
+        );
     }
 }
