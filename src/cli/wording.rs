@@ -79,6 +79,33 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_library_refusal_reads_as_flags_in_the_error_line() {
+        use crate::layout::endpoints::{Corner, EndpointSpec};
+        use crate::layout::{GenerateSpec, build_layout};
+        let mut spec = GenerateSpec::course(
+            crate::maze::Grid::new(9, 9).unwrap(),
+            crate::generate::Algorithm::Dfs,
+            1,
+        );
+        spec.start = EndpointSpec::FarthestPair;
+        spec.end = EndpointSpec::Corner(Corner::NorthEast);
+        let refused = build_layout(&spec).unwrap_err();
+        let line =
+            "--end ne conflicts with --start farthest-pair, which picks both ends: drop --end";
+        assert_eq!(worded(&refused), line);
+        // as a usage error, and as a cause of another error: the line the command prints
+        assert_eq!(
+            crate::cli::one_line(&crate::cli::usage(refused.clone())),
+            line
+        );
+        let caused = anyhow::Error::new(refused).context("making the maze");
+        assert_eq!(
+            crate::cli::one_line(&caused),
+            format!("making the maze: {line}")
+        );
+    }
+
+    #[test]
     fn every_flag_is_an_option_of_some_command() {
         let cli = crate::cli::Cli::command();
         let known = |flag: &str| {
