@@ -19,7 +19,7 @@ pub mod cli;
 pub use vrep_maze_client::draw;
 pub use vrep_maze_core::{
     atomic_file, batch, condition, coppelia, export, generate, layout, maze, mesh, render, rng,
-    score, validate,
+    score, validate, wording,
 };
 pub use vrep_maze_emulator::sim;
 

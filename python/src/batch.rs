@@ -10,13 +10,14 @@ use rayon::prelude::*;
 use std::sync::atomic::AtomicBool;
 use vrep_maze::batch::{Filter, with_percentiles};
 use vrep_maze::cli::Command;
-use vrep_maze::cli::one_line;
 use vrep_maze::layout::{self as library, build::Planned};
 use vrep_maze::validate::checked;
+use vrep_maze::wording::Message;
 
 use crate::errors;
 use crate::layout::Layout;
 use crate::options;
+use crate::wording::Keywords;
 use crate::worker::{self, OnSignal};
 
 /// Makes the layout of one seed.
@@ -61,11 +62,15 @@ impl Batch {
             let (maker, filter, seeds) =
                 (self.make.clone(), self.filter.clone(), self.seeds.clone());
             let resolve = move || {
-                let metrics_of = |seed| maker(seed).map(|layout| layout.metrics);
+                let metrics_of = |seed| {
+                    maker(seed)
+                        .map(|layout| layout.metrics)
+                        .map_err(Message::from)
+                };
                 with_percentiles(filter, &seeds, &metrics_of, &AtomicBool::new(false))
             };
             let resolved = worker::run(py, resolve, OnSignal::Raise)?;
-            self.filter = resolved.map_err(PyValueError::new_err)?;
+            self.filter = resolved.map_err(|e| PyValueError::new_err(e.worded(&Keywords)))?;
         }
         loop {
             if let Some(layout) = self.ready.pop_front() {
@@ -147,7 +152,7 @@ pub fn batch(
         options
             .plan(seed)
             .map(Planned::into_layout)
-            .map_err(|e| one_line(&e))
+            .map_err(|e| errors::line(&e))
     });
     Ok(Batch {
         make,

@@ -5,18 +5,22 @@
 //! that does not answer or refuses a `SimulatorError` carrying the remedies the command line
 //! prints as `hint:` lines; an interrupted drawing an `Interrupted` (a `KeyboardInterrupt`).
 //! A drawing error's roles and remedies come as data and are worded with Python's keywords
-//! (`remedies`); the rest of a message comes in the command line's words, its options
-//! rewritten as keywords ([`python_names`]).
+//! (`remedies`), as are the options the library's messages name (`wording`); only text the
+//! command line's own code words (clap's errors, its usage errors and connection hints) has
+//! its options rewritten as keywords ([`python_names`]).
 
 use std::io;
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyBaseException, PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use vrep_maze::cli::{UsageError, cause_hints, details, one_line, one_line_with};
+use vrep_maze::cli::{UsageError, cause_hints, details_with, one_line_with};
 use vrep_maze::draw::DrawError;
 use vrep_maze::layout::json::ReadError;
 use vrep_maze::validate::Invalid;
+use vrep_maze::wording::Message;
+
+use crate::wording::{Keywords, OverCommandLine};
 
 create_exception!(
     vrep_maze,
@@ -41,7 +45,7 @@ create_exception!(
 /// lines) as the Python exception its kind calls for.
 pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
     if let Some(invalid) = error.chain().find_map(|c| c.downcast_ref::<Invalid>()) {
-        return invalid_error(py, &one_line(error), invalid);
+        return invalid_error(py, &line(error), invalid);
     }
     let hints: Vec<String> = error
         .chain()
@@ -50,15 +54,8 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
             None => cause_hints(cause).iter().map(|h| python_names(h)).collect(),
         })
         .collect();
-    // a drawing error's text can still name options (a template size refused with
-    // `generate`'s), so the whole line is rewritten; its roles are Python's already
-    let mut text = python_names(&one_line_with(error, |cause| {
-        match cause.downcast_ref::<DrawError>() {
-            Some(draw) => crate::remedies::message(draw),
-            None => cause.to_string(),
-        }
-    }));
-    for detail in details(error) {
+    let mut text = line(error);
+    for detail in details_with(error, &Keywords) {
         text.push_str("\n  ");
         text.push_str(&detail);
     }
@@ -76,15 +73,37 @@ pub fn from_anyhow(py: Python<'_>, error: &anyhow::Error) -> PyErr {
     })
 }
 
+/// The command line's error line for `error` (what follows `error: `) in Python's words: a
+/// drawing error's roles and the options a library message names as keywords, the command
+/// line's own text with its options rewritten ([`python_names`]).
+pub fn line(error: &anyhow::Error) -> String {
+    one_line_with(error, |cause| {
+        if let Some(draw) = cause.downcast_ref::<DrawError>() {
+            return crate::remedies::message(draw);
+        }
+        if let Some(message) = cause.downcast_ref::<Message>() {
+            return message.worded(&Keywords);
+        }
+        match cause.downcast_ref::<UsageError>() {
+            Some(usage) => usage.0.worded(&OverCommandLine),
+            None => python_names(&cause.to_string()),
+        }
+    })
+}
+
 /// A [`ValidationError`] whose message is `headline` and the problems as the command line
-/// shows them, with every problem in `problems`.
+/// shows them (options as keywords), with every problem in `problems`.
 pub fn invalid_error(py: Python<'_>, headline: &str, invalid: &Invalid) -> PyErr {
     let mut text = headline.to_string();
-    for line in invalid.shown() {
+    for line in invalid.shown(&Keywords) {
         text.push_str("\n  ");
         text.push_str(&line);
     }
-    let problems: Vec<String> = invalid.problems.iter().map(ToString::to_string).collect();
+    let problems: Vec<String> = invalid
+        .problems
+        .iter()
+        .map(|p| p.worded(&Keywords))
+        .collect();
     with_attributes(py, ValidationError::new_err(text), |e| {
         e.setattr("problems", problems)
     })
@@ -128,11 +147,10 @@ fn with_attributes(
 /// `'--size <SIZE>'` becomes `size`, and a bare `--connect-timeout` `connect_timeout`
 /// (`--create-missing`, a flag, `create_missing=True`).
 ///
-/// Only for the text that still comes in the command line's words: clap's parse errors,
-/// connection failures and their hints, the messages the command line's code words, and the
-/// drawing errors whose text names options (templates refused with `generate`'s options, a
-/// verify problem naming `--floor`). A drawing error's roles and remedies are worded in
-/// `remedies` instead.
+/// Only for the text that comes in the command line's words, written by the command line's
+/// own code: clap's parse errors, connection failures and their hints, its usage errors. The
+/// library's messages carry their options as data (`wording`), a drawing error's roles and
+/// remedies too (`remedies`).
 pub fn python_names(text: &str) -> String {
     let keyword = |option: &str| option.trim_start_matches("--").replace('-', "_");
     let mut out = String::with_capacity(text.len());

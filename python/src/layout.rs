@@ -16,6 +16,7 @@ use vrep_maze::layout::block_grid::BlockGrid;
 use vrep_maze::layout::json::{parse_layout, to_string};
 use vrep_maze::layout::solution::solve;
 use vrep_maze::layout::{self as library, Pose, Style, build::Planned, passages, read_layout};
+
 use vrep_maze::maze::analysis::shortest_path;
 use vrep_maze::maze::{Cell, Direction, Grid, Maze};
 use vrep_maze::render::{Format, RenderOptions};
@@ -24,6 +25,7 @@ use vrep_maze::validate::validate;
 
 use crate::errors::{self, invalid_error, read_error};
 use crate::options;
+use crate::wording::Keywords;
 use crate::worker::{self, OnSignal};
 
 /// One maze: what `vrep-maze generate` writes and `vrep-maze apply` draws.
@@ -303,8 +305,9 @@ impl Layout {
     /// `.mujoco.xml` (MuJoCo), `.sdf` / `.world` (Gazebo), `.urdf`, `.wbt` (Webots). A
     /// `ValueError` naming the endings for any other (a bare `.xml` is ambiguous).
     fn export(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let format = ExportFormat::from_path(&path)
-            .ok_or_else(|| PyValueError::new_err(ExportFormat::refusal(&path)))?;
+        let format = ExportFormat::from_path(&path).ok_or_else(|| {
+            PyValueError::new_err(ExportFormat::refusal(&path, false).worded(&Keywords))
+        })?;
         let layout = &self.layout;
         let bytes = py
             .detach(|| {

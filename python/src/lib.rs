@@ -16,6 +16,7 @@ mod options;
 mod remedies;
 mod score;
 mod session;
+mod wording;
 mod worker;
 
 use pyo3::prelude::*;

@@ -27,7 +27,7 @@ fn role(role: Role) -> String {
 
 /// `error`'s line, each role it names with its keyword.
 pub fn message(error: &DrawError) -> String {
-    error.message(role)
+    error.message(role, &crate::wording::Keywords)
 }
 
 /// What the user can do about `error`, one remedy per line: a `SimulatorError`'s `hints`.

@@ -86,7 +86,7 @@ impl ConnectArgs {
     pub fn check_roles(&self) -> anyhow::Result<()> {
         self.names().check_roles().map_err(|e| {
             let message = super::remedies::message(&e);
-            anyhow::Error::new(e).context(super::UsageError(message))
+            anyhow::Error::new(e).context(super::UsageError(message.into()))
         })
     }
 
@@ -396,6 +396,7 @@ fn drive(
         Stage::Planned(work) => {
             let warning = api.and_then(|api| draw::estimate::slow_draw_warning(api, &work));
             if let Some(line) = warning.filter(|_| !bars.quiet() && !dry_run) {
+                let line = super::wording::worded(&line);
                 bar.suspend(|| eprintln!("{line}"));
             }
         }

@@ -91,7 +91,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         say(line)?;
     }
     if let Some(line) = &report.floor {
-        say(line)?;
+        say(super::wording::worded(line))?;
     }
     if report.removed.is_empty() && report.removed_meshes.is_empty() {
         say(

@@ -54,7 +54,7 @@ pub fn run(args: DemoArgs) -> Result<ExitCode> {
     if !report.is_ok() {
         bail!(
             "the generated maze failed validation: {}",
-            report.problems[0]
+            report.problems[0].worded(&super::wording::Flags)
         );
     }
     let picture = Format::Ascii.render_to_vec(

@@ -54,9 +54,8 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
     );
     let format = match args.format {
         Some(format) => format,
-        None => {
-            Format::from_path(&args.output).ok_or_else(|| usage(Format::refusal(&args.output)))?
-        }
+        None => Format::from_path(&args.output)
+            .ok_or_else(|| usage(Format::refusal(&args.output, true)))?,
     };
     let layout = crate::layout::read_layout(&args.file)?;
     let mut text = Vec::new();

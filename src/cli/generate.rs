@@ -114,7 +114,7 @@ pub struct MazeArgs {
     pub algo: Algorithm,
     /// Growing tree only: which cell grows next, newest|oldest|random|middle|mix:P
     /// (newest with probability P, else random) [default: newest].
-    #[arg(long, value_parser = listed(GrowingMode::parse, GrowingMode::WORDS), hide_possible_values = true)]
+    #[arg(long, value_parser = listed(growing_mode, GrowingMode::WORDS), hide_possible_values = true)]
     pub growing: Option<GrowingMode>,
     /// Binary tree only: the two directions every cell opens towards, ne|nw|se|sw
     /// [default: ne].
@@ -316,6 +316,11 @@ fn plan(spec: &GenerateSpec, style: &StyleArgs, origin: Option<[f64; 2]>) -> Res
         }
         None => Ok(planned),
     }
+}
+
+/// A `--growing` value, refused in the command line's words.
+fn growing_mode(s: &str) -> Result<GrowingMode, String> {
+    GrowingMode::parse(s).map_err(|e| super::wording::worded(&e))
 }
 
 fn parse_endpoint(s: &str) -> Result<EndpointSpec, String> {

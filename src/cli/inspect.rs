@@ -304,7 +304,7 @@ fn inspect(
             Err(DrawError::Verify(differences)) => LayoutMatch {
                 file: file.clone(),
                 matches: false,
-                differences,
+                differences: differences.iter().map(super::wording::worded).collect(),
             },
             Err(missing @ DrawError::Missing { .. }) => LayoutMatch {
                 file: file.clone(),
@@ -349,7 +349,8 @@ fn compare(
     if !meshes.is_mesh_maze() {
         return verify_read_only(scene, drawing, names);
     }
-    let maze = MeshMaze::try_from(layout).map_err(|e| DrawError::Verify(vec![e.to_string()]))?;
+    let maze =
+        MeshMaze::try_from(layout).map_err(|e| DrawError::Verify(vec![e.to_string().into()]))?;
     crate::draw::mesh::verify_read_only(scene, &maze, names)
 }
 

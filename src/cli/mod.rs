@@ -30,6 +30,7 @@ mod stdout;
 pub mod summary;
 mod validate;
 mod values;
+pub mod wording;
 
 pub use clear::ClearArgs;
 pub use interrupt::Interrupted;
@@ -101,20 +102,22 @@ const USAGE_EXIT_CODE: u8 = 2;
 /// conflict): reported like clap's own usage errors, with exit code 2. Any other failure
 /// exits with 1. Public so that programs embedding the command line (the Python package)
 /// tell usage errors from failures as the exit code does.
+/// Its message is the command line's text, or a library's message naming options, which
+/// [`wording::Flags`] words (an embedding program words it its own way).
 #[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct UsageError(pub String);
+#[error("{}", wording::worded(.0))]
+pub struct UsageError(pub crate::wording::Message);
 
 /// `message` as a [`UsageError`].
-pub(crate) fn usage(message: impl std::fmt::Display) -> anyhow::Error {
-    anyhow::Error::new(UsageError(message.to_string()))
+pub(crate) fn usage(message: impl Into<crate::wording::Message>) -> anyhow::Error {
+    anyhow::Error::new(UsageError(message.into()))
 }
 
 /// Fails with a [`UsageError`] unless `condition` holds.
 macro_rules! ensure_usage {
     ($condition:expr, $($message:tt)+) => {
         if !$condition {
-            return Err(anyhow::Error::new($crate::cli::UsageError(format!($($message)+))));
+            return Err(anyhow::Error::new($crate::cli::UsageError(format!($($message)+).into())));
         }
     };
 }
@@ -330,19 +333,29 @@ fn shorten(text: &str) -> String {
 
 /// What the error's causes list beyond their one line (an invalid layout's problems).
 pub fn details(error: &anyhow::Error) -> Vec<String> {
+    details_with(error, &wording::Flags)
+}
+
+/// [`details`] with the options the problems name in `wording`'s words: a program that
+/// embeds the command line (the Python package) says them in its own.
+pub fn details_with(error: &anyhow::Error, wording: &dyn crate::wording::Wording) -> Vec<String> {
     error
         .chain()
         .filter_map(|cause| cause.downcast_ref::<crate::validate::Invalid>())
-        .flat_map(|invalid| invalid.shown())
+        .flat_map(|invalid| invalid.shown(wording))
         .map(|line| shorten(&escape::escaped(&line)))
         .collect()
 }
 
 /// One cause's text in the command line's words: a drawing error's roles with their options
-/// ([`remedies::message`]), any other cause as it displays itself.
+/// ([`remedies::message`]), a library message's options as flags ([`wording::Flags`]), any
+/// other cause as it displays itself.
 fn cause_text(cause: &(dyn std::error::Error + 'static)) -> String {
-    match cause.downcast_ref::<crate::draw::DrawError>() {
-        Some(draw) => remedies::message(draw),
+    if let Some(draw) = cause.downcast_ref::<crate::draw::DrawError>() {
+        return remedies::message(draw);
+    }
+    match cause.downcast_ref::<crate::wording::Message>() {
+        Some(message) => wording::worded(message),
         None => cause.to_string(),
     }
 }

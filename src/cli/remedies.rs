@@ -23,9 +23,9 @@ fn role(role: Role) -> String {
     format!("{role} ({})", option(role))
 }
 
-/// `error`'s line, each role it names with its option.
+/// `error`'s line, each role it names with its option, and each option as its flag.
 pub fn message(error: &DrawError) -> String {
-    error.message(role)
+    error.message(role, &super::wording::Flags)
 }
 
 /// What the user can do about `error`, one remedy per line: its `hint:` lines.

@@ -69,11 +69,15 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
                 entry.metrics = metrics;
             }
             Err(invalid) => {
-                for line in invalid.shown() {
+                for line in invalid.shown(&super::wording::Flags) {
                     eprintln!("error: {name}: {}", escaped(&line));
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
-                entry.problems = invalid.problems.iter().map(|p| p.to_string()).collect();
+                entry.problems = invalid
+                    .problems
+                    .iter()
+                    .map(|p| p.worded(&super::wording::Flags))
+                    .collect();
                 entry.problem_count = invalid.count();
             }
         }

@@ -43,6 +43,7 @@ fn schema() -> &'static jsonschema::Validator {
 fn gate(spec: &GenerateSpec) -> Result<(), String> {
     match build_layout(spec) {
         Err(message) => {
+            let message = vrep_maze::cli::wording::worded(&message);
             assert!(
                 !message.is_empty() && !message.contains('\n'),
                 "{message:?}"
@@ -294,7 +295,7 @@ fn the_library_refuses_before_allocating() {
     for (edit, needle) in cases {
         let mut spec = course();
         edit(&mut spec);
-        let err = build_layout(&spec).unwrap_err();
+        let err = vrep_maze::cli::wording::worded(&build_layout(&spec).unwrap_err());
         assert!(err.contains(needle), "{needle}: {err}");
     }
     let mut huge = GenerateSpec::course(Grid::new(4096, 4096).unwrap(), Algorithm::Dfs, 1);
@@ -302,7 +303,7 @@ fn the_library_refuses_before_allocating() {
     huge.geometry.origin = Geometry::centred_origin(huge.grid, 0.2);
     huge.geometry.line_length = 0.06;
     huge.geometry.line_width = 0.05;
-    let err = build_layout(&huge).unwrap_err();
+    let err = build_layout(&huge).unwrap_err().to_string();
     assert!(
         err.contains("more than the 67108864 a layout may hold"),
         "{err}"
@@ -311,7 +312,7 @@ fn the_library_refuses_before_allocating() {
     far.geometry.cell_size = 300.0;
     far.geometry.line_length = 180.0;
     far.geometry.line_width = 30.0;
-    let err = build_layout(&far).unwrap_err();
+    let err = build_layout(&far).unwrap_err().to_string();
     assert!(
         err.contains("more than the largest floor, 10000 m x 10000 m"),
         "{err}"

@@ -65,7 +65,8 @@ fn a_size_hint_followed_draws_the_maze(kind: Kind) {
     let mut b = s.connect();
     let course = generated(&dir, "course.json", &["--size", "5x5"]);
     resize(&s, "Line", [0.3, 0.05, 0.0]);
-    let e = apply(&mut *b, &course).unwrap_err().to_string();
+    let e = apply(&mut *b, &course).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     let options = generate_options(&e);
     let mut args = vec!["--size".to_string(), "5x5".into()];
     args.extend(options);
@@ -73,7 +74,8 @@ fn a_size_hint_followed_draws_the_maze(kind: Kind) {
     let fitted = generated(&dir, "fitted.json", &args);
     apply(&mut *b, &fitted).unwrap_or_else(|e| panic!("{k}: {e}"));
     resize(&s, "Line", [0.1, 0.6, 0.0]);
-    let e = apply(&mut *b, &course).unwrap_err().to_string();
+    let e = apply(&mut *b, &course).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     assert!(
         !e.contains("generate with") && e.contains("resize `Line` to 0.6 x 0.1 m"),
         "{k}: {e}"
@@ -95,7 +97,8 @@ fn a_tall_line_or_marker_is_refused_until_flat(kind: Kind) {
     let course = generated(&dir, "course.json", &["--size", "5x5"]);
     resize(&s, "Line", [0.6, 0.1, 0.3]);
     resize(&s, "Start", [1.0, 1.0, 0.5]);
-    let e = apply(&mut *b, &course).unwrap_err().to_string();
+    let e = apply(&mut *b, &course).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     assert!(
         e.contains("`Line` is 0.3 m high")
             && e.contains("resize `Line` to 0.6 x 0.1 x 0 m")
@@ -166,7 +169,10 @@ fn a_small_floor_is_refused_with_hints_that_work(kind: Kind) {
     assert_eq!(floor_size(&s)[..2], [15.0, 15.0], "{k}");
     let c = draw::clear(&mut *b, &ClearOptions::default()).unwrap();
     assert_eq!(
-        c.floor.as_deref(),
+        c.floor
+            .as_ref()
+            .map(vrep_maze::cli::wording::worded)
+            .as_deref(),
         Some("put `Floor` back to 4 x 4 m, its size before apply --resize-floor")
     );
     let back = floor_size(&s);

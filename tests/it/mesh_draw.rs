@@ -298,7 +298,10 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
     } else {
         "no vertex"
     };
-    assert!(problems.iter().any(|p| p.contains(wanted)), "{problems:?}");
+    assert!(
+        problems.iter().any(|p| p.to_string().contains(wanted)),
+        "{problems:?}"
+    );
     // the next apply does not notice (the name still says what it holds) but a stray copy
     // of the template under Maze is removed
     s.with_sim(|sim| {
@@ -310,7 +313,10 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
     let Err(DrawError::Verify(problems)) = verify_mesh(&mut b, &m) else {
         panic!("a stray copy went unnoticed")
     };
-    assert!(problems.iter().any(|p| p.contains("stray")), "{problems:?}");
+    assert!(
+        problems.iter().any(|p| p.to_string().contains("stray")),
+        "{problems:?}"
+    );
     let r = apply_mesh(&mut b, &m).unwrap();
     assert_eq!(r.removed, 1, "{r:?}");
     assert_eq!(s.line_count(), 1);

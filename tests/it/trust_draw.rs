@@ -404,7 +404,7 @@ fn a_stray_copy_of_the_template_never_verifies() {
         });
         let e = draw::verify(&mut *b, &d, &ObjectNames::default()).unwrap_err();
         assert!(
-            e.to_string().contains("1 stray maze object"),
+            vrep_maze::cli::remedies::message(&e).contains("1 stray maze object"),
             "{}: {e}",
             kind.name()
         );
@@ -575,7 +575,7 @@ fn sizes_that_contradict_the_layout_are_refused(kind: Kind) {
         ],
     );
     let e = apply(&mut *b, &short).unwrap_err();
-    let text = e.to_string();
+    let text = vrep_maze::cli::remedies::message(&e);
     assert!(
         matches!(e, DrawError::Sizes(_))
             && text.contains("`Line` is 0.6 x 0.1 m")
@@ -602,7 +602,8 @@ fn sizes_that_contradict_the_layout_are_refused(kind: Kind) {
         "{k}"
     );
     let mouse = generated(&dir, "mouse.json", &["--preset", "micromouse-half"]);
-    let e = apply(&mut *b, &mouse).unwrap_err().to_string();
+    let e = apply(&mut *b, &mouse).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     assert!(
         e.contains("`Wall` is 1 x 0.05 x 0.2 m") && e.contains("--wall-length 1 "),
         "{k}: {e}"
@@ -620,7 +621,8 @@ fn sizes_that_contradict_the_layout_are_refused(kind: Kind) {
             "3x3",
         ],
     );
-    let e = apply(&mut *b, &thick).unwrap_err().to_string();
+    let e = apply(&mut *b, &thick).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     assert!(
         e.contains("`Post` is 0.05 x 0.05 x 0.2 m")
             && e.contains("--post-size 0.05")
@@ -632,7 +634,8 @@ fn sizes_that_contradict_the_layout_are_refused(kind: Kind) {
         "low.json",
         &["--style", "walls", "--wall-height", "0.1", "--size", "3x3"],
     );
-    let e = apply(&mut *b, &low).unwrap_err().to_string();
+    let e = apply(&mut *b, &low).unwrap_err();
+    let e = vrep_maze::cli::remedies::message(&e);
     assert!(e.contains("--wall-height 0.2"), "{k}: {e}");
     assert_eq!(s.snapshot(), before, "{k}: nothing drawn");
     // the same layout fits once the template is resized
@@ -907,7 +910,7 @@ fn mesh_mode_refuses_a_line_template_of_another_size(kind: Kind) {
         draw::mesh::apply(b, m, &ApplyOptions::default(), &mut |_| {})
     };
     let e = draw_mesh(&mut *b, &short).unwrap_err();
-    let text = e.to_string();
+    let text = vrep_maze::cli::remedies::message(&e);
     assert!(
         matches!(e, DrawError::Sizes(_)) && text.contains("resize `Line` to 0.3 x 0.05 m"),
         "{k}: {text}"

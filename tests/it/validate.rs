@@ -10,7 +10,7 @@ fn messages(layout: &Layout) -> Vec<String> {
     validate(layout)
         .problems
         .iter()
-        .map(ToString::to_string)
+        .map(|p| p.worded(&vrep_maze::cli::wording::Flags))
         .collect()
 }
 

@@ -18,6 +18,7 @@ use crate::condition::Condition;
 use crate::layout::json::to_string;
 use crate::layout::{GenerateSpec, Layout, build_layout};
 use crate::maze::Metrics;
+use crate::wording::{Message, Opt};
 
 /// The most seeds one batch takes.
 pub const MAX_SEEDS: usize = 1_000_000;
@@ -111,20 +112,20 @@ pub fn run(
     out_dir: &Path,
     tick: &(dyn Fn() + Sync),
     stop: &AtomicBool,
-) -> Result<Outcome, String> {
+) -> Result<Outcome, Message> {
     let make = |seed| {
         let spec = GenerateSpec {
             seed,
             ..template.clone()
         };
-        let layout = build_layout(&spec).map_err(|e| format!("seed {seed}: {e}"))?;
+        let layout = build_layout(&spec).map_err(|e| e.after(format!("seed {seed}: ")))?;
         Ok((layout, file_name(&spec)))
     };
     run_with(&make, seeds, filter, out_dir, tick, stop)
 }
 
 /// Makes a layout and names its file for a seed: what a batch of any style needs.
-pub type Maker<'a> = dyn Fn(u64) -> Result<(Layout, String), String> + Sync + 'a;
+pub type Maker<'a> = dyn Fn(u64) -> Result<(Layout, String), Message> + Sync + 'a;
 
 /// [`run`] for layouts of any kind: `make` gives the layout of a seed and its file name
 /// (relative to `out_dir`); every layout passes the gate before it is written.
@@ -135,12 +136,14 @@ pub fn run_with(
     out_dir: &Path,
     tick: &(dyn Fn() + Sync),
     stop: &AtomicBool,
-) -> Result<Outcome, String> {
+) -> Result<Outcome, Message> {
     if out_dir.exists() && !out_dir.is_dir() {
-        return Err(format!(
-            "{}: exists and is not a directory (--out-dir names the directory that gets the layouts and manifest.jsonl)",
+        return Err(Message::text(format!(
+            "{}: exists and is not a directory (",
             out_dir.display()
-        ));
+        ))
+        .and_opt(Opt::OutDir)
+        .and(" names the directory that gets the layouts and manifest.jsonl)"));
     }
     fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let stale_removed =
@@ -157,7 +160,7 @@ pub fn run_with(
             tick();
             result
         })
-        .collect::<Result<_, String>>()?;
+        .collect::<Result<_, Message>>()?;
     let mut outcome = Outcome {
         manifest: out_dir.join("manifest.jsonl"),
         stale_removed,
@@ -202,33 +205,34 @@ pub fn run_with(
 pub fn with_percentiles(
     filter: Filter,
     seeds: &[u64],
-    metrics_of: &(dyn Fn(u64) -> Result<Metrics, String> + Sync),
+    metrics_of: &(dyn Fn(u64) -> Result<Metrics, Message> + Sync),
     stop: &AtomicBool,
-) -> Result<Filter, String> {
+) -> Result<Filter, Message> {
     let Some(condition) = filter.condition.as_ref().filter(|c| c.has_percentiles()) else {
         return Ok(filter);
     };
     let batch: Vec<Metrics> = seeds
         .par_iter()
         .filter(|_| !stop.load(Ordering::SeqCst))
-        .map(|&seed| metrics_of(seed).map_err(|e| format!("seed {seed}: {e}")))
-        .collect::<Result<_, String>>()?;
+        .map(|&seed| metrics_of(seed).map_err(|e| e.after(format!("seed {seed}: "))))
+        .collect::<Result<_, Message>>()?;
     Ok(Filter {
         condition: Some(condition.resolved(&batch)),
         ..filter
     })
 }
 
-fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Result<Made, String> {
+fn make_one(make: &Maker<'_>, seed: u64, filter: &Filter, out_dir: &Path) -> Result<Made, Message> {
     let (layout, file) = make(seed)?;
     // the gate every layout passes before anything is done with it
     crate::validate::checked(&layout).map_err(|e| {
-        let first = e
-            .problems
-            .first()
-            .map(|p| p.to_string())
-            .unwrap_or_default();
-        format!("seed {seed}: {e}: {first}")
+        let said = Message::text(format!("seed {seed}: {e}: "));
+        match e.problems.first() {
+            Some(p) => said
+                .and(format!("{}: ", p.location))
+                .and_message(p.message.clone()),
+            None => said,
+        }
     })?;
     if !filter.accepts(&layout.metrics) {
         return Ok(Made::Filtered);

@@ -28,3 +28,4 @@ pub mod render;
 pub mod rng;
 pub mod score;
 pub mod validate;
+pub mod wording;

@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use vrep_maze_core::wording::Message;
 
 use super::home;
 use super::lease::{Claim, claimed};
@@ -35,8 +36,8 @@ pub struct ClearReport {
     /// Lines to show as warnings (the simulator did not keep the scene's signals).
     pub warnings: Vec<String>,
     /// The floor put back to its size before `apply --resize-floor` (one line), or why it
-    /// was not ([`super::floor::restore`]).
-    pub floor: Option<String>,
+    /// was not ([`super::floor::restore`]), for an adapter to word.
+    pub floor: Option<Message>,
 }
 
 /// Puts the line template back where it stood before the first `apply` ([`home`]) and

@@ -7,6 +7,7 @@
 use std::time::Duration;
 
 use vrep_maze_core::coppelia::cost::{CostModel, Op};
+use vrep_maze_core::wording::{Message, Opt, Value};
 
 /// Modelled times above this deserve a warning before drawing (issue 18: "before a copies
 /// draw whose modelled time on a real simulator exceeds 10 s").
@@ -130,13 +131,15 @@ pub fn copies_draw(api: RemoteApi, work: &CopiesWork) -> Duration {
 
 /// The one-line warning `apply` prints before a copies draw modelled to take more than
 /// [`SLOW_DRAW`], or `None`.
-pub fn slow_draw_warning(api: RemoteApi, work: &CopiesWork) -> Option<String> {
+pub fn slow_draw_warning(api: RemoteApi, work: &CopiesWork) -> Option<Message> {
     let t = copies_draw(api, work);
     (t > SLOW_DRAW).then(|| {
-        format!(
-            "warning: drawing this maze as copies takes about {:.0} s on a real CoppeliaSim 4.5.1 (its work grows with the objects in the scene); --draw mesh draws it as a few meshes instead",
+        Message::text(format!(
+            "warning: drawing this maze as copies takes about {:.0} s on a real CoppeliaSim 4.5.1 (its work grows with the objects in the scene); ",
             t.as_secs_f64()
-        )
+        ))
+        .and_setting(Opt::Draw, Value::word("mesh"))
+        .and(" draws it as a few meshes instead")
     })
 }
 
@@ -194,11 +197,18 @@ mod tests {
 
     #[test]
     fn only_slow_draws_are_warned_about() {
+        use vrep_maze_core::wording::Part;
         let small = replace(1, 160);
         assert!(copies_draw(RemoteApi::Zmq, &small) < Duration::from_secs(1));
         assert_eq!(slow_draw_warning(RemoteApi::Zmq, &small), None);
         let big = slow_draw_warning(RemoteApi::Legacy, &replace(7_198, 19_998)).unwrap();
-        assert!(big.contains("--draw mesh") && !big.contains('\n'), "{big}");
+        assert!(
+            big.parts()
+                .iter()
+                .any(|p| matches!(p, Part::Settings(s) if s[0].opt == Opt::Draw))
+                && !big.to_string().contains('\n'),
+            "{big}"
+        );
         // nothing to do costs nothing
         let none = replace(160, 160);
         assert_eq!(none.pasted + none.removed, 0);

@@ -7,6 +7,7 @@ use super::tolerance::{SIZE_TOLERANCE, same_size};
 use super::{DrawError, ObjectNames, Style, TemplateUse};
 use vrep_maze_core::layout::Geometry;
 use vrep_maze_core::layout::limits::{self, Naming};
+use vrep_maze_core::wording::{Message, Opt, Setting, Value};
 
 /// The bounding-box extents (x, y, z, metres) a backend read of each object a drawing
 /// checks; `None`: not read (the simulator gave none).
@@ -63,7 +64,7 @@ impl FloorShort {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SizeCheck {
     /// One line per template or marker that contradicts the layout, with what to change.
-    pub refusals: Vec<String>,
+    pub refusals: Vec<Message>,
     /// Markers larger than a cell, sizes that could not be read.
     pub warnings: Vec<String>,
     /// The scene's floor, if smaller than the layout's.
@@ -98,7 +99,7 @@ impl SizeCheck {
             });
         }
         let mut lines = self.refusals.clone();
-        lines.extend(self.floor.map(|f| f.describe(&names.floor)));
+        lines.extend(self.floor.map(|f| f.describe(&names.floor).into()));
         (!lines.is_empty()).then_some(DrawError::Sizes(lines))
     }
 }
@@ -121,22 +122,22 @@ fn flat_limit(z: f64) -> f64 {
 
 /// "the scene's `Line` is 0.3 m high but ...": a refusal for an object that must lie flat
 /// at height `z` (a line, a marker) and measures `have`, or `None` if it is flat enough.
-fn too_high(name: &str, what: &str, have: [f64; 3], z: f64) -> Option<String> {
+fn too_high(name: &str, what: &str, have: [f64; 3], z: f64) -> Option<Message> {
     // NaN is never flat
     (have[2].is_nan() || have[2] > flat_limit(z)).then(|| {
-        format!(
+        Message::text(format!(
             "the scene's `{name}` is {} m high but {what} lies flat on the floor (at z = {} m it may be at most {} m thick): make it a plane, or resize `{name}` to {} x 0 m",
             metres(have[2]),
             metres(z),
             metres(2.0 * z.max(0.0)),
             extents(&have[..2])
-        )
+        ))
     })
 }
 
 /// What `generate` says of a line template of `have` (length x width) on the drawing's
 /// cells: `Ok` with the options if it would generate with them, else why not.
-fn line_options(drawing: &TemplateUse<'_>, have: [f64; 3]) -> Result<String, String> {
+fn line_options(drawing: &TemplateUse<'_>, have: [f64; 3]) -> Result<Vec<Setting>, Message> {
     let sizes = drawing.sizes;
     let geometry = Geometry {
         cell_size: sizes.cell,
@@ -148,12 +149,11 @@ fn line_options(drawing: &TemplateUse<'_>, have: [f64; 3]) -> Result<String, Str
         marker_z: sizes.marker_z[0],
     };
     match limits::check_template(&geometry, Naming::Options).first() {
-        None => Ok(format!(
-            "--line-length {} --line-width {}",
-            metres(have[0]),
-            metres(have[1])
-        )),
-        Some(v) => Err(v.to_string()),
+        None => Ok(vec![
+            setting(Opt::LineLength, have[0]),
+            setting(Opt::LineWidth, have[1]),
+        ]),
+        Some(v) => Err(v.line()),
     }
 }
 
@@ -164,7 +164,7 @@ fn wall_options(
     drawing: &TemplateUse<'_>,
     wall: [f64; 3],
     post: Option<f64>,
-) -> Result<String, String> {
+) -> Result<Vec<Setting>, Message> {
     let cell = drawing.sizes.cell;
     let found = vrep_maze_core::layout::walls::check_template(
         cell,
@@ -175,15 +175,18 @@ fn wall_options(
         Naming::Options,
     );
     match found.first() {
-        None => Ok(format!(
-            "--wall-length {} --wall-thickness {} --wall-height {}{}",
-            metres(wall[0]),
-            metres(wall[1]),
-            metres(wall[2]),
-            post.map(|p| format!(" --posts --post-size {}", metres(p)))
-                .unwrap_or_default()
-        )),
-        Some(v) => Err(v.to_string()),
+        None => {
+            let mut options = vec![
+                setting(Opt::WallLength, wall[0]),
+                setting(Opt::WallThickness, wall[1]),
+                setting(Opt::WallHeight, wall[2]),
+            ];
+            if let Some(p) = post {
+                options.extend(posts(p));
+            }
+            Ok(options)
+        }
+        Some(v) => Err(v.line()),
     }
 }
 
@@ -195,17 +198,17 @@ fn post_options(
     drawing: &TemplateUse<'_>,
     scene_wall: Option<[f64; 3]>,
     post: [f64; 3],
-) -> Result<String, String> {
+) -> Result<Vec<Setting>, Message> {
     let sizes = drawing.sizes;
     let Some(wall) = sizes.wall else {
-        return Err("the layout has no walls".into());
+        return Err(Message::text("the layout has no walls"));
     };
     let height = scene_wall.map_or(wall[2], |w| w[2]);
     if !same_size(height, post[2]) {
-        return Err(format!(
+        return Err(Message::text(format!(
             "a post is as high as the walls, and the wall template is {} m high",
             metres(height)
-        ));
+        )));
     }
     let side = post[0].max(post[1]);
     let found = vrep_maze_core::layout::walls::check_template(
@@ -217,23 +220,46 @@ fn post_options(
         Naming::Options,
     );
     match found.first() {
-        None => Ok(format!(
-            "--posts --post-size {} --wall-height {}",
-            metres(side),
-            metres(post[2])
-        )),
-        Some(v) => Err(v.to_string()),
+        None => {
+            let mut options = posts(side).to_vec();
+            options.push(setting(Opt::WallHeight, post[2]));
+            Ok(options)
+        }
+        Some(v) => Err(v.line()),
     }
+}
+
+/// `opt` given a length in metres, as messages show it ([`metres`]).
+fn setting(opt: Opt, value: f64) -> Setting {
+    Setting {
+        opt,
+        value: Value::Number(metres(value)),
+    }
+}
+
+/// Posts of side `side`: `--posts --post-size 0.012`.
+fn posts(side: f64) -> [Setting; 2] {
+    [
+        Setting {
+            opt: Opt::Posts,
+            value: Value::On,
+        },
+        setting(Opt::PostSize, side),
+    ]
 }
 
 /// "generate with OPTIONS, or resize ...", or where `generate` refuses those options
 /// (`options` is the reason), only the resize, with the reason.
-fn remedy(options: Result<String, String>, resize: String) -> String {
+fn remedy(options: Result<Vec<Setting>, Message>, resize: String) -> Message {
     match options {
-        Ok(options) => {
-            format!("generate with {options} (and the layout's other options), or {resize}")
-        }
-        Err(why) => format!("{resize} (no layout is generated for it as it is: {why})"),
+        Ok(options) => Message::text("generate with ")
+            .and_settings(options)
+            .and(format!(" (and the layout's other options), or {resize}")),
+        Err(why) => Message::text(format!(
+            "{resize} (no layout is generated for it as it is: "
+        ))
+        .and_message(why)
+        .and(")"),
     }
 }
 
@@ -269,16 +295,21 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
             (None, ..) => unread(template_name, &mut check),
             (Some(have), Style::Lines, _) => {
                 if differs(&have[..2], &sizes.line) {
-                    check.refusals.push(format!(
-                        "the scene's `{template_name}` is {} m but the layout was generated with --line-length {} --line-width {}: {}",
-                        extents(&have[..2]),
-                        metres(sizes.line[0]),
-                        metres(sizes.line[1]),
-                        remedy(
+                    check.refusals.push(
+                        Message::text(format!(
+                            "the scene's `{template_name}` is {} m but the layout was generated with ",
+                            extents(&have[..2]),
+                        ))
+                        .and_settings(vec![
+                            setting(Opt::LineLength, sizes.line[0]),
+                            setting(Opt::LineWidth, sizes.line[1]),
+                        ])
+                        .and(": ")
+                        .and_message(remedy(
                             line_options(drawing, have),
-                            format!("resize `{template_name}` to {} m", extents(&sizes.line))
-                        )
-                    ));
+                            format!("resize `{template_name}` to {} m", extents(&sizes.line)),
+                        )),
+                    );
                 }
                 check
                     .refusals
@@ -296,15 +327,17 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
                     have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
                 if !length_ok || differs(&have[1..], &wall[1..]) {
                     let post = sizes.post.filter(|_| drawing.posts).map(|p| p[0]);
-                    check.refusals.push(format!(
-                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): {}",
-                        extents(&have),
-                        extents(&wall),
-                        remedy(
+                    check.refusals.push(
+                        Message::text(format!(
+                            "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): ",
+                            extents(&have),
+                            extents(&wall),
+                        ))
+                        .and_message(remedy(
                             wall_options(drawing, have, post),
-                            format!("resize `{template_name}` to {} m", extents(&wall))
-                        )
-                    ));
+                            format!("resize `{template_name}` to {} m", extents(&wall)),
+                        )),
+                    );
                 }
             }
             (Some(_), Style::Walls, None) => {}
@@ -316,16 +349,18 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
             Some(have) => {
                 if differs(&have, &want) {
                     let options = post_options(drawing, m.template, have);
-                    check.refusals.push(format!(
-                        "the scene's `{}` is {} m but the layout's posts are {} m: {}",
-                        names.post,
-                        extents(&have),
-                        extents(&want),
-                        remedy(
+                    check.refusals.push(
+                        Message::text(format!(
+                            "the scene's `{}` is {} m but the layout's posts are {} m: ",
+                            names.post,
+                            extents(&have),
+                            extents(&want),
+                        ))
+                        .and_message(remedy(
                             options,
-                            format!("resize `{}` to {} m", names.post, extents(&want))
-                        )
-                    ));
+                            format!("resize `{}` to {} m", names.post, extents(&want)),
+                        )),
+                    );
                 }
             }
         }
@@ -372,6 +407,37 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
 mod tests {
     use super::*;
     use crate::draw::Drawing;
+    use vrep_maze_core::wording::Wording;
+
+    /// Options as `--name value`, as the command line words them.
+    struct Dashes;
+
+    impl Wording for Dashes {
+        fn option(&self, opt: Opt) -> String {
+            format!("--{}", Message::opt(opt))
+        }
+
+        fn setting(&self, opt: Opt, value: &Value) -> String {
+            match value {
+                Value::Number(v) | Value::Word(v) => format!("{} {v}", self.option(opt)),
+                Value::Placeholder(v) => format!("{} {v}", self.option(opt)),
+                Value::On => self.option(opt),
+            }
+        }
+
+        fn separator(&self) -> &str {
+            " "
+        }
+
+        fn generate(&self, settings: &str) -> String {
+            format!("vrep-maze generate {settings}")
+        }
+    }
+
+    /// `refusals` worded by [`Dashes`], joined.
+    fn dashed(refusals: &[Message]) -> String {
+        refusals.iter().map(|r| r.worded(&Dashes)).collect()
+    }
 
     /// A size the simulator gave.
     fn bbox(size: [f64; 3]) -> Option<[f64; 3]> {
@@ -413,7 +479,7 @@ mod tests {
         );
         let refused = check([0.6 + 6e-4, 0.1, 0.0]);
         assert_eq!(refused.refusals.len(), 1, "{refused:?}");
-        let refused = check([0.3, 0.05, 0.0]).refusals.join("");
+        let refused = dashed(&check([0.3, 0.05, 0.0]).refusals);
         assert!(
             refused.contains("`Line` is 0.3 x 0.05 m")
                 && refused.contains("generate with --line-length 0.3 --line-width 0.05")
@@ -451,8 +517,12 @@ mod tests {
         let tall = check_sizes(&d.template_use(), &names, &course([0.6, 0.1, 0.3]));
         assert_eq!(tall.refusals.len(), 1, "{tall:?}");
         assert!(
-            tall.refusals[0].starts_with("the scene's `Line` is 0.3 m high but a line lies flat")
-                && tall.refusals[0].contains("resize `Line` to 0.6 x 0.1 x 0 m"),
+            tall.refusals[0]
+                .to_string()
+                .starts_with("the scene's `Line` is 0.3 m high but a line lies flat")
+                && tall.refusals[0]
+                    .to_string()
+                    .contains("resize `Line` to 0.6 x 0.1 x 0 m"),
             "{tall:?}"
         );
         let start = check_sizes(
@@ -465,7 +535,9 @@ mod tests {
         );
         assert_eq!(start.refusals.len(), 1, "{start:?}");
         assert!(
-            start.refusals[0].contains("`Start` is 0.5 m high but a marker lies flat"),
+            start.refusals[0]
+                .to_string()
+                .contains("`Start` is 0.5 m high but a marker lies flat"),
             "{start:?}"
         );
     }
@@ -503,7 +575,7 @@ mod tests {
         let names = ObjectNames::default();
         // a template turned a quarter: 0.1 along x, 0.6 along y
         let turned = check_sizes(&d.template_use(), &names, &course([0.1, 0.6, 0.0]));
-        let refusal = turned.refusals.join("");
+        let refusal = dashed(&turned.refusals);
         assert!(
             !refusal.contains("generate with")
                 && refusal.contains("resize `Line` to 0.6 x 0.1 m (no layout is generated for it as it is: --line-width 0.6 m is not narrower")

@@ -6,6 +6,7 @@
 use super::fit::{FloorShort, extents};
 use super::signals::FLOOR_SIZE as FLOOR_SIGNALS;
 use super::{Backend, BackendError, DrawError};
+use vrep_maze_core::wording::{Message, Opt, Value};
 
 /// A floor's size before the first `apply --resize-floor`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,15 +120,19 @@ pub fn restore(
     floor: i32,
     name: &str,
     dry_run: bool,
-) -> Result<Option<String>, DrawError> {
+) -> Result<Option<Message>, DrawError> {
     let Some(record) = read(scene)?.filter(|r| r.handle == floor) else {
         return Ok(None);
     };
     let was = extents(&record.size);
     if scene.authoring().is_none() {
-        return Ok(Some(format!(
-            "left `{name}` as it is: apply --resize-floor grew it from {was} m, and the legacy remote API cannot resize it back; run clear over the ZeroMQ remote API (--api zmq) to restore it"
-        )));
+        return Ok(Some(
+            Message::text(format!("left `{name}` as it is: apply "))
+                .and_setting(Opt::ResizeFloor, Value::On)
+                .and(format!(" grew it from {was} m, and the legacy remote API cannot resize it back; run clear over the ZeroMQ remote API ("))
+                .and_setting(Opt::Api, Value::word("zmq"))
+                .and(") to restore it"),
+        ));
     }
     let now = scene.sizes(&[floor])?.first().copied().flatten();
     let factors = now.and_then(|now| {
@@ -135,14 +140,18 @@ pub fn restore(
         f.iter().all(|x| x.is_finite() && *x > 0.0).then_some(f)
     });
     let Some(factors) = factors else {
-        return Ok(Some(format!(
-            "left `{name}` as it is: the simulator did not give its size, so it cannot be put back to {was} m, its size before apply --resize-floor"
-        )));
+        return Ok(Some(
+            Message::text(format!(
+                "left `{name}` as it is: the simulator did not give its size, so it cannot be put back to {was} m"
+            ))
+            .and_message(before_resize()),
+        ));
     };
     if dry_run {
-        return Ok(Some(format!(
-            "would put `{name}` back to {was} m, its size before apply --resize-floor"
-        )));
+        return Ok(Some(
+            Message::text(format!("would put `{name}` back to {was} m"))
+                .and_message(before_resize()),
+        ));
     }
     if factors.iter().any(|f| (f - 1.0).abs() > 1e-9)
         && let Some(authoring) = scene.authoring()
@@ -150,9 +159,14 @@ pub fn restore(
         authoring.scale(floor, factors)?;
     }
     forget(scene)?;
-    Ok(Some(format!(
-        "put `{name}` back to {was} m, its size before apply --resize-floor"
-    )))
+    Ok(Some(
+        Message::text(format!("put `{name}` back to {was} m")).and_message(before_resize()),
+    ))
+}
+
+/// ", its size before apply --resize-floor".
+fn before_resize() -> Message {
+    Message::text(", its size before apply ").and_setting(Opt::ResizeFloor, Value::On)
 }
 
 #[cfg(test)]

@@ -47,6 +47,7 @@ pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};
 use vrep_maze_core::score::follow::Follower;
+use vrep_maze_core::wording::{Message, Neutral, Opt, Value, Wording};
 
 pub use vrep_maze_core::layout::{Pose, Style};
 
@@ -561,8 +562,8 @@ pub enum DrawError {
     /// The scene's templates are not the size the layout was generated for
     /// ([`fit::check_sizes`]): refused before any edit, one line per template with what
     /// to change.
-    #[error("the scene's templates do not fit the layout: {}", .0.join("; "))]
-    Sizes(Vec<String>),
+    #[error("{}", sizes(.0, &Neutral))]
+    Sizes(Vec<Message>),
     /// The scene's floor is smaller than the layout's ([`fit::SizeCheck::floor`]): refused
     /// before any edit unless `apply --resize-floor` grows it ([`floor::resize`]).
     #[error("{}", .short.describe(.floor))]
@@ -598,16 +599,25 @@ pub enum DrawError {
     #[error(transparent)]
     Backend(#[from] BackendError),
     /// The scene does not match the drawing after drawing it (the first ten differences).
-    #[error("verification failed, {} difference(s): {}", .0.len(), .0.iter().take(10).cloned().collect::<Vec<_>>().join("; "))]
-    Verify(Vec<String>),
+    #[error("{}", verify_failed(.0, &Neutral))]
+    Verify(Vec<Message>),
+    /// A mesh drawing asked of a connection without the mesh capability.
+    #[error("{}", no_meshes(.api).worded(&Neutral))]
+    NoMeshes {
+        /// The connection, as [`Backend::describe`] says it.
+        api: String,
+    },
 }
 
 impl DrawError {
     /// The error's line with each role it names said by `role` (an adapter's words, which
-    /// add the option that names the role's object); `Display` says a role plainly ("the
-    /// floor").
-    pub fn message(&self, role: impl Fn(Role) -> String) -> String {
+    /// add the option that names the role's object) and each option it names by `wording`;
+    /// `Display` says a role plainly ("the floor") and an option in the neutral wording.
+    pub fn message(&self, role: impl Fn(Role) -> String, wording: &dyn Wording) -> String {
         match self {
+            DrawError::Sizes(refusals) => sizes(refusals, wording),
+            DrawError::Verify(problems) => verify_failed(problems, wording),
+            DrawError::NoMeshes { api } => no_meshes(api).worded(wording),
             DrawError::SameObject {
                 names,
                 first,
@@ -621,6 +631,35 @@ impl DrawError {
             other => other.to_string(),
         }
     }
+}
+
+/// [`DrawError::Sizes`]'s line, its refusals in `wording`'s words.
+fn sizes(refusals: &[Message], wording: &dyn Wording) -> String {
+    let lines: Vec<String> = refusals.iter().map(|r| r.worded(wording)).collect();
+    format!(
+        "the scene's templates do not fit the layout: {}",
+        lines.join("; ")
+    )
+}
+
+/// [`DrawError::Verify`]'s line: how many differences, the first ten in `wording`'s words.
+fn verify_failed(problems: &[Message], wording: &dyn Wording) -> String {
+    let first: Vec<String> = problems
+        .iter()
+        .take(10)
+        .map(|p| p.worded(wording))
+        .collect();
+    format!(
+        "verification failed, {} difference(s): {}",
+        problems.len(),
+        first.join("; ")
+    )
+}
+
+/// [`DrawError::NoMeshes`]'s line: `--draw mesh is not available over this API (...)`.
+fn no_meshes(api: &str) -> Message {
+    Message::setting(Opt::Draw, Value::word("mesh"))
+        .and(format!(" is not available over this API ({api})"))
 }
 
 /// "Floor, Line": the names of [`DrawError::Missing`]'s objects.

@@ -95,7 +95,9 @@ impl DrawError {
             DrawError::SimulationRunning => vec![Remedy::StopSimulation],
             // the floor or the maze dummy at NaN: every copy reads back so
             DrawError::Verify(problems)
-                if problems.iter().any(|p| p.contains(verify::BROKEN_POSE)) =>
+                if problems
+                    .iter()
+                    .any(|p| p.to_string().contains(verify::BROKEN_POSE)) =>
             {
                 vec![Remedy::ResetBrokenPose]
             }
@@ -105,7 +107,7 @@ impl DrawError {
             DrawError::SameObject { .. } => vec![Remedy::OneObjectPerRole],
             DrawError::Concurrent { .. } => vec![Remedy::OneRunAtATime],
             DrawError::Interrupted { .. } => vec![Remedy::FinishOrClear],
-            DrawError::Backend(_) => vec![],
+            DrawError::Backend(_) | DrawError::NoMeshes { .. } => vec![],
         }
     }
 }

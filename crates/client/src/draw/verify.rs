@@ -7,6 +7,7 @@ use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
 use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
+use vrep_maze_core::wording::{Message, Opt};
 
 /// Differences between `objects` and `drawing`, where `pieces[i]` is the object drawn for
 /// `drawing.pieces[i]` (`pieces[0]` is the template in a line maze) and `posts[i]` the one
@@ -18,8 +19,8 @@ pub fn check(
     pieces: &[i32],
     posts: &[i32],
     drawing: &Drawing,
-) -> Vec<String> {
-    let mut problems = Vec::new();
+) -> Vec<Message> {
+    let mut problems: Vec<Message> = Vec::new();
     let Some(floor) = floor_frame(objects, h.floor) else {
         return vec!["the floor object disappeared".into()];
     };
@@ -37,24 +38,30 @@ pub fn check(
     ];
     for (noun, drawn, wanted, first_copy) in parts {
         if drawn.len() != wanted.len() {
-            problems.push(format!(
-                "{} {noun} objects for {} {noun}s",
-                drawn.len(),
-                wanted.len()
-            ));
+            problems.push(
+                format!(
+                    "{} {noun} objects for {} {noun}s",
+                    drawn.len(),
+                    wanted.len()
+                )
+                .into(),
+            );
         }
         for (i, (&handle, want)) in drawn.iter().zip(wanted).enumerate() {
             match get(handle) {
-                None => problems.push(format!("{noun} {i} (handle {handle}) is missing")),
+                None => problems.push(format!("{noun} {i} (handle {handle}) is missing").into()),
                 Some(o) => {
                     if let Some(d) = pose_differences(&floor, o, want) {
-                        problems.push(format!("{noun} {i} `{}` {d}", o.name));
+                        problems.push(format!("{noun} {i} `{}` {d}", o.name).into());
                     }
                     if i >= first_copy && o.parent != Some(h.parent) {
-                        problems.push(format!(
-                            "{noun} {i} `{}` has parent {:?}, expected {}",
-                            o.name, o.parent, h.parent
-                        ));
+                        problems.push(
+                            format!(
+                                "{noun} {i} `{}` has parent {:?}, expected {}",
+                                o.name, o.parent, h.parent
+                            )
+                            .into(),
+                        );
                     }
                 }
             }
@@ -65,10 +72,10 @@ pub fn check(
         ("end", h.end, &drawing.end),
     ] {
         match get(handle) {
-            None => problems.push(format!("the {what} marker is missing")),
+            None => problems.push(format!("the {what} marker is missing").into()),
             Some(o) => {
                 if let Some(d) = pose_differences(&floor, o, want) {
-                    problems.push(format!("{what} `{}` {d}", o.name));
+                    problems.push(format!("{what} `{}` {d}", o.name).into());
                 }
             }
         }
@@ -98,7 +105,7 @@ pub fn check(
     .filter_map(|x| get(x).map(|o| o.name.as_str()))
     .collect();
     if !stray.is_empty() {
-        problems.push(stray_problem(&stray));
+        problems.push(stray_problem(&stray).into());
     }
     problems
 }
@@ -109,18 +116,18 @@ pub(crate) const BROKEN_POSE: &str = "is at a pose that is not a number (NaN)";
 /// One problem for each of the floor and the maze dummy whose world pose in `objects` is not
 /// finite: every pose relative to the floor, and every copy under the dummy, reads back
 /// so, whatever a drawing sets, and vrep-maze never moves either object.
-fn broken_frames(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames) -> Vec<String> {
+fn broken_frames(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames) -> Vec<Message> {
     [
         (
             h.floor,
             &names.floor,
-            "the floor, --floor",
+            Message::text("the floor, ").and_opt(Opt::Floor),
             "every pose relative to it",
         ),
         (
             h.parent,
             &names.parent,
-            "the maze dummy, --parent",
+            Message::text("the maze dummy, ").and_opt(Opt::Parent),
             "every copy under it",
         ),
     ]
@@ -135,7 +142,11 @@ fn broken_frames(objects: &[ObjectInfo], h: &Handles, names: &ObjectNames) -> Ve
                     .all(|x| x.is_finite())
         })
     })
-    .map(|(_, name, role, what)| format!("`{name}` ({role}) {BROKEN_POSE}: so is {what}"))
+    .map(|(_, name, role, what)| {
+        Message::text(format!("`{name}` ("))
+            .and_message(role)
+            .and(format!(") {BROKEN_POSE}: so is {what}"))
+    })
     .collect()
 }
 
@@ -277,7 +288,7 @@ fn verify_raised(
         .chain(meshes.ours.iter().map(|(_, name)| name.as_str()))
         .collect();
     if !stray.is_empty() {
-        problems.push(stray_problem(&stray));
+        problems.push(stray_problem(&stray).into());
     }
     for (what, handle, want) in [
         ("start", h.start, &drawing.start),
@@ -287,7 +298,7 @@ fn verify_raised(
             .get(&handle)
             .and_then(|o| pose_differences(&floor, o, want))
         {
-            problems.push(format!("{what} {d}"));
+            problems.push(format!("{what} {d}").into());
         }
     }
     if problems.is_empty() {
@@ -312,7 +323,7 @@ impl Matching<'_> {
     /// Finds a distinct object of `pool` in place for each of `wanted`, adding what is
     /// missing or wrongly parented to `problems`; returns the copies of `pool` left over
     /// (the line template, if in the pool, is never left over).
-    fn run(&self, pool: &[i32], wanted: &[Pose], problems: &mut Vec<String>) -> Vec<i32> {
+    fn run(&self, pool: &[i32], wanted: &[Pose], problems: &mut Vec<Message>) -> Vec<i32> {
         let get = |handle: i32| self.by_handle.get(&handle).copied();
         // the pool by where each object lies on the floor, so each segment finds its copy
         // among a few neighbours instead of all of them
@@ -344,18 +355,24 @@ impl Matching<'_> {
                     let c = pool[k];
                     if c != self.h.template && get(c).and_then(|o| o.parent) != Some(self.h.parent)
                     {
-                        problems.push(format!(
-                            "{} {i} `{}` is not a child of `{}`",
-                            self.noun,
-                            get(c).map(|o| o.name.as_str()).unwrap_or("?"),
-                            self.parent
-                        ));
+                        problems.push(
+                            format!(
+                                "{} {i} `{}` is not a child of `{}`",
+                                self.noun,
+                                get(c).map(|o| o.name.as_str()).unwrap_or("?"),
+                                self.parent
+                            )
+                            .into(),
+                        );
                     }
                 }
-                None => problems.push(format!(
-                    "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
-                    self.noun, want.x, want.y, want.z, want.yaw
-                )),
+                None => problems.push(
+                    format!(
+                        "no {} at ({:.3}, {:.3}, {:.3}) yaw {:.4}",
+                        self.noun, want.x, want.y, want.z, want.yaw
+                    )
+                    .into(),
+                ),
             }
         }
         pool.iter()

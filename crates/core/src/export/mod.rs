@@ -33,6 +33,7 @@ use std::path::Path;
 use crate::layout::Layout;
 use crate::layout::block_grid::BlockGrid;
 use crate::mesh::MeshMaze;
+use crate::wording::{Message, Opt, Value};
 use solids::Solids;
 
 /// The formats `export` writes (`--format` names them in kebab case: `coppelia-model`, ...).
@@ -110,13 +111,14 @@ impl Format {
     }
 
     /// Why `path` names no format, in one line: a bare `.xml` is ambiguous (CoppeliaSim or
-    /// MuJoCo), anything else unknown; both list every ending.
-    pub fn refusal(path: &Path) -> String {
+    /// MuJoCo), anything else unknown; both list every ending, and with `format_option`
+    /// (the caller takes a format by name too) say that it may be named.
+    pub fn refusal(path: &Path, format_option: bool) -> Message {
         let bare_xml = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-        format!(
-            "{}: {}export writes {} files (the ending chooses the format, or --format NAME)",
+        let refusal = Message::text(format!(
+            "{}: {}export writes {} files (the ending chooses the format",
             path.display(),
             if bare_xml {
                 "a bare .xml is ambiguous; "
@@ -124,7 +126,14 @@ impl Format {
                 ""
             },
             Format::endings()
-        )
+        ));
+        match format_option {
+            true => refusal
+                .and(", or ")
+                .and_setting(Opt::Format, Value::Placeholder("NAME"))
+                .and(")"),
+            false => refusal.and(")"),
+        }
     }
 
     /// The endings of every format, for messages: `.simmodel.xml, .simscene.xml, .mjcf, ...`,

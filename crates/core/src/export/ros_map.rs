@@ -17,6 +17,7 @@
 
 use crate::layout::{Layout, Style};
 use crate::mesh::MeshMaze;
+use crate::wording::{Message, Opt};
 
 use super::solids::{Part, Slab, Solids, num};
 
@@ -90,18 +91,23 @@ pub fn map(layout: &Layout, options: &Options, image: &str) -> anyhow::Result<Ro
     let px = options
         .px_per_metre
         .unwrap_or_else(|| default_px_per_metre(layout));
-    anyhow::ensure!(
-        px.is_finite() && px > 0.0,
-        "--px-per-m must be a positive number, got {px}"
-    );
+    if !(px.is_finite() && px > 0.0) {
+        return Err(Message::opt(Opt::PxPerM)
+            .and(format!(" must be a positive number, got {px}"))
+            .into());
+    }
     let resolution = 1.0 / px;
     let [fx, fy] = layout.floor.size;
     let side = |metres: f64| (metres * px - 1e-9).ceil().max(1.0);
     let (w, h) = (side(fx), side(fy));
-    anyhow::ensure!(
-        w <= f64::from(MAX_SIDE) && h <= f64::from(MAX_SIDE),
-        "a {fx} m x {fy} m floor at {px} px a metre is {w} x {h} px, more than {MAX_SIDE} a side: pass a smaller --px-per-m"
-    );
+    let fits = w <= f64::from(MAX_SIDE) && h <= f64::from(MAX_SIDE);
+    if !fits {
+        return Err(Message::text(format!(
+            "a {fx} m x {fy} m floor at {px} px a metre is {w} x {h} px, more than {MAX_SIDE} a side: pass a smaller "
+        ))
+        .and_opt(Opt::PxPerM)
+        .into());
+    }
     let solids = Solids::new(layout, &maze);
     let raster = Raster {
         size: [w as u32, h as u32],
@@ -295,12 +301,17 @@ mod tests {
 
     #[test]
     fn a_map_too_large_names_the_option() {
+        use crate::wording::Part;
         let layout = course_lines();
         let huge = Options {
             px_per_metre: Some(5000.0),
             ..Options::default()
         };
-        let err = map(&layout, &huge, "m.pgm").unwrap_err().to_string();
-        assert!(err.contains("pass a smaller --px-per-m"), "{err}");
+        let err = map(&layout, &huge, "m.pgm").unwrap_err();
+        let message = err.downcast_ref::<Message>().expect("a worded message");
+        assert!(
+            message.parts().ends_with(&[Part::Opt(Opt::PxPerM)]),
+            "{err}"
+        );
     }
 }

@@ -21,6 +21,7 @@ use std::str::FromStr;
 
 use crate::maze::{Grid, Maze};
 use crate::rng::MazeRng;
+use crate::wording::{Message, Opt, Value};
 
 pub use aldous_broder::AldousBroder;
 pub use binary_tree::BinaryTree;
@@ -149,26 +150,25 @@ impl Algorithm {
         self,
         growing: Option<GrowingMode>,
         bias: Option<Bias>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Message> {
         let mut algorithm = self;
+        // "--growing oldest applies to --algo growing-tree, not prim"
+        let refused = |opt, value: &dyn fmt::Display, takes: &str, other: &Algorithm| {
+            Message::setting(opt, Value::word(value))
+                .and(" applies to ")
+                .and_setting(Opt::Algo, Value::word(takes))
+                .and(format!(", not {other}"))
+        };
         if let Some(mode) = growing {
             match &mut algorithm {
                 Algorithm::GrowingTree(current) => *current = mode,
-                other => {
-                    return Err(format!(
-                        "--growing {mode} applies to --algo growing-tree, not {other}"
-                    ));
-                }
+                other => return Err(refused(Opt::Growing, &mode, "growing-tree", other)),
             }
         }
         if let Some(new_bias) = bias {
             match &mut algorithm {
                 Algorithm::BinaryTree(current) => *current = new_bias,
-                other => {
-                    return Err(format!(
-                        "--bias {new_bias} applies to --algo binary-tree, not {other}"
-                    ));
-                }
+                other => return Err(refused(Opt::Bias, &new_bias, "binary-tree", other)),
             }
         }
         Ok(algorithm)
@@ -197,7 +197,7 @@ impl Algorithm {
 
     /// The algorithm a layout names, with its recorded options (the inverse of
     /// [`name`](Self::name) and [`options`](Self::options)).
-    pub fn from_parts(name: &str, options: &AlgorithmOptions) -> Result<Self, String> {
+    pub fn from_parts(name: &str, options: &AlgorithmOptions) -> Result<Self, Message> {
         let growing = options
             .growing
             .as_deref()
@@ -215,7 +215,7 @@ impl Algorithm {
     pub fn from_name_and_pairs<'a>(
         name: &str,
         pairs: impl IntoIterator<Item = (&'a str, &'a str)>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Message> {
         let mut options = AlgorithmOptions::default();
         for (key, value) in pairs {
             match key {
@@ -427,11 +427,11 @@ mod tests {
         let err = Algorithm::Dfs
             .with_options(Some(GrowingMode::Oldest), None)
             .unwrap_err();
-        assert!(err.contains("growing-tree"), "{err}");
+        assert!(err.to_string().contains("growing-tree"), "{err}");
         let err = Algorithm::Prim
             .with_options(None, Some(Bias::NorthWest))
             .unwrap_err();
-        assert!(err.contains("binary-tree"), "{err}");
+        assert!(err.to_string().contains("binary-tree"), "{err}");
         assert_eq!(
             "binary-tree"
                 .parse::<Algorithm>()

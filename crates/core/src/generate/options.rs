@@ -7,6 +7,7 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::maze::Direction;
+use crate::wording::{Message, Opt, Value};
 
 /// Options recorded in a layout's `generator.options`; absent fields are omitted, so an
 /// algorithm without options records `{}`. Keys serialise in this fixed order.
@@ -126,7 +127,7 @@ impl GrowingMode {
 
     /// Parses a `--growing` value: `newest`, `oldest`, `random`, `middle` or `mix:P` with
     /// P a probability such as `0.75`.
-    pub fn parse(s: &str) -> Result<Self, String> {
+    pub fn parse(s: &str) -> Result<Self, Message> {
         let lower = s.to_ascii_lowercase();
         match lower.as_str() {
             "newest" => Ok(Self::Newest),
@@ -134,13 +135,14 @@ impl GrowingMode {
             "random" => Ok(Self::Random),
             "middle" => Ok(Self::Middle),
             _ => match lower.strip_prefix("mix:") {
-                Some(p) => MixRatio::parse(p)
-                    .map(Self::Mix)
-                    .map_err(|e| format!("--growing mix:P: {e}")),
+                Some(p) => MixRatio::parse(p).map(Self::Mix).map_err(|e| {
+                    Message::setting(Opt::Growing, Value::word("mix:P")).and(format!(": {e}"))
+                }),
                 None => Err(format!(
                     "unknown growing mode '{s}' (known: {})",
                     Self::WORDS.join(", ")
-                )),
+                )
+                .into()),
             },
         }
     }
@@ -159,9 +161,9 @@ impl fmt::Display for GrowingMode {
 }
 
 impl FromStr for GrowingMode {
-    type Err = String;
+    type Err = Message;
 
-    fn from_str(s: &str) -> Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, Message> {
         Self::parse(s)
     }
 }
@@ -282,9 +284,19 @@ mod tests {
             assert_eq!(mode.to_string(), text);
         }
         assert_eq!(GrowingMode::parse("OLDEST"), Ok(GrowingMode::Oldest));
-        assert!(GrowingMode::parse("mix:2").unwrap_err().contains("mix:P"));
+        assert!(
+            GrowingMode::parse("mix:2")
+                .unwrap_err()
+                .to_string()
+                .contains("mix:P")
+        );
         assert!(GrowingMode::parse("mix").is_err());
-        assert!(GrowingMode::parse("widest").unwrap_err().contains("newest"));
+        assert!(
+            GrowingMode::parse("widest")
+                .unwrap_err()
+                .to_string()
+                .contains("newest")
+        );
     }
 
     #[test]

@@ -6,12 +6,13 @@ use nalgebra::Point2;
 
 use super::endpoints::{self, EndpointSpec, resolve};
 use super::geometry::{Geometry, course, round_um};
-use super::limits::{self, Naming};
+use super::limits::{self, Name, Naming};
 use super::{
     Endpoint, FORMAT, FloorSpec, GeneratorInfo, GridSpec, Layout, LineSpec, Pose, VERSION, passages,
 };
 use crate::generate::{Algorithm, generate_braided};
 use crate::maze::{Cell, Grid, Maze, Metrics};
+use crate::wording::{Message, Opt, Value};
 
 /// The floor a maze is placed on.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,18 +66,23 @@ impl GenerateSpec {
     /// maze against the largest floor, the origin, the floor, the start and end, the
     /// number of segments, and that the maze fits the floor. The error is one line naming
     /// the option, the value and the range.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), Message> {
         self.check_on(self.grid).map(|_| ())
     }
 
     /// [`GenerateSpec::check`] on `grid`; the geometry as the layout will store it.
-    fn check_on(&self, grid: Grid) -> Result<Geometry, String> {
+    fn check_on(&self, grid: Grid) -> Result<Geometry, Message> {
         if let Some(v) = limits::check_braid(self.braid) {
-            return Err(v.to_string());
+            return Err(v.line());
         }
         first(limits::check_template(&self.geometry, Naming::Options))?;
         let placement = limits::check_placement(&self.geometry, Naming::Options);
-        first(placement.iter().filter(|v| v.name == "--rotation").cloned())?;
+        first(
+            placement
+                .iter()
+                .filter(|v| v.name == Name::Opt(Opt::Rotation))
+                .cloned(),
+        )?;
         let geometry = self.geometry.rounded();
         check_span(grid, &geometry)?;
         first(placement)?;
@@ -87,10 +93,13 @@ impl GenerateSpec {
         let per_passage = geometry.segments_per_passage();
         let bound = limits::segments_bound(grid, self.braid > 0.0, per_passage);
         if bound > limits::MAX_SEGMENTS {
-            return Err(format!(
-                "a {grid} maze with {per_passage} line copies a passage could need {bound} segments, more than the {} a layout may hold: use a smaller --size or a longer --line-length",
+            return Err(Message::text(format!(
+                "a {grid} maze with {per_passage} line copies a passage could need {bound} segments, more than the {} a layout may hold: use a smaller ",
                 limits::MAX_SEGMENTS
-            ));
+            ))
+            .and_opt(Opt::Size)
+            .and(" or a longer ")
+            .and_opt(Opt::LineLength));
         }
         floor_for(grid, &geometry, self.floor)?;
         Ok(geometry)
@@ -98,16 +107,16 @@ impl GenerateSpec {
 }
 
 /// The first violation, as an error.
-fn first(violations: impl IntoIterator<Item = limits::Violation>) -> Result<(), String> {
+fn first(violations: impl IntoIterator<Item = limits::Violation>) -> Result<(), Message> {
     match violations.into_iter().next() {
-        Some(v) => Err(v.to_string()),
+        Some(v) => Err(v.line()),
         None => Ok(()),
     }
 }
 
 /// The maze itself (cells times cell size, turned by the rotation) fits the largest
 /// floor; checked before the origin, which by default centres the maze.
-fn check_span(grid: Grid, geometry: &Geometry) -> Result<(), String> {
+fn check_span(grid: Grid, geometry: &Geometry) -> Result<(), Message> {
     let (w, h) = (
         f64::from(grid.width()) * geometry.cell_size,
         f64::from(grid.height()) * geometry.cell_size,
@@ -116,27 +125,31 @@ fn check_span(grid: Grid, geometry: &Geometry) -> Result<(), String> {
     let span = [cos * w + sin * h, sin * w + cos * h];
     let tolerance = limits::floor_tolerance(geometry, grid);
     if span.iter().any(|&s| s > limits::MAX_FLOOR + tolerance) {
-        return Err(format!(
-            "the {grid} maze with --cell-size {} spans {:.3} m x {:.3} m on the floor: more than the largest floor, {} m x {} m",
-            limits::show(geometry.cell_size),
-            span[0],
-            span[1],
-            limits::MAX_FLOOR,
-            limits::MAX_FLOOR
-        ));
+        return Err(Message::text(format!("the {grid} maze with "))
+            .and_setting(
+                Opt::CellSize,
+                Value::number(limits::show(geometry.cell_size)),
+            )
+            .and(format!(
+                " spans {:.3} m x {:.3} m on the floor: more than the largest floor, {} m x {} m",
+                span[0],
+                span[1],
+                limits::MAX_FLOOR,
+                limits::MAX_FLOOR
+            )));
     }
     Ok(())
 }
 
 /// Generates the maze `spec` describes and lays it out; every option is checked first
 /// ([`GenerateSpec::check`]), so a refused spec allocates nothing.
-pub fn build_layout(spec: &GenerateSpec) -> Result<Layout, String> {
+pub fn build_layout(spec: &GenerateSpec) -> Result<Layout, Message> {
     plan_layout(spec).map(Planned::into_layout)
 }
 
 /// [`build_layout`] without computing the segments: they come from the maze when asked,
 /// so a big layout can be written without its segment list in memory.
-pub fn plan_layout(spec: &GenerateSpec) -> Result<Planned, String> {
+pub fn plan_layout(spec: &GenerateSpec) -> Result<Planned, Message> {
     spec.check()?;
     let maze = generate_braided(spec.grid, spec.algorithm, spec.seed, spec.braid);
     plan_maze(maze, spec)
@@ -171,8 +184,8 @@ impl Planned {
     /// segments are left to compute.
     pub fn with_walls(
         mut self,
-        draw: impl FnOnce(&mut Layout, &Maze) -> Result<(), String>,
-    ) -> Result<Planned, String> {
+        draw: impl FnOnce(&mut Layout, &Maze) -> Result<(), Message>,
+    ) -> Result<Planned, Message> {
         draw(&mut self.head, &self.maze)?;
         self.offsets.clear();
         Ok(self)
@@ -191,7 +204,7 @@ impl Planned {
 /// Lays out an already generated `maze` as `spec` says. Everything is computed from the
 /// geometry as the layout stores it (micrometres, microradians), so `validate` finds
 /// what was drawn.
-pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, String> {
+pub fn plan_maze(maze: Maze, spec: &GenerateSpec) -> Result<Planned, Message> {
     let grid = maze.grid();
     let geometry = spec.check_on(grid)?;
     let (start, end, from_start) = resolve(&maze, spec.start, spec.end)?;
@@ -266,31 +279,36 @@ fn endpoint(geometry: &Geometry, cell: Cell) -> Endpoint {
 /// The floor size for `grid`: checked when fixed, grown in panels when automatic, never
 /// beyond the largest floor. The tolerance covers the writer's rounding
 /// ([`limits::floor_tolerance`]), so rounding never makes a maze miss its floor.
-fn floor_for(grid: Grid, geometry: &Geometry, floor: FloorSize) -> Result<[f64; 2], String> {
+fn floor_for(grid: Grid, geometry: &Geometry, floor: FloorSize) -> Result<[f64; 2], Message> {
     let need = extent_needed(&geometry.grid_corners(grid));
     let tolerance = limits::floor_tolerance(geometry, grid);
     match floor {
         FloorSize::Fixed(size) if fits_within(need, size, tolerance) => Ok(size.map(round_um)),
-        FloorSize::Fixed(size) => Err(format!(
-            "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin) but --floor-size is {} m x {} m",
-            need[0],
-            need[1],
+        FloorSize::Fixed(size) => Err(Message::text(format!(
+            "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin) but ",
+            need[0], need[1],
+        ))
+        .and_opt(Opt::FloorSize)
+        .and(format!(
+            " is {} m x {} m",
             limits::show(size[0]),
             limits::show(size[1])
-        )),
+        ))),
         FloorSize::Auto => {
             let size = need.map(|n| {
                 let panels = ((n - tolerance) / course::FLOOR_PANEL - 1e-9).ceil();
                 (panels * course::FLOOR_PANEL).max(course::FLOOR_SIZE)
             });
             if size.iter().any(|&s| s > limits::MAX_FLOOR) {
-                return Err(format!(
-                    "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin), more than the largest floor, {} m x {} m: move --origin towards 0,0",
+                return Err(Message::text(format!(
+                    "the maze needs a floor of {:.3} m x {:.3} m (centred on the floor origin), more than the largest floor, {} m x {} m: move ",
                     need[0],
                     need[1],
                     limits::MAX_FLOOR,
                     limits::MAX_FLOOR
-                ));
+                ))
+                .and_opt(Opt::Origin)
+                .and(" towards 0,0"));
             }
             Ok(size)
         }
@@ -316,6 +334,7 @@ pub fn fits_within(need: [f64; 2], size: [f64; 2], tolerance: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::wording::testing::dashed;
 
     #[test]
     fn course_layout_matches_the_handout() {
@@ -350,6 +369,7 @@ mod tests {
         assert_eq!(build_layout(&spec).unwrap().floor.size, [25.0, 15.0]);
         spec.floor = FloorSize::Fixed([10.0, 10.0]);
         let err = build_layout(&spec).unwrap_err();
+        let err = dashed(&err);
         assert!(err.contains("--floor-size is 10 m x 10 m"), "{err}");
     }
 }

@@ -5,6 +5,7 @@ use std::str::FromStr;
 
 use crate::maze::analysis::{Distances, diameter_ends};
 use crate::maze::{Cell, Grid, Maze};
+use crate::wording::{Message, Opt, Value};
 
 /// A grid corner, by compass name (north is +y).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -103,36 +104,56 @@ impl fmt::Display for EndpointSpec {
 /// Checks the start and end specs against `grid` before any maze exists: cells on the
 /// grid, `farthest` only for the end, `farthest-pair` only for the start and then with
 /// no other end (it picks both).
-pub fn check(grid: Grid, start: EndpointSpec, end: EndpointSpec) -> Result<(), String> {
+pub fn check(grid: Grid, start: EndpointSpec, end: EndpointSpec) -> Result<(), Message> {
     match (start, end) {
-        (EndpointSpec::Farthest, _) => {
-            return Err("--start farthest needs a reference: use --start farthest-pair".into());
-        }
-        (_, EndpointSpec::FarthestPair) => {
-            return Err("--end farthest-pair is not a thing: use --start farthest-pair".into());
-        }
+        (EndpointSpec::Farthest, _) => return Err(farthest_start()),
+        (_, EndpointSpec::FarthestPair) => return Err(farthest_pair_end()),
         (EndpointSpec::FarthestPair, EndpointSpec::Farthest) => return Ok(()),
         (EndpointSpec::FarthestPair, end) => {
-            return Err(format!(
-                "--end {end} conflicts with --start farthest-pair, which picks both ends: drop --end"
-            ));
+            return Err(Message::setting(Opt::End, Value::word(end))
+                .and(" conflicts with ")
+                .and_message(farthest_pair())
+                .and(", which picks both ends: drop ")
+                .and_opt(Opt::End));
         }
         _ => {}
     }
-    for (spec, which) in [(start, "start"), (end, "end")] {
+    for (spec, which) in [(start, Opt::Start), (end, Opt::End)] {
         if let EndpointSpec::Cell(cell) = spec
             && !grid.contains(cell)
         {
-            return Err(format!(
-                "--{which} {},{} is off the {grid} grid (columns 0..{}, rows 0..{})",
-                cell.x,
-                cell.y,
-                grid.width() - 1,
-                grid.height() - 1
-            ));
+            return Err(off_grid(grid, cell, which));
         }
     }
     Ok(())
+}
+
+/// `--start farthest-pair`.
+fn farthest_pair() -> Message {
+    Message::setting(Opt::Start, Value::word(EndpointSpec::FarthestPair))
+}
+
+/// Why the start cannot be `farthest`.
+fn farthest_start() -> Message {
+    Message::setting(Opt::Start, Value::word(EndpointSpec::Farthest))
+        .and(" needs a reference: use ")
+        .and_message(farthest_pair())
+}
+
+/// Why the end cannot be `farthest-pair`.
+fn farthest_pair_end() -> Message {
+    Message::setting(Opt::End, Value::word(EndpointSpec::FarthestPair))
+        .and(" is not a thing: use ")
+        .and_message(farthest_pair())
+}
+
+/// Why `cell`, given for `which` end, does not do on `grid`.
+fn off_grid(grid: Grid, cell: Cell, which: Opt) -> Message {
+    Message::setting(which, Value::word(format!("{},{}", cell.x, cell.y))).and(format!(
+        " is off the {grid} grid (columns 0..{}, rows 0..{})",
+        grid.width() - 1,
+        grid.height() - 1
+    ))
 }
 
 /// Resolves the start and end specs on `maze` to cells, or says why they don't fit; with
@@ -142,26 +163,20 @@ pub fn resolve(
     maze: &Maze,
     start: EndpointSpec,
     end: EndpointSpec,
-) -> Result<(Cell, Cell, Distances), String> {
+) -> Result<(Cell, Cell, Distances), Message> {
     let grid = maze.grid();
     check(grid, start, end)?;
-    let fixed = |spec: EndpointSpec, which: &str| -> Result<Option<Cell>, String> {
+    let fixed = |spec: EndpointSpec, which: Opt| -> Result<Option<Cell>, Message> {
         match spec {
             EndpointSpec::Cell(cell) if grid.contains(cell) => Ok(Some(cell)),
-            EndpointSpec::Cell(cell) => Err(format!(
-                "--{which} {},{} is off the {grid} grid (columns 0..{}, rows 0..{})",
-                cell.x,
-                cell.y,
-                grid.width() - 1,
-                grid.height() - 1
-            )),
+            EndpointSpec::Cell(cell) => Err(off_grid(grid, cell, which)),
             EndpointSpec::Corner(corner) => Ok(Some(corner.cell(grid))),
             _ => Ok(None),
         }
     };
     let start_cell = match start {
         EndpointSpec::Farthest => {
-            return Err("--start farthest needs a reference: use --start farthest-pair".into());
+            return Err(farthest_start());
         }
         EndpointSpec::FarthestPair => {
             let (a, b, _) = diameter_ends(maze);
@@ -172,15 +187,15 @@ pub fn resolve(
                 Distances::from(maze, start),
             ));
         }
-        spec => fixed(spec, "start")?.expect("cell or corner"),
+        spec => fixed(spec, Opt::Start)?.expect("cell or corner"),
     };
     let from_start = Distances::from(maze, grid.index(start_cell));
     let end_cell = match end {
         EndpointSpec::FarthestPair => {
-            return Err("--end farthest-pair is not a thing: use --start farthest-pair".into());
+            return Err(farthest_pair_end());
         }
         EndpointSpec::Farthest => grid.cell(from_start.farthest().0),
-        spec => fixed(spec, "end")?.expect("cell or corner"),
+        spec => fixed(spec, Opt::End)?.expect("cell or corner"),
     };
     Ok((start_cell, end_cell, from_start))
 }
@@ -190,6 +205,7 @@ mod tests {
     use super::*;
     use crate::generate::{Algorithm, generate};
     use crate::maze::analysis::distances_from;
+    use crate::wording::testing::dashed;
 
     #[test]
     fn parses_every_form() {
@@ -234,6 +250,7 @@ mod tests {
             EndpointSpec::Farthest,
         )
         .unwrap_err();
+        let err = dashed(&err);
         assert!(err.contains("--start 3,0 is off the 3x3 grid"), "{err}");
     }
 
@@ -244,7 +261,7 @@ mod tests {
         assert!(check(grid, pair, EndpointSpec::Farthest).is_ok());
         let err = check(grid, pair, EndpointSpec::Corner(Corner::NorthEast)).unwrap_err();
         assert_eq!(
-            err,
+            dashed(&err),
             "--end ne conflicts with --start farthest-pair, which picks both ends: drop --end"
         );
         assert!(check(grid, pair, EndpointSpec::Cell(Cell::new(1, 1))).is_err());

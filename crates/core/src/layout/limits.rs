@@ -2,7 +2,7 @@
 //! allocates anything) and `validate` (on what it reads) both check against, so
 //! `generate` can never write a layout that `validate` rejects.
 //!
-//! | quantity | option | layout field | range |
+//! | quantity | option ([`Opt`]) | layout field | range |
 //! |---|---|---|---|
 //! | cell side | `--cell-size` | `grid.cell_size` | 0.001..10000 m, and at least line length - line width |
 //! | line length | `--line-length` | `line.length` | 0.001..10000 m, and at least (cell + width) / 64 |
@@ -21,6 +21,7 @@ use std::fmt;
 
 use super::geometry::Geometry;
 use crate::maze::Grid;
+use crate::wording::{Message, Opt, Value};
 
 /// The largest floor side, metres: 10 km, the smallest round size that still holds the
 /// largest grid (4096x4096) at the course's 1 m cells (a 4100 m floor), far beyond any
@@ -127,32 +128,104 @@ pub const BRAID: Range = Range {
 /// How quantities are named in messages: by `generate` option or by layout field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Naming {
-    /// `--cell-size`, `--line-z`, ...
+    /// By the option that sets it ([`Opt::CellSize`], ...), which each adapter words.
     Options,
     /// `grid.cell_size`, `line.z`, ...
     Layout,
 }
 
-/// One number that is out of its range, or out of step with another.
+/// The name of a quantity in a message.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Violation {
-    /// The option or field, e.g. `--cell-size` or `grid.cell_size`.
-    pub name: String,
-    /// What is wrong, starting with the value, e.g. `0.4 is out of range 0.001..10000 m`.
-    pub message: String,
+pub enum Name {
+    /// The option that sets it.
+    Opt(Opt),
+    /// One axis (`x`, `y`) of an option that sets a pair.
+    Axis(Opt, &'static str),
+    /// A layout field: `grid.cell_size`, `segments[3].yaw`.
+    Field(String),
 }
 
-impl fmt::Display for Violation {
-    /// `--braid -0.5 is out of range 0..1`: the way `generate` reports it.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} {}", self.name, self.message)
+impl Name {
+    /// The name alone.
+    pub fn alone(&self) -> Message {
+        match self {
+            Name::Opt(opt) => Message::opt(*opt),
+            Name::Axis(opt, axis) => Message::opt(*opt).and(format!(" {axis}")),
+            Name::Field(field) => Message::text(field.clone()),
+        }
+    }
+
+    /// The name with the value it has: `--line-z 0.001`, `line.z 0.001`.
+    pub fn with(&self, value: &str) -> Message {
+        match self {
+            Name::Opt(opt) => Message::setting(*opt, Value::Number(value.to_string())),
+            other => other.alone().and(format!(" {value}")),
+        }
     }
 }
 
-fn violation(name: impl Into<String>, message: String) -> Violation {
+impl From<&str> for Name {
+    fn from(field: &str) -> Self {
+        Name::Field(field.to_string())
+    }
+}
+
+impl From<String> for Name {
+    fn from(field: String) -> Self {
+        Name::Field(field)
+    }
+}
+
+impl fmt::Display for Name {
+    /// A field as it is, an option in the neutral wording.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.alone().fmt(f)
+    }
+}
+
+/// One number that is out of its range, or out of step with another.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Violation {
+    /// The option or field, e.g. [`Opt::CellSize`] or `grid.cell_size`.
+    pub name: Name,
+    /// The value the message starts with, as shown (`0.4`), if it does.
+    pub value: Option<String>,
+    /// What is wrong, after the value: `is out of range 0.001..10000 m`.
+    pub message: Message,
+}
+
+impl Violation {
+    /// The whole line, as `generate` reports it: `--braid -0.5 is out of range 0..1`.
+    pub fn line(&self) -> Message {
+        let name = match &self.value {
+            Some(value) => self.name.with(value),
+            None => self.name.alone(),
+        };
+        name.and(" ").and_message(self.message.clone())
+    }
+
+    /// What is wrong, the value first (`0.4 is out of range 0.001..10000 m`): a layout
+    /// problem's text, beside its field ([`Name`]'s `Display`).
+    pub fn problem(&self) -> String {
+        match &self.value {
+            Some(value) => format!("{value} {}", self.message),
+            None => self.message.to_string(),
+        }
+    }
+}
+
+impl fmt::Display for Violation {
+    /// [`Violation::line`] in the neutral wording.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.line().fmt(f)
+    }
+}
+
+fn violation(name: &Name, value: Option<String>, message: impl Into<Message>) -> Violation {
     Violation {
-        name: name.into(),
-        message,
+        name: name.clone(),
+        value,
+        message: message.into(),
     }
 }
 
@@ -168,69 +241,70 @@ pub fn show(value: f64) -> String {
 }
 
 /// `value` checked against `range`: `None` if inside.
-pub fn check_range(name: &str, value: f64, range: Range) -> Option<Violation> {
-    (!range.contains(value))
-        .then(|| violation(name, format!("{} is out of range {range}", show(value))))
+pub fn check_range(name: impl Into<Name>, value: f64, range: Range) -> Option<Violation> {
+    (!range.contains(value)).then(|| {
+        violation(
+            &name.into(),
+            Some(show(value)),
+            format!("is out of range {range}"),
+        )
+    })
 }
 
 /// A length: the message says "positive" first for zero, negative or non-finite values.
-fn check_length(name: &str, value: f64, range: Range) -> Option<Violation> {
+fn check_length(name: &Name, value: f64, range: Range) -> Option<Violation> {
     if !(value.is_finite() && value > 0.0) {
         return Some(violation(
             name,
+            None,
             format!("must be a positive number of metres, not {}", show(value)),
         ));
     }
-    check_range(name, value, range)
+    check_range(name.clone(), value, range)
 }
 
 /// The share of dead ends to braid (`--braid`).
 pub fn check_braid(braid: f64) -> Option<Violation> {
-    check_range("--braid", braid, BRAID).map(|mut v| {
-        v.message = format!(
-            "{}: braid is a share of the dead ends, and {} is not a number from 0 to 1",
-            v.message,
+    check_range(Name::Opt(Opt::Braid), braid, BRAID).map(|mut v| {
+        v.message = v.message.and(format!(
+            ": braid is a share of the dead ends, and {} is not a number from 0 to 1",
             show(braid)
-        );
+        ));
         v
     })
 }
 
 /// The names of the geometry's quantities.
 struct Names {
-    cell: &'static str,
-    length: &'static str,
-    width: &'static str,
-    line_z: &'static str,
-    marker_z: &'static str,
-    origin: [&'static str; 2],
-    rotation: &'static str,
+    cell: Name,
+    length: Name,
+    width: Name,
+    line_z: Name,
+    marker_z: Name,
+    origin: [Name; 2],
+    rotation: Name,
 }
 
-const OPTION_NAMES: Names = Names {
-    cell: "--cell-size",
-    length: "--line-length",
-    width: "--line-width",
-    line_z: "--line-z",
-    marker_z: "--marker-z",
-    origin: ["--origin x", "--origin y"],
-    rotation: "--rotation",
-};
-
-const FIELD_NAMES: Names = Names {
-    cell: "grid.cell_size",
-    length: "line.length",
-    width: "line.width",
-    line_z: "line.z",
-    marker_z: "start.pose.z",
-    origin: ["grid.origin[0]", "grid.origin[1]"],
-    rotation: "grid.rotation",
-};
-
-fn names(naming: Naming) -> &'static Names {
+fn names(naming: Naming) -> Names {
     match naming {
-        Naming::Options => &OPTION_NAMES,
-        Naming::Layout => &FIELD_NAMES,
+        Naming::Options => Names {
+            cell: Name::Opt(Opt::CellSize),
+            length: Name::Opt(Opt::LineLength),
+            width: Name::Opt(Opt::LineWidth),
+            line_z: Name::Opt(Opt::LineZ),
+            marker_z: Name::Opt(Opt::MarkerZ),
+            origin: [Name::Axis(Opt::Origin, "x"), Name::Axis(Opt::Origin, "y")],
+            rotation: Name::Opt(Opt::Rotation),
+        },
+        Naming::Layout => Names {
+            cell: "grid.cell_size".into(),
+            length: "line.length".into(),
+            width: "line.width".into(),
+            line_z: "line.z".into(),
+            marker_z: "start.pose.z".into(),
+            origin: ["grid.origin[0]".into(), "grid.origin[1]".into()],
+            rotation: "grid.rotation".into(),
+        },
     }
 }
 
@@ -241,33 +315,31 @@ fn names(naming: Naming) -> &'static Names {
 pub fn check_template(geometry: &Geometry, naming: Naming) -> Vec<Violation> {
     let n = names(naming);
     let mut found: Vec<Violation> = [
-        check_length(n.cell, geometry.cell_size, LENGTH),
-        check_length(n.length, geometry.line_length, LENGTH),
-        check_length(n.width, geometry.line_width, LENGTH),
+        check_length(&n.cell, geometry.cell_size, LENGTH),
+        check_length(&n.length, geometry.line_length, LENGTH),
+        check_length(&n.width, geometry.line_width, LENGTH),
     ]
     .into_iter()
     .flatten()
     .collect();
     let g = geometry.rounded();
     if found.is_empty() {
-        found.extend(check_fit(&g, n));
+        found.extend(check_fit(&g, &n));
     }
     let heights: Vec<Violation> = [
-        check_range(n.line_z, geometry.line_z, HEIGHT),
-        check_range(n.marker_z, geometry.marker_z, HEIGHT),
+        check_range(n.line_z.clone(), geometry.line_z, HEIGHT),
+        check_range(n.marker_z.clone(), geometry.marker_z, HEIGHT),
     ]
     .into_iter()
     .flatten()
     .collect();
     if heights.is_empty() && g.marker_z <= g.line_z {
         found.push(violation(
-            n.marker_z,
-            format!(
-                "{} m is not above {} {} m: the markers must lie on top of the lines",
-                show(g.marker_z),
-                n.line_z,
-                show(g.line_z)
-            ),
+            &n.marker_z,
+            Some(show(g.marker_z)),
+            Message::text("m is not above ")
+                .and_message(n.line_z.with(&show(g.line_z)))
+                .and(" m: the markers must lie on top of the lines"),
         ));
     }
     found.extend(heights);
@@ -279,49 +351,46 @@ fn check_fit(g: &Geometry, n: &Names) -> Option<Violation> {
     let (c, l, w) = (g.cell_size, g.line_length, g.line_width);
     if w >= c {
         Some(violation(
-            n.width,
-            format!(
-                "{} m is not narrower than {} {} m: lines that wide paint over the walls between passages",
-                show(w),
-                n.cell,
-                show(c)
-            ),
+            &n.width,
+            Some(show(w)),
+            Message::text("m is not narrower than ")
+                .and_message(n.cell.with(&show(c)))
+                .and(" m: lines that wide paint over the walls between passages"),
         ))
     } else if l > c + w + 1e-9 {
         Some(violation(
-            n.cell,
-            format!(
-                "{} m is too small for the line template: one {} m line would reach over the walls; a cell needs at least {} - {} = {} m",
-                show(c),
-                show(l),
-                n.length,
-                n.width,
-                show(round_um(l - w))
-            ),
+            &n.cell,
+            Some(show(c)),
+            Message::text(format!(
+                "m is too small for the line template: one {} m line would reach over the walls; a cell needs at least ",
+                show(l)
+            ))
+            .and_message(n.length.alone())
+            .and(" - ")
+            .and_message(n.width.alone())
+            .and(format!(" = {} m", show(round_um(l - w)))),
         ))
     } else if g.segments_per_passage() > MAX_SEGMENTS_PER_PASSAGE {
         Some(violation(
-            n.length,
-            format!(
-                "{} m is too short for {} {} m: a passage would take {} copies of the line, at most {MAX_SEGMENTS_PER_PASSAGE} are allowed (the line needs at least (cell + width) / {MAX_SEGMENTS_PER_PASSAGE} = {} m)",
-                show(l),
-                n.cell,
-                show(c),
-                g.segments_per_passage(),
-                show((c + w) / MAX_SEGMENTS_PER_PASSAGE as f64)
-            ),
+            &n.length,
+            Some(show(l)),
+            Message::text("m is too short for ")
+                .and_message(n.cell.with(&show(c)))
+                .and(format!(
+                    " m: a passage would take {} copies of the line, at most {MAX_SEGMENTS_PER_PASSAGE} are allowed (the line needs at least (cell + width) / {MAX_SEGMENTS_PER_PASSAGE} = {} m)",
+                    g.segments_per_passage(),
+                    show((c + w) / MAX_SEGMENTS_PER_PASSAGE as f64)
+                )),
         ))
     } else if l <= w + 2.0 * SEGMENT_TOLERANCE {
         // copies are spread by (c + w - l) / (n - 1); with l <= w some copy of one passage
         // lands exactly on a copy of the next where they meet at a cell centre
         Some(violation(
-            n.length,
-            format!(
-                "{} m is not longer than {} {} m: copies of so short a line land on each other where passages meet",
-                show(l),
-                n.width,
-                show(w)
-            ),
+            &n.length,
+            Some(show(l)),
+            Message::text("m is not longer than ")
+                .and_message(n.width.with(&show(w)))
+                .and(" m: copies of so short a line land on each other where passages meet"),
         ))
     } else {
         None
@@ -334,16 +403,18 @@ pub fn check_placement(geometry: &Geometry, naming: Naming) -> Vec<Violation> {
     let n = names(naming);
     let rotation = match naming {
         Naming::Options if !geometry.rotation.is_finite() => Some(violation(
-            n.rotation,
-            format!("{} rad is not a finite angle", show(geometry.rotation)),
+            &n.rotation,
+            Some(show(geometry.rotation)),
+            "rad is not a finite angle",
         )),
         Naming::Options => None,
         Naming::Layout => check_range(n.rotation, geometry.rotation, ROTATION),
     };
+    let [x, y] = n.origin;
     [
         rotation,
-        check_range(n.origin[0], geometry.origin[0], ORIGIN),
-        check_range(n.origin[1], geometry.origin[1], ORIGIN),
+        check_range(x, geometry.origin[0], ORIGIN),
+        check_range(y, geometry.origin[1], ORIGIN),
     ]
     .into_iter()
     .flatten()
@@ -353,11 +424,11 @@ pub fn check_placement(geometry: &Geometry, naming: Naming) -> Vec<Violation> {
 /// A floor size, each side in [`FLOOR`].
 pub fn check_floor(size: [f64; 2], naming: Naming) -> Vec<Violation> {
     let name = |axis: usize| match naming {
-        Naming::Options => ["--floor-size x", "--floor-size y"][axis],
-        Naming::Layout => ["floor.size[0]", "floor.size[1]"][axis],
+        Naming::Options => Name::Axis(Opt::FloorSize, ["x", "y"][axis]),
+        Naming::Layout => ["floor.size[0]", "floor.size[1]"][axis].into(),
     };
     (0..2)
-        .filter_map(|axis| check_length(name(axis), size[axis], FLOOR))
+        .filter_map(|axis| check_length(&name(axis), size[axis], FLOOR))
         .collect()
 }
 
@@ -401,6 +472,7 @@ fn round_um(value: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::layout::geometry::course;
+    use crate::wording::testing::dashed;
 
     fn course_geometry() -> Geometry {
         Geometry::course(Grid::new(9, 9).unwrap())
@@ -418,21 +490,20 @@ mod tests {
     #[test]
     fn messages_name_the_option_the_value_and_the_range() {
         assert_eq!(
-            check_braid(-0.5).unwrap().to_string(),
+            dashed(&check_braid(-0.5).unwrap().line()),
             "--braid -0.5 is out of range 0..1: braid is a share of the dead ends, and -0.5 is not a number from 0 to 1"
         );
         let mut g = course_geometry();
         g.cell_size = 1e308;
         assert_eq!(
-            check_template(&g, Naming::Options)[0].to_string(),
+            dashed(&check_template(&g, Naming::Options)[0].line()),
             "--cell-size 1e308 is out of range 0.001..10000 m"
         );
         g.cell_size = 0.4;
         let v = &check_template(&g, Naming::Options)[0];
-        assert_eq!(v.name, "--cell-size");
+        assert_eq!(v.name, Name::Opt(Opt::CellSize));
         assert!(
-            v.message
-                .contains("at least --line-length - --line-width = 0.5 m"),
+            dashed(&v.message).contains("at least --line-length - --line-width = 0.5 m"),
             "{v}"
         );
         g.cell_size = 1.0;
@@ -447,19 +518,24 @@ mod tests {
         assert!(
             check_template(&g, Naming::Options)[0]
                 .message
+                .to_string()
                 .contains("110 copies")
         );
         g.line_length = 0.05;
         g.cell_size = 0.5;
         let v = &check_template(&g, Naming::Options)[0];
         assert!(
-            v.name == "--line-length" && v.message.contains("not longer than"),
+            v.name == Name::Opt(Opt::LineLength)
+                && v.message.to_string().contains("not longer than"),
             "{v}"
         );
         g.cell_size = 1.0;
         g.line_length = 0.6;
         g.marker_z = 0.001;
-        assert_eq!(check_template(&g, Naming::Layout)[0].name, "start.pose.z");
+        assert_eq!(
+            check_template(&g, Naming::Layout)[0].name,
+            "start.pose.z".into()
+        );
         g.line_z = -5.0;
         assert_eq!(
             check_template(&g, Naming::Layout)[0].to_string(),
@@ -480,17 +556,20 @@ mod tests {
         let mut g = course_geometry();
         g.rotation = 1e308;
         assert!(check_placement(&g, Naming::Options).is_empty());
-        assert_eq!(check_placement(&g, Naming::Layout)[0].name, "grid.rotation");
+        assert_eq!(
+            check_placement(&g, Naming::Layout)[0].name,
+            "grid.rotation".into()
+        );
         g.rotation = f64::NAN;
         assert!(
             check_placement(&g, Naming::Options)[0]
-                .message
+                .problem()
                 .contains("not a finite angle")
         );
         g.rotation = 0.0;
         g.origin = [1e308, 0.0];
         assert_eq!(
-            check_placement(&g, Naming::Options)[0].to_string(),
+            dashed(&check_placement(&g, Naming::Options)[0].line()),
             "--origin x 1e308 is out of range -5000..5000 m"
         );
         assert_eq!(
@@ -499,7 +578,7 @@ mod tests {
         );
         assert!(
             check_floor([-1.0, 10.0], Naming::Layout)[0]
-                .message
+                .problem()
                 .contains("positive number of metres, not -1")
         );
         assert_eq!(show(1e-300), "1e-300");

@@ -15,6 +15,7 @@ use super::walls::{Openings, WallOptions, into_walls, length_between_posts};
 use crate::generate::generate;
 use crate::maze::{Cell, Direction, Grid, Maze};
 use crate::rng::MazeRng;
+use crate::wording::Message;
 
 /// A micromouse competition format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -108,7 +109,7 @@ impl Preset {
 /// [`Preset::spec`]): shaped maze, start in the south-west corner, end at the goal's
 /// entrance cell with the goal as `end.region`; posts of side `posts` at every lattice
 /// corner if asked for (see [`Preset::walls`]).
-pub fn plan(preset: Preset, spec: &GenerateSpec, posts: Option<f64>) -> Result<Planned, String> {
+pub fn plan(preset: Preset, spec: &GenerateSpec, posts: Option<f64>) -> Result<Planned, Message> {
     spec.check()?;
     let carved = generate(spec.grid, spec.algorithm, spec.seed);
     let (maze, entrance) = shape(&carved, preset.goal(), spec.seed);

@@ -24,9 +24,10 @@ use nalgebra::Point2;
 
 use super::build::{extent_needed, fits_within};
 use super::geometry::{Geometry, course, rectangle_corners, round_um};
-use super::limits::{self, Naming, Range, Violation, show};
+use super::limits::{self, Name, Naming, Range, Violation, show};
 use super::{Layout, Opening, Pose, PostSpec, Side, Style, WallSpec};
 use crate::maze::{Cell, Grid, Maze};
+use crate::wording::{Message, Opt, Value};
 
 /// The course defaults for walls: 1 m long (one cell side), 5 cm thick, 20 cm high.
 pub mod defaults {
@@ -150,18 +151,23 @@ pub fn check_template(
 ) -> Vec<Violation> {
     let (l, t, h, p) = match naming {
         Naming::Options => (
-            "--wall-length",
-            "--wall-thickness",
-            "--wall-height",
-            "--post-size",
+            Name::Opt(Opt::WallLength),
+            Name::Opt(Opt::WallThickness),
+            Name::Opt(Opt::WallHeight),
+            Name::Opt(Opt::PostSize),
         ),
-        Naming::Layout => ("wall.length", "wall.thickness", "wall.height", "post.size"),
+        Naming::Layout => (
+            "wall.length".into(),
+            "wall.thickness".into(),
+            "wall.height".into(),
+            "post.size".into(),
+        ),
     };
     let mut out: Vec<Violation> = [
-        limits::check_range(l, length, limits::LENGTH),
-        limits::check_range(t, thickness, limits::LENGTH),
+        limits::check_range(l.clone(), length, limits::LENGTH),
+        limits::check_range(t.clone(), thickness, limits::LENGTH),
         limits::check_range(h, height, HEIGHT),
-        post.and_then(|size| limits::check_range(p, size, limits::LENGTH)),
+        post.and_then(|size| limits::check_range(p.clone(), size, limits::LENGTH)),
     ]
     .into_iter()
     .flatten()
@@ -169,18 +175,20 @@ pub fn check_template(
     if !out.is_empty() || !limits::LENGTH.contains(cell_size) {
         return out;
     }
-    let mut add = |name: &str, message: String| {
+    // every message starts with the value: `0.2 m is longer than ...`
+    let mut add = |name: &Name, value: f64, message: String| {
         out.push(Violation {
-            name: name.to_string(),
-            message,
+            name: name.clone(),
+            value: Some(show(value)),
+            message: message.into(),
         })
     };
     if thickness >= cell_size {
         add(
-            t,
+            &t,
+            thickness,
             format!(
-                "{} m is not less than the cell size {} m: the walls would close the passages",
-                show(thickness),
+                "m is not less than the cell size {} m: the walls would close the passages",
                 show(cell_size)
             ),
         );
@@ -192,10 +200,10 @@ pub fn check_template(
             let mut fits = true;
             if size < thickness - limits::ROUNDING * 2.0 {
                 add(
-                    p,
+                    &p,
+                    size,
                     format!(
-                        "{} m is thinner than the walls ({} m): their ends would show beside the posts",
-                        show(size),
+                        "m is thinner than the walls ({} m): their ends would show beside the posts",
                         show(thickness)
                     ),
                 );
@@ -203,10 +211,10 @@ pub fn check_template(
             }
             if cell_size - size < limits::MIN_LENGTH - limits::ROUNDING * 2.0 {
                 add(
-                    p,
+                    &p,
+                    size,
                     format!(
-                        "{} m leaves less than {} m between two posts of a {} m cell: no room for a wall",
-                        show(size),
+                        "m leaves less than {} m between two posts of a {} m cell: no room for a wall",
                         limits::MIN_LENGTH,
                         show(cell_size)
                     ),
@@ -235,11 +243,9 @@ pub fn check_template(
             "the next side, which may be open"
         };
         add(
-            l,
-            format!(
-                "{} m is longer than {bound}: a wall would reach into {into}",
-                show(length)
-            ),
+            &l,
+            length,
+            format!("m is longer than {bound}: a wall would reach into {into}",),
         );
     }
     let shortest = span / limits::MAX_SEGMENTS_PER_PASSAGE as f64;
@@ -250,10 +256,10 @@ pub fn check_template(
             "cell".to_string()
         };
         add(
-            l,
+            &l,
+            length,
             format!(
-                "{} m is shorter than {over} / {} = {} m: a side may take at most {} copies",
-                show(length),
+                "m is shorter than {over} / {} = {} m: a side may take at most {} copies",
                 limits::MAX_SEGMENTS_PER_PASSAGE,
                 show(shortest),
                 limits::MAX_SEGMENTS_PER_PASSAGE
@@ -374,16 +380,24 @@ pub fn resolve_openings(
     openings: Openings,
     start: Cell,
     end: Cell,
-) -> Result<Vec<Opening>, String> {
+) -> Result<Vec<Opening>, Message> {
     let mut out: Vec<Opening> = Vec::new();
-    for (wanted, which, cell) in [(openings.start, "start", start), (openings.end, "end", end)] {
+    let ends = [
+        (openings.start, "start", Opt::Start, start),
+        (openings.end, "end", Opt::End, end),
+    ];
+    for (wanted, which, option, cell) in ends {
         if !wanted {
             continue;
         }
         let side = outer_side(grid, cell).ok_or_else(|| {
-            format!(
-                "--openings {openings}: the {which} cell {cell} is not on the edge of the {grid} grid, so no gap can lead to it; choose --{which} on the edge or leave {which} out of --openings"
-            )
+            Message::setting(Opt::Openings, Value::word(openings))
+                .and(format!(
+                    ": the {which} cell {cell} is not on the edge of the {grid} grid, so no gap can lead to it; choose "
+                ))
+                .and_opt(option)
+                .and(format!(" on the edge or leave {which} out of "))
+                .and_opt(Opt::Openings)
         })?;
         let opening = Opening {
             cell: [cell.x, cell.y],
@@ -495,7 +509,7 @@ pub fn into_walls(
     maze: &Maze,
     options: &WallOptions,
     auto_floor: bool,
-) -> Result<(), String> {
+) -> Result<(), Message> {
     let start = Cell::new(layout.start.cell[0], layout.start.cell[1]);
     let end = Cell::new(layout.end.cell[0], layout.end.cell[1]);
     let openings = resolve_openings(maze.grid(), options.openings, start, end)?;
@@ -510,7 +524,7 @@ pub fn into_walls_with(
     options: &WallOptions,
     openings: Vec<Opening>,
     auto_floor: bool,
-) -> Result<(), String> {
+) -> Result<(), Message> {
     let grid = maze.grid();
     if let Some(o) = openings.iter().find(|o| opening_side(grid, o).is_none()) {
         return Err(format!(
@@ -518,7 +532,8 @@ pub fn into_walls_with(
             o.side.name(),
             o.cell[0],
             o.cell[1]
-        ));
+        )
+        .into());
     }
     let geometry = Geometry {
         cell_size: layout.grid.cell_size,
@@ -540,7 +555,7 @@ pub fn into_walls_with(
     .into_iter()
     .next()
     {
-        return Err(v.to_string());
+        return Err(v.line());
     }
     let post = options.posts.map(|size| PostSpec {
         size: round_um(size),
@@ -552,8 +567,8 @@ pub fn into_walls_with(
         + u64::from(grid.height()) * (u64::from(grid.width()) + 1);
     let posts = if post.is_some() { post_count(grid) } else { 0 };
     if sides * per_side + posts > limits::MAX_SEGMENTS {
-        return Err(format!(
-            "a {grid} maze with {per_side} wall copies a side could need {} walls{}, more than the {} copies a layout may hold: use a smaller --size or a longer --wall-length",
+        return Err(Message::text(format!(
+            "a {grid} maze with {per_side} wall copies a side could need {} walls{}, more than the {} copies a layout may hold: use a smaller ",
             sides * per_side,
             if posts > 0 {
                 format!(" and {posts} posts")
@@ -561,7 +576,10 @@ pub fn into_walls_with(
                 String::new()
             },
             limits::MAX_SEGMENTS
-        ));
+        ))
+        .and_opt(Opt::Size)
+        .and(" or a longer ")
+        .and_opt(Opt::WallLength));
     }
     let spec = WallSpec {
         length: round_um(options.length),
@@ -574,13 +592,16 @@ pub fn into_walls_with(
     let tolerance = limits::floor_tolerance(&geometry, grid);
     if !fits_within(need, layout.floor.size, tolerance) {
         if !auto_floor {
-            return Err(format!(
-                "the walls need a floor of {:.3} m x {:.3} m (centred on the floor origin) but --floor-size is {} m x {} m",
-                need[0],
-                need[1],
+            return Err(Message::text(format!(
+                "the walls need a floor of {:.3} m x {:.3} m (centred on the floor origin) but ",
+                need[0], need[1],
+            ))
+            .and_opt(Opt::FloorSize)
+            .and(format!(
+                " is {} m x {} m",
                 show(layout.floor.size[0]),
                 show(layout.floor.size[1])
-            ));
+            )));
         }
         let size = need.map(|n| {
             let panels = ((n - tolerance) / course::FLOOR_PANEL - 1e-9).ceil();
@@ -593,7 +614,8 @@ pub fn into_walls_with(
                 need[1],
                 limits::MAX_FLOOR,
                 limits::MAX_FLOOR
-            ));
+            )
+            .into());
         }
         layout.floor.size = size;
     }
@@ -614,6 +636,7 @@ mod tests {
     use super::*;
     use crate::generate::Algorithm;
     use crate::layout::{GenerateSpec, build_layout, passages};
+    use crate::wording::testing::dashed;
 
     fn walled(openings: Openings) -> (Layout, Maze) {
         let spec = GenerateSpec::course(Grid::new(3, 2).unwrap(), Algorithm::Dfs, 1);
@@ -656,7 +679,8 @@ mod tests {
         )
         .unwrap_err();
         assert!(
-            err.contains("the end cell (2,2) is not on the edge"),
+            err.to_string()
+                .contains("the end cell (2,2) is not on the edge"),
             "{err}"
         );
     }
@@ -693,7 +717,7 @@ mod tests {
     fn the_post_template_must_fit_the_walls_and_the_cell() {
         let v = check_template(0.18, 0.168, 0.012, 0.05, Some(0.01), Naming::Options);
         assert!(
-            v[0].to_string()
+            dashed(&v[0].line())
                 .starts_with("--post-size 0.01 m is thinner than the walls (0.012 m)"),
             "{v:?}"
         );
@@ -720,8 +744,7 @@ mod tests {
         assert_eq!(copy_offsets(1.0, 0.4), vec![0.2, 0.5, 0.8]);
         let v = check_template(0.18, 0.2, 0.012, 0.05, None, Naming::Options);
         assert!(
-            v[0].to_string()
-                .starts_with("--wall-length 0.2 m is longer"),
+            dashed(&v[0].line()).starts_with("--wall-length 0.2 m is longer"),
             "{v:?}"
         );
         let v = check_template(0.18, 0.18, 0.2, 0.05, None, Naming::Layout);

@@ -22,6 +22,7 @@ use indicatif::ProgressBar;
 use crate::layout::solution::path_cells;
 use crate::layout::{Layout, passages};
 use crate::maze::{Cell, Grid, Maze};
+use crate::wording::{Message, Opt, Value};
 
 pub use ascii::Ascii;
 pub use png::Png;
@@ -211,9 +212,12 @@ pub fn render_run(
     match format {
         Format::Svg => Svg.render_run(layout, options, trajectory, out, progress),
         Format::Png => Png.render_run(layout, options, trajectory, out, progress),
-        Format::Ascii => Err(anyhow!(
-            "a run is drawn as SVG or PNG only (use --format svg or png, or -o FILE.svg)"
-        )),
+        Format::Ascii => Err(Message::text("a run is drawn as SVG or PNG only (use ")
+            .and_setting(Opt::Format, Value::word(Format::Svg))
+            .and(" or png, or ")
+            .and_setting(Opt::Output, Value::Placeholder("FILE.svg"))
+            .and(")")
+            .into()),
     }
 }
 

@@ -24,6 +24,7 @@ use crate::layout::Layout;
 use crate::layout::runs::{Run, WallRun, for_each_run, for_each_wall_run, post_rect};
 use crate::maze::Cell;
 use crate::score::Sample;
+use crate::wording::{Message, Opt};
 
 /// Pixels per metre when the floor is small enough: the course's 10 m floor is 800 x 800.
 const PX_PER_METRE: f64 = 80.0;
@@ -263,11 +264,18 @@ impl Picture {
             .scale
             .px_per_metre(wx, PX_PER_METRE.min(MAX_SIDE / wx.max(wy)));
         let too_big = wx.max(wy) * scale - 1e-6;
-        anyhow::ensure!(
-            too_big <= MAX_SIDE,
-            "the picture would be {} px on its longest side; a PNG is at most {MAX_SIDE} px (use a smaller --px-per-m or --width)",
-            too_big.ceil()
-        );
+        let fits = too_big <= MAX_SIDE; // a NaN size is refused too
+        if !fits {
+            return Err(Message::text(format!(
+                "the picture would be {} px on its longest side; a PNG is at most {MAX_SIDE} px (use a smaller ",
+                too_big.ceil()
+            ))
+            .and_opt(Opt::PxPerM)
+            .and(" or ")
+            .and_opt(Opt::Width)
+            .and(")")
+            .into());
+        }
         // The epsilon keeps an exact fit (16384.000000001) from adding a pixel.
         let side = |metres: f64| ((metres * scale - 1e-6).ceil().clamp(1.0, MAX_SIDE)) as u32;
         let (width, height) = (side(wx), side(wy));

@@ -73,18 +73,18 @@ pub(super) fn check_numbers(layout: &Layout, problems: &mut Problems) -> Option<
     let mut blocking = false;
     for v in limits::check_template(&geometry, Naming::Layout) {
         // Heights do not change where anything lies; keep checking the rest.
-        blocking |= v.name != "line.z" && v.name != "start.pose.z";
-        problems.add(v.name, v.message);
+        blocking |= v.name != "line.z".into() && v.name != "start.pose.z".into();
+        problems.violation(&v);
     }
     for v in limits::check_placement(&geometry, Naming::Layout)
         .into_iter()
         .chain(limits::check_floor(layout.floor.size, Naming::Layout))
     {
         blocking = true;
-        problems.add(v.name, v.message);
+        problems.violation(&v);
     }
     if let Some(v) = limits::check_range("end.pose.z", layout.end.pose.z, limits::HEIGHT) {
-        problems.add(v.name, v.message);
+        problems.violation(&v);
     } else if limits::HEIGHT.contains(layout.line.z) && layout.end.pose.z <= layout.line.z {
         problems.add(
             "end.pose.z",
@@ -105,8 +105,8 @@ pub(super) fn check_numbers(layout: &Layout, problems: &mut Problems) -> Option<
                 );
             }
         }
-        if let Some(v) = limits::check_range(&format!("{which}.pose.yaw"), pose.yaw, limits::YAW) {
-            problems.add(v.name, v.message);
+        if let Some(v) = limits::check_range(format!("{which}.pose.yaw"), pose.yaw, limits::YAW) {
+            problems.violation(&v);
         }
     }
     (!blocking).then_some(geometry)

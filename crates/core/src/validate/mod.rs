@@ -20,6 +20,7 @@ use crate::layout::json::SegmentSink;
 use crate::layout::limits;
 use crate::layout::{Layout, Pose, Style, passages};
 use crate::maze::{Grid, Maze, Metrics};
+use crate::wording::{Message, Opt, Setting, Value, Wording};
 
 use coverage::Coverage;
 
@@ -28,11 +29,19 @@ use coverage::Coverage;
 pub struct Problem {
     /// The field or object concerned, e.g. `segments[12]` or `end`.
     pub location: String,
-    /// What is wrong.
-    pub message: String,
+    /// What is wrong; it can name an option (the one to generate the maze anew with).
+    pub message: Message,
+}
+
+impl Problem {
+    /// `location: message`, the message in `wording`'s words.
+    pub fn worded(&self, wording: &dyn Wording) -> String {
+        format!("{}: {}", self.location, self.message.worded(wording))
+    }
 }
 
 impl fmt::Display for Problem {
+    /// `location: message`, the message in the neutral wording.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.location, self.message)
     }
@@ -73,7 +82,12 @@ struct Problems {
 }
 
 impl Problems {
-    fn add(&mut self, location: impl Into<String>, message: impl Into<String>) {
+    /// A layout field out of its range or step ([`limits::Violation`] named by field).
+    fn violation(&mut self, v: &limits::Violation) {
+        self.add(v.name.to_string(), v.problem());
+    }
+
+    fn add(&mut self, location: impl Into<String>, message: impl Into<Message>) {
         if self.kept.len() < MAX_KEPT {
             self.kept.push(Problem {
                 location: location.into(),
@@ -129,7 +143,7 @@ pub struct Validator {
 /// for (their distance over their cells' distance, whatever the rotation), as after a hand
 /// edit: the line that says so and how to get a layout of that size. Every segment and
 /// marker problem that follows has this one cause.
-fn cell_size_edited(layout: &Layout) -> Option<String> {
+fn cell_size_edited(layout: &Layout) -> Option<Message> {
     let (a, b) = (&layout.start, &layout.end);
     let cells = (f64::from(a.cell[0]) - f64::from(b.cell[0]))
         .hypot(f64::from(a.cell[1]) - f64::from(b.cell[1]));
@@ -147,10 +161,15 @@ fn cell_size_edited(layout: &Layout) -> Option<String> {
     let markers_fit = fits(a) && fits(b);
     let plausible = cells > 0.0 && placed_for.is_finite() && placed_for > 0.0 && size > 0.0;
     (plausible && differs && markers_fit).then(|| {
-        format!(
-            "is {size} m, but the maze was made for cells of {} m (its start and end markers are that far apart): edit it back, or make the maze anew with `vrep-maze generate --cell-size {size}` and the rest of its options",
+        Message::text(format!(
+            "is {size} m, but the maze was made for cells of {} m (its start and end markers are that far apart): edit it back, or make the maze anew with `",
             (placed_for * 1e6).round() / 1e6
-        )
+        ))
+        .and_generate(vec![Setting {
+            opt: Opt::CellSize,
+            value: Value::number(size),
+        }])
+        .and("` and the rest of its options")
     })
 }
 
@@ -389,13 +408,14 @@ impl Invalid {
         self.problems.len() + self.omitted
     }
 
-    /// The first [`MAX_SHOWN`] problems, one per line, then how many more there are.
-    pub fn shown(&self) -> Vec<String> {
+    /// The first [`MAX_SHOWN`] problems, one per line in `wording`'s words, then how many
+    /// more there are.
+    pub fn shown(&self, wording: &dyn Wording) -> Vec<String> {
         let mut lines: Vec<String> = self
             .problems
             .iter()
             .take(MAX_SHOWN)
-            .map(Problem::to_string)
+            .map(|p| p.worded(wording))
             .collect();
         let total = self.count();
         if total > MAX_SHOWN {

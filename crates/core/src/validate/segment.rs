@@ -37,17 +37,17 @@ impl Numbers {
         // The range is checked first so that a valid segment formats no name.
         if !limits::YAW.contains(pose.yaw)
             && let Some(v) =
-                limits::check_range(&format!("segments[{index}].yaw"), pose.yaw, limits::YAW)
+                limits::check_range(format!("segments[{index}].yaw"), pose.yaw, limits::YAW)
         {
-            problems.add(v.name, v.message);
+            problems.violation(&v);
         }
         if !limits::HEIGHT.contains(self.line_z) {
             // line.z itself is reported; judge the segment by the range alone.
             if !limits::HEIGHT.contains(pose.z)
                 && let Some(v) =
-                    limits::check_range(&format!("segments[{index}].z"), pose.z, limits::HEIGHT)
+                    limits::check_range(format!("segments[{index}].z"), pose.z, limits::HEIGHT)
             {
-                problems.add(v.name, v.message);
+                problems.violation(&v);
             }
         } else if (pose.z - self.line_z).abs() > 2.0 * limits::ROUNDING {
             problems.add(

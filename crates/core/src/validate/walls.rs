@@ -85,7 +85,7 @@ pub(super) fn check_walls(
     );
     let bad_template = !template.is_empty();
     for v in template {
-        problems.add(v.name, v.message);
+        problems.violation(&v);
     }
     let grid = maze.grid();
     for (index, opening) in spec.openings.iter().enumerate() {
@@ -171,8 +171,8 @@ fn stands_on_floor(
         problems.add(location, "has a coordinate that is not a finite number");
         return false;
     }
-    if let Some(v) = limits::check_range(&format!("{location}.yaw"), pose.yaw, limits::YAW) {
-        problems.add(v.name, v.message);
+    if let Some(v) = limits::check_range(format!("{location}.yaw"), pose.yaw, limits::YAW) {
+        problems.violation(&v);
     }
     if (pose.z - height / 2.0).abs() > 2.0 * limits::ROUNDING {
         problems.add(

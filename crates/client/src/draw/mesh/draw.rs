@@ -16,10 +16,9 @@ use crate::draw::session::{
     surveyed,
 };
 use crate::draw::{ApplyOptions, ApplyReport, DrawMode, Stage};
-use crate::draw::{
-    Backend, BackendError, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style,
-};
+use crate::draw::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style};
 use vrep_maze_core::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
+use vrep_maze_core::wording::Message;
 
 /// Meshes created per request to [`MeshDrawing::create`], between two checks for Ctrl-C and
 /// for another run (about 4,000 rectangles: 1 to 2 s on CoppeliaSim 4.5.1).
@@ -28,11 +27,7 @@ const MESHES_PER_CREATE: usize = 8;
 /// The mesh capability of `scene`, or the error that says this API has none.
 fn port(scene: &mut dyn Backend) -> Result<&mut dyn MeshDrawing, DrawError> {
     let api = scene.describe();
-    scene.meshes().ok_or_else(|| {
-        DrawError::Backend(BackendError::Remote(format!(
-            "--draw mesh is not available over this API ({api})"
-        )))
-    })
+    scene.meshes().ok_or(DrawError::NoMeshes { api })
 }
 
 /// The holder of a mesh maze under the maze dummy `parent` and what it holds, found through
@@ -341,7 +336,9 @@ fn apply_claimed(
     if problems.is_empty() {
         Ok(report)
     } else {
-        Err(DrawError::Verify(problems))
+        Err(DrawError::Verify(
+            problems.into_iter().map(Message::from).collect(),
+        ))
     }
 }
 
@@ -499,7 +496,9 @@ fn verify_raised(
     if problems.is_empty() {
         Ok(())
     } else {
-        Err(DrawError::Verify(problems))
+        Err(DrawError::Verify(
+            problems.into_iter().map(Message::from).collect(),
+        ))
     }
 }
 
