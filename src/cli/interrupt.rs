@@ -14,8 +14,8 @@ use anyhow::{Context, Result};
 pub const INTERRUPTED_EXIT_CODE: u8 = 130;
 
 /// A run stopped by an interrupt before it changed anything (while it waited for a
-/// connection): the command line prints it as one line and exits with
-/// [`INTERRUPTED_EXIT_CODE`].
+/// connection): the command line prints it as one line and exits with 130
+/// (`INTERRUPTED_EXIT_CODE`).
 #[derive(Debug, thiserror::Error)]
 #[error("interrupted {0}")]
 pub struct Interrupted(pub String);

@@ -8,7 +8,7 @@
 //! The claim is a run's first signal write that it reads back: a simulator that does not
 //! keep it (CoppeliaSim 4.10 silently drops a signal whose name is no valid property name,
 //! `../shared/spec/real-coppeliasim-4.10.md` "Signals are scene properties now") is said so
-//! in one warning, and the run goes on without the scene's signals ([`Claim::signals_kept`]):
+//! in one warning, and the run goes on without the scene's signals (`Claim::signals_kept`):
 //! never a false [`DrawError::Concurrent`].
 
 use std::hash::{BuildHasher, RandomState};

@@ -18,10 +18,10 @@ pub struct ApplyOptions {
     /// Copy-paste commands per round trip (each copies the whole current set of lines).
     pub paste_blocks_per_round: usize,
     /// Set by a Ctrl-C handler: the run stops after the request in flight, restores the
-    /// idle rate and fails with [`DrawError::Interrupted`].
+    /// idle rate and fails with [`DrawError::Interrupted`](super::DrawError::Interrupted).
     pub interrupt: Option<Arc<AtomicBool>>,
     /// Grow a floor smaller than the layout's to its size ([`super::floor::resize`]; the
-    /// ZeroMQ API only) instead of refusing with [`DrawError::Floor`].
+    /// ZeroMQ API only) instead of refusing with [`DrawError::Floor`](super::DrawError::Floor).
     pub resize_floor: bool,
 }
 

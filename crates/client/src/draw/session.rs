@@ -1,7 +1,7 @@
 //! The session every run stands on, whatever it draws, checks or removes: the idle rate
-//! raised and restored ([`raised`], [`raised_to_read`]), the scene claimed ([`super::lease`]),
-//! the survey and the named handles ([`surveyed`]), the size checks ([`sizes_of`]), a running
-//! simulation dealt with, and the line template's home kept ([`keep_home`]). The copies
+//! raised and restored (`raised`, [`raised_to_read`]), the scene claimed ([`super::lease`]),
+//! the survey and the named handles ([`surveyed`]), the size checks (`sizes_of`), a running
+//! simulation dealt with, and the line template's home kept (`keep_home`). The copies
 //! ([`super::apply()`]) and mesh ([`super::mesh::apply()`]) draws, [`super::verify()`],
 //! [`super::clear()`] and `inspect` each use what they need of it; nothing here calls them.
 
@@ -97,7 +97,7 @@ pub(crate) fn raised<T>(
     raised_from(scene, rates, raise.then_some(user_fps), work)
 }
 
-/// [`raised`] for a run that only reads (`vrep-maze inspect`): the user's rate is raised and
+/// `raised` for a run that only reads (`vrep-maze inspect`): the user's rate is raised and
 /// restored as a draw does it, but a rate an interrupted run left at 0 with its record is
 /// left exactly as found (reads are fast at 0 already; `clear` or the next apply repairs it,
 /// and the report says so). Returns `work`'s value and the rates found.

@@ -145,7 +145,8 @@ pub struct Reply {
 }
 
 /// A connected client. However it ends ([`Client::close`], or dropped on an error path), it
-/// leaves through [`Client::end_session`], so the simulator's port listens again at once.
+/// leaves the one way (the private `end_session`), so the simulator's port listens again at
+/// once.
 pub struct Client {
     stream: TcpStream,
     /// The server answered our first message and the session has not ended yet: dropping
@@ -519,8 +520,9 @@ impl Client {
         })
     }
 
-    /// Ends the session (see [`Client::end_session`]); `Err` if the simulator did not
-    /// acknowledge the kill command.
+    /// Ends the session as the official client's `simxFinish` does (the kill command, its
+    /// reply, one last message: the private `end_session`), so the simulator's port listens
+    /// again at once; `Err` if the simulator did not acknowledge the kill command.
     pub fn close(mut self) -> Result<(), ClientError> {
         self.end_session()
     }

@@ -1,11 +1,13 @@
-//! CoppeliaSim's legacy remote API (port 19997): wire format, command set, a native client
-//! with its drawing backend, and an emulator of the server over [`crate::sim`].
+//! CoppeliaSim's legacy remote API (port 19997), the client's side: wire format and command
+//! set (`vrep_maze_wire::legacy`, re-exported here), a native client with its drawing backend,
+//! and the robot follower. The emulated server is in the emulator crate
+//! (`vrep_maze_emulator::legacy`).
 //!
 //! Layers: [`wire`] (packets, message header, command blocks) → [`command`] (command IDs and
 //! payloads), then on one side [`client`] → [`backend`] (the [`crate::draw::Backend`]
-//! implementation), on the other [`server`]. The two sides share only `wire`, `command` and
-//! [`vrep_maze_core::coppelia`]'s numbers: the client never imports the emulator, nor the emulator
-//! the client.
+//! implementation), on the other the emulator's `server`. The two sides share only `wire`,
+//! `command` and [`vrep_maze_core::coppelia`]'s numbers: the client never imports the
+//! emulator, nor the emulator the client.
 
 pub mod backend;
 pub mod client;

@@ -746,8 +746,8 @@ impl Backend for ZmqBackend {
     /// Each call is its own request, but a paste round's copies stay parentless until they
     /// are re-parented one by one, and CoppeliaSim 4.5.1 walks every parentless object on
     /// each such re-parenting (coppeliaSimLib@coppeliasim-v4.5.1-rev4
-    /// `sceneObjectContainer.cpp:1133, 1146, 1281-1306`): rounds of at most
-    /// [`ZMQ_PASTE_ROUND`] copies keep that walk short (the pastes cost the same).
+    /// `sceneObjectContainer.cpp:1133, 1146, 1281-1306`): rounds of at most 1,000 copies
+    /// (`ZMQ_PASTE_ROUND`) keep that walk short (the pastes cost the same).
     fn pieces_per_request(&self, _objects_in_scene: usize) -> usize {
         ZMQ_PASTE_ROUND
     }

@@ -172,8 +172,8 @@ pub struct CostModel {
     /// Removing objects in one call, per pair of objects removed (none on 4.5.1; 0.24 µs on
     /// 4.10, whose removals grow with the square of their count: [`CostModel::v4_10`]).
     pub remove_per_pair: Duration,
-    /// Setting one pose, besides [`CostModel::pose_per_object`] (spec "Costs that grow with
-    /// the scene": 3 µs a pose among 1,000 copies, 8 µs among 20,000).
+    /// Setting one pose, besides [`CostModel::pose_per_thousand_objects`] (spec "Costs that
+    /// grow with the scene": 3 µs a pose among 1,000 copies, 8 µs among 20,000).
     pub pose: Duration,
     /// Setting one pose, per thousand objects in the scene.
     pub pose_per_thousand_objects: Duration,

@@ -1,10 +1,11 @@
 //! CoppeliaSim's own numbers and conventions, shared by our clients and our emulator.
 //!
-//! Neither side imports the other: the clients ([`crate::legacy::client`],
-//! [`crate::zmq_api::client`] and their drawing backends) and the emulator ([`crate::sim`] and
-//! the two servers) both take CoppeliaSim's constants from here, and its Euler convention from
-//! [`frame`]. Values are those of CoppeliaSim's `simConst` tables (the same in the legacy
-//! remote API's `sim_*` names and the ZeroMQ API's `sim.*` names).
+//! Neither side imports the other: the clients (`vrep_maze_client::legacy::client`,
+//! `vrep_maze_client::zmq_api::client` and their drawing backends) and the emulator
+//! (`vrep_maze_emulator::sim` and the two servers) both take CoppeliaSim's constants from
+//! here, and its Euler convention from [`frame`]. Values are those of CoppeliaSim's `simConst`
+//! tables (the same in the legacy remote API's `sim_*` names and the ZeroMQ API's `sim.*`
+//! names).
 
 pub mod cost;
 pub mod frame;

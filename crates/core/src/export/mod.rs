@@ -1,13 +1,15 @@
 //! A layout as a file another program loads, one file per format, chosen by the output's
-//! ending ([`Format::from_path`]). Today CoppeliaSim's own XML: a model to drag into any scene
-//! ([`simmodel`]) and a complete scene ([`simscene`]), both loadable without any remote API
+//! ending ([`Format::from_path`]). CoppeliaSim's own XML comes as a model to drag into any
+//! scene (`simmodel`) and as a complete scene (`simscene`), both loadable without any remote API
 //! (CoppeliaSim 4.11 has no legacy API). Both draw the maze as meshes
 //! ([`crate::mesh`]: one rectangle per run of lines, boxes for walls and
 //! posts), written by [`crate::coppelia::xml::write`], the writer the legacy mesh drawing uses.
 //!
-//! The robot simulators' own formats, MuJoCo MJCF ([`mjcf`]), Gazebo SDF ([`sdf`]), URDF
-//! ([`urdf`]) and Webots ([`webots`]), are written from one set of boxes ([`solids`]: a box
+//! The robot simulators' own formats, MuJoCo MJCF (`mjcf`), Gazebo SDF (`sdf`), URDF
+//! (`urdf`) and Webots (`webots`), are written from one set of boxes (`solids`: a box
 //! per wall run, post, run of lines and marker, from the same mesh geometry).
+//! Gymnasium-Robotics' PointMaze/AntMaze arguments (`pointmaze`) are the layout's block grid
+//! ([`crate::layout::block_grid`]).
 //!
 //! A ROS `map_server` occupancy map ([`ros_map`]) is two files, a YAML and a PGM beside it,
 //! so it is no [`Format`]: `export -o maze.yaml` chooses it by its ending

@@ -1,7 +1,7 @@
 //! Following a robot while the simulation runs: the [`Follower`] port a connection to a
-//! simulator implements (legacy: [`crate::legacy::follow`], ZeroMQ:
-//! [`crate::zmq_api::follow`]), and [`follow`], which waits for the simulation, collects one
-//! [`Sample`] per simulation step it sees and decides when the run is over. It never
+//! simulator implements (legacy: `vrep_maze_client::legacy::follow`, ZeroMQ:
+//! `vrep_maze_client::zmq_api::follow`), and [`follow`], which waits for the simulation,
+//! collects one [`Sample`] per simulation step it sees and decides when the run is over. It never
 //! changes the scene; it starts and stops the simulation only when asked.
 
 use std::sync::Arc;

@@ -1,6 +1,6 @@
 //! One scene object ([`Object`]: handle, names, type, parent, local pose, size, colour,
-//! mesh) and its type; the scene ([`super::scene`]) and its name index
-//! ([`super::index`]) both stand on it.
+//! mesh) and its type; the scene ([`super::scene`]) and its name index (the private
+//! `sim::index`) both stand on it.
 
 use serde::{Deserialize, Serialize};
 

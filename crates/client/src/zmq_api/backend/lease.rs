@@ -12,9 +12,9 @@ use crate::zmq_api::cbor::{self, int};
 /// The lease is the integer signal [`LEASE`] (a simulator without integer signals
 /// answers with a remote error, and the run goes on unguarded).
 impl Lease for ZmqBackend {
-    /// Four calls sent together ([`Client::call_all`]: one main-loop pass over protocol 1):
-    /// read the holder, write the token, remove an older version's lease (which stops an
-    /// older run drawing now), read the token back.
+    /// Four calls sent together ([`Client::call_all`](crate::zmq_api::Client::call_all): one
+    /// main-loop pass over protocol 1): read the holder, write the token, remove an older
+    /// version's lease (which stops an older run drawing now), read the token back.
     fn claim(&mut self, token: i32) -> Result<Claimed, BackendError> {
         let name = |n: &str| Value::Text(n.into());
         let calls = [

@@ -20,8 +20,8 @@ pub fn write(out: &mut String, bytes: &[u8]) {
     out.push('"');
 }
 
-/// The bytes of the literal [`write`] put at the start of `text`, and the text after it;
-/// `None` for anything [`write`] does not write.
+/// The bytes of the literal [`fn@write`] put at the start of `text`, and the text after it;
+/// `None` for anything [`fn@write`] does not write.
 pub fn read(text: &str) -> Option<(Vec<u8>, &str)> {
     let body = text.strip_prefix('"')?.as_bytes();
     let mut bytes = Vec::with_capacity(body.len() / 3);

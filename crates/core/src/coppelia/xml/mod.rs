@@ -2,14 +2,14 @@
 //! this project writes and reads it: dummies and mesh shapes with their pose, parent, alias,
 //! model base flag, special properties, colour and dynamics switches.
 //!
-//! [`write`] emits the element structure a real CoppeliaSim 4.5.1 writes (the reference files
-//! in `../shared/spec/coppeliasim-xml/`: the course scene, the `Line` plane as a model, a mesh
-//! of two rectangles as a model), the same bytes for the same [`Document`]. It leaves out
+//! [`fn@write`] emits the element structure a real CoppeliaSim 4.5.1 writes (the reference
+//! files in `../shared/spec/coppeliasim-xml/`: the course scene, the `Line` plane as a model,
+//! a mesh of two rectangles as a model), the same bytes for the same [`Document`]. It leaves out
 //! only what must not repeat between files or may be left out (spec, "One object instead of
 //! thousands": a model without `<normals>` and `<edges>` loaded correctly): the objects'
 //! random `dnaString` and `uniquePersistentString` and the scene's persistent id, which a
 //! real CoppeliaSim makes new when they are missing (coppeliaSimLib 4.5.1
-//! `sceneObject.cpp:3303-3307`). [`read`] takes what [`write`] emits and what the reference
+//! `sceneObject.cpp:3303-3307`). [`read`] takes what [`fn@write`] emits and what the reference
 //! files hold; anything else (other object types, compound shapes, meshes in side files, a
 //! broken tree) is a one-line [`XmlError`], never a panic.
 //!

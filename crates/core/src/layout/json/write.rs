@@ -29,7 +29,7 @@ pub fn write_layout<W: Write>(layout: &Layout, writer: W) -> io::Result<()> {
 ///
 /// Threads share the work, so a big layout is written at disk speed: one takes the
 /// segments from the iterator (computing them, for a generator), others format them, and
-/// this one writes the text (see [`parallel`]).
+/// this one writes the text (see the private `layout::json::parallel` module).
 pub fn write_layout_parts<W: Write>(
     head: &Layout,
     segments: impl IntoIterator<Item = Pose, IntoIter: Send>,
