@@ -13,7 +13,8 @@
 //!   its operations cost, the one Lua program our client sends.
 //! - [`mesh`]: a layout as a few mesh shapes (pure geometry), which the drawing and the
 //!   exports share.
-//! - [`export`]: a layout as a CoppeliaSim, MuJoCo, Gazebo (SDF), URDF or Webots file.
+//! - [`export`]: a layout as a CoppeliaSim, MuJoCo, Gazebo (SDF), URDF or Webots file, a ROS
+//!   occupancy map, or the arguments of a Gymnasium-Robotics PointMaze.
 
 pub mod atomic_file;
 pub mod batch;
