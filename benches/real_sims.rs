@@ -345,13 +345,18 @@ fn run(dir: &Path, args: &[&str], on: On, legacy: Option<u16>, zmq: u16) -> Resu
     }
 }
 
-fn set_idle_fps(zmq: u16, fps: i32) {
-    let mut c = Client::connect(&ClientOptions {
+/// A ZeroMQ client of the simulator listening on `zmq`.
+fn connect(zmq: u16) -> Client {
+    Client::connect(&ClientOptions {
         port: zmq,
         timeout: Duration::from_secs(10),
         ..Default::default()
     })
-    .unwrap();
+    .unwrap()
+}
+
+fn set_idle_fps(zmq: u16, fps: i32) {
+    let mut c = connect(zmq);
     c.call(
         "sim.setInt32Param",
         vec![cbor::int(INTPARAM_IDLE_FPS.into()), cbor::int(fps.into())],
@@ -364,12 +369,7 @@ fn set_idle_fps(zmq: u16, fps: i32) {
 /// it), so the big mazes fit on it over either API: `apply` refuses a layout whose floor is
 /// larger than the scene's.
 fn grow_floor(zmq: u16) {
-    let mut c = Client::connect(&ClientOptions {
-        port: zmq,
-        timeout: Duration::from_secs(10),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut c = connect(zmq);
     let floor = c
         .call_int(
             "sim.getObject",
@@ -427,12 +427,7 @@ fn once(dir: &Path, row: &Row, real: bool) -> Result<f64, String> {
 /// (`docs/measurements.md` "A new client on 4.10"), so a row's ratio measured that accident
 /// (`docs/measurements.md` "Rows that start at idle fps 8").
 fn at_a_known_phase(zmq: u16) {
-    let mut c = Client::connect(&ClientOptions {
-        port: zmq,
-        timeout: Duration::from_secs(10),
-        ..Default::default()
-    })
-    .unwrap();
+    let mut c = connect(zmq);
     c.call("sim.getSimulationState", vec![]).unwrap();
     c.close();
 }

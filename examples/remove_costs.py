@@ -26,27 +26,23 @@ try:
             made += sim.copyPasteObjects(([line] + made)[:k - len(made)], 0)
         return made
 
+    def removal_ms(k, reps):
+        """Median ms of removing k fresh copies in one call, over reps."""
+        ts = []
+        for _ in range(reps):
+            made = copies(k)
+            s = time.perf_counter()
+            sim.removeObjects(made)
+            ts.append((time.perf_counter() - s) * 1e3)
+        return statistics.median(ts)
+
     if sys.argv[3:] == ['--all']:
         for n in (250, 500, 1000, 2000, 4000):
-            ts = []
-            for _ in range(3):
-                made = copies(n)
-                s = time.perf_counter()
-                sim.removeObjects(made)
-                ts.append((time.perf_counter() - s) * 1e3)
-            print(f"all {n:5d} of {n + 5:5d}: {statistics.median(ts):8.2f}", flush=True)
+            print(f"all {n:5d} of {n + 5:5d}: {removal_ms(n, 3):8.2f}", flush=True)
         sys.exit()
     for filler in (0, 1000):
         extra = copies(filler) if filler else []
-        row = []
-        for k in (1, 16, 64, 256):
-            ts = []
-            for _ in range(7):
-                made = copies(k)
-                s = time.perf_counter()
-                sim.removeObjects(made)
-                ts.append((time.perf_counter() - s) * 1e3)
-            row.append((k, statistics.median(ts)))
+        row = [(k, removal_ms(k, 7)) for k in (1, 16, 64, 256)]
         n = len(sim.getObjectsInTree(sim.handle_scene))
         print(f"scene {n:5d}: " + "  ".join(f"{k}:{t:6.2f}" for k, t in row), flush=True)
         if extra:

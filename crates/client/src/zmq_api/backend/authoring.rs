@@ -31,6 +31,18 @@ fn check_alias(name: &str) -> Result<(), BackendError> {
 }
 
 impl ZmqBackend {
+    /// A dummy of `size` metres named `alias`, in the world frame.
+    pub(super) fn create_dummy(&mut self, size: f64, alias: &str) -> Result<i32, BackendError> {
+        let h = self
+            .client
+            .call_int("sim.createDummy", vec![Value::Float(size)])?;
+        self.call(
+            "sim.setObjectAlias",
+            vec![int(h.into()), Value::Text(alias.into())],
+        )?;
+        Ok(h)
+    }
+
     /// A static plane named `name`, coloured, at height `z` in the frame `relative_to`.
     /// Only a floor is respondable and detectable; markers are seen by cameras only.
     fn create_plane(
@@ -264,16 +276,7 @@ impl ZmqBackend {
                 *floor = Some(h);
                 h
             }
-            Make::Dummy => {
-                let h = self
-                    .client
-                    .call_int("sim.createDummy", vec![Value::Float(0.05)])?;
-                self.call(
-                    "sim.setObjectAlias",
-                    vec![int(h.into()), Value::Text(alias.into())],
-                )?;
-                h
-            }
+            Make::Dummy => self.create_dummy(0.05, alias)?,
             Make::Plane((size, colour, z)) => {
                 self.create_plane(name, size, colour, z, floor.unwrap_or(HANDLE_WORLD), false)?
             }

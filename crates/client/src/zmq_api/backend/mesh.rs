@@ -211,13 +211,7 @@ impl MeshDrawing for ZmqBackend {
         let holder = match place.holder {
             Some(h) => h,
             None => {
-                let h = self
-                    .client
-                    .call_int("sim.createDummy", vec![Value::Float(0.01)])?;
-                self.call(
-                    "sim.setObjectAlias",
-                    vec![int(h.into()), Value::Text(HOLDER.into())],
-                )?;
+                let h = self.create_dummy(0.01, HOLDER)?;
                 self.settle(h, place.floor, place.parent)?;
                 h
             }
