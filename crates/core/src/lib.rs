@@ -27,6 +27,7 @@ pub mod maze;
 pub mod mesh;
 pub mod render;
 pub mod rng;
+pub mod robot;
 pub mod score;
 pub mod validate;
 pub mod wording;
