@@ -30,6 +30,13 @@ pub mod legacy {
     pub use vrep_maze_emulator::legacy::*;
 }
 
+/// A wheeled robot through a maze: the steering (core) and the driving over a connection
+/// (client), under one path.
+pub mod robot {
+    pub use vrep_maze_client::robot::*;
+    pub use vrep_maze_core::robot::*;
+}
+
 /// The ZeroMQ remote API (port 23000): the codec, our client and drawing backend, and the
 /// emulated server, under one path.
 pub mod zmq_api {

@@ -1,4 +1,6 @@
-//! `vrep-maze drive`: a minimal robot for trying `score` at once. It adds a dummy named
+//! `vrep-maze drive`: with `--wheels`, the scene's wheeled robot driven by its motors in
+//! stepping mode (`super::wheels`); without it, a minimal kinematic robot for trying `score`
+//! at once. The kinematic drive adds a dummy named
 //! `Robot` at Start if the scene has none, and while the simulation runs moves it along the
 //! maze's solution at `--speed`, by remote calls (`sim.setObjectPosition` at the simulation
 //! time it reads), so it needs no script: the real 4.5.1 course scene has no main script, so
@@ -41,9 +43,21 @@ pub struct DriveArgs {
     /// The robot's name: an object the scene has, or the dummy added at Start.
     #[arg(long, default_value = "Robot")]
     pub robot: String,
-    /// Metres a second along the solution (turns take no time).
-    #[arg(long, value_name = "M/S", default_value_t = 1.0)]
-    pub speed: f64,
+    /// Metres a second along the solution [default: 1 for the kinematic robot, whose turns
+    /// take no time; with --wheels the top speed, 0.5 by pose and 0.3 by camera].
+    #[arg(long, value_name = "M/S")]
+    pub speed: Option<f64>,
+    /// Drive the scene's wheeled robot by its wheel joints, with physics, the simulation
+    /// stepped by this command (synchronous), and grade the run (`score`'s report).
+    #[arg(long)]
+    pub wheels: bool,
+    /// How the wheeled robot steers: `pose` from the simulator's ground truth, `camera` from
+    /// its camera and wheel odometry alone (line mazes).
+    #[arg(long, value_enum, default_value = "pose", requires = "wheels")]
+    pub steer: super::wheels::SteerBy,
+    /// The wheeled robot's parts.
+    #[command(flatten)]
+    pub parts: super::wheels::PartArgs,
     /// Run the simulation in real time (`sim.boolparam_realtime_simulation`): a headless
     /// CoppeliaSim without physics runs some 300 times faster than the remote calls that
     /// move the robot can follow.
@@ -59,11 +73,12 @@ pub struct DriveArgs {
 
 /// Runs `drive`.
 pub fn run(args: DriveArgs) -> Result<ExitCode> {
-    ensure_usage!(
-        args.speed.is_finite() && args.speed > 0.0 && args.speed <= 100.0,
-        "--speed must be more than 0 and at most 100 m/s, got {}",
-        args.speed
-    );
+    if let Some(speed) = args.speed {
+        ensure_usage!(
+            speed.is_finite() && speed > 0.0 && speed <= 100.0,
+            "--speed must be more than 0 and at most 100 m/s, got {speed}"
+        );
+    }
     ensure_usage!(
         args.run_timeout.is_finite() && args.run_timeout > 0.0 && args.run_timeout <= 86_400.0,
         "--run-timeout must be more than 0 and at most a day, got {}",
@@ -71,6 +86,13 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
     );
     let layout = crate::layout::read_layout(&args.layout)?;
     crate::validate::checked(&layout).context("nothing was driven")?;
+    if args.wheels {
+        return super::wheels::run(&args, &layout);
+    }
+    ensure_usage!(
+        !args.parts.given(),
+        "--left-motor, --right-motor, --camera, --wheel-radius, --track, --wheel-max, --sim-timeout and --json drive a wheeled robot: add --wheels"
+    );
     let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
     let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{e}"))?;
     let path = solve(&layout, &maze, None).map_err(|e| anyhow!("{e}"))?;
@@ -96,7 +118,9 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
     }
     println!(
         "drove {} along the solution ({} m at {} m/s): {moves} moves; the simulation stopped",
-        args.robot, path.length, args.speed
+        args.robot,
+        path.length,
+        kinematic_speed(&args)
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -160,11 +184,16 @@ fn drive(
         ran = true;
         let t = client.call1("sim.getSimulationTime", vec![])?;
         let t = cbor::number(&t).unwrap_or(0.0);
-        let (x, y) = along(waypoints, t * args.speed);
+        let (x, y) = along(waypoints, t * kinematic_speed(args));
         place(client, x, y)?;
         moves += 1;
     }
     Ok(moves)
+}
+
+/// The kinematic robot's speed, m/s.
+fn kinematic_speed(args: &DriveArgs) -> f64 {
+    args.speed.unwrap_or(1.0)
 }
 
 /// A name as `sim.getObject` takes it: a path, `/Floor` for `Floor`.

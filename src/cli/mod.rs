@@ -30,6 +30,7 @@ mod stdout;
 pub mod summary;
 mod validate;
 mod values;
+mod wheels;
 pub mod wording;
 
 pub use clear::ClearArgs;

@@ -218,7 +218,7 @@ fn connect(args: &ConnectArgs, stop: &AtomicBool) -> Result<Box<dyn Follower>> {
 }
 
 /// The report for a terminal.
-fn describe(r: &Report) -> String {
+pub(super) fn describe(r: &Report) -> String {
     use std::fmt::Write as _;
     let m = |v: f64| format!("{v:.3} m");
     let mut s = String::new();

@@ -7,4 +7,5 @@
 pub mod draw;
 pub mod held;
 pub mod legacy;
+pub mod robot;
 pub mod zmq_api;

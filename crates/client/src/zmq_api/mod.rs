@@ -10,6 +10,7 @@
 pub mod backend;
 pub mod client;
 pub mod follow;
+pub mod robot;
 
 pub use backend::ZmqBackend;
 pub use client::{Client, ClientOptions, ClientStats, Outcome, ZmqError};

@@ -1,0 +1,214 @@
+//! Driving the scene's wheeled robot by its motors, with physics, in stepping mode: the
+//! [`RobotPort`] a connection implements (ZeroMQ: `zmq_api::robot`; legacy:
+//! `legacy::robot`), and [`drive`], which runs one route with a [`Steer`] from
+//! `vrep_maze_core::robot` deciding the wheels at every simulation step. The simulation
+//! advances only when this client says so, so a run does not depend on the machine's pace
+//! and the same maze gives the same run.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use vrep_maze_core::robot::camera::{CameraModel, Image};
+use vrep_maze_core::robot::steer::{Observation, Steer};
+use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
+use vrep_maze_core::robot::{Pose, wrap};
+use vrep_maze_core::score::Sample;
+
+/// The names of the robot's parts in the scene.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RobotNames {
+    /// The robot's base (its pose is the robot's).
+    pub robot: String,
+    /// The left wheel's joint.
+    pub left_motor: String,
+    /// The right wheel's joint.
+    pub right_motor: String,
+    /// The forward camera (a vision sensor).
+    pub camera: String,
+    /// The floor (poses are in its frame).
+    pub floor: String,
+    /// The line template (its colour is the lines' colour).
+    pub line: String,
+}
+
+/// What the scene says of the robot before a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotSurvey {
+    /// Wheel radius and track, read from the wheels' shapes and the joints' places.
+    pub drive: DiffDrive,
+    /// The camera, when the scene has one.
+    pub camera: Option<CameraModel>,
+    /// The lines' colour and the floor's (0..1), when they could be read.
+    pub colours: Option<([f64; 3], [f64; 3])>,
+    /// The robot's pose now.
+    pub pose: Pose,
+}
+
+/// One simulation step's readings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reading {
+    /// Simulation time, seconds.
+    pub time: f64,
+    /// Left and right joint angles, radians.
+    pub joints: [f64; 2],
+    /// The robot's true pose (always read: it is what the run is graded by).
+    pub pose: Pose,
+    /// The camera's image, when asked for.
+    pub image: Option<Image>,
+}
+
+/// Why a robot could not be driven.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RobotError {
+    /// An object the run needs is missing, or is not what it must be.
+    #[error("{0}")]
+    Scene(String),
+    /// The connection failed or a reply was malformed.
+    #[error("{0}")]
+    Connection(String),
+}
+
+/// A connection that can drive a wheeled robot in stepping mode.
+pub trait RobotPort {
+    /// Finds the robot's parts by `names` and reads its geometry.
+    fn survey(&mut self, names: &RobotNames) -> Result<RobotSurvey, RobotError>;
+    /// Puts the robot at `pose` (floor frame) on the stopped simulation.
+    fn place(&mut self, pose: Pose) -> Result<(), RobotError>;
+    /// Enters stepping mode and starts the simulation; `camera` says whether the camera is
+    /// read (else it is spared rendering for the run).
+    fn start(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// Reads this step's readings (the image when `image`).
+    fn observe(&mut self, image: bool) -> Result<Reading, RobotError>;
+    /// Sets the wheels' target velocities.
+    fn actuate(&mut self, wheels: Wheels) -> Result<(), RobotError>;
+    /// Lets the simulation advance one step and waits for it.
+    fn step(&mut self) -> Result<(), RobotError>;
+    /// Ends the run whatever happened: wheels stopped, simulation stopped, stepping off,
+    /// the camera's handling as it was. Tries a fresh connection when this one is lost.
+    fn finish(&mut self) -> Result<(), RobotError>;
+}
+
+/// How a drive ends and how long it may take.
+#[derive(Debug, Clone)]
+pub struct DriveOptions {
+    /// Simulated seconds at most.
+    pub sim_limit: f64,
+    /// Wall-clock limit.
+    pub wall_limit: Duration,
+    /// Set (by Ctrl-C) to end the run early.
+    pub interrupt: Option<Arc<AtomicBool>>,
+}
+
+/// A driven run: the robot's true poses at every step, and how it ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Driven {
+    /// The true pose at every step, floor frame.
+    pub samples: Vec<Sample>,
+    /// `true` if the steer reached the end of its route.
+    pub arrived: bool,
+    /// Why the run ended early, if it did.
+    pub stopped: Option<String>,
+    /// Simulation steps made.
+    pub steps: usize,
+    /// Wall-clock seconds of the stepping.
+    pub wall_time_s: f64,
+    /// The steer's own belief of the pose at the end (camera: odometry and vision).
+    pub belief: Option<Pose>,
+}
+
+/// Drives one route: places the robot at `start`, starts the simulation in stepping mode,
+/// then at each step observes, lets `steer` decide and actuates, until the steer arrives,
+/// a limit passes, an interrupt comes or the connection fails. The simulation is stopped
+/// and stepping ended in every case (an error from that is returned only when the run
+/// itself went well).
+pub fn drive(
+    port: &mut dyn RobotPort,
+    steer: &mut dyn Steer,
+    start: Pose,
+    options: &DriveOptions,
+) -> Result<Driven, RobotError> {
+    port.place(start)?;
+    let needs = steer.needs();
+    port.start(needs.image)?;
+    let run = stepping(port, steer, options);
+    let finished = port.finish();
+    let driven = run?;
+    finished?;
+    Ok(driven)
+}
+
+/// The stepping loop of [`drive`], on a started simulation.
+fn stepping(
+    port: &mut dyn RobotPort,
+    steer: &mut dyn Steer,
+    options: &DriveOptions,
+) -> Result<Driven, RobotError> {
+    let needs = steer.needs();
+    let began = Instant::now();
+    let mut samples: Vec<Sample> = Vec::new();
+    let mut steps = 0usize;
+    let stopped = loop {
+        if options
+            .interrupt
+            .as_ref()
+            .is_some_and(|i| i.load(Ordering::SeqCst))
+        {
+            break Some("interrupted".to_string());
+        }
+        let reading = match port.observe(needs.image) {
+            Ok(r) => r,
+            Err(e) => break Some(format!("the connection failed: {e}")),
+        };
+        if samples.last().is_none_or(|s| reading.time > s.t) {
+            samples.push(Sample {
+                t: reading.time,
+                x: reading.pose.x,
+                y: reading.pose.y,
+                yaw: reading.pose.yaw,
+            });
+        }
+        let observation = Observation {
+            time: reading.time,
+            joints: reading.joints,
+            pose: needs.pose.then_some(reading.pose),
+            image: reading.image,
+        };
+        let wheels = match steer.decide(&observation) {
+            Ok(w) => w,
+            Err(why) => break Some(why),
+        };
+        if steer.arrived() {
+            break None;
+        }
+        if reading.time >= options.sim_limit {
+            break Some(format!(
+                "the simulation limit of {} s passed first",
+                options.sim_limit
+            ));
+        }
+        if began.elapsed() >= options.wall_limit {
+            break Some(format!(
+                "the timeout of {} s passed first",
+                options.wall_limit.as_secs_f64()
+            ));
+        }
+        if let Err(e) = port.actuate(wheels).and_then(|()| port.step()) {
+            break Some(format!("the connection failed: {e}"));
+        }
+        steps += 1;
+    };
+    Ok(Driven {
+        arrived: stopped.is_none() && steer.arrived(),
+        stopped,
+        samples,
+        steps,
+        wall_time_s: began.elapsed().as_secs_f64(),
+        belief: steer.belief(),
+    })
+}
+
+/// The heading that faces the first leg of a route from `from` (0 when it has none).
+pub fn facing(from: [f64; 2], to: Option<[f64; 2]>) -> f64 {
+    to.map_or(0.0, |t| wrap((t[1] - from[1]).atan2(t[0] - from[0])))
+}

@@ -1,0 +1,472 @@
+//! The [`RobotPort`] over the ZeroMQ remote API, both protocols. Stepping is the add-on's:
+//! protocol 2 (4.6+) `sim.setStepping(true)` and a blocking `sim.step()` per step
+//! (zmqRemoteApi@coppeliasim-v4.10.0-rev0 `ZMQ remote API server.lua:71-127`: the
+//! simulation waits at every step for each client in stepping mode); protocol 1 (4.5.1) the
+//! add-on's globals `setStepping(enable, uuid)` and `step(uuid)`, the main script held until
+//! every stepping client stepped (`simAddOnZMQ remote API server.lua:177-229` at
+//! coppeliasim-v4.5.1-rev4), and the step's end seen as the simulation time advancing. A
+//! stop ends every client's stepping on both.
+
+use std::time::{Duration, Instant};
+
+use ciborium::Value;
+
+use super::backend::object_path;
+use super::cbor::{self, float_array, int};
+use super::client::{Client, ClientOptions, ZmqError};
+use super::{Outcome, Protocol};
+use crate::robot::{Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
+use vrep_maze_core::coppelia::SIMULATION_STOPPED;
+use vrep_maze_core::robot::Pose;
+use vrep_maze_core::robot::camera::{CameraModel, Image};
+use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
+
+/// `sim.objfloatparam_objbbox_min_x` .. `_max_z`: a shape's bounding box in its own frame.
+const BBOX_PARAMS: [i64; 6] = [15, 16, 17, 18, 19, 20];
+/// `sim.visionintparam_resolution_x` and `_y`.
+const RESOLUTION_PARAMS: [i64; 2] = [1002, 1003];
+/// `sim.visionfloatparam_perspective_angle`.
+const VIEW_ANGLE_PARAM: i64 = 1004;
+/// How long a protocol-1 step may take to show in the simulation time.
+const STEP_TIMEOUT: Duration = Duration::from_secs(30);
+
+/// Handles of the robot's parts, once surveyed.
+#[derive(Debug, Clone, Copy)]
+struct Parts {
+    robot: i64,
+    left: i64,
+    right: i64,
+    camera: Option<i64>,
+    floor: i64,
+}
+
+/// A wheeled robot driven over a ZeroMQ connection.
+pub struct ZmqRobot {
+    client: Option<Client>,
+    options: ClientOptions,
+    /// The name protocol 1's stepping globals know this client by.
+    uuid: String,
+    parts: Option<Parts>,
+    /// The camera's explicit-handling flag before the run, when this run changed it.
+    camera_flag: Option<i64>,
+    /// The robot's height above the floor, kept when it is placed.
+    height: f64,
+}
+
+fn lost(e: ZmqError) -> RobotError {
+    RobotError::Connection(e.to_string())
+}
+
+fn malformed(what: &str) -> RobotError {
+    RobotError::Connection(format!("malformed reply to {what}"))
+}
+
+impl ZmqRobot {
+    /// Drives over `client`, connected with `options` (kept to reach the simulator again
+    /// to stop it, should this connection be lost mid-run).
+    pub fn new(client: Client, options: ClientOptions) -> Self {
+        Self {
+            client: Some(client),
+            options,
+            uuid: super::client::new_uuid(),
+            parts: None,
+            camera_flag: None,
+            height: 0.0,
+        }
+    }
+
+    /// Closes the connection.
+    pub fn close(mut self) {
+        if let Some(client) = self.client.take() {
+            client.close();
+        }
+    }
+
+    fn client(&mut self) -> Result<&mut Client, RobotError> {
+        self.client
+            .as_mut()
+            .ok_or_else(|| RobotError::Connection("the connection is closed".into()))
+    }
+
+    fn parts(&self) -> Result<Parts, RobotError> {
+        self.parts
+            .ok_or_else(|| RobotError::Scene("the robot was not surveyed".into()))
+    }
+
+    fn protocol(&mut self) -> Result<Protocol, RobotError> {
+        Ok(self.client()?.protocol().unwrap_or(Protocol::V2))
+    }
+
+    /// The handle of the object `name`, or a scene error naming it and its `role`.
+    fn handle(&mut self, name: &str, role: &str) -> Result<i64, RobotError> {
+        let opts = cbor::map([("noError", Value::Bool(true))]);
+        match self
+            .client()?
+            .call_int("sim.getObject", vec![Value::Text(object_path(name)), opts])
+        {
+            Ok(h) if h >= 0 => Ok(h.into()),
+            Ok(_) | Err(ZmqError::Remote { .. }) => Err(RobotError::Scene(format!(
+                "the scene has no object named `{name}` ({role})"
+            ))),
+            Err(e) => Err(lost(e)),
+        }
+    }
+
+    fn numbers<const N: usize>(outcome: &Outcome, what: &str) -> Result<[f64; N], RobotError> {
+        match outcome {
+            Ok(values) => values
+                .first()
+                .and_then(cbor::numbers::<N>)
+                .ok_or_else(|| malformed(what)),
+            Err(e) => Err(RobotError::Connection(e.to_string())),
+        }
+    }
+
+    fn number(outcome: &Outcome, what: &str) -> Result<f64, RobotError> {
+        match outcome {
+            Ok(values) => values
+                .first()
+                .and_then(cbor::number)
+                .ok_or_else(|| malformed(what)),
+            Err(e) => Err(RobotError::Connection(e.to_string())),
+        }
+    }
+
+    /// A wheel's radius: half the larger side across the axle of the first shape under
+    /// the joint.
+    fn wheel_radius(&mut self, joint: i64, name: &str) -> Result<f64, RobotError> {
+        let wheel = self
+            .client()?
+            .call_int("sim.getObjectChild", vec![int(joint), int(0)])
+            .map_err(lost)?;
+        if wheel < 0 {
+            return Err(RobotError::Scene(format!(
+                "`{name}` has no wheel under it: give --wheel-radius"
+            )));
+        }
+        let calls: Vec<(&str, Vec<Value>)> = BBOX_PARAMS
+            .iter()
+            .map(|&p| ("sim.getObjectFloatParam", vec![int(wheel.into()), int(p)]))
+            .collect();
+        let box_ = self.client()?.read_all(&calls).map_err(lost)?;
+        let v: Vec<f64> = box_
+            .iter()
+            .map(|o| Self::number(o, "sim.getObjectFloatParam"))
+            .collect::<Result<_, _>>()?;
+        Ok((v[3] - v[0]).max(v[4] - v[1]) / 2.0)
+    }
+
+    fn camera_model(&mut self, camera: i64, robot: i64) -> Result<CameraModel, RobotError> {
+        let calls = vec![
+            (
+                "sim.getObjectInt32Param",
+                vec![int(camera), int(RESOLUTION_PARAMS[0])],
+            ),
+            (
+                "sim.getObjectInt32Param",
+                vec![int(camera), int(RESOLUTION_PARAMS[1])],
+            ),
+            (
+                "sim.getObjectFloatParam",
+                vec![int(camera), int(VIEW_ANGLE_PARAM)],
+            ),
+            ("sim.getObjectMatrix", vec![int(camera), int(robot)]),
+        ];
+        let got = self.client()?.read_all(&calls).map_err(lost)?;
+        let width = Self::number(&got[0], "the camera's resolution")? as usize;
+        let height = Self::number(&got[1], "the camera's resolution")? as usize;
+        let view_angle = Self::number(&got[2], "the camera's view angle")?;
+        let mount = Self::numbers::<12>(&got[3], "sim.getObjectMatrix")?;
+        Ok(CameraModel {
+            width,
+            height,
+            view_angle,
+            mount,
+            floor_z: -self.height,
+        })
+    }
+
+    /// A shape's colour (ambient-diffuse), if it can be read.
+    fn colour(&mut self, shape: i64) -> Option<[f64; 3]> {
+        let got = self
+            .client()
+            .ok()?
+            .call(
+                "sim.getShapeColor",
+                vec![int(shape), Value::Null, int(0)],
+            )
+            .ok()?;
+        got.get(1).and_then(cbor::numbers::<3>)
+    }
+
+    fn pose_of(matrix: &[f64; 12]) -> Pose {
+        Pose {
+            x: matrix[3],
+            y: matrix[7],
+            yaw: matrix[4].atan2(matrix[0]),
+        }
+    }
+
+    /// Stops the simulation over `client` and waits until it is stopped.
+    fn stop_over(client: &mut Client) -> Result<(), ZmqError> {
+        client.call("sim.stopSimulation", vec![])?;
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while client.call_int("sim.getSimulationState", vec![])? != SIMULATION_STOPPED
+            && Instant::now() < deadline
+        {
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        Ok(())
+    }
+
+    fn set_stepping(&mut self, on: bool) -> Result<(), RobotError> {
+        let protocol = self.protocol()?;
+        let uuid = self.uuid.clone();
+        let client = self.client()?;
+        match protocol {
+            Protocol::V1 => client.call("setStepping", vec![Value::Bool(on), Value::Text(uuid)]),
+            Protocol::V2 => client.call("sim.setStepping", vec![Value::Bool(on)]),
+        }
+        .map(|_| ())
+        .map_err(lost)
+    }
+}
+
+impl RobotPort for ZmqRobot {
+    fn survey(&mut self, names: &RobotNames) -> Result<RobotSurvey, RobotError> {
+        let robot = self.handle(&names.robot, "the robot")?;
+        let left = self.handle(&names.left_motor, "the left wheel's joint")?;
+        let right = self.handle(&names.right_motor, "the right wheel's joint")?;
+        let floor = self.handle(&names.floor, "the floor")?;
+        let camera = self.handle(&names.camera, "the camera").ok();
+        let line = self.handle(&names.line, "the line template").ok();
+        let calls = vec![
+            ("sim.getObjectPosition", vec![int(left), int(robot)]),
+            ("sim.getObjectPosition", vec![int(right), int(robot)]),
+            ("sim.getObjectMatrix", vec![int(robot), int(floor)]),
+        ];
+        let got = self.client()?.read_all(&calls).map_err(lost)?;
+        let l = Self::numbers::<3>(&got[0], "sim.getObjectPosition")?;
+        let r = Self::numbers::<3>(&got[1], "sim.getObjectPosition")?;
+        let m = Self::numbers::<12>(&got[2], "sim.getObjectMatrix")?;
+        self.height = m[11];
+        let track = (l[0] - r[0]).hypot(l[1] - r[1]);
+        let radius = self.wheel_radius(left, &names.left_motor)?;
+        let drive = DiffDrive::new(radius, track).map_err(|e| {
+            RobotError::Scene(format!(
+                "`{}` and `{}`: {e}; give --wheel-radius and --track",
+                names.left_motor, names.right_motor
+            ))
+        })?;
+        self.parts = Some(Parts {
+            robot,
+            left,
+            right,
+            camera,
+            floor,
+        });
+        let camera = match camera {
+            Some(c) => Some(self.camera_model(c, robot)?),
+            None => None,
+        };
+        let colours = line
+            .and_then(|l| self.colour(l))
+            .zip(self.colour(floor));
+        Ok(RobotSurvey {
+            drive,
+            camera,
+            colours,
+            pose: Self::pose_of(&m),
+        })
+    }
+
+    fn place(&mut self, pose: Pose) -> Result<(), RobotError> {
+        let p = self.parts()?;
+        let height = self.height;
+        let client = self.client()?;
+        let state = client
+            .call_int("sim.getSimulationState", vec![])
+            .map_err(lost)?;
+        if state != SIMULATION_STOPPED {
+            return Err(RobotError::Scene(
+                "the simulation is running: stop it first (the robot is placed on a stopped simulation)".into(),
+            ));
+        }
+        let calls = vec![
+            (
+                "sim.setObjectPosition",
+                vec![int(p.robot), int(p.floor), float_array(&[pose.x, pose.y, height])],
+            ),
+            (
+                "sim.setObjectOrientation",
+                vec![int(p.robot), int(p.floor), float_array(&[0.0, 0.0, pose.yaw])],
+            ),
+            ("sim.setJointTargetVelocity", vec![int(p.left), Value::Float(0.0)]),
+            ("sim.setJointTargetVelocity", vec![int(p.right), Value::Float(0.0)]),
+        ];
+        for outcome in client.call_all(&calls).map_err(lost)? {
+            outcome.map_err(|e| RobotError::Scene(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    fn start(&mut self, camera: bool) -> Result<(), RobotError> {
+        let p = self.parts()?;
+        if let Some(cam) = p.camera {
+            // a camera not read is spared rendering (30 ms a frame with a display)
+            let flag = self
+                .client()?
+                .call_int("sim.getExplicitHandling", vec![int(cam)])
+                .map_err(lost)?;
+            let wanted = if camera { flag } else { 1 };
+            if i64::from(flag) != i64::from(wanted) {
+                self.client()?
+                    .call("sim.setExplicitHandling", vec![int(cam), int(wanted.into())])
+                    .map_err(lost)?;
+                self.camera_flag = Some(flag.into());
+            }
+            if camera && flag != 0 {
+                return Err(RobotError::Scene(
+                    "the camera is tagged for explicit handling, so it renders only when a script asks: untag it (sim.setExplicitHandling(camera, 0))".into(),
+                ));
+            }
+        } else if camera {
+            return Err(RobotError::Scene("the robot has no camera".into()));
+        }
+        self.set_stepping(true)?;
+        self.client()?
+            .call("sim.startSimulation", vec![])
+            .map_err(lost)?;
+        Ok(())
+    }
+
+    fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
+        let p = self.parts()?;
+        let calls = vec![
+            ("sim.getSimulationTime", vec![]),
+            ("sim.getJointPosition", vec![int(p.left)]),
+            ("sim.getJointPosition", vec![int(p.right)]),
+            ("sim.getObjectMatrix", vec![int(p.robot), int(p.floor)]),
+        ];
+        let got = self.client()?.read_all(&calls).map_err(lost)?;
+        let time = Self::number(&got[0], "sim.getSimulationTime")?;
+        let joints = [
+            Self::number(&got[1], "sim.getJointPosition")?,
+            Self::number(&got[2], "sim.getJointPosition")?,
+        ];
+        let pose = Self::pose_of(&Self::numbers::<12>(&got[3], "sim.getObjectMatrix")?);
+        let image = match (image, p.camera) {
+            (true, Some(cam)) => {
+                let got = self
+                    .client()?
+                    .call("sim.getVisionSensorImg", vec![int(cam)])
+                    .map_err(lost)?;
+                let bytes = match got.first() {
+                    Some(Value::Bytes(b)) => b.clone(),
+                    Some(Value::Text(t)) => t.as_bytes().to_vec(),
+                    _ => return Err(malformed("sim.getVisionSensorImg")),
+                };
+                let [w, h] = got
+                    .get(1)
+                    .and_then(cbor::numbers::<2>)
+                    .ok_or_else(|| malformed("sim.getVisionSensorImg"))?;
+                Some(Image::new(w as usize, h as usize, bytes).map_err(RobotError::Connection)?)
+            }
+            _ => None,
+        };
+        Ok(Reading {
+            time,
+            joints,
+            pose,
+            image,
+        })
+    }
+
+    fn actuate(&mut self, wheels: Wheels) -> Result<(), RobotError> {
+        let p = self.parts()?;
+        let calls = vec![
+            ("sim.setJointTargetVelocity", vec![int(p.left), Value::Float(wheels.left)]),
+            ("sim.setJointTargetVelocity", vec![int(p.right), Value::Float(wheels.right)]),
+        ];
+        for outcome in self.client()?.call_all(&calls).map_err(lost)? {
+            outcome.map_err(|e| RobotError::Connection(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    fn step(&mut self) -> Result<(), RobotError> {
+        match self.protocol()? {
+            Protocol::V2 => {
+                self.client()?.call("sim.step", vec![]).map_err(lost)?;
+            }
+            Protocol::V1 => {
+                let uuid = self.uuid.clone();
+                let client = self.client()?;
+                let before = client.call1("sim.getSimulationTime", vec![]).map_err(lost)?;
+                let before = cbor::number(&before).ok_or_else(|| malformed("sim.getSimulationTime"))?;
+                client.call("step", vec![Value::Text(uuid)]).map_err(lost)?;
+                let deadline = Instant::now() + STEP_TIMEOUT;
+                loop {
+                    let now = client.call1("sim.getSimulationTime", vec![]).map_err(lost)?;
+                    if cbor::number(&now).is_some_and(|t| t > before) {
+                        break;
+                    }
+                    if Instant::now() >= deadline {
+                        return Err(RobotError::Connection(format!(
+                            "the simulation did not advance within {} s of a step",
+                            STEP_TIMEOUT.as_secs()
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<(), RobotError> {
+        let parts = self.parts;
+        let restore = self.camera_flag.take();
+        let tidy = |client: &mut Client| -> Result<(), RobotError> {
+            Self::tidy(client, parts, restore).map_err(lost)
+        };
+        let first = match self.client.as_mut() {
+            Some(client) => tidy(client),
+            None => Err(RobotError::Connection("the connection is closed".into())),
+        };
+        let stepping_off = first.is_ok() && self.set_stepping(false).is_ok();
+        if first.is_ok() && stepping_off {
+            return Ok(());
+        }
+        // the connection is lost (or stuck in a step): a fresh one stops the simulation,
+        // which ends every client's stepping
+        let mut fresh = Client::connect(&self.options).map_err(lost)?;
+        let done = tidy(&mut fresh);
+        fresh.close();
+        done
+    }
+}
+
+impl ZmqRobot {
+    /// Wheels stopped, the simulation stopped, the camera's handling put back.
+    fn tidy(
+        client: &mut Client,
+        parts: Option<Parts>,
+        restore: Option<i64>,
+    ) -> Result<(), ZmqError> {
+        if let Some(p) = parts {
+            for joint in [p.left, p.right] {
+                client.call(
+                    "sim.setJointTargetVelocity",
+                    vec![int(joint), Value::Float(0.0)],
+                )?;
+            }
+        }
+        Self::stop_over(client)?;
+        if let (Some(p), Some(flag)) = (parts, restore)
+            && let Some(cam) = p.camera
+        {
+            client.call("sim.setExplicitHandling", vec![int(cam), int(flag)])?;
+        }
+        Ok(())
+    }
+}

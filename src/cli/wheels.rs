@@ -1,0 +1,247 @@
+//! `vrep-maze drive --wheels`: the scene's wheeled robot through the maze by its motors, with
+//! physics, the simulation stepped by this command, steered by pose or by camera
+//! (`vrep_maze_core::robot`), moved through `vrep_maze_client::robot`; the run is graded as
+//! `score` grades one, from the robot's true pose at every step.
+
+use std::process::ExitCode;
+use std::time::Duration;
+
+use anyhow::{Result, anyhow};
+
+use super::connect::RawClient;
+use super::drive::DriveArgs;
+use super::ensure_usage;
+use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::score::{INCOMPLETE_EXIT_CODE, describe};
+use crate::layout::solution::solve;
+use crate::layout::{Layout, Style, passages};
+use crate::maze::Grid;
+use crate::robot::camera::LineColour;
+use crate::robot::localize::LineMap;
+use crate::robot::route::{Gains, legs};
+use crate::robot::steer::{CameraSteer, Eye, PoseSteer, Steer};
+use crate::robot::wheels::DiffDrive;
+use crate::robot::Pose;
+use crate::score::{GradeOptions, Grader, Report};
+use crate::robot::{
+    DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing,
+};
+use crate::zmq_api::ClientOptions;
+use crate::zmq_api::robot::ZmqRobot;
+
+/// How the wheeled robot steers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SteerBy {
+    /// From the simulator's ground truth (the robot's pose), along the solution.
+    Pose,
+    /// From the camera and the wheels' joint angles alone: the drawn line followed, the
+    /// solution's turns taken (line mazes).
+    Camera,
+}
+
+/// The wheeled robot's parts and limits (with `--wheels`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct PartArgs {
+    /// The left wheel's joint (a revolute joint in velocity mode; positive drives forward).
+    #[arg(long, default_value = "leftMotor")]
+    pub left_motor: String,
+    /// The right wheel's joint.
+    #[arg(long, default_value = "rightMotor")]
+    pub right_motor: String,
+    /// The robot's forward camera (a vision sensor).
+    #[arg(long, default_value = "camera")]
+    pub camera: String,
+    /// Wheel radius in metres [default: read from the wheel under the left joint].
+    #[arg(long, value_name = "M")]
+    pub wheel_radius: Option<f64>,
+    /// Distance between the wheels in metres [default: read from the joints' places].
+    #[arg(long, value_name = "M")]
+    pub track: Option<f64>,
+    /// Top wheel speed, rad/s.
+    #[arg(long, value_name = "RAD/S", default_value_t = 16.0)]
+    pub wheel_max: f64,
+    /// Simulated seconds at most.
+    #[arg(long, value_name = "SECS", default_value_t = 900.0)]
+    pub sim_timeout: f64,
+    /// Print the run's grade as JSON (`score --json`'s report).
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl PartArgs {
+    /// Whether any of these options differs from its default (they need `--wheels`).
+    pub fn given(&self) -> bool {
+        self.left_motor != "leftMotor"
+            || self.right_motor != "rightMotor"
+            || self.camera != "camera"
+            || self.wheel_radius.is_some()
+            || self.track.is_some()
+            || self.wheel_max != 16.0
+            || self.sim_timeout != 900.0
+            || self.json
+    }
+}
+
+/// Runs `drive --wheels`.
+pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
+    let parts = &args.parts;
+    ensure_usage!(
+        parts.wheel_max.is_finite() && parts.wheel_max > 0.0 && parts.wheel_max <= 1000.0,
+        "--wheel-max must be more than 0 and at most 1000 rad/s, got {}",
+        parts.wheel_max
+    );
+    ensure_usage!(
+        parts.sim_timeout.is_finite() && parts.sim_timeout > 0.0 && parts.sim_timeout <= 86_400.0,
+        "--sim-timeout must be more than 0 and at most a day, got {}",
+        parts.sim_timeout
+    );
+    ensure_usage!(
+        args.run_timeout.is_finite() && args.run_timeout > 0.0 && args.run_timeout <= 86_400.0,
+        "--run-timeout must be more than 0 and at most a day, got {}",
+        args.run_timeout
+    );
+    ensure_usage!(
+        args.steer == SteerBy::Pose || layout.style == Style::Lines,
+        "--steer camera follows drawn lines: this is a wall maze; steer it with --steer pose"
+    );
+    let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
+    let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{e}"))?;
+    let path = solve(layout, &maze, None).map_err(|e| anyhow!("{e}"))?;
+    let route = legs(&path.waypoints);
+    let first = path.waypoints[0];
+    let start = Pose {
+        x: first.x,
+        y: first.y,
+        yaw: facing([first.x, first.y], route.first().map(|l| l.to)),
+    };
+    let interrupt = Interrupt::install()?;
+    let (client, options) = match args.scene.client_until(Some(&interrupt.shared()))? {
+        RawClient::Zmq(client) => {
+            let options = ClientOptions {
+                host: args.scene.host.clone(),
+                port: port_of(client.endpoint()).unwrap_or(0),
+                timeout: args.scene.timeout,
+                ..ClientOptions::default()
+            };
+            (client, options)
+        }
+        RawClient::Legacy(client) => {
+            let _ = client.close();
+            return Err(super::hinted::hinted(
+                "drive --wheels over the legacy remote API is not built yet; the ZeroMQ remote API answers beside it",
+                vec!["pass --api zmq (CoppeliaSim 4.5.1 serves it on 23000 beside legacy)".into()],
+            ));
+        }
+    };
+    let mut port = ZmqRobot::new(client, options);
+    let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
+    port.close();
+    let (driven, report) = outcome?;
+    let text = if parts.json {
+        serde_json::to_string_pretty(&report)? + "\n"
+    } else {
+        format!(
+            "drove {} by its wheels ({}): {} steps, {:.1} s simulated, {:.1} s wall\n{}",
+            args.robot,
+            match args.steer {
+                SteerBy::Pose => "steered by pose",
+                SteerBy::Camera => "steered by camera",
+            },
+            driven.steps,
+            driven.samples.last().map_or(0.0, |s| s.t),
+            driven.wall_time_s,
+            describe(&report)
+        )
+    };
+    super::output::write_output(None, |w| w.write_all(text.as_bytes()))?;
+    Ok(if report.complete {
+        ExitCode::SUCCESS
+    } else if interrupt.requested() {
+        ExitCode::from(INTERRUPTED_EXIT_CODE)
+    } else {
+        ExitCode::from(INCOMPLETE_EXIT_CODE)
+    })
+}
+
+/// Surveys the robot, builds the steer, drives and grades.
+fn run_over(
+    port: &mut dyn RobotPort,
+    args: &DriveArgs,
+    layout: &Layout,
+    route: Vec<crate::robot::route::Leg>,
+    start: Pose,
+    interrupt: &Interrupt,
+) -> Result<(Driven, Report)> {
+    let parts = &args.parts;
+    let names = RobotNames {
+        robot: args.robot.clone(),
+        left_motor: parts.left_motor.clone(),
+        right_motor: parts.right_motor.clone(),
+        camera: parts.camera.clone(),
+        floor: args.scene.floor.clone(),
+        line: args.scene.line.clone(),
+    };
+    let survey = port.survey(&names)?;
+    let drive_geometry = DiffDrive::new(
+        parts.wheel_radius.unwrap_or(survey.drive.wheel_radius),
+        parts.track.unwrap_or(survey.drive.track),
+    )
+    .map_err(|e| anyhow!("{e}"))?;
+    let gains = Gains {
+        speed: args.speed.unwrap_or(match args.steer {
+            SteerBy::Pose => 0.5,
+            SteerBy::Camera => 0.3,
+        }),
+        wheel_max: parts.wheel_max,
+        ..Gains::default()
+    };
+    let mut steer: Box<dyn Steer> = match args.steer {
+        SteerBy::Pose => Box::new(PoseSteer::new(route, drive_geometry, gains)),
+        SteerBy::Camera => Box::new(CameraSteer::new(
+            route,
+            drive_geometry,
+            gains,
+            eye(&survey, layout, &names)?,
+            start,
+        )),
+    };
+    let options = DriveOptions {
+        sim_limit: parts.sim_timeout,
+        wall_limit: Duration::from_secs_f64(args.run_timeout),
+        interrupt: Some(interrupt.shared()),
+    };
+    let driven = drive(port, steer.as_mut(), start, &options)?;
+    let grader = Grader::new(layout).map_err(|e| anyhow!("{e}"))?;
+    let mut report = grader.grade(&driven.samples, &GradeOptions::default());
+    report.complete = driven.arrived && report.reached_end;
+    report.incomplete_reason = match (&driven.stopped, report.reached_end) {
+        (Some(why), _) => Some(why.clone()),
+        (None, false) => Some("the robot finished its route outside End".into()),
+        (None, true) => None,
+    };
+    report.wall_time_s = Some(driven.wall_time_s);
+    Ok((driven, report))
+}
+
+/// What the camera steer needs: the camera, the lines' colour against the floor's, the map.
+fn eye(survey: &RobotSurvey, layout: &Layout, names: &RobotNames) -> Result<Eye> {
+    let camera = survey
+        .camera
+        .clone()
+        .ok_or_else(|| anyhow!("the robot has no camera named `{}` (--camera)", names.camera))?;
+    let (line, floor) = survey
+        .colours
+        .unwrap_or(([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]));
+    let colour = LineColour::new(line, floor).map_err(|e| anyhow!("`{}`: {e}", names.line))?;
+    let map = LineMap::of(layout).map_err(|e| anyhow!("{e}"))?;
+    Ok(Eye {
+        camera,
+        colour,
+        map,
+    })
+}
+
+/// The port of a `tcp://host:port` endpoint.
+fn port_of(endpoint: &str) -> Option<u16> {
+    endpoint.rsplit(':').next()?.parse().ok()
+}
