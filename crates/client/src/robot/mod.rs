@@ -145,6 +145,7 @@ fn stepping(
     options: &DriveOptions,
 ) -> Result<Driven, RobotError> {
     let needs = steer.needs();
+    let trace = std::env::var_os("VREP_MAZE_TRACE").is_some();
     let began = Instant::now();
     let mut samples: Vec<Sample> = Vec::new();
     let mut steps = 0usize;
@@ -174,10 +175,22 @@ fn stepping(
             pose: needs.pose.then_some(reading.pose),
             image: reading.image,
         };
+        let deciding = Instant::now();
         let wheels = match steer.decide(&observation) {
             Ok(w) => w,
             Err(why) => break Some(why),
         };
+        if trace {
+            eprintln!(
+                "robot: step {steps} at {:.3} s decided in {:.1} ms: wheels {:.2} {:.2}, belief {:?}, truth {:?}",
+                reading.time,
+                deciding.elapsed().as_secs_f64() * 1000.0,
+                wheels.left,
+                wheels.right,
+                steer.belief(),
+                reading.pose
+            );
+        }
         if steer.arrived() {
             break None;
         }

@@ -166,7 +166,10 @@ mod tests {
         let cam = course_camera();
         let centre = cam.ground(128, 128).unwrap();
         // the optical axis meets the floor 0.1 / tan 30 = 0.173 m ahead of the camera
-        assert!((centre[0] - 0.278).abs() < 0.01 && centre[1].abs() < 0.01, "{centre:?}");
+        assert!(
+            (centre[0] - 0.278).abs() < 0.01 && centre[1].abs() < 0.01,
+            "{centre:?}"
+        );
         let right = cam.ground(250, 128).unwrap();
         assert!(right[1] < -0.05, "{right:?}");
         let near = cam.ground(128, 0).unwrap();
@@ -192,6 +195,10 @@ mod tests {
     #[test]
     fn images_check_their_size() {
         assert!(Image::new(2, 2, vec![0; 12]).unwrap().is_black());
-        assert!(Image::new(2, 2, vec![0; 11]).unwrap_err().contains("12 bytes"));
+        assert!(
+            Image::new(2, 2, vec![0; 11])
+                .unwrap_err()
+                .contains("12 bytes")
+        );
     }
 }

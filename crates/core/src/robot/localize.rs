@@ -1,8 +1,9 @@
 //! A pose estimate kept true by the lines the camera sees: the layout's drawn lines are the
-//! map, each line pixel's floor point is matched to the nearest line's centre, and the pose
-//! is nudged (a damped least-squares step) so the points fall back onto their lines. Lines
-//! fix the robot across them and its heading; along a straight line only the odometry
-//! knows where it is, until a crossing or a turn shows another line.
+//! map, every line pixel's floor point should lie on a drawn line, and the pose is nudged (a
+//! damped least-squares step) so that the points seen off every line fall back onto the
+//! nearest one. A point on a line says nothing, so a junction's overlapping lines pull no
+//! way; the band's edges fix the robot across a line and its heading. Along a straight line
+//! only the odometry knows where it is, until a crossing or a turn shows another line.
 
 use nalgebra::{Matrix3, Point2, Vector3};
 
@@ -11,24 +12,22 @@ use crate::layout::runs::for_each_run;
 use crate::layout::{Layout, passages};
 use crate::maze::Grid;
 
-/// A drawn line's centre, floor frame, from one end of its rectangle to the other.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Segment {
-    a: Point2<f64>,
-    b: Point2<f64>,
-}
-
-/// The drawn lines of a line layout, as the map a camera robot localizes against.
+/// The drawn lines of a line layout, as the map a camera robot localizes against: the
+/// lines' rectangles in the maze frame, and where that frame lies on the floor.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LineMap {
-    segments: Vec<Segment>,
+    /// `[x0, y0, x1, y1]`, maze frame (axis-aligned there).
+    rects: Vec<[f64; 4]>,
+    origin: [f64; 2],
+    /// Cosine and sine of the maze's rotation on the floor.
+    rotation: [f64; 2],
 }
 
-/// How far a point may lie from its line to count, metres: beyond it, it is taken for
-/// something else (another line's end, the markers, noise).
-const GATE: f64 = 0.25;
-/// Below this many matched points the view says too little to correct anything.
-const MIN_POINTS: usize = 12;
+/// How far a point may lie from every line to count, metres: beyond it, it is taken for
+/// something else (a marker's edge, noise).
+const GATE: f64 = 0.2;
+/// Below this many points off the lines the view says too little to correct anything.
+const MIN_POINTS: usize = 8;
 
 impl LineMap {
     /// The map of `layout`'s lines (a line layout that passed validation).
@@ -37,103 +36,116 @@ impl LineMap {
             .map_err(|e| format!("grid: {e}"))?;
         let maze = passages::decode(grid, &layout.passages)?;
         let (cell, width) = (layout.grid.cell_size, layout.line.width);
-        let (c, s) = (layout.grid.rotation.cos(), layout.grid.rotation.sin());
-        let [ox, oy] = layout.grid.origin;
-        let to_floor = |x: f64, y: f64| Point2::new(ox + c * x - s * y, oy + s * x + c * y);
-        let mut segments = Vec::new();
+        let mut rects = Vec::new();
         let Ok(()) = for_each_run::<std::convert::Infallible>(
             &maze,
             |run| {
-                let [x0, y0, x1, y1] = run.rect(cell, width);
-                let (mx, my) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-                let (a, b) = if x1 - x0 >= y1 - y0 {
-                    (to_floor(x0, my), to_floor(x1, my))
-                } else {
-                    (to_floor(mx, y0), to_floor(mx, y1))
-                };
-                segments.push(Segment { a, b });
+                rects.push(run.rect(cell, width));
                 Ok(())
             },
             |_| {},
         );
-        Ok(Self { segments })
+        let angle = layout.grid.rotation;
+        Ok(Self {
+            rects,
+            origin: layout.grid.origin,
+            rotation: [angle.cos(), angle.sin()],
+        })
     }
 
-    /// The nearest line to `q`: the closest point on its centre and whether it lies between
-    /// the ends (then the residual is across the line).
-    fn nearest(&self, q: Point2<f64>) -> Option<(Point2<f64>, nalgebra::Vector2<f64>, f64)> {
-        let mut best: Option<(Point2<f64>, nalgebra::Vector2<f64>, f64)> = None;
-        for s in &self.segments {
-            let ab = s.b - s.a;
-            let t = ((q - s.a).dot(&ab) / ab.norm_squared().max(f64::EPSILON)).clamp(0.0, 1.0);
-            let c = s.a + ab * t;
-            let d = (q - c).norm();
-            if best.is_none_or(|(_, _, bd)| d < bd) {
-                let normal = if t > 0.0 && t < 1.0 {
-                    let n = nalgebra::Vector2::new(-ab.y, ab.x).normalize();
-                    if n.dot(&(q - c)) < 0.0 { -n } else { n }
-                } else if d > 1e-9 {
-                    (q - c) / d
-                } else {
-                    nalgebra::Vector2::new(-ab.y, ab.x).normalize()
-                };
-                best = Some((c, normal, d));
+    /// How far the floor point `q` lies off the drawn lines, and the unit direction (floor
+    /// frame) from the nearest line towards it; `None` on a line (or with no lines).
+    fn off_lines(&self, q: Point2<f64>) -> Option<([f64; 2], f64)> {
+        let [c, s] = self.rotation;
+        let (dx, dy) = (q.x - self.origin[0], q.y - self.origin[1]);
+        // into the maze frame, where the rectangles are axis-aligned
+        let (mx, my) = (c * dx + s * dy, -s * dx + c * dy);
+        let mut best: Option<([f64; 2], f64)> = None;
+        for [x0, y0, x1, y1] in &self.rects {
+            let ox = if mx < *x0 {
+                mx - x0
+            } else if mx > *x1 {
+                mx - x1
+            } else {
+                0.0
+            };
+            let oy = if my < *y0 {
+                my - y0
+            } else if my > *y1 {
+                my - y1
+            } else {
+                0.0
+            };
+            let d = ox.hypot(oy);
+            if d == 0.0 {
+                return None;
+            }
+            if best.is_none_or(|(_, bd)| d < bd) {
+                best = Some(([ox / d, oy / d], d));
             }
         }
-        best
+        // the direction back on the floor
+        best.map(|([nx, ny], d)| ([c * nx - s * ny, s * nx + c * ny], d))
     }
 
-    /// Mean distance from the floor points `points` (robot frame) seen at `pose` to their
-    /// nearest lines, over those within the gate; `None` when too few are.
-    pub fn mean_residual(&self, pose: Pose, points: &[[f64; 2]]) -> Option<f64> {
-        let (sum, n) = points
+    /// The share of the floor points `points` (robot frame) seen at `pose` that lie on a
+    /// drawn line; `None` for no points.
+    pub fn on_lines(&self, pose: Pose, points: &[[f64; 2]]) -> Option<f64> {
+        let on = points
             .iter()
-            .filter_map(|p| self.nearest(to_floor(pose, *p)).map(|(_, _, d)| d))
-            .filter(|d| *d <= GATE)
-            .fold((0.0, 0usize), |(s, n), d| (s + d, n + 1));
-        (n >= MIN_POINTS).then(|| sum / n as f64)
+            .filter(|p| self.off_lines(to_floor(pose, **p)).is_none())
+            .count();
+        (!points.is_empty()).then(|| on as f64 / points.len() as f64)
     }
 
-    /// `pose` moved so that the line points `points` (robot frame) fall onto the map's
-    /// lines: two damped Gauss-Newton steps, each at most 5 cm and 3 degrees. `pose`
-    /// itself when too few points match.
+    /// `pose` moved so that the line points `points` (robot frame) seen off every line fall
+    /// back onto the nearest: two damped Gauss-Newton steps, each at most 2 cm and 2
+    /// degrees. `pose` itself when too few points lie off the lines (it is right, or the
+    /// view says too little).
     pub fn correct(&self, pose: Pose, points: &[[f64; 2]]) -> Pose {
         let mut estimate = pose;
         for _ in 0..2 {
-            let mut h = Matrix3::<f64>::zeros();
-            let mut g = Vector3::<f64>::zeros();
+            // the normal equations of the 3 unknowns (dx, dy, dyaw), in plain numbers: this
+            // runs for every point of every frame
+            let mut h = [[0.0f64; 3]; 3];
+            let mut g = [0.0f64; 3];
             let mut matched = 0usize;
             for p in points {
                 let q = to_floor(estimate, *p);
-                let Some((c, n, _)) = self.nearest(q) else {
+                let Some((n, r)) = self.off_lines(q) else {
                     continue;
                 };
-                let r = n.dot(&(q - c));
-                if r.abs() > GATE {
+                if r > GATE {
                     continue;
                 }
-                let arm = q - Point2::new(estimate.x, estimate.y);
-                let j = Vector3::new(n.x, n.y, n.x * -arm.y + n.y * arm.x);
-                // Huber weights: a few far points (a line's end seen past a crossing) do
-                // not pull the estimate away
-                let w = if r.abs() < 0.05 { 1.0 } else { 0.05 / r.abs() };
-                h += j * j.transpose() * w;
-                g += j * (r * w);
+                let (ax, ay) = (q.x - estimate.x, q.y - estimate.y);
+                let j = [n[0], n[1], -n[0] * ay + n[1] * ax];
+                for a in 0..3 {
+                    for b in 0..3 {
+                        h[a][b] += j[a] * j[b];
+                    }
+                    g[a] += j[a] * r;
+                }
                 matched += 1;
             }
             if matched < MIN_POINTS {
                 return estimate;
             }
             // a prior that holds what the view cannot see (along a lone straight line)
-            h += Matrix3::from_diagonal(&Vector3::new(2.0, 2.0, 0.5));
-            let Some(step) = h.try_inverse().map(|inv| -(inv * g)) else {
+            for (a, prior) in [4.0, 4.0, 0.5].into_iter().enumerate() {
+                h[a][a] += prior;
+            }
+            let Some(step) = Matrix3::from_fn(|a, b| h[a][b])
+                .try_inverse()
+                .map(|inv| -(inv * Vector3::from(g)))
+            else {
                 return estimate;
             };
             let limit = |v: f64, m: f64| v.clamp(-m, m);
             estimate = Pose {
-                x: estimate.x + limit(step.x, 0.05),
-                y: estimate.y + limit(step.y, 0.05),
-                yaw: wrap(estimate.yaw + limit(step.z, 3f64.to_radians())),
+                x: estimate.x + limit(step.x, 0.02),
+                y: estimate.y + limit(step.y, 0.02),
+                yaw: wrap(estimate.yaw + limit(step.z, 2f64.to_radians())),
             };
         }
         estimate
@@ -165,7 +177,7 @@ mod tests {
             for k in -20..=20 {
                 let p = [0.1 + f64::from(i) * 0.02, f64::from(k) * 0.02];
                 let q = to_floor(truth, p);
-                if map.nearest(q).is_some_and(|(_, _, d)| d <= 0.05) {
+                if map.off_lines(q).is_none() {
                     points.push(p);
                 }
             }
@@ -190,12 +202,12 @@ mod tests {
             y: -3.95,
             yaw: 0.05,
         };
-        for _ in 0..10 {
+        for _ in 0..20 {
             estimate = map.correct(estimate, &points);
         }
         assert!((estimate.y - truth.y).abs() < 0.01, "{estimate:?}");
         assert!(estimate.yaw.abs() < 0.01, "{estimate:?}");
-        assert!(map.mean_residual(estimate, &points).unwrap() < 0.03);
+        assert!(map.on_lines(estimate, &points).unwrap() > 0.97);
     }
 
     #[test]
@@ -207,6 +219,6 @@ mod tests {
             yaw: 1.0,
         };
         assert_eq!(map.correct(pose, &[[0.2, 0.0]; 3]), pose);
-        assert_eq!(map.mean_residual(pose, &[]), None);
+        assert_eq!(map.on_lines(pose, &[]), None);
     }
 }

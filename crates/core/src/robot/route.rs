@@ -270,7 +270,10 @@ mod tests {
             }
         }
         assert!(follower.arrived(), "stopped at {pose:?}");
-        assert!((pose.x - 2.0).abs() < 0.05 && (pose.y - 3.0).abs() < 0.05, "{pose:?}");
+        assert!(
+            (pose.x - 2.0).abs() < 0.05 && (pose.y - 3.0).abs() < 0.05,
+            "{pose:?}"
+        );
         assert!(worst < 0.06, "strayed {worst} m from the legs");
     }
 }

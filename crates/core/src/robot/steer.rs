@@ -110,7 +110,20 @@ pub struct CameraSteer {
     joints: Option<[f64; 2]>,
     /// Frames in a row in which no line pixel was seen.
     blind: usize,
+    /// Frames in a row that were all black.
+    black: usize,
 }
+
+/// Every how many pixels (across and up) the image is looked at: 64 x 64 of the course's
+/// 256 x 256 camera.
+const STRIDE: usize = 4;
+
+/// How far ahead of the robot's centre the camera is read, metres: farther, a degree of
+/// the body's pitch moves a floor point by centimetres.
+const RANGE: f64 = 0.7;
+
+/// Black frames in a row after which the camera is taken to render nothing.
+const BLACK_LIMIT: usize = 5;
 
 /// Frames in a row without a line pixel after which the robot stops: it lost the maze.
 const BLIND_LIMIT: usize = 100;
@@ -118,7 +131,7 @@ const BLIND_LIMIT: usize = 100;
 impl CameraSteer {
     /// A steer over `legs` for the robot `drive`, starting at `start` (where it was placed).
     pub fn new(legs: Vec<Leg>, drive: DiffDrive, gains: Gains, eye: Eye, start: Pose) -> Self {
-        let table = eye.camera.ground_table(2, 1.0);
+        let table = eye.camera.ground_table(STRIDE, RANGE);
         Self {
             follower: Follower::new(legs, drive, gains),
             drive,
@@ -127,6 +140,7 @@ impl CameraSteer {
             estimate: start,
             joints: None,
             blind: 0,
+            black: 0,
         }
     }
 
@@ -154,16 +168,22 @@ impl Steer for CameraSteer {
             .image
             .as_ref()
             .ok_or("steering by camera needs the camera image")?;
-        if image.is_black() {
-            return Err("the camera image is all black: nothing renders (start CoppeliaSim with a display; `sim.sh start ... --display` for the headless builds)".into());
-        }
         let [left, right] = observation.joints;
         if let Some([l0, r0]) = self.joints {
-            self.estimate =
-                self.drive
-                    .odometry(self.estimate, wrap(left - l0), wrap(right - r0));
+            self.estimate = self
+                .drive
+                .odometry(self.estimate, wrap(left - l0), wrap(right - r0));
         }
         self.joints = Some([left, right]);
+        if image.is_black() {
+            // the frame before the first render is black too (the simulation just started)
+            self.black += 1;
+            if self.black >= BLACK_LIMIT {
+                return Err("the camera image is all black: nothing renders (start CoppeliaSim with a display; `sim.sh start ... --display` for the headless builds)".into());
+            }
+            return Ok(Wheels::default());
+        }
+        self.black = 0;
         let points = self.line_points(image);
         if points.is_empty() {
             self.blind += 1;

@@ -46,7 +46,11 @@ impl DiffDrive {
             (forward + half) / self.wheel_radius,
         );
         let top = left.abs().max(right.abs());
-        let scale = if top > max && top > 0.0 { max / top } else { 1.0 };
+        let scale = if top > max && top > 0.0 {
+            max / top
+        } else {
+            1.0
+        };
         Wheels {
             left: left * scale,
             right: right * scale,
@@ -108,7 +112,15 @@ mod tests {
         // the ratio (the curvature) is kept
         let free = COURSE.wheels(1.0, 2.0, f64::INFINITY);
         assert!((w.left / w.right - free.left / free.right).abs() < 1e-12);
-        assert!(DiffDrive::new(0.0, 0.18).unwrap_err().contains("wheel radius"));
-        assert!(DiffDrive::new(0.04, f64::NAN).unwrap_err().contains("track"));
+        assert!(
+            DiffDrive::new(0.0, 0.18)
+                .unwrap_err()
+                .contains("wheel radius")
+        );
+        assert!(
+            DiffDrive::new(0.04, f64::NAN)
+                .unwrap_err()
+                .contains("track")
+        );
     }
 }
