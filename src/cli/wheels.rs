@@ -16,16 +16,14 @@ use super::score::{INCOMPLETE_EXIT_CODE, describe};
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
 use crate::maze::Grid;
+use crate::robot::Pose;
 use crate::robot::camera::LineColour;
 use crate::robot::localize::LineMap;
 use crate::robot::route::{Gains, legs};
 use crate::robot::steer::{CameraSteer, Eye, PoseSteer, Steer};
 use crate::robot::wheels::DiffDrive;
-use crate::robot::Pose;
+use crate::robot::{DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing};
 use crate::score::{GradeOptions, Grader, Report};
-use crate::robot::{
-    DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing,
-};
 use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
@@ -225,13 +223,13 @@ fn run_over(
 
 /// What the camera steer needs: the camera, the lines' colour against the floor's, the map.
 fn eye(survey: &RobotSurvey, layout: &Layout, names: &RobotNames) -> Result<Eye> {
-    let camera = survey
-        .camera
-        .clone()
-        .ok_or_else(|| anyhow!("the robot has no camera named `{}` (--camera)", names.camera))?;
-    let (line, floor) = survey
-        .colours
-        .unwrap_or(([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]));
+    let camera = survey.camera.clone().ok_or_else(|| {
+        anyhow!(
+            "the robot has no camera named `{}` (--camera)",
+            names.camera
+        )
+    })?;
+    let (line, floor) = survey.colours.unwrap_or(([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]));
     let colour = LineColour::new(line, floor).map_err(|e| anyhow!("`{}`: {e}", names.line))?;
     let map = LineMap::of(layout).map_err(|e| anyhow!("{e}"))?;
     Ok(Eye {

@@ -58,6 +58,12 @@ pub struct RealSim {
 impl RealSim {
     /// Starts `version` with the course scene from the `sim.sh` in `sims`.
     pub fn start(sims: &Path, version: &'static str) -> RealSim {
+        Self::start_with(sims, version, &[])
+    }
+
+    /// Starts `version` from the `sim.sh` in `sims` with more of its options: `--robot`
+    /// (the course scene with the wheeled robot), `--display` (cameras render).
+    pub fn start_with(sims: &Path, version: &'static str, options: &[&str]) -> RealSim {
         let script = sims.join("sim.sh");
         let dir = tempfile::Builder::new()
             .prefix("vrep-maze-real-")
@@ -75,6 +81,7 @@ impl RealSim {
         if let Some(l) = legacy {
             cmd.args(["--legacy-port", &l.to_string()]);
         }
+        cmd.args(options);
         let out = {
             let _one = STARTING.lock().unwrap_or_else(|e| e.into_inner());
             cmd.output().unwrap()

@@ -35,6 +35,7 @@ mod messages;
 mod permissions;
 mod properties;
 mod readme;
+mod robot_real;
 mod render_controls;
 mod scenarios;
 mod schema;

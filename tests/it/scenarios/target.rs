@@ -2,10 +2,7 @@
 //! started from `../shared/coppeliasim/` (only when asked: see [`real_sims_dir`]), each on free
 //! ports of its own, never on 19997 or 23000.
 
-#[path = "../../common/real_sim.rs"]
-mod real_sim;
-
-use real_sim::{REAL_SIMS_VAR, RealSim};
+use crate::support::real_sim::{self, REAL_SIMS_VAR, RealSim};
 
 use crate::support::cli::Serve;
 

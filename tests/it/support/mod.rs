@@ -1,11 +1,13 @@
 //! What the integration tests share: the binary and its `serve` child ([`cli`]), mazes to
-//! draw ([`layouts`]), the three emulated backends ([`backend`]) and a cutting proxy
-//! ([`proxy`]).
+//! draw ([`layouts`]), the three emulated backends ([`backend`]), a cutting proxy
+//! ([`proxy`]) and the real CoppeliaSim of `../shared/coppeliasim/` ([`real_sim`]).
 
 pub mod backend;
 pub mod cli;
 pub mod layouts;
 pub mod proxy;
+#[path = "../../common/real_sim.rs"]
+pub mod real_sim;
 
 pub use cli::bin;
 pub use layouts::course_layout;

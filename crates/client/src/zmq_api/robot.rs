@@ -191,10 +191,7 @@ impl ZmqRobot {
         let got = self
             .client()
             .ok()?
-            .call(
-                "sim.getShapeColor",
-                vec![int(shape), Value::Null, int(0)],
-            )
+            .call("sim.getShapeColor", vec![int(shape), Value::Null, int(0)])
             .ok()?;
         got.get(1).and_then(cbor::numbers::<3>)
     }
@@ -269,9 +266,7 @@ impl RobotPort for ZmqRobot {
             Some(c) => Some(self.camera_model(c, robot)?),
             None => None,
         };
-        let colours = line
-            .and_then(|l| self.colour(l))
-            .zip(self.colour(floor));
+        let colours = line.and_then(|l| self.colour(l)).zip(self.colour(floor));
         Ok(RobotSurvey {
             drive,
             camera,
@@ -295,14 +290,28 @@ impl RobotPort for ZmqRobot {
         let calls = vec![
             (
                 "sim.setObjectPosition",
-                vec![int(p.robot), int(p.floor), float_array(&[pose.x, pose.y, height])],
+                vec![
+                    int(p.robot),
+                    int(p.floor),
+                    float_array(&[pose.x, pose.y, height]),
+                ],
             ),
             (
                 "sim.setObjectOrientation",
-                vec![int(p.robot), int(p.floor), float_array(&[0.0, 0.0, pose.yaw])],
+                vec![
+                    int(p.robot),
+                    int(p.floor),
+                    float_array(&[0.0, 0.0, pose.yaw]),
+                ],
             ),
-            ("sim.setJointTargetVelocity", vec![int(p.left), Value::Float(0.0)]),
-            ("sim.setJointTargetVelocity", vec![int(p.right), Value::Float(0.0)]),
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.left), Value::Float(0.0)],
+            ),
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.right), Value::Float(0.0)],
+            ),
         ];
         for outcome in client.call_all(&calls).map_err(lost)? {
             outcome.map_err(|e| RobotError::Scene(e.to_string()))?;
@@ -321,7 +330,10 @@ impl RobotPort for ZmqRobot {
             let wanted = if camera { flag } else { 1 };
             if i64::from(flag) != i64::from(wanted) {
                 self.client()?
-                    .call("sim.setExplicitHandling", vec![int(cam), int(wanted.into())])
+                    .call(
+                        "sim.setExplicitHandling",
+                        vec![int(cam), int(wanted.into())],
+                    )
                     .map_err(lost)?;
                 self.camera_flag = Some(flag.into());
             }
@@ -385,8 +397,14 @@ impl RobotPort for ZmqRobot {
     fn actuate(&mut self, wheels: Wheels) -> Result<(), RobotError> {
         let p = self.parts()?;
         let calls = vec![
-            ("sim.setJointTargetVelocity", vec![int(p.left), Value::Float(wheels.left)]),
-            ("sim.setJointTargetVelocity", vec![int(p.right), Value::Float(wheels.right)]),
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.left), Value::Float(wheels.left)],
+            ),
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.right), Value::Float(wheels.right)],
+            ),
         ];
         for outcome in self.client()?.call_all(&calls).map_err(lost)? {
             outcome.map_err(|e| RobotError::Connection(e.to_string()))?;
@@ -402,12 +420,17 @@ impl RobotPort for ZmqRobot {
             Protocol::V1 => {
                 let uuid = self.uuid.clone();
                 let client = self.client()?;
-                let before = client.call1("sim.getSimulationTime", vec![]).map_err(lost)?;
-                let before = cbor::number(&before).ok_or_else(|| malformed("sim.getSimulationTime"))?;
+                let before = client
+                    .call1("sim.getSimulationTime", vec![])
+                    .map_err(lost)?;
+                let before =
+                    cbor::number(&before).ok_or_else(|| malformed("sim.getSimulationTime"))?;
                 client.call("step", vec![Value::Text(uuid)]).map_err(lost)?;
                 let deadline = Instant::now() + STEP_TIMEOUT;
                 loop {
-                    let now = client.call1("sim.getSimulationTime", vec![]).map_err(lost)?;
+                    let now = client
+                        .call1("sim.getSimulationTime", vec![])
+                        .map_err(lost)?;
                     if cbor::number(&now).is_some_and(|t| t > before) {
                         break;
                     }
