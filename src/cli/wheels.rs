@@ -64,6 +64,11 @@ pub struct PartArgs {
     /// Print the run's grade as JSON (`score --json`'s report).
     #[arg(long)]
     pub json: bool,
+    /// Start the simulation once the robot is ready [default: wait for it to be started:
+    /// by `vrep-maze score ... --start-simulation`, which then follows every step, or by
+    /// hand].
+    #[arg(long)]
+    pub start_simulation: bool,
 }
 
 impl PartArgs {
@@ -77,6 +82,7 @@ impl PartArgs {
             || self.wheel_max != 16.0
             || self.sim_timeout != 900.0
             || self.json
+            || self.start_simulation
     }
 }
 
@@ -203,7 +209,15 @@ fn run_over(
             start,
         )),
     };
+    if !parts.start_simulation {
+        eprintln!(
+            "waiting for the simulation to run (at most {} s): start it, or run `vrep-maze score {} --start-simulation` (or give drive --start-simulation)",
+            args.run_timeout,
+            super::escape::shell_word(&args.layout.display().to_string())
+        );
+    }
     let options = DriveOptions {
+        start_simulation: parts.start_simulation,
         sim_limit: parts.sim_timeout,
         wall_limit: Duration::from_secs_f64(args.run_timeout),
         interrupt: Some(interrupt.shared()),

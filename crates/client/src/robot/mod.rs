@@ -75,9 +75,14 @@ pub trait RobotPort {
     fn survey(&mut self, names: &RobotNames) -> Result<RobotSurvey, RobotError>;
     /// Puts the robot at `pose` (floor frame) on the stopped simulation.
     fn place(&mut self, pose: Pose) -> Result<(), RobotError>;
-    /// Enters stepping mode and starts the simulation; `camera` says whether the camera is
-    /// read (else it is spared rendering for the run).
-    fn start(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// Readies the run on the stopped simulation: stepping mode on, the camera spared
+    /// rendering unless `camera` (it is read), and the driver announced by the signal
+    /// [`DRIVER_SIGNAL`] so that a `score` joins the stepping and starts the simulation.
+    fn prepare(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// Starts the simulation.
+    fn start_simulation(&mut self) -> Result<(), RobotError>;
+    /// Whether the simulation runs (or is paused).
+    fn is_running(&mut self) -> Result<bool, RobotError>;
     /// Reads this step's readings (the image when `image`).
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError>;
     /// Sets the wheels' target velocities.
@@ -85,13 +90,22 @@ pub trait RobotPort {
     /// Lets the simulation advance one step and waits for it.
     fn step(&mut self) -> Result<(), RobotError>;
     /// Ends the run whatever happened: wheels stopped, simulation stopped, stepping off,
-    /// the camera's handling as it was. Tries a fresh connection when this one is lost.
+    /// the camera's handling as it was, the signal cleared. Tries a fresh connection when
+    /// this one is lost.
     fn finish(&mut self) -> Result<(), RobotError>;
 }
 
-/// How a drive ends and how long it may take.
+/// The integer signal a stepping driver sets to 1 on the stopped simulation once the robot
+/// is placed and stepping is on, and clears when it is done: a `score` that sees it joins
+/// the stepping (so it sees every step) and may start the simulation.
+pub const DRIVER_SIGNAL: &str = "vrepMaze.drive";
+
+/// How a drive starts, ends and how long it may take.
 #[derive(Debug, Clone)]
 pub struct DriveOptions {
+    /// Start the simulation (else wait for it to be started: by `score --start-simulation`,
+    /// by the user, by a script).
+    pub start_simulation: bool,
     /// Simulated seconds at most.
     pub sim_limit: f64,
     /// Wall-clock limit.
@@ -130,12 +144,44 @@ pub fn drive(
 ) -> Result<Driven, RobotError> {
     port.place(start)?;
     let needs = steer.needs();
-    port.start(needs.image)?;
-    let run = stepping(port, steer, options);
+    let run = port
+        .prepare(needs.image)
+        .and_then(|()| started(port, options))
+        .and_then(|()| stepping(port, steer, options));
     let finished = port.finish();
     let driven = run?;
     finished?;
     Ok(driven)
+}
+
+/// Starts the simulation, or waits for it to start.
+fn started(port: &mut dyn RobotPort, options: &DriveOptions) -> Result<(), RobotError> {
+    if options.start_simulation {
+        return port.start_simulation();
+    }
+    let began = Instant::now();
+    while !port.is_running()? {
+        if interrupted(options) {
+            return Err(RobotError::Scene(
+                "interrupted before the simulation started".into(),
+            ));
+        }
+        if began.elapsed() >= options.wall_limit {
+            return Err(RobotError::Scene(format!(
+                "the simulation did not start within {} s",
+                options.wall_limit.as_secs_f64()
+            )));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    Ok(())
+}
+
+fn interrupted(options: &DriveOptions) -> bool {
+    options
+        .interrupt
+        .as_ref()
+        .is_some_and(|i| i.load(Ordering::SeqCst))
 }
 
 /// The stepping loop of [`drive`], on a started simulation.
@@ -150,17 +196,16 @@ fn stepping(
     let mut samples: Vec<Sample> = Vec::new();
     let mut steps = 0usize;
     let stopped = loop {
-        if options
-            .interrupt
-            .as_ref()
-            .is_some_and(|i| i.load(Ordering::SeqCst))
-        {
+        if interrupted(options) {
             break Some("interrupted".to_string());
         }
         let reading = match port.observe(needs.image) {
             Ok(r) => r,
             Err(e) => break Some(format!("the connection failed: {e}")),
         };
+        if steps > 0 && samples.last().is_some_and(|s| reading.time < s.t) {
+            break Some("the simulation was stopped by someone else".to_string());
+        }
         if samples.last().is_none_or(|s| reading.time > s.t) {
             samples.push(Sample {
                 t: reading.time,

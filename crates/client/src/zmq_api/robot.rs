@@ -15,7 +15,7 @@ use super::backend::object_path;
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
 use super::{Outcome, Protocol};
-use crate::robot::{Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
+use crate::robot::{DRIVER_SIGNAL, Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::robot::Pose;
 use vrep_maze_core::robot::camera::{CameraModel, Image};
@@ -319,7 +319,7 @@ impl RobotPort for ZmqRobot {
         Ok(())
     }
 
-    fn start(&mut self, camera: bool) -> Result<(), RobotError> {
+    fn prepare(&mut self, camera: bool) -> Result<(), RobotError> {
         let p = self.parts()?;
         if let Some(cam) = p.camera {
             // a camera not read is spared rendering (30 ms a frame with a display)
@@ -347,9 +347,27 @@ impl RobotPort for ZmqRobot {
         }
         self.set_stepping(true)?;
         self.client()?
+            .call(
+                "sim.setInt32Signal",
+                vec![Value::Text(DRIVER_SIGNAL.into()), int(1)],
+            )
+            .map_err(lost)?;
+        Ok(())
+    }
+
+    fn start_simulation(&mut self) -> Result<(), RobotError> {
+        self.client()?
             .call("sim.startSimulation", vec![])
             .map_err(lost)?;
         Ok(())
+    }
+
+    fn is_running(&mut self) -> Result<bool, RobotError> {
+        let state = self
+            .client()?
+            .call_int("sim.getSimulationState", vec![])
+            .map_err(lost)?;
+        Ok(state != SIMULATION_STOPPED)
     }
 
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
@@ -484,6 +502,10 @@ impl ZmqRobot {
                 )?;
             }
         }
+        client.call(
+            "sim.clearInt32Signal",
+            vec![Value::Text(DRIVER_SIGNAL.into())],
+        )?;
         Self::stop_over(client)?;
         if let (Some(p), Some(flag)) = (parts, restore)
             && let Some(cam) = p.camera
