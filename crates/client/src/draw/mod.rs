@@ -496,6 +496,11 @@ pub trait Backend {
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
         None
     }
+    /// A driver of the scene's wheeled robot over this backend's connection, which stays
+    /// open when the driver is done (`drive` in a session), if this backend can lend it.
+    fn robot(&mut self) -> Option<Box<dyn crate::robot::RobotPort + '_>> {
+        None
+    }
 }
 
 /// Scene authoring that only some APIs offer: see [`Backend::authoring`].

@@ -787,6 +787,10 @@ impl Backend for ZmqBackend {
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
         Some(Box::new(super::follow::ZmqFollower::lent(&mut self.client)))
     }
+
+    fn robot(&mut self) -> Option<Box<dyn crate::robot::RobotPort + '_>> {
+        Some(Box::new(super::robot::ZmqRobot::lent(&mut self.client)))
+    }
 }
 
 /// `sim.getInt32Param(sim.intparam_idle_fps)`.
