@@ -270,3 +270,234 @@ fn stepping(
 pub fn facing(from: [f64; 2], to: Option<[f64; 2]>) -> f64 {
     to.map_or(0.0, |t| wrap((t[1] - from[1]).atan2(t[0] - from[0])))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vrep_maze_core::generate::Algorithm;
+    use vrep_maze_core::layout::solution::solve;
+    use vrep_maze_core::layout::{GenerateSpec, Layout, build_layout, passages};
+    use vrep_maze_core::maze::Grid;
+    use vrep_maze_core::robot::camera::LineColour;
+    use vrep_maze_core::robot::localize::LineMap;
+    use vrep_maze_core::robot::route::{Gains, legs};
+    use vrep_maze_core::robot::steer::{CameraSteer, Eye, PoseSteer};
+
+    const COURSE: DiffDrive = DiffDrive {
+        wheel_radius: 0.04,
+        track: 0.18,
+    };
+
+    /// A world without a simulator: the robot moves by its wheels with 3 % slip on the
+    /// right wheel (so odometry drifts), its camera (64 x 64, the course camera's mount)
+    /// renders the layout's lines green on a grey floor.
+    struct World {
+        map: LineMap,
+        camera: CameraModel,
+        pose: Pose,
+        joints: [f64; 2],
+        wheels: Wheels,
+        time: f64,
+        running: bool,
+        finished: bool,
+    }
+
+    impl World {
+        fn new(layout: &Layout) -> Self {
+            Self {
+                map: LineMap::of(layout).unwrap(),
+                camera: CameraModel {
+                    width: 64,
+                    height: 64,
+                    view_angle: 60f64.to_radians(),
+                    mount: [
+                        0.0, 0.5, 0.866_025, 0.105, 1.0, 0.0, 0.0, 0.0, 0.0, 0.866_025, -0.5, 0.04,
+                    ],
+                    floor_z: -0.06,
+                },
+                pose: Pose::default(),
+                joints: [0.0; 2],
+                wheels: Wheels::default(),
+                time: 0.0,
+                running: false,
+                finished: false,
+            }
+        }
+
+        fn render(&self) -> Image {
+            let mut rgb = Vec::with_capacity(64 * 64 * 3);
+            for j in 0..64 {
+                for i in 0..64 {
+                    let on = self
+                        .camera
+                        .ground(i, j)
+                        .is_some_and(|p| self.map.on_lines(self.pose, &[p]) == Some(1.0));
+                    rgb.extend(if on { [0, 51, 0] } else { [51, 51, 51] });
+                }
+            }
+            Image::new(64, 64, rgb).unwrap()
+        }
+    }
+
+    impl RobotPort for World {
+        fn survey(&mut self, _: &RobotNames) -> Result<RobotSurvey, RobotError> {
+            Ok(RobotSurvey {
+                drive: COURSE,
+                camera: Some(self.camera.clone()),
+                colours: Some(([0.0, 1.0, 0.0], [1.0, 1.0, 1.0])),
+                pose: self.pose,
+            })
+        }
+        fn place(&mut self, pose: Pose) -> Result<(), RobotError> {
+            self.pose = pose;
+            Ok(())
+        }
+        fn prepare(&mut self, _: bool) -> Result<(), RobotError> {
+            Ok(())
+        }
+        fn start_simulation(&mut self) -> Result<(), RobotError> {
+            self.running = true;
+            Ok(())
+        }
+        fn is_running(&mut self) -> Result<bool, RobotError> {
+            Ok(self.running)
+        }
+        fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
+            Ok(Reading {
+                time: self.time,
+                joints: self.joints.map(wrap),
+                pose: self.pose,
+                image: image.then(|| self.render()),
+            })
+        }
+        fn actuate(&mut self, wheels: Wheels) -> Result<(), RobotError> {
+            self.wheels = wheels;
+            Ok(())
+        }
+        fn step(&mut self) -> Result<(), RobotError> {
+            let dt = 0.05;
+            let (left, right) = (self.wheels.left * dt, self.wheels.right * dt * 0.97);
+            self.pose = COURSE.odometry(self.pose, left, right);
+            self.joints[0] += left;
+            self.joints[1] += self.wheels.right * dt;
+            self.time += dt;
+            Ok(())
+        }
+        fn finish(&mut self) -> Result<(), RobotError> {
+            self.running = false;
+            self.finished = true;
+            Ok(())
+        }
+    }
+
+    fn maze_3x3() -> Layout {
+        build_layout(&GenerateSpec::course(
+            Grid::new(3, 3).unwrap(),
+            Algorithm::Dfs,
+            42,
+        ))
+        .unwrap()
+    }
+
+    fn options() -> DriveOptions {
+        DriveOptions {
+            start_simulation: true,
+            sim_limit: 300.0,
+            wall_limit: Duration::from_secs(600),
+            interrupt: None,
+        }
+    }
+
+    /// The route and where the robot starts on it.
+    fn route(layout: &Layout) -> (Vec<vrep_maze_core::robot::route::Leg>, Pose) {
+        let grid = Grid::new(3, 3).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let path = solve(layout, &maze, None).unwrap();
+        let legs = legs(&path.waypoints);
+        let first = path.waypoints[0];
+        let yaw = facing([first.x, first.y], legs.first().map(|l| l.to));
+        (
+            legs,
+            Pose {
+                x: first.x,
+                y: first.y,
+                yaw,
+            },
+        )
+    }
+
+    #[test]
+    fn steering_by_pose_reaches_the_end_and_the_run_is_stopped() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let end = legs.last().unwrap().to;
+        let mut world = World::new(&layout);
+        let mut steer = PoseSteer::new(legs, COURSE, Gains::default());
+        let driven = drive(&mut world, &mut steer, start, &options()).unwrap();
+        assert!(driven.arrived, "{:?}", driven.stopped);
+        assert!((world.pose.x - end[0]).hypot(world.pose.y - end[1]) < 0.05);
+        assert_eq!(driven.samples.len(), driven.steps + 1);
+        assert!(world.finished && !world.running);
+    }
+
+    /// With a slipping wheel, odometry alone would drift off the lines; the camera keeps
+    /// the belief, and so the robot, on them.
+    #[test]
+    fn steering_by_camera_keeps_to_the_lines_with_a_slipping_wheel() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let end = legs.last().unwrap().to;
+        let mut world = World::new(&layout);
+        let eye = Eye {
+            camera: world.camera.clone(),
+            colour: LineColour::new([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]).unwrap(),
+            map: LineMap::of(&layout).unwrap(),
+        };
+        let gains = Gains {
+            speed: 0.3,
+            ..Gains::default()
+        };
+        let mut steer = CameraSteer::new(legs.clone(), COURSE, gains, eye, start);
+        let driven = drive(&mut world, &mut steer, start, &options()).unwrap();
+        assert!(driven.arrived, "{:?}", driven.stopped);
+        assert!(
+            (world.pose.x - end[0]).hypot(world.pose.y - end[1]) < 0.1,
+            "ended at {:?}, the end is {end:?}",
+            world.pose
+        );
+        let map = LineMap::of(&layout).unwrap();
+        let off = driven
+            .samples
+            .iter()
+            .filter(|s| {
+                let at = Pose {
+                    x: s.x,
+                    y: s.y,
+                    yaw: s.yaw,
+                };
+                map.on_lines(at, &[[0.0, 0.0]]) != Some(1.0)
+            })
+            .count();
+        assert!(
+            off * 20 < driven.samples.len(),
+            "{off} of {} samples off the lines",
+            driven.samples.len()
+        );
+    }
+
+    #[test]
+    fn an_interrupt_ends_the_run_and_still_stops_the_simulation() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let mut world = World::new(&layout);
+        let mut steer = PoseSteer::new(legs, COURSE, Gains::default());
+        let options = DriveOptions {
+            interrupt: Some(Arc::new(AtomicBool::new(true))),
+            ..options()
+        };
+        let driven = drive(&mut world, &mut steer, start, &options).unwrap();
+        assert_eq!(driven.stopped.as_deref(), Some("interrupted"));
+        assert!(!driven.arrived);
+        assert!(world.finished && !world.running);
+    }
+}
