@@ -167,7 +167,7 @@ fn run(
     );
     server.shutdown();
     let mut report = grader.grade(&followed.samples, &GradeOptions::default());
-    report.complete = followed.incomplete.is_none();
+    report.followed(followed.incomplete.clone(), followed.wall_time_s);
     (followed, report)
 }
 
