@@ -47,6 +47,10 @@ pub struct ValidatedFile {
     pub problems: Vec<String>,
     /// How many problems were found, kept or not.
     pub problem_count: usize,
+    /// What does not stop the layout from being valid but is worth knowing: a robot of
+    /// `--robot-width` that does not fit its passages.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// A layout's size, maker and what it draws.
