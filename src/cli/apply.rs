@@ -251,7 +251,7 @@ pub struct ApplyArgs {
     #[arg(long, value_name = "NAME", default_value = "Robot")]
     pub robot: String,
     /// The robot's footprint width in metres, instead of reading it from the scene.
-    #[arg(long, value_name = "M", value_parser = super::values::parse_metres)]
+    #[arg(long, value_name = "M", value_parser = super::values::parse_metres, allow_negative_numbers = true)]
     pub robot_width: Option<f64>,
 }
 

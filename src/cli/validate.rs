@@ -30,7 +30,7 @@ pub struct ValidateArgs {
     pub json: bool,
     /// Warn (exit 0 all the same) when a robot this many metres wide does not fit the
     /// passages of a valid maze: between its walls or posts, or, for lines, the cell.
-    #[arg(long, value_name = "M", value_parser = super::values::parse_metres)]
+    #[arg(long, value_name = "M", value_parser = super::values::parse_metres, allow_negative_numbers = true)]
     pub robot_width: Option<f64>,
 }
 

@@ -76,7 +76,7 @@ pub fn robot_fit(layout: &Layout, robot_width: f64) -> Option<String> {
     let cell = layout.grid.cell_size;
     Some(match passage.between {
         Between::Lines => format!(
-            "a robot {robot_width:.3} m wide is as wide as the {:.3} m between neighbouring lines or wider: centred on one line, it covers the next one where two corridors run side by side",
+            "a robot {robot_width:.3} m wide does not fit between the lines, {:.3} m apart: centred on one, it covers the next where two corridors run side by side; a larger cell size would make room",
             passage.width
         ),
         between => format!(
@@ -146,8 +146,7 @@ mod tests {
         assert_eq!(robot_fit(&lines(), 0.5), None);
         let wide = robot_fit(&lines(), 1.2).unwrap();
         assert!(
-            wide.contains("1.200 m wide")
-                && wide.contains("the 1.000 m between neighbouring lines"),
+            wide.contains("a robot 1.200 m wide does not fit between the lines, 1.000 m apart"),
             "{wide}"
         );
     }
