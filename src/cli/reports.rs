@@ -49,7 +49,7 @@ pub struct ValidatedFile {
     pub problem_count: usize,
     /// What does not stop the layout from being valid but is worth knowing: a robot of
     /// `--robot-width` that does not fit its passages.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
 }
 

@@ -19,7 +19,7 @@ use crate::validate::Validator;
 /// Options of `validate`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze validate maze.json\n  vrep-maze validate mazes/*.json\n  vrep-maze generate --seed 3 | vrep-maze validate -\n  vrep-maze validate micromouse.json --robot-width 0.2   # warns if the robot cannot pass"
+    after_help = "Examples:\n  vrep-maze validate maze.json\n  vrep-maze validate mazes/*.json\n  vrep-maze generate --seed 3 | vrep-maze validate -\n  vrep-maze validate mouse.json --robot-width 0.2   # a warning: 0.168 m between the posts"
 )]
 pub struct ValidateArgs {
     /// Layout files to check (`-` reads standard input).
