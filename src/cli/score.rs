@@ -22,14 +22,15 @@ use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, Sample, t
 use crate::zmq_api::follow::ZmqFollower;
 
 /// Exit code of a run that ended early (the simulation stopped before `End` with `--until
-/// end`, the connection dropped, or `--timeout` passed): the report is partial.
+/// end`, the connection dropped, or `--timeout` passed), or was sampled too sparsely to
+/// grade: the report is partial.
 pub const INCOMPLETE_EXIT_CODE: u8 = 3;
 
 /// Options of `score`.
 #[derive(Debug, clap::Args)]
 #[command(
     mut_arg("timeout", |a| a.long("reply-timeout").help("Seconds to wait for each reply (more than 0, at most a day)")),
-    after_help = "Examples:\n  vrep-maze score maze.json                       # wait for the simulation, follow Robot to End\n  vrep-maze score maze.json --start-simulation --json > report.json\n  vrep-maze score maze.json --until stop --trajectory run.csv\n\nExit codes: 0 complete, 1 error (nothing followed), 2 usage, 3 incomplete (partial report), 130 interrupted."
+    after_help = "Examples:\n  vrep-maze score maze.json                       # wait for the simulation, follow Robot to End\n  vrep-maze score maze.json --start-simulation --json > report.json\n  vrep-maze score maze.json --until stop --trajectory run.csv\n\nExit codes: 0 complete, 1 error (nothing followed), 2 usage, 3 incomplete (a partial report, or samples too far apart to grade), 130 interrupted."
 )]
 pub struct ScoreArgs {
     /// The layout the robot drives through.
