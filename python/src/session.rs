@@ -153,6 +153,7 @@ impl Session {
             dry_run: args.dry_run,
             resize_floor: args.resize_floor,
             interrupt: Some(stop.requested.clone()),
+            robot: args.robot_check(),
             ..Default::default()
         };
         let mode = args.draw.into();

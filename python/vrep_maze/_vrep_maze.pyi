@@ -181,6 +181,8 @@ def apply(
     create_missing: bool = False,
     save_scene: Optional[str] = None,
     draw: Optional[Literal["copies", "mesh"]] = None,
+    robot: Optional[str] = None,
+    robot_width: Optional[float] = None,
 ) -> ApplyReport: ...
 def clear(
     api: Optional[Api] = None,
@@ -213,6 +215,8 @@ class Session:
         create_missing: bool = False,
         save_scene: Optional[str] = None,
         draw: Optional[Literal["copies", "mesh"]] = None,
+        robot: Optional[str] = None,
+        robot_width: Optional[float] = None,
     ) -> ApplyReport: ...
     def clear(
         self,

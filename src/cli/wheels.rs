@@ -14,6 +14,7 @@ use super::connect::RawClient;
 use super::drive::DriveArgs;
 use super::ensure_usage;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::reports::ScoreJson;
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
@@ -140,8 +141,9 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
     let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
     port.close();
     let (driven, report) = outcome?;
+    let json = ScoreJson::of(&report);
     let text = if parts.json {
-        serde_json::to_string_pretty(&report)? + "\n"
+        serde_json::to_string_pretty(&json)? + "\n"
     } else {
         format!(
             "drove {} by its wheels ({}): {} steps, {:.1} s simulated, {:.1} s wall\n{}",
@@ -153,7 +155,7 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
             driven.steps,
             driven.samples.last().map_or(0.0, |s| s.t),
             driven.wall_time_s,
-            describe(&report)
+            describe(&report, &json.hints)
         )
     };
     super::output::write_output(None, |w| w.write_all(text.as_bytes()))?;
@@ -228,13 +230,12 @@ impl DriveArgs {
         let driven = drive(port, steer.as_mut(), start, &options)?;
         let grader = Grader::new(layout).map_err(|e| anyhow!("{e}"))?;
         let mut report = grader.grade(&driven.samples, &GradeOptions::default());
-        report.complete = driven.arrived && report.reached_end;
-        report.incomplete_reason = match (&driven.stopped, report.reached_end) {
+        let ended = match (&driven.stopped, driven.arrived && report.reached_end) {
             (Some(why), _) => Some(why.clone()),
             (None, false) => Some("the robot finished its route outside End".into()),
             (None, true) => None,
         };
-        report.wall_time_s = Some(driven.wall_time_s);
+        report.followed(ended, Some(driven.wall_time_s));
         Ok((driven, report))
     }
 }

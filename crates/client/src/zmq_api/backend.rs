@@ -35,6 +35,7 @@ use vrep_maze_core::score::follow::Follower;
 mod authoring;
 mod lease;
 mod mesh;
+mod robot;
 mod survey;
 
 impl From<ZmqError> for BackendError {
@@ -782,6 +783,10 @@ impl Backend for ZmqBackend {
 
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
+    }
+
+    fn model_box(&mut self, name: &str) -> Result<Option<BoundingBox>, BackendError> {
+        self.read_model_box(name)
     }
 
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
