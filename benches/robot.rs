@@ -1,6 +1,6 @@
 //! Benchmark: the course robot runs the maze on the real CoppeliaSim builds (issue 37), each
 //! row `--runs N` times (default 3), median printed beside the issue's target and their
-//! ratio: `drive --wheels` by camera on a 5x5 line maze (4.10 ZeroMQ, 4.5.1 ZeroMQ), on the
+//! ratio: `drive --wheels` by camera on a 5x5 line maze (4.10 ZeroMQ, 4.5.1 ZeroMQ and legacy), on the
 //! 9x9 course maze (4.10), by pose on the 9x9 (4.10) and a 6x6 wall maze of 1 m cells (4.10),
 //! and the README's kinematic pair (`drive --api zmq &`, `score --start-simulation`) on the
 //! plain course scene, which must never be graded complete with SPL 1 from samples that
@@ -27,6 +27,8 @@ const BIN: &str = env!("CARGO_BIN_EXE_vrep-maze");
 struct Row {
     name: &'static str,
     version: &'static str,
+    /// `zmq` or `legacy`.
+    api: &'static str,
     layout: &'static [&'static str],
     apply: &'static [&'static str],
     steer: &'static str,
@@ -38,6 +40,7 @@ const ROWS: &[Row] = &[
     Row {
         name: "camera 5x5 lines, 4.10 ZeroMQ",
         version: "4.10.0",
+        api: "zmq",
         layout: &["--size", "5x5", "--seed", "7"],
         apply: &[],
         steer: "camera",
@@ -46,6 +49,16 @@ const ROWS: &[Row] = &[
     Row {
         name: "camera 5x5 lines, 4.5.1 ZeroMQ",
         version: "4.5.1",
+        api: "zmq",
+        layout: &["--size", "5x5", "--seed", "7"],
+        apply: &[],
+        steer: "camera",
+        target: (300.0, 0.6),
+    },
+    Row {
+        name: "camera 5x5 lines, 4.5.1 legacy",
+        version: "4.5.1",
+        api: "legacy",
         layout: &["--size", "5x5", "--seed", "7"],
         apply: &[],
         steer: "camera",
@@ -54,6 +67,7 @@ const ROWS: &[Row] = &[
     Row {
         name: "camera 9x9 course maze, 4.10 ZeroMQ",
         version: "4.10.0",
+        api: "zmq",
         layout: &["--seed", "42"],
         apply: &[],
         steer: "camera",
@@ -62,6 +76,7 @@ const ROWS: &[Row] = &[
     Row {
         name: "pose 9x9 course maze, 4.10 ZeroMQ",
         version: "4.10.0",
+        api: "zmq",
         layout: &["--seed", "42"],
         apply: &[],
         steer: "pose",
@@ -70,6 +85,7 @@ const ROWS: &[Row] = &[
     Row {
         name: "pose 6x6 walls of 1 m, 4.10 ZeroMQ",
         version: "4.10.0",
+        api: "zmq",
         layout: &[
             "--seed",
             "5",
@@ -111,11 +127,15 @@ fn bench_row(row: &Row, sim: &RealSim, dir: &Path, runs: usize) {
     generate.extend(strings(row.layout));
     generate.extend(["-o".into(), layout.clone()]);
     assert!(vrep_maze(&generate).status.success());
+    let port_number = match row.api {
+        "legacy" => sim.legacy.expect("4.5.1 serves legacy"),
+        _ => sim.zmq,
+    };
     let port = [
         "--api".to_string(),
-        "zmq".into(),
+        row.api.into(),
         "--port".into(),
-        sim.zmq.to_string(),
+        port_number.to_string(),
     ];
     let mut apply = vec!["apply".to_string(), layout.clone()];
     apply.extend(port.clone());
