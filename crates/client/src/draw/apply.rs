@@ -5,16 +5,20 @@
 
 use std::collections::HashMap;
 
+use super::backend::{Backend, Edit, ObjectInfo};
+use super::drawing::Drawing;
+use super::error::DrawError;
 use super::home;
 use super::lease::Claim;
+use super::names::Handles;
+use super::options::ApplyOptions;
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::paste::{self, paste_round};
 use super::pose::{self, floor_frame, pose_differences};
+use super::report::{ApplyReport, Stage};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
-use super::{
-    ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
-    verify,
-};
+use super::verify;
+use vrep_maze_core::layout::Pose;
 
 /// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) before
 /// the scene is read and restored afterwards, also on error or interrupt. The run claims the
@@ -280,8 +284,8 @@ fn place(
     edits.push(Edit::SetPose {
         handle,
         relative_to: floor_handle,
-        position: crate::draw::position(want),
-        orientation: crate::draw::euler(want),
+        position: crate::draw::pose::position(want),
+        orientation: crate::draw::pose::euler(want),
     });
     edits
 }

@@ -7,12 +7,15 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use vrep_maze_core::wording::Message;
 
+use super::backend::{Backend, Edit, ObjectInfo};
+use super::error::DrawError;
 use super::home;
 use super::lease::{Claim, claimed};
+use super::names::{Handles, ObjectNames, resolve_handles};
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, relative_pose};
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
-use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
+use vrep_maze_core::layout::Style;
 
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -96,8 +99,8 @@ fn send_home(
         scene.edit(&[Edit::SetPose {
             handle: h.template,
             relative_to: h.floor,
-            position: crate::draw::position(&hidden),
-            orientation: crate::draw::euler(&hidden),
+            position: crate::draw::pose::position(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }])?;
     }
     let why = if kept {

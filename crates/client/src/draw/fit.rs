@@ -3,11 +3,25 @@
 //! the markers flat and no wider than a cell, and the floor at least as large as the
 //! layout's. Pure: a backend reads the sizes, [`check_sizes`] judges them.
 
+use super::error::DrawError;
+use super::names::ObjectNames;
 use super::tolerance::{SIZE_TOLERANCE, same_size};
-use super::{DrawError, ObjectNames, Style, TemplateUse};
 use vrep_maze_core::layout::Geometry;
+use vrep_maze_core::layout::Style;
 use vrep_maze_core::layout::limits::{self, Naming};
+use vrep_maze_core::layout::sizes::TemplateUse;
 use vrep_maze_core::wording::{Message, Opt, Setting, Value};
+
+/// What stands in the way of resizing a floor, for [`DrawError::Floor`]'s remedies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resize {
+    /// The API can resize it: `--resize-floor` was not given.
+    Offered,
+    /// The legacy remote API answered: it cannot resize objects.
+    NoApi,
+    /// The floor has no extent along x or y: no scale makes it larger.
+    NoExtent,
+}
 
 /// The bounding-box extents (x, y, z, metres) a backend read of each object a drawing
 /// checks; `None`: not read (the simulator gave none).
@@ -88,9 +102,9 @@ impl SizeCheck {
     pub fn differences(&self, names: &ObjectNames) -> Option<DrawError> {
         if let (true, Some(short)) = (self.refusals.is_empty(), self.floor) {
             let resize = if short.factors().is_none() {
-                super::floor::Resize::NoExtent
+                Resize::NoExtent
             } else {
-                super::floor::Resize::Offered
+                Resize::Offered
             };
             return Some(DrawError::Floor {
                 floor: names.floor.clone(),

@@ -4,8 +4,9 @@
 //! runs), as the template's handle and its pose in the floor frame in micrometres and
 //! microradians.
 
+use super::backend::{Backend, BackendError};
 use super::signals::{self, HOME};
-use super::{Backend, BackendError, Pose};
+use vrep_maze_core::layout::Pose;
 
 /// How far below the floor a template no line needs is put (metres): under an opaque floor,
 /// out of every camera above it.

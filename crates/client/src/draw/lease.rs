@@ -13,8 +13,9 @@
 
 use std::hash::{BuildHasher, RandomState};
 
+use super::backend::{Backend, BackendError};
+use super::error::DrawError;
 use super::signals::LEASE;
-use super::{Backend, BackendError, DrawError};
 
 /// What [`Lease::claim`] found: the token recorded before it wrote its own, and what reads
 /// back after it did.

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::ObjectNames;
+use super::names::ObjectNames;
 
 /// Options of [`super::apply()`].
 #[derive(Debug, Clone)]

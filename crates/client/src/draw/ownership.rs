@@ -5,8 +5,9 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::backend::ObjectInfo;
+use super::names::Handles;
 use super::tolerance::{same_colour, same_extents};
-use super::{Handles, ObjectInfo};
 use vrep_maze_core::coppelia::names;
 
 /// The name a template's copies are named after, from the reference that names it: a
@@ -222,7 +223,7 @@ pub fn foreign_copies(objects: &[ObjectInfo], h: &Handles, foreign: &[&str]) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::object_at_origin as obj;
+    use crate::draw::backend::object_at_origin as obj;
 
     /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
     /// template.

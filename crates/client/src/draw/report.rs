@@ -3,7 +3,15 @@
 
 use std::time::Duration;
 
-use super::DrawMode;
+/// How a maze is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DrawMode {
+    /// One copy of the template per line, wall or post ([`super::apply()`]).
+    #[default]
+    Copies,
+    /// A few mesh shapes, one rectangle or box per straight run ([`super::mesh::apply()`]).
+    Mesh,
+}
 
 /// Progress of [`super::apply()`], for a progress display.
 #[derive(Debug, Clone, PartialEq)]
@@ -110,4 +118,25 @@ impl ApplyReport {
             && !self.simulation_running
             && self.floor.is_none()
     }
+}
+
+/// "left alone: N object(s) of yours under `Maze` that are no copies of a template: a, b,
+/// ..." naming at most the first few, for the reports of `apply` and `clear` (`None` when
+/// there are none).
+pub fn left_alone_line(left_alone: &[String], parent: &str) -> Option<String> {
+    const NAMED: usize = 8;
+    if left_alone.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = left_alone.iter().take(NAMED).map(String::as_str).collect();
+    let more = if left_alone.len() > NAMED {
+        format!(", ... ({} more)", left_alone.len() - NAMED)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "left alone: {} object(s) under `{parent}` or at the scene root that are no copies of a template (not the maze's): {}{more}",
+        left_alone.len(),
+        shown.join(", ")
+    ))
 }

@@ -5,7 +5,8 @@
 use std::fmt;
 
 use super::fit;
-use super::{Sizes, Style};
+use vrep_maze_core::layout::Style;
+use vrep_maze_core::layout::sizes::Sizes;
 
 /// What an object of the scene is to a drawing; [`super::ObjectNames`] names one object
 /// per role.

@@ -7,18 +7,12 @@ use vrep_maze_core::layout::Layout;
 use vrep_maze_core::mesh::MeshMaze;
 use vrep_maze_core::validate::Invalid;
 
+use super::backend::{Backend, BackendError};
+use super::drawing::Drawing;
+use super::error::DrawError;
 use super::mesh;
-use super::{ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Drawing, Stage};
-
-/// How a maze is drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum DrawMode {
-    /// One copy of the template per line, wall or post ([`super::apply()`]).
-    #[default]
-    Copies,
-    /// A few mesh shapes, one rectangle or box per straight run ([`mesh::apply()`]).
-    Mesh,
-}
+use super::options::ApplyOptions;
+use super::report::{ApplyReport, DrawMode, Stage};
 
 /// What a job draws: a layout made into copies or meshes.
 #[derive(Debug, Clone)]

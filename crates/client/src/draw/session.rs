@@ -7,16 +7,18 @@
 
 use std::time::Instant;
 
+use super::backend::{Backend, BackendError, Edit, IdleRates, ObjectInfo, Survey};
+use super::error::DrawError;
 use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
+use super::names::{Handles, ObjectNames, resolve_handles};
+use super::options::ApplyOptions;
 use super::ownership;
 use super::pose::{self, floor_frame};
+use super::report::{ApplyReport, Stage};
 use super::tolerance::POSITION_TOLERANCE;
-use super::{
-    ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Edit, Handles, IdleRates,
-    ObjectInfo, ObjectNames, Stage, Survey, TemplateUse, resolve_handles,
-};
+use vrep_maze_core::layout::sizes::TemplateUse;
 
 /// Runs a draw's `work` as every draw runs ([`super::apply()`], [`super::mesh::apply()`]): with the
 /// idle rate raised ([`raised`]) and the scene claimed ([`claimed`]), counting its round
@@ -228,8 +230,8 @@ pub(crate) fn keep_home(
         let hidden = home::Home::hidden(position[0], position[1]);
         home::Home {
             handle: h.template,
-            position: crate::draw::position(&hidden),
-            orientation: crate::draw::euler(&hidden),
+            position: crate::draw::pose::position(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }
     } else {
         home::Home {
@@ -309,8 +311,8 @@ fn hide_line_template(
                 let below = home::Home::hidden(position[0], position[1]);
                 home::Home {
                     handle: template.handle,
-                    position: crate::draw::position(&below),
-                    orientation: crate::draw::euler(&below),
+                    position: crate::draw::pose::position(&below),
+                    orientation: crate::draw::pose::euler(&below),
                 }
             };
             home::write(scene, &home)?;
@@ -318,13 +320,13 @@ fn hide_line_template(
         }
     };
     let hidden = home::Home::hidden(home.position[0], home.position[1]);
-    let want = crate::draw::position(&hidden);
+    let want = crate::draw::pose::position(&hidden);
     if (0..3).any(|k| (position[k] - want[k]).abs() > POSITION_TOLERANCE) {
         scene.edit(&[Edit::SetPose {
             handle: template.handle,
             relative_to: h.floor,
             position: want,
-            orientation: crate::draw::euler(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }])?;
     }
     Ok(())
@@ -364,11 +366,11 @@ pub(crate) fn begin(
     }
     if let Some(short) = short.filter(|_| !opts.resize_floor) {
         let resize = if short.factors().is_none() {
-            super::floor::Resize::NoExtent
+            super::fit::Resize::NoExtent
         } else if scene.authoring().is_none() {
-            super::floor::Resize::NoApi
+            super::fit::Resize::NoApi
         } else {
-            super::floor::Resize::Offered
+            super::fit::Resize::Offered
         };
         return Err(DrawError::Floor {
             floor: names.floor.clone(),

@@ -15,9 +15,8 @@
 use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
-use super::backend::object_path;
 use super::cbor::{self, int};
-use super::client::{Client, ZmqError};
+use super::client::{Client, ZmqError, object_path};
 use crate::held::Held;
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::score::Sample;

@@ -8,7 +8,8 @@ use std::collections::{HashMap, HashSet};
 use ciborium::Value;
 
 use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
-use crate::draw::{Backend, BackendError, ObjectInfo, ownership};
+use crate::draw::backend::{Backend, BackendError, ObjectInfo};
+use crate::draw::ownership;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
 use vrep_maze_core::coppelia::{HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE};
