@@ -5,12 +5,11 @@
 use vrep_maze_core::layout::sizes::Sizes;
 use vrep_maze_core::score::follow::Follower;
 
+use super::error::BackendError;
 use super::estimate;
-use super::lease::Lease;
 use super::mesh;
 use super::names::ObjectNames;
-use super::ownership;
-use super::survey::{SurveyHandles, SurveyNames};
+use super::survey::{SurveyHandles, SurveyNames, Traits};
 
 /// One scene object as a backend reports it: world pose.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,9 +56,9 @@ pub struct Survey {
     /// Simulation not stopped.
     pub simulation_running: bool,
     /// What the backend read that tells a template's copy from the user's object named like
-    /// one ([`ownership::Traits`]: types, and sizes and children where the name, type and copy
+    /// one ([`Traits`]: types, and sizes and children where the name, type and copy
     /// record leave a doubt).
-    pub traits: ownership::Traits,
+    pub traits: Traits,
 }
 
 /// The idle rate now and the user's rate recorded by an interrupted run.
@@ -99,24 +98,6 @@ pub enum Edit {
     Remove(i32),
 }
 
-/// A failed backend operation.
-#[derive(Debug, thiserror::Error)]
-pub enum BackendError {
-    /// Connection or protocol failure.
-    #[error("{0}")]
-    Transport(String),
-    /// The simulator refused an operation.
-    #[error("the simulator refused: {0}")]
-    Remote(String),
-}
-
-impl BackendError {
-    /// Whether the connection itself failed (the simulator closed or killed), not a request.
-    pub fn lost_connection(&self) -> bool {
-        matches!(self, BackendError::Transport(_))
-    }
-}
-
 /// A connection to a simulator that can draw: the operations [`apply()`](super::apply()), [`clear()`](super::clear()) and
 /// [`verify()`](super::verify()) need.
 ///
@@ -131,7 +112,7 @@ pub trait Backend {
     /// Resolves `names`, lists the objects drawing needs ([`Survey::objects`]) and reads the
     /// simulation state. `names` are [`ObjectNames::survey`]'s: objects are listed only
     /// when the needed ones exist ([`SurveyHandles::needed_found`]), and the maze's copies
-    /// of the other templates are named after them (so [`ownership::foreign_copies`] can tell
+    /// of the other templates are named after them (so `ownership::foreign_copies` can tell
     /// them apart).
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError>;
     /// Lists the objects drawing needs, as [`Backend::survey`] does, with every pose: a
@@ -239,6 +220,30 @@ pub trait Authoring {
     /// Scales the object `handle` by `factors` along its x, y and z (`sim.scaleObject`: a
     /// shape's mesh or primitive grows, its pose stays).
     fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), BackendError>;
+}
+
+/// What [`Lease::claim`] found: the token recorded before it wrote its own, and what reads
+/// back after it did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Claimed {
+    /// The token recorded before the claim, if any.
+    pub previous: Option<i32>,
+    /// The token read back after writing (`None`: the simulator did not keep it).
+    pub read_back: Option<i32>,
+}
+
+/// The scene-side record of who is drawing ([`LEASE`](super::signals::LEASE)): see [`Backend::lease`].
+pub trait Lease {
+    /// Records `token` as the scene's current drawer, replacing any earlier record (an
+    /// older version's too), and reads it back.
+    fn claim(&mut self, token: i32) -> Result<Claimed, BackendError>;
+    /// The token recorded now, if any.
+    fn holder(&mut self) -> Result<Option<i32>, BackendError>;
+    /// Removes the record (only called by the run that holds it).
+    fn release(&mut self) -> Result<(), BackendError>;
+    /// The simulator did not keep the lease: this connection stops reading and writing the
+    /// scene's other signals too (they would be lost the same way).
+    fn unkept(&mut self);
 }
 
 /// Creates the objects `layout` is drawn with that the scene lacks, at the layout's sizes

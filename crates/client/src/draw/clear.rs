@@ -11,9 +11,10 @@ use super::backend::{Backend, Edit, ObjectInfo};
 use super::error::DrawError;
 use super::home;
 use super::lease::{Claim, claimed};
-use super::names::{Handles, ObjectNames, resolve_handles};
+use super::names::{Handles, ObjectNames};
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, relative_pose};
+use super::session::resolve_handles;
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
 use vrep_maze_core::layout::Style;
 
@@ -129,7 +130,7 @@ pub struct ClearOptions {
 }
 
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
-/// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
+/// interrupted `apply`. Refuses a running simulation as `apply()` does.
 pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
     opts.names.check_roles()?;
     let rt0 = scene.round_trips();

@@ -17,9 +17,10 @@
 //! it was opened with a way to ([`Session::reconnecting`]): a restarted simulator is then
 //! drawn on by the next call, as a new `apply` would.
 
-use super::backend::{Backend, BackendError};
+use super::backend::Backend;
 use super::clear;
 use super::clear::{ClearOptions, ClearReport};
+use super::error::BackendError;
 use super::error::DrawError;
 use super::names::ObjectNames;
 use super::report::Stage;

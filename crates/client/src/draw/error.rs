@@ -4,9 +4,26 @@
 use vrep_maze_core::layout::sizes::Sizes;
 use vrep_maze_core::wording::{Message, Neutral, Opt, Value, Wording};
 
-use super::backend::BackendError;
-use super::fit;
+use super::extent::{FloorShort, Resize};
 use super::role::Role;
+
+/// A failed backend operation.
+#[derive(Debug, thiserror::Error)]
+pub enum BackendError {
+    /// Connection or protocol failure.
+    #[error("{0}")]
+    Transport(String),
+    /// The simulator refused an operation.
+    #[error("the simulator refused: {0}")]
+    Remote(String),
+}
+
+impl BackendError {
+    /// Whether the connection itself failed (the simulator closed or killed), not a request.
+    pub fn lost_connection(&self) -> bool {
+        matches!(self, BackendError::Transport(_))
+    }
+}
 
 /// Errors of [`apply()`](super::apply()), [`clear()`](super::clear()) and [`verify()`](super::verify()).
 #[derive(Debug, thiserror::Error)]
@@ -44,20 +61,20 @@ pub enum DrawError {
         what: &'static str,
     },
     /// The scene's templates are not the size the layout was generated for
-    /// ([`fit::check_sizes`]): refused before any edit, one line per template with what
+    /// (`fit::check_sizes`): refused before any edit, one line per template with what
     /// to change.
     #[error("{}", sizes(.0, &Neutral))]
     Sizes(Vec<Message>),
-    /// The scene's floor is smaller than the layout's ([`fit::SizeCheck::floor`]): refused
+    /// The scene's floor is smaller than the layout's (`fit::SizeCheck::floor`): refused
     /// before any edit unless `apply --resize-floor` grows it ([`super::floor::resize`]).
     #[error("{}", .short.describe(.floor))]
     Floor {
         /// The floor's name.
         floor: String,
         /// Its size and the layout's.
-        short: fit::FloorShort,
+        short: FloorShort,
         /// Whether this connection can resize it.
-        resize: fit::Resize,
+        resize: Resize,
     },
     /// The simulation runs; edits would be lost when it stops.
     #[error("the simulation is running: changes made now would be discarded when it stops")]

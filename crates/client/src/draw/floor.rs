@@ -3,9 +3,10 @@
 //! first resize, so that `clear` scales the floor back. Scaling needs the ZeroMQ remote API
 //! (`sim.scaleObject`); the legacy remote API has no call that resizes an object.
 
-use super::backend::{Backend, BackendError};
+use super::backend::Backend;
+use super::error::BackendError;
 use super::error::DrawError;
-use super::fit::{FloorShort, Resize, extents};
+use super::extent::{FloorShort, Resize, extents};
 use super::signals::FLOOR_SIZE as FLOOR_SIGNALS;
 use vrep_maze_core::wording::{Message, Opt, Value};
 

@@ -19,6 +19,7 @@ pub mod connection;
 pub mod drawing;
 pub mod error;
 pub mod estimate;
+pub mod extent;
 pub mod first_line;
 pub mod fit;
 pub mod floor;
@@ -43,21 +44,21 @@ pub mod verify;
 
 pub use apply::apply;
 pub use backend::{
-    Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey,
+    Authoring, Backend, BoundingBox, Claimed, Edit, IdleRates, Lease, ObjectInfo, Survey,
     create_missing_for,
 };
 pub use clear::{ClearOptions, ClearReport, clear};
 pub use connection::{Session, SessionError};
 pub use drawing::Drawing;
-pub use error::DrawError;
-pub use lease::{Claimed, Lease};
-pub use names::{Handles, ObjectNames, resolve_handles};
+pub use error::{BackendError, DrawError};
+pub use names::{Handles, ObjectNames};
 pub use options::ApplyOptions;
 pub use pose::{euler, position};
 pub use remedy::Remedy;
 pub use report::{ApplyReport, DrawMode, Stage, left_alone_line};
 pub use role::Role;
 pub use run::{Job, Picture, Report, RunError, run};
+pub use session::resolve_handles;
 pub use survey::{SurveyHandles, SurveyNames, SurveyRoles};
 pub use verify::verify;
 pub use vrep_maze_core::layout::sizes::{Sizes, TemplateUse};

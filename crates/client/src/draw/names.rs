@@ -1,10 +1,8 @@
 //! The scene objects a drawing needs: their names ([`ObjectNames`], one per [`Role`]) and
-//! their handles in one scene ([`Handles`], [`resolve_handles`]).
+//! their handles in one scene ([`Handles`], resolved by `session::resolve_handles`).
 
 use vrep_maze_core::layout::Style;
-use vrep_maze_core::layout::sizes::Sizes;
 
-use super::backend::Survey;
 use super::error::DrawError;
 use super::role::Role;
 use super::survey::{SurveyNames, SurveyRoles};
@@ -99,7 +97,7 @@ impl ObjectNames {
     }
 
     /// The roles of [`ObjectNames::survey`]'s names.
-    fn survey_roles(style: Style) -> SurveyRoles<Role> {
+    pub(crate) fn survey_roles(style: Style) -> SurveyRoles<Role> {
         let (template, other_template) = match style {
             Style::Lines => (Role::Line, Role::Wall),
             Style::Walls => (Role::Wall, Role::Line),
@@ -162,79 +160,6 @@ impl Handles {
     pub fn never_removed(&self) -> [i32; 3] {
         [self.template, self.start, self.end]
     }
-}
-
-/// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
-/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
-/// `posts`, the post template is needed too. A missing object's remedy gives the layout's
-/// `sizes` when a layout is drawn.
-pub fn resolve_handles(
-    names: &ObjectNames,
-    style: Style,
-    survey: &Survey,
-    posts: bool,
-    sizes: Option<&Sizes>,
-) -> Result<Handles, DrawError> {
-    names.check_roles()?;
-    let found = survey.handles;
-    let roles = ObjectNames::survey_roles(style).into_array();
-    let asked = names.survey(style).into_array();
-    let handles = found.into_array();
-    for (i, h) in handles.iter().enumerate() {
-        let Some(h) = h else { continue };
-        if let Some(j) = handles[i + 1..]
-            .iter()
-            .position(|other| *other == Some(*h))
-            .map(|k| i + 1 + k)
-        {
-            return Err(DrawError::SameObject {
-                names: format!("`{}` and `{}`", asked[i], asked[j]),
-                first: roles[i],
-                second: roles[j],
-            });
-        }
-    }
-    // a name that found one of our copies: never a template or a marker
-    let recorded = asked
-        .iter()
-        .zip(&handles)
-        .zip(roles)
-        .skip(2)
-        .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
-    if let Some(((name, _), role)) = recorded {
-        let marker = matches!(role, Role::Start | Role::End);
-        return Err(DrawError::OurCopy {
-            name: name.to_string(),
-            role,
-            what: if marker { "a marker" } else { "the template" },
-        });
-    }
-    let (needed, _) = found.needed_and_optional();
-    let (needed_roles, _) = ObjectNames::survey_roles(style).needed_and_optional();
-    let mut missing: Vec<(Role, String)> = needed_roles
-        .into_iter()
-        .zip(needed)
-        .filter(|(_, h)| h.is_none())
-        .map(|(role, _)| (role, names.name(role).to_string()))
-        .collect();
-    if posts && found.post.is_none() {
-        missing.push((Role::Post, names.post.clone()));
-    }
-    if !missing.is_empty() {
-        return Err(DrawError::Missing {
-            objects: missing,
-            sizes: sizes.cloned().map(Box::new),
-        });
-    }
-    let h = found.map(|h| h.unwrap_or(-1));
-    Ok(Handles {
-        floor: h.floor,
-        parent: h.parent,
-        template: h.template,
-        start: h.start,
-        end: h.end,
-        post: found.post,
-    })
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::names::ObjectNames;
 
-/// Options of [`super::apply()`].
+/// Options of `apply()`.
 #[derive(Debug, Clone)]
 pub struct ApplyOptions {
     /// Names of the scene objects the drawing uses.

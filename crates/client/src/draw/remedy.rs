@@ -3,8 +3,7 @@
 //! names (the command line `--resize-floor`, Python `resize_floor=True`).
 
 use super::error::DrawError;
-use super::fit::FloorShort;
-use super::fit::Resize;
+use super::extent::{FloorShort, Resize};
 use super::role::Role;
 use super::verify;
 use vrep_maze_core::layout::sizes::Sizes;

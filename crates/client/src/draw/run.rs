@@ -7,9 +7,10 @@ use vrep_maze_core::layout::Layout;
 use vrep_maze_core::mesh::MeshMaze;
 use vrep_maze_core::validate::Invalid;
 
-use super::backend::{Backend, BackendError};
+use super::apply::apply;
+use super::backend::{Backend, create_missing_for};
 use super::drawing::Drawing;
-use super::error::DrawError;
+use super::error::{BackendError, DrawError};
 use super::mesh;
 use super::options::ApplyOptions;
 use super::report::{ApplyReport, DrawMode, Stage};
@@ -124,12 +125,12 @@ pub fn run(
         let authoring = scene
             .authoring()
             .ok_or(RunError::NoAuthoring(Authored::CreateMissing))?;
-        created = super::create_missing_for(authoring, &opts.names, job.layout)
-            .map_err(RunError::Create)?;
+        created =
+            create_missing_for(authoring, &opts.names, job.layout).map_err(RunError::Create)?;
         progress(Stage::Created(created.clone()));
     }
     let drawn = match &job.picture {
-        Picture::Copies(drawing) => super::apply(scene, drawing, opts, progress)?,
+        Picture::Copies(drawing) => apply(scene, drawing, opts, progress)?,
         Picture::Mesh(maze) => mesh::apply(scene, maze, opts, progress)?,
     };
     let mut saved_scene = None;

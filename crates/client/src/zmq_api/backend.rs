@@ -1,4 +1,4 @@
-//! The ZeroMQ remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
+//! The ZeroMQ remote API as a drawing backend: [`crate::draw::backend::Backend`] over [`Client`].
 //!
 //! Objects are found by path (`/Maze`, `/Line`); the earlier maze is the object tree under
 //! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry a template's alias
@@ -18,9 +18,9 @@ use nalgebra::{Quaternion, UnitQuaternion};
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, Outcome, ZmqError, object_path};
 use crate::draw::backend::{
-    Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey,
+    Authoring, Backend, BoundingBox, Edit, IdleRates, Lease, ObjectInfo, Survey,
 };
-use crate::draw::lease::Lease;
+use crate::draw::error::BackendError;
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
 use crate::draw::survey::{SurveyHandles, SurveyNames};

@@ -108,7 +108,7 @@ pub fn leftovers(
     })
 }
 
-/// Draws `maze` as meshes into `scene`, as [`crate::draw::apply()`] draws copies: the idle rate
+/// Draws `maze` as meshes into `scene`, as `draw::apply()` draws copies: the idle rate
 /// raised, the scene claimed, Ctrl-C honoured between requests, the result checked (names,
 /// parents, the template's and markers' poses; [`verify`] reads the meshes back).
 pub fn apply(

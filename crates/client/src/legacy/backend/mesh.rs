@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::LegacyBackend;
-use crate::draw::backend::BackendError;
+use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
 };

@@ -5,7 +5,8 @@
 use ciborium::Value;
 
 use super::{ZmqBackend, alias_of};
-use crate::draw::backend::{Authoring, BackendError};
+use crate::draw::backend::Authoring;
+use crate::draw::error::BackendError;
 use crate::draw::names::ObjectNames;
 use crate::zmq_api::cbor::{float_array, int};
 use crate::zmq_api::client::object_path;

@@ -4,8 +4,8 @@
 use ciborium::Value;
 
 use super::ZmqBackend;
-use crate::draw::backend::BackendError;
-use crate::draw::lease::{Claimed, Lease};
+use crate::draw::backend::{Claimed, Lease};
+use crate::draw::error::BackendError;
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::LEASE;
 use crate::zmq_api::cbor::{self, int};

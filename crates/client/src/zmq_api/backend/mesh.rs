@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use ciborium::Value;
 
 use super::ZmqBackend;
-use crate::draw::backend::BackendError;
+use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
 };
