@@ -3,8 +3,8 @@
 
 use std::io::{BufWriter, Write};
 
-use anyhow::Result;
-use indicatif::ProgressBar;
+use super::Result;
+use crate::progress::Progress;
 
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
@@ -21,7 +21,7 @@ impl Renderer for Ascii {
         layout: &Layout,
         options: &RenderOptions,
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
         let grid = view.maze.grid();
@@ -91,7 +91,7 @@ impl Renderer for Ascii {
             }
             line.push('\n');
             out.write_all(line.as_bytes())?;
-            progress.inc(1);
+            progress.advance(1);
         }
         wall_row(&mut line, 0, Direction::South);
         out.write_all(line.as_bytes())?;
@@ -124,7 +124,7 @@ mod tests {
                     ..Default::default()
                 },
                 &mut bytes,
-                &ProgressBar::hidden(),
+                &crate::progress::Silent,
             )
             .unwrap();
         let text = String::from_utf8(bytes).unwrap();
