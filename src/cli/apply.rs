@@ -434,21 +434,8 @@ fn drive(
     if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
-        let closed = backend.close();
-        eprintln!(
-            "interrupted: {placed} of {total} {}; the idle rate is restored{}",
-            words.interrupted,
-            if closed.is_ok() {
-                " and the connection closed cleanly"
-            } else {
-                ""
-            }
-        );
-        eprintln!(
-            "  hint: run the same apply again to finish the maze, or {} to remove it",
-            super::escape::escaped(&args.scene.command("clear"))
-        );
-        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
+        let closed = backend.close().is_ok();
+        return Ok(say_interrupted(args, &words, (*placed, *total), closed));
     }
     let done = result.map_err(|e| run_error(e, &args.layout, can_create))?;
     let report = &done.drawn;
@@ -461,6 +448,45 @@ fn drive(
         ))?;
     }
     let _ = backend.close();
+    say_done(args, &job.options.names.parent, &words, connection, done)?;
+    Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// What an interrupted apply says on standard error: how far it got (`placed` of `total`),
+/// whether the connection `closed` cleanly, and how to finish or undo it.
+fn say_interrupted(
+    args: &ApplyArgs,
+    words: &Words,
+    (placed, total): (usize, usize),
+    closed: bool,
+) -> std::process::ExitCode {
+    eprintln!(
+        "interrupted: {placed} of {total} {}; the idle rate is restored{}",
+        words.interrupted,
+        if closed {
+            " and the connection closed cleanly"
+        } else {
+            ""
+        }
+    );
+    eprintln!(
+        "  hint: run the same apply again to finish the maze, or {} to remove it",
+        super::escape::escaped(&args.scene.command("clear"))
+    );
+    std::process::ExitCode::from(INTERRUPTED_EXIT_CODE)
+}
+
+/// What a finished apply says once the connection is closed: a stopped simulation, a grown
+/// floor, the summary line, the user's objects left alone under `parent`, what was verified,
+/// and with `--json` the document.
+fn say_done(
+    args: &ApplyArgs,
+    parent: &str,
+    words: &Words,
+    connection: String,
+    done: draw::Report,
+) -> anyhow::Result<()> {
+    let report = &done.drawn;
     if report.stopped_simulation {
         say("stopped the simulation first")?;
     }
@@ -468,7 +494,7 @@ fn drive(
         say(line)?;
     }
     say(super::summary::apply_line(report))?;
-    if let Some(line) = draw::left_alone_line(&report.left_alone, &job.options.names.parent) {
+    if let Some(line) = draw::left_alone_line(&report.left_alone, parent) {
         say(line)?;
     }
     if !report.dry_run {
@@ -477,7 +503,7 @@ fn drive(
     if args.json {
         say::document(&apply_json(args, connection, done))?;
     }
-    Ok(std::process::ExitCode::SUCCESS)
+    Ok(())
 }
 
 /// A failed [`draw::run`] in the command line's words; with `can_create`, missing objects'

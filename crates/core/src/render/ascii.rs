@@ -68,20 +68,8 @@ impl Renderer for Ascii {
             });
             for x in 0..grid.width() {
                 let cell = Cell::new(x, y);
-                let index = grid.index(cell);
-                let mark = if cell == view.start {
-                    'S'
-                } else if cell == view.end {
-                    'E'
-                } else if goal.contains(&cell) {
-                    'G'
-                } else if on_path[index] {
-                    '.'
-                } else {
-                    ' '
-                };
                 line.push(' ');
-                line.push(mark);
+                line.push(mark(&view, &goal, on_path[grid.index(cell)], cell));
                 line.push(' ');
                 line.push(if open(cell, Direction::East) {
                     ' '
@@ -97,6 +85,22 @@ impl Renderer for Ascii {
         out.write_all(line.as_bytes())?;
         out.flush()?;
         Ok(())
+    }
+}
+
+/// What `cell` shows: `S` start, `E` end, `G` the rest of a goal region, `.` the solution
+/// (`on_path`), else a space.
+fn mark(view: &MazeView, goal: &[Cell], on_path: bool, cell: Cell) -> char {
+    if cell == view.start {
+        'S'
+    } else if cell == view.end {
+        'E'
+    } else if goal.contains(&cell) {
+        'G'
+    } else if on_path {
+        '.'
+    } else {
+        ' '
     }
 }
 

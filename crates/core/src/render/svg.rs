@@ -177,24 +177,7 @@ fn write_svg(
             wall_runs(out, view, walls, c, progress)?;
         }
     }
-    if !view.solution.is_empty() {
-        out.write_all(b"<polyline points=\"")?;
-        for (k, cell) in view.solution.iter().enumerate() {
-            let separator = if k == 0 { "" } else { " " };
-            write!(
-                out,
-                "{separator}{},{}",
-                num(f64::from(cell.x) * c),
-                num(f64::from(cell.y) * c)
-            )?;
-        }
-        writeln!(
-            out,
-            r#"" fill="none" stroke="{SOLUTION}" stroke-width="{}" stroke-linejoin="round" stroke-opacity="{}"/>"#,
-            num(w / 2.0),
-            num(SOLUTION_OPACITY)
-        )?;
-    }
+    solution(out, &view.solution, c, w)?;
     out.write_all(b"</g>\n")?;
     run_path(out, trajectory, layout.line.width * trajectory::WIDTH_SHARE)?;
     scale_bar(out, &ScaleBar::for_window(window))?;
@@ -220,6 +203,29 @@ fn run_path(out: &mut impl Write, samples: &[Sample], width: f64) -> io::Result<
         writeln!(out, r#"" stroke="{colour}"/>"#)?;
     }
     out.write_all(b"</g>\n")
+}
+
+/// The solution's cells as one polyline, `w / 2` wide (nothing when none is drawn).
+fn solution(out: &mut impl Write, cells: &[Cell], c: f64, w: f64) -> io::Result<()> {
+    if cells.is_empty() {
+        return Ok(());
+    }
+    out.write_all(b"<polyline points=\"")?;
+    for (k, cell) in cells.iter().enumerate() {
+        let separator = if k == 0 { "" } else { " " };
+        write!(
+            out,
+            "{separator}{},{}",
+            num(f64::from(cell.x) * c),
+            num(f64::from(cell.y) * c)
+        )?;
+    }
+    writeln!(
+        out,
+        r#"" fill="none" stroke="{SOLUTION}" stroke-width="{}" stroke-linejoin="round" stroke-opacity="{}"/>"#,
+        num(w / 2.0),
+        num(SOLUTION_OPACITY)
+    )
 }
 
 /// The green line runs, one `<rect>` each, advancing `progress` a maze row at a time.
