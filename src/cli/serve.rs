@@ -216,38 +216,7 @@ fn serve(
     (legacy_listen, zmq_listen): (SocketAddr, SocketAddr),
     stop: &std::sync::mpsc::Receiver<()>,
 ) -> anyhow::Result<()> {
-    let zmq_config = zmq_api::ServerConfig {
-        listen: zmq_listen,
-        protocol: if args.protocol == 1 {
-            Protocol::V1
-        } else {
-            Protocol::V2
-        },
-        dump: if args.api == ServeApi::Zmq {
-            args.dump.clone()
-        } else {
-            None
-        },
-        verbose: args.verbose,
-        timing,
-        ..Default::default()
-    };
-    let config = ServerConfig {
-        listen: legacy_listen,
-        dump: args.dump.clone(),
-        verbose: args.verbose || args.trace,
-        trace: args.trace,
-        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms.unwrap_or(
-            match args.timing {
-                // spec real-coppeliasim-4.5.1.md, "Why the legacy port refuses for a minute:
-                // TIME_WAIT": `Sleep(500)` before the plugin binds the port again
-                TimingMode::Realistic => 500,
-                TimingMode::Instant => 0,
-            },
-        )),
-        timing,
-        ..Default::default()
-    };
+    let (config, zmq_config) = configs(args, timing, (legacy_listen, zmq_listen));
     let zmq_line = |s: &zmq_api::ServerHandle| {
         outln!(
             "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
@@ -297,6 +266,48 @@ fn serve(
         }
     }
     Ok(())
+}
+
+/// The legacy and the ZeroMQ servers' configurations: where each listens, `--dump`,
+/// `--verbose`, `--trace`, the protocol and the timing.
+fn configs(
+    args: &ServeArgs,
+    timing: Timing,
+    (legacy_listen, zmq_listen): (SocketAddr, SocketAddr),
+) -> (ServerConfig, zmq_api::ServerConfig) {
+    let zmq_config = zmq_api::ServerConfig {
+        listen: zmq_listen,
+        protocol: if args.protocol == 1 {
+            Protocol::V1
+        } else {
+            Protocol::V2
+        },
+        dump: if args.api == ServeApi::Zmq {
+            args.dump.clone()
+        } else {
+            None
+        },
+        verbose: args.verbose,
+        timing,
+        ..Default::default()
+    };
+    let config = ServerConfig {
+        listen: legacy_listen,
+        dump: args.dump.clone(),
+        verbose: args.verbose || args.trace,
+        trace: args.trace,
+        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms.unwrap_or(
+            match args.timing {
+                // spec real-coppeliasim-4.5.1.md, "Why the legacy port refuses for a minute:
+                // TIME_WAIT": `Sleep(500)` before the plugin binds the port again
+                TimingMode::Realistic => 500,
+                TimingMode::Instant => 0,
+            },
+        )),
+        timing,
+        ..Default::default()
+    };
+    (config, zmq_config)
 }
 
 /// The error of a server that could not listen on `addr`: one line, and when the port is
