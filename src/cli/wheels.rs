@@ -12,10 +12,10 @@ use anyhow::{Result, anyhow};
 
 use super::connect::RawClient;
 use super::drive::DriveArgs;
-use super::ensure_usage;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::ScoreJson;
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
+use super::usage::ensure_usage;
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
 use crate::maze::Grid;

@@ -4,10 +4,10 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::ObjectNames;
+use super::names::ObjectNames;
 use super::robot::RobotCheck;
 
-/// Options of [`super::apply()`].
+/// Options of `apply()`.
 #[derive(Debug, Clone)]
 pub struct ApplyOptions {
     /// Names of the scene objects the drawing uses.

@@ -11,8 +11,8 @@ use std::time::{Duration, Instant};
 
 use ciborium::Value;
 
-use super::backend::object_path;
 use super::cbor::{self, float_array, int};
+use super::client::object_path;
 use super::client::{Client, ClientOptions, ZmqError};
 use super::{Outcome, Protocol};
 use crate::held::Held;
