@@ -1,5 +1,5 @@
 //! `vrep-maze drive`: with `--wheels`, the scene's wheeled robot driven by its motors in
-//! stepping mode (`super::wheels`); without it, a minimal kinematic robot for trying `score`
+//! stepping mode (`cli::wheels`); without it, a minimal kinematic robot for trying `score`
 //! at once. The kinematic drive adds a dummy named
 //! `Robot` at Start if the scene has none, and while the simulation runs moves it along the
 //! maze's solution at `--speed`, by remote calls (`sim.setObjectPosition` at the simulation
@@ -54,10 +54,10 @@ pub struct DriveArgs {
     /// How the wheeled robot steers: `pose` from the simulator's ground truth, `camera` from
     /// its camera and wheel odometry alone (line mazes).
     #[arg(long, value_enum, default_value = "pose", requires = "wheels")]
-    pub steer: super::wheels::SteerBy,
+    pub steer: SteerBy,
     /// The wheeled robot's parts.
     #[command(flatten)]
-    pub parts: super::wheels::PartArgs,
+    pub parts: PartArgs,
     /// Run the simulation in real time (`sim.boolparam_realtime_simulation`): a headless
     /// CoppeliaSim without physics runs some 300 times faster than the remote calls that
     /// move the robot can follow.
@@ -71,8 +71,67 @@ pub struct DriveArgs {
     pub scene: ConnectArgs,
 }
 
-/// Runs `drive`.
-pub fn run(args: DriveArgs) -> Result<ExitCode> {
+/// How the wheeled robot steers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SteerBy {
+    /// From the simulator's ground truth (the robot's pose), along the solution.
+    Pose,
+    /// From the camera and the wheels' joint angles alone: the drawn line followed, the
+    /// solution's turns taken (line mazes).
+    Camera,
+}
+
+/// The wheeled robot's parts and limits (with `--wheels`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct PartArgs {
+    /// The left wheel's joint (a revolute joint in velocity mode; positive drives forward).
+    #[arg(long, default_value = "leftMotor")]
+    pub left_motor: String,
+    /// The right wheel's joint.
+    #[arg(long, default_value = "rightMotor")]
+    pub right_motor: String,
+    /// The robot's forward camera (a vision sensor).
+    #[arg(long, default_value = "camera")]
+    pub camera: String,
+    /// Wheel radius in metres [default: read from the wheel under the left joint].
+    #[arg(long, value_name = "M")]
+    pub wheel_radius: Option<f64>,
+    /// Distance between the wheels in metres [default: read from the joints' places].
+    #[arg(long, value_name = "M")]
+    pub track: Option<f64>,
+    /// Top wheel speed, rad/s.
+    #[arg(long, value_name = "RAD/S", default_value_t = 16.0)]
+    pub wheel_max: f64,
+    /// Simulated seconds at most.
+    #[arg(long, value_name = "SECS", default_value_t = 900.0)]
+    pub sim_timeout: f64,
+    /// Print the run's grade as JSON (`score --json`'s report).
+    #[arg(long)]
+    pub json: bool,
+    /// Start the simulation once the robot is ready [default: wait for it to be started:
+    /// by `vrep-maze score ... --start-simulation`, which then follows every step, or by
+    /// hand].
+    #[arg(long)]
+    pub start_simulation: bool,
+}
+
+impl PartArgs {
+    /// Whether any of these options differs from its default (they need `--wheels`).
+    pub fn given(&self) -> bool {
+        self.left_motor != "leftMotor"
+            || self.right_motor != "rightMotor"
+            || self.camera != "camera"
+            || self.wheel_radius.is_some()
+            || self.track.is_some()
+            || self.wheel_max != 16.0
+            || self.sim_timeout != 900.0
+            || self.json
+            || self.start_simulation
+    }
+}
+
+/// Checks the options both drives share and reads the layout, which must pass validation.
+pub(super) fn checked(args: &DriveArgs) -> Result<crate::layout::Layout> {
     if let Some(speed) = args.speed {
         ensure_usage!(
             speed.is_finite() && speed > 0.0 && speed <= 100.0,
@@ -86,9 +145,12 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
     );
     let layout = crate::layout::read_layout(&args.layout)?;
     crate::validate::checked(&layout).context("nothing was driven")?;
-    if args.wheels {
-        return super::wheels::run(&args, &layout);
-    }
+    Ok(layout)
+}
+
+/// Runs `drive` without `--wheels`: the kinematic robot.
+pub fn run(args: DriveArgs) -> Result<ExitCode> {
+    let layout = checked(&args)?;
     ensure_usage!(
         !args.parts.given(),
         "--left-motor, --right-motor, --camera, --wheel-radius, --track, --wheel-max, --sim-timeout, --json and --start-simulation drive a wheeled robot: add --wheels"

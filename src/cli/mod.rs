@@ -191,6 +191,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Clear(args) => clear::run(args),
         Command::Inspect(args) => inspect::run(args),
         Command::Score(args) => score::run(args),
+        Command::Drive(args) if args.wheels => wheels::run(args),
         Command::Drive(args) => drive::run(args),
         Command::Serve(args) => serve::run(args),
     }

@@ -11,7 +11,7 @@ use std::time::Duration;
 use anyhow::{Result, anyhow};
 
 use super::connect::RawClient;
-use super::drive::DriveArgs;
+use super::drive::{DriveArgs, SteerBy, checked};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::ScoreJson;
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
@@ -30,67 +30,10 @@ use crate::score::{GradeOptions, Grader, Report};
 use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
-/// How the wheeled robot steers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum SteerBy {
-    /// From the simulator's ground truth (the robot's pose), along the solution.
-    Pose,
-    /// From the camera and the wheels' joint angles alone: the drawn line followed, the
-    /// solution's turns taken (line mazes).
-    Camera,
-}
-
-/// The wheeled robot's parts and limits (with `--wheels`).
-#[derive(Debug, Clone, clap::Args)]
-pub struct PartArgs {
-    /// The left wheel's joint (a revolute joint in velocity mode; positive drives forward).
-    #[arg(long, default_value = "leftMotor")]
-    pub left_motor: String,
-    /// The right wheel's joint.
-    #[arg(long, default_value = "rightMotor")]
-    pub right_motor: String,
-    /// The robot's forward camera (a vision sensor).
-    #[arg(long, default_value = "camera")]
-    pub camera: String,
-    /// Wheel radius in metres [default: read from the wheel under the left joint].
-    #[arg(long, value_name = "M")]
-    pub wheel_radius: Option<f64>,
-    /// Distance between the wheels in metres [default: read from the joints' places].
-    #[arg(long, value_name = "M")]
-    pub track: Option<f64>,
-    /// Top wheel speed, rad/s.
-    #[arg(long, value_name = "RAD/S", default_value_t = 16.0)]
-    pub wheel_max: f64,
-    /// Simulated seconds at most.
-    #[arg(long, value_name = "SECS", default_value_t = 900.0)]
-    pub sim_timeout: f64,
-    /// Print the run's grade as JSON (`score --json`'s report).
-    #[arg(long)]
-    pub json: bool,
-    /// Start the simulation once the robot is ready [default: wait for it to be started:
-    /// by `vrep-maze score ... --start-simulation`, which then follows every step, or by
-    /// hand].
-    #[arg(long)]
-    pub start_simulation: bool,
-}
-
-impl PartArgs {
-    /// Whether any of these options differs from its default (they need `--wheels`).
-    pub fn given(&self) -> bool {
-        self.left_motor != "leftMotor"
-            || self.right_motor != "rightMotor"
-            || self.camera != "camera"
-            || self.wheel_radius.is_some()
-            || self.track.is_some()
-            || self.wheel_max != 16.0
-            || self.sim_timeout != 900.0
-            || self.json
-            || self.start_simulation
-    }
-}
-
 /// Runs `drive --wheels`.
-pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
+pub fn run(args: DriveArgs) -> Result<ExitCode> {
+    let layout = &checked(&args)?;
+    let args = &args;
     let parts = &args.parts;
     ensure_usage!(
         parts.wheel_max.is_finite() && parts.wheel_max > 0.0 && parts.wheel_max <= 1000.0,
