@@ -13,6 +13,7 @@ use super::drive::DriveArgs;
 use super::ensure_usage;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
+use super::session_marker::SessionMarker;
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
 use crate::maze::Grid;
@@ -24,6 +25,7 @@ use crate::robot::steer::{CameraSteer, Eye, PoseSteer, Steer};
 use crate::robot::wheels::DiffDrive;
 use crate::robot::{DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing};
 use crate::score::{GradeOptions, Grader, Report};
+use crate::legacy::LegacyRobot;
 use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
@@ -113,7 +115,7 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
         yaw: facing([first.x, first.y], route.first().map(|l| l.to)),
     };
     let interrupt = Interrupt::install()?;
-    let (client, options) = match args.scene.client_until(Some(&interrupt.shared()))? {
+    let outcome = match args.scene.client_until(Some(&interrupt.shared()))? {
         RawClient::Zmq(client) => {
             let options = ClientOptions {
                 host: args.scene.host.clone(),
@@ -121,19 +123,30 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
                 timeout: args.scene.timeout,
                 ..ClientOptions::default()
             };
-            (client, options)
+            let mut port = ZmqRobot::new(client, options);
+            let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
+            port.close();
+            outcome
         }
         RawClient::Legacy(client) => {
-            let _ = client.close();
-            return Err(super::hinted::hinted(
-                "drive --wheels over the legacy remote API is not built yet; the ZeroMQ remote API answers beside it",
-                vec!["pass --api zmq (CoppeliaSim 4.5.1 serves it on 23000 beside legacy)".into()],
-            ));
+            // the session is recorded until it closes cleanly: an abrupt end locks the port
+            let marker = SessionMarker::for_address(
+                &args.scene.host,
+                client.peer().map_or(0, |a| a.port()),
+            );
+            marker.opened();
+            let options = crate::legacy::ClientOptions {
+                reply_timeout: args.scene.timeout,
+                ..Default::default()
+            };
+            let mut port = LegacyRobot::new(client, options);
+            let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
+            if port.close().is_ok() {
+                marker.closed();
+            }
+            outcome
         }
     };
-    let mut port = ZmqRobot::new(client, options);
-    let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
-    port.close();
     let (driven, report) = outcome?;
     let text = if parts.json {
         serde_json::to_string_pretty(&report)? + "\n"
