@@ -16,6 +16,7 @@ use super::score::{INCOMPLETE_EXIT_CODE, describe};
 use super::session_marker::SessionMarker;
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
+use crate::legacy::LegacyRobot;
 use crate::maze::Grid;
 use crate::robot::Pose;
 use crate::robot::camera::LineColour;
@@ -25,7 +26,6 @@ use crate::robot::steer::{CameraSteer, Eye, PoseSteer, Steer};
 use crate::robot::wheels::DiffDrive;
 use crate::robot::{DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing};
 use crate::score::{GradeOptions, Grader, Report};
-use crate::legacy::LegacyRobot;
 use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
@@ -130,10 +130,8 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
         }
         RawClient::Legacy(client) => {
             // the session is recorded until it closes cleanly: an abrupt end locks the port
-            let marker = SessionMarker::for_address(
-                &args.scene.host,
-                client.peer().map_or(0, |a| a.port()),
-            );
+            let marker =
+                SessionMarker::for_address(&args.scene.host, client.peer().map_or(0, |a| a.port()));
             marker.opened();
             let options = crate::legacy::ClientOptions {
                 reply_timeout: args.scene.timeout,

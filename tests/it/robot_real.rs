@@ -1,7 +1,8 @@
 //! Issue 37: the course robot runs the maze on the real CoppeliaSim 4.5.1 and 4.10.0 with
 //! physics and a camera (`sim.sh start VERSION --robot --display`): `drive --wheels` by pose
-//! on a line and a wall maze, by camera on line mazes drawn as copies and as meshes, each
-//! graded by its own report. Ignored unless asked, like every real-simulator test:
+//! on a line and a wall maze, by camera on line mazes drawn as copies and as meshes (4.5.1
+//! also over the legacy remote API), each graded by its own report. Ignored unless asked,
+//! like every real-simulator test:
 //!
 //! ```sh
 //! VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it robot_real -- --ignored
@@ -13,7 +14,6 @@ use serde_json::Value;
 
 use crate::support::cli::bin;
 use crate::support::real_sim::{self, RealSim};
-
 
 fn sims() -> std::path::PathBuf {
     real_sim::real_sims_dir().unwrap_or_else(|| {
@@ -32,7 +32,12 @@ fn robot_sim(version: &'static str) -> RealSim {
 /// `vrep-maze generate` with `args` into `dir`; the layout's path.
 fn generate(dir: &Path, name: &str, args: &[&str]) -> String {
     let path = dir.join(name).display().to_string();
-    bin().arg("generate").args(args).args(["-o", &path]).assert().success();
+    bin()
+        .arg("generate")
+        .args(args)
+        .args(["-o", &path])
+        .assert()
+        .success();
     path
 }
 
@@ -41,7 +46,12 @@ fn over(sim: &RealSim, api: &str) -> Vec<String> {
         "legacy" => sim.legacy.expect("a legacy port"),
         _ => sim.zmq,
     };
-    vec!["--api".into(), api.into(), "--port".into(), port.to_string()]
+    vec![
+        "--api".into(),
+        api.into(),
+        "--port".into(),
+        port.to_string(),
+    ]
 }
 
 /// Draws `layout` with `extra` options, then drives it with `drive` options; the report.
@@ -53,7 +63,14 @@ fn run(sim: &RealSim, api: &str, layout: &str, apply: &[&str], drive: &[&str]) -
         .assert()
         .success();
     let out = bin()
-        .args(["drive", layout, "--wheels", "--json", "--run-timeout", "900"])
+        .args([
+            "drive",
+            layout,
+            "--wheels",
+            "--json",
+            "--run-timeout",
+            "900",
+        ])
         .args(over(sim, api))
         .args(drive)
         .output()
@@ -80,7 +97,10 @@ fn assert_reached(report: &Value, spl: f64) {
 /// A camera run kept to the lines.
 fn assert_on_the_lines(report: &Value) {
     let mean = report["line"]["mean_distance_m"].as_f64().unwrap();
-    assert!(mean <= 0.1, "mean distance from the lines {mean} m: {report:#}");
+    assert!(
+        mean <= 0.1,
+        "mean distance from the lines {mean} m: {report:#}"
+    );
 }
 
 #[test]
@@ -95,13 +115,28 @@ fn on_real_4_10_0_zmq_pose_line_9x9_and_walls_6x6() {
     let walls = generate(
         dir.path(),
         "w6.json",
-        &["--seed", "5", "--size", "6x6", "--style", "walls", "--cell-size", "1"],
+        &[
+            "--seed",
+            "5",
+            "--size",
+            "6x6",
+            "--style",
+            "walls",
+            "--cell-size",
+            "1",
+        ],
     );
-    let report = run(&sim, "zmq", &walls, &["--create-missing"], &["--steer", "pose"]);
+    let report = run(
+        &sim,
+        "zmq",
+        &walls,
+        &["--create-missing"],
+        &["--steer", "pose"],
+    );
     assert_reached(&report, 0.6);
     let walls = &report["walls"];
-    let centre_clearance = walls["closest_approach_m"].as_f64().unwrap()
-        + walls["robot_radius_m"].as_f64().unwrap();
+    let centre_clearance =
+        walls["closest_approach_m"].as_f64().unwrap() + walls["robot_radius_m"].as_f64().unwrap();
     assert!(
         centre_clearance > 0.0,
         "the robot's centre passed through a wall: {report:#}"
@@ -117,7 +152,13 @@ fn on_real_4_10_0_zmq_camera_5x5_copies_then_mesh() {
     let report = run(&sim, "zmq", &lines, &[], &["--steer", "camera"]);
     assert_reached(&report, 0.6);
     assert_on_the_lines(&report);
-    let report = run(&sim, "zmq", &lines, &["--draw", "mesh"], &["--steer", "camera"]);
+    let report = run(
+        &sim,
+        "zmq",
+        &lines,
+        &["--draw", "mesh"],
+        &["--steer", "camera"],
+    );
     assert_reached(&report, 0.6);
     assert_on_the_lines(&report);
 }
@@ -155,4 +196,20 @@ fn on_real_4_10_0_camera_without_a_display_says_so() {
     assert_eq!(out.status.code(), Some(3), "{text}");
     assert!(text.contains("all black"), "{text}");
     assert!(text.contains("reached End: no"), "{text}");
+}
+
+/// The course's own way: 4.5.1 over the legacy remote API (`simxSynchronous` and a trigger
+/// a step, the camera streamed). The camera run's `apply` also shows that the pose run left
+/// the simulation stopped and the port free at once.
+#[test]
+#[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it robot_real -- --ignored"]
+fn on_real_4_5_1_legacy_pose_and_camera_5x5() {
+    let sim = robot_sim("4.5.1");
+    let dir = tempfile::tempdir().unwrap();
+    let lines = generate(dir.path(), "l5.json", &["--seed", "7", "--size", "5x5"]);
+    let report = run(&sim, "legacy", &lines, &[], &["--steer", "pose"]);
+    assert_reached(&report, 0.8);
+    let report = run(&sim, "legacy", &lines, &[], &["--steer", "camera"]);
+    assert_reached(&report, 0.6);
+    assert_on_the_lines(&report);
 }

@@ -116,9 +116,7 @@ impl LegacyRobot {
         let got = self.call(&commands)?;
         Ok(got
             .iter()
-            .map(|r| {
-                read_i32(&r.data, 0).filter(|&h| !r.remote_error && h >= 0)
-            })
+            .map(|r| read_i32(&r.data, 0).filter(|&h| !r.remote_error && h >= 0))
             .collect())
     }
 
