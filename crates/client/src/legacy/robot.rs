@@ -580,3 +580,26 @@ impl RobotPort for LegacyRobot {
         done
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn poses_and_mounts_read_coppeliasim_euler_angles() {
+        let p = LegacyRobot::pose_of([1.0, -2.0, 0.06], [0.0, 0.0, 2.0]);
+        assert!(
+            (p.x - 1.0).abs() < 1e-12 && (p.y + 2.0).abs() < 1e-12,
+            "{p:?}"
+        );
+        assert!((p.yaw - 2.0).abs() < 1e-12, "{p:?}");
+        // alpha turns about x first: R = Rx(90 degrees), rows [1 0 0], [0 0 -1], [0 1 0]
+        let m = LegacyRobot::matrix([0.1, 0.0, 0.05], [FRAC_PI_2, 0.0, 0.0]);
+        let want = [1.0, 0.0, 0.0, 0.1, 0.0, 0.0, -1.0, 0.0, 0.0, 1.0, 0.0, 0.05];
+        assert!(
+            m.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{m:?}"
+        );
+    }
+}
