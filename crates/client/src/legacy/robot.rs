@@ -299,6 +299,24 @@ impl LegacyRobot {
         }
     }
 
+    /// Starts the simulation, then the camera's image stream when one is read.
+    fn start_simulation(&mut self, camera: Option<i32>) -> Result<(), RobotError> {
+        let got = self.call(&[Command::Simulation(SimControl::Start)])?;
+        if got[0].remote_error {
+            return Err(RobotError::Scene(
+                "the simulator refused to start the simulation".into(),
+            ));
+        }
+        if let Some(cam) = camera {
+            // every main-loop pass, as the course's loop streams it
+            self.client()?
+                .stream(&[Self::image_command(cam)], 0)
+                .map_err(lost)?;
+            self.streaming = true;
+        }
+        Ok(())
+    }
+
     /// Wheels stopped, stepping off, the simulation stopped (and waited for), the image
     /// stream ended, over `client`.
     fn tidy(client: &mut Client, parts: Option<Parts>) -> Result<(), RobotError> {
@@ -462,22 +480,14 @@ impl RobotPort for LegacyRobot {
                 "the simulator refused synchronous mode on this port: enable it in remoteApiConnections.txt (portIndex1_syncSimTrigger = true)".into(),
             ));
         }
-        let got = self.call(&[Command::Simulation(SimControl::Start)])?;
-        if got[0].remote_error {
-            return Err(RobotError::Scene(
-                "the simulator refused to start the simulation".into(),
-            ));
-        }
         self.last_ms = None;
         self.wheels = None;
-        if camera && let Some(cam) = p.camera {
-            // every main-loop pass, as the course's loop streams it
-            self.client()?
-                .stream(&[Self::image_command(cam)], 0)
-                .map_err(lost)?;
-            self.streaming = true;
+        let started = self.start_simulation(camera.then_some(p.camera).flatten());
+        if started.is_err() {
+            // `drive` finishes only a started run: leave nothing running or stepping
+            let _ = self.finish();
         }
-        Ok(())
+        started
     }
 
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
