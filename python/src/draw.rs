@@ -267,7 +267,9 @@ pub(crate) fn cleared(
 /// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
 /// (ZeroMQ only); `draw="copies"` (the default: one copy of the template per line) or
 /// `"mesh"` (a few mesh shapes, one rectangle or box per straight run; ZeroMQ creates them,
-/// the legacy API loads them as an XML model). Returns an `ApplyReport`. A refused option raises `ValueError`, a
+/// the legacy API loads them as an XML model); `robot="Robot"` and `robot_width` (metres,
+/// else read from the scene's robot) for the warning, in `report.warnings`, of a robot that
+/// does not fit the passages. Returns an `ApplyReport`. A refused option raises `ValueError`, a
 /// simulator that does not answer or refuses `SimulatorError` (with the command line's
 /// hints in `.hints`). Drawing runs without the GIL; Ctrl-C stops after the request in
 /// flight, restores the idle rate, closes the connection and raises `Interrupted` (running
@@ -301,6 +303,7 @@ pub fn apply(
         dry_run: args.dry_run,
         resize_floor: args.resize_floor,
         interrupt: Some(stop.requested.clone()),
+        robot: args.robot_check(),
         ..Default::default()
     };
     let mode = args.draw.into();

@@ -15,6 +15,7 @@ use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vrep_maze::cli::Command;
+use vrep_maze::cli::reports::ScoreJson;
 use vrep_maze::score::{Report, Sample};
 
 use crate::errors;
@@ -108,9 +109,9 @@ pub(crate) fn stopped_run<'py>(
     Ok(err)
 }
 
-/// The report as `--json` writes it, as a Python dict.
+/// The report as `--json` writes it (with its `hints`), as a Python dict.
 pub(crate) fn report_dict<'py>(py: Python<'py>, report: &Report) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(report)
+    let text = serde_json::to_string(&ScoreJson::of(report))
         .map_err(|e| PyRuntimeError::new_err(format!("the report: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))
 }

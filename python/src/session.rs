@@ -153,6 +153,7 @@ impl Session {
             dry_run: args.dry_run,
             resize_floor: args.resize_floor,
             interrupt: Some(stop.requested.clone()),
+            robot: args.robot_check(),
             ..Default::default()
         };
         let mode = args.draw.into();
@@ -286,6 +287,67 @@ impl Session {
             )?);
         }
         Ok((report, trajectory))
+    }
+
+    /// Drives the scene's wheeled robot through `layout` by its wheel joints, with physics,
+    /// the simulation stepped by this session (as `vrep-maze drive --wheels`), and returns
+    /// the run's grade: the `score` report as a dict (`report["reached_end"]`,
+    /// `report["spl"]`, `report["line"]`, ...).
+    ///
+    /// Keywords are `drive`'s: `steer="pose"` (ground truth) or `"camera"` (the camera and
+    /// the wheels' odometry alone, line mazes), `robot`, `left_motor`, `right_motor`,
+    /// `camera`, `speed`, `wheel_radius`, `track`, `wheel_max`, `sim_timeout`, `run_timeout`,
+    /// `floor`, `line`, and `start_simulation` (default `True`; `False` waits for the
+    /// simulation to be started, e.g. by `vrep-maze score --start-simulation`). A session
+    /// drives only the wheeled robot: `wheels=False` is a `ValueError`. Ctrl-C ends the run
+    /// at the next step, the simulation stopped, and raises `KeyboardInterrupt`.
+    #[pyo3(signature = (layout, wheels=true, **options))]
+    fn drive<'py>(
+        &self,
+        py: Python<'py>,
+        layout: &Layout,
+        wheels: bool,
+        options: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if !wheels {
+            return Err(PyValueError::new_err(
+                "a session drives the scene's wheeled robot: drive(layout, wheels=True, ...); the kinematic robot is `vrep-maze drive` without --wheels",
+            ));
+        }
+        let options = options::with(options, py, &[])?;
+        if !options.contains("start_simulation")? {
+            options.set_item("start_simulation", true)?;
+        }
+        let argv = options::command_line("drive", &["-", "--wheels"], &options)?;
+        let Command::Drive(args) = options::parse(argv)? else {
+            return Err(PyRuntimeError::new_err("drive parsed as another command"));
+        };
+        let stop = Stop::default();
+        let interrupt = stop.requested.clone();
+        let layout = layout.layout.clone();
+        let work = move |session: &mut draw::Session| {
+            let backend = session.connected()?;
+            let mut port = backend.robot().ok_or_else(|| {
+                anyhow::anyhow!(
+                    "this connection cannot drive a wheeled robot: connect with api=\"zmq\""
+                )
+            })?;
+            let driven = args.wheels_over(port.as_mut(), &layout, interrupt.clone());
+            drop(port);
+            let (_, report) = driven?;
+            Ok(if interrupt.load(Ordering::SeqCst) {
+                Finished::Partial(report)
+            } else {
+                Finished::Done(report)
+            })
+        };
+        let report = self.run(py, &stop, work, |report| report)?;
+        if stop.requested.load(Ordering::SeqCst) {
+            return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err(
+                "interrupted: the robot was stopped and the simulation with it",
+            ));
+        }
+        score::report_dict(py, &report)
     }
 
     /// Closes the connection (the official client's way, so that the simulator is ready for

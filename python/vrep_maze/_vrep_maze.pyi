@@ -181,6 +181,8 @@ def apply(
     create_missing: bool = False,
     save_scene: Optional[str] = None,
     draw: Optional[Literal["copies", "mesh"]] = None,
+    robot: Optional[str] = None,
+    robot_width: Optional[float] = None,
 ) -> ApplyReport: ...
 def clear(
     api: Optional[Api] = None,
@@ -213,6 +215,8 @@ class Session:
         create_missing: bool = False,
         save_scene: Optional[str] = None,
         draw: Optional[Literal["copies", "mesh"]] = None,
+        robot: Optional[str] = None,
+        robot_width: Optional[float] = None,
     ) -> ApplyReport: ...
     def clear(
         self,
@@ -247,6 +251,26 @@ class Session:
         robot_radius: Optional[float] = None,
         end_size: Optional[float] = None,
     ) -> Tuple[dict, npt.NDArray[np.float64]]: ...
+    def drive(
+        self,
+        layout: Layout,
+        wheels: bool = True,
+        *,
+        steer: Optional[Literal["pose", "camera"]] = None,
+        robot: Optional[str] = None,
+        left_motor: Optional[str] = None,
+        right_motor: Optional[str] = None,
+        camera: Optional[str] = None,
+        speed: Optional[float] = None,
+        wheel_radius: Optional[float] = None,
+        track: Optional[float] = None,
+        wheel_max: Optional[float] = None,
+        sim_timeout: Optional[float] = None,
+        run_timeout: Optional[float] = None,
+        floor: Optional[str] = None,
+        line: Optional[str] = None,
+        start_simulation: bool = True,
+    ) -> dict[str, Any]: ...
     def close(self) -> None: ...
     def __enter__(self) -> "Session": ...
     def __exit__(self, *exc: object) -> bool: ...

@@ -245,6 +245,24 @@ pub struct ApplyArgs {
     /// Print one JSON document on standard output (schema/apply-v1.schema.json).
     #[arg(long)]
     pub json: bool,
+    /// The robot whose footprint is checked against the passages after the draw (a
+    /// warning if it does not fit): its model's bounding box in the scene, the narrower
+    /// horizontal side; nothing is said if the scene has no object of this name.
+    #[arg(long, value_name = "NAME", default_value = "Robot")]
+    pub robot: String,
+    /// The robot's footprint width in metres, instead of reading it from the scene.
+    #[arg(long, value_name = "M", value_parser = super::values::parse_metres, allow_negative_numbers = true)]
+    pub robot_width: Option<f64>,
+}
+
+impl ApplyArgs {
+    /// The robot the drawing is checked against (`--robot`, `--robot-width`).
+    pub fn robot_check(&self) -> draw::robot::RobotCheck {
+        draw::robot::RobotCheck {
+            name: self.robot.clone(),
+            width: self.robot_width,
+        }
+    }
 }
 
 /// How `apply` draws a maze (`--draw`).
@@ -297,6 +315,7 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
             stop_simulation: args.stop_simulation,
             dry_run: args.dry_run,
             resize_floor: args.resize_floor,
+            robot: args.robot_check(),
             ..Default::default()
         },
         create_missing: args.create_missing,

@@ -91,7 +91,7 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
     }
     ensure_usage!(
         !args.parts.given(),
-        "--left-motor, --right-motor, --camera, --wheel-radius, --track, --wheel-max, --sim-timeout and --json drive a wheeled robot: add --wheels"
+        "--left-motor, --right-motor, --camera, --wheel-radius, --track, --wheel-max, --sim-timeout, --json and --start-simulation drive a wheeled robot: add --wheels"
     );
     let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
     let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{e}"))?;

@@ -1,6 +1,7 @@
 //! The JSON documents that `--json` prints, one per run: their types, from which the
 //! schemas in `schema/` are generated (`tests/it/schema.rs` keeps them equal). Each has a
-//! `format` naming it and a `version`.
+//! `format` naming it and a `version`, except `score`'s, which is the core's grade
+//! ([`crate::score::Report`]) with the command line's hints.
 
 use schemars::JsonSchema;
 use serde::Serialize;
@@ -8,6 +9,7 @@ use serde::Serialize;
 use crate::layout::solution::SolveReport;
 use crate::layout::{Layout, Style};
 use crate::maze::Metrics;
+use crate::score::Report;
 
 /// Version of every report below.
 pub const REPORT_VERSION: u32 = 1;
@@ -45,6 +47,10 @@ pub struct ValidatedFile {
     pub problems: Vec<String>,
     /// How many problems were found, kept or not.
     pub problem_count: usize,
+    /// What does not stop the layout from being valid but is worth knowing: a robot of
+    /// `--robot-width` that does not fit its passages.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// A layout's size, maker and what it draws.
@@ -289,6 +295,18 @@ pub struct LayoutMatch {
     pub differences: Vec<String>,
 }
 
+/// What `vrep-maze score --json` prints (`schema/score-report.schema.json`): the grade and
+/// what to do about a run that could not be graded.
+#[derive(Debug, Clone, Serialize, JsonSchema)]
+pub struct ScoreJson {
+    /// The grade.
+    #[serde(flatten)]
+    pub report: Report,
+    /// What to do so that a run like this one can be graded, one remedy each (empty when
+    /// nothing can be done about it here: a complete run, a timeout, an interrupt).
+    pub hints: Vec<String>,
+}
+
 /// Every report's schema file name (under `schema/`) and its JSON Schema.
 pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
     vec![
@@ -304,5 +322,6 @@ pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
             "inspect-v1.schema.json",
             schemars::schema_for!(InspectReport),
         ),
+        ("score-report.schema.json", schemars::schema_for!(ScoreJson)),
     ]
 }

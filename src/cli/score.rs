@@ -14,6 +14,7 @@ use super::apply::ConnectArgs;
 use super::connect::RawClient;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::output::write_output;
+use super::reports::ScoreJson;
 use crate::layout::Layout;
 use crate::legacy::follow::LegacyFollower;
 use crate::score::follow::{FollowError, FollowOptions, Follower, Until, follow};
@@ -21,14 +22,15 @@ use crate::score::{DEFAULT_ROBOT_RADIUS, GradeOptions, Grader, Report, Sample, t
 use crate::zmq_api::follow::ZmqFollower;
 
 /// Exit code of a run that ended early (the simulation stopped before `End` with `--until
-/// end`, the connection dropped, or `--timeout` passed): the report is partial.
+/// end`, the connection dropped, or `--timeout` passed), or was sampled too sparsely to
+/// grade: the report is partial.
 pub const INCOMPLETE_EXIT_CODE: u8 = 3;
 
 /// Options of `score`.
 #[derive(Debug, clap::Args)]
 #[command(
     mut_arg("timeout", |a| a.long("reply-timeout").help("Seconds to wait for each reply (more than 0, at most a day)")),
-    after_help = "Examples:\n  vrep-maze score maze.json                       # wait for the simulation, follow Robot to End\n  vrep-maze score maze.json --start-simulation --json > report.json\n  vrep-maze score maze.json --until stop --trajectory run.csv\n\nExit codes: 0 complete, 1 error (nothing followed), 2 usage, 3 incomplete (partial report), 130 interrupted."
+    after_help = "Examples:\n  vrep-maze score maze.json                       # wait for the simulation, follow Robot to End\n  vrep-maze score maze.json --start-simulation --json > report.json\n  vrep-maze score maze.json --until stop --trajectory run.csv\n\nExit codes: 0 complete, 1 error (nothing followed), 2 usage, 3 incomplete (a partial report, or samples too far apart to grade), 130 interrupted."
 )]
 pub struct ScoreArgs {
     /// The layout the robot drives through.
@@ -157,9 +159,7 @@ impl ScoreArgs {
         }
         let followed = follow(follower, grader, &options).context("nothing was scored")?;
         let mut report = grader.grade(&followed.samples, &grade);
-        report.complete = followed.incomplete.is_none();
-        report.incomplete_reason = followed.incomplete;
-        report.wall_time_s = followed.wall_time_s;
+        report.followed(followed.incomplete, followed.wall_time_s);
         Ok(Scored {
             report,
             samples: followed.samples,
@@ -179,9 +179,9 @@ pub fn run(args: ScoreArgs) -> Result<ExitCode> {
         write_output(Some(path), |w| w.write_all(csv.as_bytes()))?;
     }
     let text = if args.json {
-        serde_json::to_string_pretty(&report)? + "\n"
+        serde_json::to_string_pretty(&ScoreJson::of(&report))? + "\n"
     } else {
-        describe(&report)
+        describe(&report, &hints(&report))
     };
     write_output(None, |w| w.write_all(text.as_bytes()))?;
     Ok(if report.complete {
@@ -217,8 +217,30 @@ fn connect(args: &ConnectArgs, stop: &AtomicBool) -> Result<Box<dyn Follower>> {
     })
 }
 
-/// The report for a terminal.
-pub(super) fn describe(r: &Report) -> String {
+impl ScoreJson {
+    /// The `--json` document of `report`, with its hints.
+    pub fn of(report: &Report) -> ScoreJson {
+        ScoreJson {
+            report: report.clone(),
+            hints: hints(report),
+        }
+    }
+}
+
+/// What to do so that a run like the one `report` grades can be graded: for one sampled too
+/// sparsely, a robot that moves in steps the scorer sees.
+fn hints(report: &Report) -> Vec<String> {
+    if report.sampling.is_dense() {
+        return Vec::new();
+    }
+    vec![
+        "`vrep-maze drive` moves its robot by remote calls, which a simulator without real time outruns (a headless CoppeliaSim by some 300 times): run it with --real-time".into(),
+        "or drive a robot by its wheels in stepping mode (`vrep-maze drive --wheels`), where the simulation waits for its controller at every step".into(),
+    ]
+}
+
+/// The report for a terminal, with `hints` (what to do about it) last.
+pub(super) fn describe(r: &Report, hints: &[String]) -> String {
     use std::fmt::Write as _;
     let m = |v: f64| format!("{v:.3} m");
     let mut s = String::new();
@@ -244,6 +266,7 @@ pub(super) fn describe(r: &Report) -> String {
     let _ = writeln!(s, "path: {} driven{to_end}; {shortest}", m(r.path_length_m));
     let _ = match r.spl {
         Some(spl) => writeln!(s, "SPL: {spl:.3}"),
+        None if !r.sampling.is_dense() => writeln!(s, "SPL: none (sampled too sparsely to grade)"),
         None => writeln!(s, "SPL: unknown"),
     };
     let _ = writeln!(
@@ -273,10 +296,17 @@ pub(super) fn describe(r: &Report) -> String {
         (Some(a), Some(b)) => format!(" (t = {a:.2} .. {b:.2} s)"),
         _ => String::new(),
     };
+    let apart = match r.sampling.largest_jump_at_s {
+        Some(_) => format!(", at most {} apart", m(r.sampling.largest_jump_m)),
+        None => String::new(),
+    };
     let _ = writeln!(
         s,
-        "samples: {}{span}; {} off the floor, {} off the grid",
+        "samples: {}{span}{apart}; {} off the floor, {} off the grid",
         r.samples, r.samples_off_floor, r.samples_off_grid
     );
+    for hint in hints {
+        let _ = writeln!(s, "hint: {hint}");
+    }
     s
 }

@@ -19,7 +19,7 @@ use crate::validate::Validator;
 /// Options of `validate`.
 #[derive(Debug, Args)]
 #[command(
-    after_help = "Examples:\n  vrep-maze validate maze.json\n  vrep-maze validate mazes/*.json\n  vrep-maze generate --seed 3 | vrep-maze validate -"
+    after_help = "Examples:\n  vrep-maze validate maze.json\n  vrep-maze validate mazes/*.json\n  vrep-maze generate --seed 3 | vrep-maze validate -\n  vrep-maze validate mouse.json --robot-width 0.2   # a warning: 0.168 m between the posts"
 )]
 pub struct ValidateArgs {
     /// Layout files to check (`-` reads standard input).
@@ -28,6 +28,10 @@ pub struct ValidateArgs {
     /// Print one JSON document on standard output (schema/validate-v1.schema.json).
     #[arg(long)]
     pub json: bool,
+    /// Warn (exit 0 all the same) when a robot this many metres wide does not fit the
+    /// passages of a valid maze: between its walls or posts, or, for lines, the cell.
+    #[arg(long, value_name = "M", value_parser = super::values::parse_metres, allow_negative_numbers = true)]
+    pub robot_width: Option<f64>,
 }
 
 /// Runs `validate`: exit 0 only if every file is valid. Each file is read once, its
@@ -46,6 +50,7 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
             metrics: None,
             problems: Vec::new(),
             problem_count: 0,
+            warnings: Vec::new(),
         };
         let (layout, validator) = match read_checking(path, progress) {
             Ok(read) => read,
@@ -67,6 +72,13 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
                 }
                 entry.valid = true;
                 entry.metrics = metrics;
+                let fit = args
+                    .robot_width
+                    .and_then(|width| crate::validate::robot_fit(&layout, width));
+                if let Some(warning) = fit {
+                    eprintln!("warning: {name}: {}", escaped(&warning));
+                    entry.warnings.push(warning);
+                }
             }
             Err(invalid) => {
                 for line in invalid.shown(&super::wording::Flags) {

@@ -4,6 +4,8 @@
 //! `score` grades one, from the robot's true pose at every step.
 
 use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use anyhow::{Result, anyhow};
@@ -12,6 +14,7 @@ use super::connect::RawClient;
 use super::drive::DriveArgs;
 use super::ensure_usage;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::reports::ScoreJson;
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
 use super::session_marker::SessionMarker;
 use crate::layout::solution::solve;
@@ -66,6 +69,11 @@ pub struct PartArgs {
     /// Print the run's grade as JSON (`score --json`'s report).
     #[arg(long)]
     pub json: bool,
+    /// Start the simulation once the robot is ready [default: wait for it to be started:
+    /// by `vrep-maze score ... --start-simulation`, which then follows every step, or by
+    /// hand].
+    #[arg(long)]
+    pub start_simulation: bool,
 }
 
 impl PartArgs {
@@ -79,6 +87,7 @@ impl PartArgs {
             || self.wheel_max != 16.0
             || self.sim_timeout != 900.0
             || self.json
+            || self.start_simulation
     }
 }
 
@@ -104,18 +113,16 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
         args.steer == SteerBy::Pose || layout.style == Style::Lines,
         "--steer camera follows drawn lines: this is a wall maze; steer it with --steer pose"
     );
-    let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
-    let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{e}"))?;
-    let path = solve(layout, &maze, None).map_err(|e| anyhow!("{e}"))?;
-    let route = legs(&path.waypoints);
-    let first = path.waypoints[0];
-    let start = Pose {
-        x: first.x,
-        y: first.y,
-        yaw: facing([first.x, first.y], route.first().map(|l| l.to)),
-    };
     let interrupt = Interrupt::install()?;
-    let outcome = match args.scene.client_until(Some(&interrupt.shared()))? {
+    let client = args.scene.client_until(Some(&interrupt.shared()))?;
+    if !parts.start_simulation {
+        eprintln!(
+            "waiting for the simulation to run (at most {} s): start it, or run `vrep-maze score {} --start-simulation` (or give drive --start-simulation)",
+            args.run_timeout,
+            super::escape::shell_word(&args.layout.display().to_string())
+        );
+    }
+    let outcome = match client {
         RawClient::Zmq(client) => {
             let options = ClientOptions {
                 host: args.scene.host.clone(),
@@ -124,7 +131,7 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
                 ..ClientOptions::default()
             };
             let mut port = ZmqRobot::new(client, options);
-            let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
+            let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
             port.close();
             outcome
         }
@@ -138,7 +145,7 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
                 ..Default::default()
             };
             let mut port = LegacyRobot::new(client, options);
-            let outcome = run_over(&mut port, args, layout, route, start, &interrupt);
+            let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
             if port.close().is_ok() {
                 marker.closed();
             }
@@ -146,8 +153,9 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
         }
     };
     let (driven, report) = outcome?;
+    let json = ScoreJson::of(&report);
     let text = if parts.json {
-        serde_json::to_string_pretty(&report)? + "\n"
+        serde_json::to_string_pretty(&json)? + "\n"
     } else {
         format!(
             "drove {} by its wheels ({}): {} steps, {:.1} s simulated, {:.1} s wall\n{}",
@@ -159,7 +167,7 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
             driven.steps,
             driven.samples.last().map_or(0.0, |s| s.t),
             driven.wall_time_s,
-            describe(&report)
+            describe(&report, &json.hints)
         )
     };
     super::output::write_output(None, |w| w.write_all(text.as_bytes()))?;
@@ -172,64 +180,76 @@ pub fn run(args: &DriveArgs, layout: &Layout) -> Result<ExitCode> {
     })
 }
 
-/// Surveys the robot, builds the steer, drives and grades.
-fn run_over(
-    port: &mut dyn RobotPort,
-    args: &DriveArgs,
-    layout: &Layout,
-    route: Vec<crate::robot::route::Leg>,
-    start: Pose,
-    interrupt: &Interrupt,
-) -> Result<(Driven, Report)> {
-    let parts = &args.parts;
-    let names = RobotNames {
-        robot: args.robot.clone(),
-        left_motor: parts.left_motor.clone(),
-        right_motor: parts.right_motor.clone(),
-        camera: parts.camera.clone(),
-        floor: args.scene.floor.clone(),
-        line: args.scene.line.clone(),
-    };
-    let survey = port.survey(&names)?;
-    let drive_geometry = DiffDrive::new(
-        parts.wheel_radius.unwrap_or(survey.drive.wheel_radius),
-        parts.track.unwrap_or(survey.drive.track),
-    )
-    .map_err(|e| anyhow!("{e}"))?;
-    let gains = Gains {
-        speed: args.speed.unwrap_or(match args.steer {
-            SteerBy::Pose => 0.5,
-            SteerBy::Camera => 0.3,
-        }),
-        wheel_max: parts.wheel_max,
-        ..Gains::default()
-    };
-    let mut steer: Box<dyn Steer> = match args.steer {
-        SteerBy::Pose => Box::new(PoseSteer::new(route, drive_geometry, gains)),
-        SteerBy::Camera => Box::new(CameraSteer::new(
-            route,
-            drive_geometry,
-            gains,
-            eye(&survey, layout, &names)?,
-            start,
-        )),
-    };
-    let options = DriveOptions {
-        sim_limit: parts.sim_timeout,
-        wall_limit: Duration::from_secs_f64(args.run_timeout),
-        interrupt: Some(interrupt.shared()),
-    };
-    let driven = drive(port, steer.as_mut(), start, &options)?;
-    let grader = Grader::new(layout).map_err(|e| anyhow!("{e}"))?;
-    let mut report = grader.grade(&driven.samples, &GradeOptions::default());
-    report.complete = driven.arrived && report.reached_end;
-    report.incomplete_reason = match (&driven.stopped, report.reached_end) {
-        (Some(why), _) => Some(why.clone()),
-        (None, false) => Some("the robot finished its route outside End".into()),
-        (None, true) => None,
-    };
-    report.wall_time_s = Some(driven.wall_time_s);
-    Ok((driven, report))
+impl DriveArgs {
+    /// Drives the wheeled robot of these options over `port` through `layout` (which
+    /// passed validation) and grades the run: what `drive --wheels` does once connected,
+    /// and a session's `drive` in Python. Setting `interrupt` ends the run early.
+    pub fn wheels_over(
+        &self,
+        port: &mut dyn RobotPort,
+        layout: &Layout,
+        interrupt: Arc<AtomicBool>,
+    ) -> Result<(Driven, Report)> {
+        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
+        let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{e}"))?;
+        let path = solve(layout, &maze, None).map_err(|e| anyhow!("{e}"))?;
+        let route = legs(&path.waypoints);
+        let first = path.waypoints[0];
+        let start = Pose {
+            x: first.x,
+            y: first.y,
+            yaw: facing([first.x, first.y], route.first().map(|l| l.to)),
+        };
+        let parts = &self.parts;
+        let names = RobotNames {
+            robot: self.robot.clone(),
+            left_motor: parts.left_motor.clone(),
+            right_motor: parts.right_motor.clone(),
+            camera: parts.camera.clone(),
+            floor: self.scene.floor.clone(),
+            line: self.scene.line.clone(),
+        };
+        let survey = port.survey(&names)?;
+        let drive_geometry = DiffDrive::new(
+            parts.wheel_radius.unwrap_or(survey.drive.wheel_radius),
+            parts.track.unwrap_or(survey.drive.track),
+        )
+        .map_err(|e| anyhow!("{e}"))?;
+        let gains = Gains {
+            speed: self.speed.unwrap_or(match self.steer {
+                SteerBy::Pose => 0.5,
+                SteerBy::Camera => 0.3,
+            }),
+            wheel_max: parts.wheel_max,
+            ..Gains::default()
+        };
+        let mut steer: Box<dyn Steer> = match self.steer {
+            SteerBy::Pose => Box::new(PoseSteer::new(route, drive_geometry, gains)),
+            SteerBy::Camera => Box::new(CameraSteer::new(
+                route,
+                drive_geometry,
+                gains,
+                eye(&survey, layout, &names)?,
+                start,
+            )),
+        };
+        let options = DriveOptions {
+            start_simulation: parts.start_simulation,
+            sim_limit: parts.sim_timeout,
+            wall_limit: Duration::from_secs_f64(self.run_timeout),
+            interrupt: Some(interrupt),
+        };
+        let driven = drive(port, steer.as_mut(), start, &options)?;
+        let grader = Grader::new(layout).map_err(|e| anyhow!("{e}"))?;
+        let mut report = grader.grade(&driven.samples, &GradeOptions::default());
+        let ended = match (&driven.stopped, driven.arrived && report.reached_end) {
+            (Some(why), _) => Some(why.clone()),
+            (None, false) => Some("the robot finished its route outside End".into()),
+            (None, true) => None,
+        };
+        report.followed(ended, Some(driven.wall_time_s));
+        Ok((driven, report))
+    }
 }
 
 /// What the camera steer needs: the camera, the lines' colour against the floor's, the map.

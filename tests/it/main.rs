@@ -36,6 +36,7 @@ mod permissions;
 mod properties;
 mod readme;
 mod render_controls;
+mod robot_fit;
 mod robot_real;
 mod scenarios;
 mod schema;

@@ -63,14 +63,7 @@ fn run(sim: &RealSim, api: &str, layout: &str, apply: &[&str], drive: &[&str]) -
         .assert()
         .success();
     let out = bin()
-        .args([
-            "drive",
-            layout,
-            "--wheels",
-            "--json",
-            "--run-timeout",
-            "900",
-        ])
+        .args(["drive", layout, "--wheels", "--start-simulation", "--json"])
         .args(over(sim, api))
         .args(drive)
         .output()
@@ -188,7 +181,14 @@ fn on_real_4_10_0_camera_without_a_display_says_so() {
         .assert()
         .success();
     let out = bin()
-        .args(["drive", &lines, "--wheels", "--steer", "camera"])
+        .args([
+            "drive",
+            &lines,
+            "--wheels",
+            "--start-simulation",
+            "--steer",
+            "camera",
+        ])
         .args(over(&sim, "zmq"))
         .output()
         .unwrap();

@@ -25,6 +25,12 @@ const STEP: Duration = Duration::from_millis(20);
 /// Simulated seconds the robot stands at its start before it drives.
 const DWELL: f64 = 0.3;
 
+/// The robot's speed, metres a second (the emulated simulation runs in real time, a step
+/// every [`STEP`]): a follower slowed by a busy machine may miss 600 ms of steps and still
+/// see every half cell, as `score` needs to grade the run (at 1.6 m/s, a load of 15 on two
+/// cores made one miss 490 ms).
+const SPEED: f64 = 0.8;
+
 /// The 3 x 3 course maze (DFS, seed 1): cell (i, j) at floor (i - 1, j - 1), Start in
 /// (0, 0), End in (2, 0); the solution goes up column 0, along row 2 and down column 2
 /// (6 cells, 6 m), and walls stand between (0, 0), (1, 0) and (2, 0).
@@ -167,13 +173,13 @@ fn run(
     );
     server.shutdown();
     let mut report = grader.grade(&followed.samples, &GradeOptions::default());
-    report.complete = followed.incomplete.is_none();
+    report.followed(followed.incomplete.clone(), followed.wall_time_s);
     (followed, report)
 }
 
 fn perfect_run(kind: Kind) {
     let layout = maze(false);
-    let (followed, report) = run(kind, &layout, path(&SOLUTION, 4.0), Until::End, None);
+    let (followed, report) = run(kind, &layout, path(&SOLUTION, SPEED), Until::End, None);
     let name = kind.name();
     assert!(report.complete && report.reached_end, "{name}: {report:?}");
     assert_eq!(report.shortest_length_m, Some(6.0), "{name}");
@@ -190,11 +196,12 @@ fn perfect_run(kind: Kind) {
     // legacy positions travel as f32
     assert!(report.line.unwrap().max_distance_m < 1e-6, "{name}");
     let t = report.time_s.unwrap();
-    // End's footprint starts 0.5 m before its centre: 5.5 m at 4 m/s, give or take the
+    // End's footprint starts 0.5 m before its centre: 5.5 m at SPEED, give or take the
     // steps between samples (every second one at ZeroMQ protocol 1)
+    let expected = 5.5 / SPEED;
     assert!(
-        (1.2..=1.6).contains(&(t - DWELL)),
-        "{name}: reached at {t} s"
+        (expected - 0.15..=expected + 0.2).contains(&(t - DWELL)),
+        "{name}: reached at {t} s, expected about {expected} s"
     );
     assert!(
         followed.samples.windows(2).all(|w| w[0].t < w[1].t),
@@ -208,11 +215,12 @@ fn perfect_run(kind: Kind) {
 }
 
 fn a_run_that_stops_short(kind: Kind) {
-    // up column 0 and on to the middle of the top row (3 m, done at 1.05 s), then
-    // standing; the simulation is stopped at 1.5 s
+    // up column 0 and on to the middle of the top row (3 m), then standing; the
+    // simulation is stopped 0.45 s after the robot stood still
     let layout = maze(false);
-    let waypoints = path(&[(-1.0, -1.0), (-1.0, 1.0), (0.0, 1.0)], 4.0);
-    let (followed, report) = run(kind, &layout, waypoints, Until::Stop, Some(1.5));
+    let waypoints = path(&[(-1.0, -1.0), (-1.0, 1.0), (0.0, 1.0)], SPEED);
+    let stop = DWELL + 3.0 / SPEED + 0.45;
+    let (followed, report) = run(kind, &layout, waypoints, Until::Stop, Some(stop));
     let name = kind.name();
     assert_eq!(
         followed.incomplete, None,
@@ -234,7 +242,7 @@ fn a_run_that_cuts_through_walls(kind: Kind) {
     let (_, report) = run(
         kind,
         &layout,
-        path(&[(-1.0, -1.0), (1.0, -1.0)], 4.0),
+        path(&[(-1.0, -1.0), (1.0, -1.0)], SPEED),
         Until::End,
         None,
     );
@@ -249,8 +257,8 @@ fn a_run_that_cuts_through_walls(kind: Kind) {
 
 fn a_simulation_stopped_mid_run(kind: Kind) {
     let layout = maze(false);
-    // stopped after 1.6 m of the 6 m
-    let (followed, report) = run(kind, &layout, path(&SOLUTION, 4.0), Until::End, Some(0.7));
+    // stopped after 0.32 m of the 6 m
+    let (followed, report) = run(kind, &layout, path(&SOLUTION, SPEED), Until::End, Some(0.7));
     let name = kind.name();
     let why = followed.incomplete.as_deref().unwrap_or_default();
     assert!(
@@ -269,7 +277,7 @@ fn a_simulation_stopped_mid_run(kind: Kind) {
 }
 
 fn a_missing_robot_is_named_before_any_waiting(kind: Kind) {
-    let server = serve(kind, path(&SOLUTION, 4.0));
+    let server = serve(kind, path(&SOLUTION, SPEED));
     let grader = Grader::new(&maze(false)).unwrap();
     let mut f = follower(kind, &server);
     let opts = FollowOptions {

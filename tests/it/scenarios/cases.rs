@@ -457,9 +457,12 @@ fn runs_back_to_back_each_connect_at_once(target: Target) {
     eprintln!("{target:?}: slowest of 20 runs back to back: {slowest:?}");
 }
 
-/// `score --start-simulation` follows a robot driving the solution of a 3 x 3 maze at 4 m/s
+/// `score --start-simulation` follows a robot driving the solution of a 3 x 3 maze at 1 m/s
 /// (moved by remote calls: these simulators have no physics, the course scene no script) and
-/// reports it reached `End` along the shortest way, then leaves the simulation stopped.
+/// reports it reached `End` along the shortest way, then leaves the simulation stopped. A
+/// move takes three calls, one a 50 ms step where the API serves one request a main-loop
+/// pass (ZeroMQ protocol 1): 0.15 m a move, so the robot never jumps half a cell, which
+/// `score` would refuse to grade.
 fn score_follows_a_scripted_robot(target: Target) {
     let sim = target.start();
     let dir = tempfile::tempdir().unwrap();
@@ -475,7 +478,7 @@ fn score_follows_a_scripted_robot(target: Target) {
     for (k, &(x, y)) in corners.iter().enumerate() {
         if k > 0 {
             let (px, py) = corners[k - 1];
-            t += f64::hypot(x - px, y - py) / 4.0;
+            t += f64::hypot(x - px, y - py); // at 1 m/s
         }
         waypoints.push((t, x, y));
     }
@@ -514,7 +517,10 @@ fn score_follows_a_scripted_robot(target: Target) {
 /// solution by remote calls while the simulation runs (over ZeroMQ, whatever API the
 /// scenario draws and scores through), so `score --start-simulation` grades a complete run
 /// on the shortest way; drive then says the simulation stopped and exits 0. On the real
-/// builds, `--real-time`: without physics they run far faster than remote calls follow.
+/// builds, `--real-time`: without physics they run far faster than remote calls follow. At
+/// 1 m/s: a move takes three calls, one a 50 ms step where the API serves one request a
+/// main-loop pass (ZeroMQ protocol 1), 0.15 m, well under the half cell `score` allows
+/// between samples (at 4 m/s the robot jumped 0.6 m and the run was not graded).
 fn drive_gives_score_a_robot(target: Target) {
     use std::io::{BufRead, BufReader};
     use std::process::{Command, Stdio};
@@ -539,7 +545,7 @@ fn drive_gives_score_a_robot(target: Target) {
         "--port",
         &zmq,
         "--speed",
-        "4",
+        "1",
         "--run-timeout",
         "120",
     ]);

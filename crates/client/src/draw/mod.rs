@@ -26,6 +26,7 @@ pub mod pose;
 pub mod record;
 pub mod remedy;
 pub mod report;
+pub mod robot;
 pub mod role;
 pub mod run;
 pub mod session;
@@ -495,6 +496,18 @@ pub trait Backend {
     /// the follower is closed (`score` in a session), if this backend can lend it.
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
         None
+    }
+    /// A driver of the scene's wheeled robot over this backend's connection, which stays
+    /// open when the driver is done (`drive` in a session), if this backend can lend it.
+    fn robot(&mut self) -> Option<Box<dyn crate::robot::RobotPort + '_>> {
+        None
+    }
+    /// The bounding box, in its own frame, of the model whose base is the object `name`
+    /// (an object that is no model base: its own box), for [`robot`]'s check; `None` for no
+    /// such object or an API that cannot say.
+    fn model_box(&mut self, name: &str) -> Result<Option<BoundingBox>, BackendError> {
+        let _ = name;
+        Ok(None)
     }
 }
 

@@ -5,6 +5,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::ObjectNames;
+use super::robot::RobotCheck;
 
 /// Options of [`super::apply()`].
 #[derive(Debug, Clone)]
@@ -23,6 +24,8 @@ pub struct ApplyOptions {
     /// Grow a floor smaller than the layout's to its size ([`super::floor::resize`]; the
     /// ZeroMQ API only) instead of refusing with [`DrawError::Floor`](super::DrawError::Floor).
     pub resize_floor: bool,
+    /// The robot whose footprint is checked against the passages after the draw.
+    pub robot: RobotCheck,
 }
 
 impl Default for ApplyOptions {
@@ -34,6 +37,7 @@ impl Default for ApplyOptions {
             paste_blocks_per_round: 16,
             interrupt: None,
             resize_floor: false,
+            robot: RobotCheck::default(),
         }
     }
 }

@@ -134,10 +134,13 @@ pub fn run(
             .map_err(RunError::Create)?;
         progress(Stage::Created(created.clone()));
     }
-    let drawn = match &job.picture {
+    let mut drawn = match &job.picture {
         Picture::Copies(drawing) => super::apply(scene, drawing, opts, progress)?,
         Picture::Mesh(maze) => mesh::apply(scene, maze, opts, progress)?,
     };
+    drawn
+        .warnings
+        .extend(super::robot::warning(scene, &opts.robot, job.layout));
     let mut saved_scene = None;
     if let Some(path) = job.save_scene.as_deref().filter(|_| !opts.dry_run) {
         let authoring = scene

@@ -20,6 +20,7 @@ use vrep_maze_core::coppelia::{
 use vrep_maze_core::score::follow::Follower;
 
 mod mesh;
+mod robot;
 
 /// A connected legacy remote API scene. Dropping it closes the connection cleanly.
 pub struct LegacyBackend {
@@ -655,6 +656,10 @@ impl Backend for LegacyBackend {
 
     fn meshes(&mut self) -> Option<&mut dyn crate::draw::mesh::MeshDrawing> {
         Some(self)
+    }
+
+    fn model_box(&mut self, name: &str) -> Result<Option<BoundingBox>, BackendError> {
+        self.read_model_box(name)
     }
 
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {

@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 
 use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{Command, SimControl, decode_image, read_f32, read_f32x3, read_i32};
-use crate::robot::{Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
+use crate::robot::{DRIVER_SIGNAL, Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
 use vrep_maze_core::coppelia::frame::frame;
 use vrep_maze_core::coppelia::{INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX};
 use vrep_maze_core::robot::Pose;
@@ -54,6 +54,8 @@ pub struct LegacyRobot {
     wheels: Option<Wheels>,
     /// The simulation time of the latest readings, ms.
     last_ms: Option<i32>,
+    /// The camera is read in this run.
+    camera: bool,
     /// The image stream was started.
     streaming: bool,
 }
@@ -78,6 +80,7 @@ impl LegacyRobot {
             height: 0.0,
             wheels: None,
             last_ms: None,
+            camera: false,
             streaming: false,
         }
     }
@@ -299,24 +302,6 @@ impl LegacyRobot {
         }
     }
 
-    /// Starts the simulation, then the camera's image stream when one is read.
-    fn start_simulation(&mut self, camera: Option<i32>) -> Result<(), RobotError> {
-        let got = self.call(&[Command::Simulation(SimControl::Start)])?;
-        if got[0].remote_error {
-            return Err(RobotError::Scene(
-                "the simulator refused to start the simulation".into(),
-            ));
-        }
-        if let Some(cam) = camera {
-            // every main-loop pass, as the course's loop streams it
-            self.client()?
-                .stream(&[Self::image_command(cam)], 0)
-                .map_err(lost)?;
-            self.streaming = true;
-        }
-        Ok(())
-    }
-
     /// Wheels stopped, stepping off, the simulation stopped (and waited for), the image
     /// stream ended, over `client`.
     fn tidy(client: &mut Client, parts: Option<Parts>) -> Result<(), RobotError> {
@@ -331,6 +316,7 @@ impl LegacyRobot {
         }
         // stepping off first: a stop then runs its last pass without waiting for a trigger
         commands.push(Command::Synchronous(false));
+        commands.push(Command::ClearIntSignal(DRIVER_SIGNAL.into()));
         commands.push(Command::Simulation(SimControl::Stop));
         client.call(&commands).map_err(lost)?;
         if let Some(cam) = parts.and_then(|p| p.camera) {
@@ -469,7 +455,7 @@ impl RobotPort for LegacyRobot {
         Ok(())
     }
 
-    fn start(&mut self, camera: bool) -> Result<(), RobotError> {
+    fn prepare(&mut self, camera: bool) -> Result<(), RobotError> {
         let p = self.parts()?;
         if camera && p.camera.is_none() {
             return Err(RobotError::Scene("the robot has no camera".into()));
@@ -482,12 +468,27 @@ impl RobotPort for LegacyRobot {
         }
         self.last_ms = None;
         self.wheels = None;
-        let started = self.start_simulation(camera.then_some(p.camera).flatten());
-        if started.is_err() {
-            // `drive` finishes only a started run: leave nothing running or stepping
-            let _ = self.finish();
+        self.camera = camera;
+        self.call(&[Command::SetIntSignal(DRIVER_SIGNAL.into(), 1)])?;
+        Ok(())
+    }
+
+    fn start_simulation(&mut self) -> Result<(), RobotError> {
+        let got = self.call(&[Command::Simulation(SimControl::Start)])?;
+        if got[0].remote_error {
+            return Err(RobotError::Scene(
+                "the simulator refused to start the simulation".into(),
+            ));
         }
-        started
+        Ok(())
+    }
+
+    fn is_running(&mut self) -> Result<bool, RobotError> {
+        let client = self.client()?;
+        client
+            .call1(Command::GetIntParam(INTPARAM_PROGRAM_VERSION))
+            .map_err(lost)?;
+        Ok(client.simulation_running() == Some(true))
     }
 
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
@@ -519,8 +520,17 @@ impl RobotPort for LegacyRobot {
             Self::xyz_of(&got[2], "simxGetObjectPosition")?,
             Self::xyz_of(&got[3], "simxGetObjectOrientation")?,
         );
-        let image = match (image, p.camera) {
-            (true, Some(cam)) if self.streaming => Some(self.image_at(cam, stamp)?),
+        let image = match (image && self.camera, p.camera) {
+            (true, Some(cam)) => {
+                if !self.streaming {
+                    // every main-loop pass, as the course's loop streams it
+                    self.client()?
+                        .stream(&[Self::image_command(cam)], 0)
+                        .map_err(lost)?;
+                    self.streaming = true;
+                }
+                Some(self.image_at(cam, stamp)?)
+            }
             _ => None,
         };
         if std::env::var_os("VREP_MAZE_TRACE").is_some() {
@@ -569,6 +579,7 @@ impl RobotPort for LegacyRobot {
     fn finish(&mut self) -> Result<(), RobotError> {
         let parts = self.parts;
         self.streaming = false;
+        self.camera = false;
         let first = match self.client.as_mut() {
             Some(client) => Self::tidy(client, parts),
             None => Err(RobotError::Connection("the connection is closed".into())),

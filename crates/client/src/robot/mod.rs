@@ -75,9 +75,14 @@ pub trait RobotPort {
     fn survey(&mut self, names: &RobotNames) -> Result<RobotSurvey, RobotError>;
     /// Puts the robot at `pose` (floor frame) on the stopped simulation.
     fn place(&mut self, pose: Pose) -> Result<(), RobotError>;
-    /// Enters stepping mode and starts the simulation; `camera` says whether the camera is
-    /// read (else it is spared rendering for the run).
-    fn start(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// Readies the run on the stopped simulation: stepping mode on, the camera spared
+    /// rendering unless `camera` (it is read), and the driver announced by the signal
+    /// [`DRIVER_SIGNAL`] so that a `score` joins the stepping and starts the simulation.
+    fn prepare(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// Starts the simulation.
+    fn start_simulation(&mut self) -> Result<(), RobotError>;
+    /// Whether the simulation runs (or is paused).
+    fn is_running(&mut self) -> Result<bool, RobotError>;
     /// Reads this step's readings (the image when `image`).
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError>;
     /// Sets the wheels' target velocities.
@@ -85,13 +90,22 @@ pub trait RobotPort {
     /// Lets the simulation advance one step and waits for it.
     fn step(&mut self) -> Result<(), RobotError>;
     /// Ends the run whatever happened: wheels stopped, simulation stopped, stepping off,
-    /// the camera's handling as it was. Tries a fresh connection when this one is lost.
+    /// the camera's handling as it was, the signal cleared. Tries a fresh connection when
+    /// this one is lost.
     fn finish(&mut self) -> Result<(), RobotError>;
 }
 
-/// How a drive ends and how long it may take.
+/// The integer signal a stepping driver sets to 1 on the stopped simulation once the robot
+/// is placed and stepping is on, and clears when it is done: a `score` that sees it joins
+/// the stepping (so it sees every step) and may start the simulation.
+pub const DRIVER_SIGNAL: &str = "vrepMaze.drive";
+
+/// How a drive starts, ends and how long it may take.
 #[derive(Debug, Clone)]
 pub struct DriveOptions {
+    /// Start the simulation (else wait for it to be started: by `score --start-simulation`,
+    /// by the user, by a script).
+    pub start_simulation: bool,
     /// Simulated seconds at most.
     pub sim_limit: f64,
     /// Wall-clock limit.
@@ -130,12 +144,44 @@ pub fn drive(
 ) -> Result<Driven, RobotError> {
     port.place(start)?;
     let needs = steer.needs();
-    port.start(needs.image)?;
-    let run = stepping(port, steer, options);
+    let run = port
+        .prepare(needs.image)
+        .and_then(|()| started(port, options))
+        .and_then(|()| stepping(port, steer, options));
     let finished = port.finish();
     let driven = run?;
     finished?;
     Ok(driven)
+}
+
+/// Starts the simulation, or waits for it to start.
+fn started(port: &mut dyn RobotPort, options: &DriveOptions) -> Result<(), RobotError> {
+    if options.start_simulation {
+        return port.start_simulation();
+    }
+    let began = Instant::now();
+    while !port.is_running()? {
+        if interrupted(options) {
+            return Err(RobotError::Scene(
+                "interrupted before the simulation started".into(),
+            ));
+        }
+        if began.elapsed() >= options.wall_limit {
+            return Err(RobotError::Scene(format!(
+                "the simulation did not start within {} s",
+                options.wall_limit.as_secs_f64()
+            )));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    Ok(())
+}
+
+fn interrupted(options: &DriveOptions) -> bool {
+    options
+        .interrupt
+        .as_ref()
+        .is_some_and(|i| i.load(Ordering::SeqCst))
 }
 
 /// The stepping loop of [`drive`], on a started simulation.
@@ -150,17 +196,16 @@ fn stepping(
     let mut samples: Vec<Sample> = Vec::new();
     let mut steps = 0usize;
     let stopped = loop {
-        if options
-            .interrupt
-            .as_ref()
-            .is_some_and(|i| i.load(Ordering::SeqCst))
-        {
+        if interrupted(options) {
             break Some("interrupted".to_string());
         }
         let reading = match port.observe(needs.image) {
             Ok(r) => r,
             Err(e) => break Some(format!("the connection failed: {e}")),
         };
+        if steps > 0 && samples.last().is_some_and(|s| reading.time < s.t) {
+            break Some("the simulation was stopped by someone else".to_string());
+        }
         if samples.last().is_none_or(|s| reading.time > s.t) {
             samples.push(Sample {
                 t: reading.time,
@@ -224,4 +269,235 @@ fn stepping(
 /// The heading that faces the first leg of a route from `from` (0 when it has none).
 pub fn facing(from: [f64; 2], to: Option<[f64; 2]>) -> f64 {
     to.map_or(0.0, |t| wrap((t[1] - from[1]).atan2(t[0] - from[0])))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vrep_maze_core::generate::Algorithm;
+    use vrep_maze_core::layout::solution::solve;
+    use vrep_maze_core::layout::{GenerateSpec, Layout, build_layout, passages};
+    use vrep_maze_core::maze::Grid;
+    use vrep_maze_core::robot::camera::LineColour;
+    use vrep_maze_core::robot::localize::LineMap;
+    use vrep_maze_core::robot::route::{Gains, legs};
+    use vrep_maze_core::robot::steer::{CameraSteer, Eye, PoseSteer};
+
+    const COURSE: DiffDrive = DiffDrive {
+        wheel_radius: 0.04,
+        track: 0.18,
+    };
+
+    /// A world without a simulator: the robot moves by its wheels with 3 % slip on the
+    /// right wheel (so odometry drifts), its camera (64 x 64, the course camera's mount)
+    /// renders the layout's lines green on a grey floor.
+    struct World {
+        map: LineMap,
+        camera: CameraModel,
+        pose: Pose,
+        joints: [f64; 2],
+        wheels: Wheels,
+        time: f64,
+        running: bool,
+        finished: bool,
+    }
+
+    impl World {
+        fn new(layout: &Layout) -> Self {
+            Self {
+                map: LineMap::of(layout).unwrap(),
+                camera: CameraModel {
+                    width: 64,
+                    height: 64,
+                    view_angle: 60f64.to_radians(),
+                    mount: [
+                        0.0, 0.5, 0.866_025, 0.105, 1.0, 0.0, 0.0, 0.0, 0.0, 0.866_025, -0.5, 0.04,
+                    ],
+                    floor_z: -0.06,
+                },
+                pose: Pose::default(),
+                joints: [0.0; 2],
+                wheels: Wheels::default(),
+                time: 0.0,
+                running: false,
+                finished: false,
+            }
+        }
+
+        fn render(&self) -> Image {
+            let mut rgb = Vec::with_capacity(64 * 64 * 3);
+            for j in 0..64 {
+                for i in 0..64 {
+                    let on = self
+                        .camera
+                        .ground(i, j)
+                        .is_some_and(|p| self.map.on_lines(self.pose, &[p]) == Some(1.0));
+                    rgb.extend(if on { [0, 51, 0] } else { [51, 51, 51] });
+                }
+            }
+            Image::new(64, 64, rgb).unwrap()
+        }
+    }
+
+    impl RobotPort for World {
+        fn survey(&mut self, _: &RobotNames) -> Result<RobotSurvey, RobotError> {
+            Ok(RobotSurvey {
+                drive: COURSE,
+                camera: Some(self.camera.clone()),
+                colours: Some(([0.0, 1.0, 0.0], [1.0, 1.0, 1.0])),
+                pose: self.pose,
+            })
+        }
+        fn place(&mut self, pose: Pose) -> Result<(), RobotError> {
+            self.pose = pose;
+            Ok(())
+        }
+        fn prepare(&mut self, _: bool) -> Result<(), RobotError> {
+            Ok(())
+        }
+        fn start_simulation(&mut self) -> Result<(), RobotError> {
+            self.running = true;
+            Ok(())
+        }
+        fn is_running(&mut self) -> Result<bool, RobotError> {
+            Ok(self.running)
+        }
+        fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
+            Ok(Reading {
+                time: self.time,
+                joints: self.joints.map(wrap),
+                pose: self.pose,
+                image: image.then(|| self.render()),
+            })
+        }
+        fn actuate(&mut self, wheels: Wheels) -> Result<(), RobotError> {
+            self.wheels = wheels;
+            Ok(())
+        }
+        fn step(&mut self) -> Result<(), RobotError> {
+            let dt = 0.05;
+            let (left, right) = (self.wheels.left * dt, self.wheels.right * dt * 0.97);
+            self.pose = COURSE.odometry(self.pose, left, right);
+            self.joints[0] += left;
+            self.joints[1] += self.wheels.right * dt;
+            self.time += dt;
+            Ok(())
+        }
+        fn finish(&mut self) -> Result<(), RobotError> {
+            self.running = false;
+            self.finished = true;
+            Ok(())
+        }
+    }
+
+    fn maze_3x3() -> Layout {
+        build_layout(&GenerateSpec::course(
+            Grid::new(3, 3).unwrap(),
+            Algorithm::Dfs,
+            42,
+        ))
+        .unwrap()
+    }
+
+    fn options() -> DriveOptions {
+        DriveOptions {
+            start_simulation: true,
+            sim_limit: 300.0,
+            wall_limit: Duration::from_secs(600),
+            interrupt: None,
+        }
+    }
+
+    /// The route and where the robot starts on it.
+    fn route(layout: &Layout) -> (Vec<vrep_maze_core::robot::route::Leg>, Pose) {
+        let grid = Grid::new(3, 3).unwrap();
+        let maze = passages::decode(grid, &layout.passages).unwrap();
+        let path = solve(layout, &maze, None).unwrap();
+        let legs = legs(&path.waypoints);
+        let first = path.waypoints[0];
+        let yaw = facing([first.x, first.y], legs.first().map(|l| l.to));
+        (
+            legs,
+            Pose {
+                x: first.x,
+                y: first.y,
+                yaw,
+            },
+        )
+    }
+
+    #[test]
+    fn steering_by_pose_reaches_the_end_and_the_run_is_stopped() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let end = legs.last().unwrap().to;
+        let mut world = World::new(&layout);
+        let mut steer = PoseSteer::new(legs, COURSE, Gains::default());
+        let driven = drive(&mut world, &mut steer, start, &options()).unwrap();
+        assert!(driven.arrived, "{:?}", driven.stopped);
+        assert!((world.pose.x - end[0]).hypot(world.pose.y - end[1]) < 0.05);
+        assert_eq!(driven.samples.len(), driven.steps + 1);
+        assert!(world.finished && !world.running);
+    }
+
+    /// With a slipping wheel, odometry alone would drift off the lines; the camera keeps
+    /// the belief, and so the robot, on them.
+    #[test]
+    fn steering_by_camera_keeps_to_the_lines_with_a_slipping_wheel() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let end = legs.last().unwrap().to;
+        let mut world = World::new(&layout);
+        let eye = Eye {
+            camera: world.camera.clone(),
+            colour: LineColour::new([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]).unwrap(),
+            map: LineMap::of(&layout).unwrap(),
+        };
+        let gains = Gains {
+            speed: 0.3,
+            ..Gains::default()
+        };
+        let mut steer = CameraSteer::new(legs.clone(), COURSE, gains, eye, start);
+        let driven = drive(&mut world, &mut steer, start, &options()).unwrap();
+        assert!(driven.arrived, "{:?}", driven.stopped);
+        assert!(
+            (world.pose.x - end[0]).hypot(world.pose.y - end[1]) < 0.1,
+            "ended at {:?}, the end is {end:?}",
+            world.pose
+        );
+        let map = LineMap::of(&layout).unwrap();
+        let off = driven
+            .samples
+            .iter()
+            .filter(|s| {
+                let at = Pose {
+                    x: s.x,
+                    y: s.y,
+                    yaw: s.yaw,
+                };
+                map.on_lines(at, &[[0.0, 0.0]]) != Some(1.0)
+            })
+            .count();
+        assert!(
+            off * 20 < driven.samples.len(),
+            "{off} of {} samples off the lines",
+            driven.samples.len()
+        );
+    }
+
+    #[test]
+    fn an_interrupt_ends_the_run_and_still_stops_the_simulation() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let mut world = World::new(&layout);
+        let mut steer = PoseSteer::new(legs, COURSE, Gains::default());
+        let options = DriveOptions {
+            interrupt: Some(Arc::new(AtomicBool::new(true))),
+            ..options()
+        };
+        let driven = drive(&mut world, &mut steer, start, &options).unwrap();
+        assert_eq!(driven.stopped.as_deref(), Some("interrupted"));
+        assert!(!driven.arrived);
+        assert!(world.finished && !world.running);
+    }
 }

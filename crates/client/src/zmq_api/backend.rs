@@ -35,6 +35,7 @@ use vrep_maze_core::score::follow::Follower;
 mod authoring;
 mod lease;
 mod mesh;
+mod robot;
 mod survey;
 
 impl From<ZmqError> for BackendError {
@@ -784,8 +785,16 @@ impl Backend for ZmqBackend {
         Some(self)
     }
 
+    fn model_box(&mut self, name: &str) -> Result<Option<BoundingBox>, BackendError> {
+        self.read_model_box(name)
+    }
+
     fn follower(&mut self) -> Option<Box<dyn Follower + '_>> {
         Some(Box::new(super::follow::ZmqFollower::lent(&mut self.client)))
+    }
+
+    fn robot(&mut self) -> Option<Box<dyn crate::robot::RobotPort + '_>> {
+        Some(Box::new(super::robot::ZmqRobot::lent(&mut self.client)))
     }
 }
 

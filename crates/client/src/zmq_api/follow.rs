@@ -15,10 +15,12 @@
 use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
+use super::Protocol;
 use super::backend::object_path;
 use super::cbor::{self, int};
 use super::client::{Client, ZmqError};
 use crate::held::Held;
+use crate::robot::DRIVER_SIGNAL;
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::score::Sample;
 use vrep_maze_core::score::follow::{FollowError, Follower, Look, heading};
@@ -30,6 +32,8 @@ pub struct ZmqFollower<'a> {
     handles: Option<(i32, i32)>,
     /// The simulation time read last (the "before" of the next look).
     time: Option<f64>,
+    /// The name protocol 1's stepping globals know this follower by, once it stepped.
+    uuid: String,
 }
 
 impl<'a> ZmqFollower<'a> {
@@ -48,6 +52,7 @@ impl<'a> ZmqFollower<'a> {
             client,
             handles: None,
             time: None,
+            uuid: super::client::new_uuid(),
         }
     }
 
@@ -63,6 +68,30 @@ impl<'a> ZmqFollower<'a> {
             }
             Err(e) => Err(FollowError::lost(e)),
         }
+    }
+
+    /// The driver's signal ([`DRIVER_SIGNAL`]), if set.
+    fn driver_signal(&mut self) -> Result<Option<i64>, FollowError> {
+        match self.client.call(
+            "sim.getInt32Signal",
+            vec![Value::Text(DRIVER_SIGNAL.into())],
+        ) {
+            Ok(values) => Ok(values.first().and_then(cbor::integer)),
+            Err(ZmqError::Remote { .. }) => Ok(None),
+            Err(e) => Err(FollowError::lost(e)),
+        }
+    }
+
+    /// Stepping on or off, as the add-on of this protocol spells it.
+    fn set_stepping(&mut self, on: bool) -> Result<(), FollowError> {
+        let call = match self.client.protocol() {
+            Some(Protocol::V1) => self.client.call(
+                "setStepping",
+                vec![Value::Bool(on), Value::Text(self.uuid.clone())],
+            ),
+            _ => self.client.call("sim.setStepping", vec![Value::Bool(on)]),
+        };
+        call.map(|_| ()).map_err(FollowError::lost)
     }
 
     fn time(&mut self) -> Result<f64, FollowError> {
@@ -143,4 +172,69 @@ impl Follower for ZmqFollower<'_> {
             client.close();
         }
     }
+
+    fn awaits_driver(&mut self) -> Result<bool, FollowError> {
+        let Some((robot, _)) = self.handles else {
+            return Ok(false);
+        };
+        if self.driver_signal()?.is_some() {
+            return Ok(false);
+        }
+        // sim.object_joint_type (1) under the robot: wheels something must drive
+        match self.client.call(
+            "sim.getObjectsInTree",
+            vec![int(robot.into()), int(1), int(0)],
+        ) {
+            Ok(values) => Ok(values
+                .first()
+                .and_then(cbor::array)
+                .is_some_and(|joints| !joints.is_empty())),
+            Err(ZmqError::Remote { .. }) => Ok(false),
+            Err(e) => Err(FollowError::lost(e)),
+        }
+    }
+
+    fn join_driver(&mut self) -> Result<bool, FollowError> {
+        if self.driver_signal()? != Some(1) {
+            return Ok(false);
+        }
+        self.set_stepping(true)?;
+        Ok(true)
+    }
+
+    fn step(&mut self) -> Result<(), FollowError> {
+        // the next look reads the time anew: the step moved it
+        self.time = None;
+        match self.client.protocol() {
+            Some(Protocol::V1) => {
+                let before = self.time()?;
+                self.client
+                    .call("step", vec![Value::Text(self.uuid.clone())])
+                    .map_err(FollowError::lost)?;
+                // the step shows as the time advancing, unless the simulation stopped
+                let deadline = std::time::Instant::now() + STEP_WAIT;
+                while self.time()? <= before && self.is_running()? {
+                    if std::time::Instant::now() >= deadline {
+                        return Err(FollowError::Connection(format!(
+                            "the simulation did not advance within {} s of a step",
+                            STEP_WAIT.as_secs()
+                        )));
+                    }
+                }
+                Ok(())
+            }
+            _ => self
+                .client
+                .call("sim.step", vec![])
+                .map(|_| ())
+                .map_err(FollowError::lost),
+        }
+    }
+
+    fn leave(&mut self) -> Result<(), FollowError> {
+        self.set_stepping(false)
+    }
 }
+
+/// How long a protocol-1 step may take to show in the simulation time.
+const STEP_WAIT: std::time::Duration = std::time::Duration::from_secs(30);

@@ -15,7 +15,8 @@ use super::backend::object_path;
 use super::cbor::{self, float_array, int};
 use super::client::{Client, ClientOptions, ZmqError};
 use super::{Outcome, Protocol};
-use crate::robot::{Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
+use crate::held::Held;
+use crate::robot::{DRIVER_SIGNAL, Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::robot::Pose;
 use vrep_maze_core::robot::camera::{CameraModel, Image};
@@ -41,8 +42,8 @@ struct Parts {
 }
 
 /// A wheeled robot driven over a ZeroMQ connection.
-pub struct ZmqRobot {
-    client: Option<Client>,
+pub struct ZmqRobot<'a> {
+    client: Option<Held<'a, Client>>,
     options: ClientOptions,
     /// The name protocol 1's stepping globals know this client by.
     uuid: String,
@@ -61,10 +62,26 @@ fn malformed(what: &str) -> RobotError {
     RobotError::Connection(format!("malformed reply to {what}"))
 }
 
-impl ZmqRobot {
+impl<'a> ZmqRobot<'a> {
     /// Drives over `client`, connected with `options` (kept to reach the simulator again
     /// to stop it, should this connection be lost mid-run).
     pub fn new(client: Client, options: ClientOptions) -> Self {
+        Self::over(Held::Owned(client), options)
+    }
+
+    /// Drives over a drawing backend's client, left open ([`crate::draw::Backend::robot`]).
+    pub fn lent(client: &'a mut Client) -> Self {
+        let endpoint = client.endpoint().trim_start_matches("tcp://");
+        let (host, port) = endpoint.rsplit_once(':').unwrap_or((endpoint, ""));
+        let options = ClientOptions {
+            host: host.trim_matches(['[', ']']).to_string(),
+            port: port.parse().unwrap_or(0),
+            ..ClientOptions::default()
+        };
+        Self::over(Held::Lent(client), options)
+    }
+
+    fn over(client: Held<'a, Client>, options: ClientOptions) -> Self {
         Self {
             client: Some(client),
             options,
@@ -75,16 +92,16 @@ impl ZmqRobot {
         }
     }
 
-    /// Closes the connection.
+    /// Closes the connection if it is its own (a lent one stays open).
     pub fn close(mut self) {
-        if let Some(client) = self.client.take() {
+        if let Some(client) = self.client.take().and_then(Held::into_owned) {
             client.close();
         }
     }
 
     fn client(&mut self) -> Result<&mut Client, RobotError> {
         self.client
-            .as_mut()
+            .as_deref_mut()
             .ok_or_else(|| RobotError::Connection("the connection is closed".into()))
     }
 
@@ -229,7 +246,7 @@ impl ZmqRobot {
     }
 }
 
-impl RobotPort for ZmqRobot {
+impl RobotPort for ZmqRobot<'_> {
     fn survey(&mut self, names: &RobotNames) -> Result<RobotSurvey, RobotError> {
         let robot = self.handle(&names.robot, "the robot")?;
         let left = self.handle(&names.left_motor, "the left wheel's joint")?;
@@ -319,7 +336,7 @@ impl RobotPort for ZmqRobot {
         Ok(())
     }
 
-    fn start(&mut self, camera: bool) -> Result<(), RobotError> {
+    fn prepare(&mut self, camera: bool) -> Result<(), RobotError> {
         let p = self.parts()?;
         if let Some(cam) = p.camera {
             // a camera not read is spared rendering (30 ms a frame with a display)
@@ -347,9 +364,27 @@ impl RobotPort for ZmqRobot {
         }
         self.set_stepping(true)?;
         self.client()?
+            .call(
+                "sim.setInt32Signal",
+                vec![Value::Text(DRIVER_SIGNAL.into()), int(1)],
+            )
+            .map_err(lost)?;
+        Ok(())
+    }
+
+    fn start_simulation(&mut self) -> Result<(), RobotError> {
+        self.client()?
             .call("sim.startSimulation", vec![])
             .map_err(lost)?;
         Ok(())
+    }
+
+    fn is_running(&mut self) -> Result<bool, RobotError> {
+        let state = self
+            .client()?
+            .call_int("sim.getSimulationState", vec![])
+            .map_err(lost)?;
+        Ok(state != SIMULATION_STOPPED)
     }
 
     fn observe(&mut self, image: bool) -> Result<Reading, RobotError> {
@@ -452,7 +487,7 @@ impl RobotPort for ZmqRobot {
         let tidy = |client: &mut Client| -> Result<(), RobotError> {
             Self::tidy(client, parts, restore).map_err(lost)
         };
-        let first = match self.client.as_mut() {
+        let first = match self.client.as_deref_mut() {
             Some(client) => tidy(client),
             None => Err(RobotError::Connection("the connection is closed".into())),
         };
@@ -469,7 +504,7 @@ impl RobotPort for ZmqRobot {
     }
 }
 
-impl ZmqRobot {
+impl ZmqRobot<'_> {
     /// Wheels stopped, the simulation stopped, the camera's handling put back.
     fn tidy(
         client: &mut Client,
@@ -484,6 +519,10 @@ impl ZmqRobot {
                 )?;
             }
         }
+        client.call(
+            "sim.clearInt32Signal",
+            vec![Value::Text(DRIVER_SIGNAL.into())],
+        )?;
         Self::stop_over(client)?;
         if let (Some(p), Some(flag)) = (parts, restore)
             && let Some(cam) = p.camera

@@ -37,6 +37,11 @@ pub const DEFAULT_IDLE_FPS: i32 = 8;
 /// max z (`sim.getObjectFloatParam`, legacy `simxGetObjectFloatParameter`).
 pub const OBJFLOATPARAM_BBOX: i32 = 15;
 
+/// `sim_objfloatparam_modelbbox_min_x`: the first of the six object float parameters 21..26
+/// that give the bounding box of the model whose base the object is (its own box if it is
+/// no model base), in its own frame, ordered as [`OBJFLOATPARAM_BBOX`]'s.
+pub const OBJFLOATPARAM_MODELBBOX: i32 = 21;
+
 /// `sim.shapeintparam_static`: 1 = the shape is not dynamic.
 pub const SHAPEINTPARAM_STATIC: i32 = 3003;
 /// `sim.shapeintparam_respondable`: 1 = the shape collides in the physics engine.

@@ -60,7 +60,31 @@ pub trait Follower {
     fn look(&mut self) -> Result<Look, FollowError>;
     /// Ends whatever the follower set up (streams) and closes the connection.
     fn close(self: Box<Self>);
+    /// Whether the robot has joints (wheels) while no stepping driver has announced itself
+    /// yet: `score --start-simulation` then waits a while for one ([`DRIVER_WAIT`]).
+    /// Connections that cannot tell say `false`.
+    fn awaits_driver(&mut self) -> Result<bool, FollowError> {
+        Ok(false)
+    }
+    /// Joins the stepping of a driver that announced itself (`drive --wheels`), so that the
+    /// simulation waits for this follower at every step and no step passes unseen; `false`
+    /// when there is none (or the connection cannot step).
+    fn join_driver(&mut self) -> Result<bool, FollowError> {
+        Ok(false)
+    }
+    /// Lets a joined simulation advance one step, and waits for it.
+    fn step(&mut self) -> Result<(), FollowError> {
+        Ok(())
+    }
+    /// Leaves a joined driver's stepping (the driver goes on alone).
+    fn leave(&mut self) -> Result<(), FollowError> {
+        Ok(())
+    }
 }
+
+/// How long `score --start-simulation` waits for a stepping driver to place a robot that has
+/// wheels before it starts the simulation anyway (for a robot driven by a script of its own).
+pub const DRIVER_WAIT: Duration = Duration::from_secs(10);
 
 /// How often [`follow`] looks: well under one 50 ms simulation step, so no step is missed
 /// where the protocol can show every step.
@@ -118,17 +142,29 @@ pub fn follow(
 ) -> Result<Followed, FollowError> {
     let deadline = Instant::now() + options.timeout;
     follower.find(&options.robot, &options.floor)?;
-    let mut started_here = false;
-    if options.start_simulation && !follower.is_running()? {
-        follower.set_running(true)?;
-        started_here = true;
-    }
     let interrupted = || {
         options
             .interrupt
             .as_ref()
             .is_some_and(|i| i.load(Ordering::SeqCst))
     };
+    if options.start_simulation && !follower.is_running()? {
+        let wait = (Instant::now() + DRIVER_WAIT).min(deadline);
+        while follower.awaits_driver()? && Instant::now() < wait && !interrupted() {
+            if follower.is_running()? {
+                break;
+            }
+            std::thread::sleep(POLL * 5);
+        }
+    }
+    // in step with a driver, every step is seen; the driver, not this follower, stops
+    // the simulation at the end of its run
+    let joined = follower.join_driver()?;
+    let mut started_here = false;
+    if options.start_simulation && !follower.is_running()? {
+        follower.set_running(true)?;
+        started_here = !joined;
+    }
     while !follower.is_running()? {
         if Instant::now() >= deadline || interrupted() {
             return Err(FollowError::Connection(format!(
@@ -170,8 +206,18 @@ pub fn follow(
                 }
             }
         }
-        std::thread::sleep(POLL);
+        if joined {
+            if let Err(e) = follower.step() {
+                break Some(format!("connection lost: {e}"));
+            }
+        } else {
+            std::thread::sleep(POLL);
+        }
     };
+    if joined {
+        // a failure here changes nothing of the run seen; the driver's stop ends stepping
+        let _ = follower.leave();
+    }
     if started_here {
         // the run is over either way; a failure to stop is reported as one more reason
         if let Err(e) = follower.set_running(false) {

@@ -9,6 +9,7 @@
 //! [`crate::layout::runs`], the same ones the pictures and meshes show.
 
 pub mod follow;
+pub mod sampling;
 pub mod trajectory;
 
 use nalgebra::{Isometry2, Point2};
@@ -20,6 +21,7 @@ use crate::layout::{Layout, Style, passages};
 use crate::maze::analysis::{Distances, UNREACHED};
 use crate::maze::{Cell, Grid, Maze};
 
+pub use sampling::Sampling;
 pub use trajectory::Sample;
 
 /// What the grade depends on besides the layout and the trajectory.
@@ -49,11 +51,12 @@ pub const DEFAULT_ROBOT_RADIUS: f64 = 0.1;
 #[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct Report {
     /// `true` when the run was followed to its end (`End` reached with `--until end`, or
-    /// the simulation stopped with `--until stop`, or a trajectory file graded whole);
-    /// `false` for a partial report (the simulation stopped or the connection dropped
-    /// mid-run, or the timeout passed).
+    /// the simulation stopped with `--until stop`, or a trajectory file graded whole) and
+    /// sampled densely enough to grade (see `sampling`); `false` for a partial report (the
+    /// simulation stopped or the connection dropped mid-run, or the timeout passed) or a
+    /// run sampled too sparsely.
     pub complete: bool,
-    /// Why the report is partial, when it is.
+    /// Why the report is partial, when it is (several reasons joined by `; `).
     pub incomplete_reason: Option<String>,
     /// The robot's centre was inside the `End` marker's footprint (any cell of the goal
     /// region) at some sample.
@@ -81,7 +84,8 @@ pub struct Report {
     /// `l` of SPL); `null` if the robot started outside the grid.
     pub shortest_length_m: Option<f64>,
     /// SPL = S * l / max(p, l): 0 if `End` was not reached, 1 for a run no longer than the
-    /// shortest way; `null` when `l` is unknown (start outside the grid).
+    /// shortest way; `null` when `l` is unknown (start outside the grid) or the run was
+    /// sampled too sparsely to know `p` (`sampling.jumps_over_max` above 0).
     pub spl: Option<f64>,
     /// Distinct cells the robot's centre was in.
     pub cells_visited: usize,
@@ -91,12 +95,30 @@ pub struct Report {
     pub samples_off_floor: usize,
     /// Samples whose centre lay outside the maze's grid of cells.
     pub samples_off_grid: usize,
+    /// How far apart the samples were: a move of more than half a cell between two of
+    /// them leaves the run ungraded (not `complete`, no SPL).
+    pub sampling: Sampling,
     /// Line mazes: how well the robot kept to the drawn lines.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub line: Option<LineReport>,
     /// Wall mazes: how close the robot came to the walls.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub walls: Option<WallReport>,
+}
+
+impl Report {
+    /// Adds how a followed run ended: `incomplete`, why it ended early (`None`: as asked),
+    /// goes before any reason of the grade's own, and `wall_time_s` is set.
+    pub fn followed(&mut self, incomplete: Option<String>, wall_time_s: Option<f64>) {
+        if let Some(why) = incomplete {
+            self.complete = false;
+            self.incomplete_reason = Some(match self.incomplete_reason.take() {
+                Some(own) => format!("{why}; {own}"),
+                None => why,
+            });
+        }
+        self.wall_time_s = wall_time_s;
+    }
 }
 
 /// Distance of the robot's centre from the nearest drawn line (0 on the paint).
@@ -267,8 +289,9 @@ impl Grader {
             .map(|steps| f64::from(steps) * self.cell_size)
     }
 
-    /// Grades a run. The report is marked complete; the caller that followed a live run
-    /// sets `complete`, `incomplete_reason` and `wall_time_s`.
+    /// Grades a run. The report is complete unless the samples are too sparse to grade
+    /// (then it has no SPL either); the caller that followed a live run adds how the run
+    /// ended with [`Report::followed`].
     pub fn grade(&self, samples: &[Sample], options: &GradeOptions) -> Report {
         let end_size = options.end_size.unwrap_or(self.cell_size);
         let local: Vec<Point2<f64>> = samples
@@ -289,7 +312,10 @@ impl Grader {
         let (visited, revisited) = visits(&cells, self.maze.grid());
         let start_cell = cells.first().copied().flatten();
         let shortest = start_cell.and_then(|c| self.shortest_from(c));
+        let times: Vec<f64> = samples.iter().map(|s| s.t).collect();
+        let sampling = Sampling::of(&local, &times, self.cell_size);
         let spl = match (reached, shortest) {
+            _ if !sampling.is_dense() => None,
             (None, _) => Some(0.0),
             (Some(_), None) => None,
             (Some((_, p)), Some(l)) => Some(if p.max(l) > 0.0 { l / p.max(l) } else { 1.0 }),
@@ -313,8 +339,8 @@ impl Grader {
             }
         };
         Report {
-            complete: true,
-            incomplete_reason: None,
+            complete: sampling.is_dense(),
+            incomplete_reason: sampling.too_sparse(),
             reached_end: reached.is_some(),
             time_s: reached.map(|(i, _)| samples[i].t),
             wall_time_s: None,
@@ -330,6 +356,7 @@ impl Grader {
             cells_revisited: revisited,
             samples_off_floor: off_floor,
             samples_off_grid: cells.iter().filter(|c| c.is_none()).count(),
+            sampling,
             line,
             walls,
         }
@@ -478,6 +505,25 @@ mod tests {
             .collect()
     }
 
+    /// As [`along_3x1`], with each leg from one point to the next (one second) cut into
+    /// ten equal moves, so no move is longer than a tenth of the longest leg.
+    fn dense_3x1(points: &[(f64, f64)]) -> Vec<Sample> {
+        let mut samples = along_3x1(&points[..1]);
+        for (k, pair) in (0..).zip(points.windows(2)) {
+            let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+            for i in 1..=10 {
+                let f = f64::from(i) / 10.0;
+                samples.push(Sample {
+                    t: f64::from(k) + f,
+                    x: ax + (bx - ax) * f - 1.0,
+                    y: ay + (by - ay) * f,
+                    yaw: 0.0,
+                });
+            }
+        }
+        samples
+    }
+
     /// Drives along the solution from the start centre to the end centre at 0.5 m/s,
     /// sampled every 50 ms as the emulator's simulation steps are.
     fn solution_run(layout: &Layout) -> (Vec<Sample>, usize) {
@@ -546,32 +592,100 @@ mod tests {
     fn a_detour_scores_what_the_hand_calculation_says() {
         // The 3 x 1 course maze is one corridor: Start in cell 0, End in cell 2, so
         // l = 2 cells x 1 m = 2 m. The robot drives 0 -> 1 (1 m), back to 0.4 (0.6 m),
-        // forward to 1 (0.6 m) and on to End's centre at 2 (1 m): p = 3.2 m, and the
-        // first sample inside End's 1 m footprint (x >= 1.5) is the last one.
-        // SPL = 1 * 2 / max(3.2, 2) = 0.625. Cells 0, 1, 0, 1, 2: 3 visited, 2 revisits.
+        // forward to 1 (0.6 m) and on to End's centre at 2 (1 m), a leg a second sampled
+        // ten times: the first sample inside End's 1 m footprint is at x = 1.5, half-way
+        // along the last leg (t = 3.5 s), so p = 2.7 m and SPL = 1 * 2 / max(2.7, 2).
+        // Cells 0, 1, 0, 1, 2: 3 visited, 2 revisits.
         let layout = course(3, 1, 1);
         assert_eq!((layout.start.cell, layout.end.cell), ([0, 0], [2, 0]));
-        let samples = along_3x1(&[(0.0, 0.0), (1.0, 0.0), (0.4, 0.0), (1.0, 0.0), (2.0, 0.0)]);
+        let samples = dense_3x1(&[(0.0, 0.0), (1.0, 0.0), (0.4, 0.0), (1.0, 0.0), (2.0, 0.0)]);
         let report = Grader::new(&layout)
             .unwrap()
             .grade(&samples, &GradeOptions::default());
+        assert!(report.complete, "{report:?}");
         assert_eq!(report.shortest_length_m, Some(2.0));
-        assert!((report.path_to_end_m.unwrap() - 3.2).abs() < 1e-12);
-        assert!((report.spl.unwrap() - 0.625).abs() < 1e-12, "{report:?}");
-        assert_eq!(report.time_s, Some(4.0));
+        assert!((report.path_to_end_m.unwrap() - 2.7).abs() < 1e-12);
+        assert!(
+            (report.spl.unwrap() - 2.0 / 2.7).abs() < 1e-12,
+            "{report:?}"
+        );
+        assert_eq!(report.time_s, Some(3.5));
         assert_eq!((report.cells_visited, report.cells_revisited), (3, 2));
+    }
+
+    #[test]
+    fn samples_that_jump_across_the_maze_are_never_complete_and_have_no_spl() {
+        // the lie: a 9 x 9 run sampled a few times, each sample on the solution
+        // but metres apart, reaches End along a chord through the maze
+        let layout = course(9, 9, 42);
+        let grader = Grader::new(&layout).unwrap();
+        let (samples, _) = solution_run(&layout);
+        // 0.025 m a sample: every 16th is 0.4 m on, every 40th a cell (1 m)
+        let every = |n: usize| -> Vec<Sample> {
+            let mut kept: Vec<Sample> = samples.iter().step_by(n).copied().collect();
+            kept.push(*samples.last().unwrap());
+            kept
+        };
+        let sparse = grader.grade(&every(40), &GradeOptions::default());
+        assert!(sparse.reached_end, "what the samples show is kept");
+        assert!(!sparse.complete, "{sparse:?}");
+        assert_eq!(sparse.spl, None);
+        assert!(sparse.sampling.jumps_over_max > 0, "{:?}", sparse.sampling);
+        assert!((sparse.sampling.largest_jump_m - 1.0).abs() < 1e-9);
+        let why = sparse.incomplete_reason.unwrap();
+        assert!(why.starts_with("sampled too sparsely to grade"), "{why}");
+        let across = [samples[0], *samples.last().unwrap()];
+        let cut = grader.grade(&across, &GradeOptions::default());
+        assert!(!cut.complete && cut.spl.is_none(), "{cut:?}");
+        assert_eq!(cut.sampling.jumps_over_max, 1);
+        let dense = grader.grade(&every(16), &GradeOptions::default());
+        assert!(
+            dense.complete && dense.incomplete_reason.is_none(),
+            "{dense:?}"
+        );
+        assert!((dense.spl.unwrap() - 1.0).abs() < 1e-12, "{dense:?}");
+        assert!((dense.sampling.largest_jump_m - 0.4).abs() < 1e-9);
+        assert_eq!(dense.sampling.max_jump_m, 0.5);
+    }
+
+    #[test]
+    fn a_followed_run_that_ended_early_says_so_before_the_grade_s_own_reason() {
+        let layout = course(3, 1, 1);
+        let grader = Grader::new(&layout).unwrap();
+        let mut sparse = grader.grade(
+            &along_3x1(&[(0.0, 0.0), (2.0, 0.0)]),
+            &GradeOptions::default(),
+        );
+        sparse.followed(Some("interrupted".into()), Some(1.5));
+        let why = sparse.incomplete_reason.unwrap();
+        assert!(
+            why.starts_with("interrupted; sampled too sparsely"),
+            "{why}"
+        );
+        assert_eq!(sparse.wall_time_s, Some(1.5));
+        let mut dense = grader.grade(
+            &dense_3x1(&[(0.0, 0.0), (2.0, 0.0)]),
+            &GradeOptions::default(),
+        );
+        dense.followed(None, None);
+        assert!(dense.complete && dense.incomplete_reason.is_none());
+        dense.followed(Some("interrupted".into()), None);
+        assert_eq!(
+            (dense.complete, dense.incomplete_reason.as_deref()),
+            (false, Some("interrupted"))
+        );
     }
 
     #[test]
     fn a_run_that_stops_short_scores_0_and_time_off_the_line_is_counted() {
         // 0.3 m beside the line's centre (0.05 m half-width): 0.25 m off the paint, from
-        // t = 1 to t = 2; the run ends in cell 1.
+        // t = 1 to t = 3; the run ends in cell 1, no sample more than half a cell on.
         let layout = course(3, 1, 1);
-        let samples = along_3x1(&[(0.0, 0.0), (0.5, 0.3), (1.0, 0.3), (1.0, 0.0)]);
+        let samples = along_3x1(&[(0.0, 0.0), (0.3, 0.3), (0.7, 0.3), (0.7, 0.0)]);
         let report = Grader::new(&layout)
             .unwrap()
             .grade(&samples, &GradeOptions::default());
-        assert!(!report.reached_end);
+        assert!(!report.reached_end && report.complete);
         assert_eq!(
             (report.spl, report.time_s, report.path_to_end_m),
             (Some(0.0), None, None)

@@ -10,6 +10,7 @@
 mod coverage;
 mod goal;
 mod head;
+mod robot;
 mod segment;
 mod walls;
 
@@ -23,6 +24,7 @@ use crate::maze::{Grid, Maze, Metrics};
 use crate::wording::{Message, Opt, Setting, Value, Wording};
 
 use coverage::Coverage;
+pub use robot::{Between, Passage, narrowest_passage, robot_fit};
 
 /// One thing wrong with a layout.
 #[derive(Debug, Clone, PartialEq, Eq)]
