@@ -15,9 +15,11 @@ use super::drive::{DriveArgs, SteerBy, checked};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
 use super::reports::ScoreJson;
 use super::score::{INCOMPLETE_EXIT_CODE, describe};
+use super::session_marker::SessionMarker;
 use super::usage::ensure_usage;
 use crate::layout::solution::solve;
 use crate::layout::{Layout, Style, passages};
+use crate::legacy::LegacyRobot;
 use crate::maze::Grid;
 use crate::robot::Pose;
 use crate::robot::camera::LineColour;
@@ -55,24 +57,7 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
         "--steer camera follows drawn lines: this is a wall maze; steer it with --steer pose"
     );
     let interrupt = Interrupt::install()?;
-    let (client, options) = match args.scene.client_until(Some(&interrupt.shared()))? {
-        RawClient::Zmq(client) => {
-            let options = ClientOptions {
-                host: args.scene.host.clone(),
-                port: port_of(client.endpoint()).unwrap_or(0),
-                timeout: args.scene.timeout,
-                ..ClientOptions::default()
-            };
-            (client, options)
-        }
-        RawClient::Legacy(client) => {
-            let _ = client.close();
-            return Err(super::hinted::hinted(
-                "drive --wheels over the legacy remote API is not built yet; the ZeroMQ remote API answers beside it",
-                vec!["pass --api zmq (CoppeliaSim 4.5.1 serves it on 23000 beside legacy)".into()],
-            ));
-        }
-    };
+    let client = args.scene.client_until(Some(&interrupt.shared()))?;
     if !parts.start_simulation {
         eprintln!(
             "waiting for the simulation to run (at most {} s): start it, or run `vrep-maze score {} --start-simulation` (or give drive --start-simulation)",
@@ -80,9 +65,36 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
             super::escape::shell_word(&args.layout.display().to_string())
         );
     }
-    let mut port = ZmqRobot::new(client, options);
-    let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
-    port.close();
+    let outcome = match client {
+        RawClient::Zmq(client) => {
+            let options = ClientOptions {
+                host: args.scene.host.clone(),
+                port: port_of(client.endpoint()).unwrap_or(0),
+                timeout: args.scene.timeout,
+                ..ClientOptions::default()
+            };
+            let mut port = ZmqRobot::new(client, options);
+            let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
+            port.close();
+            outcome
+        }
+        RawClient::Legacy(client) => {
+            // the session is recorded until it closes cleanly: an abrupt end locks the port
+            let marker =
+                SessionMarker::for_address(&args.scene.host, client.peer().map_or(0, |a| a.port()));
+            marker.opened();
+            let options = crate::legacy::ClientOptions {
+                reply_timeout: args.scene.timeout,
+                ..Default::default()
+            };
+            let mut port = LegacyRobot::new(client, options);
+            let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
+            if port.close().is_ok() {
+                marker.closed();
+            }
+            outcome
+        }
+    };
     let (driven, report) = outcome?;
     let json = ScoreJson::of(&report);
     let text = if parts.json {

@@ -62,6 +62,13 @@ sig = {
     "simxLoadModel": (I, [I, C.c_char_p, U, C.POINTER(I), I]),
     "simxEraseFile": (I, [I, C.c_char_p, I]),
     "simxGetObjectFloatParameter": (I, [I, I, I, C.POINTER(F), I]),
+    "simxSynchronous": (I, [I, U]),
+    "simxSynchronousTrigger": (I, [I]),
+    "simxSetJointTargetVelocity": (I, [I, I, F, I]),
+    "simxGetJointPosition": (I, [I, I, C.POINTER(F), I]),
+    "simxGetVisionSensorImage": (I, [I, I, C.POINTER(I), C.POINTER(C.POINTER(C.c_ubyte)), U, I]),
+    "simxGetObjectChild": (I, [I, I, I, C.POINTER(I), I]),
+    "simxGetObjectIntParameter": (I, [I, I, I, C.POINTER(I), I]),
 }
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MESH_MODEL = os.path.join(ROOT, "tests", "coppeliasim-xml", "mesh-two-rects-4.5.1.simmodel.xml")
@@ -494,6 +501,11 @@ def run(port, dump, server):
     rc = lib.simxGetInMessageInfo(cid, 3, C.byref(info))
     check("simxGetInMessageInfo message ID is set", rc == 1 and info.value > 0, (rc, info.value))
 
+    # the wheeled robot's commands (drive --wheels over legacy): serve has no physics,
+    # joints or cameras and refuses them as a real port refuses what it cannot do; their
+    # bytes are checked in check_wire
+    run_stepping(cid)
+
     # clean close; the server accepts the next client and wrote the dump
     lib.simxFinish(cid)
     deadline = time.time() + 5
@@ -571,9 +583,49 @@ def check_wire(trace_path):
     check("wire: simxGetPingTime sends get-integer-parameter (spec 12.9)", bool(ping) and all(b[4] == 4 for b in ping))
     sim = having(0x1007)
     check("wire: start/stop simulation = 0x1007 with an int ID (spec 12.17)", len(sim) >= 3 and all(b[4] == 4 for b in sim))
+    null = having(0x0001) + having(0x0002) + having(0x0003)
+    check("wire: simxSynchronous / simxSynchronousTrigger = 26-byte null blocks 0x0001/2/3, blocking (spec 12.21)",
+          len(null) == 3 and all(b[1] == 0x10000 and b[4] == 0 and b[5] == 0 and b[6] == 26 for b in null), null)
+    vel = having(0x1008)
+    check("wire: set joint target velocity = ID handle, data f32 (spec 12.25)",
+          bool(vel) and all(b[4] == 4 and b[5] == 4 for b in vel), vel)
+    joint = having(0x1001)
+    check("wire: get joint position = ID handle, no data (spec 12.25)",
+          bool(joint) and all(b[4] == 4 and b[5] == 0 for b in joint), joint)
+    check("wire: the vision sensor image is 0x1004 (RGB) or 0x1003 (options bit 0, grey), ID handle, streamed (spec 12.25)",
+          bool(having(0x1004, 0x20000)) and bool(having(0x1003, 0x20000))
+          and all(b[4] == 4 and b[5] == 0 for b in having(0x1004) + having(0x1003)))
+    pairs = having(0x200B) + having(0x2008)
+    check("wire: object child / int parameter = ID handle + int (spec 12.15, 12.25)",
+          len(pairs) == 2 and all(b[4] == 8 and b[5] == 0 for b in pairs), pairs)
     last = [bl for bl in blocks if bl][-1][-1]
     check("wire: simxFinish sends a 30-byte kill block 0x000A, oneshot, 4-byte int payload (spec 12.14)",
           last[0] == 0x000A and last[1] == 0 and last[5] == 4 and last[6] == 30, last)
+
+
+def run_stepping(cid):
+    """The commands `LegacyRobot` sends, from the C client, against serve (which refuses
+    them: return code 8)."""
+    _, line = handle(cid, "Line")
+    f, i, res = F(), I(), (I * 2)()
+    img = C.POINTER(C.c_ubyte)()
+    codes = [
+        lib.simxSynchronous(cid, 1),
+        lib.simxSynchronousTrigger(cid),
+        lib.simxSetJointTargetVelocity(cid, line, 4.0, BLOCKING),
+        lib.simxGetJointPosition(cid, line, C.byref(f), BLOCKING),
+        lib.simxGetObjectIntParameter(cid, line, 1002, C.byref(i), BLOCKING),
+        lib.simxSynchronous(cid, 0),
+    ]
+    check("serve refuses the stepping, joint and camera commands with return code 8", codes == [REMOTE] * 6, codes)
+    rc = lib.simxGetObjectChild(cid, line, 0, C.byref(i), BLOCKING)
+    check("simxGetObjectChild is answered (serve: refused)", rc in (OK, REMOTE), rc)
+    for options in (0, 1):
+        lib.simxGetVisionSensorImage(cid, line, res, C.byref(img), options, STREAMING)
+    ping(cid)
+    for options in (0, 1):
+        lib.simxGetVisionSensorImage(cid, line, res, C.byref(img), options, DISCONTINUE)
+    ping(cid)
 
 
 def wrap(a):

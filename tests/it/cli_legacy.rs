@@ -199,3 +199,25 @@ fn legacy_cli_refuses_running_simulation_then_stops_it_and_dumps_the_scene() {
         .failure()
         .stderr(predicate::str::contains("a scene dump is drawn as it is"));
 }
+
+/// `drive --wheels` over the legacy API looks for the robot by name (serve's course scene
+/// has none: it says so in one line) and leaves the session cleanly: the next client is
+/// served.
+#[test]
+fn legacy_cli_drive_wheels_names_a_missing_robot_and_frees_the_port() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "3", "dfs");
+    let s = serve(&["--idle-fps", "0"]);
+    let port = s.port();
+    bin()
+        .args(["drive", &m, "--wheels", "--api", "legacy", "--port", &port])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "the scene has no object named `Robot` (the robot)",
+        ));
+    bin()
+        .args(["apply", &m, "--api", "legacy", "--port", &port])
+        .assert()
+        .success();
+}

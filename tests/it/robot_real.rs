@@ -1,7 +1,8 @@
 //! Issue 37: the course robot runs the maze on the real CoppeliaSim 4.5.1 and 4.10.0 with
 //! physics and a camera (`sim.sh start VERSION --robot --display`): `drive --wheels` by pose
-//! on a line and a wall maze, by camera on line mazes drawn as copies and as meshes, each
-//! graded by its own report. Ignored unless asked, like every real-simulator test:
+//! on a line and a wall maze, by camera on line mazes drawn as copies and as meshes (4.5.1
+//! also over the legacy remote API), each graded by its own report. Ignored unless asked,
+//! like every real-simulator test:
 //!
 //! ```sh
 //! VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it robot_real -- --ignored
@@ -195,4 +196,20 @@ fn on_real_4_10_0_camera_without_a_display_says_so() {
     assert_eq!(out.status.code(), Some(3), "{text}");
     assert!(text.contains("all black"), "{text}");
     assert!(text.contains("reached End: no"), "{text}");
+}
+
+/// The course's own way: 4.5.1 over the legacy remote API (`simxSynchronous` and a trigger
+/// a step, the camera streamed). The camera run's `apply` also shows that the pose run left
+/// the simulation stopped and the port free at once.
+#[test]
+#[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it robot_real -- --ignored"]
+fn on_real_4_5_1_legacy_pose_and_camera_5x5() {
+    let sim = robot_sim("4.5.1");
+    let dir = tempfile::tempdir().unwrap();
+    let lines = generate(dir.path(), "l5.json", &["--seed", "7", "--size", "5x5"]);
+    let report = run(&sim, "legacy", &lines, &[], &["--steer", "pose"]);
+    assert_reached(&report, 0.8);
+    let report = run(&sim, "legacy", &lines, &[], &["--steer", "camera"]);
+    assert_reached(&report, 0.6);
+    assert_on_the_lines(&report);
 }

@@ -142,6 +142,9 @@ pub struct Reply {
     pub remote_error: bool,
     /// Pure data of the reply.
     pub data: Vec<u8>,
+    /// The simulation time the command was executed at, ms (`simxGetLastCmdTime`:
+    /// `int(simTime * 1000.01)`, 0 while the simulation is stopped).
+    pub sim_time: i32,
 }
 
 /// A connected client. However it ends ([`Client::close`], or dropped on an error path), it
@@ -304,6 +307,11 @@ impl Client {
         self.stream.read_exact(&mut rest).is_ok() && rest[3] == 0x7F
     }
 
+    /// The simulator's address (to reach it again on a fresh connection).
+    pub fn peer(&self) -> Option<SocketAddr> {
+        self.stream.peer_addr().ok()
+    }
+
     /// Blocking calls done so far (each is one round trip, however many commands it carried).
     pub fn round_trips(&self) -> usize {
         self.round_trips
@@ -382,6 +390,7 @@ impl Client {
                         got[slot] = Some(Reply {
                             remote_error: b.status & status::REMOTE_ERROR != 0,
                             data: b.data,
+                            sim_time: b.sim_time,
                         });
                         missing -= 1;
                     }
@@ -489,6 +498,7 @@ impl Client {
                 Reply {
                     remote_error: b.status & status::REMOTE_ERROR != 0,
                     data: b.data.clone(),
+                    sim_time: b.sim_time,
                 },
                 b.sim_time,
             )
@@ -517,6 +527,7 @@ impl Client {
         self.inbox.remove(&(b.raw_id(), b.id_data)).map(|b| Reply {
             remote_error: b.status & status::REMOTE_ERROR != 0,
             data: b.data,
+            sim_time: b.sim_time,
         })
     }
 

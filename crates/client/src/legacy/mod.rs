@@ -1,6 +1,6 @@
 //! CoppeliaSim's legacy remote API (port 19997), the client's side: wire format and command
 //! set (`vrep_maze_wire::legacy`, re-exported here), a native client with its drawing backend,
-//! and the robot follower. The emulated server is in the emulator crate
+//! the robot follower and the wheeled robot's driver ([`robot`]). The emulated server is in the emulator crate
 //! (`vrep_maze_emulator::legacy`).
 //!
 //! Layers: [`wire`] (packets, message header, command blocks) → [`command`] (command IDs and
@@ -13,8 +13,10 @@ pub mod backend;
 pub mod client;
 pub mod follow;
 mod quick_ack;
+pub mod robot;
 
 pub use vrep_maze_wire::legacy::{command, wire};
 
 pub use backend::LegacyBackend;
 pub use client::{Client, ClientError, ClientOptions, Reply};
+pub use robot::LegacyRobot;

@@ -5,6 +5,24 @@ use super::wire::{Block, status};
 
 /// Raw command IDs (`simx_cmd_*`).
 pub mod id {
+    /// `simx_cmd_synchronous_enable`.
+    pub const SYNCHRONOUS_ENABLE: u16 = 0x0001;
+    /// `simx_cmd_synchronous_disable`.
+    pub const SYNCHRONOUS_DISABLE: u16 = 0x0002;
+    /// `simx_cmd_synchronous_next`: the trigger of one simulation step.
+    pub const SYNCHRONOUS_NEXT: u16 = 0x0003;
+    /// `simx_cmd_get_joint_position`.
+    pub const GET_JOINT_POSITION: u16 = 0x1001;
+    /// `simx_cmd_get_vision_sensor_image_bw` (one byte a pixel).
+    pub const GET_VISION_SENSOR_IMAGE_BW: u16 = 0x1003;
+    /// `simx_cmd_get_vision_sensor_image_rgb` (three bytes a pixel).
+    pub const GET_VISION_SENSOR_IMAGE_RGB: u16 = 0x1004;
+    /// `simx_cmd_set_joint_target_velocity`.
+    pub const SET_JOINT_TARGET_VELOCITY: u16 = 0x1008;
+    /// `simx_cmd_get_object_int_parameter`.
+    pub const GET_OBJECT_INT_PARAMETER: u16 = 0x2008;
+    /// `simx_cmd_get_object_child`.
+    pub const GET_OBJECT_CHILD: u16 = 0x200B;
     /// `simx_cmd_kill_connection`.
     pub const KILL_CONNECTION: u16 = 0x000A;
     /// `simx_cmd_start_pause_stop_simulation` (ID data 0 start, 1 pause, 2 stop).
@@ -238,6 +256,45 @@ pub enum Command {
     },
     /// `simxEraseFile(name)`: removes a file the client transferred.
     EraseFile(String),
+    /// `simxSynchronous(enable)`: stepping (synchronous) mode on or off for this
+    /// connection; refused (status 1) on a port not authorised for it.
+    Synchronous(bool),
+    /// `simxSynchronousTrigger`: lets one simulation step run (synchronous mode, simulation
+    /// advancing).
+    SynchronousTrigger,
+    /// `simxGetJointPosition(handle)`: reply one f32.
+    GetJointPosition(i32),
+    /// `simxSetJointTargetVelocity(handle, velocity)`.
+    SetJointTargetVelocity {
+        /// The joint.
+        handle: i32,
+        /// Its target velocity, rad/s (m/s for a prismatic joint).
+        velocity: f32,
+    },
+    /// `simxGetVisionSensorImage(handle, options)`: reply i32 width, i32 height, then the
+    /// pixels ([`decode_image`]).
+    GetVisionSensorImage {
+        /// The vision sensor.
+        handle: i32,
+        /// Options bit 0: one byte a pixel (grey) instead of three (RGB); the client picks
+        /// the command ID by it.
+        greyscale: bool,
+    },
+    /// `simxGetObjectChild(handle, index)`: reply the child's handle, -1 for none.
+    GetObjectChild {
+        /// The parent.
+        handle: i32,
+        /// Which child, from 0.
+        index: i32,
+    },
+    /// `simxGetObjectIntParameter(handle, param)`: reply one i32 (e.g. a vision sensor's
+    /// resolution, `sim_visionintparam_resolution_x` 1002).
+    GetObjectIntParam {
+        /// The object asked about.
+        handle: i32,
+        /// The parameter ID (`sim_objintparam_*`, `sim_visionintparam_*`).
+        param: i32,
+    },
     /// The kill block `simxFinish` sends.
     KillConnection,
 }
@@ -264,6 +321,23 @@ fn f32s(values: &[f32]) -> Vec<u8> {
 pub fn read_i32(b: &[u8], n: usize) -> Option<i32> {
     b.get(n * 4..n * 4 + 4)
         .map(|s| i32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+}
+
+/// Reads the `n`-th little-endian f32 of `b`.
+pub fn read_f32(b: &[u8], n: usize) -> Option<f32> {
+    b.get(n * 4..n * 4 + 4)
+        .map(|s| f32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+}
+
+/// Decodes a `simxGetVisionSensorImage` reply with `bytes_per_pixel` (1 grey, 3 RGB): width,
+/// height and the pixels, rows as the sensor gives them (the bottom row first); `None` when
+/// the sizes do not add up.
+pub fn decode_image(b: &[u8], bytes_per_pixel: usize) -> Option<(usize, usize, &[u8])> {
+    let width = usize::try_from(read_i32(b, 0)?).ok()?;
+    let height = usize::try_from(read_i32(b, 1)?).ok()?;
+    let pixels = &b[8..];
+    (width.checked_mul(height)?.checked_mul(bytes_per_pixel)? == pixels.len())
+        .then_some((width, height, pixels))
 }
 
 /// Reads three f32 from `b` starting at byte `at`.
@@ -304,6 +378,19 @@ impl Command {
             LoadModel(_) => id::LOAD_MODEL,
             TransferFile { .. } => id::TRANSFER_FILE,
             EraseFile(_) => id::ERASE_FILE,
+            Synchronous(true) => id::SYNCHRONOUS_ENABLE,
+            Synchronous(false) => id::SYNCHRONOUS_DISABLE,
+            SynchronousTrigger => id::SYNCHRONOUS_NEXT,
+            GetJointPosition(_) => id::GET_JOINT_POSITION,
+            SetJointTargetVelocity { .. } => id::SET_JOINT_TARGET_VELOCITY,
+            GetVisionSensorImage {
+                greyscale: true, ..
+            } => id::GET_VISION_SENSOR_IMAGE_BW,
+            GetVisionSensorImage {
+                greyscale: false, ..
+            } => id::GET_VISION_SENSOR_IMAGE_RGB,
+            GetObjectChild { .. } => id::GET_OBJECT_CHILD,
+            GetObjectIntParam { .. } => id::GET_OBJECT_INT_PARAMETER,
             KillConnection => id::KILL_CONNECTION,
         }
     }
@@ -328,7 +415,18 @@ impl Command {
                 object_type,
                 data_type,
             } => (i32s(&[*object_type, *data_type]), vec![], 0),
-            GetObjectParent(h) | RemoveObject(h) | GetIntParam(h) => (i32s(&[*h]), vec![], 0),
+            GetObjectParent(h)
+            | RemoveObject(h)
+            | GetIntParam(h)
+            | GetJointPosition(h)
+            | GetVisionSensorImage { handle: h, .. } => (i32s(&[*h]), vec![], 0),
+            Synchronous(_) | SynchronousTrigger => (vec![], vec![], 0),
+            SetJointTargetVelocity { handle, velocity } => {
+                (i32s(&[*handle]), f32s(&[*velocity]), 0)
+            }
+            GetObjectChild { handle, index: p } | GetObjectIntParam { handle, param: p } => {
+                (i32s(&[*handle, *p]), vec![], 0)
+            }
             SetObjectParent {
                 handle,
                 parent,
@@ -467,6 +565,28 @@ impl Command {
                 2 => SimControl::Stop,
                 _ => return None,
             }),
+            id::SYNCHRONOUS_ENABLE => Command::Synchronous(true),
+            id::SYNCHRONOUS_DISABLE => Command::Synchronous(false),
+            id::SYNCHRONOUS_NEXT => Command::SynchronousTrigger,
+            id::GET_JOINT_POSITION => Command::GetJointPosition(idn(0)?),
+            id::SET_JOINT_TARGET_VELOCITY => Command::SetJointTargetVelocity {
+                handle: idn(0)?,
+                velocity: read_f32(&b.data, 0)?,
+            },
+            id::GET_VISION_SENSOR_IMAGE_BW | id::GET_VISION_SENSOR_IMAGE_RGB => {
+                Command::GetVisionSensorImage {
+                    handle: idn(0)?,
+                    greyscale: b.raw_id() == id::GET_VISION_SENSOR_IMAGE_BW,
+                }
+            }
+            id::GET_OBJECT_CHILD => Command::GetObjectChild {
+                handle: idn(0)?,
+                index: idn(1)?,
+            },
+            id::GET_OBJECT_INT_PARAMETER => Command::GetObjectIntParam {
+                handle: idn(0)?,
+                param: idn(1)?,
+            },
             id::KILL_CONNECTION => Command::KillConnection,
             _ => return None,
         })
@@ -621,6 +741,30 @@ mod tests {
                 data: b"<CoppeliaSim/>".to_vec(),
             },
             Command::EraseFile("REMOTE_API_TEMPFILE_1.simmodel.xml".into()),
+            Command::Synchronous(true),
+            Command::Synchronous(false),
+            Command::SynchronousTrigger,
+            Command::GetJointPosition(21),
+            Command::SetJointTargetVelocity {
+                handle: 21,
+                velocity: -4.5,
+            },
+            Command::GetVisionSensorImage {
+                handle: 30,
+                greyscale: false,
+            },
+            Command::GetVisionSensorImage {
+                handle: 30,
+                greyscale: true,
+            },
+            Command::GetObjectChild {
+                handle: 21,
+                index: 0,
+            },
+            Command::GetObjectIntParam {
+                handle: 30,
+                param: 1002,
+            },
             Command::KillConnection,
         ];
         for c in all {
@@ -741,6 +885,65 @@ mod tests {
         assert_eq!(&bytes[18..], &want[..]);
     }
 
+    /// The stepping commands in the layout of the spec's section 13 (message 7, client time
+    /// 0x12345), their IDs and payloads from sections 11.2, 12.21 and 12.25.
+    #[test]
+    fn vectors_synchronous_trigger_and_joint_velocity() {
+        // simxSynchronousTrigger: a null-class block of 26 bytes, cmd 0x00010003 (always
+        // blocking), no identification or pure data.
+        let trigger = hex(
+            "01 00 2c 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             1a 00 00 00 1a 00 00 00 00 00 00 00 00 00 03 00 01 00 00 00 00 00 00 00 00 00",
+        );
+        assert_eq!(on_the_wire(&Command::SynchronousTrigger), trigger);
+        // simxSynchronous(true): the same with cmd 0x00010001
+        let mut enable = trigger.clone();
+        enable[38] = 0x01;
+        assert_eq!(on_the_wire(&Command::Synchronous(true)), enable);
+        // simxSetJointTargetVelocity(16, 4.0): ID = handle, pure data = f32 4.0;
+        // block 26 + 4 + 4 = 0x22 bytes, off0 = 4, cmd 0x00011008
+        let velocity = hex(
+            "01 00 34 00 00 00 00 00 0b 07 00 00 00 45 23 01 00 00 00 00 00 00 00 00
+             22 00 00 00 22 00 00 00 04 00 00 00 00 00 08 10 01 00 00 00 00 00 00 00 00 00
+             10 00 00 00 00 00 80 40",
+        );
+        let set = Command::SetJointTargetVelocity {
+            handle: 16,
+            velocity: 4.0,
+        };
+        assert_eq!(on_the_wire(&set), velocity);
+        // simxGetVisionSensorImage(16, options 0 / 1): cmd 0x1004 (RGB) / 0x1003 (grey)
+        let rgb = Command::GetVisionSensorImage {
+            handle: 16,
+            greyscale: false,
+        }
+        .to_block(opmode::STREAMING);
+        assert_eq!(
+            (rgb.cmd, rgb.id_data.as_slice()),
+            (0x0002_1004, &[16, 0, 0, 0][..])
+        );
+        let grey = Command::GetVisionSensorImage {
+            handle: 16,
+            greyscale: true,
+        }
+        .to_block(opmode::STREAMING);
+        assert_eq!(grey.cmd, 0x0002_1003);
+    }
+
+    #[test]
+    fn image_replies_decode_only_when_their_sizes_add_up() {
+        let mut reply = i32s(&[2, 1]);
+        reply.extend([1, 2, 3, 4, 5, 6]);
+        assert_eq!(
+            decode_image(&reply, 3),
+            Some((2, 1, &[1, 2, 3, 4, 5, 6][..]))
+        );
+        assert_eq!(decode_image(&reply, 1), None);
+        assert_eq!(decode_image(&reply[..10], 3), None);
+        assert_eq!(decode_image(&i32s(&[-1, 1]), 3), None);
+        assert_eq!(read_f32(&4.0f32.to_le_bytes(), 0), Some(4.0));
+    }
+
     #[test]
     fn group_data_round_trip() {
         let g = GroupData {
@@ -763,6 +966,7 @@ mod tests {
             let _ = GroupData::decode(&b);
             let _ = decode_handle_list(&b);
             let _ = read_f32x3(&b, 3);
+            let _ = decode_image(&b, 3);
         }
     }
 }
