@@ -113,6 +113,9 @@ pub struct ZmqBackend {
     /// Whether anything lies below the maze dummy's children (one call for the whole
     /// maze, made for the first doubted child of a survey).
     deep: Option<bool>,
+    /// The root objects the last survey found named like a mesh of ours
+    /// ([`crate::draw::mesh::FoundMeshes::elsewhere`]).
+    root_meshes: Vec<String>,
 }
 
 /// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
@@ -180,6 +183,7 @@ impl ZmqBackend {
             extents: HashMap::new(),
             children: HashMap::new(),
             deep: None,
+            root_meshes: Vec::new(),
         })
     }
 

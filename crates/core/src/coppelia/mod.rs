@@ -37,6 +37,15 @@ pub const DEFAULT_IDLE_FPS: i32 = 8;
 /// max z (`sim.getObjectFloatParam`, legacy `simxGetObjectFloatParameter`).
 pub const OBJFLOATPARAM_BBOX: i32 = 15;
 
+/// `sim_objintparam_visibility_layer`: the bits of the layers an object is shown on (0:
+/// hidden). A shape made by `sim.createShape` / `sim.createMeshShape` is on layer 1, a dummy
+/// on 4 (both real builds, `docs/measurements.md` "Kept meshes read back in one request").
+pub const OBJINTPARAM_VISIBILITY_LAYER: i32 = 10;
+/// The visibility layer of a new shape ([`OBJINTPARAM_VISIBILITY_LAYER`]).
+pub const SHAPE_LAYER: i32 = 1;
+/// The visibility layer of a new dummy ([`OBJINTPARAM_VISIBILITY_LAYER`]).
+pub const DUMMY_LAYER: i32 = 4;
+
 /// `sim.shapeintparam_static`: 1 = the shape is not dynamic.
 pub const SHAPEINTPARAM_STATIC: i32 = 3003;
 /// `sim.shapeintparam_respondable`: 1 = the shape collides in the physics engine.

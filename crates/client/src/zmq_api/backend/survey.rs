@@ -8,6 +8,7 @@ use std::collections::{HashMap, HashSet};
 use ciborium::Value;
 
 use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
+use crate::draw::mesh::parse_mesh_name;
 use crate::draw::{Backend, BackendError, ObjectInfo, ownership};
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
@@ -343,12 +344,18 @@ impl ZmqBackend {
         let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
         self.read_traits(&unknown, false)?;
         let mut lines = Vec::new();
+        self.root_meshes.clear();
         for h in roots {
             if seen.contains(&h) {
                 continue;
             }
             // the type only of those carrying a template's alias
-            if !templates.contains(&self.alias(h)?.as_str()) {
+            let alias = self.alias(h)?;
+            if parse_mesh_name(&alias).is_some() {
+                self.root_meshes.push(alias);
+                continue;
+            }
+            if !templates.contains(&alias.as_str()) {
                 continue;
             }
             let (alias, kind) = self.traits(h, None)?;
