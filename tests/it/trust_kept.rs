@@ -155,8 +155,8 @@ fn a_copy(sim: &Simulator) -> (i32, String) {
     (h, sim.scene.get(h).unwrap().name.clone())
 }
 
-/// Row 2: a drawn copy scaled 1.3x (every API) or recoloured red (ZeroMQ, which reads
-/// colours): the verification names it, the next apply removes it and pastes a new one,
+/// Row 2: a drawn copy scaled 1.3x (every API), recoloured red or hidden (ZeroMQ, which
+/// reads colours and layers): the verification names it, the next apply removes it and pastes a new one,
 /// saying so, and the scene verifies.
 fn a_scaled_or_recoloured_copy_is_pasted_anew(kind: Kind) {
     let k = kind.name();
@@ -169,6 +169,9 @@ fn a_scaled_or_recoloured_copy_is_pasted_anew(kind: Kind) {
     if kind != Kind::Legacy {
         edits.push(("recoloured", "is coloured (1.00, 0.00, 0.00)", |sim, h| {
             sim.scene.set_colour(h, [255, 0, 0]).unwrap()
+        }));
+        edits.push(("hidden", "is on visibility layer 0 (hidden)", |sim, h| {
+            sim.scene.set_layer(h, 0).unwrap()
         }));
     }
     for (what, seen, edit) in edits {

@@ -67,14 +67,17 @@ pub struct Traits {
     /// ([`super::record`]) holds as this tool's copies, as the survey found it: ours, first
     /// of all, and never a template or a marker ([`super::resolve_handles`]).
     pub recorded: HashSet<i32>,
-    /// Copies the record holds whose size or colour is no longer their template's (the user
-    /// scaled or recoloured them), with what differs: ours, but never reused as they are:
+    /// Visibility layer bits by handle: the recorded copies the backend read them of (an
+    /// API that reads them), and their templates.
+    pub layers: HashMap<i32, i32>,
+    /// Copies the record holds whose size, colour or visibility layer is no longer their
+    /// template's (the user scaled, recoloured or hid them), with what differs: ours, but never reused as they are:
     /// a drawing removes and pastes them anew, a verification names them ([`spoiled`]).
     pub spoiled: HashMap<i32, String>,
 }
 
 /// What differs between the copy `handle` and its `template` by what a backend read
-/// (`traits`: sizes, colours), `None` when nothing read differs: "is 0.78 x 0.13 x 0 m, the
+/// (`traits`: sizes, colours, visibility layers), `None` when nothing read differs: "is 0.78 x 0.13 x 0 m, the
 /// template 0.6 x 0.1 x 0 m", "is coloured ...". What a backend did not read is no evidence.
 pub fn spoiled(traits: &Traits, handle: i32, template: i32) -> Option<String> {
     let size = |h: i32| traits.sizes.get(&h).copied();
@@ -93,6 +96,15 @@ pub fn spoiled(traits: &Traits, handle: i32, template: i32) -> Option<String> {
             "is coloured ({}), the template ({})",
             rgb(a),
             rgb(b)
+        ));
+    }
+    let layer = |h: i32| traits.layers.get(&h).copied();
+    if let (Some(a), Some(b)) = (layer(handle), layer(template))
+        && a != b
+    {
+        let hidden = if a == 0 { " (hidden)" } else { "" };
+        return Some(format!(
+            "is on visibility layer {a}{hidden}, the template on {b}"
         ));
     }
     None

@@ -12,7 +12,9 @@ use crate::draw::mesh::parse_mesh_name;
 use crate::draw::{Backend, BackendError, ObjectInfo, ownership};
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
-use vrep_maze_core::coppelia::{HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE};
+use vrep_maze_core::coppelia::{
+    HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE, OBJINTPARAM_VISIBILITY_LAYER,
+};
 
 impl ZmqBackend {
     /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
@@ -409,9 +411,10 @@ impl ZmqBackend {
     }
 
     /// Reads what a copy pasted by this tool may have lost since (`recorded`: each copy the
-    /// record holds under the maze dummy `parent`, and its template): its template's size
-    /// and colour, and whether anything lies below it, in one request (the maze's whole tree,
-    /// `sim.getObjectsInTree`, and a shape's `sim.getShapeBB` and `sim.getShapeColor`; the
+    /// record holds under the maze dummy `parent`, and its template): its size, colour and
+    /// visibility layer and its template's, and whether anything lies below it, in one
+    /// request (the maze's whole tree, `sim.getObjectsInTree`, and a shape's
+    /// `sim.getShapeBB`, `sim.getShapeColor` and `sim.getObjectInt32Param`; the
     /// parents of what lies below `kids`, the dummy's children, in a second only when
     /// something does). A copy with children is the user's
     /// ([`ownership::contradicts_copy`]), one of another size or colour spoiled
@@ -438,6 +441,8 @@ impl ZmqBackend {
         for &h in &sized {
             calls.push(("sim.getShapeBB", vec![int(h.into())]));
             calls.push(super::mesh::shape_colour_call(h));
+            let layer = int(OBJINTPARAM_VISIBILITY_LAYER.into());
+            calls.push(("sim.getObjectInt32Param", vec![int(h.into()), layer]));
         }
         let mut outcomes = self.client.read_all(&calls)?.into_iter();
         let below: Vec<i32> = match outcomes.next() {
@@ -447,6 +452,10 @@ impl ZmqBackend {
         for &h in &sized {
             let size = outcomes.next().and_then(Result::ok);
             let colour = outcomes.next().and_then(Result::ok);
+            let layer = outcomes.next().and_then(Result::ok);
+            if let Some(layer) = layer.and_then(|v| v.first().and_then(cbor::int32)) {
+                found.layers.insert(h, layer);
+            }
             if let Some(size) = size.and_then(|v| v.first().and_then(cbor::numbers::<3>)) {
                 found.sizes.insert(h, size);
             }
