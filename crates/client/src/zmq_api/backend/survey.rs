@@ -359,6 +359,7 @@ impl ZmqBackend {
         self.read_traits(&unknown, false)?;
         let mut lines = Vec::new();
         self.root_meshes.clear();
+        self.recorded_roots_with_children(&roots, &record, &templates, &mut found)?;
         for h in roots {
             if seen.contains(&h) {
                 continue;
@@ -408,6 +409,51 @@ impl ZmqBackend {
         }
         self.record = Some(record);
         Ok((out, found))
+    }
+
+    /// Marks the root objects among `roots` that the copy record holds (as a copy of one of
+    /// `templates`) and that have children as such in `found` (the user's, then:
+    /// [`ownership::contradicts_copy`]): their trees read by one request, and only when
+    /// there are any (an interrupted run's parentless copies).
+    fn recorded_roots_with_children(
+        &mut self,
+        roots: &[i32],
+        record: &crate::draw::record::CopyRecord,
+        templates: &[&str],
+        found: &mut ownership::Traits,
+    ) -> Result<(), BackendError> {
+        let recorded: Vec<i32> = roots
+            .iter()
+            .copied()
+            .filter(|&h| {
+                let alias = self
+                    .aliases
+                    .get(&h)
+                    .or_else(|| self.traits.get(&h).map(|t| &t.0));
+                alias.is_some_and(|a| templates.contains(&a.as_str()) && record.get(h) == Some(a))
+            })
+            .collect();
+        if recorded.is_empty() {
+            return Ok(());
+        }
+        let calls: Vec<(&str, Vec<Value>)> = recorded
+            .iter()
+            .map(|&h| {
+                let args = vec![int(h.into()), int(HANDLE_ALL.into()), int(3)];
+                ("sim.getObjectsInTree", args)
+            })
+            .collect();
+        for (h, outcome) in recorded.iter().zip(self.client.read_all(&calls)?) {
+            let below = outcome
+                .ok()
+                .and_then(|v| v.first().and_then(cbor::handles))
+                .unwrap_or_default();
+            self.children.insert(*h, !below.is_empty());
+            if !below.is_empty() {
+                found.with_children.insert(*h);
+            }
+        }
+        Ok(())
     }
 
     /// Reads what a copy pasted by this tool may have lost since (`recorded`: each copy the
