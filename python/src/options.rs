@@ -125,7 +125,7 @@ fn clap_message(error: &clap::Error) -> String {
         .map(str::trim)
         .find(|l| !l.is_empty())
         .unwrap_or_default();
-    crate::errors::python_names(first.strip_prefix("error: ").unwrap_or(first))
+    crate::wording::python_names(first.strip_prefix("error: ").unwrap_or(first))
 }
 
 /// `options` with `name=value` added unless `value` is `None` (the named parameters a

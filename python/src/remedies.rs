@@ -3,8 +3,8 @@
 //! no option reads as the command line says it.
 
 use vrep_maze::cli::remedies as cli;
-use vrep_maze::draw::fit::extents;
-use vrep_maze::draw::floor::Resize;
+use vrep_maze::draw::extent::Resize;
+use vrep_maze::draw::extent::extents;
 use vrep_maze::draw::{DrawError, Remedy, Role};
 
 /// The keyword argument that names `role`'s object.

@@ -5,8 +5,8 @@ use std::time::Duration;
 
 use anyhow::Context;
 
-use super::ensure_usage;
 use super::progress::{Progress, Unit};
+use super::usage::ensure_usage;
 
 use super::connect::{Api, Connected, RawClient, connect, connect_client};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
@@ -86,7 +86,7 @@ impl ConnectArgs {
     pub fn check_roles(&self) -> anyhow::Result<()> {
         self.names().check_roles().map_err(|e| {
             let message = super::remedies::message(&e);
-            anyhow::Error::new(e).context(super::UsageError(message.into()))
+            anyhow::Error::new(e).context(super::usage::UsageError(message.into()))
         })
     }
 

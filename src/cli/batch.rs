@@ -72,7 +72,7 @@ pub fn run(args: BatchArgs, bars: Progress) -> Result<ExitCode> {
         let file = args.layout.file_name(seed);
         layout
             .and_then(|l| Ok((l, file?)))
-            .map_err(|e| format!("seed {seed}: {}", super::one_line(&e)).into())
+            .map_err(|e| format!("seed {seed}: {}", super::usage::one_line(&e)).into())
     };
     let outcome = batch::run_with(
         &make,

@@ -23,9 +23,10 @@ use std::time::Duration;
 
 use anyhow::Context;
 
+use super::hinted::ConnectError;
 use super::interrupt::Interrupted;
-use super::one_line;
 use super::session_marker::SessionMarker;
+use super::usage::one_line;
 use crate::draw::Backend;
 use crate::legacy::client::Retrying;
 use crate::legacy::{self, ClientError, LegacyBackend};
@@ -69,11 +70,11 @@ fn port_from(var: &str, default: u16) -> anyhow::Result<u16> {
         Err(std::env::VarError::NotPresent) => Ok(default),
         Ok(v) => match v.trim().parse::<u16>() {
             Ok(p) if p > 0 => Ok(p),
-            _ => Err(super::usage(format!(
+            _ => Err(super::usage::usage(format!(
                 "{var}={v:?} is not a port (1..=65535); unset it to use {default}"
             ))),
         },
-        Err(_) => Err(super::usage(format!(
+        Err(_) => Err(super::usage::usage(format!(
             "{var} is not valid text; unset it to use {default}"
         ))),
     }
@@ -94,23 +95,6 @@ pub const ZMQ_CONNECT_TIMEOUT: Duration = Duration::from_secs(10);
 const AUTO_LEGACY_WAIT: Duration = Duration::from_millis(1500);
 /// Timeout of the quick look at the other API's port, for a hint.
 const PROBE_TIMEOUT: Duration = Duration::from_secs(1);
-
-/// A connection that could not be made, said on one line, with what to do about it.
-#[derive(Debug, thiserror::Error)]
-#[error("{message}")]
-pub(crate) struct ConnectError {
-    message: String,
-    hints: Vec<String>,
-    /// Nothing accepted a connection (rather than something that is not the API answering).
-    nothing_listens: bool,
-}
-
-impl ConnectError {
-    /// Remedies, one line each.
-    pub(crate) fn hints(&self) -> Vec<String> {
-        self.hints.clone()
-    }
-}
 
 fn connect_error(message: String, hints: Vec<String>) -> anyhow::Error {
     anyhow::Error::new(ConnectError {
@@ -668,7 +652,10 @@ mod tests {
             one_line(&error),
             "cannot connect to 127.0.0.1:19997: nothing accepted a connection within 75 s"
         );
-        assert_eq!(super::super::hints(&error), ["wait", "try --api zmq"]);
+        assert_eq!(
+            super::super::usage::hints(&error),
+            ["wait", "try --api zmq"]
+        );
     }
 
     #[test]

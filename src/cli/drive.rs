@@ -14,9 +14,9 @@ use ciborium::Value;
 
 use super::apply::ConnectArgs;
 use super::connect::RawClient;
-use super::ensure_usage;
 use super::hinted::hinted;
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::usage::ensure_usage;
 use crate::layout::passages;
 use crate::layout::solution::{Waypoint, solve};
 use crate::maze::Grid;

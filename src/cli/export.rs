@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 
 use super::output::write_output;
-use super::{ensure_usage, usage};
+use super::usage::{ensure_usage, usage};
 use crate::export::{Format, export, ros_map};
 
 /// Options of `export`.

@@ -10,7 +10,7 @@ use clap::Args;
 use super::listed::listed;
 use super::output::write_output;
 use super::progress::{Progress, Unit};
-use super::usage;
+use super::usage::usage;
 use super::values::{
     parse_finite, parse_floor, parse_metres, parse_point, parse_share, parse_size,
 };

@@ -1,5 +1,6 @@
-//! An error said on one line with its remedies on `hint:` lines, for failures whose fix is
-//! a command-line option (the connection's own are [`super::connect`]'s).
+//! Errors said on one line with their remedies on `hint:` lines: failures whose fix is a
+//! command-line option ([`Hinted`]) and connections that could not be made
+//! ([`ConnectError`], made by [`super::connect`]).
 
 /// A failure and what to do about it.
 #[derive(Debug, thiserror::Error)]
@@ -22,4 +23,23 @@ pub(crate) fn hinted(message: impl std::fmt::Display, hints: Vec<String>) -> any
         message: message.to_string(),
         hints,
     })
+}
+
+/// A connection that could not be made, said on one line, with what to do about it.
+#[derive(Debug, thiserror::Error)]
+#[error("{message}")]
+pub(crate) struct ConnectError {
+    /// The error line.
+    pub(crate) message: String,
+    /// Remedies, one line each.
+    pub(crate) hints: Vec<String>,
+    /// Nothing accepted a connection (rather than something that is not the API answering).
+    pub(crate) nothing_listens: bool,
+}
+
+impl ConnectError {
+    /// Remedies, one line each.
+    pub(crate) fn hints(&self) -> Vec<String> {
+        self.hints.clone()
+    }
 }

@@ -1,8 +1,7 @@
 //! A drawing error in the command line's words: its roles ([`Role`]) and remedies
 //! ([`Remedy`]) name the options that name or do them (`--floor`, `--resize-floor`).
 
-use crate::draw::fit::extents;
-use crate::draw::floor::Resize;
+use crate::draw::extent::{Resize, extents};
 use crate::draw::{DrawError, Remedy, Role};
 
 /// The option that names `role`'s object.

@@ -12,9 +12,9 @@ use super::listed::listed;
 use super::output::write_output;
 use super::progress::{Progress, Unit};
 use super::say::note;
+use super::usage::{ensure_usage, usage};
 use super::validate::{describe, read_checking};
 use super::values::parse_metres;
-use super::{ensure_usage, usage};
 use crate::render::{Format, RenderOptions, Scale};
 
 /// Options of `render`.

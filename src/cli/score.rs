@@ -106,17 +106,17 @@ impl ScoreArgs {
     fn grader(&self, layout: &Layout) -> Result<Grader> {
         // the maze's roles on one name are conflicting options here too
         self.scene.check_roles()?;
-        super::ensure_usage!(
+        super::usage::ensure_usage!(
             self.run_timeout.is_finite() && self.run_timeout > 0.0 && self.run_timeout <= 86_400.0,
             "--timeout must be a number of seconds, more than 0 and at most a day, got {}",
             self.run_timeout
         );
-        super::ensure_usage!(
+        super::usage::ensure_usage!(
             self.robot_radius.is_finite() && (0.0..=100.0).contains(&self.robot_radius),
             "--robot-radius must be in 0..=100 m, got {}",
             self.robot_radius
         );
-        super::ensure_usage!(
+        super::usage::ensure_usage!(
             self.end_size
                 .is_none_or(|s| s.is_finite() && s > 0.0 && s <= 1000.0),
             "--end-size must be more than 0 and at most 1000 m"

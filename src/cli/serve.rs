@@ -6,9 +6,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 
-use super::ensure_usage;
 use super::hinted::hinted;
 use super::stdout::outln;
+use super::usage::ensure_usage;
 
 use std::sync::Arc;
 

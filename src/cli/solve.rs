@@ -73,8 +73,8 @@ pub fn run(args: SolveArgs, progress: Progress) -> Result<ExitCode> {
         .with_context(|| format!("{name}: nothing was solved"))?;
     let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
     let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!("{name}: {e}"))?;
-    let solution =
-        solve(&layout, &maze, args.from).map_err(|e| super::usage(format!("{name}: {e}")))?;
+    let solution = solve(&layout, &maze, args.from)
+        .map_err(|e| super::usage::usage(format!("{name}: {e}")))?;
     let summary = format!(
         "solution from {:?} to {:?}: {} cells, {} m, {} turns",
         solution.from,

@@ -95,12 +95,12 @@ mod tests {
         assert_eq!(worded(&refused), line);
         // as a usage error, and as a cause of another error: the line the command prints
         assert_eq!(
-            crate::cli::one_line(&crate::cli::usage(refused.clone())),
+            crate::cli::usage::one_line(&crate::cli::usage::usage(refused.clone())),
             line
         );
         let caused = anyhow::Error::new(refused).context("making the maze");
         assert_eq!(
-            crate::cli::one_line(&caused),
+            crate::cli::usage::one_line(&caused),
             format!("making the maze: {line}")
         );
     }

@@ -7,7 +7,7 @@ use std::ops::{Deref, DerefMut};
 pub enum Held<'a, C> {
     /// Owned: its user closes it.
     Owned(C),
-    /// Borrowed from a drawing backend ([`crate::draw::Backend::follower`]).
+    /// Borrowed from a drawing backend ([`crate::draw::backend::Backend::follower`]).
     Lent(&'a mut C),
 }
 

@@ -5,20 +5,25 @@
 
 use std::collections::HashMap;
 
+use super::backend::{Backend, Edit, ObjectInfo};
+use super::drawing::Drawing;
+use super::error::{BackendError, DrawError};
 use super::home;
 use super::lease::Claim;
+use super::names::Handles;
+use super::options::ApplyOptions;
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::paste::{self, paste_round};
 use super::pose::{self, floor_frame, pose_differences};
+use super::report::{ApplyReport, Stage};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
-use super::{
-    ApplyOptions, ApplyReport, Backend, DrawError, Drawing, Edit, Handles, ObjectInfo, Pose, Stage,
-    verify,
-};
+use super::survey::Traits;
+use super::verify;
+use vrep_maze_core::layout::{Pose, Style};
 
 /// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) before
 /// the scene is read and restored afterwards, also on error or interrupt. The run claims the
-/// scene first ([`super::lease`]) and fails with [`DrawError::Concurrent`] if another run
+/// scene first ([`lease`](super::lease)) and fails with [`DrawError::Concurrent`] if another run
 /// takes it over.
 pub fn apply(
     scene: &mut dyn Backend,
@@ -80,8 +85,8 @@ fn apply_claimed(
     existing.retain(|x| !spoiled.contains(x));
     let earlier = EarlierLines::of(
         match style {
-            super::Style::Lines => !existing.is_empty(),
-            super::Style::Walls => has_line_copies(objects, &h, &names.line),
+            Style::Lines => !existing.is_empty(),
+            Style::Walls => has_line_copies(objects, &h, &names.line),
         },
         leftovers.ours.iter().map(|(_, name)| name.as_str()),
     );
@@ -181,11 +186,11 @@ fn apply_claimed(
 }
 
 /// The copies of ours among `objects` that the user scaled or recoloured
-/// ([`ownership::Traits::spoiled`]), in handle order: removed and pasted anew, each named in
+/// (`Traits::spoiled`), in handle order: removed and pasted anew, each named in
 /// a warning of `report` with what differs.
 fn spoiled_copies(
     objects: &[ObjectInfo],
-    traits: &ownership::Traits,
+    traits: &crate::draw::survey::Traits,
     report: &mut ApplyReport,
 ) -> Vec<i32> {
     let mut spoiled: Vec<(i32, &str, &str)> = objects
@@ -324,8 +329,8 @@ fn place(
     edits.push(Edit::SetPose {
         handle,
         relative_to: floor_handle,
-        position: crate::draw::position(want),
-        orientation: crate::draw::euler(want),
+        position: pose::position(want),
+        orientation: pose::euler(want),
     });
     edits
 }
@@ -356,7 +361,7 @@ struct Drawer<'a, 'p> {
     /// Lines whose place has been sent (or found right).
     placed: usize,
     /// What the survey read of copies and the user's objects ([`ownership::sort_out`]).
-    traits: &'a ownership::Traits,
+    traits: &'a Traits,
     /// The holder of a mesh maze the user keeps (their objects under it): no line.
     holder: Option<i32>,
 }
@@ -444,7 +449,7 @@ impl Drawer<'_, '_> {
         }
         self.send(&edits, placed_now)?;
         if let Some((done, wanted)) = short {
-            return Err(super::BackendError::Remote(format!(
+            return Err(BackendError::Remote(format!(
                 "copy-paste produced {done} of {wanted} copies"
             ))
             .into());

@@ -7,12 +7,16 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use vrep_maze_core::wording::Message;
 
+use super::backend::{Backend, Edit, ObjectInfo};
+use super::error::DrawError;
 use super::home;
 use super::lease::{Claim, claimed};
+use super::names::{Handles, ObjectNames};
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, relative_pose};
+use super::session::resolve_handles;
 use super::session::{EarlierLines, on_an_earlier_maze, raised, stop_running_simulation};
-use super::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Style, resolve_handles};
+use vrep_maze_core::layout::Style;
 
 /// What [`clear`] removed.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -96,8 +100,8 @@ fn send_home(
         scene.edit(&[Edit::SetPose {
             handle: h.template,
             relative_to: h.floor,
-            position: crate::draw::position(&hidden),
-            orientation: crate::draw::euler(&hidden),
+            position: crate::draw::pose::position(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }])?;
     }
     let why = if kept {
@@ -126,7 +130,7 @@ pub struct ClearOptions {
 }
 
 /// Removes the maze lines (idempotent) and restores an idle rate left at 0 by an
-/// interrupted `apply`. Refuses a running simulation as [`super::apply()`] does.
+/// interrupted `apply`. Refuses a running simulation as `apply()` does.
 pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport, DrawError> {
     opts.names.check_roles()?;
     let rt0 = scene.round_trips();

@@ -17,9 +17,15 @@
 //! it was opened with a way to ([`Session::reconnecting`]): a restarted simulator is then
 //! drawn on by the next call, as a new `apply` would.
 
+use super::backend::Backend;
+use super::clear;
+use super::clear::{ClearOptions, ClearReport};
+use super::error::BackendError;
+use super::error::DrawError;
+use super::names::ObjectNames;
+use super::report::Stage;
 use super::run::{Job, Picture, Report, RunError, run};
-use super::{Backend, BackendError, ClearOptions, ClearReport, DrawError, ObjectNames};
-use super::{Stage, clear, verify};
+use super::verify;
 
 /// Makes a new connection to the same simulator ([`Session::reconnecting`]).
 pub type Reconnect = Box<dyn FnMut() -> Result<Box<dyn Backend>, BackendError> + Send>;

@@ -1,5 +1,5 @@
 //! How long a copies draw takes on a real CoppeliaSim 4.5.1, before it starts: the work
-//! [`super::apply()`] will make the simulator do, priced by the shared cost model
+//! `apply()` will make the simulator do, priced by the shared cost model
 //! ([`vrep_maze_core::coppelia::cost`], every figure from `../shared/spec/real-coppeliasim-4.5.1.md`).
 //! Pasting, re-parenting and removing each cost in proportion to the objects in the scene, so
 //! a maze drawn as one object per line costs O(N²) on the server whatever the client does.
@@ -48,7 +48,7 @@ pub enum RemoteApi {
     Zmq,
 }
 
-/// What a copies draw will do, as [`super::apply()`] planned it after reading the scene.
+/// What a copies draw will do, as `apply()` planned it after reading the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CopiesWork {
     /// Objects the survey listed (the named ones, the maze's copies, parentless copies).
@@ -61,7 +61,7 @@ pub struct CopiesWork {
     pub pasted: usize,
     /// Copies already under the maze dummy that stay (reused).
     pub kept_children: usize,
-    /// Copy-paste calls per round ([`super::ApplyOptions::paste_blocks_per_round`]).
+    /// Copy-paste calls per round ([`super::options::ApplyOptions::paste_blocks_per_round`]).
     pub blocks_per_round: usize,
 }
 

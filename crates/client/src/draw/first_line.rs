@@ -3,7 +3,7 @@
 //! them apart before it records the template's pose as its home: only a pose that is its own
 //! is recorded, and only a template that lies on a maze is hidden below the floor.
 
-use super::ObjectInfo;
+use super::backend::ObjectInfo;
 use super::pose::relative_pose;
 use vrep_maze_core::coppelia::frame::{Frame, wrap_angle};
 

@@ -3,10 +3,14 @@
 //! the markers flat and no wider than a cell, and the floor at least as large as the
 //! layout's. Pure: a backend reads the sizes, [`check_sizes`] judges them.
 
+use super::error::DrawError;
+use super::extent::{FloorShort, Resize, extents, metres};
+use super::names::ObjectNames;
 use super::tolerance::{SIZE_TOLERANCE, same_size};
-use super::{DrawError, ObjectNames, Style, TemplateUse};
 use vrep_maze_core::layout::Geometry;
+use vrep_maze_core::layout::Style;
 use vrep_maze_core::layout::limits::{self, Naming};
+use vrep_maze_core::layout::sizes::TemplateUse;
 use vrep_maze_core::wording::{Message, Opt, Setting, Value};
 
 /// The bounding-box extents (x, y, z, metres) a backend read of each object a drawing
@@ -23,40 +27,6 @@ pub struct Measured {
     pub end: Option<[f64; 3]>,
     /// The floor.
     pub floor: Option<[f64; 3]>,
-}
-
-/// The scene's floor is smaller than the layout's along x or y.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FloorShort {
-    /// The scene's floor (x, y), metres.
-    pub have: [f64; 2],
-    /// The layout's floor (x, y), metres.
-    pub need: [f64; 2],
-}
-
-impl FloorShort {
-    /// The floor after `apply --resize-floor`: the layout's size along each axis where the
-    /// scene's is smaller, the scene's elsewhere (a floor is never made smaller).
-    pub fn resized(&self) -> [f64; 2] {
-        [0, 1].map(|k| self.have[k].max(self.need[k]))
-    }
-
-    /// The scale factors (x, y, z) from the scene's floor to [`FloorShort::resized`]; z
-    /// stays. `None` for a floor without extent along x or y, which no factor makes larger.
-    pub fn factors(&self) -> Option<[f64; 3]> {
-        let to = self.resized();
-        (self.have.iter().all(|h| *h > SIZE_TOLERANCE))
-            .then(|| [to[0] / self.have[0], to[1] / self.have[1], 1.0])
-    }
-
-    /// "the scene's `Floor` is 10 x 10 m but the layout's floor is 45 x 45 m".
-    pub fn describe(&self, floor: &str) -> String {
-        format!(
-            "the scene's `{floor}` is {} m but the layout's floor is {} m",
-            extents(&self.have),
-            extents(&self.need)
-        )
-    }
 }
 
 /// What [`check_sizes`] found: refusals (the drawing would not be the layout), warnings,
@@ -88,9 +58,9 @@ impl SizeCheck {
     pub fn differences(&self, names: &ObjectNames) -> Option<DrawError> {
         if let (true, Some(short)) = (self.refusals.is_empty(), self.floor) {
             let resize = if short.factors().is_none() {
-                super::floor::Resize::NoExtent
+                Resize::NoExtent
             } else {
-                super::floor::Resize::Offered
+                Resize::Offered
             };
             return Some(DrawError::Floor {
                 floor: names.floor.clone(),
@@ -102,16 +72,6 @@ impl SizeCheck {
         lines.extend(self.floor.map(|f| f.describe(&names.floor).into()));
         (!lines.is_empty()).then_some(DrawError::Sizes(lines))
     }
-}
-
-/// A length for messages: metres with at most 4 decimals (`0.6`, `0.05`).
-pub fn metres(v: f64) -> String {
-    format!("{}", (v * 1e4).round() / 1e4)
-}
-
-/// `a x b [x c]` metres.
-pub fn extents(v: &[f64]) -> String {
-    v.iter().map(|x| metres(*x)).collect::<Vec<_>>().join(" x ")
 }
 
 /// The most a flat object lying at height `z` (its centre) may measure along z: twice `z`,

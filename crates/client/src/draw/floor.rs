@@ -3,9 +3,11 @@
 //! first resize, so that `clear` scales the floor back. Scaling needs the ZeroMQ remote API
 //! (`sim.scaleObject`); the legacy remote API has no call that resizes an object.
 
-use super::fit::{FloorShort, extents};
+use super::backend::Backend;
+use super::error::BackendError;
+use super::error::DrawError;
+use super::extent::{FloorShort, Resize, extents};
 use super::signals::FLOOR_SIZE as FLOOR_SIGNALS;
-use super::{Backend, BackendError, DrawError};
 use vrep_maze_core::wording::{Message, Opt, Value};
 
 /// A floor's size before the first `apply --resize-floor`.
@@ -49,17 +51,6 @@ pub fn read(scene: &mut dyn Backend) -> Result<Option<FloorRecord>, BackendError
 fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
     let signals: Vec<(&str, Option<i32>)> = FLOOR_SIGNALS.iter().map(|n| (*n, None)).collect();
     scene.set_int_signals(&signals)
-}
-
-/// What stands in the way of resizing a floor, for [`DrawError::Floor`]'s remedies.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Resize {
-    /// The API can resize it: `--resize-floor` was not given.
-    Offered,
-    /// The legacy remote API answered: it cannot resize objects.
-    NoApi,
-    /// The floor has no extent along x or y: no scale makes it larger.
-    NoExtent,
 }
 
 /// Grows the floor `floor` (named `name`) to the layout's size ([`FloorShort::resized`]):

@@ -4,8 +4,10 @@
 //! runs), as the template's handle and its pose in the floor frame in micrometres and
 //! microradians.
 
+use super::backend::{Backend, Edit};
+use super::error::BackendError;
 use super::signals::{self, HOME};
-use super::{Backend, BackendError, Pose};
+use vrep_maze_core::layout::Pose;
 
 /// How far below the floor a template no line needs is put (metres): under an opaque floor,
 /// out of every camera above it.
@@ -46,8 +48,8 @@ impl Home {
     }
 
     /// The edit that puts the template back home (pose relative to `floor`).
-    pub fn edit(&self, floor: i32) -> super::Edit {
-        super::Edit::SetPose {
+    pub fn edit(&self, floor: i32) -> Edit {
+        Edit::SetPose {
             handle: self.handle,
             relative_to: floor,
             position: self.position,

@@ -13,32 +13,10 @@
 
 use std::hash::{BuildHasher, RandomState};
 
+use super::backend::{Backend, Lease};
+use super::error::BackendError;
+use super::error::DrawError;
 use super::signals::LEASE;
-use super::{Backend, BackendError, DrawError};
-
-/// What [`Lease::claim`] found: the token recorded before it wrote its own, and what reads
-/// back after it did.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Claimed {
-    /// The token recorded before the claim, if any.
-    pub previous: Option<i32>,
-    /// The token read back after writing (`None`: the simulator did not keep it).
-    pub read_back: Option<i32>,
-}
-
-/// The scene-side record of who is drawing ([`LEASE`]): see [`Backend::lease`].
-pub trait Lease {
-    /// Records `token` as the scene's current drawer, replacing any earlier record (an
-    /// older version's too), and reads it back.
-    fn claim(&mut self, token: i32) -> Result<Claimed, BackendError>;
-    /// The token recorded now, if any.
-    fn holder(&mut self) -> Result<Option<i32>, BackendError>;
-    /// Removes the record (only called by the run that holds it).
-    fn release(&mut self) -> Result<(), BackendError>;
-    /// The simulator did not keep the lease: this connection stops reading and writing the
-    /// scene's other signals too (they would be lost the same way).
-    fn unkept(&mut self);
-}
 
 /// Edits sent between two lease checks (at about 0.45 ms per ZeroMQ call on a real
 /// CoppeliaSim at idle fps 0, `../shared/spec/real-coppeliasim-4.5.1.md`: about 0.1 s).

@@ -4,9 +4,9 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::ObjectNames;
+use super::names::ObjectNames;
 
-/// Options of [`super::apply()`].
+/// Options of `apply()`.
 #[derive(Debug, Clone)]
 pub struct ApplyOptions {
     /// Names of the scene objects the drawing uses.

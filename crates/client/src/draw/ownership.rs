@@ -3,10 +3,10 @@
 //! may consider and what is the user's, and an earlier maze's lines or walls and another
 //! style's copies.
 
-use std::collections::{HashMap, HashSet};
-
+use super::backend::ObjectInfo;
+use super::names::Handles;
+use super::survey::Traits;
 use super::tolerance::{same_colour, same_extents};
-use super::{Handles, ObjectInfo};
 use vrep_maze_core::coppelia::names;
 
 /// The name a template's copies are named after, from the reference that names it: a
@@ -39,41 +39,6 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
         .and_then(|r| r.strip_suffix(']'))
         .is_some_and(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));
     path_copy || names::is_copy_of(name, template)
-}
-
-/// Object type codes by handle, as a survey read them ([`Traits::kinds`]).
-pub type Kinds = HashMap<i32, i32>;
-
-/// What a backend read of a survey's objects that tells a template's copy from the user's
-/// object named like one ([`super::Survey::traits`]). A backend reads sizes and children
-/// only where the name and type say "copy" and its record of the copies this tool pasted
-/// ([`super::record`]) does not already say so (normally none), and the sizes of those
-/// objects' templates: a fact not read is no evidence either way.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Traits {
-    /// Object type codes (`sim_object_*_type`: 0 shape, 4 dummy, ...) by handle: at least
-    /// the named objects and the objects that may be copies of a template.
-    pub kinds: Kinds,
-    /// Bounding-box extents (x, y, z, metres, [`super::BoundingBox::size`]) by handle: the
-    /// copy candidates the backend sized, and their templates.
-    pub sizes: HashMap<i32, [f64; 3]>,
-    /// Copy candidates the backend found to have children of their own (a pasted copy has
-    /// none: the copies are pasted without their trees).
-    pub with_children: HashSet<i32>,
-    /// Ambient-diffuse colours (RGB, 0..1) by handle: the copy candidates the backend read
-    /// them of (an API that reads colours), and their templates.
-    pub colours: HashMap<i32, [f64; 3]>,
-    /// The surveyed objects (named ones included) that the scene's copy record
-    /// ([`super::record`]) holds as this tool's copies, as the survey found it: ours, first
-    /// of all, and never a template or a marker ([`super::resolve_handles`]).
-    pub recorded: HashSet<i32>,
-    /// Visibility layer bits by handle: the recorded copies the backend read them of (an
-    /// API that reads them), and their templates.
-    pub layers: HashMap<i32, i32>,
-    /// Copies the record holds whose size, colour or visibility layer is no longer their
-    /// template's (the user scaled, recoloured or hid them), with what differs: ours, but never reused as they are:
-    /// a drawing removes and pastes them anew, a verification names them ([`spoiled`]).
-    pub spoiled: HashMap<i32, String>,
 }
 
 /// What differs between the copy `handle` and its `template` by what a backend read
@@ -264,7 +229,7 @@ pub fn foreign_copies(objects: &[ObjectInfo], h: &Handles, foreign: &[&str]) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::object_at_origin as obj;
+    use crate::draw::backend::object_at_origin as obj;
 
     /// The handles of the tests' scenes: Floor 1, Maze 2, Line 3, Start 4, End 5, no post
     /// template.

@@ -1,9 +1,21 @@
 //! Poses on the floor: an object's frame, its pose in the floor's frame, how far it is from
 //! the pose a drawing wants, and templates standing where a maze is drawn.
 
+use super::backend::ObjectInfo;
+use super::drawing::Drawing;
 use super::tolerance::{ANGLE_TOLERANCE, POSITION_TOLERANCE};
-use super::{Drawing, ObjectInfo, Pose};
 use vrep_maze_core::coppelia::frame::{Frame, frame, position_euler, wrap_angle};
+use vrep_maze_core::layout::Pose;
+
+/// Position of a pose as an array.
+pub fn position(p: &Pose) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}
+
+/// CoppeliaSim Euler angles of a pose (roll = pitch = 0).
+pub fn euler(p: &Pose) -> [f64; 3] {
+    [0.0, 0.0, p.yaw]
+}
 
 /// Frame of an object from its world position and Euler angles.
 pub fn world_frame(o: &ObjectInfo) -> Frame {
@@ -28,7 +40,7 @@ pub fn pose_differences(floor: &Frame, object: &ObjectInfo, want: &Pose) -> Opti
     let (p, e) = relative_pose(floor, object);
     let position_ok = p
         .iter()
-        .zip(crate::draw::position(want))
+        .zip(position(want))
         .all(|(a, b)| (a - b).abs() <= POSITION_TOLERANCE);
     let angles_ok = [
         wrap_angle(e[0]),
@@ -85,7 +97,7 @@ pub fn templates_on_the_maze(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::object_at_origin as obj;
+    use crate::draw::backend::object_at_origin as obj;
 
     #[test]
     fn pose_compare_in_a_rotated_floor() {
@@ -101,7 +113,7 @@ mod tests {
             z: 0.001,
             yaw: std::f64::consts::FRAC_PI_2,
         };
-        let world = floor * frame(crate::draw::position(&want), crate::draw::euler(&want));
+        let world = floor * frame(position(&want), euler(&want));
         let (p, e) = position_euler(&world);
         let o = ObjectInfo {
             position: p,

@@ -2,9 +2,11 @@
 //! data: the library decides which remedies apply, each adapter words them with its own option
 //! names (the command line `--resize-floor`, Python `resize_floor=True`).
 
-use super::fit::FloorShort;
-use super::floor::Resize;
-use super::{DrawError, Role, Sizes, verify};
+use super::error::DrawError;
+use super::extent::{FloorShort, Resize};
+use super::role::Role;
+use super::verify;
+use vrep_maze_core::layout::sizes::Sizes;
 
 /// One thing the user can do about a [`DrawError`]; an adapter words each as one line.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,12 +3,22 @@
 
 use std::time::Duration;
 
-use super::DrawMode;
+use vrep_maze_core::layout::Style;
 
-/// Progress of [`super::apply()`], for a progress display.
+/// How a maze is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DrawMode {
+    /// One copy of the template per line, wall or post (`apply()`).
+    #[default]
+    Copies,
+    /// A few mesh shapes, one rectangle or box per straight run (`mesh::apply()`).
+    Mesh,
+}
+
+/// Progress of `apply()`, for a progress display.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stage {
-    /// The missing objects were created ([`super::run::Job::create_missing`]): their names.
+    /// The missing objects were created (`Job::create_missing`): their names.
     Created(Vec<String>),
     /// The scene has been read (names resolved, objects listed).
     Surveyed,
@@ -33,7 +43,7 @@ pub enum Stage {
     Verifying,
 }
 
-/// What [`super::apply()`] did. In copies mode the counts add up: `pieces + posts` = `unchanged +
+/// What `apply()` did. In copies mode the counts add up: `pieces + posts` = `unchanged +
 /// placed + pasted` (the drawing's lines and posts), and `unchanged + placed` = `reused`,
 /// plus the template itself in a line maze with lines; the markers are counted apart.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -41,7 +51,7 @@ pub struct ApplyReport {
     /// Copies or meshes: how the maze was drawn (what `meshes`, `reused` and `pasted` count).
     pub mode: DrawMode,
     /// Lines or walls: what `pieces` counts.
-    pub style: super::Style,
+    pub style: Style,
     /// Lines drawn (template included), or walls.
     pub pieces: usize,
     /// Posts drawn (a wall maze with posts), else 0.
@@ -88,13 +98,13 @@ pub struct ApplyReport {
     /// Dry run: nothing was changed.
     pub dry_run: bool,
     /// What the user should know: markers larger than a cell, sizes not read
-    /// ([`super::fit::check_sizes`]).
+    /// (`fit::check_sizes`).
     pub warnings: Vec<String>,
-    /// The floor grown to the layout's (`--resize-floor`, [`super::floor::resize`]): one
+    /// The floor grown to the layout's (`--resize-floor`, `floor::resize`): one
     /// line saying from what size to what.
     pub floor: Option<String>,
     /// The user's objects under the maze dummy (and root objects named like copies of a
-    /// template but of another type): left alone ([`super::ownership::sort_out`]).
+    /// template but of another type): left alone (`ownership::sort_out`).
     pub left_alone: Vec<String>,
 }
 
@@ -110,4 +120,25 @@ impl ApplyReport {
             && !self.simulation_running
             && self.floor.is_none()
     }
+}
+
+/// "left alone: N object(s) of yours under `Maze` that are no copies of a template: a, b,
+/// ..." naming at most the first few, for the reports of `apply` and `clear` (`None` when
+/// there are none).
+pub fn left_alone_line(left_alone: &[String], parent: &str) -> Option<String> {
+    const NAMED: usize = 8;
+    if left_alone.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = left_alone.iter().take(NAMED).map(String::as_str).collect();
+    let more = if left_alone.len() > NAMED {
+        format!(", ... ({} more)", left_alone.len() - NAMED)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "left alone: {} object(s) under `{parent}` or at the scene root that are no copies of a template (not the maze's): {}{more}",
+        left_alone.len(),
+        shown.join(", ")
+    ))
 }

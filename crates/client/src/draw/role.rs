@@ -4,10 +4,11 @@
 
 use std::fmt;
 
-use super::fit;
-use super::{Sizes, Style};
+use super::extent;
+use vrep_maze_core::layout::Style;
+use vrep_maze_core::layout::sizes::Sizes;
 
-/// What an object of the scene is to a drawing; [`super::ObjectNames`] names one object
+/// What an object of the scene is to a drawing; `ObjectNames` names one object
 /// per role.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
@@ -53,11 +54,11 @@ impl Role {
     /// caller's way of asking `apply` to grow the floor (`apply --resize-floor`), scales it
     /// over ZeroMQ.
     pub fn how_to_create(self, name: &str, sizes: Option<&Sizes>, resize_floor: &str) -> String {
-        let m = fit::metres;
+        let m = extent::metres;
         let recipe = match self {
             Role::Floor => {
                 let needs = match sizes {
-                    Some(s) => format!("at least {} m", fit::extents(&s.floor)),
+                    Some(s) => format!("at least {} m", extent::extents(&s.floor)),
                     None => "at least the layout's `floor.size`".into(),
                 };
                 format!(
@@ -71,7 +72,7 @@ impl Role {
                 let plane = match sizes {
                     Some(s) => format!(
                         "{} m, pure green, at z = {}",
-                        fit::extents(&s.line),
+                        extent::extents(&s.line),
                         m(s.line_z)
                     ),
                     None => {
@@ -90,7 +91,7 @@ impl Role {
                     ("post", sizes.and_then(|s| s.post), fields)
                 };
                 let cuboid = match size {
-                    Some(size) => format!("{} m", fit::extents(&size)),
+                    Some(size) => format!("{} m", extent::extents(&size)),
                     None => format!("the layout's {fields}"),
                 };
                 format!(

@@ -7,18 +7,13 @@ use vrep_maze_core::layout::Layout;
 use vrep_maze_core::mesh::MeshMaze;
 use vrep_maze_core::validate::Invalid;
 
+use super::apply::apply;
+use super::backend::{Backend, create_missing_for};
+use super::drawing::Drawing;
+use super::error::{BackendError, DrawError};
 use super::mesh;
-use super::{ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Drawing, Stage};
-
-/// How a maze is drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum DrawMode {
-    /// One copy of the template per line, wall or post ([`super::apply()`]).
-    #[default]
-    Copies,
-    /// A few mesh shapes, one rectangle or box per straight run ([`mesh::apply()`]).
-    Mesh,
-}
+use super::options::ApplyOptions;
+use super::report::{ApplyReport, DrawMode, Stage};
 
 /// What a job draws: a layout made into copies or meshes.
 #[derive(Debug, Clone)]
@@ -130,12 +125,12 @@ pub fn run(
         let authoring = scene
             .authoring()
             .ok_or(RunError::NoAuthoring(Authored::CreateMissing))?;
-        created = super::create_missing_for(authoring, &opts.names, job.layout)
-            .map_err(RunError::Create)?;
+        created =
+            create_missing_for(authoring, &opts.names, job.layout).map_err(RunError::Create)?;
         progress(Stage::Created(created.clone()));
     }
     let drawn = match &job.picture {
-        Picture::Copies(drawing) => super::apply(scene, drawing, opts, progress)?,
+        Picture::Copies(drawing) => apply(scene, drawing, opts, progress)?,
         Picture::Mesh(maze) => mesh::apply(scene, maze, opts, progress)?,
     };
     let mut saved_scene = None;

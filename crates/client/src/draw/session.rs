@@ -2,23 +2,29 @@
 //! raised and restored (`raised`, [`raised_to_read`]), the scene claimed ([`super::lease`]),
 //! the survey and the named handles ([`surveyed`]), the size checks (`sizes_of`), a running
 //! simulation dealt with, and the line template's home kept (`keep_home`). The copies
-//! ([`super::apply()`]) and mesh ([`super::mesh::apply()`]) draws, [`super::verify()`],
-//! [`super::clear()`] and `inspect` each use what they need of it; nothing here calls them.
+//! (`apply()`) and mesh ([`super::mesh::apply()`]) draws, `verify()`,
+//! `clear()` and `inspect` each use what they need of it; nothing here calls them.
 
 use std::time::Instant;
 
+use super::backend::{Backend, Edit, IdleRates, ObjectInfo, Survey};
+use super::error::BackendError;
+use super::error::DrawError;
 use super::fit;
 use super::home;
 use super::lease::{Claim, claimed};
+use super::names::{Handles, ObjectNames};
+use super::options::ApplyOptions;
 use super::ownership;
 use super::pose::{self, floor_frame};
+use super::report::{ApplyReport, Stage};
+use super::role::Role;
 use super::tolerance::POSITION_TOLERANCE;
-use super::{
-    ApplyOptions, ApplyReport, Backend, BackendError, DrawError, Edit, Handles, IdleRates,
-    ObjectInfo, ObjectNames, Stage, Survey, TemplateUse, resolve_handles,
-};
+use vrep_maze_core::layout::Style;
+use vrep_maze_core::layout::sizes::Sizes;
+use vrep_maze_core::layout::sizes::TemplateUse;
 
-/// Runs a draw's `work` as every draw runs ([`super::apply()`], [`super::mesh::apply()`]): with the
+/// Runs a draw's `work` as every draw runs (`apply()`, [`super::mesh::apply()`]): with the
 /// idle rate raised ([`raised`]) and the scene claimed ([`claimed`]), counting its round
 /// trips and wall time into the report it returns.
 pub(crate) fn raised_and_claimed(
@@ -228,8 +234,8 @@ pub(crate) fn keep_home(
         let hidden = home::Home::hidden(position[0], position[1]);
         home::Home {
             handle: h.template,
-            position: crate::draw::position(&hidden),
-            orientation: crate::draw::euler(&hidden),
+            position: crate::draw::pose::position(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }
     } else {
         home::Home {
@@ -309,8 +315,8 @@ fn hide_line_template(
                 let below = home::Home::hidden(position[0], position[1]);
                 home::Home {
                     handle: template.handle,
-                    position: crate::draw::position(&below),
-                    orientation: crate::draw::euler(&below),
+                    position: crate::draw::pose::position(&below),
+                    orientation: crate::draw::pose::euler(&below),
                 }
             };
             home::write(scene, &home)?;
@@ -318,13 +324,13 @@ fn hide_line_template(
         }
     };
     let hidden = home::Home::hidden(home.position[0], home.position[1]);
-    let want = crate::draw::position(&hidden);
+    let want = crate::draw::pose::position(&hidden);
     if (0..3).any(|k| (position[k] - want[k]).abs() > POSITION_TOLERANCE) {
         scene.edit(&[Edit::SetPose {
             handle: template.handle,
             relative_to: h.floor,
             position: want,
-            orientation: crate::draw::euler(&hidden),
+            orientation: crate::draw::pose::euler(&hidden),
         }])?;
     }
     Ok(())
@@ -364,11 +370,11 @@ pub(crate) fn begin(
     }
     if let Some(short) = short.filter(|_| !opts.resize_floor) {
         let resize = if short.factors().is_none() {
-            super::floor::Resize::NoExtent
+            super::extent::Resize::NoExtent
         } else if scene.authoring().is_none() {
-            super::floor::Resize::NoApi
+            super::extent::Resize::NoApi
         } else {
-            super::floor::Resize::Offered
+            super::extent::Resize::Offered
         };
         return Err(DrawError::Floor {
             floor: names.floor.clone(),
@@ -433,4 +439,77 @@ pub(crate) fn sizes_of(
             post: post.and_then(|_| get(4)),
         },
     ))
+}
+
+/// Resolves the names of a survey (asked for `style`, [`ObjectNames::survey`]) into
+/// [`Handles`] or a [`DrawError::Missing`]; `line` is then the style's template. With
+/// `posts`, the post template is needed too. A missing object's remedy gives the layout's
+/// `sizes` when a layout is drawn.
+pub fn resolve_handles(
+    names: &ObjectNames,
+    style: Style,
+    survey: &Survey,
+    posts: bool,
+    sizes: Option<&Sizes>,
+) -> Result<Handles, DrawError> {
+    names.check_roles()?;
+    let found = survey.handles;
+    let roles = ObjectNames::survey_roles(style).into_array();
+    let asked = names.survey(style).into_array();
+    let handles = found.into_array();
+    for (i, h) in handles.iter().enumerate() {
+        let Some(h) = h else { continue };
+        if let Some(j) = handles[i + 1..]
+            .iter()
+            .position(|other| *other == Some(*h))
+            .map(|k| i + 1 + k)
+        {
+            return Err(DrawError::SameObject {
+                names: format!("`{}` and `{}`", asked[i], asked[j]),
+                first: roles[i],
+                second: roles[j],
+            });
+        }
+    }
+    // a name that found one of our copies: never a template or a marker
+    let recorded = asked
+        .iter()
+        .zip(&handles)
+        .zip(roles)
+        .skip(2)
+        .find(|((_, h), _)| h.is_some_and(|h| survey.traits.recorded.contains(&h)));
+    if let Some(((name, _), role)) = recorded {
+        let marker = matches!(role, Role::Start | Role::End);
+        return Err(DrawError::OurCopy {
+            name: name.to_string(),
+            role,
+            what: if marker { "a marker" } else { "the template" },
+        });
+    }
+    let (needed, _) = found.needed_and_optional();
+    let (needed_roles, _) = ObjectNames::survey_roles(style).needed_and_optional();
+    let mut missing: Vec<(Role, String)> = needed_roles
+        .into_iter()
+        .zip(needed)
+        .filter(|(_, h)| h.is_none())
+        .map(|(role, _)| (role, names.name(role).to_string()))
+        .collect();
+    if posts && found.post.is_none() {
+        missing.push((Role::Post, names.post.clone()));
+    }
+    if !missing.is_empty() {
+        return Err(DrawError::Missing {
+            objects: missing,
+            sizes: sizes.cloned().map(Box::new),
+        });
+    }
+    let h = found.map(|h| h.unwrap_or(-1));
+    Ok(Handles {
+        floor: h.floor,
+        parent: h.parent,
+        template: h.template,
+        start: h.start,
+        end: h.end,
+        post: found.post,
+    })
 }

@@ -3,10 +3,14 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::backend::{Backend, ObjectInfo};
+use super::drawing::Drawing;
+use super::error::DrawError;
+use super::names::{Handles, ObjectNames};
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
-use super::{Backend, DrawError, Drawing, Handles, ObjectInfo, ObjectNames, Pose, Style};
+use vrep_maze_core::layout::{Pose, Style};
 use vrep_maze_core::wording::{Message, Opt};
 
 /// Differences between `objects` and `drawing`, where `pieces[i]` is the object drawn for
@@ -345,7 +349,7 @@ impl Matching<'_> {
         let mut used = vec![false; pool.len()];
         for (i, want) in wanted.iter().enumerate() {
             // the lowest pool index among the copies in place: the template first, as before
-            let hit = bucket(crate::draw::position(want)).and_then(|(bx, by)| {
+            let hit = bucket(crate::draw::pose::position(want)).and_then(|(bx, by)| {
                 (-1..=1)
                     .flat_map(|dx| (-1..=1).map(move |dy| (bx + dx, by + dy)))
                     .filter_map(|key| near.get(&key))

@@ -1,4 +1,4 @@
-//! The legacy remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
+//! The legacy remote API as a drawing backend: [`crate::draw::backend::Backend`] over [`Client`].
 
 use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
@@ -7,13 +7,13 @@ use super::client::{Client, ClientError, ClientOptions, Reply};
 use super::command::{
     ALL_OBJECTS, Command, GroupData, SimControl, decode_handle_list, group, read_i32,
 };
-use crate::draw::ownership::{self, Traits, is_copy_name};
+use crate::draw::backend::{Backend, BoundingBox, Edit, IdleRates, ObjectInfo, Survey};
+use crate::draw::error::BackendError;
+use crate::draw::ownership::{self, is_copy_name};
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
-use crate::draw::{
-    Backend, BackendError, BoundingBox, Edit, IdleRates, ObjectInfo, Survey, SurveyHandles,
-    SurveyNames,
-};
+use crate::draw::survey::Traits;
+use crate::draw::survey::{SurveyHandles, SurveyNames};
 use vrep_maze_core::coppelia::{
     DEFAULT_IDLE_FPS, HANDLE_WORLD, INTPARAM_IDLE_FPS, INTPARAM_PROGRAM_VERSION, OBJFLOATPARAM_BBOX,
 };

@@ -27,7 +27,7 @@ impl<'a> LegacyFollower<'a> {
         Self::over(Held::Owned(client))
     }
 
-    /// Follows over a drawing backend's client, left open ([`crate::draw::Backend::follower`]).
+    /// Follows over a drawing backend's client, left open ([`crate::draw::backend::Backend::follower`]).
     pub fn lent(client: &'a mut Client) -> Self {
         Self::over(Held::Lent(client))
     }

@@ -4,7 +4,7 @@
 //! (`vrep_maze_emulator::legacy`).
 //!
 //! Layers: [`wire`] (packets, message header, command blocks) → [`command`] (command IDs and
-//! payloads), then on one side [`client`] → [`backend`] (the [`crate::draw::Backend`]
+//! payloads), then on one side [`client`] → [`backend`] (the [`crate::draw::backend::Backend`]
 //! implementation), on the other the emulator's `server`. The two sides share only `wire`,
 //! `command` and [`vrep_maze_core::coppelia`]'s numbers: the client never imports the
 //! emulator, nor the emulator the client.

@@ -1,4 +1,4 @@
-//! The ZeroMQ remote API as a drawing backend: [`crate::draw::Backend`] over [`Client`].
+//! The ZeroMQ remote API as a drawing backend: [`crate::draw::backend::Backend`] over [`Client`].
 //!
 //! Objects are found by path (`/Maze`, `/Line`); the earlier maze is the object tree under
 //! the maze dummy (`sim.getObjectsInTree`), plus root objects that carry a template's alias
@@ -16,13 +16,14 @@ use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
 use super::cbor::{self, float_array, int};
-use super::client::{Client, ClientOptions, Outcome, ZmqError};
+use super::client::{Client, ClientOptions, Outcome, ZmqError, object_path};
+use crate::draw::backend::{
+    Authoring, Backend, BoundingBox, Edit, IdleRates, Lease, ObjectInfo, Survey,
+};
+use crate::draw::error::BackendError;
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::{self, COPIES, SAVED_IDLE_FPS};
-use crate::draw::{
-    Authoring, Backend, BackendError, BoundingBox, Edit, IdleRates, Lease, ObjectInfo, Survey,
-    SurveyHandles, SurveyNames,
-};
+use crate::draw::survey::{SurveyHandles, SurveyNames};
 use vrep_maze_core::coppelia::frame::{
     Frame, euler_from_rotation, frame, position_euler, rotation_from_euler,
 };
@@ -116,16 +117,6 @@ pub struct ZmqBackend {
     /// The root objects the last survey found named like a mesh of ours
     /// ([`crate::draw::mesh::FoundMeshes::elsewhere`]).
     root_meshes: Vec<String>,
-}
-
-/// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
-/// root unless they already are paths (`/Maze/Line`, `./x`, `:x`).
-pub fn object_path(name: &str) -> String {
-    if name.starts_with(['/', '.', ':']) {
-        name.to_string()
-    } else {
-        format!("/{name}")
-    }
 }
 
 fn alias_of(name: &str) -> &str {

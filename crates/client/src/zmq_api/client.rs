@@ -226,6 +226,16 @@ impl std::fmt::Debug for Client {
     }
 }
 
+/// The path `sim.getObject` needs for a user-given name: names are aliases at the scene
+/// root unless they already are paths (`/Maze/Line`, `./x`, `:x`).
+pub fn object_path(name: &str) -> String {
+    if name.starts_with(['/', '.', ':']) {
+        name.to_string()
+    } else {
+        format!("/{name}")
+    }
+}
+
 /// A random (version 4) UUID in the usual 8-4-4-4-12 form.
 pub fn new_uuid() -> String {
     let mut b: [u8; 16] = rand::random();

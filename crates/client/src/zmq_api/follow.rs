@@ -15,9 +15,8 @@
 use ciborium::Value;
 use nalgebra::{Quaternion, UnitQuaternion};
 
-use super::backend::object_path;
 use super::cbor::{self, int};
-use super::client::{Client, ZmqError};
+use super::client::{Client, ZmqError, object_path};
 use crate::held::Held;
 use vrep_maze_core::coppelia::SIMULATION_STOPPED;
 use vrep_maze_core::score::Sample;
@@ -38,7 +37,7 @@ impl<'a> ZmqFollower<'a> {
         Self::over(Held::Owned(client))
     }
 
-    /// Follows over a drawing backend's client, left open ([`crate::draw::Backend::follower`]).
+    /// Follows over a drawing backend's client, left open ([`crate::draw::backend::Backend::follower`]).
     pub fn lent(client: &'a mut Client) -> Self {
         Self::over(Held::Lent(client))
     }

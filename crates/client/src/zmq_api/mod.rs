@@ -4,7 +4,7 @@
 //! follower. The emulated server is in the emulator crate (`vrep_maze_emulator::zmq_api`).
 //!
 //! Layers: [`cbor`] (values) → [`message`] (request and reply maps) → [`client`] (then
-//! [`backend`], the [`crate::draw::Backend`] implementation) / the emulator's `server` (with
+//! [`backend`], the [`crate::draw::backend::Backend`] implementation) / the emulator's `server` (with
 //! its `sim.*` function registry). The client side never imports from the server side.
 
 pub mod backend;

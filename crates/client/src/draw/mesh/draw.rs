@@ -9,16 +9,20 @@ use super::{
     FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, MeshReadback,
     NewMesh,
 };
+use crate::draw::backend::{Backend, Edit, ObjectInfo};
+use crate::draw::error::DrawError;
 use crate::draw::lease::Claim;
+use crate::draw::names::{Handles, ObjectNames};
+use crate::draw::options::ApplyOptions;
 use crate::draw::ownership::{self, foreign_copies, maze_pieces};
 use crate::draw::pose::{floor_frame, pose_differences};
+use crate::draw::report::{ApplyReport, DrawMode, Stage};
 use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
 };
-use crate::draw::{ApplyOptions, ApplyReport, DrawMode, Stage};
-use crate::draw::{Backend, DrawError, Edit, Handles, ObjectInfo, ObjectNames, Pose, Style};
 use vrep_maze_core::coppelia::{SHAPE_LAYER, SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
+use vrep_maze_core::layout::{Pose, Style};
 use vrep_maze_core::wording::Message;
 
 /// Meshes created per request to [`MeshDrawing::create`], between two checks for Ctrl-C and
@@ -110,7 +114,7 @@ pub fn leftovers(
     })
 }
 
-/// Draws `maze` as meshes into `scene`, as [`crate::draw::apply()`] draws copies: the idle rate
+/// Draws `maze` as meshes into `scene`, as `draw::apply()` draws copies: the idle rate
 /// raised, the scene claimed, Ctrl-C honoured between requests, the result checked (names,
 /// parents, the template's and markers' poses; [`verify`] reads the meshes back).
 pub fn apply(
@@ -237,8 +241,8 @@ fn marker_edits(
             edits.push(Edit::SetPose {
                 handle,
                 relative_to: h.floor,
-                position: crate::draw::position(&want),
-                orientation: crate::draw::euler(&want),
+                position: crate::draw::pose::position(&want),
+                orientation: crate::draw::pose::euler(&want),
             });
         }
     }

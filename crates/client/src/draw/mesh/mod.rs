@@ -18,7 +18,8 @@ pub use vrep_maze_core::mesh::{
     parse_mesh_name,
 };
 
-use super::{BackendError, ObjectNames};
+use super::error::BackendError;
+use super::names::ObjectNames;
 
 /// How a template looks, copied onto the meshes drawn in its stead.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,7 +173,7 @@ pub struct MeshReadback {
 }
 
 /// What a backend must offer for `apply --draw mesh`, reached with
-/// [`super::Backend::meshes`]. ZeroMQ creates meshes with `sim.createMeshShape`; the legacy
+/// `Backend::meshes`. ZeroMQ creates meshes with `sim.createMeshShape`; the legacy
 /// API, which cannot create shapes, loads them as a CoppeliaSim XML model.
 pub trait MeshDrawing {
     /// How the template `handle` looks: its colour and special properties.

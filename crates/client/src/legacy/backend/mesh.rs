@@ -16,11 +16,12 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::LegacyBackend;
+use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
     parse_mesh_name,
 };
-use crate::draw::{BackendError, ObjectNames};
+use crate::draw::names::ObjectNames;
 use crate::legacy::command::{ALL_OBJECTS, Command, GroupData, TEMP_FILE_PREFIX, group, read_i32};
 use vrep_maze_core::coppelia::xml::{self, Document, FileKind, XmlObject};
 use vrep_maze_core::coppelia::{

@@ -4,14 +4,18 @@
 
 use ciborium::Value;
 
-use super::{ZmqBackend, alias_of, object_path};
-use crate::draw::{Authoring, BackendError, ObjectNames, Sizes};
+use super::{ZmqBackend, alias_of};
+use crate::draw::backend::Authoring;
+use crate::draw::error::BackendError;
+use crate::draw::names::ObjectNames;
 use crate::zmq_api::cbor::{float_array, int};
+use crate::zmq_api::client::object_path;
 use vrep_maze_core::coppelia::{
     COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_WORLD, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_PLANE,
     SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC, SPECIAL_COLLIDABLE, SPECIAL_DETECTABLE,
     SPECIAL_MEASURABLE, SPECIAL_RENDERABLE,
 };
+use vrep_maze_core::layout::sizes::Sizes;
 
 /// A plane to create: size x, y; RGB colour (0..1); height above the floor.
 type PlaneSpec = ([f64; 2], [f64; 3], f64);

@@ -4,9 +4,10 @@
 use ciborium::Value;
 
 use super::ZmqBackend;
+use crate::draw::backend::{Claimed, Lease};
+use crate::draw::error::BackendError;
 use crate::draw::record::CopyRecord;
 use crate::draw::signals::LEASE;
-use crate::draw::{BackendError, Claimed, Lease};
 use crate::zmq_api::cbor::{self, int};
 
 /// The lease is the integer signal [`LEASE`] (a simulator without integer signals

@@ -8,13 +8,15 @@ use std::borrow::Cow;
 
 use ciborium::Value;
 
-use super::{ZmqBackend, object_path};
+use super::ZmqBackend;
+use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
 };
-use crate::draw::{BackendError, ObjectNames};
+use crate::draw::names::ObjectNames;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
+use crate::zmq_api::client::object_path;
 use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
 use vrep_maze_core::coppelia::{COLORCOMPONENT_AMBIENT_DIFFUSE, OBJINTPARAM_VISIBILITY_LAYER};
 

@@ -8,8 +8,11 @@ use std::collections::{HashMap, HashSet};
 use ciborium::Value;
 
 use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
+use crate::draw::backend::{Backend, ObjectInfo};
+use crate::draw::error::BackendError;
 use crate::draw::mesh::parse_mesh_name;
-use crate::draw::{Backend, BackendError, ObjectInfo, ownership};
+use crate::draw::ownership;
+use crate::draw::survey::Traits;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
 use vrep_maze_core::coppelia::{
@@ -203,7 +206,7 @@ impl ZmqBackend {
 
     /// The named objects (read), the maze dummy's children and root copies of the templates
     /// found (their poses as `poses` says), with what tells copies from the user's objects
-    /// ([`ownership::Traits`]). A child carrying a template's alias is named as a copy of it
+    /// ([`Traits`]). A child carrying a template's alias is named as a copy of it
     /// (`/Line[k]`), any other by its alias, so that only the templates' copies are taken
     /// for the maze's. A child the copy record names and of its template's type is known
     /// without reading its alias; one that is not recorded but named and typed like a copy
@@ -215,10 +218,10 @@ impl ZmqBackend {
     pub(super) fn collect(
         &mut self,
         poses: LinePoses,
-    ) -> Result<(Vec<ObjectInfo>, ownership::Traits), BackendError> {
+    ) -> Result<(Vec<ObjectInfo>, Traits), BackendError> {
         let known = self.known.clone();
         let mut out = Vec::new();
-        let mut found = ownership::Traits::default();
+        let mut found = Traits::default();
         let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
         for (info, kind) in self.named_infos(&known.named)? {
             found.kinds.insert(info.handle, kind);
@@ -270,7 +273,7 @@ impl ZmqBackend {
                      name: &str,
                      alias: &str,
                      kind: i32,
-                     found: &mut ownership::Traits|
+                     found: &mut Traits|
          -> Result<bool, BackendError> {
             let family = templates.iter().find(|t| {
                 ownership::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind)
@@ -420,7 +423,7 @@ impl ZmqBackend {
         roots: &[i32],
         record: &crate::draw::record::CopyRecord,
         templates: &[&str],
-        found: &mut ownership::Traits,
+        found: &mut Traits,
     ) -> Result<(), BackendError> {
         let recorded: Vec<i32> = roots
             .iter()
@@ -464,13 +467,13 @@ impl ZmqBackend {
     /// parents of what lies below `kids`, the dummy's children, in a second only when
     /// something does). A copy with children is the user's
     /// ([`ownership::contradicts_copy`]), one of another size or colour spoiled
-    /// ([`ownership::Traits::spoiled`]).
+    /// (`Traits::spoiled`).
     fn check_recorded(
         &mut self,
         parent: i32,
         kids: &[i32],
         recorded: &[(i32, i32)],
-        found: &mut ownership::Traits,
+        found: &mut Traits,
     ) -> Result<(), BackendError> {
         if recorded.is_empty() {
             return Ok(());
@@ -549,7 +552,7 @@ impl ZmqBackend {
         handle: i32,
         template: i32,
         tree: Option<(i32, &[i32])>,
-        found: &mut ownership::Traits,
+        found: &mut Traits,
     ) -> Result<(), BackendError> {
         for h in [template, handle] {
             if let Some(size) = self.extents(h)? {
