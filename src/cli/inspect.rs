@@ -498,13 +498,13 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
     if !m.stray_copies.is_empty() {
         say(format!(
             "stray copies outside the maze dummy: {}",
-            m.stray_copies.join(", ")
+            first_names(&m.stray_copies)
         ))?;
     }
     if !m.not_ours.is_empty() {
         say(format!(
             "under the maze dummy but not ours: {}",
-            m.not_ours.join(", ")
+            first_names(&m.not_ours)
         ))?;
     }
     if let Some(l) = &r.layout {
@@ -559,6 +559,24 @@ fn drawn_counts(m: &DrawnMaze) -> String {
     };
     format!("{lines}, {} walls, {} posts{of}", m.walls, m.posts)
 }
+
+/// The first [`NAMED`] of `names` and how many more, as `apply` and `clear` name them
+/// ("a, b, ... (2858 more)"); the `--json` document lists every one.
+fn first_names(names: &[String]) -> String {
+    let shown = names
+        .iter()
+        .take(NAMED)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    match names.len().saturating_sub(NAMED) {
+        0 => shown,
+        more => format!("{shown}, ... ({more} more)"),
+    }
+}
+
+/// How many names a line of `inspect` shows.
+const NAMED: usize = 12;
 
 /// An RGB colour (0..1) as `#rrggbb`.
 fn hex(c: [f64; 3]) -> String {

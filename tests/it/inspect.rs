@@ -428,3 +428,25 @@ fn inspect_counts_the_lines_apply_drew_and_misses_no_unused_template() {
         server.shutdown();
     }
 }
+
+/// Issue 38 row 11: `inspect` of a scene with many stray copies names the first 12 and
+/// counts the rest, as `apply` and `clear` do; `--json` lists every one.
+#[test]
+fn inspect_names_a_dozen_stray_copies_and_counts_the_rest() {
+    let mut scene = Scene::course();
+    let line = scene.resolve("Line").unwrap();
+    for _ in 0..30 {
+        scene.copy_paste(&[line]).unwrap();
+    }
+    let server = Kind::Legacy.serve(scene, 0);
+    let text = inspect_text(Kind::Legacy, &server);
+    let stray = text
+        .lines()
+        .find(|l| l.starts_with("stray copies outside the maze dummy: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(stray.ends_with(", ... (18 more)"), "{stray}");
+    assert_eq!(stray.matches(", ").count(), 12, "{stray}");
+    let report = inspect(Kind::Legacy, &server, &[], 0);
+    assert_eq!(report["maze"]["stray_copies"].as_array().unwrap().len(), 30);
+    server.shutdown();
+}
