@@ -144,6 +144,9 @@ fn a_hidden_mesh_is_replaced_and_one_moved_to_the_root_is_named(kind: Kind) {
     s.shutdown();
 }
 
+/// A user's edit of the object it is given, made in the emulated scene.
+type Edit = fn(&mut Simulator, i32);
+
 fn apply_copies(b: &mut Box<dyn Backend>, d: &Drawing) -> ApplyReport {
     draw::apply(&mut **b, d, &ApplyOptions::default(), &mut no_progress).unwrap()
 }
@@ -161,7 +164,7 @@ fn a_copy(sim: &Simulator) -> (i32, String) {
 fn a_scaled_or_recoloured_copy_is_pasted_anew(kind: Kind) {
     let k = kind.name();
     let d = Drawing::try_from(&course_layout(Algorithm::Dfs, 6, 5, 1)).unwrap();
-    let mut edits: Vec<(&str, &str, fn(&mut Simulator, i32))> = vec![(
+    let mut edits: Vec<(&str, &str, Edit)> = vec![(
         "scaled",
         " m, the template ",
         |sim: &mut Simulator, h: i32| sim.scene.scale(h, [1.3, 1.3, 1.0]).unwrap(),

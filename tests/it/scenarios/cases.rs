@@ -71,6 +71,9 @@ on_every_target!(
     edits_to_what_was_drawn_are_found_and_repaired,
 );
 
+/// A user's edit of the object it is given: the function called and its arguments.
+type UserEdit = dyn Fn(i32) -> (&'static str, Vec<ciborium::Value>);
+
 /// Issue 38 rows 1-3 and 8, through the command line: a drawn mesh scaled 5 %, hidden or
 /// recoloured, and a drawn copy scaled 1.3x or recoloured, are each found by `inspect
 /// --layout` and replaced by the next `apply`, after which `inspect --layout` agrees; a
@@ -86,10 +89,7 @@ fn edits_to_what_was_drawn_are_found_and_repaired(target: Target) {
     let float = ciborium::Value::Float;
     let red = || vrep_maze::zmq_api::cbor::float_array(&[1.0, 0.0, 0.0]);
     let text = |t: &str| ciborium::Value::Text(t.into());
-    let mut edits: Vec<(
-        &str,
-        Box<dyn Fn(i32) -> (&'static str, Vec<ciborium::Value>)>,
-    )> = vec![(
+    let mut edits: Vec<(&str, Box<UserEdit>)> = vec![(
         "scaled",
         Box::new(move |h| {
             let f = float(1.05);
