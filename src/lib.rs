@@ -18,8 +18,8 @@ pub mod cli;
 
 pub use vrep_maze_client::draw;
 pub use vrep_maze_core::{
-    atomic_file, batch, condition, coppelia, export, generate, layout, maze, mesh, render, rng,
-    score, validate, wording,
+    atomic_file, batch, condition, coppelia, export, generate, layout, maze, mesh, progress,
+    render, rng, score, validate, wording,
 };
 pub use vrep_maze_emulator::sim;
 

@@ -11,12 +11,13 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyAttributeError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vrep_maze::cli::Command;
+use vrep_maze::cli::reports::ApplyCounts;
 use vrep_maze::draw::run::Authored;
-use vrep_maze::draw::{self, ApplyOptions, Backend, DrawError, Picture, RunError};
+use vrep_maze::draw::{self, Backend, DrawError, RunError};
 
 use crate::errors;
 use crate::layout::Layout;
@@ -24,59 +25,46 @@ use crate::options;
 use crate::worker::{self, OnSignal};
 
 /// What `apply` did: the numbers `vrep-maze apply` prints. `str(report)` is its line.
-#[pyclass(frozen, get_all, module = "vrep_maze")]
+///
+/// The counts (`lines`, `posts`, `reused`, `pasted`, `removed`, `removed_meshes`,
+/// `unchanged`, `placed`, `placed_unread`, `markers_unchanged`, `markers_placed`,
+/// `nothing_to_do`, `edits`, `round_trips`) are the command line's own type
+/// ([`ApplyCounts`]), read by name as `vrep-maze apply --json` names them.
+#[pyclass(frozen, module = "vrep_maze")]
 pub struct ApplyReport {
-    /// Lines drawn (the template included), or a wall maze's walls.
-    lines: usize,
-    /// A wall maze's posts drawn, else 0.
-    posts: usize,
+    /// The counts, as the `--json` document has them.
+    counts: ApplyCounts,
     /// `draw="mesh"`: the meshes the maze is drawn as (`lines` and `posts` then count
     /// straight runs and posts, `reused` meshes kept, `pasted` meshes created); 0 for copies.
+    #[pyo3(get)]
     meshes: usize,
-    /// Copies from an earlier maze reused.
-    reused: usize,
-    /// Copies pasted.
-    pasted: usize,
-    /// Earlier copies removed.
-    removed: usize,
-    /// Objects of an earlier mesh maze a copies draw removed (its meshes and their holder).
-    removed_meshes: usize,
-    /// Lines and posts kept (the template, reused copies) already in place: no edit sent.
-    /// `lines + posts == unchanged + placed + pasted` (copies).
-    unchanged: usize,
-    /// Lines and posts kept whose pose (or parent) was sent.
-    placed: usize,
-    /// Of `placed`: poses sent without reading them first (ZeroMQ: reading a pose costs
-    /// a round trip as setting it does; 0 over the legacy API).
-    placed_unread: usize,
-    /// Markers (`Start`, `End`, the line template where it is not a line) already in place.
-    markers_unchanged: usize,
-    /// Markers whose pose was sent (a dry run: would be).
-    markers_placed: usize,
-    /// `dry_run=True` found that a real run would change nothing.
-    nothing_to_do: bool,
     /// What the user should know (a marker larger than a cell, a size not read, a template
     /// standing on the maze): the `warning:` lines of `vrep-maze apply`.
+    #[pyo3(get)]
     warnings: Vec<String>,
     /// The user's objects under the maze dummy (no copies of a template): left alone.
+    #[pyo3(get)]
     left_alone: Vec<String>,
-    /// Edits sent.
-    edits: usize,
-    /// Messages exchanged with the simulator.
-    round_trips: usize,
     /// Wall time, seconds.
+    #[pyo3(get)]
     elapsed: f64,
     /// The simulation was running and `stop_simulation=True` stopped it first.
+    #[pyo3(get)]
     stopped_simulation: bool,
     /// `dry_run=True`: nothing was changed.
+    #[pyo3(get)]
     dry_run: bool,
     /// Every line, start and end was read back in place (always, unless a dry run).
+    #[pyo3(get)]
     verified: bool,
     /// Objects `create_missing=True` created.
+    #[pyo3(get)]
     created: Vec<String>,
     /// Where `save_scene` saved the scene (on the simulator's machine), if asked.
+    #[pyo3(get)]
     saved_scene: Option<String>,
     /// The line `vrep-maze apply` prints.
+    #[pyo3(get)]
     summary: String,
 }
 
@@ -89,6 +77,22 @@ impl ApplyReport {
     fn __repr__(&self) -> String {
         format!("<ApplyReport {}>", self.summary)
     }
+
+    /// A count by its name in [`ApplyCounts`] (`report.lines`, `report.placed_unread`, ...).
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let counts = serde_json::to_value(&self.counts)
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        match counts.get(name) {
+            Some(serde_json::Value::Bool(b)) => Ok(b.into_pyobject(py)?.to_owned().into_any()),
+            Some(serde_json::Value::Number(n)) => {
+                let n = n.as_u64().unwrap_or_default();
+                Ok(n.into_pyobject(py)?.into_any())
+            }
+            _ => Err(PyAttributeError::new_err(format!(
+                "'ApplyReport' object has no attribute '{name}'"
+            ))),
+        }
+    }
 }
 
 impl From<draw::Report> for ApplyReport {
@@ -100,23 +104,10 @@ impl From<draw::Report> for ApplyReport {
             saved_scene,
         } = done;
         ApplyReport {
-            lines: report.pieces,
-            posts: report.posts,
+            counts: ApplyCounts::of(&report),
             meshes: report.meshes,
-            reused: report.reused,
-            pasted: report.pasted,
-            removed: report.removed,
-            removed_meshes: report.removed_meshes,
-            unchanged: report.unchanged,
-            placed: report.placed,
-            placed_unread: report.unread,
-            markers_unchanged: report.markers_unchanged,
-            markers_placed: report.markers_placed,
-            nothing_to_do: report.dry_run && report.nothing_to_do(),
             warnings: report.warnings.clone(),
             left_alone: report.left_alone.clone(),
-            edits: report.edits,
-            round_trips: report.round_trips,
             elapsed: report.elapsed.as_secs_f64(),
             stopped_simulation: report.stopped_simulation,
             dry_run: report.dry_run,
@@ -295,30 +286,15 @@ pub fn apply(
         ));
     }
     let stop = Stop::default();
-    let opts = ApplyOptions {
-        names: args.scene.names(),
-        stop_simulation: args.stop_simulation,
-        dry_run: args.dry_run,
-        resize_floor: args.resize_floor,
-        interrupt: Some(stop.requested.clone()),
-        ..Default::default()
-    };
-    let mode = args.draw.into();
-    let (create_missing, save_scene) = (args.create_missing, args.save_scene);
-    let scene = args.scene;
+    let interrupt = stop.requested.clone();
     let layout = layout.layout.clone();
     let connected = stop.connected.clone();
     let job = move || {
-        let picture = Picture::of(&layout, mode).context("nothing was drawn")?;
-        let mut backend = scene.connect()?;
+        let job = args
+            .job(&layout, Some(interrupt))
+            .context("nothing was drawn")?;
+        let mut backend = args.scene.connect()?;
         connected.store(true, Ordering::SeqCst);
-        let job = draw::Job {
-            layout: &layout,
-            picture,
-            options: opts,
-            create_missing,
-            save_scene,
-        };
         let result = draw_connected(backend.as_mut(), &job);
         let closed = backend.close().is_ok();
         Ok(match result? {

@@ -1,7 +1,7 @@
 //! `Layout`: one maze, as `vrep-maze generate` writes it, and the functions that make one
 //! (`generate`, `load`, `Layout.from_json`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use numpy::PyArray2;
@@ -11,7 +11,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyString};
 use vrep_maze::atomic_file::write_atomically;
 use vrep_maze::cli::Command;
-use vrep_maze::export::{Format as ExportFormat, export};
+use vrep_maze::cli::usage::export_error;
+use vrep_maze::export::{Format as ExportFormat, Target, export, ros_map};
 use vrep_maze::layout::block_grid::BlockGrid;
 use vrep_maze::layout::json::{parse_layout, to_string};
 use vrep_maze::layout::solution::solve;
@@ -64,7 +65,7 @@ impl Layout {
 
     /// The layout as blocks (see `maze_map`).
     fn block_grid(&self) -> PyResult<BlockGrid> {
-        BlockGrid::of(&self.layout).map_err(PyValueError::new_err)
+        BlockGrid::of(&self.layout).map_err(|e| PyValueError::new_err(e.to_string()))
     }
 
     fn cell(&self, cell: [u32; 2]) -> (u32, u32) {
@@ -282,7 +283,7 @@ impl Layout {
         let layout = &self.layout;
         let bytes = py
             .detach(|| format.render_to_vec(layout, &options))
-            .map_err(|e| errors::from_anyhow(py, &e))?;
+            .map_err(|e| errors::from_anyhow(py, &e.into()))?;
         match path {
             Some(path) => {
                 py.detach(|| write_atomically(&path, |w| w.write_all(&bytes)))
@@ -302,19 +303,28 @@ impl Layout {
 
     /// Writes the maze for a simulator as `vrep-maze export -o path` does (atomically), the
     /// format chosen by the ending: `.simmodel.xml` / `.simscene.xml` (CoppeliaSim), `.mjcf` /
-    /// `.mujoco.xml` (MuJoCo), `.sdf` / `.world` (Gazebo), `.urdf`, `.wbt` (Webots). A
-    /// `ValueError` naming the endings for any other (a bare `.xml` is ambiguous).
+    /// `.mujoco.xml` (MuJoCo), `.sdf` / `.world` (Gazebo), `.urdf`, `.wbt` (Webots),
+    /// `.pointmaze.json` (Gymnasium-Robotics PointMaze/AntMaze arguments), `.yaml` / `.yml` (a
+    /// ROS map_server occupancy map: the YAML and beside it the PGM image of the same name,
+    /// at the command line's default scale). A `ValueError` naming the endings for any other
+    /// (a bare `.xml` is ambiguous).
     fn export(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
-        let format = ExportFormat::from_path(&path).ok_or_else(|| {
-            PyValueError::new_err(ExportFormat::refusal(&path, false).worded(&Keywords))
-        })?;
+        let format = match Target::from_path(&path) {
+            Some(Target::Format(format)) => format,
+            Some(Target::RosMap) => return self.export_ros_map(py, &path),
+            None => {
+                return Err(PyValueError::new_err(
+                    ExportFormat::refusal(&path, false).worded(&Keywords),
+                ));
+            }
+        };
         let layout = &self.layout;
         let bytes = py
             .detach(|| {
                 let mut bytes = Vec::new();
                 export(format, layout, &mut bytes).map(|()| bytes)
             })
-            .map_err(|e| errors::from_anyhow(py, &e))?;
+            .map_err(|e| errors::from_anyhow(py, &export_error(e)))?;
         py.detach(|| write_atomically(&path, |w| w.write_all(&bytes)))
             .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
         Ok(())
@@ -325,7 +335,7 @@ impl Layout {
         let layout = &self.layout;
         let bytes = py
             .detach(|| Format::Svg.render_to_vec(layout, &RenderOptions::default()))
-            .map_err(|e| errors::from_anyhow(py, &e))?;
+            .map_err(|e| errors::from_anyhow(py, &e.into()))?;
         String::from_utf8(bytes).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
@@ -454,4 +464,28 @@ pub fn generate(
 pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<Layout> {
     let layout = py.detach(|| read_layout(&path)).map_err(read_error)?;
     Layout::checked(py, layout, &path.display().to_string())
+}
+
+impl Layout {
+    /// `export` to a ROS map: the PGM beside the YAML (same name, `.pgm`), then the YAML
+    /// naming it, each replaced atomically, as `vrep-maze export -o map.yaml` writes them.
+    fn export_ros_map(&self, py: Python<'_>, yaml: &Path) -> PyResult<()> {
+        let pgm = yaml.with_extension("pgm");
+        let image = pgm
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let layout = &self.layout;
+        let map = py
+            .detach(|| ros_map::map(layout, &ros_map::Options::default(), &image))
+            .map_err(|e| errors::from_anyhow(py, &export_error(e)))?;
+        for (path, bytes) in [
+            (&pgm, &map.pgm[..]),
+            (&yaml.to_path_buf(), map.yaml.as_bytes()),
+        ] {
+            py.detach(|| write_atomically(path, |w| w.write_all(bytes)))
+                .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
+        }
+        Ok(())
+    }
 }

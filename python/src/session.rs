@@ -20,7 +20,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::{Command, Interrupted, inspect};
-use vrep_maze::draw::{self, ApplyOptions, BackendError, DrawError, Picture};
+use vrep_maze::draw::{self, BackendError, DrawError};
 
 use crate::draw::{ApplyReport, ClearReport, Finished, Stop, cleared, draw_connected, run_drawing};
 use crate::errors;
@@ -147,26 +147,12 @@ impl Session {
             return Err(PyRuntimeError::new_err("apply parsed as another command"));
         };
         let stop = Stop::default();
-        let opts = ApplyOptions {
-            names: args.scene.names(),
-            stop_simulation: args.stop_simulation,
-            dry_run: args.dry_run,
-            resize_floor: args.resize_floor,
-            interrupt: Some(stop.requested.clone()),
-            ..Default::default()
-        };
-        let mode = args.draw.into();
-        let (create_missing, save_scene) = (args.create_missing, args.save_scene);
+        let interrupt = stop.requested.clone();
         let layout = layout.layout.clone();
         let work = move |session: &mut draw::Session| {
-            let picture = Picture::of(&layout, mode).context("nothing was drawn")?;
-            let job = draw::Job {
-                layout: &layout,
-                picture,
-                options: opts,
-                create_missing,
-                save_scene,
-            };
+            let job = args
+                .job(&layout, Some(interrupt))
+                .context("nothing was drawn")?;
             draw_connected(session.connected()?, &job)
         };
         self.run(py, &stop, work, ApplyReport::from)

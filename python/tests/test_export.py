@@ -27,3 +27,16 @@ def test_export_refuses_unknown_and_ambiguous_endings(tmp_path):
     with pytest.raises(ValueError, match=r"\.sdf, \.world, \.urdf, \.wbt"):
         layout.export(str(tmp_path / "m.obj"))
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("ending", [".yaml", ".yml"])
+def test_export_writes_a_ros_map_as_the_command_does(tmp_path, ending):
+    ours, theirs = tmp_path / "ours", tmp_path / "theirs"
+    ours.mkdir()
+    theirs.mkdir()
+    assert vrep_maze.load(GOLDEN).export(ours / f"m{ending}") is None
+    done = run_cli("export", GOLDEN, "-o", theirs / f"m{ending}")
+    assert done.returncode == 0, done.stderr
+    for name in [f"m{ending}", "m.pgm"]:
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes()
+    assert sorted(p.name for p in ours.iterdir()) == sorted(p.name for p in theirs.iterdir())

@@ -1,6 +1,8 @@
 //! `vrep-maze apply`: draw a layout into CoppeliaSim over the legacy or the ZeroMQ remote API.
 
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 use anyhow::Context;
@@ -10,7 +12,7 @@ use super::usage::ensure_usage;
 
 use super::connect::{Api, Connected, RawClient, connect, connect_client};
 use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
-use super::reports::{ApplyJson, REPORT_VERSION};
+use super::reports::{ApplyCounts, ApplyJson, REPORT_VERSION};
 use super::say::{self, say};
 use crate::draw::run::Authored;
 use crate::draw::{self, ApplyOptions, Backend, DrawError, ObjectNames, Picture, RunError, Stage};
@@ -286,23 +288,39 @@ pub fn run(args: ApplyArgs, bars: Progress) -> anyhow::Result<std::process::Exit
     // two roles on one object: refused at once, before connecting
     args.scene.check_roles()?;
     let layout = crate::layout::read_layout(&args.layout)?;
-    let picture = Picture::of(&layout, args.draw.into())
+    let job = args
+        .job(&layout, None)
         .with_context(|| format!("{}: nothing was drawn", args.layout.display()))?;
-    let words = Words::of(&picture);
-    let job = draw::Job {
-        layout: &layout,
-        picture,
-        options: ApplyOptions {
-            names: args.scene.names(),
-            stop_simulation: args.stop_simulation,
-            dry_run: args.dry_run,
-            resize_floor: args.resize_floor,
-            ..Default::default()
-        },
-        create_missing: args.create_missing,
-        save_scene: args.save_scene.clone(),
-    };
+    let words = Words::of(&job.picture);
     drive(&args, bars, job, words)
+}
+
+impl ApplyArgs {
+    /// The one place `apply`'s options become a [`draw::Job`] (the command line's and
+    /// Python's `apply`, a session's too): `layout` drawn the `--draw` way, with the object
+    /// names, `--stop-simulation`, `--dry-run`, `--resize-floor`, `--create-missing` and
+    /// `--save-scene`; `interrupt` is the flag Ctrl-C sets. Fails when the layout cannot be
+    /// drawn ([`Picture::of`]).
+    pub fn job<'a>(
+        &self,
+        layout: &'a crate::layout::Layout,
+        interrupt: Option<Arc<AtomicBool>>,
+    ) -> Result<draw::Job<'a>, crate::validate::Invalid> {
+        Ok(draw::Job {
+            layout,
+            picture: Picture::of(layout, self.draw.into())?,
+            options: ApplyOptions {
+                names: self.scene.names(),
+                stop_simulation: self.stop_simulation,
+                dry_run: self.dry_run,
+                resize_floor: self.resize_floor,
+                interrupt,
+                ..Default::default()
+            },
+            create_missing: self.create_missing,
+            save_scene: self.save_scene.clone(),
+        })
+    }
 }
 
 /// The words `apply` tells one draw mode's progress and outcome in.
@@ -416,21 +434,8 @@ fn drive(
     if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal
-        let closed = backend.close();
-        eprintln!(
-            "interrupted: {placed} of {total} {}; the idle rate is restored{}",
-            words.interrupted,
-            if closed.is_ok() {
-                " and the connection closed cleanly"
-            } else {
-                ""
-            }
-        );
-        eprintln!(
-            "  hint: run the same apply again to finish the maze, or {} to remove it",
-            super::escape::escaped(&args.scene.command("clear"))
-        );
-        return Ok(std::process::ExitCode::from(INTERRUPTED_EXIT_CODE));
+        let closed = backend.close().is_ok();
+        return Ok(say_interrupted(args, &words, (*placed, *total), closed));
     }
     let done = result.map_err(|e| run_error(e, &args.layout, can_create))?;
     let report = &done.drawn;
@@ -443,6 +448,45 @@ fn drive(
         ))?;
     }
     let _ = backend.close();
+    say_done(args, &job.options.names.parent, &words, connection, done)?;
+    Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// What an interrupted apply says on standard error: how far it got (`placed` of `total`),
+/// whether the connection `closed` cleanly, and how to finish or undo it.
+fn say_interrupted(
+    args: &ApplyArgs,
+    words: &Words,
+    (placed, total): (usize, usize),
+    closed: bool,
+) -> std::process::ExitCode {
+    eprintln!(
+        "interrupted: {placed} of {total} {}; the idle rate is restored{}",
+        words.interrupted,
+        if closed {
+            " and the connection closed cleanly"
+        } else {
+            ""
+        }
+    );
+    eprintln!(
+        "  hint: run the same apply again to finish the maze, or {} to remove it",
+        super::escape::escaped(&args.scene.command("clear"))
+    );
+    std::process::ExitCode::from(INTERRUPTED_EXIT_CODE)
+}
+
+/// What a finished apply says once the connection is closed: a stopped simulation, a grown
+/// floor, the summary line, the user's objects left alone under `parent`, what was verified,
+/// and with `--json` the document.
+fn say_done(
+    args: &ApplyArgs,
+    parent: &str,
+    words: &Words,
+    connection: String,
+    done: draw::Report,
+) -> anyhow::Result<()> {
+    let report = &done.drawn;
     if report.stopped_simulation {
         say("stopped the simulation first")?;
     }
@@ -450,7 +494,7 @@ fn drive(
         say(line)?;
     }
     say(super::summary::apply_line(report))?;
-    if let Some(line) = draw::left_alone_line(&report.left_alone, &job.options.names.parent) {
+    if let Some(line) = draw::left_alone_line(&report.left_alone, parent) {
         say(line)?;
     }
     if !report.dry_run {
@@ -459,7 +503,7 @@ fn drive(
     if args.json {
         say::document(&apply_json(args, connection, done))?;
     }
-    Ok(std::process::ExitCode::SUCCESS)
+    Ok(())
 }
 
 /// A failed [`draw::run`] in the command line's words; with `can_create`, missing objects'
@@ -498,20 +542,7 @@ fn apply_json(args: &ApplyArgs, connection: String, done: draw::Report) -> Apply
         layout: args.layout.display().to_string(),
         connection,
         style: report.style,
-        lines: report.pieces,
-        posts: report.posts,
-        reused: report.reused,
-        pasted: report.pasted,
-        removed: report.removed,
-        removed_meshes: report.removed_meshes,
-        unchanged: report.unchanged,
-        placed: report.placed,
-        placed_unread: report.unread,
-        markers_unchanged: report.markers_unchanged,
-        markers_placed: report.markers_placed,
-        nothing_to_do: report.dry_run && report.nothing_to_do(),
-        edits: report.edits,
-        round_trips: report.round_trips,
+        counts: ApplyCounts::of(report),
         seconds: report.elapsed.as_secs_f64(),
         stopped_simulation: report.stopped_simulation,
         dry_run: report.dry_run,

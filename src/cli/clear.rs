@@ -73,12 +73,6 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     } else {
         "removed"
     };
-    let shown: Vec<&str> = report.removed.iter().take(12).map(String::as_str).collect();
-    let more = if report.removed.len() > shown.len() {
-        format!(", ... ({} more)", report.removed.len() - shown.len())
-    } else {
-        String::new()
-    };
     if let Some(fps) = report.restored_idle_fps {
         say(format!(
             "restored the idle rate to {fps} fps (an interrupted apply had left it at 0)"
@@ -98,17 +92,8 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
             "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under Maze in the scene",
         )?;
     }
-    if !report.removed.is_empty() {
-        say(format!(
-            "{verb} {} maze cop{}: {}{more}",
-            report.removed.len(),
-            if report.removed.len() == 1 {
-                "y"
-            } else {
-                "ies"
-            },
-            shown.join(", ")
-        ))?;
+    if let Some(line) = copies_line(verb, &report.removed) {
+        say(line)?;
     }
     if let Some(line) = mesh_line(verb, &report.removed_meshes) {
         say(line)?;
@@ -127,6 +112,26 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
         })?;
     }
     Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// "removed N maze copies: a, b, ... (M more)", naming the first dozen; `None` when none
+/// were removed.
+fn copies_line(verb: &str, removed: &[String]) -> Option<String> {
+    if removed.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = removed.iter().take(12).map(String::as_str).collect();
+    let more = if removed.len() > shown.len() {
+        format!(", ... ({} more)", removed.len() - shown.len())
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "{verb} {} maze cop{}: {}{more}",
+        removed.len(),
+        if removed.len() == 1 { "y" } else { "ies" },
+        shown.join(", ")
+    ))
 }
 
 /// The line that says a mesh maze (`apply --draw mesh`) went: its meshes and their holder.

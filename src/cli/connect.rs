@@ -242,61 +242,72 @@ fn open<T: Opened>(
             timeout,
             connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
         ),
-        Api::Auto => {
-            // with --port, both APIs are tried on that port
-            let (legacy_port, zmq_port) = match port {
-                Some(p) => (p, p),
-                None => (legacy_port()?, zmq_port()?),
-            };
-            let refusal = SessionMarker::for_address(host, legacy_port)
-                .left_abruptly()
-                .is_some();
-            let wait = match connect_timeout {
-                Some(t) => t.min(AUTO_LEGACY_WAIT),
-                // the refusal can be the cause: wait it out on the legacy port
-                None if refusal => LEGACY_REFUSAL_WAIT,
-                None => AUTO_LEGACY_WAIT,
-            };
-            let legacy_err = match legacy(host, legacy_port, timeout, Some(wait), None, stop) {
-                Ok(c) => return Ok(c),
-                Err(e) if e.is::<Interrupted>() => return Err(e),
-                Err(e) => e,
-            };
-            super::say::note(format!(
-                "the legacy remote API did not answer at {}; trying the ZeroMQ one",
-                socket_addr(host, legacy_port)
-            ));
-            let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
-            T::zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
-                let refused = nothing_listened(&legacy_err);
-                let mut hints = vec![if refused
-                    && matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }))
-                {
-                    "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into()
-                } else {
-                    // something answered that speaks neither API: no simulator to wait for
-                    format!(
-                        "something other than CoppeliaSim listens there: check --port (CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT})"
-                    )
-                }];
-                if refused {
-                    hints.push(format!(
-                        "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
-                        seconds(wait),
-                        LEGACY_REFUSAL_WAIT.as_secs()
-                    ));
-                }
-                connect_error(
-                    format!(
-                        "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
-                        one_line(&legacy_err),
-                        one_line(&zmq_err)
-                    ),
-                    hints,
-                )
-            })
-        }
+        Api::Auto => auto(host, port, timeout, connect_timeout, stop),
     }
+}
+
+/// `--api auto`: the legacy API first, briefly (or through CoppeliaSim's minute of refusal
+/// when an earlier run left so), then the ZeroMQ one; when neither answers, one error that
+/// says what each port did, with hints.
+fn auto<T: Opened>(
+    host: &str,
+    port: Option<u16>,
+    timeout: Duration,
+    connect_timeout: Option<Duration>,
+    stop: Option<&AtomicBool>,
+) -> anyhow::Result<T> {
+    // with --port, both APIs are tried on that port
+    let (legacy_port, zmq_port) = match port {
+        Some(p) => (p, p),
+        None => (legacy_port()?, zmq_port()?),
+    };
+    let refusal = SessionMarker::for_address(host, legacy_port)
+        .left_abruptly()
+        .is_some();
+    let wait = match connect_timeout {
+        Some(t) => t.min(AUTO_LEGACY_WAIT),
+        // the refusal can be the cause: wait it out on the legacy port
+        None if refusal => LEGACY_REFUSAL_WAIT,
+        None => AUTO_LEGACY_WAIT,
+    };
+    let legacy_err = match legacy(host, legacy_port, timeout, Some(wait), None, stop) {
+        Ok(c) => return Ok(c),
+        Err(e) if e.is::<Interrupted>() => return Err(e),
+        Err(e) => e,
+    };
+    super::say::note(format!(
+        "the legacy remote API did not answer at {}; trying the ZeroMQ one",
+        socket_addr(host, legacy_port)
+    ));
+    let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
+    T::zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
+            let refused = nothing_listened(&legacy_err);
+            let mut hints = vec![if refused
+                && matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }))
+            {
+                "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into()
+            } else {
+                // something answered that speaks neither API: no simulator to wait for
+                format!(
+                    "something other than CoppeliaSim listens there: check --port (CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT})"
+                )
+            }];
+            if refused {
+                hints.push(format!(
+                    "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
+                    seconds(wait),
+                    LEGACY_REFUSAL_WAIT.as_secs()
+                ));
+            }
+            connect_error(
+                format!(
+                    "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
+                    one_line(&legacy_err),
+                    one_line(&zmq_err)
+                ),
+                hints,
+            )
+        })
 }
 
 /// `host:port`, with brackets around an IPv6 address.

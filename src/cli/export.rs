@@ -2,15 +2,15 @@
 //! MJCF, Gazebo SDF, URDF, a Webots world, Gymnasium-Robotics' PointMaze arguments or a ROS
 //! map_server occupancy map.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 use clap::Args;
 
 use super::output::write_output;
-use super::usage::{ensure_usage, usage};
-use crate::export::{Format, export, ros_map};
+use super::usage::{ensure_usage, export_error, usage};
+use crate::export::{Format, Target, export, ros_map};
 
 /// Options of `export`.
 #[derive(Debug, Args)]
@@ -20,12 +20,8 @@ use crate::export::{Format, export, ros_map};
 pub struct ExportArgs {
     /// The layout file (`-` reads standard input).
     pub file: PathBuf,
-    /// The file to write; its ending chooses the format: .simmodel.xml (CoppeliaSim model),
-    /// .simscene.xml (CoppeliaSim scene), .mjcf or .mujoco.xml (MuJoCo), .sdf or .world
-    /// (Gazebo), .urdf, .wbt (Webots), .pointmaze.json (Gymnasium-Robotics PointMaze/AntMaze),
-    /// .yaml or .yml (a ROS map_server occupancy map: the YAML and beside it the PGM image of
-    /// the same name).
-    #[arg(short, long)]
+    /// The file to write; its ending chooses the format ([`output_help`] lists them).
+    #[arg(short, long, help = output_help())]
     pub output: PathBuf,
     /// The format, whatever the output's ending (for a bare `.xml`, say).
     #[arg(long, value_name = "NAME")]
@@ -40,11 +36,28 @@ pub struct ExportArgs {
     pub occupied_lines: bool,
 }
 
+/// `--output`'s help: every ending and what it writes, from [`Format::ALL`] and the ROS
+/// map's [`ros_map::FILE_ENDINGS`], so no ending is listed by hand.
+fn output_help() -> String {
+    let formats = Format::ALL
+        .iter()
+        .map(|f| format!("{} ({})", f.file_endings().join(" or "), f.label()));
+    let ros = format!(
+        "{} (a ROS map_server occupancy map: the YAML and beside it the PGM image of the same name)",
+        ros_map::FILE_ENDINGS.join(" or ")
+    );
+    let endings: Vec<String> = formats.chain([ros]).collect();
+    format!(
+        "The file to write; its ending chooses the format: {}",
+        endings.join(", ")
+    )
+}
+
 /// Runs `export`: the layout is read and validated completely before anything is written,
 /// and the file is replaced atomically.
 pub fn run(args: ExportArgs) -> Result<ExitCode> {
-    let ros = args.format.is_none() && is_ros_map(&args.output);
-    if ros {
+    let target = Target::from_path(&args.output);
+    if args.format.is_none() && target == Some(Target::RosMap) {
         return ros_map(&args);
     }
     ensure_usage!(
@@ -54,12 +67,15 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
     );
     let format = match args.format {
         Some(format) => format,
-        None => Format::from_path(&args.output)
-            .ok_or_else(|| usage(Format::refusal(&args.output, true)))?,
+        None => match target {
+            Some(Target::Format(format)) => format,
+            _ => return Err(usage(Format::refusal(&args.output, true))),
+        },
     };
     let layout = crate::layout::read_layout(&args.file)?;
     let mut text = Vec::new();
     export(format, &layout, &mut text)
+        .map_err(export_error)
         .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
     write_output(Some(&args.output), |w| w.write_all(&text))?;
     // said as `render` says what it wrote
@@ -70,12 +86,6 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
         super::validate::describe(&layout, layout.segments.len())
     ));
     Ok(ExitCode::SUCCESS)
-}
-
-/// Whether `path` ends as a ROS map's YAML does ([`ros_map::FILE_ENDINGS`]).
-fn is_ros_map(path: &Path) -> bool {
-    let name = path.to_string_lossy().to_ascii_lowercase();
-    ros_map::FILE_ENDINGS.iter().any(|e| name.ends_with(e))
 }
 
 /// `export -o maze.yaml`: the PGM beside the YAML (same name, `.pgm`), then the YAML
@@ -101,6 +111,7 @@ fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
         },
     };
     let map = ros_map::map(&layout, &options, &image)
+        .map_err(export_error)
         .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
     write_output(Some(&pgm), |w| w.write_all(&map.pgm))?;
     write_output(Some(&args.output), |w| w.write_all(map.yaml.as_bytes()))?;

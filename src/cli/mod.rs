@@ -73,7 +73,8 @@ pub enum Command {
     /// Draw a layout as ASCII (terminal), SVG or PNG (the floor as the camera sees it).
     Render(render::RenderArgs),
     /// Write a layout as a file a simulator loads: CoppeliaSim XML model or scene, MuJoCo,
-    /// Gazebo (SDF), URDF, Webots, or a ROS map_server occupancy map (.yaml + .pgm).
+    /// Gazebo (SDF), URDF, Webots, Gymnasium-Robotics PointMaze arguments, or a ROS
+    /// map_server occupancy map (.yaml + .pgm).
     Export(export::ExportArgs),
     /// The solution as data: its cells and floor waypoints (JSON), or a timed path (CSV).
     Solve(solve::SolveArgs),

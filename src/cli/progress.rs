@@ -75,6 +75,20 @@ impl Progress {
     }
 }
 
+/// A progress bar that the core's long steps tell ([`crate::progress::Progress`]): the
+/// core counts, the bar shows.
+pub struct Told<'a>(pub &'a ProgressBar);
+
+impl crate::progress::Progress for Told<'_> {
+    fn set_length(&self, steps: u64) {
+        self.0.set_length(steps);
+    }
+
+    fn advance(&self, steps: u64) {
+        self.0.inc(steps);
+    }
+}
+
 /// The bar's look for `unit`.
 fn style(unit: Unit) -> ProgressStyle {
     let template = match unit {

@@ -10,12 +10,12 @@ use clap::Args;
 
 use super::listed::listed;
 use super::output::write_output;
-use super::progress::{Progress, Unit};
+use super::progress::{Progress, Told, Unit};
 use super::say::note;
 use super::usage::{ensure_usage, usage};
 use super::validate::{describe, read_checking};
 use super::values::parse_metres;
-use crate::render::{Format, RenderOptions, Scale};
+use crate::render::{Format, RenderError, RenderOptions, Scale};
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -98,19 +98,26 @@ pub fn run(args: RenderArgs, bars: Progress) -> Result<ExitCode> {
     };
     // Each renderer sets the length: maze rows, or pixel rows for PNG.
     let progress = bars.bar("rendering", 0, Unit::Items("rows"));
+    let told = Told(&progress);
     // The picture streams into the output; a failure that is not the output's own (an
     // I/O error) is kept whole here and reported with the layout's name.
     let mut failure = None;
     let written = write_output(output, |w| {
         match &trajectory {
-            None => format.renderer().render(&layout, &options, w, &progress),
-            Some(run) => crate::render::render_run(format, &layout, &options, run, w, &progress),
+            None => format.renderer().render(&layout, &options, w, &told),
+            Some(run) => crate::render::render_run(format, &layout, &options, run, w, &told),
         }
-        .map_err(|e| {
-            e.downcast::<io::Error>().unwrap_or_else(|other| {
-                failure = Some(other);
+        .map_err(|e| match e {
+            RenderError::Io(e) => e,
+            // a refusal's options are worded by the command line: the message itself
+            RenderError::Refused(message) => {
+                failure = Some(anyhow::Error::new(message));
                 io::Error::other("the picture could not be drawn")
-            })
+            }
+            other => {
+                failure = Some(anyhow::Error::new(other));
+                io::Error::other("the picture could not be drawn")
+            }
         })
     });
     progress.finish_and_clear();

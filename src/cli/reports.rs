@@ -122,6 +122,29 @@ pub struct ApplyJson {
     pub connection: String,
     /// lines or walls: what `lines` counts.
     pub style: Style,
+    /// What the drawing counted.
+    #[serde(flatten)]
+    pub counts: ApplyCounts,
+    /// Wall time, seconds.
+    pub seconds: f64,
+    /// The simulation was stopped first.
+    pub stopped_simulation: bool,
+    /// Dry run: nothing was changed.
+    pub dry_run: bool,
+    /// Every copy, start and end was read back in place (false on a dry run).
+    pub verified: bool,
+    /// Scene objects created first (`--create-missing`).
+    pub created: Vec<String>,
+    /// Where the scene was saved (`--save-scene`), on the simulator's machine.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub saved_scene: Option<String>,
+}
+
+/// The counts of a finished apply, named as users read them: the `--json` document
+/// (flattened into [`ApplyJson`]) and Python's `ApplyReport` embed this one type, made from
+/// the drawing's report at the edge ([`ApplyCounts::of`]; `draw`'s `pieces` are `lines`).
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
+pub struct ApplyCounts {
     /// Lines drawn (template included), or walls: with `posts`, `unchanged + placed +
     /// pasted` (`--draw mesh`: rectangles).
     pub lines: usize,
@@ -154,19 +177,28 @@ pub struct ApplyJson {
     pub edits: usize,
     /// Messages exchanged with the simulator.
     pub round_trips: usize,
-    /// Wall time, seconds.
-    pub seconds: f64,
-    /// The simulation was stopped first.
-    pub stopped_simulation: bool,
-    /// Dry run: nothing was changed.
-    pub dry_run: bool,
-    /// Every copy, start and end was read back in place (false on a dry run).
-    pub verified: bool,
-    /// Scene objects created first (`--create-missing`).
-    pub created: Vec<String>,
-    /// Where the scene was saved (`--save-scene`), on the simulator's machine.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub saved_scene: Option<String>,
+}
+
+impl ApplyCounts {
+    /// The counts of `report`.
+    pub fn of(report: &crate::draw::ApplyReport) -> ApplyCounts {
+        ApplyCounts {
+            lines: report.pieces,
+            posts: report.posts,
+            reused: report.reused,
+            pasted: report.pasted,
+            removed: report.removed,
+            removed_meshes: report.removed_meshes,
+            unchanged: report.unchanged,
+            placed: report.placed,
+            placed_unread: report.unread,
+            markers_unchanged: report.markers_unchanged,
+            markers_placed: report.markers_placed,
+            nothing_to_do: report.dry_run && report.nothing_to_do(),
+            edits: report.edits,
+            round_trips: report.round_trips,
+        }
+    }
 }
 
 /// What `vrep-maze clear --json` prints (`schema/clear-v1.schema.json`).

@@ -117,8 +117,32 @@ pub enum Naming {
 /// The most bytes of a `--scene` file.
 const MAX_SCENE_BYTES: usize = 1 << 30;
 
-/// Runs the server until Ctrl-C / SIGTERM.
+/// Runs the server until Ctrl-C / SIGTERM: the scene, the timing and the addresses from
+/// the options (each refused as a usage error), then the servers.
 pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
+    let scene = scene(&args)?;
+    ensure_usage!(
+        (0..=1000).contains(&args.idle_fps),
+        "--idle-fps must be in 0..=1000, got {}",
+        args.idle_fps
+    );
+    let timing = timing(&args)?;
+    let (legacy_listen, zmq_listen) = addresses(&args)?;
+    let (tx, rx) = std::sync::mpsc::channel();
+    ctrlc::set_handler(move || {
+        let _ = tx.send(());
+    })
+    .context("cannot install the Ctrl-C handler")?;
+    let mut sim = Simulator::new(scene, args.idle_fps);
+    if let Some(path) = &args.robot {
+        sim.robot = Some(robot_path(&mut sim.scene, path)?);
+    }
+    serve(&args, sim, timing, (legacy_listen, zmq_listen), &rx)?;
+    Ok(std::process::ExitCode::SUCCESS)
+}
+
+/// `--scene` (the course, its wall maze, an empty scene or a file) named as `--naming` says.
+fn scene(args: &ServeArgs) -> anyhow::Result<Scene> {
     let mut scene = match args.scene.as_str() {
         "course" => Scene::course(),
         "course-walls" => Scene::course_walls(),
@@ -138,11 +162,11 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         Naming::Plain => NamingMode::Plain,
         Naming::Hash => NamingMode::Hash,
     };
-    ensure_usage!(
-        (0..=1000).contains(&args.idle_fps),
-        "--idle-fps must be in 0..=1000, got {}",
-        args.idle_fps
-    );
+    Ok(scene)
+}
+
+/// `--timing` at the `--protocol`'s build, with `--reconnect-penalty`.
+fn timing(args: &ServeArgs) -> anyhow::Result<Timing> {
     let mut timing = match args.timing {
         // protocol 2 is served as 4.10 (`../shared/spec/real-coppeliasim-4.10.md`), whose
         // meshes cost more (`docs/measurements.md` "Mesh calls on the real builds")
@@ -157,6 +181,12 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         );
         timing.reconnect_penalty = std::time::Duration::from_secs_f64(secs);
     }
+    Ok(timing)
+}
+
+/// Where the legacy and the ZeroMQ servers listen: `--listen` or `--port` (at 127.0.0.1),
+/// `--zmq-listen` beside the legacy one, else the environment's or the default ports.
+fn addresses(args: &ServeArgs) -> anyhow::Result<(SocketAddr, SocketAddr)> {
     let loopback = |port| SocketAddr::from(([127, 0, 0, 1], port));
     let listen = args.listen.or(args.port.map(loopback));
     let legacy_listen = match listen {
@@ -174,47 +204,19 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
         args.zmq_listen.is_none() || args.api == ServeApi::Both,
         "--zmq-listen is for --api both; use --listen with --api zmq"
     );
-    let zmq_config = zmq_api::ServerConfig {
-        listen: zmq_listen,
-        protocol: if args.protocol == 1 {
-            Protocol::V1
-        } else {
-            Protocol::V2
-        },
-        dump: if args.api == ServeApi::Zmq {
-            args.dump.clone()
-        } else {
-            None
-        },
-        verbose: args.verbose,
-        timing,
-        ..Default::default()
-    };
-    let config = ServerConfig {
-        listen: legacy_listen,
-        dump: args.dump,
-        verbose: args.verbose || args.trace,
-        trace: args.trace,
-        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms.unwrap_or(
-            match args.timing {
-                // spec real-coppeliasim-4.5.1.md, "Why the legacy port refuses for a minute:
-                // TIME_WAIT": `Sleep(500)` before the plugin binds the port again
-                TimingMode::Realistic => 500,
-                TimingMode::Instant => 0,
-            },
-        )),
-        timing,
-        ..Default::default()
-    };
-    let (tx, rx) = std::sync::mpsc::channel();
-    ctrlc::set_handler(move || {
-        let _ = tx.send(());
-    })
-    .context("cannot install the Ctrl-C handler")?;
-    let mut sim = Simulator::new(scene, args.idle_fps);
-    if let Some(path) = &args.robot {
-        sim.robot = Some(robot_path(&mut sim.scene, path)?);
-    }
+    Ok((legacy_listen, zmq_listen))
+}
+
+/// Serves `sim` over `--api` at the addresses (legacy, ZeroMQ) until `stop` receives,
+/// announcing each server once all listen, and says how many objects the scene held.
+fn serve(
+    args: &ServeArgs,
+    sim: Simulator,
+    timing: Timing,
+    (legacy_listen, zmq_listen): (SocketAddr, SocketAddr),
+    stop: &std::sync::mpsc::Receiver<()>,
+) -> anyhow::Result<()> {
+    let (config, zmq_config) = configs(args, timing, (legacy_listen, zmq_listen));
     let zmq_line = |s: &zmq_api::ServerHandle| {
         outln!(
             "vrep-maze serve: ZeroMQ remote API (protocol {}) on {} (idle fps {})",
@@ -228,7 +230,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
             let server = zmq_api::spawn(zmq_config, sim)
                 .map_err(|e| cannot_listen(zmq_listen, "--port", &e))?;
             zmq_line(&server)?;
-            let _ = rx.recv();
+            let _ = stop.recv();
             let n = server.with_sim(|s| s.scene.len());
             server.shutdown();
             eprintln!("vrep-maze serve: stopped with {n} objects");
@@ -253,7 +255,7 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
             if let Some(z) = &zmq {
                 zmq_line(z)?;
             }
-            let _ = rx.recv();
+            let _ = stop.recv();
             if let Some(z) = zmq {
                 z.shutdown();
             }
@@ -263,7 +265,49 @@ pub fn run(args: ServeArgs) -> anyhow::Result<std::process::ExitCode> {
             eprintln!("vrep-maze serve: stopped with {} objects", sim.scene.len());
         }
     }
-    Ok(std::process::ExitCode::SUCCESS)
+    Ok(())
+}
+
+/// The legacy and the ZeroMQ servers' configurations: where each listens, `--dump`,
+/// `--verbose`, `--trace`, the protocol and the timing.
+fn configs(
+    args: &ServeArgs,
+    timing: Timing,
+    (legacy_listen, zmq_listen): (SocketAddr, SocketAddr),
+) -> (ServerConfig, zmq_api::ServerConfig) {
+    let zmq_config = zmq_api::ServerConfig {
+        listen: zmq_listen,
+        protocol: if args.protocol == 1 {
+            Protocol::V1
+        } else {
+            Protocol::V2
+        },
+        dump: if args.api == ServeApi::Zmq {
+            args.dump.clone()
+        } else {
+            None
+        },
+        verbose: args.verbose,
+        timing,
+        ..Default::default()
+    };
+    let config = ServerConfig {
+        listen: legacy_listen,
+        dump: args.dump.clone(),
+        verbose: args.verbose || args.trace,
+        trace: args.trace,
+        rebind_delay: std::time::Duration::from_millis(args.rebind_delay_ms.unwrap_or(
+            match args.timing {
+                // spec real-coppeliasim-4.5.1.md, "Why the legacy port refuses for a minute:
+                // TIME_WAIT": `Sleep(500)` before the plugin binds the port again
+                TimingMode::Realistic => 500,
+                TimingMode::Instant => 0,
+            },
+        )),
+        timing,
+        ..Default::default()
+    };
+    (config, zmq_config)
 }
 
 /// The error of a server that could not listen on `addr`: one line, and when the port is

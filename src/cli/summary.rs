@@ -76,31 +76,7 @@ pub fn apply_line(report: &ApplyReport) -> String {
             report.removed,
         );
     }
-    let kept = report.unchanged + report.placed;
-    let template = kept > report.reused;
-    let of = match (template, report.reused) {
-        (_, _) if kept == 0 => String::new(),
-        (true, 0) => "the template: ".to_string(),
-        (true, n) => format!("the template and {n} earlier copies: "),
-        (false, n) => format!("{n} earlier copies: "),
-    };
-    let kept = if kept == 0 {
-        "0 kept".to_string()
-    } else {
-        let unread = if report.unread > 0 {
-            format!(
-                ", {} set unread, as reading costs what setting does",
-                report.unread
-            )
-        } else {
-            String::new()
-        };
-        format!(
-            "{kept} kept ({of}{} already in place, {} placed{unread})",
-            report.unchanged,
-            report.placed - report.unread
-        )
-    };
+    let kept = kept(report);
     let meshes = if report.removed_meshes > 0 {
         format!(
             "; {} object(s) of an earlier mesh maze removed",
@@ -115,6 +91,35 @@ pub fn apply_line(report: &ApplyReport) -> String {
         report.style.name(),
         report.pasted,
         report.removed,
+    )
+}
+
+/// A copies draw's kept lines and posts: "0 kept", or "N kept (the template and M earlier
+/// copies: K already in place, P placed, U set unread, ...)".
+fn kept(report: &ApplyReport) -> String {
+    let kept = report.unchanged + report.placed;
+    let template = kept > report.reused;
+    let of = match (template, report.reused) {
+        (_, _) if kept == 0 => String::new(),
+        (true, 0) => "the template: ".to_string(),
+        (true, n) => format!("the template and {n} earlier copies: "),
+        (false, n) => format!("{n} earlier copies: "),
+    };
+    if kept == 0 {
+        return "0 kept".to_string();
+    }
+    let unread = if report.unread > 0 {
+        format!(
+            ", {} set unread, as reading costs what setting does",
+            report.unread
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{kept} kept ({of}{} already in place, {} placed{unread})",
+        report.unchanged,
+        report.placed - report.unread
     )
 }
 

@@ -173,6 +173,19 @@ pub fn details_with(error: &anyhow::Error, wording: &dyn crate::wording::Wording
         .collect()
 }
 
+/// A failed export as its own cause, so the invalid layout's problems ([`details`]) and a
+/// refusal's options ([`one_line`]) are found in the chain and worded by the command line,
+/// or by a program that embeds it.
+pub fn export_error(error: crate::export::ExportError) -> anyhow::Error {
+    use crate::export::ExportError;
+    match error {
+        ExportError::Invalid(e) => anyhow::Error::new(e),
+        ExportError::BlockGrid(e) => anyhow::Error::new(e),
+        ExportError::Refused(e) => anyhow::Error::new(e),
+        ExportError::Io(e) => anyhow::Error::new(e),
+    }
+}
+
 /// One cause's text in the command line's words: a drawing error's roles with their options
 /// ([`remedies::message`]), a library message's options as flags ([`wording::Flags`]), any
 /// other cause as it displays itself.

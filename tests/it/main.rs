@@ -17,6 +17,7 @@ mod costs;
 mod ctrl_c;
 mod draw;
 mod export_golden;
+mod export_lists;
 mod export_model_load;
 mod export_pointmaze;
 mod export_robots;

@@ -261,23 +261,45 @@ fn write_manifest(entries: &[ManifestEntry], writer: &mut dyn Write) -> io::Resu
     Ok(())
 }
 
+/// Why a seed list was refused ([`parse_seeds`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SeedsError {
+    /// A part is no seed and no range.
+    #[error("'{0}' is not a seed, a range A..B or A..=B")]
+    NotASeed(String),
+    /// A range holds no seed.
+    #[error("'{0}' is an empty range")]
+    Empty(String),
+    /// The list holds more than [`MAX_SEEDS`].
+    #[error("more than {MAX_SEEDS} seeds in '{0}'")]
+    TooMany(String),
+    /// A seed is listed twice.
+    #[error("seed {seed} comes twice in '{list}': each seed makes one file, list it once")]
+    Twice {
+        /// The seed.
+        seed: u64,
+        /// The list as given.
+        list: String,
+    },
+}
+
 /// Parses a seed list: `N`, `A..B` (B excluded), `A..=B` (B included), or several of
 /// these separated by commas.
-pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
+pub fn parse_seeds(text: &str) -> Result<Vec<u64>, SeedsError> {
     let mut seeds = Vec::new();
     for part in text.split(',') {
         let part = part.trim();
         let number = |s: &str| {
             s.trim()
                 .parse::<u64>()
-                .map_err(|_| format!("'{part}' is not a seed, a range A..B or A..=B"))
+                .map_err(|_| SeedsError::NotASeed(part.to_string()))
         };
         let (from, to) = if let Some((a, b)) = part.split_once("..=") {
             (number(a)?, number(b)?)
         } else if let Some((a, b)) = part.split_once("..") {
             let (a, b) = (number(a)?, number(b)?);
             if b <= a {
-                return Err(format!("'{part}' is an empty range"));
+                return Err(SeedsError::Empty(part.to_string()));
             }
             (a, b - 1)
         } else {
@@ -285,20 +307,20 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
             (n, n)
         };
         if to < from {
-            return Err(format!("'{part}' is an empty range"));
+            return Err(SeedsError::Empty(part.to_string()));
         }
         if (to - from) as u128 + seeds.len() as u128 >= MAX_SEEDS as u128 {
-            return Err(format!("more than {MAX_SEEDS} seeds in '{text}'"));
+            return Err(SeedsError::TooMany(text.to_string()));
         }
         seeds.extend(from..=to);
     }
     let mut sorted = seeds.clone();
     sorted.sort_unstable();
     if let Some(twice) = sorted.windows(2).find(|w| w[0] == w[1]) {
-        return Err(format!(
-            "seed {} comes twice in '{text}': each seed makes one file, list it once",
-            twice[0]
-        ));
+        return Err(SeedsError::Twice {
+            seed: twice[0],
+            list: text.to_string(),
+        });
     }
     Ok(seeds)
 }
@@ -316,7 +338,7 @@ mod tests {
         assert_eq!(parse_seeds("7, 9..11"), Ok(vec![7, 9, 10]));
         for twice in ["1,1", "0..10,5", "3..=4,4..6"] {
             let e = parse_seeds(twice).unwrap_err();
-            assert!(e.contains("comes twice"), "{twice}: {e}");
+            assert!(e.to_string().contains("comes twice"), "{twice}: {e}");
         }
         for bad in ["", "a", "3..3", "5..=2", "0..=18446744073709551615", "1..x"] {
             assert!(parse_seeds(bad).is_err(), "{bad}");

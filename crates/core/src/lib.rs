@@ -6,7 +6,8 @@
 //!   randomness), [`generate`] (one file per algorithm), [`layout`] (the JSON layout:
 //!   geometry, segments, reading and writing), [`validate`] (every check a layout must pass),
 //!   [`render`] (ASCII, SVG, PNG), [`batch`] (many seeds at once) and [`atomic_file`] (files
-//!   written whole or not at all).
+//!   written whole or not at all); [`progress`] is how a long step tells how far it got,
+//!   for an adapter to show.
 //! - [`score`]: grading a robot's run (a trajectory) against a layout, and the `Follower`
 //!   port a simulator connection implements to watch a robot.
 //! - [`coppelia`]: CoppeliaSim's vocabulary: constants, Euler convention, XML format, what
@@ -25,6 +26,7 @@ pub mod generate;
 pub mod layout;
 pub mod maze;
 pub mod mesh;
+pub mod progress;
 pub mod render;
 pub mod rng;
 pub mod score;

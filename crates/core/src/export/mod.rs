@@ -16,7 +16,9 @@
 //! ([`ros_map::FILE_ENDINGS`]).
 //!
 //! A new format is a file here with its `document` function and a [`Format`] variant with its
-//! arms in `ALL`, `file_endings` and [`export`].
+//! arms in `ALL`, `label`, `file_endings` and [`export`]; every list a person reads is derived
+//! from [`Format::ALL`] or held against it by `tests/it/export_lists.rs`. ARCHITECTURE.md's
+//! recipe names every place.
 
 mod mjcf;
 mod pointmaze;
@@ -151,9 +153,48 @@ impl Format {
     }
 }
 
+/// What an output file asks `export` to write, by its ending ([`Target::from_path`]): a
+/// [`Format`], or the ROS map (a YAML and a PGM beside it, [`ros_map::FILE_ENDINGS`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// One file in this format.
+    Format(Format),
+    /// A ROS map_server occupancy map.
+    RosMap,
+}
+
+impl Target {
+    /// The target `path`'s ending chooses (case-insensitive), if any: the one place the
+    /// command line and Python read an output's ending.
+    pub fn from_path(path: &Path) -> Option<Target> {
+        let name = path.to_string_lossy().to_ascii_lowercase();
+        if ros_map::FILE_ENDINGS.iter().any(|e| name.ends_with(e)) {
+            return Some(Target::RosMap);
+        }
+        Format::from_path(path).map(Target::Format)
+    }
+}
+
+/// Why a layout was not exported.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The layout is invalid ([`crate::validate::checked`]).
+    #[error(transparent)]
+    Invalid(#[from] crate::validate::Invalid),
+    /// It has no block grid (PointMaze).
+    #[error(transparent)]
+    BlockGrid(#[from] crate::layout::block_grid::BlockGridError),
+    /// Options it refuses (a ROS map's scale), named as data.
+    #[error(transparent)]
+    Refused(#[from] Message),
+    /// Writing failed.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}
+
 /// Writes `layout` in `format` to `out`. The layout must pass [`crate::validate::checked`]
 /// (checked here, before anything is written).
-pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> anyhow::Result<()> {
+pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> Result<(), ExportError> {
     let maze = MeshMaze::try_from(layout)?;
     let text = match format {
         Format::CoppeliaModel => crate::coppelia::xml::write(&simmodel::document(&maze)),
@@ -162,9 +203,7 @@ pub fn export(format: Format, layout: &Layout, out: &mut dyn io::Write) -> anyho
         Format::Sdf => sdf::document(&Solids::new(layout, &maze)),
         Format::Urdf => urdf::document(&Solids::new(layout, &maze)),
         Format::Webots => webots::document(&Solids::new(layout, &maze)),
-        Format::PointMaze => {
-            pointmaze::document(&BlockGrid::of(layout).map_err(anyhow::Error::msg)?)
-        }
+        Format::PointMaze => pointmaze::document(&BlockGrid::of(layout)?),
     };
     out.write_all(text.as_bytes())?;
     Ok(())

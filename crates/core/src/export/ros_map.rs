@@ -86,7 +86,7 @@ pub fn default_px_per_metre(layout: &Layout) -> f64 {
 
 /// The map of a layout that passed [`crate::validate::checked`] (checked here), its image
 /// named `image` in the YAML (the PGM's file name, beside the YAML).
-pub fn map(layout: &Layout, options: &Options, image: &str) -> anyhow::Result<RosMap> {
+pub fn map(layout: &Layout, options: &Options, image: &str) -> Result<RosMap, super::ExportError> {
     let maze = MeshMaze::try_from(layout)?;
     let px = options
         .px_per_metre
@@ -308,7 +308,9 @@ mod tests {
             ..Options::default()
         };
         let err = map(&layout, &huge, "m.pgm").unwrap_err();
-        let message = err.downcast_ref::<Message>().expect("a worded message");
+        let crate::export::ExportError::Refused(message) = &err else {
+            panic!("a worded message: {err}");
+        };
         assert!(
             message.parts().ends_with(&[Part::Opt(Opt::PxPerM)]),
             "{err}"

@@ -10,7 +10,26 @@ use serde::Serialize;
 
 use crate::layout::Layout;
 use crate::layout::passages;
-use crate::maze::{Cell, Direction, Grid};
+use crate::maze::{Cell, Direction, Grid, GridError};
+
+/// Why a layout has no block grid.
+#[derive(Debug, thiserror::Error)]
+pub enum BlockGridError {
+    /// The layout's grid is no grid.
+    #[error("grid: {0}")]
+    Grid(#[from] GridError),
+    /// Its passages do not decode.
+    #[error("{0}")]
+    Passages(String),
+    /// An endpoint's cell lies off the grid.
+    #[error("endpoint cell {cell} is outside the {grid} grid")]
+    Outside {
+        /// The endpoint's cell.
+        cell: Cell,
+        /// The layout's grid.
+        grid: Grid,
+    },
+}
 
 /// One block of the grid, serialized as PointMaze reads it: `1`, `0`, `"r"`, `"g"`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,10 +67,9 @@ pub struct BlockGrid {
 
 impl BlockGrid {
     /// The block grid of `layout`, or why its passages do not decode.
-    pub fn of(layout: &Layout) -> Result<BlockGrid, String> {
-        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())
-            .map_err(|e| format!("grid: {e}"))?;
-        let maze = passages::decode(grid, &layout.passages)?;
+    pub fn of(layout: &Layout) -> Result<BlockGrid, BlockGridError> {
+        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
+        let maze = passages::decode(grid, &layout.passages).map_err(BlockGridError::Passages)?;
         let (width, height) = (grid.width() as usize, grid.height() as usize);
         let mut maze_map = vec![vec![Block::Wall; 2 * width + 1]; 2 * height + 1];
         for index in 0..grid.cell_count() {
@@ -68,7 +86,7 @@ impl BlockGrid {
         for (endpoint, block) in [(&layout.start, Block::Reset), (&layout.end, Block::Goal)] {
             let cell = Cell::new(endpoint.cell[0], endpoint.cell[1]);
             if !grid.contains(cell) {
-                return Err(format!("endpoint cell {cell} is outside the {grid} grid"));
+                return Err(BlockGridError::Outside { cell, grid });
             }
             let [row, column] = block_of(grid, cell);
             maze_map[row][column] = block;

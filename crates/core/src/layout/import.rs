@@ -65,7 +65,8 @@ fn at(name: &str, line: usize, column: usize, message: impl std::fmt::Display) -
 }
 
 /// Reads the drawing in `text`; `name` (the file) starts every error, which names the line
-/// and column.
+/// and column. In phases: the drawing's size, then each line, a wall line or a cell line,
+/// then the maze of the passages read.
 pub fn parse(text: &str, name: &str) -> Result<TextMaze, String> {
     let mut lines: Vec<Vec<char>> = text
         .lines()
@@ -74,6 +75,53 @@ pub fn parse(text: &str, name: &str) -> Result<TextMaze, String> {
     while lines.last().is_some_and(Vec::is_empty) {
         lines.pop();
     }
+    let (width, height) = drawn_size(&lines, name)?;
+    let grid = Grid::new(width as u64, height as u64).map_err(|e| format!("{name}: {e}"))?;
+    let mut reader = Reader {
+        name,
+        grid,
+        width,
+        height,
+        masks: vec![0u8; grid.cell_count()],
+        drawing: TextMaze {
+            maze: Maze::closed(grid),
+            start: None,
+            end: None,
+            goal: Vec::new(),
+            openings: Vec::new(),
+        },
+        marks: BTreeMap::new(),
+    };
+    for (l, line) in lines.iter().enumerate() {
+        if line.len() > 4 * width + 1 {
+            return Err(at(
+                name,
+                l,
+                4 * width + 1,
+                format!(
+                    "the line is longer than the top wall ({} characters)",
+                    4 * width + 1
+                ),
+            ));
+        }
+        // text line l: even = posts and walls south of cell row (height - l/2), odd = cells
+        if l % 2 == 0 {
+            reader.wall_line(l, line)?;
+        } else {
+            reader.cell_line(l, line)?;
+        }
+    }
+    let Reader {
+        mut drawing, masks, ..
+    } = reader;
+    drawing.maze = Maze::from_masks(grid, masks).map_err(|e| format!("{name}: {e}"))?;
+    Ok(drawing)
+}
+
+/// The cells across and the rows of the drawing `lines` (trailing empty lines dropped), or
+/// why they are no drawing: the top wall is 4 characters a cell plus 1, and a wall line
+/// follows each row's cell line.
+fn drawn_size(lines: &[Vec<char>], name: &str) -> Result<(usize, usize), String> {
     let first = lines
         .first()
         .ok_or_else(|| format!("{name}: empty file: no maze drawn"))?;
@@ -100,168 +148,179 @@ pub fn parse(text: &str, name: &str) -> Result<TextMaze, String> {
             ),
         ));
     }
-    let height = (lines.len() - 1) / 2;
-    let grid = Grid::new(width as u64, height as u64).map_err(|e| format!("{name}: {e}"))?;
-    let char_at = |line: &[char], col: usize| line.get(col).copied().unwrap_or(' ');
-    let mut masks = vec![0u8; grid.cell_count()];
-    let mut drawing = TextMaze {
-        maze: Maze::closed(grid),
-        start: None,
-        end: None,
-        goal: Vec::new(),
-        openings: Vec::new(),
-    };
-    let mut marks: BTreeMap<char, (usize, usize)> = BTreeMap::new();
-    for (l, line) in lines.iter().enumerate() {
-        if line.len() > 4 * width + 1 {
-            return Err(at(
-                name,
-                l,
-                4 * width + 1,
-                format!(
-                    "the line is longer than the top wall ({} characters)",
-                    4 * width + 1
-                ),
-            ));
+    Ok((width, (lines.len() - 1) / 2))
+}
+
+/// The character at `col` of `line`, a space past its end.
+fn char_at(line: &[char], col: usize) -> char {
+    line.get(col).copied().unwrap_or(' ')
+}
+
+/// What [`parse`] has read so far: the passages as masks, the openings and the marks.
+struct Reader<'a> {
+    /// The file, for errors.
+    name: &'a str,
+    grid: Grid,
+    width: usize,
+    height: usize,
+    /// Open-passage bits per cell.
+    masks: Vec<u8>,
+    drawing: TextMaze,
+    /// Where each `S` and `E` was found (line, column), to name the first of two.
+    marks: BTreeMap<char, (usize, usize)>,
+}
+
+impl Reader<'_> {
+    /// Wall line `l`: posts and, between them, walls or gaps south of a cell row (an
+    /// opening where the outer wall has a gap).
+    fn wall_line(&mut self, l: usize, line: &[char]) -> Result<(), String> {
+        let (name, width, height) = (self.name, self.width, self.height);
+        let north_of = height - l / 2; // the wall between rows north_of - 1 and north_of
+        for x in 0..=width {
+            let post = char_at(line, 4 * x);
+            if post != 'o' && post != '+' {
+                return Err(at(
+                    name,
+                    l,
+                    4 * x,
+                    format!("expected a post 'o' or '+', found '{post}'"),
+                ));
+            }
+            if x == width {
+                break;
+            }
+            let wall: String = (1..4).map(|k| char_at(line, 4 * x + k)).collect();
+            let open = match wall.as_str() {
+                "---" => false,
+                "   " => true,
+                _ => {
+                    let k = (1..4)
+                        .find(|&k| char_at(line, 4 * x + k) != '-')
+                        .unwrap_or(1);
+                    return Err(at(
+                        name,
+                        l,
+                        4 * x + k,
+                        format!(
+                            "expected a wall '---' or a gap '   ' between posts, found '{wall}'"
+                        ),
+                    ));
+                }
+            };
+            if !open {
+                continue;
+            }
+            let x = x as u32;
+            if north_of == 0 {
+                self.drawing.openings.push(Opening {
+                    cell: [x, 0],
+                    side: Side::South,
+                });
+            } else if north_of == height {
+                self.drawing.openings.push(Opening {
+                    cell: [x, height as u32 - 1],
+                    side: Side::North,
+                });
+            } else {
+                let south = self.grid.index(Cell::new(x, north_of as u32 - 1));
+                let north = self.grid.index(Cell::new(x, north_of as u32));
+                self.masks[south] |= Direction::North.bit();
+                self.masks[north] |= Direction::South.bit();
+            }
         }
-        // text line l: even = posts and walls south of cell row (height - l/2), odd = cells
-        if l % 2 == 0 {
-            let north_of = height - l / 2; // the wall between rows north_of - 1 and north_of
-            for x in 0..=width {
-                let post = char_at(line, 4 * x);
-                if post != 'o' && post != '+' {
+        Ok(())
+    }
+
+    /// Cell line `l`: walls or gaps between the cells of a row (an opening where the outer
+    /// wall has a gap), and each cell's marks.
+    fn cell_line(&mut self, l: usize, line: &[char]) -> Result<(), String> {
+        let (name, width) = (self.name, self.width);
+        let y = (self.height - 1 - l / 2) as u32;
+        for x in 0..=width {
+            let side = char_at(line, 4 * x);
+            let open = match side {
+                '|' => false,
+                ' ' => true,
+                _ => {
                     return Err(at(
                         name,
                         l,
                         4 * x,
-                        format!("expected a post 'o' or '+', found '{post}'"),
+                        format!("expected a wall '|' or a gap ' ', found '{side}'"),
                     ));
                 }
-                if x == width {
-                    break;
-                }
-                let wall: String = (1..4).map(|k| char_at(line, 4 * x + k)).collect();
-                let open = match wall.as_str() {
-                    "---" => false,
-                    "   " => true,
-                    _ => {
-                        let k = (1..4)
-                            .find(|&k| char_at(line, 4 * x + k) != '-')
-                            .unwrap_or(1);
-                        return Err(at(
-                            name,
-                            l,
-                            4 * x + k,
-                            format!(
-                                "expected a wall '---' or a gap '   ' between posts, found '{wall}'"
-                            ),
-                        ));
-                    }
-                };
-                if !open {
-                    continue;
-                }
-                let x = x as u32;
-                if north_of == 0 {
-                    drawing.openings.push(Opening {
-                        cell: [x, 0],
-                        side: Side::South,
+            };
+            if open {
+                if x == 0 {
+                    self.drawing.openings.push(Opening {
+                        cell: [0, y],
+                        side: Side::West,
                     });
-                } else if north_of == height {
-                    drawing.openings.push(Opening {
-                        cell: [x, height as u32 - 1],
-                        side: Side::North,
+                } else if x == width {
+                    self.drawing.openings.push(Opening {
+                        cell: [width as u32 - 1, y],
+                        side: Side::East,
                     });
                 } else {
-                    let south = grid.index(Cell::new(x, north_of as u32 - 1));
-                    let north = grid.index(Cell::new(x, north_of as u32));
-                    masks[south] |= Direction::North.bit();
-                    masks[north] |= Direction::South.bit();
+                    let west = self.grid.index(Cell::new(x as u32 - 1, y));
+                    self.masks[west] |= Direction::East.bit();
+                    self.masks[west + 1] |= Direction::West.bit();
                 }
             }
-        } else {
-            let y = (height - 1 - l / 2) as u32;
-            for x in 0..=width {
-                let side = char_at(line, 4 * x);
-                let open = match side {
-                    '|' => false,
-                    ' ' => true,
-                    _ => {
-                        return Err(at(
-                            name,
-                            l,
-                            4 * x,
-                            format!("expected a wall '|' or a gap ' ', found '{side}'"),
-                        ));
-                    }
-                };
-                if open {
-                    if x == 0 {
-                        drawing.openings.push(Opening {
-                            cell: [0, y],
-                            side: Side::West,
-                        });
-                    } else if x == width {
-                        drawing.openings.push(Opening {
-                            cell: [width as u32 - 1, y],
-                            side: Side::East,
-                        });
-                    } else {
-                        let west = grid.index(Cell::new(x as u32 - 1, y));
-                        masks[west] |= Direction::East.bit();
-                        masks[west + 1] |= Direction::West.bit();
-                    }
-                }
-                if x == width {
-                    break;
-                }
-                let cell = Cell::new(x as u32, y);
-                for k in 1..4 {
-                    let mark = char_at(line, 4 * x + k);
-                    match mark {
-                        ' ' | '.' => {}
-                        'S' | 'E' => {
-                            if let Some(&(pl, pc)) = marks.get(&mark) {
-                                return Err(at(
-                                    name,
-                                    l,
-                                    4 * x + k,
-                                    format!(
-                                        "a second '{mark}': the first is at line {}, column {}",
-                                        pl + 1,
-                                        pc + 1
-                                    ),
-                                ));
-                            }
-                            marks.insert(mark, (l, 4 * x + k));
-                            if mark == 'S' {
-                                drawing.start = Some(cell);
-                            } else {
-                                drawing.end = Some(cell);
-                            }
-                        }
-                        'G' => {
-                            if !drawing.goal.contains(&cell) {
-                                drawing.goal.push(cell);
-                            }
-                        }
-                        _ => {
-                            return Err(at(
-                                name,
-                                l,
-                                4 * x + k,
-                                format!(
-                                    "'{mark}' is not a mark: a cell holds spaces, S (start), G (goal), E (end) or . (solution)"
-                                ),
-                            ));
-                        }
-                    }
-                }
+            if x == width {
+                break;
+            }
+            let cell = Cell::new(x as u32, y);
+            for k in 1..4 {
+                self.mark(l, 4 * x + k, cell, char_at(line, 4 * x + k))?;
             }
         }
+        Ok(())
     }
-    drawing.maze = Maze::from_masks(grid, masks).map_err(|e| format!("{name}: {e}"))?;
-    Ok(drawing)
+
+    /// The mark `mark` at line `l`, column `col`, inside `cell`: `S`, `E` (once each), `G`,
+    /// or nothing (a space, or `.` of a drawn solution).
+    fn mark(&mut self, l: usize, col: usize, cell: Cell, mark: char) -> Result<(), String> {
+        match mark {
+            ' ' | '.' => {}
+            'S' | 'E' => {
+                if let Some(&(pl, pc)) = self.marks.get(&mark) {
+                    return Err(at(
+                        self.name,
+                        l,
+                        col,
+                        format!(
+                            "a second '{mark}': the first is at line {}, column {}",
+                            pl + 1,
+                            pc + 1
+                        ),
+                    ));
+                }
+                self.marks.insert(mark, (l, col));
+                if mark == 'S' {
+                    self.drawing.start = Some(cell);
+                } else {
+                    self.drawing.end = Some(cell);
+                }
+            }
+            'G' => {
+                if !self.drawing.goal.contains(&cell) {
+                    self.drawing.goal.push(cell);
+                }
+            }
+            _ => {
+                return Err(at(
+                    self.name,
+                    l,
+                    col,
+                    format!(
+                        "'{mark}' is not a mark: a cell holds spaces, S (start), G (goal), E (end) or . (solution)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The layout of the drawing in `text` (from the file `name`), laid out as `options`

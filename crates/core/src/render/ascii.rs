@@ -3,8 +3,8 @@
 
 use std::io::{BufWriter, Write};
 
-use anyhow::Result;
-use indicatif::ProgressBar;
+use super::Result;
+use crate::progress::Progress;
 
 use super::{MazeView, RenderOptions, Renderer};
 use crate::layout::Layout;
@@ -21,7 +21,7 @@ impl Renderer for Ascii {
         layout: &Layout,
         options: &RenderOptions,
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
         let grid = view.maze.grid();
@@ -68,20 +68,8 @@ impl Renderer for Ascii {
             });
             for x in 0..grid.width() {
                 let cell = Cell::new(x, y);
-                let index = grid.index(cell);
-                let mark = if cell == view.start {
-                    'S'
-                } else if cell == view.end {
-                    'E'
-                } else if goal.contains(&cell) {
-                    'G'
-                } else if on_path[index] {
-                    '.'
-                } else {
-                    ' '
-                };
                 line.push(' ');
-                line.push(mark);
+                line.push(mark(&view, &goal, on_path[grid.index(cell)], cell));
                 line.push(' ');
                 line.push(if open(cell, Direction::East) {
                     ' '
@@ -91,12 +79,28 @@ impl Renderer for Ascii {
             }
             line.push('\n');
             out.write_all(line.as_bytes())?;
-            progress.inc(1);
+            progress.advance(1);
         }
         wall_row(&mut line, 0, Direction::South);
         out.write_all(line.as_bytes())?;
         out.flush()?;
         Ok(())
+    }
+}
+
+/// What `cell` shows: `S` start, `E` end, `G` the rest of a goal region, `.` the solution
+/// (`on_path`), else a space.
+fn mark(view: &MazeView, goal: &[Cell], on_path: bool, cell: Cell) -> char {
+    if cell == view.start {
+        'S'
+    } else if cell == view.end {
+        'E'
+    } else if goal.contains(&cell) {
+        'G'
+    } else if on_path {
+        '.'
+    } else {
+        ' '
     }
 }
 
@@ -124,7 +128,7 @@ mod tests {
                     ..Default::default()
                 },
                 &mut bytes,
-                &ProgressBar::hidden(),
+                &crate::progress::Silent,
             )
             .unwrap();
         let text = String::from_utf8(bytes).unwrap();

@@ -16,8 +16,7 @@ use std::fmt;
 use std::io;
 use std::str::FromStr;
 
-use anyhow::{Result, anyhow};
-use indicatif::ProgressBar;
+use crate::progress::Progress;
 
 use crate::layout::solution::path_cells;
 use crate::layout::{Layout, passages};
@@ -27,6 +26,24 @@ use crate::wording::{Message, Opt, Value};
 pub use ascii::Ascii;
 pub use png::Png;
 pub use svg::Svg;
+
+/// Why a picture was not drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// Writing the picture failed.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+    /// The layout cannot be drawn as asked: its grid, a cell off it, no solution to draw,
+    /// no wall template.
+    #[error("{0}")]
+    Layout(String),
+    /// A picture the format does not draw (a run as ASCII), the options it names as data.
+    #[error(transparent)]
+    Refused(#[from] Message),
+}
+
+/// A renderer's result.
+type Result<T, E = RenderError> = std::result::Result<T, E>;
 
 /// What to draw besides the maze, and which part of the floor at what scale (SVG and PNG).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -113,7 +130,7 @@ fn window(layout: &Layout, options: &RenderOptions) -> [f64; 4] {
 /// Turns a layout into one picture format.
 pub trait Renderer {
     /// Writes the picture of `layout` into `out`, advancing `progress` (whose length it
-    /// sets) as it goes; pass [`ProgressBar::hidden`] to show nothing.
+    /// sets) as it goes; pass [`Silent`](crate::progress::Silent) to show nothing.
     ///
     /// `layout` must have passed [`crate::validate::checked`]; its `segments` are not read
     /// (they may be empty). A failed write is returned as the [`io::Error`] itself.
@@ -122,7 +139,7 @@ pub trait Renderer {
         layout: &Layout,
         options: &RenderOptions,
         out: &mut dyn io::Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()>;
 }
 
@@ -176,7 +193,7 @@ impl Format {
     pub fn render_to_vec(self, layout: &Layout, options: &RenderOptions) -> Result<Vec<u8>> {
         let mut bytes = Vec::new();
         self.renderer()
-            .render(layout, options, &mut bytes, &ProgressBar::hidden())?;
+            .render(layout, options, &mut bytes, &crate::progress::Silent)?;
         Ok(bytes)
     }
 }
@@ -207,7 +224,7 @@ pub fn render_run(
     options: &RenderOptions,
     trajectory: &[crate::score::Sample],
     out: &mut dyn io::Write,
-    progress: &ProgressBar,
+    progress: &dyn Progress,
 ) -> Result<()> {
     match format {
         Format::Svg => Svg.render_run(layout, options, trajectory, out, progress),
@@ -233,18 +250,23 @@ struct MazeView {
 
 impl MazeView {
     fn of(layout: &Layout, options: &RenderOptions) -> Result<Self> {
-        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())?;
-        let maze = passages::decode(grid, &layout.passages).map_err(|e| anyhow!(e))?;
+        let grid = Grid::new(layout.grid.columns.into(), layout.grid.rows.into())
+            .map_err(|e| RenderError::Layout(e.to_string()))?;
+        let maze = passages::decode(grid, &layout.passages).map_err(RenderError::Layout)?;
         let start = Cell::new(layout.start.cell[0], layout.start.cell[1]);
         let end = Cell::new(layout.end.cell[0], layout.end.cell[1]);
         for (which, cell) in [("start", start), ("end", end)] {
             if !grid.contains(cell) {
-                return Err(anyhow!("{which}.cell {cell} is off the {grid} grid"));
+                return Err(RenderError::Layout(format!(
+                    "{which}.cell {cell} is off the {grid} grid"
+                )));
             }
         }
         let solution = if options.solution {
             path_cells(&maze, start, end).ok_or_else(|| {
-                anyhow!("end {end} cannot be reached from start {start}: no solution to draw")
+                RenderError::Layout(format!(
+                    "end {end} cannot be reached from start {start}: no solution to draw"
+                ))
             })?
         } else {
             Vec::new()
@@ -326,7 +348,7 @@ mod tests {
                 &options,
                 run,
                 &mut bytes,
-                &ProgressBar::hidden(),
+                &crate::progress::Silent,
             )
             .unwrap();
             bytes
@@ -360,7 +382,7 @@ mod tests {
             &options,
             &run,
             &mut Vec::new(),
-            &ProgressBar::hidden(),
+            &crate::progress::Silent,
         );
         assert!(ascii.unwrap_err().to_string().contains("SVG or PNG only"));
     }
@@ -401,7 +423,7 @@ mod tests {
                     &layout,
                     &RenderOptions::default(),
                     &mut file,
-                    &ProgressBar::hidden(),
+                    &crate::progress::Silent,
                 )
                 .unwrap();
             io::Write::flush(&mut file).unwrap();

@@ -12,8 +12,8 @@
 use std::io::{self, Write};
 use std::ops::Range;
 
-use anyhow::Result;
-use indicatif::ProgressBar;
+use super::Result;
+use crate::progress::Progress;
 
 use super::figure::{
     Colour, END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, SOLUTION, SOLUTION_OPACITY, START,
@@ -52,7 +52,7 @@ impl Renderer for Png {
         layout: &Layout,
         options: &RenderOptions,
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         self.render_run(layout, options, &[], out, progress)
     }
@@ -67,7 +67,7 @@ impl Png {
         options: &RenderOptions,
         trajectory: &[Sample],
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         let picture = Picture::of(layout, options, trajectory)?;
         let strip_rows = (STRIP_BYTES / (picture.width as usize * 3)).max(1);
@@ -515,7 +515,12 @@ impl Picture {
 
     /// Draws the picture `strip_rows` pixel rows at a time and streams it into `out` as a
     /// PNG.
-    fn encode(&self, out: &mut dyn Write, progress: &ProgressBar, strip_rows: usize) -> Result<()> {
+    fn encode(
+        &self,
+        out: &mut dyn Write,
+        progress: &dyn Progress,
+        strip_rows: usize,
+    ) -> Result<()> {
         progress.set_length(u64::from(self.height));
         let strip_rows = strip_rows.clamp(1, self.height as usize) as u32;
         let strips = self.height.div_ceil(strip_rows) as usize;
@@ -572,7 +577,7 @@ impl Picture {
                 strip.paint(shape, *colour);
             }
             writer.write_all(strip.pixels)?;
-            progress.inc(u64::from(bottom - top));
+            progress.advance(u64::from(bottom - top));
         }
         writer.finish().map_err(io::Error::from)?;
         header.finish().map_err(io::Error::from)?;
@@ -781,7 +786,7 @@ mod tests {
         let mut bytes = Vec::new();
         Picture::of(layout, options, &[])
             .unwrap()
-            .encode(&mut bytes, &ProgressBar::hidden(), strip_rows)
+            .encode(&mut bytes, &crate::progress::Silent, strip_rows)
             .unwrap();
         bytes
     }
@@ -824,7 +829,7 @@ mod tests {
             &RenderOptions::default(),
             &run,
             &mut bytes,
-            &ProgressBar::hidden(),
+            &crate::progress::Silent,
         )
         .unwrap();
         let image = decode(&bytes);
@@ -840,7 +845,7 @@ mod tests {
 
     fn render(layout: &Layout, options: &RenderOptions) -> Image {
         let mut bytes = Vec::new();
-        Png.render(layout, options, &mut bytes, &ProgressBar::hidden())
+        Png.render(layout, options, &mut bytes, &crate::progress::Silent)
             .unwrap();
         decode(&bytes)
     }

@@ -10,8 +10,8 @@
 use std::fmt;
 use std::io::{self, BufWriter, Write};
 
-use anyhow::Result;
-use indicatif::ProgressBar;
+use super::Result;
+use crate::progress::Progress;
 
 use super::figure::{
     END, FLOOR, GOAL, GRID, INK, LINE, MetreGrid, PAPER, SOLUTION, SOLUTION_OPACITY, START,
@@ -91,7 +91,7 @@ impl Renderer for Svg {
         layout: &Layout,
         options: &RenderOptions,
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         self.render_run(layout, options, &[], out, progress)
     }
@@ -106,7 +106,7 @@ impl Svg {
         options: &RenderOptions,
         trajectory: &[Sample],
         out: &mut dyn Write,
-        progress: &ProgressBar,
+        progress: &dyn Progress,
     ) -> Result<()> {
         let view = MazeView::of(layout, options)?;
         progress.set_length(u64::from(layout.grid.rows));
@@ -123,7 +123,7 @@ fn write_svg(
     view: &MazeView,
     options: &RenderOptions,
     trajectory: &[Sample],
-    progress: &ProgressBar,
+    progress: &dyn Progress,
 ) -> io::Result<()> {
     let window = super::window(layout, options);
     let [fx, fy] = layout.floor.size;
@@ -177,24 +177,7 @@ fn write_svg(
             wall_runs(out, view, walls, c, progress)?;
         }
     }
-    if !view.solution.is_empty() {
-        out.write_all(b"<polyline points=\"")?;
-        for (k, cell) in view.solution.iter().enumerate() {
-            let separator = if k == 0 { "" } else { " " };
-            write!(
-                out,
-                "{separator}{},{}",
-                num(f64::from(cell.x) * c),
-                num(f64::from(cell.y) * c)
-            )?;
-        }
-        writeln!(
-            out,
-            r#"" fill="none" stroke="{SOLUTION}" stroke-width="{}" stroke-linejoin="round" stroke-opacity="{}"/>"#,
-            num(w / 2.0),
-            num(SOLUTION_OPACITY)
-        )?;
-    }
+    solution(out, &view.solution, c, w)?;
     out.write_all(b"</g>\n")?;
     run_path(out, trajectory, layout.line.width * trajectory::WIDTH_SHARE)?;
     scale_bar(out, &ScaleBar::for_window(window))?;
@@ -222,19 +205,42 @@ fn run_path(out: &mut impl Write, samples: &[Sample], width: f64) -> io::Result<
     out.write_all(b"</g>\n")
 }
 
+/// The solution's cells as one polyline, `w / 2` wide (nothing when none is drawn).
+fn solution(out: &mut impl Write, cells: &[Cell], c: f64, w: f64) -> io::Result<()> {
+    if cells.is_empty() {
+        return Ok(());
+    }
+    out.write_all(b"<polyline points=\"")?;
+    for (k, cell) in cells.iter().enumerate() {
+        let separator = if k == 0 { "" } else { " " };
+        write!(
+            out,
+            "{separator}{},{}",
+            num(f64::from(cell.x) * c),
+            num(f64::from(cell.y) * c)
+        )?;
+    }
+    writeln!(
+        out,
+        r#"" fill="none" stroke="{SOLUTION}" stroke-width="{}" stroke-linejoin="round" stroke-opacity="{}"/>"#,
+        num(w / 2.0),
+        num(SOLUTION_OPACITY)
+    )
+}
+
 /// The green line runs, one `<rect>` each, advancing `progress` a maze row at a time.
 fn line_runs(
     out: &mut impl Write,
     view: &MazeView,
     c: f64,
     w: f64,
-    progress: &ProgressBar,
+    progress: &dyn Progress,
 ) -> io::Result<()> {
     writeln!(out, r#"<g fill="{LINE}">"#)?;
     for_each_run(
         &view.maze,
         |run: Run| rect(out, run.rect(c, w)),
-        |_| progress.inc(1),
+        |_| progress.advance(1),
     )?;
     out.write_all(b"</g>\n")
 }
@@ -245,14 +251,14 @@ fn wall_runs(
     view: &MazeView,
     walls: &Walls,
     c: f64,
-    progress: &ProgressBar,
+    progress: &dyn Progress,
 ) -> io::Result<()> {
     writeln!(out, r#"<g fill="{WALL}">"#)?;
     for_each_wall_run(
         &view.maze,
         &walls.open,
         |run: WallRun| rect(out, run.rect(c, walls.thickness)),
-        |_| progress.inc(1),
+        |_| progress.advance(1),
     )?;
     if let Some(size) = walls.post {
         posts(out, view, c, size)?;
@@ -394,7 +400,7 @@ mod tests {
 
     fn svg_of(layout: &Layout, options: &RenderOptions) -> String {
         let mut bytes = Vec::new();
-        Svg.render(layout, options, &mut bytes, &ProgressBar::hidden())
+        Svg.render(layout, options, &mut bytes, &crate::progress::Silent)
             .unwrap();
         String::from_utf8(bytes).unwrap()
     }

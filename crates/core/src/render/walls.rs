@@ -11,7 +11,7 @@
 //! post's, at every lattice corner (validation proves one stands at each), drawn with the
 //! bars: walls and posts together cover each closed side corner to corner.
 
-use anyhow::{Result, anyhow};
+use super::{RenderError, Result};
 
 use crate::layout::Layout;
 use crate::layout::runs::OpenSides;
@@ -36,10 +36,9 @@ impl Walls {
         if layout.style.is_lines() {
             return Ok(None);
         }
-        let spec = layout
-            .wall
-            .as_ref()
-            .ok_or_else(|| anyhow!("a layout with style \"walls\" needs its wall template"))?;
+        let spec = layout.wall.as_ref().ok_or_else(|| {
+            RenderError::Layout("a layout with style \"walls\" needs its wall template".into())
+        })?;
         let goal = layout
             .end
             .region
