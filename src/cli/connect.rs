@@ -135,12 +135,14 @@ trait Opened: Sized {
     /// `marker` may record.
     fn legacy(client: legacy::Client, marker: SessionMarker, addr: &str, timeout: Duration)
     -> Self;
-    /// Connects over ZeroMQ to `host:port`.
+    /// Connects over ZeroMQ to `host:port`; once `stop` is set the connection's waits end
+    /// with [`Interrupted`].
     fn zmq(
         host: &str,
         port: u16,
         timeout: Duration,
         connect_timeout: Duration,
+        stop: Option<&AtomicBool>,
     ) -> anyhow::Result<Self>;
 }
 
@@ -165,8 +167,9 @@ impl Opened for Connected {
         port: u16,
         timeout: Duration,
         connect_timeout: Duration,
+        stop: Option<&AtomicBool>,
     ) -> anyhow::Result<Self> {
-        zmq(host, port, timeout, connect_timeout)
+        zmq(host, port, timeout, connect_timeout, stop)
     }
 }
 
@@ -181,16 +184,17 @@ impl Opened for RawClient {
         port: u16,
         timeout: Duration,
         connect_timeout: Duration,
+        stop: Option<&AtomicBool>,
     ) -> anyhow::Result<Self> {
-        zmq_client(host, port, timeout, connect_timeout).map(RawClient::Zmq)
+        zmq_client(host, port, timeout, connect_timeout, stop).map(RawClient::Zmq)
     }
 }
 
 /// Connects as `api` says. `port` overrides the API's default (auto tries both APIs on it);
 /// `timeout` bounds each reply; `connect_timeout` the connection [default:
 /// [`LEGACY_CONNECT_TIMEOUT`] (or [`LEGACY_REFUSAL_WAIT`] when an earlier run left
-/// abruptly) or [`ZMQ_CONNECT_TIMEOUT`]]. Once `stop` is set (Ctrl-C) the legacy wait ends
-/// with [`Interrupted`].
+/// abruptly) or [`ZMQ_CONNECT_TIMEOUT`]]. Once `stop` is set (Ctrl-C) the wait ends with
+/// [`Interrupted`], on either API.
 pub fn connect(
     api: Api,
     host: &str,
@@ -241,6 +245,7 @@ fn open<T: Opened>(
             port.map_or_else(zmq_port, Ok)?,
             timeout,
             connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT),
+            stop,
         ),
         Api::Auto => auto(host, port, timeout, connect_timeout, stop),
     }
@@ -280,7 +285,10 @@ fn auto<T: Opened>(
         socket_addr(host, legacy_port)
     ));
     let zmq_wait = connect_timeout.unwrap_or(ZMQ_CONNECT_TIMEOUT);
-    T::zmq(host, zmq_port, timeout, zmq_wait).map_err(|zmq_err| {
+    T::zmq(host, zmq_port, timeout, zmq_wait, stop).map_err(|zmq_err| {
+        if zmq_err.is::<Interrupted>() {
+            return zmq_err;
+        }
             let refused = nothing_listened(&legacy_err);
             let mut hints = vec![if refused
                 && matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }))
@@ -500,9 +508,10 @@ fn zmq(
     port: u16,
     timeout: Duration,
     connect_timeout: Duration,
+    stop: Option<&AtomicBool>,
 ) -> anyhow::Result<Connected> {
     let first = ZmqBackend::first_calls();
-    let (client, outcomes) = zmq_open(host, port, timeout, connect_timeout, &first)?;
+    let (client, outcomes) = zmq_open(host, port, timeout, connect_timeout, &first, stop)?;
     let addr = socket_addr(host, port);
     let backend = ZmqBackend::with_first(client, timeout, outcomes)
         .with_context(|| format!("ZeroMQ remote API at {addr}"))?;
@@ -520,18 +529,21 @@ fn zmq_client(
     port: u16,
     timeout: Duration,
     connect_timeout: Duration,
+    stop: Option<&AtomicBool>,
 ) -> anyhow::Result<zmq_api::Client> {
-    zmq_open(host, port, timeout, connect_timeout, &[]).map(|(client, _)| client)
+    zmq_open(host, port, timeout, connect_timeout, &[], stop).map(|(client, _)| client)
 }
 
 /// Connects a ZeroMQ client to `host:port`, sending `calls` with the connection's own
-/// (`zmq_api::Client::connect_with`: one main-loop pass for all), and says what it tries.
+/// (`zmq_api::Client::connect_with`: one main-loop pass for all), and says what it tries;
+/// `stop` (Ctrl-C) ends its waits with [`Interrupted`].
 fn zmq_open(
     host: &str,
     port: u16,
     timeout: Duration,
     connect_timeout: Duration,
     calls: &[(&str, Vec<ciborium::Value>)],
+    stop: Option<&AtomicBool>,
 ) -> anyhow::Result<(zmq_api::Client, Vec<zmq_api::Outcome>)> {
     super::say::note(format!(
         "connecting to CoppeliaSim's ZeroMQ remote API at {} ...",
@@ -544,7 +556,8 @@ fn zmq_open(
         connect_timeout: Some(connect_timeout),
         protocol: None,
     };
-    zmq_api::Client::connect_with(&options, calls).map_err(|e| zmq_connect_error(e, host, port))
+    zmq_api::Client::connect_until(&options, calls, stop)
+        .map_err(|e| zmq_connect_error(e, host, port))
 }
 
 /// A failed ZeroMQ connection to `host:port` as one line and its hints: a port that speaks
@@ -552,6 +565,9 @@ fn zmq_open(
 fn zmq_connect_error(error: ZmqError, host: &str, port: u16) -> anyhow::Error {
     let addr = socket_addr(host, port);
     match error {
+        ZmqError::Stopped { .. } => anyhow::Error::new(Interrupted(format!(
+            "while connecting to {addr}: nothing was changed"
+        ))),
         e @ ZmqError::NotZeroMq { .. } => {
             if legacy_answers(&addr) {
                 connect_error(

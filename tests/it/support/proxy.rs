@@ -2,9 +2,10 @@
 //! both remote APIs: it forwards bytes as they come and counts the client's *turns* (what
 //! the client sends before the simulator answers: one request of the legacy API, one
 //! ZeroMQ request or `_*executed*_`, or a part of the ZeroMQ handshake), and at the turn
-//! where [`Cut`] says so, forwards nothing more and closes every connection. The client
-//! then sees the connection dropped (legacy) or no reply (ZeroMQ); the simulator has run
-//! exactly the turns before the cut.
+//! where [`Cut`] says so, forwards nothing more, closes every connection and stops
+//! listening. The client then sees the connection dropped (legacy) or no reply and nothing
+//! listening any more (ZeroMQ: one timeout, after which its client fails every later call
+//! at once); the simulator has run exactly the turns before the cut.
 
 use std::io::{ErrorKind, Read, Write};
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
@@ -73,7 +74,9 @@ impl Proxy {
         });
         let s = shared.clone();
         let accept = std::thread::spawn(move || {
-            while !s.stop.load(Ordering::SeqCst) {
+            // after a cut the listener is closed: a ZeroMQ client's look at the port after
+            // its timeout finds nothing listening
+            while !s.stop.load(Ordering::SeqCst) && !s.lock().cut {
                 let client = match listener.accept() {
                     Ok((c, _)) => c,
                     Err(e) if e.kind() == ErrorKind::WouldBlock => {
@@ -82,9 +85,8 @@ impl Proxy {
                     }
                     Err(_) => break,
                 };
-                // after a cut, new connections (a ZeroMQ reconnect) are closed at once
                 if s.lock().cut {
-                    continue;
+                    break;
                 }
                 client.set_nonblocking(false).unwrap();
                 let Ok(upstream) = TcpStream::connect(target) else {
@@ -109,6 +111,7 @@ impl Proxy {
                     .pumps
                     .push(std::thread::spawn(move || pump(&sb, conn, u2, c2, false)));
             }
+            drop(listener);
             let pumps = {
                 let mut inner = s.lock();
                 cut_all(&mut inner);

@@ -8,6 +8,7 @@
 //! with `success`, after which requests shrink to `{func, args}`.
 
 use std::net::{TcpStream, ToSocketAddrs};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
@@ -25,6 +26,11 @@ const AFTER_TIMEOUT_WAIT: Duration = Duration::from_secs(1);
 
 /// How long the look at a silent server's port waits for its TCP connection.
 const STILL_LISTENS_WAIT: Duration = Duration::from_secs(1);
+
+/// The longest a connection's wait goes without looking at its stop flag
+/// ([`Client::connect_until`]): a signal may interrupt another thread than the one that
+/// waits, so the flag is what tells.
+const STOP_LOOK: Duration = Duration::from_millis(50);
 
 /// The most requests [`Client::call_all`] sends before reading their replies: well under
 /// libzmq's default high-water mark of 1,000 messages a socket, where a send would block.
@@ -74,6 +80,13 @@ pub enum ZmqError {
         endpoint: String,
         /// What it did instead (stayed silent, closed, sent other bytes).
         detail: String,
+    },
+    /// The caller stopped the connection (its stop flag was set: Ctrl-C) before the
+    /// server answered; nothing was asked of the simulator but reads.
+    #[error("stopped connecting to {endpoint}")]
+    Stopped {
+        /// `tcp://host:port`.
+        endpoint: String,
     },
     /// No reply in time.
     #[error(
@@ -272,7 +285,19 @@ impl Client {
         options: &ClientOptions,
         calls: &[(&str, Vec<Value>)],
     ) -> Result<(Client, Vec<Outcome>), ZmqError> {
-        let mut client = Client::open(options)?;
+        Client::connect_until(options, calls, None)
+    }
+
+    /// Connects as [`Client::connect_with`] does until `stop` is set (Ctrl-C): then the
+    /// wait for the greeting or for the first replies ends with [`ZmqError::Stopped`]
+    /// within [`STOP_LOOK`], whichever thread the signal interrupted. Once connected, the
+    /// client no longer looks at `stop`: a call in flight is finished.
+    pub fn connect_until(
+        options: &ClientOptions,
+        calls: &[(&str, Vec<Value>)],
+        stop: Option<&AtomicBool>,
+    ) -> Result<(Client, Vec<Outcome>), ZmqError> {
+        let mut client = Client::open_until(options, stop)?;
         let require = options.protocol != Some(Protocol::V1);
         let mut all: Vec<(&str, Vec<Value>)> = Vec::with_capacity(calls.len() + 1);
         if require {
@@ -281,7 +306,7 @@ impl Client {
         all.extend(calls.iter().cloned());
         let mut outcomes = Vec::with_capacity(all.len());
         for chunk in all.chunks(MAX_IN_FLIGHT) {
-            outcomes.extend(client.call_together(chunk)?);
+            outcomes.extend(client.call_together(chunk, stop)?);
         }
         if require {
             match outcomes.remove(0) {
@@ -295,6 +320,11 @@ impl Client {
 
     /// Opens the socket without any call (for tests of the raw call loop).
     pub fn open(options: &ClientOptions) -> Result<Client, ZmqError> {
+        Client::open_until(options, None)
+    }
+
+    /// [`Client::open`], the greeting's wait ended by `stop` ([`Client::connect_until`]).
+    fn open_until(options: &ClientOptions, stop: Option<&AtomicBool>) -> Result<Client, ZmqError> {
         let ipv6 = options.host.contains(':');
         let host = options.host.trim_matches(['[', ']']);
         let endpoint = if ipv6 {
@@ -340,10 +370,13 @@ impl Client {
         let greeting_wait = (connected_in * 3 + Duration::from_millis(250))
             .min(GREETING_WAIT)
             .min(wait);
-        check_greeting(stream, greeting_wait).map_err(|detail| ZmqError::NotZeroMq {
-            endpoint: endpoint.clone(),
-            detail,
-        })?;
+        match check_greeting(stream, greeting_wait, stop) {
+            Ok(()) => {}
+            Err(Greeting::Stopped) => return Err(ZmqError::Stopped { endpoint }),
+            Err(Greeting::Not(detail)) => {
+                return Err(ZmqError::NotZeroMq { endpoint, detail });
+            }
+        }
         let context = zmq::Context::new();
         let socket = new_socket(&context, &endpoint, options.timeout, ipv6)?;
         Ok(Client {
@@ -388,14 +421,19 @@ impl Client {
     /// the wait goes on until the reply or the timeout. After a timeout, a server that no
     /// longer accepts connections is [`ZmqError::Gone`], for this call and every later one.
     fn round_trip(&mut self, func: &str, request: &Request) -> Result<Value, ZmqError> {
-        let mut replies = self.exchange(&[(func, request)])?;
+        let mut replies = self.exchange(&[(func, request)], None)?;
         Ok(replies.remove(0))
     }
 
     /// Sends every request before reading any reply, then reads the replies in order (one
     /// request is a round trip). Any failure replaces the socket when replies are still
-    /// outstanding, so no late reply is ever taken for a later call's.
-    fn exchange(&mut self, requests: &[(&str, &Request)]) -> Result<Vec<Value>, ZmqError> {
+    /// outstanding, so no late reply is ever taken for a later call's. Once `stop` is set
+    /// the wait ends with [`ZmqError::Stopped`] (the socket replaced).
+    fn exchange(
+        &mut self,
+        requests: &[(&str, &Request)],
+        stop: Option<&AtomicBool>,
+    ) -> Result<Vec<Value>, ZmqError> {
         let gone = |c: &Client, func: &str| ZmqError::Gone {
             func: func.to_string(),
             endpoint: c.endpoint.clone(),
@@ -422,15 +460,21 @@ impl Client {
         let mut replies = Vec::with_capacity(requests.len());
         for (func, _) in requests {
             let received = match &sent {
-                Ok(()) => self.receive(deadline),
-                Err(e) => Err(*e),
+                Ok(()) => self.receive(deadline, stop),
+                Err(e) => Err(Waited::Failed(*e)),
             };
             let bytes = match received {
                 Ok(b) => {
                     self.timed_out = false;
                     b
                 }
-                Err(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
+                Err(Waited::Stopped) => {
+                    self.reset()?;
+                    return Err(ZmqError::Stopped {
+                        endpoint: self.endpoint.clone(),
+                    });
+                }
+                Err(Waited::Failed(zmq::Error::EAGAIN | zmq::Error::EINTR)) => {
                     self.timed_out = true;
                     self.reset()?;
                     if !self.still_listens() {
@@ -443,7 +487,7 @@ impl Client {
                         secs: wait.as_secs_f64(),
                     });
                 }
-                Err(e) => {
+                Err(Waited::Failed(e)) => {
                     if replies.len() + 1 < requests.len() {
                         self.reset()?;
                     }
@@ -495,12 +539,18 @@ impl Client {
     }
 
     /// The next reply (its frames after the empty delimiter), waited for until `deadline`
-    /// (`EAGAIN` then), through interrupted waits.
-    fn receive(&mut self, deadline: Instant) -> Result<Vec<u8>, zmq::Error> {
+    /// (`EAGAIN` then), through interrupted waits, or until `stop` is set.
+    fn receive(&mut self, deadline: Instant, stop: Option<&AtomicBool>) -> Result<Vec<u8>, Waited> {
         loop {
-            let left = deadline.saturating_duration_since(Instant::now());
+            if stop.is_some_and(|s| s.load(Ordering::SeqCst)) {
+                return Err(Waited::Stopped);
+            }
+            let mut left = deadline.saturating_duration_since(Instant::now());
             if left.is_zero() {
-                return Err(zmq::Error::EAGAIN);
+                return Err(Waited::Failed(zmq::Error::EAGAIN));
+            }
+            if stop.is_some() {
+                left = left.min(STOP_LOOK);
             }
             let ms = i64::try_from(left.as_millis()).unwrap_or(i64::MAX).max(1);
             match self.socket.poll(zmq::POLLIN, ms) {
@@ -515,9 +565,9 @@ impl Client {
                             .collect();
                         return Ok(body);
                     }
-                    Err(e) => return Err(e),
+                    Err(e) => return Err(Waited::Failed(e)),
                 },
-                Err(e) => return Err(e),
+                Err(e) => return Err(Waited::Failed(e)),
             }
         }
     }
@@ -634,7 +684,7 @@ impl Client {
         }
         let mut outcomes = Vec::with_capacity(calls.len());
         for chunk in calls.chunks(MAX_IN_FLIGHT) {
-            outcomes.extend(self.call_together(chunk)?);
+            outcomes.extend(self.call_together(chunk, None)?);
         }
         Ok(outcomes)
     }
@@ -673,15 +723,19 @@ impl Client {
     }
 
     /// [`Client::call_all`] of at most [`MAX_IN_FLIGHT`] calls, all sent before any reply is
-    /// read.
-    fn call_together(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
+    /// read; `stop` ends the wait for the replies ([`Client::exchange`]).
+    fn call_together(
+        &mut self,
+        calls: &[(&str, Vec<Value>)],
+        stop: Option<&AtomicBool>,
+    ) -> Result<Vec<Outcome>, ZmqError> {
         self.stats.calls += calls.len() as u64;
         let requests: Vec<Request> = calls
             .iter()
             .map(|(func, args)| self.request(func, args.clone()))
             .collect();
         let pairs: Vec<(&str, &Request)> = calls.iter().map(|(f, _)| *f).zip(&requests).collect();
-        let replies = self.exchange(&pairs)?;
+        let replies = self.exchange(&pairs, stop)?;
         // every reply is read: a protocol-2 wait or repeat goes on one call at a time
         replies
             .into_iter()
@@ -703,7 +757,7 @@ impl Client {
             let req = self.request(END, vec![]);
             let deadline = Instant::now() + Duration::from_millis(200);
             if self.send(&req, deadline).is_ok() {
-                let _ = self.receive(deadline);
+                let _ = self.receive(deadline, None);
             }
             self.protocol = None;
         }
@@ -716,25 +770,65 @@ impl Drop for Client {
     }
 }
 
+/// Why a wait for a reply ended without one.
+enum Waited {
+    /// The caller's stop flag was set.
+    Stopped,
+    /// The socket failed (`EAGAIN`: the deadline passed).
+    Failed(zmq::Error),
+}
+
+/// Why a peer's greeting was not taken.
+#[derive(Debug, PartialEq)]
+enum Greeting {
+    /// The caller's stop flag was set.
+    Stopped,
+    /// What the peer did instead of greeting in ZMTP.
+    Not(String),
+}
+
+/// A byte stream read with a deadline ([`check_greeting`]'s peer: a [`TcpStream`]).
+trait TimedRead {
+    /// Reads into `buf`, waiting at most `wait`.
+    fn read_within(&mut self, buf: &mut [u8], wait: Duration) -> std::io::Result<usize>;
+}
+
+impl TimedRead for TcpStream {
+    fn read_within(&mut self, buf: &mut [u8], wait: Duration) -> std::io::Result<usize> {
+        use std::io::Read;
+        self.set_read_timeout(Some(wait))?;
+        self.read(buf)
+    }
+}
+
 /// Reads the first 10 bytes the peer sends on `stream` within `wait`: a ZMTP greeting starts
-/// with 0xFF and has 0x7F at byte 9. Says what the peer did otherwise.
-fn check_greeting(mut stream: TcpStream, wait: Duration) -> Result<(), String> {
-    use std::io::Read;
+/// with 0xFF and has 0x7F at byte 9. Says what the peer did otherwise. A signal that
+/// interrupts a read (Ctrl-C) does not end the wait; `stop`, once set, does.
+fn check_greeting(
+    mut stream: impl TimedRead,
+    wait: Duration,
+    stop: Option<&AtomicBool>,
+) -> Result<(), Greeting> {
     let deadline = Instant::now() + wait;
     let mut got = Vec::with_capacity(10);
     let mut buf = [0u8; 10];
     while got.len() < 10 {
-        let left = deadline.saturating_duration_since(Instant::now());
+        if stop.is_some_and(|s| s.load(Ordering::SeqCst)) {
+            return Err(Greeting::Stopped);
+        }
+        let mut left = deadline.saturating_duration_since(Instant::now());
         if left.is_zero() {
             break;
         }
-        stream.set_read_timeout(Some(left)).ok();
-        match stream.read(&mut buf[..10 - got.len()]) {
+        if stop.is_some() {
+            left = left.min(STOP_LOOK);
+        }
+        match stream.read_within(&mut buf[..10 - got.len()], left) {
             Ok(0) => {
-                return Err(format!(
+                return Err(Greeting::Not(format!(
                     "it closed the connection without a ZeroMQ greeting{}",
                     shown(&got)
-                ));
+                )));
             }
             Ok(n) => {
                 got.extend_from_slice(&buf[..n]);
@@ -745,26 +839,30 @@ fn check_greeting(mut stream: TcpStream, wait: Duration) -> Result<(), String> {
             Err(e)
                 if matches!(
                     e.kind(),
-                    std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
-                ) =>
-            {
-                break;
+                    std::io::ErrorKind::WouldBlock
+                        | std::io::ErrorKind::TimedOut
+                        | std::io::ErrorKind::Interrupted
+                ) => {}
+            Err(e) => {
+                return Err(Greeting::Not(format!(
+                    "{e} before a ZeroMQ greeting{}",
+                    shown(&got)
+                )));
             }
-            Err(e) => return Err(format!("{e} before a ZeroMQ greeting{}", shown(&got))),
         }
     }
     if got.len() == 10 && got[0] == 0xFF && got[9] == 0x7F {
         Ok(())
     } else if got.is_empty() {
-        Err(format!(
+        Err(Greeting::Not(format!(
             "no ZeroMQ greeting within {:.1} s (a ZeroMQ peer sends one at once)",
             wait.as_secs_f64()
-        ))
+        )))
     } else {
-        Err(format!(
+        Err(Greeting::Not(format!(
             "its first bytes are no ZeroMQ greeting{}",
             shown(&got)
-        ))
+        )))
     }
 }
 
@@ -816,9 +914,49 @@ mod tests {
         let r = check_greeting(
             TcpStream::connect(addr).unwrap(),
             Duration::from_millis(300),
+            None,
         );
         t.join().unwrap();
-        r
+        r.map_err(|e| match e {
+            Greeting::Not(detail) => detail,
+            Greeting::Stopped => panic!("no stop flag was given"),
+        })
+    }
+
+    /// A peer whose reads go as scripted: each an error of that kind or those bytes.
+    struct Scripted(Vec<Result<Vec<u8>, std::io::ErrorKind>>);
+
+    impl TimedRead for Scripted {
+        fn read_within(&mut self, buf: &mut [u8], _: Duration) -> std::io::Result<usize> {
+            match self.0.remove(0) {
+                Ok(bytes) => {
+                    buf[..bytes.len()].copy_from_slice(&bytes);
+                    Ok(bytes.len())
+                }
+                Err(kind) => Err(kind.into()),
+            }
+        }
+    }
+
+    #[test]
+    fn a_signal_during_the_greeting_is_no_verdict_on_the_peer() {
+        let signature = vec![0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+        // Ctrl-C interrupts the read (EINTR): the greeting is still read
+        let interrupted = Scripted(vec![
+            Err(std::io::ErrorKind::Interrupted),
+            Ok(signature[..4].to_vec()),
+            Err(std::io::ErrorKind::Interrupted),
+            Ok(signature[4..].to_vec()),
+        ]);
+        let hour = Duration::from_secs(3600);
+        assert_eq!(check_greeting(interrupted, hour, None), Ok(()));
+        // and once the caller's flag is set, the wait ends as stopped, not as a verdict
+        let stop = AtomicBool::new(true);
+        let silent = Scripted(vec![Err(std::io::ErrorKind::Interrupted)]);
+        assert_eq!(
+            check_greeting(silent, hour, Some(&stop)),
+            Err(Greeting::Stopped)
+        );
     }
 
     #[test]
