@@ -22,12 +22,12 @@ use crate::layout::json::write_layout_parts;
 use crate::layout::limits;
 use crate::layout::micromouse::{self, Preset};
 use crate::layout::walls::{self, OPENINGS_WORDS, Openings, WallOptions};
-use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Style};
+use crate::layout::{EndpointSpec, FloorSize, GenerateSpec, Geometry, Layout, Style};
 use crate::maze::Grid;
 use crate::rng::os_seed;
 
 /// Options of `generate`.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 #[command(
     after_help = "Examples:\n  vrep-maze generate --seed 42 --algo prim -o maze.json\n  vrep-maze generate --size 20x15 --start nw --end se --seed 7 > big.json\n  vrep-maze generate --cell-size 0.5 --line-length 0.3 --line-width 0.05 --seed 1\n  vrep-maze generate --style walls --openings start,end --end ne --seed 42 -o walls.json\n  vrep-maze generate --style walls --posts --seed 42 -o posts.json\n  vrep-maze generate --preset micromouse --posts --seed 3 -o mouse.json"
 )]
@@ -46,7 +46,7 @@ pub struct GenerateArgs {
 
 /// Every option of `generate` but the seed and the output: what maze to make and how it is
 /// drawn. `batch` flattens the same struct, so the two commands cannot drift apart.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct LayoutArgs {
     /// What maze to make.
     #[command(flatten)]
@@ -101,7 +101,7 @@ impl LayoutArgs {
 }
 
 /// The maze options `generate` and `batch` share: everything but the seed.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct MazeArgs {
     /// Algorithm: dfs, prim, kruskal, aldous-broder, wilson, hunt-and-kill, growing-tree,
     /// eller, sidewinder, binary-tree, recursive-division (textures in the README).
@@ -161,7 +161,7 @@ pub struct MazeArgs {
 }
 
 /// How `generate` draws the maze: lines or walls, and the micromouse presets.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct StyleArgs {
     /// lines (Line copies on the floor, for line followers) or walls (a Wall cuboid on
     /// every closed side and around the grid, for robots that sense walls).
@@ -411,13 +411,91 @@ pub fn run(args: GenerateArgs, progress: Progress) -> Result<ExitCode> {
             "seed {seed} (drawn from the OS; recorded in the layout; pass --seed {seed} to make this maze again)"
         );
     }
+    let floor = FloorNote::of(&args.layout, seed, layout);
     if let Some(path) = &args.output {
         eprintln!(
-            "wrote {}: {}, solution {} cells",
+            "wrote {}: {}, solution {} cells{}",
             super::escape::escaped(&path.display().to_string()),
             super::validate::describe(layout, count),
-            layout.metrics.solution_cells
+            layout.metrics.solution_cells,
+            floor
+                .as_ref()
+                .map_or(String::new(), |f| format!("; {}", f.size))
         );
+    } else if let Some(f) = &floor {
+        eprintln!("note: {}", f.size);
+    }
+    if let Some(hint) = floor.and_then(|f| f.hint) {
+        eprintln!("  hint: {hint}");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What `generate` says of a floor that is not the course's (10 m x 10 m), where the size
+/// is decided rather than at `apply`: the size, and for a larger floor what draws it.
+struct FloorNote {
+    /// `floor 35 m x 35 m, larger than the course's 10 m x 10 m`.
+    size: String,
+    /// `--resize-floor`, and a smaller `--cell-size` where one fits the course's floor.
+    hint: Option<String>,
+}
+
+impl FloorNote {
+    /// The note for `layout`, made from `args` and `seed`; `None` on the course's floor.
+    fn of(args: &LayoutArgs, seed: u64, layout: &Layout) -> Option<FloorNote> {
+        let [x, y] = layout.floor.size;
+        let course = course::FLOOR_SIZE;
+        if x == course && y == course {
+            return None;
+        }
+        let shown = format!("{} m x {} m", limits::show(x), limits::show(y));
+        let larger = x > course || y > course;
+        if !larger {
+            return Some(FloorNote {
+                size: format!("floor {shown}"),
+                hint: None,
+            });
+        }
+        let resize = format!(
+            "the course scene's floor is {course} m x {course} m: draw it with `apply --resize-floor` (clear puts the floor back)"
+        );
+        let hint = match fitting_cell_size(args, seed) {
+            Some(cell) => format!(
+                "{resize}, or generate it with --cell-size {} to fit that floor",
+                limits::show(cell)
+            ),
+            None => resize,
+        };
+        Some(FloorNote {
+            size: format!("floor {shown}, larger than the course's {course} m x {course} m"),
+            hint: Some(hint),
+        })
+    }
+}
+
+/// The largest cell side, in whole centimetres, at which the maze `args` describe fits the
+/// course's floor, the other options as given (the line template must still fit a cell);
+/// `None` where none does (a preset's cells, a fixed floor, a line template longer than such
+/// a cell, an origin that keeps the maze off that floor).
+fn fitting_cell_size(args: &LayoutArgs, seed: u64) -> Option<f64> {
+    if args.style.preset.is_some() || args.maze.floor_size.is_some() {
+        return None;
+    }
+    let spec = args.maze.spec(seed).ok()?;
+    let need = crate::layout::build::extent_needed(&spec.geometry.grid_corners(spec.grid));
+    let need = need[0].max(need[1]);
+    let cell = (spec.geometry.cell_size * course::FLOOR_SIZE / need * 100.0).floor() / 100.0;
+    if cell <= 0.0 {
+        return None;
+    }
+    let mut smaller = args.clone();
+    smaller.maze.cell_size = cell;
+    let planned = smaller.plan(seed).ok()?;
+    let fits = planned
+        .head
+        .floor
+        .size
+        .iter()
+        .all(|&s| s <= course::FLOOR_SIZE);
+    fits.then_some(cell)
 }

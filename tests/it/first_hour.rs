@@ -1,5 +1,5 @@
-//! The first hour of a new user (issue 21): what the command line says when something is
-//! missing or wrong, and what it says it did.
+//! The first hour of a new user (issues 21 and 41): what the command line says when
+//! something is missing or wrong, and what it says it did.
 
 use predicates::str::contains;
 
@@ -79,4 +79,53 @@ fn a_zeromq_scene_without_the_wall_template_points_to_create_missing() {
         .code(1)
         .stderr(contains("missing in the scene: Wall"))
         .stderr(contains("hint: or pass --create-missing"));
+}
+
+/// `generate` names a floor that is not the course's 10 m where it decides it, with the
+/// hint that fits: `--resize-floor` always, a smaller `--cell-size` only where one makes
+/// the maze fit the course's floor (checked by generating with it).
+#[test]
+fn generate_names_a_floor_other_than_the_courses() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.json");
+    let run = |size: &str, extra: &[&str]| {
+        let o = bin()
+            .args(["generate", "--seed", "1", "--size", size, "-o"])
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success());
+        String::from_utf8(o.stderr).unwrap()
+    };
+    let course = run("9x9", &[]);
+    assert!(!course.contains("floor"), "{course}");
+    let large = run("30x30", &[]);
+    assert!(
+        large.contains(
+            "solution 452 cells; floor 35 m x 35 m, larger than the course's 10 m x 10 m\n"
+        ),
+        "{large}"
+    );
+    assert!(large.contains("hint: the course scene's floor is 10 m x 10 m: draw it with `apply --resize-floor` (clear puts the floor back)\n"), "{large}");
+    // no cell holds the course's 0.6 m line at 10/30 m
+    assert!(!large.contains("--cell-size"), "{large}");
+    let twelve = run("12x12", &[]);
+    assert!(
+        twelve.contains("or generate it with --cell-size 0.76 to fit that floor"),
+        "{twelve}"
+    );
+    // the size said fits: generated with it, the floor is the course's
+    let fitted = run("12x12", &["--cell-size", "0.76"]);
+    assert!(!fitted.contains("floor"), "{fitted}");
+    // written to standard output, the size is a note
+    let o = bin()
+        .args(["generate", "--seed", "1", "--size", "12x12"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(o.stderr).unwrap();
+    assert!(
+        stderr.starts_with("note: floor 15 m x 15 m, larger than the course's"),
+        "{stderr}"
+    );
 }
