@@ -373,7 +373,7 @@ impl Words {
                     what,
                     pasting: format!("pasting {what}"),
                     placing: format!("placing {what}"),
-                    interrupted: super::summary::interrupted_counts(picture),
+                    interrupted: "copies placed".into(),
                     verified: format!("verified: every {noun}, start and end in place"),
                     hints_create_missing: true,
                 }
@@ -387,7 +387,7 @@ impl Words {
                     what,
                     pasting: format!("creating the meshes of {what}"),
                     placing: format!("creating the meshes of {what}"),
-                    interrupted: super::summary::interrupted_counts(picture),
+                    interrupted: format!("{what} drawn"),
                     verified: "verified: every mesh read back, start and end in place".into(),
                     hints_create_missing: false,
                 }

@@ -308,7 +308,6 @@ impl Scene {
             size: o.size,
             colour: o.colour,
             mesh: None,
-            layer: None,
         });
         handle
     }
@@ -363,16 +362,6 @@ impl Scene {
                 }
             }
         }
-        Ok(())
-    }
-
-    /// Sets an object's visibility layer bits (`sim.setObjectInt32Param(h, 10, bits)`; 0
-    /// hides it).
-    pub fn set_layer(&mut self, handle: i32, bits: i32) -> Result<(), SimError> {
-        self.objects
-            .get_mut(&handle)
-            .ok_or(SimError::NoSuchHandle(handle))?
-            .layer = Some(bits);
         Ok(())
     }
 
