@@ -290,7 +290,7 @@ impl Client {
 
     /// Connects as [`Client::connect_with`] does until `stop` is set (Ctrl-C): then the
     /// wait for the greeting or for the first replies ends with [`ZmqError::Stopped`]
-    /// within [`STOP_LOOK`], whichever thread the signal interrupted. Once connected, the
+    /// within `STOP_LOOK`, whichever thread the signal interrupted. Once connected, the
     /// client no longer looks at `stop`: a call in flight is finished.
     pub fn connect_until(
         options: &ClientOptions,

@@ -65,8 +65,8 @@ fn at(name: &str, line: usize, column: usize, message: impl std::fmt::Display) -
 }
 
 /// Reads the drawing in `text`; `name` (the file) starts every error, which names the line
-/// and column. In phases: the drawing's size ([`drawn_size`]), then each line, a wall line
-/// ([`Reader::wall_line`]) or a cell line ([`Reader::cell_line`]), then the maze of the
+/// and column. In phases: the drawing's size (`drawn_size`), then each line, a wall line
+/// (`Reader::wall_line`) or a cell line (`Reader::cell_line`), then the maze of the
 /// passages read.
 pub fn parse(text: &str, name: &str) -> Result<TextMaze, String> {
     let mut lines: Vec<Vec<char>> = text
