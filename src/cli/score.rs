@@ -184,13 +184,18 @@ pub fn run(args: ScoreArgs) -> Result<ExitCode> {
         describe(&report, &hints(&report))
     };
     write_output(None, |w| w.write_all(text.as_bytes()))?;
-    Ok(if report.complete {
+    Ok(exit_code(&report, &interrupt))
+}
+
+/// The exit code of a graded run: 0 complete, 130 interrupted, 3 otherwise (partial).
+pub(super) fn exit_code(report: &Report, interrupt: &Interrupt) -> ExitCode {
+    if report.complete {
         ExitCode::SUCCESS
     } else if interrupt.requested() {
         ExitCode::from(INTERRUPTED_EXIT_CODE)
     } else {
         ExitCode::from(INCOMPLETE_EXIT_CODE)
-    })
+    }
 }
 
 /// `error` with what to do when it is the missing robot `robot`: name the robot, or give the

@@ -12,9 +12,9 @@ use anyhow::{Result, anyhow};
 
 use super::connect::RawClient;
 use super::drive::{DriveArgs, SteerBy, checked};
-use super::interrupt::{INTERRUPTED_EXIT_CODE, Interrupt};
+use super::interrupt::Interrupt;
 use super::reports::ScoreJson;
-use super::score::{INCOMPLETE_EXIT_CODE, describe};
+use super::score::{describe, exit_code};
 use super::session_marker::SessionMarker;
 use super::usage::ensure_usage;
 use crate::layout::solution::solve;
@@ -114,13 +114,7 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
         )
     };
     super::output::write_output(None, |w| w.write_all(text.as_bytes()))?;
-    Ok(if report.complete {
-        ExitCode::SUCCESS
-    } else if interrupt.requested() {
-        ExitCode::from(INTERRUPTED_EXIT_CODE)
-    } else {
-        ExitCode::from(INCOMPLETE_EXIT_CODE)
-    })
+    Ok(exit_code(&report, &interrupt))
 }
 
 impl DriveArgs {
