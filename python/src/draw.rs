@@ -317,9 +317,10 @@ pub(crate) fn draw_connected(
     job: &draw::Job<'_>,
 ) -> anyhow::Result<Finished<draw::Report>> {
     let total = job.picture.pieces();
+    let counts = vrep_maze::cli::summary::interrupted_counts(&job.picture);
     if job.options.interrupted() {
         return Ok(Finished::Stopped {
-            message: format!("interrupted: 0 of {total} copies placed; the idle rate is unchanged"),
+            message: format!("interrupted: 0 of {total} {counts}; the idle rate is unchanged"),
             counts: Some((0, total)),
         });
     }
@@ -327,7 +328,7 @@ pub(crate) fn draw_connected(
         Ok(done) => Ok(Finished::Done(done)),
         Err(RunError::Draw(DrawError::Interrupted { placed, total })) => Ok(Finished::Stopped {
             message: format!(
-                "interrupted: {placed} of {total} copies placed; the idle rate is restored"
+                "interrupted: {placed} of {total} {counts}; the idle rate is restored"
             ),
             counts: Some((placed, total)),
         }),

@@ -373,7 +373,7 @@ impl Words {
                     what,
                     pasting: format!("pasting {what}"),
                     placing: format!("placing {what}"),
-                    interrupted: "copies placed".into(),
+                    interrupted: super::summary::interrupted_counts(picture),
                     verified: format!("verified: every {noun}, start and end in place"),
                     hints_create_missing: true,
                 }
@@ -387,7 +387,7 @@ impl Words {
                     what,
                     pasting: format!("creating the meshes of {what}"),
                     placing: format!("creating the meshes of {what}"),
-                    interrupted: format!("{what} drawn"),
+                    interrupted: super::summary::interrupted_counts(picture),
                     verified: "verified: every mesh read back, start and end in place".into(),
                     hints_create_missing: false,
                 }

@@ -451,7 +451,12 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
                 }
             ))?,
             _ if o.present => say(format!("  {:<14} {:<8} present", o.role, o.name))?,
-            _ => say(format!("  {:<14} {:<8} missing", o.role, o.name))?,
+            _ => say(format!(
+                "  {:<14} {:<8} {}",
+                o.role,
+                o.name,
+                absent(&o.role, r.maze.style)
+            ))?,
         }
     }
     if !r.colours_read {
@@ -464,10 +469,7 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
         None if m.lines + m.walls > 0 => " (lines and walls: two mazes mixed)",
         None => "",
     };
-    say(format!(
-        "drawn: {} line copies, {} wall copies, {} post copies{kind}",
-        m.lines, m.walls, m.posts
-    ))?;
+    say(format!("drawn: {}{kind}", drawn_counts(m)))?;
     if !m.meshes.is_empty() {
         let shown = m
             .meshes
@@ -496,13 +498,13 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
     if !m.stray_copies.is_empty() {
         say(format!(
             "stray copies outside the maze dummy: {}",
-            m.stray_copies.join(", ")
+            first_names(&m.stray_copies)
         ))?;
     }
     if !m.not_ours.is_empty() {
         say(format!(
             "under the maze dummy but not ours: {}",
-            m.not_ours.join(", ")
+            first_names(&m.not_ours)
         ))?;
     }
     if let Some(l) = &r.layout {
@@ -521,6 +523,60 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+/// What `inspect` says of a template or marker the scene lacks: "missing" where a maze of
+/// the `drawn` style (or any maze, when none is drawn) needs it; a template only the other
+/// style uses is "not in the scene", said as no problem (a line maze uses no `Wall` or
+/// `Post`).
+fn absent(role: &str, drawn: Option<Style>) -> &'static str {
+    match (role, drawn) {
+        ("wall template", Some(Style::Lines)) => "not in the scene (a line maze does not use it)",
+        ("post template", Some(Style::Lines)) => "not in the scene (a line maze does not use it)",
+        ("line template", Some(Style::Walls)) => "not in the scene (a wall maze does not use it)",
+        ("post template", _) => "not in the scene (only wall mazes with posts use it)",
+        ("wall template", None) => "not in the scene (only wall mazes use it)",
+        _ => "missing",
+    }
+}
+
+/// The maze's pieces as `apply` counts them: a line maze's lines are the line template
+/// (which `apply` lays on the first line) and its copies, a wall maze's walls and posts are
+/// copies of their templates ("160 lines (the template and 159 copies), 0 walls, 0 posts").
+fn drawn_counts(m: &DrawnMaze) -> String {
+    let lines = if m.lines > 0 {
+        format!(
+            "{} lines (the line template and {} copies)",
+            m.lines + 1,
+            m.lines
+        )
+    } else {
+        "0 lines".to_string()
+    };
+    let of = if m.walls + m.posts > 0 {
+        " (copies of the wall and post templates)"
+    } else {
+        ""
+    };
+    format!("{lines}, {} walls, {} posts{of}", m.walls, m.posts)
+}
+
+/// The first [`NAMED`] of `names` and how many more, as `apply` and `clear` name them
+/// ("a, b, ... (2858 more)"); the `--json` document lists every one.
+fn first_names(names: &[String]) -> String {
+    let shown = names
+        .iter()
+        .take(NAMED)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    match names.len().saturating_sub(NAMED) {
+        0 => shown,
+        more => format!("{shown}, ... ({more} more)"),
+    }
+}
+
+/// How many names a line of `inspect` shows.
+const NAMED: usize = 12;
 
 /// An RGB colour (0..1) as `#rrggbb`.
 fn hex(c: [f64; 3]) -> String {

@@ -1,7 +1,8 @@
 //! The lines `apply` ends with and an interrupted `clear` says, in the command line's words
 //! (the Python package's `str(report)` and its interrupted message are the same lines).
 
-use crate::draw::{ApplyReport, DrawMode};
+use crate::draw::{ApplyReport, DrawMode, Picture};
+use crate::layout::Style;
 
 /// What an interrupted `clear` did: `placed` of `total` maze objects removed.
 pub fn clear_interrupted(placed: usize, total: usize) -> String {
@@ -9,6 +10,25 @@ pub fn clear_interrupted(placed: usize, total: usize) -> String {
         "interrupted: {placed} of {total} maze objects removed, {} remain; the idle rate is restored",
         total - placed
     )
+}
+
+/// What an interrupted `apply` of `picture` counts, in the words its progress uses: "lines
+/// placed", "walls and posts placed" (copies), "line runs drawn" (meshes). The command line
+/// and the Python package say "interrupted: N of M {this}" alike.
+pub fn interrupted_counts(picture: &Picture) -> String {
+    match picture {
+        Picture::Copies(d) => match (d.style, d.posts.is_empty()) {
+            (Style::Lines, _) => "lines placed",
+            (Style::Walls, true) => "walls placed",
+            (Style::Walls, false) => "walls and posts placed",
+        }
+        .into(),
+        Picture::Mesh(m) => match m.style {
+            Style::Lines => "line runs drawn",
+            Style::Walls => "wall runs and posts drawn",
+        }
+        .into(),
+    }
 }
 
 /// What `apply` did, in one line: the counts of [`ApplyReport`] and the cost.
@@ -101,4 +121,27 @@ fn kept(report: &ApplyReport) -> String {
         report.unchanged,
         report.placed - report.unread
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::draw::mesh::MeshMaze;
+    use crate::generate::Algorithm;
+    use crate::layout::{GenerateSpec, build_layout};
+    use crate::maze::Grid;
+
+    #[test]
+    fn an_interrupted_apply_counts_what_its_mode_draws() {
+        let layout = build_layout(&GenerateSpec::course(
+            Grid::new(3, 3).unwrap(),
+            Algorithm::Dfs,
+            1,
+        ))
+        .unwrap();
+        let copies = Picture::Copies(crate::draw::Drawing::try_from(&layout).unwrap());
+        let mesh = Picture::Mesh(MeshMaze::try_from(&layout).unwrap());
+        assert_eq!(interrupted_counts(&copies), "lines placed");
+        assert_eq!(interrupted_counts(&mesh), "line runs drawn");
+    }
 }

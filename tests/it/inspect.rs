@@ -251,10 +251,7 @@ fn the_inspect_document_satisfies_its_schema_and_the_text_names_what_is_there() 
         text.contains("simulation stopped; idle rate 0 fps"),
         "{text}"
     );
-    assert!(
-        text.contains("drawn: 0 line copies, 0 wall copies"),
-        "{text}"
-    );
+    assert!(text.contains("drawn: 0 lines, 0 walls, 0 posts"), "{text}");
     server.shutdown();
 }
 
@@ -389,4 +386,67 @@ fn inspect_names_a_floor_smaller_than_the_layouts() {
         );
         server.shutdown();
     }
+}
+
+/// Issue 41 row 9: after `apply` of a 9x9 line maze, `inspect` counts the lines as `apply`
+/// does (the template lies on the first line: "drew 81 lines" is "81 lines (the line
+/// template and 80 copies)"), and the templates a line maze does not use are not "missing".
+#[test]
+fn inspect_counts_the_lines_apply_drew_and_misses_no_unused_template() {
+    for kind in [Kind::Legacy, Kind::Zmq2] {
+        let k = kind.name();
+        let server = kind.serve(Scene::course(), 0);
+        let dir = tempfile::tempdir().unwrap();
+        let m = generate(dir.path(), "7", "dfs");
+        let out = bin()
+            .arg("apply")
+            .arg(&m)
+            .args(api_args(kind, &server))
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let applied = String::from_utf8(out).unwrap();
+        let drew: usize = applied
+            .split("drew ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{k}: {applied}"));
+        let text = inspect_text(kind, &server);
+        let said = format!(
+            "drawn: {drew} lines (the line template and {} copies), 0 walls, 0 posts (a line maze)",
+            drew - 1
+        );
+        assert!(text.contains(&said), "{k}: {said}\n{text}");
+        assert!(!text.contains("missing"), "{k}: {text}");
+        assert!(
+            text.contains("Wall     not in the scene (a line maze does not use it)"),
+            "{k}: {text}"
+        );
+        server.shutdown();
+    }
+}
+
+/// Issue 38 row 11: `inspect` of a scene with many stray copies names the first 12 and
+/// counts the rest, as `apply` and `clear` do; `--json` lists every one.
+#[test]
+fn inspect_names_a_dozen_stray_copies_and_counts_the_rest() {
+    let mut scene = Scene::course();
+    let line = scene.resolve("Line").unwrap();
+    for _ in 0..30 {
+        scene.copy_paste(&[line]).unwrap();
+    }
+    let server = Kind::Legacy.serve(scene, 0);
+    let text = inspect_text(Kind::Legacy, &server);
+    let stray = text
+        .lines()
+        .find(|l| l.starts_with("stray copies outside the maze dummy: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(stray.ends_with(", ... (18 more)"), "{stray}");
+    assert_eq!(stray.matches(", ").count(), 12, "{stray}");
+    let report = inspect(Kind::Legacy, &server, &[], 0);
+    assert_eq!(report["maze"]["stray_copies"].as_array().unwrap().len(), 30);
+    server.shutdown();
 }

@@ -50,6 +50,7 @@ mod texture;
 mod time_wait;
 mod trust;
 mod trust_draw;
+mod trust_kept;
 mod trust_ours;
 mod validate;
 mod walls;

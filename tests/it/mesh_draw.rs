@@ -302,8 +302,8 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
         problems.iter().any(|p| p.to_string().contains(wanted)),
         "{problems:?}"
     );
-    // the next apply does not notice (the name still says what it holds) but a stray copy
-    // of the template under Maze is removed
+    // the next apply notices (issue 38: a kept mesh is checked as a new one is) and
+    // replaces the changed mesh; a stray copy of the template under Maze is removed
     s.with_sim(|sim| {
         let line = sim.scene.resolve("Line").unwrap();
         let maze = sim.scene.resolve("Maze").unwrap();
@@ -318,8 +318,13 @@ fn verify_finds_a_changed_mesh_and_a_stray_copy(kind: Kind) {
         "{problems:?}"
     );
     let r = apply_mesh(&mut b, &m).unwrap();
-    assert_eq!(r.removed, 1, "{r:?}");
+    assert_eq!((r.removed, r.pasted, r.reused), (2, 1, 0), "{r:?}");
+    assert!(
+        r.warnings.iter().any(|w| w.starts_with("replaced mesh `")),
+        "{r:?}"
+    );
     assert_eq!(s.line_count(), 1);
+    verify_mesh(&mut b, &m).unwrap();
     b.close().unwrap();
     s.shutdown();
 }

@@ -68,7 +68,110 @@ on_every_target!(
     score_follows_a_scripted_robot,
     drive_gives_score_a_robot,
     a_red_look_alike_under_the_maze_never_spreads,
+    edits_to_what_was_drawn_are_found_and_repaired,
 );
+
+/// A user's edit of the object it is given: the function called and its arguments.
+type UserEdit = dyn Fn(i32) -> (&'static str, Vec<ciborium::Value>);
+
+/// Issue 38 rows 1-3 and 8, through the command line: a drawn mesh scaled 5 %, hidden or
+/// recoloured, and a drawn copy scaled 1.3x or recoloured, are each found by `inspect
+/// --layout` and replaced by the next `apply`, after which `inspect --layout` agrees; a
+/// copy with the user's dummy under it is left alone by `apply` and `clear`. The legacy API
+/// reads no colours and no layers: those edits are made only over ZeroMQ.
+fn edits_to_what_was_drawn_are_found_and_repaired(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let (m, _) = generate(dir.path(), "m", &["--seed", "42"]);
+    let zmq = !target.legacy();
+    let int = |v: i32| vrep_maze::zmq_api::cbor::int(v.into());
+    let float = ciborium::Value::Float;
+    let red = || vrep_maze::zmq_api::cbor::float_array(&[1.0, 0.0, 0.0]);
+    let text = |t: &str| ciborium::Value::Text(t.into());
+    let mut edits: Vec<(&str, Box<UserEdit>)> = vec![(
+        "scaled",
+        Box::new(move |h| {
+            let f = float(1.05);
+            let args = vec![int(h), f.clone(), f.clone(), f, int(0)];
+            ("sim.scaleObject", args)
+        }),
+    )];
+    if zmq {
+        edits.push((
+            "hidden",
+            Box::new(move |h| ("sim.setObjectInt32Param", vec![int(h), int(10), int(0)])),
+        ));
+        edits.push((
+            "recoloured",
+            Box::new(move |h| ("sim.setShapeColor", vec![int(h), text(""), int(0), red()])),
+        ));
+    }
+    // meshes
+    for (what, edit) in &edits {
+        ok(&sim, &["apply", "-q", "--draw", "mesh", &m]);
+        let holder = obs.handle("/Maze/MazeMeshes");
+        let mesh = obs.look().below(holder)[0].handle;
+        let (func, args) = edit(mesh);
+        obs.call(func, args);
+        let found = run(&sim, &["inspect", "--layout", &m]);
+        assert_ne!(found.code, 0, "{target:?}: a {what} mesh passed inspect");
+        let applied = ok(&sim, &["apply", "--draw", "mesh", &m]);
+        assert!(
+            applied.stderr.contains("replaced mesh `")
+                || applied.stdout.contains("replaced mesh `"),
+            "{target:?}: {what}: {}{}",
+            applied.stdout,
+            applied.stderr
+        );
+        ok(&sim, &["inspect", "--layout", &m]);
+    }
+    // copies (the 1.3x of the issue)
+    for (what, edit) in &edits {
+        ok(&sim, &["apply", "-q", &m]);
+        let maze = obs.handle("/Maze");
+        let copy = obs.look().below(maze)[3].handle;
+        let (func, mut args) = edit(copy);
+        if func == "sim.scaleObject" {
+            args = vec![int(copy), float(1.3), float(1.3), float(1.0), int(0)];
+        }
+        obs.call(func, args);
+        let found = run(&sim, &["inspect", "--layout", &m]);
+        assert_ne!(found.code, 0, "{target:?}: a {what} copy passed inspect");
+        let applied = ok(&sim, &["apply", &m]);
+        assert!(
+            format!("{}{}", applied.stdout, applied.stderr).contains("replaced 1 copy(ies)"),
+            "{target:?}: {what}: {}{}",
+            applied.stdout,
+            applied.stderr
+        );
+        ok(&sim, &["inspect", "--layout", &m]);
+    }
+    // a copy with the user's dummy under it stays, and so does the dummy
+    let maze = obs.handle("/Maze");
+    let copy = obs.look().below(maze)[3].handle;
+    let dummy = obs.call("sim.createDummy", vec![float(0.01)]);
+    let dummy = vrep_maze::zmq_api::cbor::int32(&dummy[0]).unwrap();
+    obs.call(
+        "sim.setObjectParent",
+        vec![int(dummy), int(copy), ciborium::Value::Bool(true)],
+    );
+    let (other, _) = generate(dir.path(), "other", &["--seed", "43"]);
+    let applied = ok(&sim, &["apply", &other]);
+    assert!(
+        applied.stdout.contains("left alone: 1 object(s)"),
+        "{target:?}: {}",
+        applied.stdout
+    );
+    ok(&sim, &["inspect", "--layout", &other]);
+    ok(&sim, &["clear"]);
+    let parent = obs.call("sim.getObjectParent", vec![int(dummy)]);
+    assert_eq!(
+        vrep_maze::zmq_api::cbor::int32(&parent[0]),
+        Some(copy),
+        "{target:?}: the user's dummy lost its copy"
+    );
+}
 
 /// Issue 30, item 1: the user copies `Line` under `Maze` and colours the copy red; apply
 /// pastes only from the template and its own copies, so the user's stays the one red

@@ -160,6 +160,11 @@ impl Observer {
         );
     }
 
+    /// Calls `func` as a user's script would (an edit of the scene), its answer.
+    pub fn call(&mut self, func: &str, args: Vec<Value>) -> Vec<Value> {
+        call(&mut self.client, func, args)
+    }
+
     /// A handle by path (`/Floor`).
     pub fn handle(&mut self, path: &str) -> i32 {
         let v = call(&mut self.client, "sim.getObject", vec![text(path)]);

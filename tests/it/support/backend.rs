@@ -116,14 +116,6 @@ impl Kind {
             _ => None,
         }
     }
-
-    /// What the error of a refused re-parenting (a cycle) says over this API.
-    pub fn parent_cycle_error(self) -> &'static str {
-        match self {
-            Kind::Legacy => "set the parent of object",
-            Kind::Zmq1 | Kind::Zmq2 => "cannot be made a child of",
-        }
-    }
 }
 
 enum Handle {

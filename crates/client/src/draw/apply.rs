@@ -80,6 +80,9 @@ fn apply_claimed(
     let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
     let mut existing = maze_pieces(objects, &h, names.template(style), &others);
     existing.retain(|x| !mesh_maze(x));
+    // a copy of ours the user scaled or recoloured is pasted anew, never reused as it is
+    let spoiled = spoiled_copies(objects, &survey.traits, &mut report);
+    existing.retain(|x| !spoiled.contains(x));
     let earlier = EarlierLines::of(
         match style {
             Style::Lines => !existing.is_empty(),
@@ -98,7 +101,8 @@ fn apply_claimed(
         plan: paste::plan(&existing, copies_needed),
     }];
     if let Some(template) = h.post.filter(|_| posts) {
-        let existing = foreign_copies(objects, &h, &[&names.post]);
+        let mut existing = foreign_copies(objects, &h, &[&names.post]);
+        existing.retain(|x| !spoiled.contains(x));
         parts.push(Part {
             template,
             template_drawn: false,
@@ -112,6 +116,7 @@ fn apply_claimed(
     foreign.retain(|x| !mesh_maze(x));
     report.removed_meshes = meshes.len();
     foreign.extend(meshes);
+    foreign.extend(&spoiled);
     if !drawing.template_drawn() {
         let floor = floor_frame(objects, h.floor).unwrap_or_default();
         let mut templates = vec![(names.template(style), h.template)];
@@ -178,6 +183,45 @@ fn apply_claimed(
     };
     run.draw(objects, &parts, &foreign)?;
     Ok(report)
+}
+
+/// The copies of ours among `objects` that the user scaled or recoloured
+/// (`Traits::spoiled`), in handle order: removed and pasted anew, each named in
+/// a warning of `report` with what differs.
+fn spoiled_copies(
+    objects: &[ObjectInfo],
+    traits: &crate::draw::survey::Traits,
+    report: &mut ApplyReport,
+) -> Vec<i32> {
+    let mut spoiled: Vec<(i32, &str, &str)> = objects
+        .iter()
+        .filter_map(|o| {
+            Some((
+                o.handle,
+                o.name.as_str(),
+                traits.spoiled.get(&o.handle)?.as_str(),
+            ))
+        })
+        .collect();
+    spoiled.sort_unstable_by_key(|s| s.0);
+    const NAMED: usize = 3;
+    if !spoiled.is_empty() {
+        let named: Vec<String> = spoiled
+            .iter()
+            .take(NAMED)
+            .map(|(_, name, why)| format!("`{name}` {why}"))
+            .collect();
+        let more = match spoiled.len().saturating_sub(NAMED) {
+            0 => String::new(),
+            n => format!("; ... ({n} more)"),
+        };
+        report.warnings.push(format!(
+            "replaced {} copy(ies) that no longer looked like their template: {}{more}",
+            spoiled.len(),
+            named.join("; ")
+        ));
+    }
+    spoiled.into_iter().map(|s| s.0).collect()
 }
 
 /// The kept objects' places: the edits that put each part's template (a line maze's) and

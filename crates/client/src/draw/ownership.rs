@@ -41,15 +41,50 @@ pub fn is_copy_name(name: &str, template: &str) -> bool {
     path_copy || names::is_copy_of(name, template)
 }
 
+/// What differs between the copy `handle` and its `template` by what a backend read
+/// (`traits`: sizes, colours, visibility layers), `None` when nothing read differs: "is 0.78 x 0.13 x 0 m, the
+/// template 0.6 x 0.1 x 0 m", "is coloured ...". What a backend did not read is no evidence.
+pub fn spoiled(traits: &Traits, handle: i32, template: i32) -> Option<String> {
+    let size = |h: i32| traits.sizes.get(&h).copied();
+    let colour = |h: i32| traits.colours.get(&h).copied();
+    let metres = |s: [f64; 3]| s.map(|v| format!("{:.4}", v + 0.0)).join(" x ");
+    let rgb = |c: [f64; 3]| c.map(|v| format!("{:.2}", v + 0.0)).join(", ");
+    if let (Some(a), Some(b)) = (size(handle), size(template))
+        && !same_extents(a, b)
+    {
+        return Some(format!("is {} m, the template {} m", metres(a), metres(b)));
+    }
+    if let (Some(a), Some(b)) = (colour(handle), colour(template))
+        && !same_colour(a, b)
+    {
+        return Some(format!(
+            "is coloured ({}), the template ({})",
+            rgb(a),
+            rgb(b)
+        ));
+    }
+    let layer = |h: i32| traits.layers.get(&h).copied();
+    if let (Some(a), Some(b)) = (layer(handle), layer(template))
+        && a != b
+    {
+        let hidden = if a == 0 { " (hidden)" } else { "" };
+        return Some(format!(
+            "is on visibility layer {a}{hidden}, the template on {b}"
+        ));
+    }
+    None
+}
+
 /// `true` if what a backend read of `handle` ([`Traits`]) says it is no copy of the
 /// template `template`, though named and typed like one: it has children of its own, or
 /// both sizes were read and differ ([`same_extents`]), or both colours were read and differ
 /// (a user's red copy of `Line` is no line of the maze, nor a source to paste from). A
-/// copy the record holds ([`Traits::recorded`]) is never contradicted: the record decides
-/// first.
+/// copy the record holds ([`Traits::recorded`]) is contradicted only by children of its
+/// own (the user put something under it: never reused, moved or removed); a recorded copy
+/// of another size or colour is still ours ([`Traits::spoiled`]).
 pub fn contradicts_copy(traits: &Traits, handle: i32, template: Option<i32>) -> bool {
     if traits.recorded.contains(&handle) {
-        return false;
+        return traits.with_children.contains(&handle);
     }
     let size = |h: i32| traits.sizes.get(&h).copied();
     let colour = |h: i32| traits.colours.get(&h).copied();
@@ -273,6 +308,16 @@ mod tests {
         let sorted = sort_out(&objects, &h, &["Line"], &traits);
         assert_eq!(sorted.strangers, vec!["Line1"]);
         assert!(sorted.objects.iter().any(|o| o.handle == 9));
+        // a recorded copy is spoiled by its colour, not the user's; with a child it is
+        assert_eq!(
+            spoiled(&traits, 9, 3).as_deref(),
+            Some("is coloured (1.00, 0.00, 0.00), the template (0.00, 1.00, 0.00)")
+        );
+        assert_eq!(spoiled(&traits, 6, 3), None);
+        let mut parent = traits.clone();
+        parent.with_children.insert(9);
+        let sorted = sort_out(&objects, &h, &["Line"], &parent);
+        assert_eq!(sorted.strangers, vec!["Line1", "Renamed"]);
     }
 
     #[test]

@@ -115,4 +115,12 @@ pub struct Traits {
     /// ([`super::record`]) holds as this tool's copies, as the survey found it: ours, first
     /// of all, and never a template or a marker (`resolve_handles`).
     pub recorded: HashSet<i32>,
+    /// Visibility layer bits by handle: the recorded copies the backend read them of (an
+    /// API that reads them), and their templates.
+    pub layers: HashMap<i32, i32>,
+    /// Copies the record holds whose size, colour or visibility layer is no longer their
+    /// template's (the user scaled, recoloured or hid them), with what differs: ours, but
+    /// never reused as they are: a drawing removes and pastes them anew, a verification
+    /// names them (`ownership::spoiled`).
+    pub spoiled: HashMap<i32, String>,
 }

@@ -261,6 +261,15 @@ fn verify_raised(
     );
     let mut problems = Vec::new();
     problems.extend(broken_frames(objects, &h, names));
+    // a copy of ours the user scaled or recoloured is no line of the layout's
+    let mut spoiled: Vec<(i32, &String)> =
+        survey.traits.spoiled.iter().map(|(h, w)| (*h, w)).collect();
+    spoiled.sort_unstable();
+    for (handle, why) in spoiled {
+        if let Some(o) = by_handle.get(&handle) {
+            problems.push(format!("{} copy `{}` {why}", noun(style), o.name).into());
+        }
+    }
     let mut stray = Vec::new();
     let parts = [
         (noun(style), pool, &drawing.pieces),

@@ -178,8 +178,9 @@ impl LegacyBackend {
     /// What tells the maze's copies from the user's objects named like them ([`Traits`]):
     /// `kinds`, plus the sizes and children of the objects named and typed like a
     /// template's copy that `record` does not hold (normally none: only a maze drawn by an
-    /// older version, or a scene reloaded, since signals are not saved with it), and of
-    /// their templates. Sizes take six commands an object, in one request per
+    /// older version, or a scene reloaded, since signals are not saved with it), of the
+    /// copies it holds (a recorded copy scaled since is spoiled, one with children the
+    /// user's), and of their templates. Sizes take six commands an object, in one request per
     /// [`SIZED_PER_REQUEST`] objects; children come with the survey's parents.
     fn traits(
         &mut self,
@@ -205,9 +206,16 @@ impl LegacyBackend {
             .collect();
         let mut doubtful = Vec::new();
         let mut sized: Vec<i32> = Vec::new();
+        // the recorded copies are checked as new ones would be: size and children (this
+        // API reads no colour)
+        let mut recorded = Vec::new();
         for (o, (name, alias, template)) in maze_objects(handles.parent, objects, &templates) {
             if kind_matches(&traits, o.handle, *template) && record.get(o.handle) == Some(alias) {
                 traits.recorded.insert(o.handle);
+                recorded.push((o.handle, *template));
+                if !sized.contains(template) {
+                    sized.push(*template);
+                }
             }
             if kind_matches(&traits, o.handle, *template)
                 && is_copy_name(&o.name, name)
@@ -219,21 +227,28 @@ impl LegacyBackend {
                 }
             }
         }
-        if doubtful.is_empty() {
+        if doubtful.is_empty() && recorded.is_empty() {
             return Ok(traits);
         }
         let parents: HashSet<i32> = objects.iter().filter_map(|o| o.parent).collect();
         traits.with_children = doubtful
             .iter()
+            .chain(recorded.iter().map(|(h, _)| h))
             .copied()
             .filter(|h| parents.contains(h))
             .collect();
         sized.extend(doubtful);
+        sized.extend(recorded.iter().map(|(h, _)| *h));
         for chunk in sized.chunks(SIZED_PER_REQUEST) {
             for (h, b) in chunk.iter().zip(self.bounding_boxes(chunk)?) {
                 if let Some(b) = b {
                     traits.sizes.insert(*h, b.size());
                 }
+            }
+        }
+        for (copy, template) in recorded {
+            if let Some(why) = ownership::spoiled(&traits, copy, template) {
+                traits.spoiled.insert(copy, why);
             }
         }
         Ok(traits)

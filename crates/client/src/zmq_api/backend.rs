@@ -115,6 +115,9 @@ pub struct ZmqBackend {
     /// Whether anything lies below the maze dummy's children (one call for the whole
     /// maze, made for the first doubted child of a survey).
     deep: Option<bool>,
+    /// The root objects the last survey found named like a mesh of ours
+    /// ([`crate::draw::mesh::FoundMeshes::elsewhere`]).
+    root_meshes: Vec<String>,
 }
 
 fn alias_of(name: &str) -> &str {
@@ -172,6 +175,7 @@ impl ZmqBackend {
             extents: HashMap::new(),
             children: HashMap::new(),
             deep: None,
+            root_meshes: Vec::new(),
         })
     }
 

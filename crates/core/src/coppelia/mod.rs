@@ -41,6 +41,14 @@ pub const OBJFLOATPARAM_BBOX: i32 = 15;
 /// that give the bounding box of the model whose base the object is (its own box if it is
 /// no model base), in its own frame, ordered as [`OBJFLOATPARAM_BBOX`]'s.
 pub const OBJFLOATPARAM_MODELBBOX: i32 = 21;
+/// `sim_objintparam_visibility_layer`: the bits of the layers an object is shown on (0:
+/// hidden). A shape made by `sim.createShape` / `sim.createMeshShape` is on layer 1, a dummy
+/// on 4 (both real builds, `docs/measurements.md` "Kept meshes read back in one request").
+pub const OBJINTPARAM_VISIBILITY_LAYER: i32 = 10;
+/// The visibility layer of a new shape ([`OBJINTPARAM_VISIBILITY_LAYER`]).
+pub const SHAPE_LAYER: i32 = 1;
+/// The visibility layer of a new dummy ([`OBJINTPARAM_VISIBILITY_LAYER`]).
+pub const DUMMY_LAYER: i32 = 4;
 
 /// `sim.shapeintparam_static`: 1 = the shape is not dynamic.
 pub const SHAPEINTPARAM_STATIC: i32 = 3003;

@@ -54,6 +54,10 @@ pub struct Object {
     /// `size` makes ([`Mesh::primitive`]): meshes created or loaded, merged groups.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mesh: Option<Mesh>,
+    /// The visibility layer bits set by `sim.setObjectInt32Param(h, 10, bits)`, `None` for
+    /// the type's default ([`Object::layer`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub layer: Option<i32>,
 }
 
 impl Object {
@@ -65,6 +69,16 @@ impl Object {
             (ObjectType::Shape, Some(m)) => Some(std::borrow::Cow::Borrowed(m)),
             (ObjectType::Shape, None) => Some(std::borrow::Cow::Owned(Mesh::primitive(self.size))),
         }
+    }
+
+    /// The visibility layer bits (`sim_objintparam_visibility_layer`): as set, else a new
+    /// shape's 1 or a new dummy's 4, as both real builds answer
+    /// ([`vrep_maze_core::coppelia::OBJINTPARAM_VISIBILITY_LAYER`]).
+    pub fn layer(&self) -> i32 {
+        self.layer.unwrap_or(match self.kind {
+            ObjectType::Shape => vrep_maze_core::coppelia::SHAPE_LAYER,
+            ObjectType::Dummy => vrep_maze_core::coppelia::DUMMY_LAYER,
+        })
     }
 
     /// The bounding box relative to the object's frame, min and max corners: its mesh's,

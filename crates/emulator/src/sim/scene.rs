@@ -308,6 +308,7 @@ impl Scene {
             size: o.size,
             colour: o.colour,
             mesh: None,
+            layer: None,
         });
         handle
     }
@@ -362,6 +363,16 @@ impl Scene {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// Sets an object's visibility layer bits (`sim.setObjectInt32Param(h, 10, bits)`; 0
+    /// hides it).
+    pub fn set_layer(&mut self, handle: i32, bits: i32) -> Result<(), SimError> {
+        self.objects
+            .get_mut(&handle)
+            .ok_or(SimError::NoSuchHandle(handle))?
+            .layer = Some(bits);
         Ok(())
     }
 

@@ -6,7 +6,8 @@ use std::collections::{HashMap, HashSet};
 
 use super::compare::{bounds, mesh_differences};
 use super::{
-    FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, NewMesh,
+    FoundMeshes, HOLDER, Look, MazeMesh, MeshDrawing, MeshKind, MeshMaze, MeshPlace, MeshReadback,
+    NewMesh,
 };
 use crate::draw::backend::{Backend, Edit, ObjectInfo};
 use crate::draw::error::DrawError;
@@ -20,7 +21,7 @@ use crate::draw::session::{
     Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
     surveyed,
 };
-use vrep_maze_core::coppelia::{SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
+use vrep_maze_core::coppelia::{SHAPE_LAYER, SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use vrep_maze_core::layout::{Pose, Style};
 use vrep_maze_core::wording::Message;
 
@@ -76,6 +77,11 @@ fn found_unsorted(
             })
             .unwrap_or_default(),
         users: Vec::new(),
+        elsewhere: objects
+            .iter()
+            .filter(|o| o.parent.is_none() && super::parse_mesh_name(&o.name).is_some())
+            .map(|o| o.name.clone())
+            .collect(),
     })
 }
 
@@ -142,6 +148,156 @@ fn special(kind: MeshKind, look: &Look) -> i32 {
     look.special | SPECIAL_RENDERABLE | extra
 }
 
+/// What a mesh apply does with the meshes of the scene: which it keeps (`have`), which it
+/// makes (`missing`, indices into the maze's meshes) and what it removes (`doomed`).
+struct MeshPlan {
+    /// The handle kept or made for each of the maze's meshes.
+    have: Vec<Option<i32>>,
+    /// The maze's meshes to make.
+    missing: Vec<usize>,
+    /// What goes: an earlier maze's copies, stray or duplicate meshes, kept ones that differ.
+    doomed: Vec<i32>,
+}
+
+impl MeshPlan {
+    /// Keeps each mesh `found` under the holder whose name (fingerprint) `maze` draws; the
+    /// earlier maze's copies of any template, and every other mesh, go (the user's objects
+    /// under the maze dummy stay, [`ownership::sort_out`]).
+    fn of(
+        maze: &MeshMaze,
+        found: &FoundMeshes,
+        objects: &[ObjectInfo],
+        h: &Handles,
+        names: &ObjectNames,
+    ) -> MeshPlan {
+        let others = names.others(maze.style);
+        let mut doomed: Vec<i32> = maze_pieces(objects, h, names.template(maze.style), &others)
+            .into_iter()
+            .chain(foreign_copies(objects, h, &others))
+            .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
+            .collect();
+        let wanted: HashMap<String, usize> = maze
+            .meshes
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (m.name(), i))
+            .collect();
+        let mut have: Vec<Option<i32>> = vec![None; maze.meshes.len()];
+        for m in &found.meshes {
+            match wanted.get(&m.name) {
+                Some(&i) if have[i].is_none() && m.parent == found.holder => {
+                    have[i] = Some(m.handle)
+                }
+                _ => doomed.push(m.handle),
+            }
+        }
+        let missing = (0..maze.meshes.len())
+            .filter(|&i| have[i].is_none())
+            .collect();
+        MeshPlan {
+            have,
+            missing,
+            doomed,
+        }
+    }
+
+    /// The meshes kept: index into the maze's meshes and handle.
+    fn kept(&self) -> Vec<(usize, i32)> {
+        self.have
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !self.missing.contains(i))
+            .filter_map(|(i, h)| h.map(|h| (i, h)))
+            .collect()
+    }
+
+    /// Replaces the kept mesh `i` (handle `handle`): removed, and made anew.
+    fn replace(&mut self, i: usize, handle: i32) {
+        self.have[i] = None;
+        self.missing.push(i);
+        self.doomed.push(handle);
+    }
+}
+
+/// The edits that put the template and markers where `maze` wants them (those found in place
+/// counted as unchanged in `report`).
+fn marker_edits(
+    maze: &MeshMaze,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    report: &mut ApplyReport,
+) -> Vec<Edit> {
+    let by_handle: HashMap<i32, &ObjectInfo> = objects.iter().map(|o| (o.handle, o)).collect();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
+    let mut edits = Vec::new();
+    for (handle, want) in markers(maze, h) {
+        let in_place = by_handle
+            .get(&handle)
+            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
+        if in_place {
+            report.markers_unchanged += 1;
+        } else {
+            report.markers_placed += 1;
+            edits.push(Edit::SetPose {
+                handle,
+                relative_to: h.floor,
+                position: crate::draw::pose::position(&want),
+                orientation: crate::draw::pose::euler(&want),
+            });
+        }
+    }
+    edits
+}
+
+/// How the template and the post template look (the post template's only when `posts`).
+fn looks(scene: &mut dyn Backend, h: &Handles, posts: bool) -> Result<(Look, Look), DrawError> {
+    let template_look = port(scene)?.look(h.template)?;
+    let post_look = match h.post.filter(|_| posts) {
+        Some(p) => port(scene)?.look(p)?,
+        None => template_look,
+    };
+    Ok((template_look, post_look))
+}
+
+/// The look a mesh of `kind` has: the post template's for posts, else the template's.
+fn look_of(kind: MeshKind, (template_look, post_look): (Look, Look)) -> Look {
+    if kind == MeshKind::Posts {
+        post_look
+    } else {
+        template_look
+    }
+}
+
+/// Reads every mesh `plan` keeps back, in one request ([`MeshDrawing::read_all`]), and
+/// replaces each that differs from what a new one would be ([`mesh_problems`]: its frame on
+/// the floor, its triangles or size, its colour, its visibility), saying why in `report`.
+fn check_kept(
+    scene: &mut dyn Backend,
+    maze: &MeshMaze,
+    plan: &mut MeshPlan,
+    floor: &vrep_maze_core::coppelia::frame::Frame,
+    looks: (Look, Look),
+    report: &mut ApplyReport,
+) -> Result<(), DrawError> {
+    let kept = plan.kept();
+    if kept.is_empty() {
+        return Ok(());
+    }
+    let handles: Vec<i32> = kept.iter().map(|&(_, h)| h).collect();
+    let backs = port(scene)?.read_all(&handles)?;
+    for (&(i, handle), back) in kept.iter().zip(&backs) {
+        let mesh = &maze.meshes[i];
+        let problems = mesh_problems(mesh, back, floor, look_of(mesh.kind, looks));
+        if let Some(first) = problems.first() {
+            report
+                .warnings
+                .push(format!("replaced mesh `{}`: it {first}", mesh.name()));
+            plan.replace(i, handle);
+        }
+    }
+    Ok(())
+}
+
 fn apply_claimed(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
@@ -166,61 +322,19 @@ fn apply_claimed(
         objects,
     } = begin(scene, opts, &maze.template_use(), false, counts, progress)?;
     let found = found(scene, names, h.parent, &survey.objects)?;
-    // the user's objects under the holder (and the user's holder) stay, named
+    // the user's objects under the holder (and the user's holder) stay, named; meshes of
+    // ours elsewhere (moved out of the holder) are the user's now, and said so
     report.left_alone.extend(found.left_alone());
-    // an earlier maze's copies of any template go; the user's objects under the maze dummy
-    // stay ([`ownership::sort_out`])
-    let others = names.others(style);
-    let mut doomed: Vec<i32> = maze_pieces(&objects, &h, names.template(style), &others)
-        .into_iter()
-        .chain(foreign_copies(&objects, &h, &others))
-        .filter(|x| Some(*x) != found.holder && Some(*x) != h.post)
-        .collect();
-    let wanted: HashMap<String, usize> = maze
-        .meshes
-        .iter()
-        .enumerate()
-        .map(|(i, m)| (m.name(), i))
-        .collect();
-    let mut have: Vec<Option<i32>> = vec![None; maze.meshes.len()];
-    for m in &found.meshes {
-        match wanted.get(&m.name) {
-            Some(&i) if have[i].is_none() && m.parent == found.holder => have[i] = Some(m.handle),
-            _ => doomed.push(m.handle),
-        }
-    }
-    let missing: Vec<usize> = (0..maze.meshes.len())
-        .filter(|&i| have[i].is_none())
-        .collect();
-    report.reused = maze.meshes.len() - missing.len();
-    report.pasted = missing.len();
-    report.removed = doomed.len();
-    report.unchanged = report.reused;
-    // the template lies on the first line (or under Start), the markers on their cells
-    let by_handle: HashMap<i32, &ObjectInfo> =
-        survey.objects.iter().map(|o| (o.handle, o)).collect();
+    report.warnings.extend(found.elsewhere_warnings(names));
+    let mut plan = MeshPlan::of(maze, &found, &objects, &h, names);
     let floor = floor_frame(&survey.objects, h.floor).unwrap_or_default();
-    let mut edits = Vec::new();
-    for (handle, want) in markers(maze, &h) {
-        let in_place = by_handle
-            .get(&handle)
-            .is_some_and(|o| pose_differences(&floor, o, &want).is_none());
-        if in_place {
-            report.markers_unchanged += 1;
-        } else {
-            report.markers_placed += 1;
-            edits.push(Edit::SetPose {
-                handle,
-                relative_to: h.floor,
-                position: crate::draw::pose::position(&want),
-                orientation: crate::draw::pose::euler(&want),
-            });
-        }
-    }
+    let edits = marker_edits(maze, &h, &survey.objects, &mut report);
     if opts.dry_run {
+        report.count(maze, &plan);
         return Ok(report);
     }
     // where the line template stood before it goes onto the first line, for `clear`
+    let others = names.others(style);
     keep_home(
         scene,
         claim.signals_kept(),
@@ -240,122 +354,177 @@ fn apply_claimed(
         names,
         &mut report,
     )?;
-    let checkpoint = |scene: &mut dyn Backend, placed: usize, phase| {
-        if opts.interrupted() {
+    let posts = pieces_of(maze, &[MeshKind::Posts]) > 0;
+    let looks = looks(scene, &h, posts)?;
+    // a kept mesh is checked as a new one is, and replaced when it differs
+    check_kept(scene, maze, &mut plan, &floor, looks, &mut report)?;
+    report.count(maze, &plan);
+    let mut draw = MeshDraw {
+        scene,
+        maze,
+        opts,
+        claim,
+        progress,
+        place: MeshPlace {
+            parent: h.parent,
+            holder: found.holder,
+            floor: h.floor,
+        },
+        looks,
+    };
+    draw.remove(&plan.doomed, survey.objects.len(), &mut report)?;
+    let placed = draw.create(&mut plan)?;
+    draw.checkpoint(placed, "while placing the markers")?;
+    draw.scene.edit(&edits)?;
+    report.edits += edits.len();
+    (draw.progress)(Stage::Verifying);
+    draw.verify_created(&plan)?;
+    Ok(report)
+}
+
+/// One mesh apply's drawing: the removals, the meshes made, their check.
+struct MeshDraw<'a, 'p> {
+    scene: &'a mut dyn Backend,
+    maze: &'a MeshMaze,
+    opts: &'a ApplyOptions,
+    claim: &'a Claim,
+    progress: &'p mut dyn FnMut(Stage),
+    /// Where the new meshes go (the holder once made).
+    place: MeshPlace,
+    /// The template's and the post template's looks.
+    looks: (Look, Look),
+}
+
+impl MeshDraw<'_, '_> {
+    /// Stops here if the user interrupted (`placed` pieces of the maze drawn) or another run
+    /// took the scene over.
+    fn checkpoint(&mut self, placed: usize, phase: &'static str) -> Result<(), DrawError> {
+        if self.opts.interrupted() {
             return Err(DrawError::Interrupted {
                 placed,
-                total: maze.pieces(),
+                total: self.maze.pieces(),
             });
         }
-        claim.check(scene, phase)
-    };
-    let per_request = scene.pieces_per_request(survey.objects.len()).max(1);
-    for chunk in doomed.chunks(per_request) {
-        checkpoint(scene, 0, "while removing the earlier maze")?;
-        let removals: Vec<Edit> = chunk.iter().map(|&d| Edit::Remove(d)).collect();
-        scene.edit(&removals)?;
-        report.edits += removals.len();
+        self.claim.check(self.scene, phase)
     }
-    let template_look = port(scene)?.look(h.template)?;
-    let post_look = match h.post.filter(|_| report.posts > 0) {
-        Some(p) => port(scene)?.look(p)?,
-        None => template_look,
-    };
-    let mut place = MeshPlace {
-        parent: h.parent,
-        holder: found.holder,
-        floor: h.floor,
-    };
-    let mut placed = report.unchanged_pieces(maze, &have);
-    let total = maze.pieces();
-    progress(Stage::Placing {
-        done: placed,
-        total,
-    });
-    for batch in missing.chunks(MESHES_PER_CREATE) {
-        checkpoint(scene, placed, "while creating the meshes")?;
-        let names: Vec<String> = batch.iter().map(|&i| maze.meshes[i].name()).collect();
-        let new: Vec<NewMesh<'_>> = batch
-            .iter()
-            .zip(&names)
-            .map(|(&i, name)| {
-                let m = &maze.meshes[i];
-                let look = if m.kind == MeshKind::Posts {
-                    post_look
-                } else {
-                    template_look
-                };
-                NewMesh {
-                    name,
-                    vertices: &m.vertices,
-                    indices: &m.indices,
-                    look: Look {
-                        colour: look.colour,
-                        special: special(m.kind, &look),
-                    },
-                    respondable: m.kind.respondable(),
-                }
-            })
-            .collect();
-        let (holder, handles) = port(scene)?.create(&place, &new)?;
-        place.holder = Some(holder);
-        for (&i, handle) in batch.iter().zip(handles) {
-            have[i] = Some(handle);
-            placed += maze.meshes[i].pieces.len();
+
+    /// Removes `doomed`, in requests of bounded server time.
+    fn remove(
+        &mut self,
+        doomed: &[i32],
+        objects: usize,
+        report: &mut ApplyReport,
+    ) -> Result<(), DrawError> {
+        let per_request = self.scene.pieces_per_request(objects).max(1);
+        for chunk in doomed.chunks(per_request) {
+            self.checkpoint(0, "while removing the earlier maze")?;
+            let removals: Vec<Edit> = chunk.iter().map(|&d| Edit::Remove(d)).collect();
+            self.scene.edit(&removals)?;
+            report.edits += removals.len();
         }
-        progress(Stage::Placing {
+        Ok(())
+    }
+
+    /// Makes the meshes `plan` misses, [`MESHES_PER_CREATE`] a request; returns the pieces
+    /// drawn (kept and made).
+    fn create(&mut self, plan: &mut MeshPlan) -> Result<usize, DrawError> {
+        let maze = self.maze;
+        let mut placed = pieces_held(maze, &plan.have);
+        let total = maze.pieces();
+        (self.progress)(Stage::Placing {
             done: placed,
             total,
         });
-    }
-    checkpoint(scene, placed, "while placing the markers")?;
-    scene.edit(&edits)?;
-    report.edits += edits.len();
-    progress(Stage::Verifying);
-    // the meshes created now read back (those kept carry the fingerprint of what they hold,
-    // and were found under the holder); the colours, poses and the markers' poses are the
-    // ones just set, acknowledged; `verify` reads everything
-    let mut problems = Vec::new();
-    let created: Vec<(usize, i32)> = missing
-        .iter()
-        .filter_map(|&i| {
-            let handle = have[i];
-            if handle.is_none() {
-                problems.push(format!("mesh `{}` was not created", maze.meshes[i].name()));
+        for batch in plan.missing.chunks(MESHES_PER_CREATE) {
+            self.checkpoint(placed, "while creating the meshes")?;
+            let names: Vec<String> = batch.iter().map(|&i| maze.meshes[i].name()).collect();
+            let new: Vec<NewMesh<'_>> = batch
+                .iter()
+                .zip(&names)
+                .map(|(&i, name)| {
+                    let m = &maze.meshes[i];
+                    let look = look_of(m.kind, self.looks);
+                    NewMesh {
+                        name,
+                        vertices: &m.vertices,
+                        indices: &m.indices,
+                        look: Look {
+                            colour: look.colour,
+                            special: special(m.kind, &look),
+                        },
+                        respondable: m.kind.respondable(),
+                    }
+                })
+                .collect();
+            let (holder, handles) = port(self.scene)?.create(&self.place, &new)?;
+            self.place.holder = Some(holder);
+            for (&i, handle) in batch.iter().zip(handles) {
+                plan.have[i] = Some(handle);
+                placed += maze.meshes[i].pieces.len();
             }
-            Some(i).zip(handle)
-        })
-        .collect();
-    let handles: Vec<i32> = created.iter().map(|&(_, h)| h).collect();
-    let backs = port(scene)?.read_shapes(&handles)?;
-    for (&(i, _), back) in created.iter().zip(backs) {
-        let mesh = &maze.meshes[i];
-        if let (Some(v), Some(t)) = (&back.vertices, &back.indices)
-            && let Some(d) = mesh_differences(mesh, v, t)
-        {
-            problems.push(format!("mesh `{}` {d}", mesh.name()));
+            (self.progress)(Stage::Placing {
+                done: placed,
+                total,
+            });
         }
+        Ok(placed)
     }
-    claim.check(scene, "while verifying")?;
-    if problems.is_empty() {
-        Ok(report)
-    } else {
-        Err(DrawError::Verify(
-            problems.into_iter().map(Message::from).collect(),
-        ))
+
+    /// Reads the meshes made now back (their triangles; the colours and poses are the ones
+    /// just set, acknowledged; those kept were read before) and compares them.
+    fn verify_created(&mut self, plan: &MeshPlan) -> Result<(), DrawError> {
+        let maze = self.maze;
+        let mut problems = Vec::new();
+        let created: Vec<(usize, i32)> = plan
+            .missing
+            .iter()
+            .filter_map(|&i| {
+                let handle = plan.have[i];
+                if handle.is_none() {
+                    problems.push(format!("mesh `{}` was not created", maze.meshes[i].name()));
+                }
+                Some(i).zip(handle)
+            })
+            .collect();
+        let handles: Vec<i32> = created.iter().map(|&(_, h)| h).collect();
+        let backs = port(self.scene)?.read_shapes(&handles)?;
+        for (&(i, _), back) in created.iter().zip(backs) {
+            let mesh = &maze.meshes[i];
+            if let (Some(v), Some(t)) = (&back.vertices, &back.indices)
+                && let Some(d) = mesh_differences(mesh, v, t)
+            {
+                problems.push(format!("mesh `{}` {d}", mesh.name()));
+            }
+        }
+        self.claim.check(self.scene, "while verifying")?;
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(DrawError::Verify(
+                problems.into_iter().map(Message::from).collect(),
+            ))
+        }
     }
 }
 
 impl ApplyReport {
-    /// Pieces held by the meshes kept.
-    fn unchanged_pieces(&self, maze: &MeshMaze, have: &[Option<i32>]) -> usize {
-        maze.meshes
-            .iter()
-            .zip(have)
-            .filter(|(_, h)| h.is_some())
-            .map(|(m, _)| m.pieces.len())
-            .sum()
+    /// Counts what `plan` keeps, makes and removes of `maze`'s meshes.
+    fn count(&mut self, maze: &MeshMaze, plan: &MeshPlan) {
+        self.reused = maze.meshes.len() - plan.missing.len();
+        self.pasted = plan.missing.len();
+        self.removed = plan.doomed.len();
+        self.unchanged = self.reused;
     }
+}
+
+/// Pieces held by the meshes `have` holds.
+fn pieces_held(maze: &MeshMaze, have: &[Option<i32>]) -> usize {
+    maze.meshes
+        .iter()
+        .zip(have)
+        .filter(|(_, h)| h.is_some())
+        .map(|(m, _)| m.pieces.len())
+        .sum()
 }
 
 /// Where the template (a line maze's: on the first line, or under `Start` when there is
@@ -486,16 +655,9 @@ fn verify_raised(
         ));
     }
     let floor = floor_frame(&objects, h.floor).unwrap_or_default();
-    let template_look = port(scene)?.look(h.template)?;
-    let post_look = match h
-        .post
-        .filter(|_| maze.meshes.iter().any(|m| m.kind == MeshKind::Posts))
-    {
-        Some(p) => port(scene)?.look(p)?,
-        None => template_look,
-    };
-    let looks = (template_look, post_look);
-    problems.extend(mesh_problems(scene, maze, &found, &floor, looks)?);
+    let posts = maze.meshes.iter().any(|m| m.kind == MeshKind::Posts);
+    let looks = looks(scene, &h, posts)?;
+    problems.extend(found_mesh_problems(scene, maze, &found, &floor, looks)?);
     problems.extend(marker_problems(maze, &h, &objects));
     if problems.is_empty() {
         Ok(())
@@ -511,28 +673,21 @@ fn extents(size: [f64; 3]) -> String {
     size.map(|v| format!("{:.6}", v + 0.0)).join(" x ")
 }
 
-/// Reads back the meshes of `maze` that `found` holds and
-/// compares each with what was drawn: its frame on the `floor`, its triangles or bounding
-/// box, its colour the template's (`looks`: the style's template, the post template).
-fn mesh_problems(
+/// Reads back the meshes of `maze` that `found` holds, in one request where the API can
+/// ([`MeshDrawing::read_all`]), and compares each with what a new one would be
+/// ([`mesh_problems`]; `looks`: the style's template, the post template).
+fn found_mesh_problems(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
     found: &FoundMeshes,
     floor: &vrep_maze_core::coppelia::frame::Frame,
-    (template_look, post_look): (Look, Look),
+    looks: (Look, Look),
 ) -> Result<Vec<String>, DrawError> {
-    let mut problems = Vec::new();
     let by_name: HashMap<&str, i32> = found
         .meshes
         .iter()
         .map(|m| (m.name.as_str(), m.handle))
         .collect();
-    let on_floor = Pose {
-        x: 0.0,
-        y: 0.0,
-        z: 0.0,
-        yaw: 0.0,
-    };
     let present: Vec<(&MazeMesh, i32)> = maze
         .meshes
         .iter()
@@ -540,55 +695,78 @@ fn mesh_problems(
         .collect();
     let handles: Vec<i32> = present.iter().map(|&(_, h)| h).collect();
     let backs = port(scene)?.read_all(&handles)?;
-    for (&(mesh, handle), back) in present.iter().zip(backs) {
-        let name = mesh.name();
-        let info = ObjectInfo {
-            handle,
-            name: name.clone(),
-            parent: None,
-            position: back.pose.0,
-            orientation: back.pose.1,
-        };
-        if let Some(d) = pose_differences(floor, &info, &on_floor) {
-            problems.push(format!("mesh `{name}`'s frame is not the floor's: {d}"));
-        }
-        if let (Some(v), Some(i)) = (&back.vertices, &back.indices)
-            && let Some(d) = mesh_differences(mesh, v, i)
-        {
-            problems.push(format!("mesh `{name}` {d}"));
-        }
-        if let Some((min, max)) = back.bounding_box {
-            // CoppeliaSim gives a mesh's box as half-extents about its centre, not in the
-            // shape's frame (spec "Meshes on the real 4.5.1"): compare sizes, which both
-            // conventions share
-            let (want_min, want_max) = bounds(mesh);
-            let size = [0, 1, 2].map(|k| max[k] - min[k]);
-            let want = [0, 1, 2].map(|k| want_max[k] - want_min[k]);
-            if size
-                .iter()
-                .zip(&want)
-                .any(|(a, b)| (a - b).abs() > 2.0 * super::compare::VERTEX_TOLERANCE)
-            {
-                problems.push(format!(
-                    "mesh `{name}`'s bounding box is {} m, expected {} m",
-                    extents(size),
-                    extents(want)
-                ));
-            }
-        }
-        let look = if mesh.kind == MeshKind::Posts {
-            post_look
-        } else {
-            template_look
-        };
-        if let Some(c) = back.colour
-            && c.iter().zip(look.colour).any(|(a, b)| (a - b).abs() > 0.01)
+    Ok(present
+        .iter()
+        .zip(&backs)
+        .flat_map(|(&(mesh, _), back)| {
+            mesh_problems(mesh, back, floor, look_of(mesh.kind, looks))
+                .into_iter()
+                .map(move |p| format!("mesh `{}` {p}", mesh.name()))
+        })
+        .collect())
+}
+
+/// What differs between the mesh `back` read and `mesh` as a new one is made: its frame on
+/// the `floor`, its triangles (where the API reads them) or its bounding box's size, its
+/// colour `look`'s, and its visibility layer a new shape's ([`SHAPE_LAYER`]). Each problem
+/// is said of the mesh ("is coloured ...").
+fn mesh_problems(
+    mesh: &MazeMesh,
+    back: &MeshReadback,
+    floor: &vrep_maze_core::coppelia::frame::Frame,
+    look: Look,
+) -> Vec<String> {
+    let mut problems = Vec::new();
+    let info = ObjectInfo {
+        handle: 0,
+        name: mesh.name(),
+        parent: None,
+        position: back.pose.0,
+        orientation: back.pose.1,
+    };
+    let on_floor = Pose {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+        yaw: 0.0,
+    };
+    if let Some(d) = pose_differences(floor, &info, &on_floor) {
+        problems.push(format!("has a frame that is not the floor's: {d}"));
+    }
+    if let (Some(v), Some(i)) = (&back.vertices, &back.indices)
+        && let Some(d) = mesh_differences(mesh, v, i)
+    {
+        problems.push(d);
+    }
+    if let Some((min, max)) = back.bounding_box {
+        // CoppeliaSim gives a mesh's box as half-extents about its centre, not in the
+        // shape's frame (spec "Meshes on the real 4.5.1"): compare sizes, which both
+        // conventions share
+        let (want_min, want_max) = bounds(mesh);
+        let size = [0, 1, 2].map(|k| max[k] - min[k]);
+        let want = [0, 1, 2].map(|k| want_max[k] - want_min[k]);
+        if size
+            .iter()
+            .zip(&want)
+            .any(|(a, b)| (a - b).abs() > 2.0 * super::compare::VERTEX_TOLERANCE)
         {
             problems.push(format!(
-                "mesh `{name}` is coloured {c:?}, the template {:?}",
-                look.colour
+                "has a bounding box of {} m, expected {} m",
+                extents(size),
+                extents(want)
             ));
         }
     }
-    Ok(problems)
+    if let Some(c) = back.colour
+        && c.iter().zip(look.colour).any(|(a, b)| (a - b).abs() > 0.01)
+    {
+        problems.push(format!("is coloured {c:?}, the template {:?}", look.colour));
+    }
+    if let Some(layer) = back.layer.filter(|&l| l != SHAPE_LAYER) {
+        let hidden = if layer == 0 { " (hidden)" } else { "" };
+        problems.push(format!(
+            "is on visibility layer {layer}{hidden}, a new mesh on {SHAPE_LAYER}"
+        ));
+    }
+    problems
 }

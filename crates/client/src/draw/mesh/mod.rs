@@ -80,6 +80,9 @@ pub struct FoundMeshes {
     /// ([`FoundMeshes::sorted`]). Never removed; while there are any, the holder is the
     /// user's too ([`FoundMeshes::holder_is_ours`]).
     pub users: Vec<FoundMesh>,
+    /// Objects at the scene root named like a mesh of ours ([`parse_mesh_name`]): moved out
+    /// of the holder by the user, so theirs now. Never removed, never kept; reported.
+    pub elsewhere: Vec<String>,
 }
 
 impl FoundMeshes {
@@ -96,6 +99,7 @@ impl FoundMeshes {
             holder: self.holder,
             meshes,
             users,
+            elsewhere: self.elsewhere,
         }
     }
 
@@ -121,6 +125,20 @@ impl FoundMeshes {
                     .filter(|_| self.holder_is_ours())
                     .map(|h| (h, HOLDER.to_string())),
             )
+            .collect()
+    }
+
+    /// One warning per object named like a mesh of ours outside the holder
+    /// ([`FoundMeshes::elsewhere`]): left alone, and how to have it drawn again.
+    pub fn elsewhere_warnings(&self, names: &ObjectNames) -> Vec<String> {
+        self.elsewhere
+            .iter()
+            .map(|name| {
+                format!(
+                    "`{name}` at the scene root is named like a mesh of the maze but is not under `{}/{HOLDER}`: left alone (remove it if it is a leftover)",
+                    names.parent
+                )
+            })
             .collect()
     }
 
@@ -150,6 +168,8 @@ pub struct MeshReadback {
     pub colour: Option<[f64; 3]>,
     /// World position and Euler angles of the shape's frame.
     pub pose: ([f64; 3], [f64; 3]),
+    /// Visibility layer bits (0: hidden), if the API reads them (ZeroMQ).
+    pub layer: Option<i32>,
 }
 
 /// What a backend must offer for `apply --draw mesh`, reached with
@@ -177,7 +197,7 @@ pub trait MeshDrawing {
         self.read(handle)
     }
     /// Reads the meshes `handles` back (as [`MeshDrawing::read`]), in order; a backend that
-    /// can reads their triangles in one request.
+    /// can reads them whole in one request (ZeroMQ: triangles, pose, colour and layer).
     fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
         handles.iter().map(|&h| self.read(h)).collect()
     }
@@ -208,6 +228,7 @@ mod tests {
                 holder: Some(9),
                 meshes,
                 users: Vec::new(),
+                elsewhere: Vec::new(),
             }
             .sorted()
         };

@@ -19,6 +19,7 @@ use super::LegacyBackend;
 use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
+    parse_mesh_name,
 };
 use crate::draw::names::ObjectNames;
 use crate::legacy::command::{ALL_OBJECTS, Command, GroupData, TEMP_FILE_PREFIX, group, read_i32};
@@ -192,12 +193,20 @@ impl MeshDrawing for LegacyBackend {
 
     fn find(&mut self, _names: &ObjectNames, parent: i32) -> Result<FoundMeshes, BackendError> {
         let objects = self.parents_and_aliases()?;
+        let elsewhere: Vec<String> = objects
+            .iter()
+            .filter(|(_, p, a)| p.is_none() && parse_mesh_name(a).is_some())
+            .map(|(_, _, a)| a.clone())
+            .collect();
         let Some(holder) = objects
             .iter()
             .find(|(_, p, a)| *p == Some(parent) && a == HOLDER)
             .map(|(h, _, _)| *h)
         else {
-            return Ok(FoundMeshes::default());
+            return Ok(FoundMeshes {
+                elsewhere,
+                ..Default::default()
+            });
         };
         // everything under the holder, at any depth
         let mut inside = vec![holder];
@@ -221,6 +230,7 @@ impl MeshDrawing for LegacyBackend {
             holder: Some(holder),
             meshes,
             users: Vec::new(),
+            elsewhere,
         })
     }
 
@@ -296,6 +306,7 @@ impl MeshDrawing for LegacyBackend {
             bounding_box,
             colour: None,
             pose,
+            layer: None,
         })
     }
 }

@@ -17,8 +17,8 @@ use crate::draw::names::ObjectNames;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
 use crate::zmq_api::client::object_path;
-use vrep_maze_core::coppelia::COLORCOMPONENT_AMBIENT_DIFFUSE;
 use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
+use vrep_maze_core::coppelia::{COLORCOMPONENT_AMBIENT_DIFFUSE, OBJINTPARAM_VISIBILITY_LAYER};
 
 /// The first program version whose add-on speaks protocol 2 (4.6.0): from it on meshes are
 /// made with `sim.createShape`, since 4.10 logs that `sim.createMeshShape` is deprecated
@@ -47,6 +47,33 @@ fn packed_meshes(values: &[Value], count: usize) -> Option<Vec<MeshReadback>> {
                 vertices: Some(lua::unpack_floats(v)?),
                 indices: Some(lua::unpack_int32s(i)?),
                 ..Default::default()
+            }),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The meshes of a [`lua::read_dressed_code`] answer, `(true, {v1, i1, pose1, colour1,
+/// layer1, ...})`: `None` for a failure or an answer of another shape.
+fn dressed_meshes(handles: &[i32], values: &[Value]) -> Option<Vec<MeshReadback>> {
+    let (Some(Value::Bool(true)), Some(Value::Array(packed))) = (values.first(), values.get(1))
+    else {
+        return None;
+    };
+    if packed.len() != lua::DRESSED_ENTRIES * handles.len() {
+        return None;
+    }
+    handles
+        .iter()
+        .zip(packed.chunks_exact(lua::DRESSED_ENTRIES))
+        .map(|(&h, entries)| match entries {
+            [Value::Bytes(v), Value::Bytes(i), pose, colour, layer] => Some(MeshReadback {
+                vertices: Some(lua::unpack_floats(v)?),
+                indices: Some(lua::unpack_int32s(i)?),
+                bounding_box: None,
+                colour: cbor::numbers::<3>(colour),
+                pose: super::pose_of(h, std::slice::from_ref(pose)).ok()?,
+                layer: cbor::int32(layer),
             }),
             _ => None,
         })
@@ -109,14 +136,19 @@ impl ZmqBackend {
         }
     }
 
-    /// `shape` with the colour and world pose of the mesh `handle`.
+    /// `shape` with the colour, world pose and visibility layer of the mesh `handle`.
     fn dressed(&mut self, handle: i32, shape: MeshReadback) -> Result<MeshReadback, BackendError> {
         let (func, args) = shape_colour_call(handle);
         let colour = colour_of(&self.call(func, args)?);
         let pose = self.world_pose(handle)?;
+        let layer = self.client.call_int(
+            "sim.getObjectInt32Param",
+            vec![int(handle.into()), int(OBJINTPARAM_VISIBILITY_LAYER.into())],
+        )?;
         Ok(MeshReadback {
             colour,
             pose,
+            layer: Some(layer),
             ..shape
         })
     }
@@ -184,8 +216,12 @@ impl MeshDrawing for ZmqBackend {
 
     fn find(&mut self, names: &ObjectNames, _parent: i32) -> Result<FoundMeshes, BackendError> {
         let path = format!("{}/{HOLDER}", object_path(&names.parent));
+        let elsewhere = self.root_meshes.clone();
         let Some(holder) = self.handle_of(&path)? else {
-            return Ok(FoundMeshes::default());
+            return Ok(FoundMeshes {
+                elsewhere,
+                ..Default::default()
+            });
         };
         let mut meshes = Vec::new();
         // options 3: the holder's children, without the holder itself (removing the holder
@@ -202,6 +238,7 @@ impl MeshDrawing for ZmqBackend {
             holder: Some(holder),
             meshes,
             users: Vec::new(),
+            elsewhere,
         })
     }
 
@@ -261,7 +298,22 @@ impl MeshDrawing for ZmqBackend {
         self.dressed(handle, shape)
     }
 
+    /// Every mesh whole in one `sim.executeLuaCode` ([`lua::read_dressed_code`]); where
+    /// that fails, [`MeshDrawing::read_shapes`] and a few calls each.
     fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        if handles.is_empty() {
+            return Ok(Vec::new());
+        }
+        let code = Value::Text(lua::read_dressed_code(handles));
+        match self.client.call("sim.executeLuaCode", vec![code]) {
+            Ok(values) => {
+                if let Some(meshes) = dressed_meshes(handles, &values) {
+                    return Ok(meshes);
+                }
+            }
+            Err(ZmqError::Remote { .. }) => {}
+            Err(e) => return Err(e.into()),
+        }
         let shapes = self.read_shapes(handles)?;
         handles
             .iter()

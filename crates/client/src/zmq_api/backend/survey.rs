@@ -10,11 +10,14 @@ use ciborium::Value;
 use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
 use crate::draw::backend::{Backend, ObjectInfo};
 use crate::draw::error::BackendError;
+use crate::draw::mesh::parse_mesh_name;
 use crate::draw::ownership;
 use crate::draw::survey::Traits;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
-use vrep_maze_core::coppelia::{HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE};
+use vrep_maze_core::coppelia::{
+    HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE, OBJINTPARAM_VISIBILITY_LAYER,
+};
 
 impl ZmqBackend {
     /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
@@ -317,6 +320,18 @@ impl ZmqBackend {
             let unknown: Vec<(i32, Option<i32>)> =
                 new_kids.iter().map(|&h| (h, shape(h))).collect();
             self.read_traits(&unknown, true)?;
+            // the recorded copies are checked as new ones would be: size, colour, children
+            let recorded: Vec<(i32, i32)> = new_kids
+                .iter()
+                .filter_map(|&h| {
+                    let (alias, kind) = self.traits.get(&h)?;
+                    let template = *template_handles.get(alias.as_str())?;
+                    (record.get(h) == Some(alias.as_str())
+                        && template_kinds.get(alias.as_str()) == Some(kind))
+                    .then_some((h, template))
+                })
+                .collect();
+            self.check_recorded(parent, &kids, &recorded, &mut found)?;
             let mut lines = Vec::new();
             for &h in &kids {
                 if seen.insert(h) {
@@ -346,12 +361,19 @@ impl ZmqBackend {
         let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
         self.read_traits(&unknown, false)?;
         let mut lines = Vec::new();
+        self.root_meshes.clear();
+        self.recorded_roots_with_children(&roots, &record, &templates, &mut found)?;
         for h in roots {
             if seen.contains(&h) {
                 continue;
             }
             // the type only of those carrying a template's alias
-            if !templates.contains(&self.alias(h)?.as_str()) {
+            let alias = self.alias(h)?;
+            if parse_mesh_name(&alias).is_some() {
+                self.root_meshes.push(alias);
+                continue;
+            }
+            if !templates.contains(&alias.as_str()) {
                 continue;
             }
             let (alias, kind) = self.traits(h, None)?;
@@ -390,6 +412,133 @@ impl ZmqBackend {
         }
         self.record = Some(record);
         Ok((out, found))
+    }
+
+    /// Marks the root objects among `roots` that the copy record holds (as a copy of one of
+    /// `templates`) and that have children as such in `found` (the user's, then:
+    /// [`ownership::contradicts_copy`]): their trees read by one request, and only when
+    /// there are any (an interrupted run's parentless copies).
+    fn recorded_roots_with_children(
+        &mut self,
+        roots: &[i32],
+        record: &crate::draw::record::CopyRecord,
+        templates: &[&str],
+        found: &mut Traits,
+    ) -> Result<(), BackendError> {
+        let recorded: Vec<i32> = roots
+            .iter()
+            .copied()
+            .filter(|&h| {
+                let alias = self
+                    .aliases
+                    .get(&h)
+                    .or_else(|| self.traits.get(&h).map(|t| &t.0));
+                alias.is_some_and(|a| templates.contains(&a.as_str()) && record.get(h) == Some(a))
+            })
+            .collect();
+        if recorded.is_empty() {
+            return Ok(());
+        }
+        let calls: Vec<(&str, Vec<Value>)> = recorded
+            .iter()
+            .map(|&h| {
+                let args = vec![int(h.into()), int(HANDLE_ALL.into()), int(3)];
+                ("sim.getObjectsInTree", args)
+            })
+            .collect();
+        for (h, outcome) in recorded.iter().zip(self.client.read_all(&calls)?) {
+            let below = outcome
+                .ok()
+                .and_then(|v| v.first().and_then(cbor::handles))
+                .unwrap_or_default();
+            self.children.insert(*h, !below.is_empty());
+            if !below.is_empty() {
+                found.with_children.insert(*h);
+            }
+        }
+        Ok(())
+    }
+
+    /// Reads what a copy pasted by this tool may have lost since (`recorded`: each copy the
+    /// record holds under the maze dummy `parent`, and its template): its size, colour and
+    /// visibility layer and its template's, and whether anything lies below it, in one
+    /// request (the maze's whole tree, `sim.getObjectsInTree`, and a shape's
+    /// `sim.getShapeBB`, `sim.getShapeColor` and `sim.getObjectInt32Param`; the
+    /// parents of what lies below `kids`, the dummy's children, in a second only when
+    /// something does). A copy with children is the user's
+    /// ([`ownership::contradicts_copy`]), one of another size or colour spoiled
+    /// (`Traits::spoiled`).
+    fn check_recorded(
+        &mut self,
+        parent: i32,
+        kids: &[i32],
+        recorded: &[(i32, i32)],
+        found: &mut Traits,
+    ) -> Result<(), BackendError> {
+        if recorded.is_empty() {
+            return Ok(());
+        }
+        let mut sized: Vec<i32> = recorded.iter().map(|&(_, t)| t).collect();
+        sized.sort_unstable();
+        sized.dedup();
+        sized.extend(recorded.iter().map(|&(c, _)| c));
+        let tree = (
+            "sim.getObjectsInTree",
+            vec![int(parent.into()), int(HANDLE_ALL.into()), int(1)],
+        );
+        let mut calls = vec![tree];
+        for &h in &sized {
+            calls.push(("sim.getShapeBB", vec![int(h.into())]));
+            calls.push(super::mesh::shape_colour_call(h));
+            let layer = int(OBJINTPARAM_VISIBILITY_LAYER.into());
+            calls.push(("sim.getObjectInt32Param", vec![int(h.into()), layer]));
+        }
+        let mut outcomes = self.client.read_all(&calls)?.into_iter();
+        let below: Vec<i32> = match outcomes.next() {
+            Some(Ok(values)) => values.first().and_then(cbor::handles).unwrap_or_default(),
+            _ => Vec::new(),
+        };
+        for &h in &sized {
+            let size = outcomes.next().and_then(Result::ok);
+            let colour = outcomes.next().and_then(Result::ok);
+            let layer = outcomes.next().and_then(Result::ok);
+            if let Some(layer) = layer.and_then(|v| v.first().and_then(cbor::int32)) {
+                found.layers.insert(h, layer);
+            }
+            if let Some(size) = size.and_then(|v| v.first().and_then(cbor::numbers::<3>)) {
+                found.sizes.insert(h, size);
+            }
+            if let Some(colour) = colour.and_then(|v| super::mesh::colour_of(&v)) {
+                found.colours.insert(h, colour);
+            }
+        }
+        let kid_set: HashSet<i32> = kids.iter().copied().collect();
+        let deeper: Vec<i32> = below.into_iter().filter(|h| !kid_set.contains(h)).collect();
+        self.deep = Some(!deeper.is_empty());
+        if !deeper.is_empty() {
+            let calls: Vec<(&str, Vec<Value>)> = deeper
+                .iter()
+                .map(|&h| ("sim.getObjectParent", vec![int(h.into())]))
+                .collect();
+            let parents: HashSet<i32> = self
+                .client
+                .read_all(&calls)?
+                .into_iter()
+                .filter_map(|o| int_result("sim.getObjectParent", o).ok())
+                .collect();
+            for &h in kids {
+                self.children.insert(h, parents.contains(&h));
+            }
+        }
+        for &(copy, template) in recorded {
+            if self.children.get(&copy) == Some(&true) {
+                found.with_children.insert(copy);
+            }
+            if let Some(why) = ownership::spoiled(found, copy, template) {
+                found.spoiled.insert(copy, why);
+            }
+        }
+        Ok(())
     }
 
     /// Reads what tells `handle`, named and typed like a copy of `template` but not in the

@@ -13,7 +13,9 @@ pub mod literal;
 pub mod read;
 
 pub use create::{CreateMeshes, LuaMesh, create_meshes_code, parse_create_meshes};
-pub use read::{parse_read_meshes, read_meshes_code};
+pub use read::{
+    DRESSED_ENTRIES, parse_read_dressed, parse_read_meshes, read_dressed_code, read_meshes_code,
+};
 
 /// `sim.packFloatTable`'s bytes: each number as a little-endian `f32`.
 pub fn pack_floats(values: &[f32]) -> Vec<u8> {

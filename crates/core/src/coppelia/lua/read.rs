@@ -25,6 +25,34 @@ pub fn parse_read_meshes(code: &str) -> Option<Vec<i32>> {
     list.split(',').map(|h| h.parse().ok()).collect()
 }
 
+/// The program that reads the meshes `handles` as [`read_meshes_code`] does and, per mesh,
+/// what a person sees of it: `{v1, i1, pose1, colour1, layer1, v2, ...}`, the pose as
+/// `sim.getObjectPose(h, -1)` gives it (world, x y z qx qy qz qw), the ambient-diffuse colour
+/// as `sim.getShapeColor(h, "", 0)` and the visibility layer as
+/// `sim.getObjectInt32Param(h, 10)` (both real builds answered these inside one program,
+/// `docs/measurements.md`, "Kept meshes read back in one request").
+pub fn read_dressed_code(handles: &[i32]) -> String {
+    let list: Vec<String> = handles.iter().map(i32::to_string).collect();
+    format!("{READ_HEAD}{}{DRESSED_TAIL}", list.join(","))
+}
+
+/// The handles of a program [`read_dressed_code`] wrote, `None` for any other program.
+pub fn parse_read_dressed(code: &str) -> Option<Vec<i32>> {
+    let list = code.strip_prefix(READ_HEAD)?.strip_suffix(DRESSED_TAIL)?;
+    if list.is_empty() {
+        return Some(Vec::new());
+    }
+    list.split(',').map(|h| h.parse().ok()).collect()
+}
+
+/// Entries per mesh in a [`read_dressed_code`] answer.
+pub const DRESSED_ENTRIES: usize = 5;
+
+const DRESSED_TAIL: &str = "}) do local v, i = sim.getShapeMesh(h) local _, c = sim.getShapeColor(h, '', 0) \
+out[#out + 1] = sim.packFloatTable(v) out[#out + 1] = sim.packInt32Table(i) \
+out[#out + 1] = sim.getObjectPose(h, -1) out[#out + 1] = c \
+out[#out + 1] = sim.getObjectInt32Param(h, 10) end return out";
+
 const READ_HEAD: &str = "local out = {} for _, h in ipairs({";
 const READ_TAIL: &str = "}) do local v, i = sim.getShapeMesh(h) \
 out[#out + 1] = sim.packFloatTable(v) out[#out + 1] = sim.packInt32Table(i) end return out";
@@ -44,5 +72,9 @@ mod tests {
             parse_read_meshes(&code.replace("packInt32", "packUInt8")),
             None
         );
+        let dressed = read_dressed_code(&[7, 12]);
+        assert_eq!(parse_read_dressed(&dressed), Some(vec![7, 12]));
+        assert_eq!(parse_read_meshes(&dressed), None);
+        assert_eq!(parse_read_dressed(&code), None);
     }
 }

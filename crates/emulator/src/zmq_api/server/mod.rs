@@ -496,7 +496,8 @@ fn shape_ops(sim: &Simulator, func: &str, args: &[Value], outcome: &Outcome) -> 
                     merge_steps: meshes.map(|m| merge_steps(&m.vertices)).sum(),
                 });
             }
-            let triangles = vrep_maze_core::coppelia::lua::parse_read_meshes(code)?
+            let triangles = vrep_maze_core::coppelia::lua::parse_read_meshes(code)
+                .or_else(|| vrep_maze_core::coppelia::lua::parse_read_dressed(code))?
                 .into_iter()
                 .filter_map(|h| Some(sim.scene.get(h).ok()?.shape_mesh()?.triangles()))
                 .sum();

@@ -7,8 +7,8 @@ use super::{Args, Ctx, Outcome, nothing, ret};
 use crate::sim::{NewObject, ObjectType};
 use crate::zmq_api::cbor::{self, float_array, int};
 use vrep_maze_core::coppelia::{
-    PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_CYLINDER, PRIMITIVESHAPE_DISC, PRIMITIVESHAPE_PLANE,
-    PRIMITIVESHAPE_SPHEROID,
+    OBJINTPARAM_VISIBILITY_LAYER, PRIMITIVESHAPE_CUBOID, PRIMITIVESHAPE_CYLINDER,
+    PRIMITIVESHAPE_DISC, PRIMITIVESHAPE_PLANE, PRIMITIVESHAPE_SPHEROID,
 };
 
 /// A new root object at the origin.
@@ -137,15 +137,30 @@ fn shape_param_of(ctx: &Ctx<'_>, a: &Args<'_>) -> Result<(i32, i32), String> {
     Ok((h, p))
 }
 
-/// `sim.setObjectInt32Param(h, param, value)`, for shapes' static and respondable flags.
+/// `sim.setObjectInt32Param(h, param, value)`, for any object's visibility layer and shapes'
+/// static and respondable flags.
 pub(super) fn set_object_int32_param(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    if a.int(1)? == OBJINTPARAM_VISIBILITY_LAYER {
+        let (h, bits) = (a.int(0)?, a.int(2)?);
+        ctx.sim
+            .scene
+            .set_layer(h, bits)
+            .map_err(|_| a.no_object())?;
+        return nothing();
+    }
     let (h, p) = shape_param_of(ctx, a)?;
     ctx.extras.shape_params.insert((h, p), a.int(2)?);
     nothing()
 }
 
-/// `sim.getObjectInt32Param(h, param)`, for shapes' static and respondable flags.
+/// `sim.getObjectInt32Param(h, param)`, for any object's visibility layer and shapes' static
+/// and respondable flags.
 pub(super) fn get_object_int32_param(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcome, String> {
+    if a.int(1)? == OBJINTPARAM_VISIBILITY_LAYER {
+        let h = a.int(0)?;
+        let layer = ctx.sim.scene.get(h).map_err(|_| a.no_object())?.layer();
+        return ret(vec![int(layer.into())]);
+    }
     let (h, p) = shape_param_of(ctx, a)?;
     ret(vec![int(ctx.extras.shape_param(h, p).unwrap_or(0).into())])
 }

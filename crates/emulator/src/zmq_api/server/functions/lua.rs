@@ -15,7 +15,8 @@ use super::{Ctx, Outcome, call_in, ret};
 use crate::zmq_api::cbor::{self, float_array, int};
 use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
 use vrep_maze_core::coppelia::{
-    COLORCOMPONENT_AMBIENT_DIFFUSE, SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
+    COLORCOMPONENT_AMBIENT_DIFFUSE, HANDLE_WORLD, OBJINTPARAM_VISIBILITY_LAYER,
+    SHAPEINTPARAM_RESPONDABLE, SHAPEINTPARAM_STATIC,
 };
 use vrep_maze_wire::zmq_api::calls;
 
@@ -24,6 +25,9 @@ pub(super) fn execute_lua_code(ctx: &mut Ctx<'_>, a: &Args<'_>) -> Result<Outcom
     let code = a.text(0)?;
     if let Some(handles) = lua::parse_read_meshes(code) {
         return read_meshes(ctx, handles);
+    }
+    if let Some(handles) = lua::parse_read_dressed(code) {
+        return read_dressed(ctx, handles);
     }
     if let Some(batch) = lua::parse_create_meshes(code) {
         return create_meshes(ctx, &batch);
@@ -48,6 +52,51 @@ fn read_meshes(ctx: &mut Ctx<'_>, handles: Vec<i32>) -> Result<Outcome, String> 
         packed.push(Value::Bytes(lua::pack_int32s(&mesh.indices)));
     }
     ret(vec![Value::Bool(true), Value::Array(packed)])
+}
+
+/// [`lua::read_dressed_code`]: every mesh as [`read_meshes`] packs it, then its world pose,
+/// colour and visibility layer, each as the call the program makes answers it.
+fn read_dressed(ctx: &mut Ctx<'_>, handles: Vec<i32>) -> Result<Outcome, String> {
+    let mut out = Vec::with_capacity(handles.len() * lua::DRESSED_ENTRIES);
+    for h in handles {
+        match read_meshes(ctx, vec![h])? {
+            Outcome::Ret(values) if values.first() == Some(&Value::Bool(true)) => {
+                if let Some(Value::Array(triangles)) = values.into_iter().nth(1) {
+                    out.extend(triangles);
+                }
+            }
+            failure => return Ok(failure),
+        }
+        let hv = int(h.into());
+        let calls = [
+            (
+                "sim.getObjectPose",
+                vec![hv.clone(), int(HANDLE_WORLD.into())],
+                0,
+            ),
+            (
+                "sim.getShapeColor",
+                vec![
+                    hv.clone(),
+                    Value::Text(String::new()),
+                    int(COLORCOMPONENT_AMBIENT_DIFFUSE.into()),
+                ],
+                1,
+            ),
+            (
+                "sim.getObjectInt32Param",
+                vec![hv, int(OBJINTPARAM_VISIBILITY_LAYER.into())],
+                0,
+            ),
+        ];
+        for (func, args, value) in calls {
+            match succeeded(call_in(ctx, func, &args), func) {
+                Ok(values) => out.push(values.into_iter().nth(value).unwrap_or(Value::Null)),
+                Err(e) => return failed(&format!("1: {e}")),
+            }
+        }
+    }
+    ret(vec![Value::Bool(true), Value::Array(out)])
 }
 
 /// [`calls::calls_code`]: each call made in turn, its failure answered as `pcall` gives a
