@@ -560,6 +560,39 @@ fn reads_made_by_one_request_answer_what_separate_calls_answer() {
     }
 }
 
+/// More reads than one program holds go as several programs, one request each, their
+/// outcomes in the order of the reads: a scene of thousands of recorded copies is read
+/// without a request the simulator would take seconds over.
+#[test]
+fn reads_beyond_one_program_go_as_several_programs_in_order() {
+    use vrep_maze::zmq_api::MAX_PROGRAM_CALLS;
+    let cfg = ServerConfig {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        protocol: Protocol::V2,
+        ..Default::default()
+    };
+    let s = spawn(cfg, Simulator::new(Scene::course(), 0)).unwrap();
+    let mut c = Client::connect(&opts(s.local_addr().port(), 3000)).unwrap();
+    let names = ["/Line", "/Start", "/End"];
+    let reads: Vec<(&str, Vec<Value>)> = (0..2 * MAX_PROGRAM_CALLS + 1)
+        .map(|k| ("sim.getObject", vec![text(names[k % 3])]))
+        .collect();
+    let each: Vec<i64> = names
+        .iter()
+        .map(|n| c.call_int("sim.getObject", vec![text(n)]).unwrap().into())
+        .collect();
+    let before = c.stats().round_trips;
+    let got = c.read_all(&reads).unwrap();
+    assert_eq!(c.stats().round_trips - before, 3);
+    assert_eq!(got.len(), reads.len());
+    for (k, outcome) in got.iter().enumerate() {
+        let handle = cbor::int32(&outcome.as_ref().unwrap()[0]).unwrap();
+        assert_eq!(i64::from(handle), each[k % 3], "read {k}");
+    }
+    c.close();
+    s.shutdown();
+}
+
 /// Where the server cannot run the program (this fake answers `[k]` to everything),
 /// `read_all` sends the reads as `call_all` does, and sends no program again.
 #[test]

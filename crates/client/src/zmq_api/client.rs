@@ -32,6 +32,12 @@ const STILL_LISTENS_WAIT: Duration = Duration::from_secs(1);
 /// waits, so the flag is what tells.
 const STOP_LOOK: Duration = Duration::from_millis(50);
 
+/// The most calls [`Client::read_all`] puts in one program: about 50 ms of the simulator's
+/// time at 12 µs a call (one simulation step), so no single request holds its main loop for
+/// long or waits past the reply timeout however large the scene (the size, colour and layer
+/// of a 100x100's 20,000 copies: 60,000 calls in 15 programs, not one).
+pub const MAX_PROGRAM_CALLS: usize = 4096;
+
 /// The most requests [`Client::call_all`] sends before reading their replies: well under
 /// libzmq's default high-water mark of 1,000 messages a socket, where a send would block.
 const MAX_IN_FLIGHT: usize = 200;
@@ -690,11 +696,21 @@ impl Client {
     }
 
     /// Calls that only read, each outcome as [`Client::call_all`] gives it, made by one
-    /// request: a Lua program that makes them in turn ([`calls`]: about 12 µs a call inside
-    /// the simulator, against 0.1-0.2 ms a request). Where the server cannot run it, or an
-    /// argument cannot be written as Lua, they are sent as [`Client::call_all`] sends them
-    /// (so only reads: a program that failed as a whole may have made some of its calls).
+    /// request a [`MAX_PROGRAM_CALLS`]: a Lua program that makes them in turn ([`calls`]:
+    /// about 12 µs a call inside the simulator, against 0.1-0.2 ms a request). Where the
+    /// server cannot run it, or an argument cannot be written as Lua, they are sent as
+    /// [`Client::call_all`] sends them (so only reads: a program that failed as a whole may
+    /// have made some of its calls).
     pub fn read_all(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
+        let mut out = Vec::with_capacity(calls.len());
+        for chunk in calls.chunks(MAX_PROGRAM_CALLS) {
+            out.extend(self.read_chunk(chunk)?);
+        }
+        Ok(out)
+    }
+
+    /// [`Client::read_all`] of at most [`MAX_PROGRAM_CALLS`] calls.
+    fn read_chunk(&mut self, calls: &[(&str, Vec<Value>)]) -> Result<Vec<Outcome>, ZmqError> {
         let code = (self.programs && calls.len() > 1)
             .then(|| calls::calls_code(calls))
             .flatten();

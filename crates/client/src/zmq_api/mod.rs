@@ -13,5 +13,5 @@ pub mod follow;
 pub mod robot;
 
 pub use backend::ZmqBackend;
-pub use client::{Client, ClientOptions, ClientStats, Outcome, ZmqError};
+pub use client::{Client, ClientOptions, ClientStats, MAX_PROGRAM_CALLS, Outcome, ZmqError};
 pub use vrep_maze_wire::zmq_api::{Protocol, cbor, message};

@@ -192,20 +192,27 @@ fn read_value(text: &str) -> Option<(Value, &str)> {
     Some((value, rest))
 }
 
+/// The key of a map entry at the start of `text` (`name = `) and the text after ` = `. Looks
+/// no further than the name, so reading a program stays linear in its length.
+fn keyed_entry(text: &str) -> Option<(&str, &str)> {
+    let end = text
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(text.len());
+    let (key, rest) = text.split_at(end);
+    Some((key, rest.strip_prefix(" = ")?)).filter(|_| is_name(key))
+}
+
 /// An array or a map, after its `{`.
 fn read_table(text: &str) -> Option<(Value, &str)> {
     if let Some(rest) = text.strip_prefix('}') {
         return Some((Value::Array(vec![]), rest));
     }
-    let keyed = text.split_once(" = ").is_some_and(|(key, _)| is_name(key));
+    let keyed = keyed_entry(text).is_some();
     let (mut items, mut pairs) = (vec![], vec![]);
     let mut rest = text;
     loop {
         if keyed {
-            let (key, after) = rest.split_once(" = ")?;
-            if !is_name(key) {
-                return None;
-            }
+            let (key, after) = keyed_entry(rest)?;
             let (value, after) = read_value(after)?;
             pairs.push((Value::Text(key.to_string()), value));
             rest = after;
