@@ -195,10 +195,13 @@ fn stepping(
     let began = Instant::now();
     let mut samples: Vec<Sample> = Vec::new();
     let mut steps = 0usize;
+    // what the last actuation and step took, for VREP_MAZE_TRACE
+    let (mut last_actuate, mut last_step) = (0.0, 0.0);
     let stopped = loop {
         if interrupted(options) {
             break Some("interrupted".to_string());
         }
+        let observing = Instant::now();
         let reading = match port.observe(needs.image) {
             Ok(r) => r,
             Err(e) => break Some(format!("the connection failed: {e}")),
@@ -227,9 +230,12 @@ fn stepping(
         };
         if trace {
             eprintln!(
-                "robot: step {steps} at {:.3} s decided in {:.1} ms: wheels {:.2} {:.2}, belief {:?}, truth {:?}",
+                "robot: step {steps} at {:.3} s observed in {:.1} ms, decided in {:.1} ms, last actuate {:.1} ms, last step {:.1} ms: wheels {:.2} {:.2}, belief {:?}, truth {:?}",
                 reading.time,
+                (deciding - observing).as_secs_f64() * 1000.0,
                 deciding.elapsed().as_secs_f64() * 1000.0,
+                last_actuate * 1000.0,
+                last_step * 1000.0,
                 wheels.left,
                 wheels.right,
                 steer.belief(),
@@ -251,9 +257,16 @@ fn stepping(
                 options.wall_limit.as_secs_f64()
             ));
         }
-        if let Err(e) = port.actuate(wheels).and_then(|()| port.step()) {
+        let actuating = Instant::now();
+        if let Err(e) = port.actuate(wheels) {
             break Some(format!("the connection failed: {e}"));
         }
+        let stepping = Instant::now();
+        if let Err(e) = port.step() {
+            break Some(format!("the connection failed: {e}"));
+        }
+        last_actuate = (stepping - actuating).as_secs_f64();
+        last_step = stepping.elapsed().as_secs_f64();
         steps += 1;
     };
     Ok(Driven {
