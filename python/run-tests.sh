@@ -15,9 +15,9 @@ if ! python3 -m venv "$venv" 2>/dev/null; then
     rm -rf "$venv"
     python3 -m venv "$venv"
 fi
-"$venv/bin/pip" install --quiet pytest
+"$venv/bin/pip" install --quiet pytest coppeliasim-zmqremoteapi-client
 # with the `rl` extra (gymnasium-robotics, which brings MuJoCo, and minigrid: about a minute
 # to install) for tests/test_rl.py
 "$venv/bin/pip" install --quiet "$root[rl]"
 # from the repository root, so `import vrep_maze` is the installed wheel, not python/vrep_maze
-exec timeout 600 "$venv/bin/python" -m pytest -q python/tests
+exec timeout 900 "$venv/bin/python" -m pytest -q python/tests

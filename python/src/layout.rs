@@ -22,6 +22,7 @@ use vrep_maze::maze::analysis::shortest_path;
 use vrep_maze::maze::{Cell, Direction, Grid, Maze};
 use vrep_maze::render::{Format, RenderOptions};
 use vrep_maze::rng::os_seed;
+use vrep_maze::score::{GradeOptions, Grader, Sample};
 use vrep_maze::validate::validate;
 
 use crate::errors::{self, invalid_error, read_error};
@@ -231,6 +232,57 @@ impl Layout {
         let array = Array2::from_shape_vec((solved.waypoints.len(), 4), flat)
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         Ok(PyArray2::from_owned_array(py, array))
+    }
+
+    /// Whether a robot whose centre is at `(x, y)` (floor frame, metres) is inside `End`'s
+    /// footprint (the cell size a side), as `score` decides that a run reached it.
+    fn reached_end(&self, x: f64, y: f64) -> PyResult<bool> {
+        let grader = Grader::new(&self.layout).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let at = Sample {
+            t: 0.0,
+            x,
+            y,
+            yaw: 0.0,
+        };
+        Ok(grader.in_end_at(&at, &GradeOptions::default()))
+    }
+
+    /// Grades a run through this maze as `vrep-maze score` does, from its trajectory: rows
+    /// `(t, x, y, yaw)` in the floor's frame (seconds, metres, radians), as `score` returns
+    /// them. `robot_radius` (metres) counts wall contacts in a wall maze. Returns the report
+    /// as a dict (`report["reached_end"]`, `report["spl"]`, `report["cells"]`, ...).
+    #[pyo3(signature = (trajectory, *, robot_radius=0.1))]
+    fn grade<'py>(
+        &self,
+        py: Python<'py>,
+        trajectory: Vec<[f64; 4]>,
+        robot_radius: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if !(robot_radius.is_finite() && robot_radius >= 0.0) {
+            return Err(PyValueError::new_err(format!(
+                "robot_radius must be a finite length, got {robot_radius}"
+            )));
+        }
+        if let Some(k) = trajectory
+            .iter()
+            .position(|r| r.iter().any(|v| !v.is_finite()))
+        {
+            return Err(PyValueError::new_err(format!(
+                "trajectory row {k} is not finite: {:?}",
+                trajectory[k]
+            )));
+        }
+        let samples: Vec<Sample> = trajectory
+            .iter()
+            .map(|&[t, x, y, yaw]| Sample { t, x, y, yaw })
+            .collect();
+        let grader = Grader::new(&self.layout).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let options = GradeOptions {
+            robot_radius,
+            end_size: None,
+        };
+        let report = py.detach(|| grader.grade(&samples, &options));
+        crate::score::report_dict(py, &report)
     }
 
     /// The copies of `Line` to draw, a NumPy `float64` array of shape `(n, 4)`: one row

@@ -14,6 +14,7 @@ mod errors;
 mod layout;
 mod options;
 mod remedies;
+mod robot_link;
 mod score;
 mod session;
 mod wording;
@@ -38,6 +39,7 @@ fn _vrep_maze(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<draw::ApplyReport>()?;
     m.add_class::<draw::ClearReport>()?;
     m.add_class::<session::Session>()?;
+    m.add_class::<robot_link::RobotLink>()?;
     m.add_class::<batch::Batch>()?;
     m.add("ValidationError", py.get_type::<errors::ValidationError>())?;
     m.add("SimulatorError", py.get_type::<errors::SimulatorError>())?;

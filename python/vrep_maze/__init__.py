@@ -19,7 +19,10 @@ Example::
   :func:`clear` removes it. Both return a report. :func:`connect` keeps one connection
   open for many (a :class:`Session`: a new maze every episode without reconnecting).
 - :func:`score` follows a robot while the simulation runs and grades its run: the report as
-  a dict and the trajectory as an array.
+  a dict and the trajectory as an array; :meth:`Layout.grade` grades a trajectory of one's own.
+- :class:`RobotLink` steps the scene's wheeled robot one simulation step a call;
+  ``import vrep_maze.robot_env`` registers the Gymnasium environment
+  ``vrep_maze/RobotMaze-v0`` built on it (a new seeded maze every episode).
 - Errors: ``ValueError`` (a refused option), :class:`ValidationError` (an invalid layout),
   :class:`SimulatorError` (a simulator that does not answer or refuses, with ``hints``),
   :class:`Interrupted` (Ctrl-C stopped a drawing cleanly).
@@ -31,6 +34,7 @@ from ._vrep_maze import (
     ClearReport,
     Interrupted,
     Layout,
+    RobotLink,
     Session,
     SimulatorError,
     ValidationError,
@@ -50,6 +54,7 @@ __all__ = [
     "ClearReport",
     "Interrupted",
     "Layout",
+    "RobotLink",
     "Session",
     "SimulatorError",
     "ValidationError",

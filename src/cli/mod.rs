@@ -35,6 +35,7 @@ mod wheels;
 pub mod wording;
 
 pub use clear::ClearArgs;
+pub use connect::RawClient;
 pub use interrupt::Interrupted;
 pub use stdout::note_closed_stdout;
 

@@ -118,6 +118,18 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
 }
 
 impl DriveArgs {
+    /// The robot's parts, the floor and the line template by these options' names.
+    pub fn robot_names(&self) -> RobotNames {
+        RobotNames {
+            robot: self.robot.clone(),
+            left_motor: self.parts.left_motor.clone(),
+            right_motor: self.parts.right_motor.clone(),
+            camera: self.parts.camera.clone(),
+            floor: self.scene.floor.clone(),
+            line: self.scene.line.clone(),
+        }
+    }
+
     /// Drives the wheeled robot of these options over `port` through `layout` (which
     /// passed validation) and grades the run: what `drive --wheels` does once connected,
     /// and a session's `drive` in Python. Setting `interrupt` ends the run early.
@@ -138,14 +150,7 @@ impl DriveArgs {
             yaw: facing([first.x, first.y], route.first().map(|l| l.to)),
         };
         let parts = &self.parts;
-        let names = RobotNames {
-            robot: self.robot.clone(),
-            left_motor: parts.left_motor.clone(),
-            right_motor: parts.right_motor.clone(),
-            camera: parts.camera.clone(),
-            floor: self.scene.floor.clone(),
-            line: self.scene.line.clone(),
-        };
+        let names = self.robot_names();
         let survey = port.survey(&names)?;
         let drive_geometry = DiffDrive::new(
             parts.wheel_radius.unwrap_or(survey.drive.wheel_radius),

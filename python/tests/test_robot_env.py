@@ -1,0 +1,236 @@
+"""`vrep_maze/RobotMaze-v0` (vrep_maze.robot_env) on the real CoppeliaSim 4.10 with the course
+robot (`sim.sh start 4.10.0 --robot --display`), and `RobotLink`'s refusals on `serve`.
+
+The real-simulator tests run when VREP_MAZE_REAL_SIMS names the folder of `sim.sh` (CI sets
+it); each starts its own simulator on free ports."""
+
+import math
+import os
+import re
+import socket
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+gym = pytest.importorskip("gymnasium")
+
+import vrep_maze  # noqa: E402
+import vrep_maze.robot_env  # noqa: E402,F401  (registers the environment)
+from vrep_maze.robot_env import ENV_ID, RobotMazeEnv, vector_env  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+SIMS = os.environ.get("VREP_MAZE_REAL_SIMS")
+real = pytest.mark.skipif(not SIMS, reason="set VREP_MAZE_REAL_SIMS=../shared/coppeliasim")
+
+
+def free_port_pair() -> int:
+    """A port whose next one is free too (ZeroMQ's rpc and stepping ports)."""
+    for _ in range(100):
+        with socket.socket() as a:
+            a.bind(("127.0.0.1", 0))
+            port = a.getsockname()[1]
+            if port >= 65535 or port in (19997, 23000):
+                continue
+            with socket.socket() as b:
+                try:
+                    b.bind(("127.0.0.1", port + 1))
+                except OSError:
+                    continue
+            return port
+    raise RuntimeError("no two free ports in a row")
+
+
+class RealSim:
+    """`sim.sh start 4.10.0 --robot --display` on free ports, stopped by `stop()`."""
+
+    def __init__(self, version: str = "4.10.0"):
+        self.script = str((ROOT / SIMS / "sim.sh") if not os.path.isabs(SIMS) else Path(SIMS) / "sim.sh")
+        self.version = version
+        self.dir = tempfile.TemporaryDirectory(prefix="vrep-maze-env-")
+        self.port = free_port_pair()
+        done = subprocess.run(
+            ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot", "--display"],
+            env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+        assert done.returncode == 0, done.stdout + done.stderr
+        self.pid = int(re.search(r"pid (\d+)", done.stdout).group(1))
+
+    def rss_kib(self) -> int:
+        """The simulator's resident memory."""
+        status = Path(f"/proc/{self.pid}/status").read_text()
+        return int(re.search(r"VmRSS:\s+(\d+)", status).group(1))
+
+    def stop(self):
+        subprocess.run(
+            ["bash", self.script, "stop", self.version],
+            env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
+            capture_output=True,
+            timeout=60,
+        )
+        self.dir.cleanup()
+
+
+@pytest.fixture(scope="module")
+def sim():
+    if not SIMS:
+        pytest.skip("set VREP_MAZE_REAL_SIMS=../shared/coppeliasim")
+    started = RealSim()
+    yield started
+    started.stop()
+
+
+class PurePursuit:
+    """Wheel velocities toward the next waypoint of `info["waypoints"]` from `info["pose"]`
+    alone: a waypoint within `reach` counts as passed."""
+
+    def __init__(self, env: RobotMazeEnv, speed: float = 0.3, reach: float = 0.15):
+        self.env, self.speed, self.reach = env, speed, reach
+        self.radius, self.track = env.link.geometry
+        self.next = 1
+
+    def __call__(self, info: dict) -> np.ndarray:
+        x, y, yaw = info["pose"]
+        points = np.asarray(info["waypoints"])
+        while self.next < len(points) - 1 and math.hypot(*(points[self.next] - (x, y))) < self.reach:
+            self.next += 1
+        tx, ty = points[self.next]
+        error = math.atan2(ty - y, tx - x) - yaw
+        error = math.atan2(math.sin(error), math.cos(error))
+        forward = self.speed * max(0.0, math.cos(error)) ** 4
+        turn = 3.0 * error
+        left = (forward - turn * self.track / 2) / self.radius
+        right = (forward + turn * self.track / 2) / self.radius
+        space = self.env.action_space
+        return np.clip(np.array([left, right], dtype=np.float32), space.low, space.high)
+
+
+def run_episode(env: RobotMazeEnv, seed: int):
+    obs, info = env.reset(seed=seed)
+    policy = PurePursuit(env)
+    total = 0.0
+    while True:
+        obs, reward, terminated, truncated, info = env.step(policy(info))
+        total += reward
+        if terminated or truncated:
+            return terminated, total, info
+
+
+def test_a_robot_link_names_the_part_the_scene_lacks(serve):
+    # serve's course scene has no wheeled robot
+    with pytest.raises(vrep_maze.SimulatorError, match="leftMotor|Robot"):
+        vrep_maze.RobotLink(api="zmq", port=serve.zmq_port)
+
+
+def test_the_environment_refuses_what_it_cannot_do_before_connecting():
+    with pytest.raises(ValueError, match="obs"):
+        RobotMazeEnv(port=1, obs="lidar")
+    with pytest.raises(ValueError, match="size"):
+        RobotMazeEnv(port=1, size=(0, 5))
+    with pytest.raises(TypeError, match="colour"):
+        RobotMazeEnv(port=1, colour="red")
+
+
+def test_importing_registers_the_environment():
+    assert ENV_ID in gym.registry
+
+
+@real
+def test_check_env_accepts_it(sim):
+    from gymnasium.utils.env_checker import check_env
+
+    env = gym.make(ENV_ID, port=sim.port, size=(3, 3), max_episode_steps=50)
+    try:
+        check_env(env.unwrapped, skip_render_check=True)
+        # the same seed gives the same maze and the same first observation
+        first, info = env.reset(seed=11)
+        again, info_again = env.reset(seed=11)
+        assert info["seed"] == info_again["seed"]
+        np.testing.assert_array_equal(first, again)
+        assert env.observation_space.contains(first)
+    finally:
+        env.close()
+
+
+@real
+@pytest.mark.parametrize("style", ["lines", "walls"])
+def test_a_pure_pursuit_policy_reaches_the_goal(sim, style):
+    options = dict(port=sim.port, size=(4, 4), max_episode_steps=2000, step_penalty=0.001)
+    if style == "walls":
+        options.update(style="walls", cell_size=1.0)
+    env = RobotMazeEnv(**options)
+    try:
+        reached, total, info = run_episode(env, seed=3)
+        score = info["score"]
+        assert reached, score
+        assert score["reached_end"] is True
+        assert score["spl"] > 0.5, score
+        assert 0.5 < total <= 1.0
+    finally:
+        env.close()
+
+
+@real
+def test_the_camera_observation_shows_the_maze(sim):
+    env = RobotMazeEnv(port=sim.port, size=(5, 5), obs="camera", camera_size=(64, 48))
+    try:
+        obs, _ = env.reset(seed=2)
+        assert obs.shape == (48, 64, 3) and obs.dtype == np.uint8
+        assert env.observation_space.contains(obs)
+        # the course's lines render (0, 51, 0) on a (51, 51, 51) floor: green pixels ahead
+        green = (obs[:, :, 1] > obs[:, :, 0] + 20) & (obs[:, :, 1] > obs[:, :, 2] + 20)
+        assert green.sum() > 20, f"{green.sum()} green pixels"
+        obs, *_ = env.step(np.array([2.0, 2.0], dtype=np.float32))
+        assert obs.any()
+    finally:
+        env.close()
+    # close put the scene's 256 x 256 back
+    from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+    official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
+    camera = official.getObject("/camera")
+    assert [official.getObjectInt32Param(camera, p) for p in (1002, 1003)] == [256, 256]
+
+
+@real
+def test_objects_and_memory_stay_flat_over_many_resets(sim):
+    from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+    env = RobotMazeEnv(port=sim.port, size=(5, 5))
+    official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
+    count = lambda: len(official.getObjectsInTree(official.handle_scene))
+    try:
+        for seed in range(20):
+            env.reset(seed=seed)
+        objects, memory = count(), sim.rss_kib()
+        resets = int(os.environ.get("VREP_MAZE_ENV_RESETS", "200"))
+        for seed in range(20, 20 + resets):
+            env.reset(seed=seed)
+            env.step(env.action_space.sample())
+        assert count() == objects
+        grown = sim.rss_kib() - memory
+        assert grown < 20 * 1024, f"the simulator grew {grown} KiB over {resets} resets"
+    finally:
+        env.close()
+
+
+@real
+def test_an_async_vector_env_over_two_simulators_steps(sim):
+    second = RealSim()
+    try:
+        envs = vector_env([sim.port, second.port], size=(3, 3), max_episode_steps=30)
+        try:
+            obs, info = envs.reset(seed=5)
+            assert obs.shape == (2, 5)
+            for _ in range(40):
+                obs, reward, terminated, truncated, info = envs.step(envs.action_space.sample())
+            assert obs.shape == (2, 5) and np.isfinite(obs).all()
+        finally:
+            envs.close()
+    finally:
+        second.stop()
