@@ -144,6 +144,10 @@ def test_importing_registers_the_environment():
 def test_check_env_accepts_it(sim):
     from gymnasium.utils.env_checker import check_env
 
+    from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+    official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
+    idle = official.getInt32Param(official.intparam_idle_fps)
     env = gym.make(ENV_ID, port=sim.port, size=(3, 3), max_episode_steps=50)
     try:
         check_env(env.unwrapped, skip_render_check=True)
@@ -155,6 +159,9 @@ def test_check_env_accepts_it(sim):
         assert env.observation_space.contains(first)
     finally:
         env.close()
+    # the simulation stopped and the user's idle rate back
+    assert official.getSimulationState() == official.simulation_stopped
+    assert official.getInt32Param(official.intparam_idle_fps) == idle
 
 
 @real

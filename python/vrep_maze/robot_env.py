@@ -257,12 +257,14 @@ class RobotMazeEnv(gym.Env):
     def close(self):
         link, session = getattr(self, "link", None), getattr(self, "session", None)
         self.link = self.session = None
+        # the session first: it puts back the idle rate it found, the 0 the link set; the
+        # link then puts back the user's
         try:
-            if link is not None:
-                link.close()
-        finally:
             if session is not None:
                 session.close()
+        finally:
+            if link is not None:
+                link.close()
 
     # -- what an observation and the info hold
 
