@@ -47,7 +47,7 @@ fn hint(remedy: &Remedy) -> String {
             )
         }
         Remedy::HowToCreate { role, name, sizes } => {
-            role.how_to_create(name, sizes.as_ref(), "apply resize_floor=True")
+            role.how_to_create(name, sizes.as_ref())
         }
         Remedy::ResizeFloor {
             floor,

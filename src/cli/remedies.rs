@@ -44,7 +44,7 @@ pub fn hint(remedy: &Remedy) -> String {
             )
         }
         Remedy::HowToCreate { role, name, sizes } => {
-            role.how_to_create(name, sizes.as_ref(), "apply --resize-floor")
+            role.how_to_create(name, sizes.as_ref())
         }
         Remedy::ResizeFloor {
             floor,

@@ -1,11 +1,15 @@
-//! Issue 38's smaller rows, each as a person meets it on `serve`: a raised floor (row 9).
+//! Issue 38's smaller rows, each as a person meets it on `serve`: a raised floor (row 9),
+//! a mesh apply's hints for a missing floor (row 10).
 
+use tempfile::TempDir;
 use vrep_maze::coppelia::HANDLE_WORLD;
 use vrep_maze::draw::{self, ApplyOptions, ClearOptions};
 use vrep_maze::sim::Scene;
 
 use crate::support::backend::Kind;
 use crate::support::backend_tests;
+use crate::support::bin;
+use crate::support::cli::{self, Serve};
 use crate::support::layouts::drawing;
 
 backend_tests!(a_raised_floor_puts_line_back_where_it_stood_and_says_so);
@@ -49,4 +53,55 @@ fn a_raised_floor_puts_line_back_where_it_stood_and_says_so(kind: Kind) {
     }
     drop(b);
     s.shutdown();
+}
+
+/// Row 10: `apply --draw mesh` on a scene without `Floor` offers `--create-missing`, as a
+/// copies apply does, and no `--resize-floor` for a floor that does not exist; the hint
+/// followed, the maze is drawn.
+#[test]
+fn a_mesh_apply_without_a_floor_offers_create_missing_not_a_resize() {
+    let dir = TempDir::new().unwrap();
+    let mut scene = Scene::course();
+    let floor = scene.resolve("Floor").unwrap();
+    scene.remove(floor).unwrap();
+    let file = dir.path().join("no-floor.json");
+    std::fs::write(&file, scene.to_json().to_string()).unwrap();
+    let file = file.display().to_string();
+    let s = Serve::start(
+        &["--api", "zmq", "--listen", "127.0.0.1:0", "--scene", &file],
+        1,
+    );
+    let port = s.port();
+    let layout = cli::generate(dir.path(), "3", "dfs");
+    let apply = |draw: &str, more: &[&str]| {
+        bin()
+            .args([
+                "apply", &layout, "--api", "zmq", "--port", &port, "--draw", draw,
+            ])
+            .args(more)
+            .output()
+            .unwrap()
+    };
+    for draw in ["copies", "mesh"] {
+        let out = apply(draw, &[]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{draw}: {err}");
+        assert!(err.contains("missing in the scene: Floor"), "{draw}: {err}");
+        assert!(
+            err.contains("hint: or pass --create-missing"),
+            "{draw}: {err}"
+        );
+        assert!(!err.contains("resize-floor"), "{draw}: {err}");
+    }
+    let out = apply("mesh", &["--create-missing"]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        said.contains("created Floor") && said.contains("verified"),
+        "{said}"
+    );
 }
