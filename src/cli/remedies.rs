@@ -60,6 +60,14 @@ pub fn hint(remedy: &Remedy) -> String {
             Resize::NoExtent => format!(
                 "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
             ),
+            Resize::NotAShape { .. } => format!(
+                "use a plane or cuboid of at least {} m as the floor and pass its name with --floor",
+                extents(&short.resized())
+            ),
+            Resize::DidNotGrow => format!(
+                "clear puts `{floor}` back to its size before apply --resize-floor; then use a plane or cuboid of at least {} m as the floor and pass its name with --floor",
+                extents(&short.need)
+            ),
         },
         Remedy::ResizeFloorByHand { floor, short } => format!(
             "or resize `{floor}` in CoppeliaSim to at least {} m",

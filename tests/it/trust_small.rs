@@ -1,10 +1,12 @@
-//! Issue 38's smaller rows, each as a person meets it on `serve`: a raised floor (row 9),
-//! a mesh apply's hints for a missing floor (row 10).
+//! Issue 38's smaller rows, each as a person meets it on `serve`: a floor that is a dummy
+//! (row 4), a raised floor (row 9), a mesh apply's hints for a missing floor (row 10).
 
 use tempfile::TempDir;
+use vrep_maze::cli::remedies;
 use vrep_maze::coppelia::HANDLE_WORLD;
-use vrep_maze::draw::{self, ApplyOptions, ClearOptions};
-use vrep_maze::sim::Scene;
+use vrep_maze::draw::extent::Resize;
+use vrep_maze::draw::{self, ApplyOptions, ClearOptions, DrawError, ObjectNames};
+use vrep_maze::sim::{NewObject, ObjectType, Scene};
 
 use crate::support::backend::Kind;
 use crate::support::backend_tests;
@@ -12,7 +14,102 @@ use crate::support::bin;
 use crate::support::cli::{self, Serve};
 use crate::support::layouts::drawing;
 
-backend_tests!(a_raised_floor_puts_line_back_where_it_stood_and_says_so);
+backend_tests!(
+    a_dummy_floor_is_never_resized_and_clear_says_what_it_reads,
+    a_raised_floor_puts_line_back_where_it_stood_and_says_so,
+);
+
+/// Row 4: `--floor FD`, `FD` a 0.7231 m dummy, is too small for the course's 10 m layout.
+/// `--resize-floor` once "resized" it to 15 x 15 m and verified, though a dummy scales alike
+/// along x, y and z (it measured 5.46 m on the real builds, as on `serve`). It is refused
+/// now, with or without `--resize-floor`, naming what it is, offering no resize, and left as
+/// it is; a record of its size an older version left makes `clear` say what it did (nothing),
+/// not that it put the dummy back to a size it does not have.
+fn a_dummy_floor_is_never_resized_and_clear_says_what_it_reads(kind: Kind) {
+    let k = kind.name();
+    let mut scene = Scene::course();
+    let fd = scene.add(
+        "FD",
+        NewObject {
+            kind: ObjectType::Dummy,
+            parent: None,
+            position: [0.0; 3],
+            orientation: [0.0; 3],
+            size: [0.7231; 3],
+            colour: [255, 255, 0],
+        },
+    );
+    let s = kind.serve(scene, 0);
+    let size = || s.with_sim(|sim| sim.scene.get(fd).unwrap().size);
+    let names = ObjectNames {
+        floor: "FD".into(),
+        ..Default::default()
+    };
+    let d = drawing(4, 1);
+    let mut b = s.connect();
+    for resize_floor in [false, true] {
+        let opts = ApplyOptions {
+            names: names.clone(),
+            resize_floor,
+            ..Default::default()
+        };
+        let e = draw::apply(&mut *b, &d, &opts, &mut |_| {}).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                DrawError::Floor {
+                    resize: Resize::NotAShape { kind: 4 },
+                    ..
+                }
+            ),
+            "{k} {resize_floor}: {e:?}"
+        );
+        assert_eq!(
+            remedies::message(&e),
+            "the scene's `FD` is 0.7231 x 0.7231 m but the layout's floor is 10 x 10 m, and `FD` is a dummy, not a shape: apply resizes only a shape",
+            "{k}"
+        );
+        let hints = remedies::hints(&e);
+        assert_eq!(
+            hints,
+            [
+                "use a plane or cuboid of at least 10 x 10 m as the floor and pass its name with --floor"
+            ],
+            "{k}"
+        );
+        assert_eq!(size(), [0.7231; 3], "{k}: left as it is");
+        assert_eq!(s.line_count(), 1, "{k}: nothing drawn, the template alone");
+    }
+    // what an older version's `apply --resize-floor` left: the record, and the dummy scaled
+    let f = 10.0 / 0.7231;
+    s.with_sim(|sim| {
+        sim.scene.scale(fd, [f, f, 1.0]).unwrap();
+        for (name, value) in draw::signals::FLOOR_SIZE.iter().zip([fd, 723, 723]) {
+            sim.int_signals.insert(name.to_string(), value);
+        }
+    });
+    let grown = size();
+    let opts = ClearOptions {
+        names,
+        ..Default::default()
+    };
+    let c = draw::clear(&mut *b, &opts).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!(
+        c.floor
+            .as_ref()
+            .map(vrep_maze::cli::wording::worded)
+            .as_deref(),
+        Some(
+            "left `FD` as it is: it is a dummy, not a shape, so no scale puts it back to 0.723 x 0.723 m, its size before apply --resize-floor; resize it in CoppeliaSim"
+        ),
+        "{k}"
+    );
+    assert_eq!(size(), grown, "{k}: left as it is");
+    let c = draw::clear(&mut *b, &opts).unwrap_or_else(|e| panic!("{k}: {e}"));
+    assert_eq!(c.floor, None, "{k}: the record is gone");
+    drop(b);
+    s.shutdown();
+}
 
 /// Row 9: `Floor` raised to z 0.5 leaves the course's `Line` below it. Applied and cleared,
 /// `Line` goes back exactly where it stood, and `clear` says that, not that it put it "below

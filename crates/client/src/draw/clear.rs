@@ -234,7 +234,8 @@ fn clear_claimed(
     } else {
         None
     };
-    let floor = super::floor::restore(scene, h.floor, &names.floor, dry_run)?;
+    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
+    let floor = super::floor::restore(scene, (h.floor, floor_kind), &names.floor, dry_run)?;
     Ok(ClearReport {
         template,
         floor,
