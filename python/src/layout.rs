@@ -471,10 +471,17 @@ impl Layout {
     /// naming it, each replaced atomically, as `vrep-maze export -o map.yaml` writes them.
     fn export_ros_map(&self, py: Python<'_>, yaml: &Path) -> PyResult<()> {
         let pgm = yaml.with_extension("pgm");
+        // the YAML names the image in UTF-8: a name that is not would name another file
         let image = pgm
             .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+            .and_then(|n| n.to_str())
+            .ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "{}: a ROS map's YAML names its image in UTF-8, and this file name is not UTF-8",
+                    pgm.display()
+                ))
+            })?
+            .to_string();
         let layout = &self.layout;
         let map = py
             .detach(|| ros_map::map(layout, &ros_map::Options::default(), &image))

@@ -98,10 +98,14 @@ fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
         args.file.display()
     );
     let pgm = args.output.with_extension("pgm");
-    let image = pgm
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    // the YAML names the image in UTF-8: a name that is not would name another file
+    let image = pgm.file_name().and_then(|n| n.to_str());
+    ensure_usage!(
+        image.is_some(),
+        "{}: a ROS map's YAML names its image in UTF-8, and this file name is not UTF-8",
+        pgm.display()
+    );
+    let image = image.unwrap_or_default().to_string();
     let options = ros_map::Options {
         px_per_metre: args.px_per_m,
         lines: if args.occupied_lines {

@@ -1,5 +1,6 @@
-//! Issue 38's smaller rows, each as a person meets it on `serve`: a floor that is a dummy
-//! (row 4), a raised floor (row 9), a mesh apply's hints for a missing floor (row 10).
+//! Issue 38's smaller rows, each as a person meets it: a floor that is a dummy (row 4), a
+//! ROS map's YAML for any file name (row 5), a raised floor (row 9), a mesh apply's hints for
+//! a missing floor (row 10), on `serve` where a simulator is involved.
 
 use tempfile::TempDir;
 use vrep_maze::cli::remedies;
@@ -201,4 +202,64 @@ fn a_mesh_apply_without_a_floor_offers_create_missing_not_a_resize() {
         said.contains("created Floor") && said.contains("verified"),
         "{said}"
     );
+}
+
+/// The golden 9x9 dfs layout's path.
+fn golden() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("mazes/dfs-9x9-seed42.json")
+}
+
+/// File names that YAML reads as something else when written bare: a comment, a mapping, a
+/// flow sequence or mapping, an alias, an anchor, a tag, a directive, reserved indicators,
+/// quotes, block scalars, a line break, a leading space, a backslash and a control sequence.
+const HOSTILE_NAMES: &[&str] = &[
+    "a #b",
+    "c: d",
+    "[e",
+    "{f",
+    "*g",
+    "&h",
+    "!i",
+    "'j\"",
+    "%k",
+    "@l",
+    "|m",
+    ">n",
+    "o\np",
+    " q",
+    "r\\s",
+    "t\u{1b}[31m",
+    "u\tv",
+    "w\u{2028}x",
+    "-",
+    "~",
+    "null",
+    "y,z",
+];
+
+/// Row 5: `export -o NAME.yaml` names its image so that a YAML parser that is not ours
+/// (yaml-rust2; PyYAML in `tests/conformance/ros_map.py`) reads back the PGM's own name, for
+/// any name, and the keys after it are still read.
+#[test]
+fn a_ros_maps_yaml_names_its_image_for_any_file_name() {
+    let dir = TempDir::new().unwrap();
+    for name in HOSTILE_NAMES {
+        let yaml = dir.path().join(format!("{name}.yaml"));
+        bin()
+            .arg("export")
+            .arg(golden())
+            .arg("-o")
+            .arg(&yaml)
+            .assert()
+            .success();
+        let text = std::fs::read_to_string(&yaml).unwrap();
+        let docs = yaml_rust2::YamlLoader::load_from_str(&text)
+            .unwrap_or_else(|e| panic!("{name:?}: {e}\n{text}"));
+        let map = &docs[0];
+        let image = map["image"].as_str();
+        assert_eq!(image, Some(format!("{name}.pgm").as_str()), "{text}");
+        assert!(dir.path().join(image.unwrap()).is_file(), "{name:?}");
+        assert_eq!(map["resolution"].as_f64(), Some(0.05), "{name:?}: {text}");
+        assert_eq!(map["mode"].as_str(), Some("trinary"), "{name:?}: {text}");
+    }
 }
