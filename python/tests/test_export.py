@@ -51,3 +51,12 @@ def test_a_ros_maps_yaml_names_its_own_image_for_any_file_name(tmp_path, name):
     meta = yaml.safe_load(path.read_text())
     assert meta["image"] == f"{name}.pgm" and meta["mode"] == "trinary", path.read_text()
     assert (tmp_path / meta["image"]).is_file()
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "symlink"), reason="needs symbolic links")
+def test_a_ros_map_that_cannot_be_written_leaves_no_file_behind(tmp_path):
+    yaml = tmp_path / "s.yaml"
+    yaml.symlink_to(tmp_path / "gone" / "s.yaml")
+    with pytest.raises(FileNotFoundError, match="s.yaml: .*so neither file was written"):
+        vrep_maze.load(GOLDEN).export(yaml)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]

@@ -10,6 +10,7 @@ use clap::Args;
 
 use super::output::write_output;
 use super::usage::{ensure_usage, export_error, usage};
+use crate::atomic_file::write_all_or_none;
 use crate::export::{Format, Target, export, ros_map};
 
 /// Options of `export`.
@@ -88,8 +89,8 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// `export -o maze.yaml`: the PGM beside the YAML (same name, `.pgm`), then the YAML
-/// naming it, each replaced atomically.
+/// `export -o maze.yaml`: the PGM beside the YAML (same name, `.pgm`) and the YAML naming
+/// it, both replaced atomically or neither written.
 fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
     let layout = crate::layout::read_layout(&args.file)?;
     ensure_usage!(
@@ -117,8 +118,13 @@ fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
     let map = ros_map::map(&layout, &options, &image)
         .map_err(export_error)
         .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
-    write_output(Some(&pgm), |w| w.write_all(&map.pgm))?;
-    write_output(Some(&args.output), |w| w.write_all(map.yaml.as_bytes()))?;
+    // both files or neither: a YAML that cannot be written leaves no PGM behind
+    write_all_or_none(&[(&pgm, &map.pgm), (&args.output, map.yaml.as_bytes())]).map_err(|e| {
+        anyhow::Error::new(e.error).context(format!(
+            "{}: cannot write, so neither file was written",
+            e.path.display()
+        ))
+    })?;
     super::say::note(format!(
         "wrote {} and {}: a ROS map_server occupancy map of {}, {} x {} px at {} m a pixel",
         args.output.display(),

@@ -1,6 +1,7 @@
 //! Issue 38's smaller rows, each as a person meets it: a floor that is a dummy (row 4), a
-//! ROS map's YAML for any file name (row 5), a raised floor (row 9), a mesh apply's hints for
-//! a missing floor (row 10), on `serve` where a simulator is involved.
+//! ROS map's YAML for any file name (row 5), an export written whole or not at all (row 6), a
+//! raised floor (row 9), a mesh apply's hints for a missing floor (row 10), on `serve` where
+//! a simulator is involved.
 
 use tempfile::TempDir;
 use vrep_maze::cli::remedies;
@@ -262,4 +263,50 @@ fn a_ros_maps_yaml_names_its_image_for_any_file_name() {
         assert_eq!(map["resolution"].as_f64(), Some(0.05), "{name:?}: {text}");
         assert_eq!(map["mode"].as_str(), Some("trinary"), "{name:?}: {text}");
     }
+}
+
+/// Row 6: an export is all or nothing. `-o s.yaml`, `s.yaml` a dangling link, fails and
+/// leaves no `s.pgm` (nor a temporary); an `s.pgm` already there stays as it was; the error
+/// names the file that could not be written.
+#[cfg(unix)]
+#[test]
+fn a_ros_map_export_that_fails_leaves_no_file_behind() {
+    let dir = TempDir::new().unwrap();
+    let yaml = dir.path().join("s.yaml");
+    std::os::unix::fs::symlink(dir.path().join("gone/s.yaml"), &yaml).unwrap();
+    let names = || {
+        let mut names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    };
+    let out = bin()
+        .arg("export")
+        .arg(golden())
+        .arg("-o")
+        .arg(&yaml)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("s.yaml: cannot write, so neither file was written"),
+        "{err}"
+    );
+    assert_eq!(names(), ["s.yaml"], "{err}");
+    std::fs::write(dir.path().join("s.pgm"), b"the user's").unwrap();
+    bin()
+        .arg("export")
+        .arg(golden())
+        .arg("-o")
+        .arg(&yaml)
+        .assert()
+        .code(1);
+    assert_eq!(names(), ["s.pgm", "s.yaml"]);
+    assert_eq!(
+        std::fs::read(dir.path().join("s.pgm")).unwrap(),
+        b"the user's"
+    );
 }
