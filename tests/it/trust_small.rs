@@ -1,7 +1,8 @@
 //! Issue 38's smaller rows, each as a person meets it: a floor that is a dummy (row 4), a
 //! ROS map's YAML for any file name (row 5), an export written whole or not at all (row 6), a
-//! raised floor (row 9), a mesh apply's hints for a missing floor (row 10), on `serve` where
-//! a simulator is involved.
+//! raised floor (row 9), a mesh apply's hints for a missing floor (row 10), a legacy
+//! connection named by its address (row 13, what a Python session's `repr` says), on `serve`
+//! where a simulator is involved. Rows 12 and 13's Python halves are in `python/tests/`.
 
 use tempfile::TempDir;
 use vrep_maze::cli::remedies;
@@ -309,4 +310,33 @@ fn a_ros_map_export_that_fails_leaves_no_file_behind() {
         std::fs::read(dir.path().join("s.pgm")).unwrap(),
         b"the user's"
     );
+}
+
+/// Row 13: a legacy connection made as the command line and Python make it names where it
+/// is connected, as a ZeroMQ one does (a Python session's `repr` and `description` say it):
+/// not "a connected client".
+#[test]
+fn a_legacy_connection_names_its_host_and_port() {
+    let s = Kind::Legacy.serve(Scene::course(), 0);
+    let port = s.addr().port();
+    // the connection keywords of Python's `connect`, read as the command line reads them
+    let cli = <vrep_maze::cli::Cli as clap::Parser>::try_parse_from([
+        "vrep-maze",
+        "clear",
+        "--api",
+        "legacy",
+        "--port",
+        &port.to_string(),
+    ])
+    .unwrap();
+    let vrep_maze::cli::Command::Clear(args) = cli.command else {
+        panic!("clear parsed as another command");
+    };
+    let backend = args.scene.connect().unwrap();
+    let named = format!("legacy remote API at 127.0.0.1:{port}");
+    assert_eq!(backend.describe(), named);
+    let mut session = draw::Session::new(backend);
+    assert_eq!(session.describe().as_deref(), Some(named.as_str()));
+    session.close().unwrap();
+    s.shutdown();
 }
