@@ -94,7 +94,7 @@ pub(crate) fn report_usage<C: Parser>(error: &clap::Error, args: &[OsString]) ->
 }
 
 /// clap's text for `error`, the failure of the command line `args` (program name first) as
-/// `C` parses it, with the arguments it echoes shown as escapes ([`escape::escaped`]):
+/// `C` parses it, with the arguments it echoes shown as escapes (`cli::escape`):
 /// clap echoes them with their control characters, or drops some (`\0`, an escape
 /// sequence), so the same command line with them escaped is parsed again, which fails the
 /// same way and echoes the escapes. The one reader of clap's errors for the command line
