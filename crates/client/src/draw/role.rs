@@ -61,7 +61,7 @@ impl Role {
                     None => "at least the layout's `floor.size`".into(),
                 };
                 format!(
-                    "the floor every coordinate is relative to: a plane of {needs} (Add > Primitive shape > Plane; CoppeliaSim's default scene has `Floor`, 10 m x 10 m)"
+                    "the floor every coordinate is relative to: a plane (Add > Primitive shape > Plane; CoppeliaSim's default scene has `Floor`, 10 m x 10 m); the maze needs {needs}"
                 )
             }
             Role::Parent => {
