@@ -95,6 +95,13 @@ impl ApplyReport {
     }
 }
 
+impl From<Drawn> for ApplyReport {
+    /// The report of a whole apply ([`Drawn::report`]).
+    fn from(drawn: Drawn) -> ApplyReport {
+        drawn.report.into()
+    }
+}
+
 impl From<draw::Report> for ApplyReport {
     /// The report of a whole apply, with the command line's line.
     fn from(done: draw::Report) -> ApplyReport {
@@ -198,6 +205,41 @@ pub(crate) enum Finished<T> {
     Partial(T),
 }
 
+/// A whole apply's report, with what an interrupt counts in it: a Ctrl-C that came after
+/// the last request, too late to stop the drawing, raises `Interrupted` with every piece
+/// placed ([`Drawn::late`]), as an earlier one raises it with the pieces placed so far.
+pub(crate) struct Drawn {
+    /// What `draw::run` reported.
+    pub(crate) report: draw::Report,
+    /// The pieces of the drawing (an interrupt's `total`).
+    pub(crate) total: usize,
+    /// What they are ("copies", "line runs": [`vrep_maze::cli::summary::interrupted_counts`]).
+    pub(crate) counts: String,
+}
+
+impl Drawn {
+    /// The `Interrupted` message and counts for a Ctrl-C that came once the maze was drawn
+    /// (all of it placed; none in a dry run, which changed nothing).
+    pub(crate) fn late(&self) -> Option<(String, Option<(usize, usize)>)> {
+        let (total, counts) = (self.total, &self.counts);
+        Some(if self.report.drawn.dry_run {
+            (
+                format!(
+                    "interrupted after the dry run: 0 of {total} {counts}; nothing was changed"
+                ),
+                Some((0, total)),
+            )
+        } else {
+            (
+                format!(
+                    "interrupted after the maze was drawn and verified: {total} of {total} {counts}; the idle rate is restored"
+                ),
+                Some((total, total)),
+            )
+        })
+    }
+}
+
 /// What a connection job needs to know about Ctrl-C.
 #[derive(Default)]
 pub(crate) struct Stop {
@@ -208,12 +250,26 @@ pub(crate) struct Stop {
 }
 
 /// Runs a drawing `job` on a worker thread with Ctrl-C handled as the command line handles
-/// it, and turns its outcome into the Python result.
+/// it, and turns its outcome into the Python result; a Ctrl-C the job finished before it
+/// saw raises `KeyboardInterrupt`.
 pub(crate) fn run_drawing<T: Send + 'static, R>(
     py: Python<'_>,
     stop: &Stop,
     job: impl FnOnce() -> anyhow::Result<Finished<T>> + Send + 'static,
     report: impl FnOnce(T) -> R,
+) -> PyResult<R> {
+    run_drawing_late(py, stop, job, report, |_| None)
+}
+
+/// [`run_drawing`], where a Ctrl-C the job finished before it saw (it came after the last
+/// request) raises `Interrupted` with the message and counts `late` gives for what the job
+/// did, or `KeyboardInterrupt` where `late` gives none.
+pub(crate) fn run_drawing_late<T: Send + 'static, R>(
+    py: Python<'_>,
+    stop: &Stop,
+    job: impl FnOnce() -> anyhow::Result<Finished<T>> + Send + 'static,
+    report: impl FnOnce(T) -> R,
+    late: impl FnOnce(&T) -> Option<(String, Option<(usize, usize)>)>,
 ) -> PyResult<R> {
     let mut pending = None;
     let finished = worker::run(py, job, |raised| {
@@ -230,8 +286,12 @@ pub(crate) fn run_drawing<T: Send + 'static, R>(
     })?;
     match (finished.map_err(|e| errors::from_anyhow(py, &e))?, pending) {
         (Finished::Stopped { message, counts }, _) => Err(errors::interrupted(py, message, counts)),
-        // the job ended before it saw the Ctrl-C: the script stops all the same
-        (Finished::Done(_), Some(ctrl_c)) => Err(ctrl_c),
+        // the job ended before it saw the Ctrl-C: the script stops all the same, as an
+        // earlier Ctrl-C stops it where the job says what it did
+        (Finished::Done(done), Some(ctrl_c)) => Err(match late(&done) {
+            Some((message, counts)) => errors::interrupted(py, message, counts),
+            None => ctrl_c,
+        }),
         (Finished::Done(done), None) | (Finished::Partial(done), _) => Ok(report(done)),
     }
 }
@@ -307,7 +367,7 @@ pub fn apply(
             finished => finished,
         })
     };
-    run_drawing(py, &stop, job, ApplyReport::from)
+    run_drawing_late(py, &stop, job, ApplyReport::from, Drawn::late)
 }
 
 /// `apply`'s work once connected ([`draw::run`]: create what is missing, draw and verify,
@@ -315,7 +375,7 @@ pub fn apply(
 pub(crate) fn draw_connected(
     backend: &mut dyn Backend,
     job: &draw::Job<'_>,
-) -> anyhow::Result<Finished<draw::Report>> {
+) -> anyhow::Result<Finished<Drawn>> {
     let total = job.picture.pieces();
     let counts = vrep_maze::cli::summary::interrupted_counts(&job.picture);
     if job.options.interrupted() {
@@ -325,7 +385,11 @@ pub(crate) fn draw_connected(
         });
     }
     match draw::run(backend, job, &mut |_| {}) {
-        Ok(done) => Ok(Finished::Done(done)),
+        Ok(report) => Ok(Finished::Done(Drawn {
+            report,
+            total,
+            counts,
+        })),
         Err(RunError::Draw(DrawError::Interrupted { placed, total })) => Ok(Finished::Stopped {
             message: format!(
                 "interrupted: {placed} of {total} {counts}; the idle rate is restored"

@@ -38,7 +38,7 @@ create_exception!(
     vrep_maze,
     Interrupted,
     PyKeyboardInterrupt,
-    "Ctrl-C stopped `apply` or `clear` between two requests, as the command line does: the idle rate is restored and the connection closed. `placed` and `total` count the lines drawn (`apply`); running the same call again finishes the job."
+    "Ctrl-C stopped `apply` or `clear` between two requests, as the command line does: the idle rate is restored and the connection closed. `placed` and `total` count the lines drawn (`apply`): `placed == total` for a Ctrl-C that came after the last request, the maze drawn; running the same call again finishes the job."
 );
 
 /// The command line's text for `error` (what follows `error: `, then its detail and `hint:`

@@ -9,7 +9,7 @@ use numpy::ndarray::Array2;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyString};
-use vrep_maze::atomic_file::write_atomically;
+use vrep_maze::atomic_file::{write_all_or_none, write_atomically};
 use vrep_maze::cli::Command;
 use vrep_maze::cli::usage::export_error;
 use vrep_maze::export::{Format as ExportFormat, Target, export, ros_map};
@@ -519,25 +519,31 @@ pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<Layout> {
 }
 
 impl Layout {
-    /// `export` to a ROS map: the PGM beside the YAML (same name, `.pgm`), then the YAML
-    /// naming it, each replaced atomically, as `vrep-maze export -o map.yaml` writes them.
+    /// `export` to a ROS map: the PGM beside the YAML (same name, `.pgm`) and the YAML naming
+    /// it, both replaced atomically or neither written, as `vrep-maze export -o map.yaml`
+    /// writes them.
     fn export_ros_map(&self, py: Python<'_>, yaml: &Path) -> PyResult<()> {
         let pgm = yaml.with_extension("pgm");
+        // the YAML names the image in UTF-8: a name that is not would name another file
         let image = pgm
             .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+            .and_then(|n| n.to_str())
+            .ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "{}: a ROS map's YAML names its image in UTF-8, and this file name is not UTF-8",
+                    pgm.display()
+                ))
+            })?
+            .to_string();
         let layout = &self.layout;
         let map = py
             .detach(|| ros_map::map(layout, &ros_map::Options::default(), &image))
             .map_err(|e| errors::from_anyhow(py, &export_error(e)))?;
-        for (path, bytes) in [
-            (&pgm, &map.pgm[..]),
-            (&yaml.to_path_buf(), map.yaml.as_bytes()),
-        ] {
-            py.detach(|| write_atomically(path, |w| w.write_all(bytes)))
-                .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", path.display())))?;
-        }
+        // both files or neither: a YAML that cannot be written leaves no PGM behind
+        py.detach(|| write_all_or_none(&[(&pgm, &map.pgm[..]), (yaml, map.yaml.as_bytes())]))
+            .map_err(|e| {
+                std::io::Error::new(e.error.kind(), format!("{e}, so neither file was written"))
+            })?;
         Ok(())
     }
 }

@@ -13,6 +13,7 @@ use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use vrep_maze::cli::Cli;
+use vrep_maze::cli::usage::rendered_escaped;
 
 /// The program name the parsed command lines start with.
 const PROGRAM: &str = "vrep-maze";
@@ -103,9 +104,9 @@ fn value_text(key: &str, long: &str, value: &Bound<'_, PyAny>) -> PyResult<Strin
 /// Parses `argv` as `vrep-maze` does; a refused command line is a `ValueError` with the
 /// command line's error line (what follows `error: `).
 pub fn parse(argv: Vec<OsString>) -> PyResult<vrep_maze::cli::Command> {
-    Cli::try_parse_from(argv)
+    Cli::try_parse_from(&argv)
         .map(|cli| cli.command)
-        .map_err(|e| PyValueError::new_err(clap_message(&e)))
+        .map_err(|e| PyValueError::new_err(clap_message(&e, &argv)))
 }
 
 /// `clear`'s options from Python keywords (the connection's and the object names): what
@@ -117,9 +118,11 @@ pub fn clear_args(options: &Bound<'_, PyDict>) -> PyResult<vrep_maze::cli::Clear
     }
 }
 
-/// The line `vrep-maze` prints for a usage error clap found, without its `error: `.
-fn clap_message(error: &clap::Error) -> String {
-    let text = error.render().to_string();
+/// The line `vrep-maze` prints for a usage error clap found in `argv`, without its
+/// `error: `: the values clap echoes with their control characters escaped, as the command
+/// line shows them ([`rendered_escaped`]).
+fn clap_message(error: &clap::Error, argv: &[OsString]) -> String {
+    let text = rendered_escaped::<Cli>(error, argv);
     let first = text
         .lines()
         .map(str::trim)

@@ -47,7 +47,7 @@ fn hint(remedy: &Remedy) -> String {
             )
         }
         Remedy::HowToCreate { role, name, sizes } => {
-            role.how_to_create(name, sizes.as_ref(), "apply resize_floor=True")
+            role.how_to_create(name, sizes.as_ref())
         }
         Remedy::ResizeFloor {
             floor,
@@ -62,6 +62,22 @@ fn hint(remedy: &Remedy) -> String {
             resize: Resize::NoApi,
             ..
         } => "the legacy remote API cannot resize objects: pass resize_floor=True with api=\"zmq\" (and the ZeroMQ port, 23000 by default, if you gave port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
+        Remedy::ResizeFloor {
+            short,
+            resize: Resize::NotAShape { .. },
+            ..
+        } => format!(
+            "use a plane or cuboid of at least {} m as the floor and pass its name with floor",
+            extents(&short.resized())
+        ),
+        Remedy::ResizeFloor {
+            floor,
+            short,
+            resize: Resize::DidNotGrow,
+        } => format!(
+            "clear puts `{floor}` back to its size before apply resize_floor=True; then use a plane or cuboid of at least {} m as the floor and pass its name with floor",
+            extents(&short.need)
+        ),
         Remedy::StopSimulation => "stop it in CoppeliaSim, or pass stop_simulation=True".into(),
         Remedy::ResetBrokenPose => format!(
             "a pose read back is not a number (NaN): the object the maze hangs from (the {} dummy, or the {}) has a broken pose, which a re-run does not repair (vrep-maze never moves those objects): reset its position and orientation in CoppeliaSim, then run the same command again",

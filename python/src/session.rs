@@ -22,7 +22,10 @@ use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::{Command, Interrupted, inspect};
 use vrep_maze::draw::{self, BackendError, DrawError};
 
-use crate::draw::{ApplyReport, ClearReport, Finished, Stop, cleared, draw_connected, run_drawing};
+use crate::draw::{
+    ApplyReport, ClearReport, Drawn, Finished, Stop, cleared, draw_connected, run_drawing,
+    run_drawing_late,
+};
 use crate::errors;
 use crate::layout::Layout;
 use crate::options;
@@ -102,6 +105,19 @@ impl Session {
         work: impl FnOnce(&mut draw::Session) -> anyhow::Result<Finished<T>> + Send + 'static,
         report: impl FnOnce(T) -> R,
     ) -> PyResult<R> {
+        self.run_late(py, stop, work, report, |_| None)
+    }
+
+    /// [`Session::run`], a Ctrl-C that came after the last request said as `late` says
+    /// ([`run_drawing_late`]).
+    fn run_late<T: Send + 'static, R>(
+        &self,
+        py: Python<'_>,
+        stop: &Stop,
+        work: impl FnOnce(&mut draw::Session) -> anyhow::Result<Finished<T>> + Send + 'static,
+        report: impl FnOnce(T) -> R,
+        late: impl FnOnce(&T) -> Option<(String, Option<(usize, usize)>)>,
+    ) -> PyResult<R> {
         let tasks = self
             .tasks
             .lock()
@@ -125,7 +141,7 @@ impl Session {
                 .recv()
                 .map_err(|_| anyhow::anyhow!("the session's connection thread ended"))?
         };
-        run_drawing(py, stop, job, report)
+        run_drawing_late(py, stop, job, report, late)
     }
 }
 
@@ -155,7 +171,7 @@ impl Session {
                 .context("nothing was drawn")?;
             draw_connected(session.connected()?, &job)
         };
-        self.run(py, &stop, work, ApplyReport::from)
+        self.run_late(py, &stop, work, ApplyReport::from, Drawn::late)
     }
 
     /// Removes the drawn maze as `vrep_maze.clear` does, on this connection (keywords: the

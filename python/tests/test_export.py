@@ -40,3 +40,23 @@ def test_export_writes_a_ros_map_as_the_command_does(tmp_path, ending):
     for name in [f"m{ending}", "m.pgm"]:
         assert (ours / name).read_bytes() == (theirs / name).read_bytes()
     assert sorted(p.name for p in ours.iterdir()) == sorted(p.name for p in theirs.iterdir())
+
+
+@pytest.mark.parametrize("name", ["a #b", "c: d", "[e", "{f", "*g", "&h", "!i", "'j\"", "%k",
+                                  "@l", "|m", ">n", "o\np", " q", "r\\s", "t\x1b[31m"])
+def test_a_ros_maps_yaml_names_its_own_image_for_any_file_name(tmp_path, name):
+    yaml = pytest.importorskip("yaml")
+    path = tmp_path / f"{name}.yaml"
+    vrep_maze.load(GOLDEN).export(path)
+    meta = yaml.safe_load(path.read_text())
+    assert meta["image"] == f"{name}.pgm" and meta["mode"] == "trinary", path.read_text()
+    assert (tmp_path / meta["image"]).is_file()
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "symlink"), reason="needs symbolic links")
+def test_a_ros_map_that_cannot_be_written_leaves_no_file_behind(tmp_path):
+    yaml = tmp_path / "s.yaml"
+    yaml.symlink_to(tmp_path / "gone" / "s.yaml")
+    with pytest.raises(FileNotFoundError, match="s.yaml: .*so neither file was written"):
+        vrep_maze.load(GOLDEN).export(yaml)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.yaml"]

@@ -60,6 +60,8 @@ def test_geometry_keywords_mean_what_the_options_mean():
     (dict(seed=-1), ["--seed", "-1"]),
     (dict(seed=2**64), ["--seed", str(2**64)]),
     (dict(rotation=float("nan")), ["--rotation", "NaN"]),
+    (dict(algo="dfs\x1b[31m"), ["--algo", "dfs\x1b[31m"]),
+    (dict(algo="a\nerror: forged"), ["--algo", "a\nerror: forged"]),
 ])
 def test_a_refused_value_raises_value_error_with_the_commands_message(keywords, args):
     with pytest.raises(ValueError) as raised:
@@ -69,6 +71,18 @@ def test_a_refused_value_raises_value_error_with_the_commands_message(keywords, 
     words = lambda text: re.sub(r'[=",]', " ", text).split()
     assert words(str(raised.value)) == words(in_python_names(cli_error("generate", *args)))
     assert "--" not in str(raised.value)
+
+
+@pytest.mark.parametrize("algo, shown", [("dfs\x00x", r"'dfs\0x'"),
+                                         ("\x1b[31m", r"'\u{1b}[31m'"),
+                                         ("a\nerror: forged", r"'a\nerror: forged'")])
+def test_a_refused_value_shows_its_control_characters_escaped_as_the_command_does(algo, shown):
+    # the manual: control characters from an option are shown escaped, never raw nor dropped
+    with pytest.raises(ValueError) as raised:
+        vrep_maze.generate(algo=algo)
+    message = str(raised.value)
+    assert f"unknown algorithm {shown}" in message, message
+    assert not any(c < " " for c in message), repr(message)
 
 
 def test_python_type_errors_are_type_errors():

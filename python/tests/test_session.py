@@ -28,6 +28,13 @@ def test_one_session_replaces_mazes_then_clears(serve, api):
         sim.apply(vrep_maze.generate(seed=4))
 
 
+def test_a_legacy_sessions_repr_names_its_host_and_port(serve):
+    port = serve.legacy_port
+    with vrep_maze.connect(api="legacy", port=port) as sim:
+        assert sim.description == f"legacy remote API at 127.0.0.1:{port}"
+        assert repr(sim) == f"<Session legacy remote API at 127.0.0.1:{port}>"
+
+
 @pytest.mark.parametrize("api", ["legacy", "zmq"])
 def test_inspect_in_a_session_reports_what_the_command_reports(serve, api, tmp_path):
     maze = vrep_maze.generate(seed=5, size=(6, 5))
@@ -145,6 +152,44 @@ def test_ctrl_c_in_a_session_stops_cleanly_and_the_session_finishes_the_maze(tmp
         assert "the idle rate is restored" in out
         finished = next(l for l in out.splitlines() if l.startswith("finished ")).split()
         assert finished[1] == "True" and int(finished[2]) > 0, out
+    finally:
+        server.process.kill()
+        server.process.wait()
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="sends SIGINT")
+def test_ctrl_c_after_the_last_request_of_an_apply_raises_interrupted_with_placed(tmp_path):
+    # the maze drawn once, each later apply places nothing: it makes no request a Ctrl-C
+    # could stop before, so one that lands in it comes too late to stop the drawing. It
+    # raises `Interrupted` with everything placed, as an earlier one raises it with what was
+    # placed so far, never a bare `KeyboardInterrupt`.
+    server = Serve("--timing", "realistic", "--scene", big_course_scene(tmp_path))
+    try:
+        process = subprocess.Popen([sys.executable, "-c", textwrap.dedent(f"""
+            import vrep_maze
+            layout = vrep_maze.generate(seed=5, size=(20, 20))
+            with vrep_maze.connect(api="zmq", port={server.zmq_port}) as sim:
+                sim.apply(layout)
+                print("started", flush=True)
+                while True:
+                    try:
+                        sim.apply(layout)
+                    except vrep_maze.Interrupted as e:
+                        print("interrupted", e.placed, e.total, e, flush=True)
+                        break
+                print("finished", sim.inspect(layout)["layout"]["matches"], flush=True)
+        """)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        lines = iter(process.stdout.readline, "")
+        assert "started" in (line.strip() for line in lines), process.stderr.read()
+        time.sleep(0.5)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=120)
+        assert process.returncode == 0, (out, err)
+        words = next(l for l in out.splitlines() if l.startswith("interrupted ")).split()
+        total = len(vrep_maze.generate(seed=5, size=(20, 20)).segments)
+        assert int(words[1]) == int(words[2]) == total, out
+        assert "after the maze was drawn and verified" in out
+        assert "finished True" in out
     finally:
         server.process.kill()
         server.process.wait()

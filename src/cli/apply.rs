@@ -354,8 +354,6 @@ struct Words {
     interrupted: String,
     /// The last line of a real run: what was verified.
     verified: String,
-    /// A missing object's error suggests `--create-missing` when ZeroMQ answered.
-    hints_create_missing: bool,
 }
 
 impl Words {
@@ -375,7 +373,6 @@ impl Words {
                     placing: format!("placing {what}"),
                     interrupted: super::summary::interrupted_counts(picture),
                     verified: format!("verified: every {noun}, start and end in place"),
-                    hints_create_missing: true,
                 }
             }
             Picture::Mesh(maze) => {
@@ -389,7 +386,6 @@ impl Words {
                     placing: format!("creating the meshes of {what}"),
                     interrupted: super::summary::interrupted_counts(picture),
                     verified: "verified: every mesh read back, start and end in place".into(),
-                    hints_create_missing: false,
                 }
             }
         }
@@ -447,9 +443,8 @@ fn drive(
     let result = draw::run(backend.as_mut(), &job, &mut progress);
     bar.finish_and_clear();
     said?;
-    // over ZeroMQ the missing objects can be made: their hints say so
-    let can_create =
-        words.hints_create_missing && backend.authoring().is_some() && !args.create_missing;
+    // over ZeroMQ the missing objects can be made, in either draw mode: their hints say so
+    let can_create = backend.authoring().is_some() && !args.create_missing;
     if let Err(RunError::Draw(DrawError::Interrupted { placed, total })) = &result {
         // the run stopped between requests and restored the idle rate; closing the way the
         // official client does spares the user the simulator's one-minute refusal

@@ -155,7 +155,9 @@ impl Opened for Connected {
         timeout: Duration,
     ) -> Self {
         marker.opened();
-        let backend = LegacyBackend::new(client, timeout).on_clean_close(move || marker.closed());
+        let backend = LegacyBackend::new(client, timeout)
+            .at(addr)
+            .on_clean_close(move || marker.closed());
         Connected {
             backend: Box::new(backend),
             description: format!("legacy remote API at {addr}"),

@@ -10,6 +10,7 @@ use clap::Args;
 
 use super::output::write_output;
 use super::usage::{ensure_usage, export_error, usage};
+use crate::atomic_file::write_all_or_none;
 use crate::export::{Format, Target, export, ros_map};
 
 /// Options of `export`.
@@ -88,8 +89,8 @@ pub fn run(args: ExportArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// `export -o maze.yaml`: the PGM beside the YAML (same name, `.pgm`), then the YAML
-/// naming it, each replaced atomically.
+/// `export -o maze.yaml`: the PGM beside the YAML (same name, `.pgm`) and the YAML naming
+/// it, both replaced atomically or neither written.
 fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
     let layout = crate::layout::read_layout(&args.file)?;
     ensure_usage!(
@@ -98,10 +99,14 @@ fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
         args.file.display()
     );
     let pgm = args.output.with_extension("pgm");
-    let image = pgm
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    // the YAML names the image in UTF-8: a name that is not would name another file
+    let image = pgm.file_name().and_then(|n| n.to_str());
+    ensure_usage!(
+        image.is_some(),
+        "{}: a ROS map's YAML names its image in UTF-8, and this file name is not UTF-8",
+        pgm.display()
+    );
+    let image = image.unwrap_or_default().to_string();
     let options = ros_map::Options {
         px_per_metre: args.px_per_m,
         lines: if args.occupied_lines {
@@ -113,8 +118,13 @@ fn ros_map(args: &ExportArgs) -> Result<ExitCode> {
     let map = ros_map::map(&layout, &options, &image)
         .map_err(export_error)
         .with_context(|| format!("{}: nothing was exported", args.file.display()))?;
-    write_output(Some(&pgm), |w| w.write_all(&map.pgm))?;
-    write_output(Some(&args.output), |w| w.write_all(map.yaml.as_bytes()))?;
+    // both files or neither: a YAML that cannot be written leaves no PGM behind
+    write_all_or_none(&[(&pgm, &map.pgm), (&args.output, map.yaml.as_bytes())]).map_err(|e| {
+        anyhow::Error::new(e.error).context(format!(
+            "{}: cannot write, so neither file was written",
+            e.path.display()
+        ))
+    })?;
     super::say::note(format!(
         "wrote {} and {}: a ROS map_server occupancy map of {}, {} x {} px at {} m a pixel",
         args.output.display(),

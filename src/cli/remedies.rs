@@ -44,7 +44,7 @@ pub fn hint(remedy: &Remedy) -> String {
             )
         }
         Remedy::HowToCreate { role, name, sizes } => {
-            role.how_to_create(name, sizes.as_ref(), "apply --resize-floor")
+            role.how_to_create(name, sizes.as_ref())
         }
         Remedy::ResizeFloor {
             floor,
@@ -59,6 +59,14 @@ pub fn hint(remedy: &Remedy) -> String {
             Resize::NoApi => "the legacy remote API cannot resize objects: pass --resize-floor with --api zmq (and the ZeroMQ port, 23000 by default, if you gave --port): CoppeliaSim 4.5.1 serves both APIs on one scene".into(),
             Resize::NoExtent => format!(
                 "`{floor}` has no extent along x or y, so no scale makes it larger: use a plane or cuboid as the floor"
+            ),
+            Resize::NotAShape { .. } => format!(
+                "use a plane or cuboid of at least {} m as the floor and pass its name with --floor",
+                extents(&short.resized())
+            ),
+            Resize::DidNotGrow => format!(
+                "clear puts `{floor}` back to its size before apply --resize-floor; then use a plane or cuboid of at least {} m as the floor and pass its name with --floor",
+                extents(&short.need)
             ),
         },
         Remedy::ResizeFloorByHand { floor, short } => format!(

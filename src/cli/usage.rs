@@ -76,17 +76,7 @@ pub(crate) fn report_usage<C: Parser>(error: &clap::Error, args: &[OsString]) ->
             ExitCode::SUCCESS
         };
     }
-    // clap echoes arguments with their control characters, or some of them: the same
-    // command line with them escaped fails the same way and echoes them as escapes
-    let escaped: Vec<String> = args
-        .iter()
-        .map(|arg| escape::escaped(&arg.to_string_lossy()).into_owned())
-        .collect();
-    let again = C::try_parse_from(&escaped)
-        .err()
-        .filter(|again| again.kind() == error.kind());
-    let shown = again.as_ref().unwrap_or(error);
-    let text = shown.render().to_string();
+    let text = rendered_escaped::<C>(error, args);
     let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
     if let Some(first) = lines.next() {
         eprintln!("{}{}", shorten(first), missing_arguments(error));
@@ -101,6 +91,23 @@ pub(crate) fn report_usage<C: Parser>(error: &clap::Error, args: &[OsString]) ->
     }
     eprintln!("  hint: `--help` lists every option, with examples");
     ExitCode::from(USAGE_EXIT_CODE)
+}
+
+/// clap's text for `error`, the failure of the command line `args` (program name first) as
+/// `C` parses it, with the arguments it echoes shown as escapes (`cli::escape`):
+/// clap echoes them with their control characters, or drops some (`\0`, an escape
+/// sequence), so the same command line with them escaped is parsed again, which fails the
+/// same way and echoes the escapes. The one reader of clap's errors for the command line
+/// and for a program that embeds it (the Python package).
+pub fn rendered_escaped<C: Parser>(error: &clap::Error, args: &[OsString]) -> String {
+    let escaped: Vec<String> = args
+        .iter()
+        .map(|arg| escape::escaped(&arg.to_string_lossy()).into_owned())
+        .collect();
+    let again = C::try_parse_from(&escaped)
+        .err()
+        .filter(|again| again.kind() == error.kind());
+    again.as_ref().unwrap_or(error).render().to_string()
 }
 
 /// The arguments a `MissingRequiredArgument` error names (" <FILE>, --seeds <SEEDS>"), to
@@ -231,6 +238,33 @@ mod tests {
         assert_eq!(line.matches("No such file").count(), 1, "{line}");
         let error = anyhow::anyhow!("inner").context("outer");
         assert_eq!(one_line(&error), "outer: inner");
+    }
+
+    #[test]
+    fn a_refused_value_is_echoed_with_its_control_characters_escaped_not_dropped() {
+        for (value, shown) in [
+            ("dfs\0x", "'dfs\\0x'"),
+            ("\u{1b}[31m", "'\\u{1b}[31m'"),
+            ("a\nerror: forged", "'a\\nerror: forged'"),
+        ] {
+            let args: Vec<OsString> = ["vrep-maze", "generate", "--algo"]
+                .into_iter()
+                .map(OsString::from)
+                .chain([OsString::from(value)])
+                .collect();
+            let error = crate::cli::Cli::try_parse_from(&args).unwrap_err();
+            let text = rendered_escaped::<crate::cli::Cli>(&error, &args);
+            let first = text.lines().next().unwrap();
+            assert!(
+                first.contains(&format!("invalid value {shown} for '--algo <ALGO>'"))
+                    && first.contains(&format!("unknown algorithm {shown}")),
+                "{first:?}"
+            );
+            assert!(
+                !text.chars().any(|c| c.is_control() && c != '\n'),
+                "{text:?}"
+            );
+        }
     }
 
     #[test]

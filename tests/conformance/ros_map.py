@@ -19,7 +19,9 @@ Then, point by point on a 30-degree-turned line maze and wall maze with posts: e
 segment's centre is free and every cell corner occupied (the reverse with
 `--occupied-lines`); every wall's centre and the points along it are occupied and every cell
 centre free; nothing is unknown. The same map read with `negate: 1` must fail the line
-check, so the checks cannot pass by accident.
+check, so the checks cannot pass by accident. Maps written under file names that YAML reads
+as something else when bare (`a #b.yaml`, `c: d.yaml`, a newline, a leading space, ...) name
+their own PGM.
 
 Prints one line per check and `ros-map: N passed, M failed` last; exits 1 on failure.
 """
@@ -169,6 +171,25 @@ check("walls.yaml: every wall occupied along its length, every post occupied",
       f"{along.count(100)}/{len(along)} wall points, {posts.count(100)}/{len(posts)} posts")
 check("walls.yaml: every cell centre is free", centres.count(0) == len(centres),
       f"{centres.count(0)}/{len(centres)}")
+
+# file names YAML reads as something else when written bare (a comment, a mapping, flow
+# collections, an alias, an anchor, a tag, a directive, reserved indicators, quotes, block
+# scalars, a line break, a leading space, a backslash, a control sequence): the YAML must
+# name each one's PGM, which Pillow then opens
+HOSTILE = ["a #b", "c: d", "[e", "{f", "*g", "&h", "!i", "'j\"", "%k", "@l", "|m", ">n",
+           "o\np", " q", "r\\s", "t\x1b[31m", "u\tv", "w\u2028x", "-", "~", "null", "y,z"]
+named = []
+for name in HOSTILE:
+    path = os.path.join(tmp, f"{name}.yaml")
+    vrep_maze("export", os.path.join(tmp, "lines.json"), "-o", path)
+    try:
+        meta = load(path)[0]
+        named.append(meta["image"] == f"{name}.pgm" and meta["mode"] == "trinary")
+    except Exception as e:  # a YAML error is a failed check, named below
+        print(f"     {name!r}: {type(e).__name__}: {e}")
+        named.append(False)
+check(f"a hostile file name's YAML names its own PGM ({len(HOSTILE)} names)",
+      all(named), ", ".join(repr(n) for n, ok in zip(HOSTILE, named) if not ok))
 
 shutil.rmtree(tmp)
 passed, failed = RESULTS.count(True), RESULTS.count(False)

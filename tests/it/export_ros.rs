@@ -30,7 +30,7 @@ fn a_yaml_output_writes_the_map_and_its_image_beside_it_and_says_so() {
         ))
         .stderr(contains("200 x 200 px at 0.05 m a pixel"));
     let text = fs::read_to_string(&yaml).unwrap();
-    assert!(text.contains("\nimage: maze.pgm\n"), "{text}");
+    assert!(text.contains("\nimage: \"maze.pgm\"\n"), "{text}");
     let pgm = fs::read(dir.path().join("maze.pgm")).unwrap();
     assert!(pgm.starts_with(b"P5\n200 200\n255\n"));
     assert_eq!(pgm.len(), "P5\n200 200\n255\n".len() + 200 * 200);

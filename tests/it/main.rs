@@ -52,6 +52,7 @@ mod trust;
 mod trust_draw;
 mod trust_kept;
 mod trust_ours;
+mod trust_small;
 mod validate;
 mod walls;
 mod zmq_client_server;

@@ -67,8 +67,9 @@ fn send_home(
             scene.edit(&[home.edit(h.floor)])?;
             home::forget(scene)?;
         }
-        // a home below the floor is where the first apply hid it, not where it stood
-        return Ok(Some(if home.position[2] < 0.0 {
+        // a home apply made up is where the first apply hid it, not where it stood (one
+        // merely below the floor, a raised one, is where it stood)
+        return Ok(Some(if home.is_hidden() {
             format!(
                 "{verb} `{template}` below the floor at ({:.3}, {:.3}), out of sight, where the first apply recorded it (it lay on an earlier maze then, with no record of where it stood before); move it where you want it",
                 home.position[0], home.position[1]
@@ -233,7 +234,8 @@ fn clear_claimed(
     } else {
         None
     };
-    let floor = super::floor::restore(scene, h.floor, &names.floor, dry_run)?;
+    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
+    let floor = super::floor::restore(scene, (h.floor, floor_kind), &names.floor, dry_run)?;
     Ok(ClearReport {
         template,
         floor,

@@ -67,7 +67,7 @@ pub enum DrawError {
     Sizes(Vec<Message>),
     /// The scene's floor is smaller than the layout's (`fit::SizeCheck::floor`): refused
     /// before any edit unless `apply --resize-floor` grows it ([`super::floor::resize`]).
-    #[error("{}", .short.describe(.floor))]
+    #[error("{}", .short.describe_resize(.floor, *.resize))]
     Floor {
         /// The floor's name.
         floor: String,

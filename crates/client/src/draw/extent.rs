@@ -13,6 +13,39 @@ pub enum Resize {
     NoApi,
     /// The floor has no extent along x or y: no scale makes it larger.
     NoExtent,
+    /// The floor is no shape (a dummy, say: `kind` is its `sim_object_*_type` code). Only a
+    /// shape scales along x and y alone; CoppeliaSim scales a dummy alike along x, y and z,
+    /// so `sim.scaleObject` cannot give it the layout's size.
+    NotAShape {
+        /// Its object type code ([`object_kind`] says it).
+        kind: i32,
+    },
+    /// The simulator scaled the floor but it did not grow to the layout's size (read back
+    /// after the scale: `FloorShort::have` is what it reads now).
+    DidNotGrow,
+}
+
+/// An object type code (`sim_object_*_type`, `../shared/spec/legacy-remote-api.md`) as a
+/// message says it: "a dummy", "a camera", "an object of type 42".
+pub fn object_kind(code: i32) -> String {
+    let name = match code {
+        0 => "a shape",
+        1 => "a joint",
+        2 => "a graph",
+        3 => "a camera",
+        4 => "a dummy",
+        5 => "a proximity sensor",
+        8 => "a path",
+        9 => "a vision sensor",
+        11 => "a mill",
+        12 => "a force sensor",
+        13 => "a light",
+        14 => "a mirror",
+        15 => "an octree",
+        16 => "a point cloud",
+        other => return format!("an object of type {other}"),
+    };
+    name.to_string()
 }
 
 /// The scene's floor is smaller than the layout's along x or y.
@@ -46,6 +79,22 @@ impl FloorShort {
             extents(&self.have),
             extents(&self.need)
         )
+    }
+
+    /// [`FloorShort::describe`], and why `apply` cannot grow the floor when that is not
+    /// the API's doing: "..., and `FD` is a dummy, not a shape: apply resizes only a shape".
+    pub fn describe_resize(&self, floor: &str, resize: Resize) -> String {
+        let short = self.describe(floor);
+        match resize {
+            Resize::NotAShape { kind } => format!(
+                "{short}, and `{floor}` is {}, not a shape: apply resizes only a shape",
+                object_kind(kind)
+            ),
+            Resize::DidNotGrow => format!(
+                "{short}, after apply scaled it (read back): the simulator did not grow it as asked"
+            ),
+            Resize::Offered | Resize::NoApi | Resize::NoExtent => short,
+        }
     }
 }
 

@@ -6,8 +6,10 @@
 use super::backend::Backend;
 use super::error::BackendError;
 use super::error::DrawError;
-use super::extent::{FloorShort, Resize, extents};
+use super::extent::{FloorShort, Resize, extents, object_kind};
 use super::signals::FLOOR_SIZE as FLOOR_SIGNALS;
+use super::tolerance::SIZE_TOLERANCE;
+use vrep_maze_core::coppelia::OBJECT_SHAPE_TYPE;
 use vrep_maze_core::wording::{Message, Opt, Value};
 
 /// A floor's size before the first `apply --resize-floor`.
@@ -53,30 +55,38 @@ fn forget(scene: &mut dyn Backend) -> Result<(), BackendError> {
     scene.set_int_signals(&signals)
 }
 
-/// Grows the floor `floor` (named `name`) to the layout's size ([`FloorShort::resized`]):
-/// its size before is recorded first unless a record of it exists (an earlier resize), then
-/// it is scaled. With `dry_run` nothing is sent. Returns the report's line.
+/// Grows the floor (`floor`: its handle and, as the survey read it, its type) named `name`
+/// to the layout's size ([`FloorShort::resized`]): refused unless it is a shape (a dummy
+/// scales alike along x, y and z), its size before is recorded first unless a record of it
+/// exists (an earlier resize), then it is scaled and its size read back: the report says
+/// what the simulator reads, and a floor that did not grow to the layout's size is refused
+/// as a short one. With `dry_run` nothing is sent. Returns the report's line.
 pub fn resize(
     scene: &mut dyn Backend,
-    floor: i32,
+    (floor, kind): (i32, Option<i32>),
     name: &str,
     short: &FloorShort,
     dry_run: bool,
 ) -> Result<String, DrawError> {
-    let refused = |resize| DrawError::Floor {
+    let refused = |short: FloorShort, resize| DrawError::Floor {
         floor: name.to_string(),
-        short: *short,
+        short,
         resize,
     };
-    let factors = short.factors().ok_or_else(|| refused(Resize::NoExtent))?;
-    if scene.authoring().is_none() {
-        return Err(refused(Resize::NoApi));
+    let factors = short
+        .factors()
+        .ok_or_else(|| refused(*short, Resize::NoExtent))?;
+    if let Some(kind) = kind.filter(|k| *k != OBJECT_SHAPE_TYPE) {
+        return Err(refused(*short, Resize::NotAShape { kind }));
     }
-    let to = extents(&short.resized());
+    if scene.authoring().is_none() {
+        return Err(refused(*short, Resize::NoApi));
+    }
+    let was = extents(&short.have);
     if dry_run {
         return Ok(format!(
-            "would resize `{name}` from {} m to {to} m (clear puts it back)",
-            extents(&short.have)
+            "would resize `{name}` from {was} m to {} m (clear puts it back)",
+            extents(&short.resized())
         ));
     }
     let record = FloorRecord {
@@ -96,19 +106,44 @@ pub fn resize(
     if let Some(authoring) = scene.authoring() {
         authoring.scale(floor, factors)?;
     }
+    let Some(now) = floor_size(scene, floor)? else {
+        return Ok(format!(
+            "resized `{name}` from {was} m towards {} m, a size the simulator did not read back (clear puts it back)",
+            extents(&short.resized())
+        ));
+    };
+    let grown = FloorShort {
+        have: now,
+        need: short.need,
+    };
+    if (0..2).any(|k| now[k] + SIZE_TOLERANCE < short.need[k]) {
+        return Err(refused(grown, Resize::DidNotGrow));
+    }
     Ok(format!(
-        "resized `{name}` from {} m to {to} m (clear puts it back)",
-        extents(&short.have)
+        "resized `{name}` from {was} m to {} m (clear puts it back)",
+        extents(&now)
     ))
 }
 
-/// Puts the floor `floor` (named `name`) back to its size before the first `apply
-/// --resize-floor`, if a record of it exists, and deletes the record; over the legacy
-/// remote API, which cannot resize, says how to instead and keeps the record. With
-/// `dry_run` nothing is sent. Returns the report's line, `None` without a record.
+/// The floor's extent along x and y as the simulator reads it now, `None` if it does not
+/// give it.
+fn floor_size(scene: &mut dyn Backend, floor: i32) -> Result<Option<[f64; 2]>, BackendError> {
+    let size = scene.sizes(&[floor])?.first().copied().flatten();
+    Ok(size
+        .map(|s| [s[0], s[1]])
+        .filter(|s| s.iter().all(|v| v.is_finite())))
+}
+
+/// Puts the floor (`floor`: its handle and, as the survey read it, its type) named `name`
+/// back to its size before the first `apply --resize-floor`, if a record of it exists, and
+/// deletes the record; the line says the size the simulator reads after the scale. A floor
+/// that is no shape is left as it is (only an older version resized one: a dummy scales
+/// alike along x, y and z, so no scale gives it back its x and y), the record deleted. Over
+/// the legacy remote API, which cannot resize, says how to instead and keeps the record.
+/// With `dry_run` nothing is sent. Returns the report's line, `None` without a record.
 pub fn restore(
     scene: &mut dyn Backend,
-    floor: i32,
+    (floor, kind): (i32, Option<i32>),
     name: &str,
     dry_run: bool,
 ) -> Result<Option<Message>, DrawError> {
@@ -116,6 +151,19 @@ pub fn restore(
         return Ok(None);
     };
     let was = extents(&record.size);
+    if let Some(kind) = kind.filter(|k| *k != OBJECT_SHAPE_TYPE) {
+        if !dry_run {
+            forget(scene)?;
+        }
+        return Ok(Some(
+            Message::text(format!(
+                "left `{name}` as it is: it is {}, not a shape, so no scale puts it back to {was} m",
+                object_kind(kind)
+            ))
+            .and_message(before_resize())
+            .and("; resize it in CoppeliaSim"),
+        ));
+    }
     if scene.authoring().is_none() {
         return Ok(Some(
             Message::text(format!("left `{name}` as it is: apply "))
@@ -125,7 +173,7 @@ pub fn restore(
                 .and(") to restore it"),
         ));
     }
-    let now = scene.sizes(&[floor])?.first().copied().flatten();
+    let now = floor_size(scene, floor)?;
     let factors = now.and_then(|now| {
         let f = [record.size[0] / now[0], record.size[1] / now[1], 1.0];
         f.iter().all(|x| x.is_finite() && *x > 0.0).then_some(f)
@@ -150,9 +198,22 @@ pub fn restore(
         authoring.scale(floor, factors)?;
     }
     forget(scene)?;
-    Ok(Some(
-        Message::text(format!("put `{name}` back to {was} m")).and_message(before_resize()),
-    ))
+    let back = floor_size(scene, floor)?;
+    Ok(Some(match back {
+        Some(back) if (0..2).all(|k| (back[k] - record.size[k]).abs() <= SIZE_TOLERANCE) => {
+            Message::text(format!("put `{name}` back to {} m", extents(&back)))
+                .and_message(before_resize())
+        }
+        Some(back) => Message::text(format!("scaled `{name}` back towards {was} m"))
+            .and_message(before_resize())
+            .and(format!(
+                ", but it reads {} m now: resize it in CoppeliaSim",
+                extents(&back)
+            )),
+        None => Message::text(format!("scaled `{name}` back to {was} m"))
+            .and_message(before_resize())
+            .and(", a size the simulator did not read back"),
+    }))
 }
 
 /// ", its size before apply --resize-floor".

@@ -57,6 +57,16 @@ impl Home {
         }
     }
 
+    /// Whether this is a home `apply` made up rather than read ([`Home::hidden`]: the
+    /// template lay on an earlier maze with no record of where it stood): exactly
+    /// [`HIDDEN_DEPTH`] below the floor, turned by nothing, to the micrometre the record
+    /// keeps. A home the user chose merely lies below the floor (a `Floor` raised above the
+    /// template, say): it is where the template stood, and said so.
+    pub fn is_hidden(&self) -> bool {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-6;
+        close(self.position[2], -HIDDEN_DEPTH) && self.orientation.iter().all(|e| close(*e, 0.0))
+    }
+
     /// A pose below the floor under (`x`, `y`) of the floor frame ([`HIDDEN_DEPTH`]).
     pub fn hidden(x: f64, y: f64) -> Pose {
         Pose {
@@ -127,5 +137,28 @@ mod tests {
             ..home
         };
         assert_eq!(nan.encode(), None);
+    }
+
+    #[test]
+    fn only_a_made_up_home_is_hidden_not_one_below_a_raised_floor() {
+        let made_up = Home::hidden(1.5, -2.0);
+        let home = Home {
+            handle: 3,
+            position: super::super::pose::position(&made_up),
+            orientation: super::super::pose::euler(&made_up),
+        };
+        let values = home.encode().unwrap().map(Some);
+        assert!(Home::decode(&values).unwrap().is_hidden());
+        // Line where the course scene has it, under a Floor raised to z 0.5
+        let below = Home {
+            position: [0.0, 0.0, -0.499],
+            ..home
+        };
+        assert!(!below.is_hidden());
+        let turned = Home {
+            orientation: [0.0, 0.0, 0.3],
+            ..home
+        };
+        assert!(!turned.is_hidden());
     }
 }

@@ -27,7 +27,8 @@ pub enum Remedy {
         sizes: Option<Sizes>,
     },
     /// Let `apply` grow the floor to the layout's size, as far as this connection can
-    /// (`resize`: it can, the legacy API cannot, or no scale makes the floor larger).
+    /// (`resize`: it can, the legacy API cannot, no scale makes the floor larger, the floor
+    /// is no shape, or the simulator did not grow it).
     ResizeFloor {
         /// The floor's name.
         floor: String,
@@ -79,6 +80,16 @@ impl DrawError {
                     .chain(how)
                     .collect()
             }
+            // a floor that is no shape cannot be resized to the layout's, by hand either
+            DrawError::Floor {
+                floor,
+                short,
+                resize: resize @ Resize::NotAShape { .. },
+            } => vec![Remedy::ResizeFloor {
+                floor: floor.clone(),
+                short: *short,
+                resize: *resize,
+            }],
             DrawError::Floor {
                 floor,
                 short,

@@ -50,10 +50,9 @@ impl Role {
 
     /// How to make the object `name` that plays this role in CoppeliaSim (one line), at the
     /// layout's `sizes` when a layout is drawn (`None`, as for `clear`: the sizes are the
-    /// layout's, named by its fields). The floor's line says that `resize_floor`, the
-    /// caller's way of asking `apply` to grow the floor (`apply --resize-floor`), scales it
-    /// over ZeroMQ.
-    pub fn how_to_create(self, name: &str, sizes: Option<&Sizes>, resize_floor: &str) -> String {
+    /// layout's, named by its fields). The floor's line offers no resize: there is nothing
+    /// to scale until the floor exists.
+    pub fn how_to_create(self, name: &str, sizes: Option<&Sizes>) -> String {
         let m = extent::metres;
         let recipe = match self {
             Role::Floor => {
@@ -62,7 +61,7 @@ impl Role {
                     None => "at least the layout's `floor.size`".into(),
                 };
                 format!(
-                    "the floor every coordinate is relative to (CoppeliaSim's default scene has `Floor`, 10 m x 10 m; the maze needs {needs}; {resize_floor} over ZeroMQ scales it)"
+                    "the floor every coordinate is relative to: a plane (Add > Primitive shape > Plane; CoppeliaSim's default scene has `Floor`, 10 m x 10 m); the maze needs {needs}"
                 )
             }
             Role::Parent => {

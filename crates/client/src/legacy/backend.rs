@@ -105,6 +105,13 @@ impl LegacyBackend {
         }
     }
 
+    /// Says where the client is connected (`host:port`, as [`Backend::describe`] names it:
+    /// `legacy remote API at 127.0.0.1:19997`) instead of "a connected client".
+    pub fn at(mut self, addr: impl Into<String>) -> LegacyBackend {
+        self.addr = addr.into();
+        self
+    }
+
     /// Runs `then` once the connection is closed cleanly, by [`Backend::close`] or by
     /// dropping the backend (the simulator acknowledged the kill command and listens again
     /// within 0.5 s), not when the session ended any other way.

@@ -47,6 +47,27 @@ fn write_replacing(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> io::Result<()> {
+    let mut write = Some(write);
+    match stage_replacing(path, &mut write)? {
+        Some(temp) => fs::rename(&temp, path).inspect_err(|_| {
+            let _ = fs::remove_file(&temp);
+        }),
+        None => write_through(
+            path,
+            write.take().expect("not called when the owner is not kept"),
+        ),
+    }
+}
+
+/// Writes what `write` produces (taken out of its option) to a temporary sibling of `path`
+/// and flushes it to disk, ready to be renamed over `path` ([`write_replacing`]'s rules):
+/// its path, or `None` where the replacement could not be given the replaced file's owner
+/// or group (`write` then not called: the file is to be written in place). Nothing is left
+/// behind on an error.
+fn stage_replacing(
+    path: &Path,
+    write: &mut Option<impl FnOnce(&mut dyn Write) -> io::Result<()>>,
+) -> io::Result<Option<PathBuf>> {
     let replaced = match fs::metadata(path) {
         Ok(meta) => {
             // opening for writing asks the OS exactly what writing in place would
@@ -56,7 +77,6 @@ fn write_replacing(
         Err(_) => None,
     };
     let temp = temporary_sibling(path)?;
-    let mut write = Some(write);
     let result = (|| -> io::Result<()> {
         let file = fs::File::create(&temp)?;
         if let Some(meta) = &replaced
@@ -70,18 +90,136 @@ fn write_replacing(
         let mut file = io::BufWriter::new(SyncingFile::new(file));
         let write = write.take().expect("written once");
         write(&mut file)?;
-        file.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        fs::rename(&temp, path)
+        file.into_inner().map_err(|e| e.into_error())?.sync_all()
     })();
-    if result.is_err() {
-        let _ = fs::remove_file(&temp);
-    }
-    match (result, write) {
-        (Err(e), Some(write)) if e.get_ref().is_some_and(|inner| inner.is::<OwnerNotKept>()) => {
-            write_through(path, write)
+    match result {
+        Ok(()) => Ok(Some(temp)),
+        Err(e) => {
+            let _ = fs::remove_file(&temp);
+            if e.get_ref().is_some_and(|inner| inner.is::<OwnerNotKept>()) {
+                Ok(None)
+            } else {
+                Err(e)
+            }
         }
-        (result, _) => result,
     }
+}
+
+/// A file of [`write_all_or_none`] that could not be written, and why.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {error}", path.display())]
+pub struct WriteError {
+    /// The file.
+    pub path: PathBuf,
+    /// What the OS said.
+    pub error: io::Error,
+}
+
+/// One output of [`write_all_or_none`], made ready: a temporary sibling written and flushed
+/// to disk, to be renamed over it, or the file itself opened, to be written through (a
+/// link, a device, another user's file: [`write_atomically`]'s rules).
+enum Staged<'a> {
+    /// Renamed over `path` to commit.
+    Renamed { temp: PathBuf, path: &'a Path },
+    /// Written into `file` to commit (emptied first if `regular`).
+    Through {
+        file: fs::File,
+        regular: bool,
+        bytes: &'a [u8],
+        path: &'a Path,
+    },
+}
+
+impl Staged<'_> {
+    /// Removes what staging made (the temporary sibling); nothing is written.
+    fn discard(self) {
+        if let Staged::Renamed { temp, .. } = self {
+            let _ = fs::remove_file(temp);
+        }
+    }
+}
+
+/// Writes each of `files` (a path and its bytes) as [`write_atomically`] writes one, all or
+/// none: every file is first written to a temporary sibling and flushed to disk (or, one to
+/// be written through, opened), and only when all are ready are they written through and
+/// renamed into place. A file that cannot be written (a dangling link, a folder in the way,
+/// no permission, a full disk) fails the whole before any file changed, and no temporary is
+/// left. Only a failure after that (a rename refused) can leave the files renamed before it.
+pub fn write_all_or_none(files: &[(&Path, &[u8])]) -> Result<(), WriteError> {
+    let mut staged = Vec::with_capacity(files.len());
+    for &(path, bytes) in files {
+        match stage(path, bytes) {
+            Ok(ready) => staged.push(ready),
+            Err(error) => {
+                staged.into_iter().for_each(Staged::discard);
+                return Err(WriteError {
+                    path: path.to_path_buf(),
+                    error,
+                });
+            }
+        }
+    }
+    // the writes through first: a write can fail where a rename beside the file hardly does
+    staged.sort_by_key(|s| matches!(s, Staged::Renamed { .. }));
+    let mut staged = staged.into_iter();
+    while let Some(ready) = staged.next() {
+        let committed = match ready {
+            Staged::Renamed { temp, path } => fs::rename(&temp, path)
+                .inspect_err(|_| {
+                    let _ = fs::remove_file(&temp);
+                })
+                .map_err(|error| (path, error)),
+            Staged::Through {
+                file,
+                regular,
+                bytes,
+                path,
+            } => write_into(file, regular, bytes).map_err(|error| (path, error)),
+        };
+        if let Err((path, error)) = committed {
+            staged.for_each(Staged::discard);
+            return Err(WriteError {
+                path: path.to_path_buf(),
+                error,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Makes `bytes` ready to be written to `path` ([`Staged`]).
+fn stage<'a>(path: &'a Path, bytes: &'a [u8]) -> io::Result<Staged<'a>> {
+    let through = || -> io::Result<Staged<'a>> {
+        let regular = fs::metadata(path).is_ok_and(|m| m.is_file());
+        // not emptied yet: only once every file is ready
+        let file = fs::OpenOptions::new().write(true).open(path)?;
+        Ok(Staged::Through {
+            file,
+            regular,
+            bytes,
+            path,
+        })
+    };
+    match fs::symlink_metadata(path) {
+        Ok(meta) if !meta.file_type().is_file() => through(),
+        _ => {
+            let mut write = Some(|w: &mut dyn Write| w.write_all(bytes));
+            match stage_replacing(path, &mut write)? {
+                Some(temp) => Ok(Staged::Renamed { temp, path }),
+                None => through(),
+            }
+        }
+    }
+}
+
+/// Writes `bytes` into `file` opened by [`stage`], emptied first if it is a regular file.
+fn write_into(file: fs::File, regular: bool, bytes: &[u8]) -> io::Result<()> {
+    if regular {
+        file.set_len(0)?;
+    }
+    let mut out = io::BufWriter::new(file);
+    out.write_all(bytes)?;
+    out.flush()
 }
 
 /// The replacement of another user's file could not be given its owner or group.
@@ -239,6 +377,50 @@ mod tests {
             .filter(|n| n.contains(".tmp-"))
             .collect();
         assert!(names.is_empty(), "{names:?}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn several_files_are_written_all_or_none() {
+        let dir = tempfile::TempDir::new().unwrap();
+        let names = |dir: &Path| {
+            let mut names: Vec<String> = fs::read_dir(dir)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            names.sort();
+            names
+        };
+        let (pgm, yaml) = (dir.path().join("m.pgm"), dir.path().join("m.yaml"));
+        write_all_or_none(&[(&pgm, b"image"), (&yaml, b"map")]).unwrap();
+        assert_eq!(fs::read(&pgm).unwrap(), b"image");
+        assert_eq!(fs::read(&yaml).unwrap(), b"map");
+        // a dangling link, a folder in the way: nothing changes, nothing is left
+        let (s_pgm, s_yaml) = (dir.path().join("s.pgm"), dir.path().join("s.yaml"));
+        std::os::unix::fs::symlink(dir.path().join("gone/s.yaml"), &s_yaml).unwrap();
+        let e = write_all_or_none(&[(&s_pgm, b"image"), (&s_yaml, b"map")]).unwrap_err();
+        assert_eq!(e.path, s_yaml);
+        assert_eq!(e.error.kind(), io::ErrorKind::NotFound);
+        fs::create_dir(dir.path().join("d.yaml")).unwrap();
+        let e = write_all_or_none(&[(&pgm, b"new image"), (&dir.path().join("d.yaml"), b"map")])
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with(&dir.path().join("d.yaml").display().to_string())
+        );
+        assert_eq!(fs::read(&pgm).unwrap(), b"image", "the old file stays");
+        assert_eq!(names(dir.path()), ["d.yaml", "m.pgm", "m.yaml", "s.yaml"]);
+        // a link to a file is written through, with the rest
+        let target = dir.path().join("target.yaml");
+        fs::write(&target, b"old contents, longer than the new").unwrap();
+        std::os::unix::fs::symlink(&target, s_yaml.with_file_name("t.yaml")).unwrap();
+        write_all_or_none(&[
+            (&s_pgm, b"image"),
+            (&s_yaml.with_file_name("t.yaml"), b"map"),
+        ])
+        .unwrap();
+        assert_eq!(fs::read(&target).unwrap(), b"map");
+        assert_eq!(fs::read(&s_pgm).unwrap(), b"image");
     }
 
     #[test]

@@ -184,8 +184,38 @@ impl Raster {
     }
 }
 
-/// The YAML document `map_server` loads.
+/// `text` as a YAML double-quoted scalar, which every YAML parser reads back as `text`
+/// whatever it holds (`: `, `#`, `[`, `{`, `*`, `&`, `!`, `%`, `@`, `|`, `>`, quotes, a
+/// leading space, a line break): `"` and `\` escaped, and every character that is not
+/// printable, or breaks a line, in YAML (C0 and C1 controls, DEL, U+2028 and U+2029, the
+/// byte order mark, U+FFFE and U+FFFF) as an escape (`\n`, `\t`, `\x1B`, `\u2028`): YAML
+/// 1.1 (PyYAML, yaml-cpp, which map_server uses) and 1.2 read them alike.
+pub fn yaml_quoted(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 2);
+    out.push('"');
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            '\0' => out.push_str("\\0"),
+            c if c.is_control() => out.push_str(&format!("\\x{:02X}", u32::from(c))),
+            '\u{2028}' | '\u{2029}' | '\u{feff}' | '\u{fffe}' | '\u{ffff}' => {
+                out.push_str(&format!("\\u{:04X}", u32::from(c)))
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// The YAML document `map_server` loads; the image's file name is quoted
+/// ([`yaml_quoted`]), so any name reads back as itself.
 fn yaml(s: &Solids, raster: &Raster, image: &str) -> String {
+    let image = yaml_quoted(image);
     let [ox, oy] = raster.origin;
     let at = |slab: &Slab| format!("({}, {})", num(slab.centre[0]), num(slab.centre[1]));
     format!(
@@ -238,13 +268,27 @@ mod tests {
     }
 
     #[test]
+    fn a_file_name_is_quoted_with_escapes_for_what_yaml_reads_otherwise() {
+        assert_eq!(yaml_quoted("maze.pgm"), "\"maze.pgm\"");
+        assert_eq!(
+            yaml_quoted("a #b: [c] {d} *e &f !g %h @i |j >k"),
+            "\"a #b: [c] {d} *e &f !g %h @i |j >k\""
+        );
+        assert_eq!(yaml_quoted(" 'q\"\\"), "\" 'q\\\"\\\\\"");
+        assert_eq!(
+            yaml_quoted("a\nb\r\t\0\u{1b}[31m\u{7f}\u{85}\u{2028}\u{feff}é"),
+            "\"a\\nb\\r\\t\\0\\x1B[31m\\x7F\\x85\\u2028\\uFEFFé\""
+        );
+    }
+
+    #[test]
     fn a_line_maze_is_free_lines_on_occupied_ground_south_row_last() {
         let layout = course_lines();
         let m = map(&layout, &Options::default(), "maze.pgm").unwrap();
         // 0.1 m lines two pixels across: 20 px a metre, 200 x 200 on the 10 m floor
         assert_eq!((m.size, m.resolution), ([200, 200], 0.05));
         assert!(m.pgm.starts_with(b"P5\n200 200\n255\n"));
-        assert!(m.yaml.contains("\nimage: maze.pgm\nresolution: 0.05\norigin: [-5, -5, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\nmode: trinary\n"));
+        assert!(m.yaml.contains("\nimage: \"maze.pgm\"\nresolution: 0.05\norigin: [-5, -5, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\nmode: trinary\n"));
         // Start's cell centre lies on a line (the maze's first), a cell corner never does
         let start = &layout.start.pose;
         assert_eq!(at(&m, &layout, start.x + 0.01, start.y + 0.01), FREE);

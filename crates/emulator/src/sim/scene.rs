@@ -349,12 +349,21 @@ impl Scene {
     }
 
     /// Scales an object along its own x, y and z by `factors` (`sim.scaleObject`): its size
-    /// and, for a mesh shape, its vertices; its pose stays.
+    /// and, for a mesh shape, its vertices; its pose stays. A dummy scales alike along all
+    /// three, by the geometric mean of the factors: measured on the real 4.10 and 4.5.1
+    /// (issue 38, `docs/measurements.md` "Scaling a dummy"), a 0.7231 m dummy scaled by
+    /// 15 / 0.7231 along x and y and 1 along z read 5.46 m, which is 0.7231 times the cube
+    /// root of the three factors' product (5.459); no other factors were measured.
     pub fn scale(&mut self, handle: i32, factors: [f64; 3]) -> Result<(), SimError> {
         let o = self
             .objects
             .get_mut(&handle)
             .ok_or(SimError::NoSuchHandle(handle))?;
+        let factors = if o.kind == ObjectType::Dummy {
+            [(factors[0] * factors[1] * factors[2]).cbrt(); 3]
+        } else {
+            factors
+        };
         o.size = [0, 1, 2].map(|k| o.size[k] * factors[k]);
         if let Some(mesh) = &mut o.mesh {
             for v in mesh.vertices.chunks_exact_mut(3) {
@@ -858,6 +867,21 @@ mod tests {
         assert_eq!(o.bounding_box(), ([3.0, 0.0, 0.0], [5.0, 1.0, 0.0]));
         let got: Vec<f64> = (15..=20).map(|p| o.float_param(p).unwrap()).collect();
         assert_eq!(got, [-1.0, -0.5, 0.0, 1.0, 0.5, 0.0]);
+    }
+
+    #[test]
+    fn a_dummy_scales_alike_along_every_axis_a_shape_along_each() {
+        let mut s = Scene::course();
+        let maze = s.resolve("Maze").unwrap();
+        let floor = s.resolve("Floor").unwrap();
+        s.set_size(maze, [0.7231; 3]).unwrap();
+        let f = 15.0 / 0.7231;
+        s.scale(maze, [f, f, 1.0]).unwrap();
+        // issue 38's measurement: 5.46 m, not 15 m
+        let size = s.get(maze).unwrap().size;
+        assert!(size.iter().all(|v| (v - 5.459).abs() < 1e-3), "{size:?}");
+        s.scale(floor, [1.5, 2.0, 1.0]).unwrap();
+        assert_eq!(s.get(floor).unwrap().size, [15.0, 20.0, 0.0]);
     }
 
     #[test]
