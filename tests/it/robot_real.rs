@@ -137,13 +137,45 @@ fn on_real_4_10_0_zmq_pose_line_9x9_and_walls_6x6() {
 }
 
 /// The camera on 4.10 sees lines drawn as one mesh (4.5.1 sees copies, below: each camera
-/// run renders a frame a step, the longest part of CI's real-simulator step).
+/// run renders a frame a step, the longest part of CI's real-simulator step), after a run
+/// killed mid-way left the camera spared: the run finds the user's flag in its signal.
 #[test]
 #[ignore = "real CoppeliaSim: VREP_MAZE_REAL_SIMS=../shared/coppeliasim cargo test --test it robot_real -- --ignored"]
 fn on_real_4_10_0_zmq_camera_5x5_mesh() {
     let sim = robot_sim("4.10.0");
     let dir = tempfile::tempdir().unwrap();
     let lines = generate(dir.path(), "l5.json", &["--seed", "7", "--size", "5x5"]);
+    // what a killed pose run leaves: the camera spared (flag 1), the user's 0 in the signal
+    let camera_flag = |set: Option<i64>| {
+        use ciborium::Value;
+        use vrep_maze::zmq_api::{Client, ClientOptions, cbor::int};
+        let mut c = Client::connect(&ClientOptions {
+            port: sim.zmq,
+            ..Default::default()
+        })
+        .unwrap();
+        let cam = c
+            .call_int("sim.getObject", vec![Value::Text("/camera".into())])
+            .unwrap();
+        if let Some(flag) = set {
+            c.call("sim.setExplicitHandling", vec![int(cam.into()), int(1)])
+                .unwrap();
+            let signal = vec![Value::Text("vrepMaze.cameraFlag".into()), int(flag)];
+            c.call("sim.setInt32Signal", signal).unwrap();
+        }
+        let flag = c
+            .call_int("sim.getExplicitHandling", vec![int(cam.into())])
+            .unwrap();
+        let signal = c
+            .call(
+                "sim.getInt32Signal",
+                vec![Value::Text("vrepMaze.cameraFlag".into())],
+            )
+            .unwrap();
+        c.close();
+        (flag, signal.first().cloned().unwrap_or(Value::Null))
+    };
+    camera_flag(Some(0));
     let report = run(
         &sim,
         "zmq",
@@ -153,6 +185,8 @@ fn on_real_4_10_0_zmq_camera_5x5_mesh() {
     );
     assert_reached(&report, 0.6);
     assert_on_the_lines(&report);
+    // the user's flag is back and its keeping signal gone
+    assert_eq!(camera_flag(None), (0, ciborium::Value::Null));
 }
 
 /// Protocol 1's stepping (the add-on's `setStepping(uuid)` / `step(uuid)`) with the camera

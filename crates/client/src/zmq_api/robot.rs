@@ -28,6 +28,9 @@ const BBOX_PARAMS: [i64; 6] = [15, 16, 17, 18, 19, 20];
 const RESOLUTION_PARAMS: [i64; 2] = [1002, 1003];
 /// `sim.visionfloatparam_perspective_angle`.
 const VIEW_ANGLE_PARAM: i64 = 1004;
+/// The integer signal holding the camera's explicit-handling flag as the user had it, while a
+/// run has it changed (cleared when the run puts it back).
+const CAMERA_FLAG_SIGNAL: &str = "vrepMaze.cameraFlag";
 /// How long a protocol-1 step may take to show in the simulation time.
 const STEP_TIMEOUT: Duration = Duration::from_secs(30);
 
@@ -400,20 +403,41 @@ impl RobotPort for ZmqRobot<'_> {
     fn prepare(&mut self, camera: bool) -> Result<(), RobotError> {
         let p = self.parts()?;
         if let Some(cam) = p.camera {
-            // a camera not read is spared rendering (30 ms a frame with a display)
-            let flag = self
+            // a camera not read is spared rendering (30 ms a frame with a display); the flag
+            // the user had is kept in a signal until it is put back, so a run that was
+            // killed before its end leaves the next one the user's flag, not ours
+            let got = self
                 .client()?
-                .call_int("sim.getExplicitHandling", vec![int(cam)])
+                .read_all(&[
+                    ("sim.getExplicitHandling", vec![int(cam)]),
+                    (
+                        "sim.getInt32Signal",
+                        vec![Value::Text(CAMERA_FLAG_SIGNAL.into())],
+                    ),
+                ])
                 .map_err(lost)?;
+            let current = Self::number(&got[0], "sim.getExplicitHandling")? as i64;
+            let saved = got[1]
+                .as_ref()
+                .ok()
+                .and_then(|v| v.first())
+                .and_then(cbor::int32);
+            let flag = saved.map_or(current, i64::from);
             let wanted = if camera { flag } else { 1 };
-            if i64::from(flag) != i64::from(wanted) {
-                self.client()?
-                    .call(
-                        "sim.setExplicitHandling",
-                        vec![int(cam), int(wanted.into())],
-                    )
-                    .map_err(lost)?;
-                self.camera_flag = Some(flag.into());
+            if current != wanted {
+                let calls = vec![
+                    (
+                        "sim.setInt32Signal",
+                        vec![Value::Text(CAMERA_FLAG_SIGNAL.into()), int(flag)],
+                    ),
+                    ("sim.setExplicitHandling", vec![int(cam), int(wanted)]),
+                ];
+                for outcome in self.client()?.call_all(&calls).map_err(lost)? {
+                    outcome.map_err(lost)?;
+                }
+            }
+            if current != wanted || saved.is_some() {
+                self.camera_flag = Some(flag);
             }
             if camera && flag != 0 {
                 return Err(RobotError::Scene(
@@ -594,6 +618,8 @@ impl ZmqRobot<'_> {
             && let Some(cam) = p.camera
         {
             client.call("sim.setExplicitHandling", vec![int(cam), int(flag)])?;
+            let signal = vec![Value::Text(CAMERA_FLAG_SIGNAL.into())];
+            client.call("sim.clearInt32Signal", signal)?;
         }
         Ok(())
     }
