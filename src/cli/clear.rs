@@ -84,6 +84,9 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     if let Some(line) = &report.template {
         say(line)?;
     }
+    if let Some(line) = &report.markers {
+        say(line)?;
+    }
     if let Some(line) = &report.floor {
         say(super::wording::worded(line))?;
     }
