@@ -4,7 +4,7 @@
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use vrep_maze::draw::signals::{HOME, SAVED_IDLE_FPS};
+use vrep_maze::draw::signals::{END_HOME, HOME, SAVED_IDLE_FPS, START_HOME};
 use vrep_maze::draw::{self, ApplyOptions, BackendError, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
@@ -20,6 +20,12 @@ backend_tests!(
     idle_rate_left_at_zero_by_an_interrupted_apply_is_restored,
     an_interrupted_clear_counts_what_it_removed,
 );
+
+/// Whether `name` is a signal of a home kept while a maze is drawn: the line template's
+/// (`draw::home`) or a marker's (`draw::markers_home`).
+fn is_home(name: &str) -> bool {
+    HOME.iter().any(|h| h.name == name) || START_HOME.contains(&name) || END_HOME.contains(&name)
+}
 
 /// Connects through `proxy` and applies `d`; any failure (connecting included) is an error.
 /// `timeout` is how long a cut ZeroMQ call waits for its reply (a cut legacy connection
@@ -133,9 +139,9 @@ fn cut_and_repair(kind: Kind, scene: &Scene, d: &Drawing, k: usize, repair: Repa
         }
     }
     drop(b);
-    // the line template's home stays recorded while a maze is drawn (`draw::home`)
+    // the homes stay recorded while a maze is drawn (`draw::home`, `draw::markers_home`)
     let (fps, signals) = s.with_sim(|sim| {
-        let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
+        let other = |n: &&String| !is_home(n);
         (sim.idle_fps, sim.int_signals.keys().filter(other).count())
     });
     assert_eq!(
@@ -302,9 +308,9 @@ fn idle_rate_left_at_zero_by_an_interrupted_apply_is_restored(kind: Kind) {
             }
         }
         drop(b);
-        // the line template's home stays recorded while a maze is drawn (`draw::home`)
+        // the homes stay recorded while a maze is drawn (`draw::home`, `draw::markers_home`)
         let (fps, signals) = s.with_sim(|sim| {
-            let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
+            let other = |n: &&String| !is_home(n);
             (sim.idle_fps, sim.int_signals.keys().filter(other).count())
         });
         assert_eq!(

@@ -552,21 +552,30 @@ fn interrupted_applies_are_repaired(target: Target) {
     let (b, lb) = generate(dir.path(), "b", &["--seed", "2", "--algo", "dfs"]);
     ok(&sim, &["apply", &a]);
     for delay_ms in [150, 300, 500, 800] {
-        let child = crate::support::cli::spawnable()
-            .args(["apply", "-q", &b])
+        use std::io::{BufRead, Read};
+        let mut child = crate::support::cli::spawnable()
+            .args(["apply", &b])
             .args(sim.api_args())
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::piped())
             .spawn()
             .unwrap();
+        // counted from the line apply prints as it starts to connect (its Ctrl-C handler
+        // installed by then), not from its start, which a loaded machine delays
+        let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+        let mut said = String::new();
+        while !said.contains("connecting to") {
+            if stderr.read_line(&mut said).unwrap() == 0 {
+                break;
+            }
+        }
         std::thread::sleep(Duration::from_millis(delay_ms));
         crate::support::cli::interrupt(child.id());
-        let out = child.wait_with_output().unwrap();
-        let code = out.status.code();
+        stderr.read_to_string(&mut said).unwrap();
+        let code = child.wait().unwrap().code();
         assert!(
             matches!(code, Some(0) | Some(130)),
-            "{target:?}: Ctrl-C after {delay_ms} ms: {code:?}\n{}",
-            String::from_utf8_lossy(&out.stderr)
+            "{target:?}: Ctrl-C after {delay_ms} ms: {code:?}\n{said}"
         );
         assert_eq!(
             obs.idle_fps(),
