@@ -1,6 +1,6 @@
 //! Where the start and end markers stood before the first `apply`, so that `clear` puts them
 //! back, as it puts the line template back ([`super::home`]). Kept the same way: integer
-//! signals ([`signals::START_HOME`], [`signals::END_HOME`]) holding each marker's handle and
+//! signals ([`super::signals::START_HOME`], [`super::signals::END_HOME`]) holding each marker's handle and
 //! its pose in the floor frame in micrometres and microradians, which survive between runs
 //! but not in a scene file.
 
