@@ -122,9 +122,10 @@ fn make(
 /// (`"0..1000"`, `"0..=99"`, `"1,5,9"`). The maze options are `generate`'s keywords
 /// (`algo`, `size`, `braid`, ...); `min_solution=N` keeps only mazes whose solution has at
 /// least N cells, `max_dead_ends=PCT` only those with at most PCT % dead ends,
-/// `where_="solution_cells >= 40 and dead_ends <= 12"` only those meeting the condition of
-/// `vrep-maze batch --where` (a percentile, `where_="solution_cells >= p80"`, is taken over
-/// every seed's maze before the first is yielded). A refused
+/// `where="solution_cells >= 40 and dead_ends <= 12"` only those meeting the condition of
+/// `vrep-maze batch --where` (a percentile, `where="solution_cells >= p80"`, is taken over
+/// every seed's maze before the first is yielded; `where` is no Python keyword, and
+/// `where_` is taken too). A refused
 /// option raises `ValueError` with the command line's message. Mazes are made in parallel
 /// on all cores, a few per core at a time, without the GIL; Ctrl-C raises
 /// `KeyboardInterrupt` at once (nothing is written, so nothing is left half done).

@@ -126,7 +126,7 @@ impl From<draw::Report> for ApplyReport {
     }
 }
 
-/// What `clear` did.
+/// What `clear` did. `str(report)` is what `vrep-maze clear` prints.
 #[pyclass(frozen, get_all, module = "vrep_maze")]
 pub struct ClearReport {
     /// Names of the copies of the templates removed (or, in a dry run, that would be).
@@ -147,12 +147,21 @@ pub struct ClearReport {
     /// Where the line template went (one line), if it moved (or, a dry run, would): back
     /// where it stood before the first `apply`, or below the floor.
     template: Option<String>,
+    /// Where `Start` and `End` went (one line): back where they stood before the first
+    /// `apply`, or left where they are (no record of that).
+    markers: Option<String>,
     /// Warnings (the simulator did not keep the scene's signals).
     warnings: Vec<String>,
+    /// The lines `vrep-maze clear` prints.
+    summary: String,
 }
 
 #[pymethods]
 impl ClearReport {
+    fn __str__(&self) -> &str {
+        &self.summary
+    }
+
     fn __repr__(&self) -> String {
         let verb = if self.dry_run {
             "would remove"
@@ -174,8 +183,12 @@ impl ClearReport {
 }
 
 impl ClearReport {
-    /// The report of a clear (`dry_run` as asked).
-    pub(crate) fn of(report: draw::ClearReport, dry_run: bool) -> ClearReport {
+    /// The report of a clear (`dry_run` as asked) under the maze dummy `parent`.
+    pub(crate) fn of(report: draw::ClearReport, dry_run: bool, parent: &str) -> ClearReport {
+        let summary = vrep_maze::cli::summary::clear_lines(&report, parent, dry_run, |m| {
+            m.worded(&crate::wording::Keywords)
+        })
+        .join("\n");
         ClearReport {
             removed: report.removed,
             removed_meshes: report.removed_meshes,
@@ -185,7 +198,9 @@ impl ClearReport {
             dry_run,
             left_alone: report.left_alone,
             template: report.template,
+            markers: report.markers,
             warnings: report.warnings,
+            summary,
         }
     }
 }
@@ -431,6 +446,7 @@ pub fn clear(
     let stop = Stop::default();
     let dry_run = args.dry_run;
     let opts = args.options(Some(stop.requested.clone()));
+    let parent = opts.names.parent.clone();
     let scene = args.scene;
     let connected = stop.connected.clone();
     let job = move || {
@@ -440,5 +456,7 @@ pub fn clear(
         let _ = backend.close();
         cleared(result)
     };
-    run_drawing(py, &stop, job, |report| ClearReport::of(report, dry_run))
+    run_drawing(py, &stop, job, |report| {
+        ClearReport::of(report, dry_run, &parent)
+    })
 }

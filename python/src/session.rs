@@ -183,9 +183,12 @@ impl Session {
         let stop = Stop::default();
         let dry_run = args.dry_run;
         let opts = args.options(Some(stop.requested.clone()));
+        let parent = opts.names.parent.clone();
         let work =
             move |session: &mut draw::Session| cleared(draw::clear(session.connected()?, &opts));
-        self.run(py, &stop, work, |report| ClearReport::of(report, dry_run))
+        self.run(py, &stop, work, |report| {
+            ClearReport::of(report, dry_run, &parent)
+        })
     }
 
     /// What the scene holds, as `vrep-maze inspect --json` reports it, as a dict (the same

@@ -203,7 +203,19 @@ def test_the_reports_carry_warnings_left_alone_and_the_template(api):
         assert planned.template == "would put `Line` back where it stood before the first apply"
         done = vrep_maze.clear(api=api, port=port)
         assert done.template is not None and done.template.startswith("put `Line` back")
-        assert vrep_maze.clear(api=api, port=port).template is None
+        # print(report) shows the lines `vrep-maze clear` prints, as an apply report does
+        assert str(done).splitlines() == [
+            done.template,
+            "put `Start` and `End` back where they stood before the first apply",
+            f"removed {len(done.removed)} maze copies: {', '.join(done.removed[:12])}"
+            + (f", ... ({len(done.removed) - 12} more)" if len(done.removed) > 12 else ""),
+        ]
+        assert done.markers == str(done).splitlines()[1]
+        again = vrep_maze.clear(api=api, port=port)
+        assert again.template is None and again.markers is None
+        assert str(again) == (
+            "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under Maze"
+            " in the scene")
     finally:
         server.process.kill()
         server.process.wait()

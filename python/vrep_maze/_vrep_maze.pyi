@@ -110,7 +110,9 @@ class ClearReport:
     dry_run: bool
     left_alone: list[str]
     template: Optional[str]
+    markers: Optional[str]
     warnings: list[str]
+    summary: str
 
 class Batch(Iterator[Layout]):
     def __iter__(self) -> Batch: ...
@@ -152,6 +154,7 @@ def batch(
     *,
     min_solution: Optional[int] = None,
     max_dead_ends: Optional[float] = None,
+    where: Optional[str] = None,
     where_: Optional[str] = None,
     growing: Optional[str] = None,
     bias: Optional[str] = None,

@@ -68,34 +68,13 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
     if report.stopped_simulation {
         say("stopped the simulation first")?;
     }
-    let verb = if args.dry_run {
-        "would remove"
-    } else {
-        "removed"
-    };
-    if let Some(fps) = report.restored_idle_fps {
-        say(format!(
-            "restored the idle rate to {fps} fps (an interrupted apply had left it at 0)"
-        ))?;
-    }
-    if let Some(line) = draw::left_alone_line(&report.left_alone, &opts.names.parent) {
-        say(line)?;
-    }
-    if let Some(line) = &report.template {
-        say(line)?;
-    }
-    if let Some(line) = &report.floor {
-        say(super::wording::worded(line))?;
-    }
-    if report.removed.is_empty() && report.removed_meshes.is_empty() {
-        say(
-            "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under Maze in the scene",
-        )?;
-    }
-    if let Some(line) = copies_line(verb, &report.removed) {
-        say(line)?;
-    }
-    if let Some(line) = mesh_line(verb, &report.removed_meshes) {
+    let lines = super::summary::clear_lines(
+        &report,
+        &opts.names.parent,
+        args.dry_run,
+        super::wording::worded,
+    );
+    for line in lines {
         say(line)?;
     }
     if args.json {
@@ -116,7 +95,7 @@ pub fn run(args: ClearArgs) -> anyhow::Result<std::process::ExitCode> {
 
 /// "removed N maze copies: a, b, ... (M more)", naming the first dozen; `None` when none
 /// were removed.
-fn copies_line(verb: &str, removed: &[String]) -> Option<String> {
+pub(crate) fn copies_line(verb: &str, removed: &[String]) -> Option<String> {
     if removed.is_empty() {
         return None;
     }
@@ -135,7 +114,7 @@ fn copies_line(verb: &str, removed: &[String]) -> Option<String> {
 }
 
 /// The line that says a mesh maze (`apply --draw mesh`) went: its meshes and their holder.
-fn mesh_line(verb: &str, removed: &[String]) -> Option<String> {
+pub(crate) fn mesh_line(verb: &str, removed: &[String]) -> Option<String> {
     let meshes: Vec<&str> = removed
         .iter()
         .map(String::as_str)

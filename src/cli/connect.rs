@@ -101,6 +101,7 @@ fn connect_error(message: String, hints: Vec<String>) -> anyhow::Error {
         message,
         hints,
         nothing_listens: false,
+        zmq_peer: false,
     })
 }
 
@@ -291,33 +292,89 @@ fn auto<T: Opened>(
         if zmq_err.is::<Interrupted>() {
             return zmq_err;
         }
-            let refused = nothing_listened(&legacy_err);
-            let mut hints = vec![if refused
-                && matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }))
+        auto_error(
+            host,
+            port,
+            (legacy_port, &legacy_err),
+            (zmq_port, zmq_err),
+            wait,
+        )
+    })
+}
+
+/// Why `--api auto` found no remote API: one short line when nothing listens on either
+/// port, with only the hints that fit. The legacy refusal of about a minute (after a
+/// session CoppeliaSim closed first) is named only on the legacy default port, where a
+/// CoppeliaSim serves it: a port given by hand where nothing listens is more likely a
+/// typo, and the hint then looks whether the default ZeroMQ port answers.
+fn auto_error(
+    host: &str,
+    port: Option<u16>,
+    (legacy_port, legacy_err): (u16, &anyhow::Error),
+    (zmq_port, zmq_err): (u16, anyhow::Error),
+    wait: Duration,
+) -> anyhow::Error {
+    let refused = nothing_listened(legacy_err);
+    let zmq_refused = matches!(zmq_err.downcast_ref(), Some(ZmqError::Connect { .. }));
+    let zmq_peer = legacy_err
+        .downcast_ref::<ConnectError>()
+        .is_some_and(|e| e.zmq_peer);
+    if zmq_peer && legacy_port == zmq_port {
+        // a ZeroMQ peer that is not the remote API: its error names what it is
+        return zmq_err;
+    }
+    if !(refused && zmq_refused) {
+        // something answered that speaks neither API: no simulator to wait for
+        return connect_error(
+            format!(
+                "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
+                one_line(legacy_err),
+                one_line(&zmq_err)
+            ),
+            vec![format!(
+                "something other than CoppeliaSim listens there: check --port (CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT})"
+            )],
+        );
+    }
+    let ports = if legacy_port == zmq_port {
+        socket_addr(host, legacy_port)
+    } else {
+        format!(
+            "{} (legacy) nor {} (ZeroMQ)",
+            socket_addr(host, legacy_port),
+            socket_addr(host, zmq_port)
+        )
+    };
+    let message = format!(
+        "no CoppeliaSim remote API answered: nothing accepts connections on {ports} (tried for {} s)",
+        seconds(wait)
+    );
+    let mut hints = Vec::new();
+    match port {
+        Some(p) if p != LEGACY_PORT && p != ZMQ_PORT => {
+            hints.push(format!(
+                "check --port: CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT}"
+            ));
+            if let Ok(default) = self::zmq_port()
+                && default != p
+                && zmq_answers(host, default)
             {
-                "is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into()
-            } else {
-                // something answered that speaks neither API: no simulator to wait for
-                format!(
-                    "something other than CoppeliaSim listens there: check --port (CoppeliaSim serves the legacy remote API on {LEGACY_PORT}, the ZeroMQ one on {ZMQ_PORT})"
-                )
-            }];
-            if refused {
                 hints.push(format!(
-                    "after a session it closed first (a client that waits for the server to close, or one silent for 10 s), CoppeliaSim refuses every legacy connection for about a minute; auto tried the legacy port for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
-                    seconds(wait),
-                    LEGACY_REFUSAL_WAIT.as_secs()
+                    "the ZeroMQ remote API answers on {}: pass --port {default}",
+                    socket_addr(host, default)
                 ));
             }
-            connect_error(
-                format!(
-                    "no CoppeliaSim remote API answered on {host}: legacy port {legacy_port}: {}; ZeroMQ port {zmq_port}: {}",
-                    one_line(&legacy_err),
-                    one_line(&zmq_err)
-                ),
-                hints,
-            )
-        })
+        }
+        _ => {
+            hints.push("is CoppeliaSim running? (up to 4.10 it serves the legacy remote API on 19997; from 4.3 the ZeroMQ add-on serves 23000)".into());
+            hints.push(format!(
+                "after a session it closed first, CoppeliaSim refuses legacy connections for about a minute; auto tried for {} s: if another program left so, pass --api legacy --connect-timeout {} to wait it out",
+                seconds(wait),
+                LEGACY_REFUSAL_WAIT.as_secs()
+            ));
+        }
+    }
+    connect_error(message, hints)
 }
 
 /// `host:port`, with brackets around an IPv6 address.
@@ -472,12 +529,17 @@ fn legacy<T: Opened>(
                 ),
                 hints,
                 nothing_listens: true,
+                zmq_peer: false,
             })
         }
-        ClientError::ZeroMqPeer { .. } => connect_error(
-            format!("port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"),
-            vec![],
-        ),
+        ClientError::ZeroMqPeer { .. } => anyhow::Error::new(ConnectError {
+            message: format!(
+                "port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"
+            ),
+            hints: vec![],
+            nothing_listens: false,
+            zmq_peer: true,
+        }),
         not @ ClientError::NotLegacy { .. } => connect_error(
             not.to_string(),
             vec![format!(
@@ -586,6 +648,25 @@ fn zmq_connect_error(error: ZmqError, host: &str, port: u16) -> anyhow::Error {
                     )],
                 )
             }
+        }
+        ZmqError::NotRemoteApi {
+            ref socket_type, ..
+        } => {
+            // 4.3 to 4.5 publish the step count on the remote API's port plus one
+            let below = port.checked_sub(1).filter(|_| socket_type == "PUB");
+            let hint = match below {
+                Some(rpc) if zmq_answers(host, rpc) => format!(
+                    "the ZeroMQ remote API answers on {}: use --port {rpc} (CoppeliaSim 4.3 to 4.5 publish the simulation step on the port above it, {port})",
+                    socket_addr(host, rpc)
+                ),
+                Some(rpc) => format!(
+                    "CoppeliaSim 4.3 to 4.5 publish the simulation step on the port above the remote API's: is the remote API on {rpc}? (its default is {ZMQ_PORT})"
+                ),
+                None => format!(
+                    "is port {port} CoppeliaSim's ZeroMQ remote API? (the add-on serves {ZMQ_PORT} from CoppeliaSim 4.3)"
+                ),
+            };
+            connect_error(error.to_string(), vec![hint])
         }
         e @ ZmqError::Connect { .. } => anyhow::Error::new(e),
         e @ ZmqError::Resolve { .. } => connect_error(

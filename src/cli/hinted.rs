@@ -35,6 +35,8 @@ pub(crate) struct ConnectError {
     pub(crate) hints: Vec<String>,
     /// Nothing accepted a connection (rather than something that is not the API answering).
     pub(crate) nothing_listens: bool,
+    /// A legacy connection found a ZeroMQ peer: the ZeroMQ attempt tells what it is.
+    pub(crate) zmq_peer: bool,
 }
 
 impl ConnectError {

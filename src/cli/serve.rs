@@ -26,15 +26,23 @@ pub struct ServeArgs {
     /// one shared scene.
     #[arg(long, value_enum, default_value = "legacy")]
     pub api: ServeApi,
-    /// Port to listen on at 127.0.0.1, as every client's `--port` [default: 19997 for legacy
-    /// and both, 23000 for zmq; or $VREP_MAZE_LEGACY_PORT, $VREP_MAZE_ZMQ_PORT].
+    /// Port to listen on at 127.0.0.1, as every client's `--port` (0: a free one, printed)
+    /// [default: 19997 for legacy and both, 23000 for zmq; or $VREP_MAZE_LEGACY_PORT,
+    /// $VREP_MAZE_ZMQ_PORT]. With `--api both` it is the legacy port; the ZeroMQ one is
+    /// `--zmq-port`.
     #[arg(long, conflicts_with = "listen")]
     pub port: Option<u16>,
     /// Address to listen on [default: 127.0.0.1 and the port of `--port`]. Loopback by
     /// default.
     #[arg(long)]
     pub listen: Option<SocketAddr>,
-    /// With `--api both`: the ZeroMQ address [default: 127.0.0.1:23000].
+    /// With `--api both`: the ZeroMQ port at 127.0.0.1 (0: a free one, printed) [default:
+    /// 23000 or $VREP_MAZE_ZMQ_PORT; a free one when `--port` or `--listen` moves the legacy
+    /// port, so one flag never leaves the other API on a default a CoppeliaSim may hold].
+    #[arg(long, conflicts_with = "zmq_listen")]
+    pub zmq_port: Option<u16>,
+    /// With `--api both`: the ZeroMQ address [default: 127.0.0.1 and the port of
+    /// `--zmq-port`].
     #[arg(long)]
     pub zmq_listen: Option<SocketAddr>,
     /// ZeroMQ protocol generation: 1 (CoppeliaSim 4.3 to 4.5) or 2 (4.6 and later).
@@ -185,7 +193,8 @@ fn timing(args: &ServeArgs) -> anyhow::Result<Timing> {
 }
 
 /// Where the legacy and the ZeroMQ servers listen: `--listen` or `--port` (at 127.0.0.1),
-/// `--zmq-listen` beside the legacy one, else the environment's or the default ports.
+/// `--zmq-listen` or `--zmq-port` beside the legacy one (a free port when only the legacy one
+/// moved), else the environment's or the default ports.
 fn addresses(args: &ServeArgs) -> anyhow::Result<(SocketAddr, SocketAddr)> {
     let loopback = |port| SocketAddr::from(([127, 0, 0, 1], port));
     let listen = args.listen.or(args.port.map(loopback));
@@ -193,16 +202,25 @@ fn addresses(args: &ServeArgs) -> anyhow::Result<(SocketAddr, SocketAddr)> {
         Some(a) => a,
         None => loopback(super::connect::legacy_port()?),
     };
-    let zmq_listen = match match args.api {
-        ServeApi::Both => args.zmq_listen,
+    let zmq_listen = match args.api {
+        // the legacy port moved and the ZeroMQ one not named: a free one beside it
+        ServeApi::Both => args
+            .zmq_listen
+            .or(args.zmq_port.map(loopback))
+            .or(listen.map(|a| SocketAddr::new(a.ip(), 0))),
         _ => listen,
-    } {
+    };
+    let zmq_listen = match zmq_listen {
         Some(a) => a,
         None => loopback(super::connect::zmq_port()?),
     };
     ensure_usage!(
         args.zmq_listen.is_none() || args.api == ServeApi::Both,
         "--zmq-listen is for --api both; use --listen with --api zmq"
+    );
+    ensure_usage!(
+        args.zmq_port.is_none() || args.api == ServeApi::Both,
+        "--zmq-port is for --api both; use --port with --api zmq"
     );
     Ok((legacy_listen, zmq_listen))
 }
@@ -241,8 +259,13 @@ fn serve(
             let server = Arc::new(server);
             // both listen before either is announced: a refused port leaves no half server
             let zmq = if args.api == ServeApi::Both {
+                let option = if args.zmq_listen.is_some() {
+                    "--zmq-listen"
+                } else {
+                    "--zmq-port"
+                };
                 let z = zmq_api::spawn_shared(zmq_config, server.clone())
-                    .map_err(|e| cannot_listen(zmq_listen, "--zmq-listen", &e))?;
+                    .map_err(|e| cannot_listen(zmq_listen, option, &e))?;
                 Some(z)
             } else {
                 None
@@ -321,7 +344,7 @@ fn cannot_listen(addr: SocketAddr, option: &str, error: &dyn std::fmt::Display) 
         format!("cannot listen on {addr}: {error}")
     };
     let example = match option {
-        "--port" => "--port 0".to_string(),
+        "--port" | "--zmq-port" => format!("{option} 0"),
         _ => format!("{option} {}:0", addr.ip()),
     };
     let mut hints = Vec::new();

@@ -1,8 +1,40 @@
 //! The lines `apply` ends with and an interrupted `clear` says, in the command line's words
 //! (the Python package's `str(report)` and its interrupted message are the same lines).
 
-use crate::draw::{ApplyReport, DrawMode, Picture};
+use crate::draw::{ApplyReport, ClearReport, DrawMode, Picture};
 use crate::layout::Style;
+use vrep_maze_core::wording::Message;
+
+/// What `clear` did, a line each, as the command prints them (after its warnings and the
+/// stopped simulation): the idle rate restored, the user's objects left alone under the
+/// maze dummy `parent`, the line template, the markers and the floor put back (the floor's
+/// options worded by `word`), then what was removed (or, a dry run, would be).
+pub fn clear_lines(
+    report: &ClearReport,
+    parent: &str,
+    dry_run: bool,
+    word: impl Fn(&Message) -> String,
+) -> Vec<String> {
+    let verb = if dry_run { "would remove" } else { "removed" };
+    let mut lines = Vec::new();
+    if let Some(fps) = report.restored_idle_fps {
+        lines.push(format!(
+            "restored the idle rate to {fps} fps (an interrupted apply had left it at 0)"
+        ));
+    }
+    lines.extend(crate::draw::left_alone_line(&report.left_alone, parent));
+    lines.extend(report.template.iter().cloned());
+    lines.extend(report.markers.iter().cloned());
+    lines.extend(report.floor.as_ref().map(word));
+    if report.removed.is_empty() && report.removed_meshes.is_empty() {
+        lines.push(format!(
+            "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under {parent} in the scene"
+        ));
+    }
+    lines.extend(super::clear::copies_line(verb, &report.removed));
+    lines.extend(super::clear::mesh_line(verb, &report.removed_meshes));
+    lines
+}
 
 /// What an interrupted `clear` did: `placed` of `total` maze objects removed.
 pub fn clear_interrupted(placed: usize, total: usize) -> String {

@@ -217,10 +217,16 @@ pub fn cause_hints(cause: &(dyn std::error::Error + 'static)) -> Vec<String> {
     let draw = cause.downcast_ref::<crate::draw::DrawError>();
     let connect = cause.downcast_ref::<ConnectError>();
     let hinted = cause.downcast_ref::<Hinted>();
+    let invalid = cause.downcast_ref::<crate::validate::Invalid>();
     draw.map(remedies::hints)
         .into_iter()
         .chain(connect.map(|e| e.hints()))
         .chain(hinted.map(|e| e.hints()))
+        .chain(
+            invalid
+                .and_then(super::validate::metrics_hint)
+                .map(|h| vec![h]),
+        )
         .flatten()
         .collect()
 }

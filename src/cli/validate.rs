@@ -85,6 +85,9 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
                     eprintln!("error: {name}: {}", escaped(&line));
                 }
                 eprintln!("INVALID {name}: {} problem(s)", invalid.count());
+                if let Some(hint) = metrics_hint(&invalid) {
+                    eprintln!("  hint: {hint}");
+                }
                 entry.problems = invalid
                     .problems
                     .iter()
@@ -109,6 +112,18 @@ pub fn run(args: ValidateArgs, progress: Progress) -> Result<ExitCode> {
     } else {
         ExitCode::FAILURE
     })
+}
+
+/// What to do about metrics that disagree with the maze (a layout edited by hand: its
+/// passages, start or end changed, its `metrics` not): `None` when none do.
+pub fn metrics_hint(invalid: &crate::validate::Invalid) -> Option<String> {
+    invalid
+        .problems
+        .iter()
+        .any(|p| p.location.starts_with("metrics."))
+        .then(|| {
+            "the layout's metrics describe another maze (an edit of its passages, start or end?): write the maze's values the lines above give into those `metrics` fields, or make the layout anew with `vrep-maze generate` (the seed and options of its `generator` field)".to_string()
+        })
 }
 
 /// Reads the layout at `path` (`-`: standard input), validating its segments as they

@@ -129,3 +129,114 @@ fn generate_names_a_floor_other_than_the_courses() {
         "{stderr}"
     );
 }
+
+/// A ZeroMQ port where something answers but not as the remote API (CoppeliaSim 4.3 to
+/// 4.5 publish the simulation step on a PUB socket one port above it) fails at the
+/// handshake, naming the socket and the port below, where the remote API answers. The long
+/// `--timeout` only makes a regression (a wait for a reply that never comes) fail by its
+/// message, not by time.
+#[test]
+fn a_zeromq_port_that_only_publishes_names_the_remote_apis_port() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = generate(dir.path(), "1", "dfs");
+    let context = zmq::Context::new();
+    let publisher = context.socket(zmq::PUB).unwrap();
+    // a free port with a free one below it: the remote API below, the publisher above
+    let (serve, pub_port) = (0..50)
+        .find_map(|_| {
+            let rpc = crate::support::cli::free_port();
+            let above = rpc.checked_add(1)?;
+            publisher.bind(&format!("tcp://127.0.0.1:{above}")).ok()?;
+            let serve = Serve::start(
+                &[
+                    "--api",
+                    "zmq",
+                    "--port",
+                    &rpc.to_string(),
+                    "--idle-fps",
+                    "0",
+                ],
+                1,
+            );
+            Some((serve, above))
+        })
+        .expect("two free ports side by side");
+    let rpc = serve.ports[0];
+    let out = bin()
+        .args(["apply", &m, "--api", "zmq", "--port", &pub_port.to_string()])
+        .args(["--timeout", "60"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains(&format!(
+            "error: tcp://127.0.0.1:{pub_port} is a ZeroMQ PUB socket, which answers no request: not the remote API (a REP socket)\n  hint: the ZeroMQ remote API answers on 127.0.0.1:{rpc}: use --port {rpc}"
+        )),
+        "{stderr}"
+    );
+}
+
+/// A layout edited by hand whose metrics no longer fit its maze is refused with the
+/// fields, and a hint that says how to mend it, by `validate` and by every command that
+/// reads it.
+#[test]
+fn metrics_that_disagree_with_the_maze_say_how_to_mend_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = generate(dir.path(), "1", "dfs");
+    let mut layout: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let cells = layout["metrics"]["solution_cells"].as_u64().unwrap();
+    layout["metrics"]["solution_cells"] = (cells + 17).into();
+    std::fs::write(&path, layout.to_string()).unwrap();
+    let hint = "hint: the layout's metrics describe another maze (an edit of its passages, start or end?): write the maze's values the lines above give into those `metrics` fields, or make the layout anew with `vrep-maze generate`";
+    for args in [
+        vec!["validate", path.as_str()],
+        vec!["render", path.as_str()],
+    ] {
+        bin()
+            .args(&args)
+            .assert()
+            .code(1)
+            .stderr(contains(format!(
+                "metrics.solution_cells: says {} but the maze has {cells}",
+                cells + 17
+            )))
+            .stderr(contains(hint));
+    }
+}
+
+/// `serve --api both --port P` moves the legacy port and never leaves the ZeroMQ one on
+/// 23000, where a CoppeliaSim may be: `--zmq-port` names it, and without it a free one is
+/// taken and printed.
+#[test]
+fn serve_both_with_a_port_keeps_zeromq_off_its_default() {
+    let legacy = crate::support::cli::free_port();
+    let zmq = crate::support::cli::free_port();
+    let serve = Serve::start(
+        &[
+            "--api",
+            "both",
+            "--port",
+            &legacy.to_string(),
+            "--zmq-port",
+            &zmq.to_string(),
+        ],
+        2,
+    );
+    assert_eq!(serve.ports, [legacy, zmq]);
+    drop(serve);
+    let legacy = crate::support::cli::free_port();
+    let serve = Serve::start(&["--api", "both", "--port", &legacy.to_string()], 2);
+    assert_eq!(serve.ports[0], legacy);
+    assert_ne!(serve.ports[1], 23000);
+    assert_ne!(serve.ports[1], legacy);
+    drop(serve);
+    bin()
+        .args(["serve", "--api", "zmq", "--zmq-port", "0"])
+        .assert()
+        .code(2)
+        .stderr(contains(
+            "--zmq-port is for --api both; use --port with --api zmq",
+        ));
+}

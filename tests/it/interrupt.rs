@@ -4,7 +4,7 @@
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use vrep_maze::draw::signals::{HOME, SAVED_IDLE_FPS};
+use vrep_maze::draw::signals::{END_HOME, HOME, SAVED_IDLE_FPS, START_HOME};
 use vrep_maze::draw::{self, ApplyOptions, BackendError, Drawing, ObjectNames};
 use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
@@ -20,6 +20,12 @@ backend_tests!(
     idle_rate_left_at_zero_by_an_interrupted_apply_is_restored,
     an_interrupted_clear_counts_what_it_removed,
 );
+
+/// Whether `name` is a signal of a home kept while a maze is drawn: the line template's
+/// (`draw::home`) or a marker's (`draw::markers_home`).
+fn is_home(name: &str) -> bool {
+    HOME.iter().any(|h| h.name == name) || START_HOME.contains(&name) || END_HOME.contains(&name)
+}
 
 /// Connects through `proxy` and applies `d`; any failure (connecting included) is an error.
 /// `timeout` is how long a cut ZeroMQ call waits for its reply (a cut legacy connection
@@ -133,9 +139,9 @@ fn cut_and_repair(kind: Kind, scene: &Scene, d: &Drawing, k: usize, repair: Repa
         }
     }
     drop(b);
-    // the line template's home stays recorded while a maze is drawn (`draw::home`)
+    // the homes stay recorded while a maze is drawn (`draw::home`, `draw::markers_home`)
     let (fps, signals) = s.with_sim(|sim| {
-        let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
+        let other = |n: &&String| !is_home(n);
         (sim.idle_fps, sim.int_signals.keys().filter(other).count())
     });
     assert_eq!(
@@ -237,19 +243,9 @@ fn interrupted_apply_is_repaired_by_apply_and_by_clear(kind: Kind) {
     let interrupted = Mutex::new(0);
     run_parallel(&cases, |&(scene, k, repair)| {
         let cut = cut_and_repair(kind, scene, &second, k, repair);
-        // turn counts vary a little with timing (the legacy client polls for late
-        // replies, the ZeroMQ handshake interleaves): only the first half is sure to be
-        // inside the apply
-        let end = if std::ptr::eq(scene, &earlier) {
-            over_first
-        } else {
-            on_fresh
-        };
-        assert!(
-            cut || k > end / 2,
-            "{}: cut after {k} turns of about {end}, yet the apply succeeded",
-            kind.name()
-        );
+        // whether a cut after k turns lands inside the apply depends on the machine's load
+        // (the legacy client polls for late replies, each poll a turn; the ZeroMQ handshake
+        // interleaves), so a run is not asked to be cut; the count below is
         if cut {
             *interrupted.lock().unwrap() += 1;
         }
@@ -302,9 +298,9 @@ fn idle_rate_left_at_zero_by_an_interrupted_apply_is_restored(kind: Kind) {
             }
         }
         drop(b);
-        // the line template's home stays recorded while a maze is drawn (`draw::home`)
+        // the homes stay recorded while a maze is drawn (`draw::home`, `draw::markers_home`)
         let (fps, signals) = s.with_sim(|sim| {
-            let other = |n: &&String| !HOME.iter().any(|h| h.name == n.as_str());
+            let other = |n: &&String| !is_home(n);
             (sim.idle_fps, sim.int_signals.keys().filter(other).count())
         });
         assert_eq!(

@@ -31,6 +31,7 @@ mod inspect;
 mod interrupt;
 mod legacy_client_server;
 mod legacy_draw;
+mod markers_home;
 mod mesh_draw;
 mod messages;
 mod permissions;

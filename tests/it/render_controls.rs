@@ -144,3 +144,43 @@ fn sizes_out_of_range_and_ascii_are_refused() {
         .stderr(contains("cannot be used with"));
     assert!(!dir.path().join("m.png").exists());
 }
+
+/// Issue 41, row 11: `--crop` keeps the markers whole, in the corners of a 100 x 100 (lines
+/// and walls, unturned and turned): at 10 px a metre each is all of its 10 x 10 px cell,
+/// in its own colour, however the window is rounded.
+#[test]
+fn a_cropped_picture_keeps_the_markers_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    for extra in [&[][..], &["--style", "walls"], &["--rotation", "30"]] {
+        let layout = dir.path().join("m.json");
+        bin()
+            .args(["generate", "--seed", "1", "--size", "100x100"])
+            .args(["--start", "sw", "--end", "ne", "-o"])
+            .arg(&layout)
+            .args(extra)
+            .assert()
+            .success();
+        let png = dir.path().join("m.png");
+        bin()
+            .arg("render")
+            .arg(&layout)
+            .args(["--crop", "--px-per-m", "10", "-o"])
+            .arg(&png)
+            .assert()
+            .success();
+        let mut reader = png::Decoder::new(std::io::BufReader::new(fs::File::open(&png).unwrap()))
+            .read_info()
+            .unwrap();
+        let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut buf).unwrap();
+        let pixels: Vec<&[u8]> = buf[..info.buffer_size()].chunks(3).collect();
+        for (marker, colour) in [("Start", [0, 0, 255]), ("End", [255, 0, 0])] {
+            let n = pixels.iter().filter(|p| **p == colour).count();
+            // a turned cell covers about its area in whole pixels
+            assert!(
+                (90..=110).contains(&n),
+                "{extra:?}: {marker}: {n} px of 100"
+            );
+        }
+    }
+}

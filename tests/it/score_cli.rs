@@ -21,17 +21,19 @@ fn layout(dir: &Path) -> String {
     path
 }
 
-/// A path file along floor points at 2 m/s, after half a second at the first one (so the
+/// A path file along floor points at 1 m/s, after half a second at the first one (so the
 /// scorer, which may join a step or two after the start, sees where the robot started):
-/// 0.1 m a 50 ms step, so a scorer slowed by a busy machine may miss four steps in a row
-/// and still see every half cell, as `score` needs to grade the run.
+/// 0.05 m a 50 ms step, so a scorer slowed by a busy machine may miss eight steps in a row
+/// (0.45 m) and still see every half cell, as `score` needs to grade the run. At 2 m/s, four
+/// missed steps made a move of 0.5 m, which is not under half a cell: the full suite beside
+/// other builds on a 2-core machine failed so.
 fn path_file(dir: &Path, points: &[(f64, f64)]) -> String {
     let mut text = format!("t,x,y,yaw\n0,{},{},0\n", points[0].0, points[0].1);
     let mut t = 0.5;
     let mut last: Option<(f64, f64)> = None;
     for &(x, y) in points {
         if let Some((lx, ly)) = last {
-            t += (x - lx).hypot(y - ly) / 2.0;
+            t += (x - lx).hypot(y - ly);
         }
         text += &format!("{t},{x},{y},0\n");
         last = Some((x, y));

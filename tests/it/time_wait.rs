@@ -58,19 +58,21 @@ fn leave_after_the_server(port: &str) {
 fn a_client_that_waits_for_the_server_to_close_leaves_the_port_refusing_then_ours_does_not() {
     let dir = tempfile::tempdir().unwrap();
     let m = generate(dir.path(), "1", "dfs");
-    let s = serve(&["--reconnect-penalty", "3", "--idle-fps", "0"]);
+    // a penalty long enough that "listens at once" has seconds of room on a loaded machine
+    let s = serve(&["--reconnect-penalty", "8", "--idle-fps", "0"]);
     let port = s.port();
     leave_after_the_server(&port);
-    let refused_for = listens_after(&port, Duration::from_secs(10)).expect("listens again");
-    assert!(refused_for > Duration::from_millis(2500), "{refused_for:?}");
+    let refused_for = listens_after(&port, Duration::from_secs(30)).expect("listens again");
+    assert!(refused_for > Duration::from_secs(7), "{refused_for:?}");
     for command in [vec!["apply", m.as_str()], vec!["clear"], vec!["inspect"]] {
         bin()
             .args(&command)
             .args(["--api", "legacy", "--port", &port, "--connect-timeout", "2"])
             .assert()
             .success();
-        let after = listens_after(&port, Duration::from_secs(10)).expect("listens again");
-        assert!(after < Duration::from_secs(1), "{command:?}: {after:?}");
+        let after = listens_after(&port, Duration::from_secs(30)).expect("listens again");
+        // well under the 8 s penalty its leaving would have cost
+        assert!(after < Duration::from_secs(4), "{command:?}: {after:?}");
     }
 }
 
@@ -87,12 +89,11 @@ fn twenty_runs_back_to_back_all_connect_at_once() {
         } else {
             vec!["clear"]
         };
-        let started = Instant::now();
+        // a refusal (60 s) would outlast the connect timeout: success is the proof
         bin()
             .args(&command)
             .args(["--api", "legacy", "--port", &port, "--connect-timeout", "3"])
             .assert()
             .success();
-        assert!(started.elapsed() < Duration::from_secs(3), "run {run}");
     }
 }

@@ -168,6 +168,13 @@ fn apply_claimed(
         names,
         &mut report,
     )?;
+    // where Start and End stand before they move, for `clear`: unless an earlier maze holds
+    // them already
+    if claim.signals_kept() {
+        let earlier = parts.iter().any(|p| !p.plan.reuse.is_empty())
+            || report.removed + report.removed_meshes > 0;
+        super::markers_home::record(scene, &h, objects, earlier)?;
+    }
     let mut run = Drawer {
         scene,
         drawing,

@@ -37,6 +37,9 @@ pub struct ClearReport {
     /// Where the line template went (one line), if it moved: back home, or below the floor
     /// when its home was never recorded ([`home`]).
     pub template: Option<String>,
+    /// Where the start and end markers went (one line): back where they stood before the
+    /// first `apply`, or left where they are, without a record ([`super::markers_home`]).
+    pub markers: Option<String>,
     /// Lines to show as warnings (the simulator did not keep the scene's signals).
     pub warnings: Vec<String>,
     /// The floor put back to its size before `apply --resize-floor` (one line), or why it
@@ -193,7 +196,7 @@ fn clear_claimed(
                 .map_or_else(|| format!("object {d}"), |n| n.to_string())
         })
         .collect();
-    let removed_meshes = meshes.iter().map(|(_, name)| name.clone()).collect();
+    let removed_meshes: Vec<String> = meshes.iter().map(|(_, name)| name.clone()).collect();
     doomed.extend(meshes.iter().map(|(m, _)| *m));
     if !dry_run {
         // in requests the simulator finishes in bounded time (removal costs per object)
@@ -234,10 +237,17 @@ fn clear_claimed(
     } else {
         None
     };
+    let drawn = !removed.is_empty() || !removed_meshes.is_empty();
+    let markers = if claim.signals_kept() {
+        super::markers_home::restore(scene, &h, drawn, names, dry_run)?
+    } else {
+        None
+    };
     let floor_kind = survey.traits.kinds.get(&h.floor).copied();
     let floor = super::floor::restore(scene, (h.floor, floor_kind), &names.floor, dry_run)?;
     Ok(ClearReport {
         template,
+        markers,
         floor,
         removed,
         removed_meshes,

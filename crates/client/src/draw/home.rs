@@ -26,7 +26,7 @@ pub struct Home {
 
 impl Home {
     /// The signal values (`None` when a number does not fit: such a pose is not recorded).
-    fn encode(&self) -> Option<[i32; 7]> {
+    pub(crate) fn encode(&self) -> Option<[i32; 7]> {
         let fixed = |v: f64| {
             let scaled = (v * 1e6).round();
             (scaled.is_finite() && scaled.abs() < i32::MAX as f64).then_some(scaled as i32)
@@ -37,7 +37,7 @@ impl Home {
     }
 
     /// The record from the signal values, `None` unless all seven are set.
-    fn decode(values: &[Option<i32>]) -> Option<Home> {
+    pub(crate) fn decode(values: &[Option<i32>]) -> Option<Home> {
         let v: Vec<i32> = values.iter().copied().collect::<Option<_>>()?;
         let real = |k: usize| v[k] as f64 / 1e6;
         (v.len() == HOME.len()).then(|| Home {

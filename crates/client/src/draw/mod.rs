@@ -25,6 +25,7 @@ pub mod fit;
 pub mod floor;
 pub mod home;
 pub mod lease;
+pub mod markers_home;
 pub mod mesh;
 pub mod names;
 pub mod options;

@@ -85,6 +85,32 @@ pub const FLOOR_SIZE: [&str; 3] = [
     "vrep_maze.floor_size.y_mm",
 ];
 
+/// Integer signals: where the start marker stood before the first `apply`
+/// ([`super::markers_home`]), as [`HOME`] keeps the line template's: its handle, x, y, z
+/// (micrometres) and three Euler angles (microradians) in the floor frame. New with this
+/// version, so without older names.
+pub const START_HOME: [&str; 7] = [
+    "vrep_maze.start_home.handle",
+    "vrep_maze.start_home.x_um",
+    "vrep_maze.start_home.y_um",
+    "vrep_maze.start_home.z_um",
+    "vrep_maze.start_home.alpha_urad",
+    "vrep_maze.start_home.beta_urad",
+    "vrep_maze.start_home.gamma_urad",
+];
+
+/// Integer signals: where the end marker stood before the first `apply`, as
+/// [`START_HOME`].
+pub const END_HOME: [&str; 7] = [
+    "vrep_maze.end_home.handle",
+    "vrep_maze.end_home.x_um",
+    "vrep_maze.end_home.y_um",
+    "vrep_maze.end_home.z_um",
+    "vrep_maze.end_home.alpha_urad",
+    "vrep_maze.end_home.beta_urad",
+    "vrep_maze.end_home.gamma_urad",
+];
+
 /// The names to read for `signals`: every new name, then every old one.
 pub fn names_to_read(signals: &[Signal]) -> Vec<&'static str> {
     let new = signals.iter().map(|s| s.name);
@@ -127,7 +153,7 @@ mod tests {
             assert_eq!(s.old.replace('-', "_"), s.name);
             assert!(names.insert(s.name), "{} twice", s.name);
         }
-        for name in FLOOR_SIZE {
+        for name in FLOOR_SIZE.into_iter().chain(START_HOME).chain(END_HOME) {
             assert!(is_property_name(name), "{name}");
             assert!(names.insert(name), "{name} twice");
         }

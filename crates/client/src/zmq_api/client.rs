@@ -21,6 +21,11 @@ use vrep_maze_wire::zmq_api::calls;
 /// (libzmq sends it from its I/O thread, however busy the simulator is).
 const GREETING_WAIT: Duration = Duration::from_secs(2);
 
+/// The room a ZeroMQ peer's greeting has beyond three times the connection's time: the
+/// full suite beside other builds on a 2-core machine (load 9) saw serve's greeting come
+/// later than 0.3 s, which a room of 250 ms called "does not speak ZeroMQ".
+const GREETING_ROOM: Duration = Duration::from_secs(1);
+
 /// The longest wait for a reply after a call timed out, until a reply comes again.
 const AFTER_TIMEOUT_WAIT: Duration = Duration::from_secs(1);
 
@@ -93,6 +98,18 @@ pub enum ZmqError {
     Stopped {
         /// `tcp://host:port`.
         endpoint: String,
+    },
+    /// The port speaks ZeroMQ, but its socket is not one a request can be answered by (the
+    /// remote API's is a REP socket): CoppeliaSim 4.3 to 4.5 publish the simulation step on a
+    /// PUB socket one port above the remote API's (`../shared/spec/zmq-remote-api.md`).
+    #[error(
+        "{endpoint} is a ZeroMQ {socket_type} socket, which answers no request: not the remote API (a REP socket)"
+    )]
+    NotRemoteApi {
+        /// `tcp://host:port`.
+        endpoint: String,
+        /// The socket type its ZMTP handshake announced (`PUB`).
+        socket_type: String,
     },
     /// No reply in time.
     #[error(
@@ -372,17 +389,31 @@ impl Client {
                 }
             })
             .ok_or_else(|| connect_err(last))?;
-        // the greeting comes about one round trip (the connection's time) after it
-        let greeting_wait = (connected_in * 3 + Duration::from_millis(250))
+        // the greeting comes about one round trip (the connection's time) after it, from
+        // libzmq's I/O thread, which a loaded machine may not run for a few hundred
+        // milliseconds: a second's room before the peer is judged
+        let greeting_wait = (connected_in * 3 + GREETING_ROOM)
             .min(GREETING_WAIT)
             .min(wait);
-        match check_greeting(stream, greeting_wait, stop) {
+        let mut stream = stream;
+        match check_greeting(&mut stream, greeting_wait, stop) {
             Ok(()) => {}
             Err(Greeting::Stopped) => return Err(ZmqError::Stopped { endpoint }),
             Err(Greeting::Not(detail)) => {
                 return Err(ZmqError::NotZeroMq { endpoint, detail });
             }
         }
+        // a peer that announces a socket no request reaches (4.5.1's PUB on 23001) fails
+        // now, not after the first call's whole timeout
+        if let Some(socket_type) = peer_socket_type(&mut stream, greeting_wait)
+            && !ANSWERING_SOCKETS.contains(&socket_type.as_str())
+        {
+            return Err(ZmqError::NotRemoteApi {
+                endpoint,
+                socket_type,
+            });
+        }
+        drop(stream);
         let context = zmq::Context::new();
         let socket = new_socket(&context, &endpoint, options.timeout, ipv6)?;
         Ok(Client {
@@ -794,6 +825,89 @@ enum Waited {
     Failed(zmq::Error),
 }
 
+/// The ZeroMQ socket types that answer a DEALER's requests: the remote API's REP (and
+/// the ROUTER `serve` uses, as a REP socket is built on one).
+const ANSWERING_SOCKETS: [&str; 2] = ["REP", "ROUTER"];
+
+/// Our half of a ZMTP 3.0 greeting after the 10-byte signature (sent by then): version 3.0,
+/// the NULL mechanism, not as server, and the filler (ZMTP 3.0, RFC 23).
+fn greeting_rest() -> [u8; 54] {
+    let mut rest = [0u8; 54];
+    rest[0] = 3;
+    rest[2..6].copy_from_slice(b"NULL");
+    rest
+}
+
+/// The socket type the peer announces in its READY command, once the greeting's signature
+/// is read from `stream`: our greeting is sent (not our READY, which a peer whose socket
+/// does not go with a DEALER answers by closing the connection), the peer's rest of the
+/// greeting and its READY read within `wait`. `None` when it does not tell (an older ZMTP,
+/// another mechanism, no READY in time): a peer is judged only on what it says.
+fn peer_socket_type(stream: &mut TcpStream, wait: Duration) -> Option<String> {
+    use std::io::{Read, Write};
+    let deadline = Instant::now() + wait;
+    let mut ours = vec![0xFF, 0, 0, 0, 0, 0, 0, 0, 1, 0x7F];
+    ours.extend_from_slice(&greeting_rest());
+    stream.write_all(&ours).ok()?;
+    let mut read = |n: usize| -> Option<Vec<u8>> {
+        let mut buf = vec![0u8; n];
+        let mut got = 0;
+        while got < n {
+            let left = deadline.saturating_duration_since(Instant::now());
+            if left.is_zero() {
+                return None;
+            }
+            stream.set_read_timeout(Some(left)).ok()?;
+            match stream.read(&mut buf[got..]) {
+                Ok(0) => return None,
+                Ok(k) => got += k,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(_) => return None,
+            }
+        }
+        Some(buf)
+    };
+    let rest = read(54)?;
+    if rest[0] < 3 || &rest[2..7] != b"NULL\0" {
+        return None;
+    }
+    let flags = read(1)?[0];
+    if flags & 0x04 == 0 {
+        return None;
+    }
+    let size = if flags & 0x02 != 0 {
+        usize::try_from(u64::from_be_bytes(read(8)?.try_into().ok()?)).ok()?
+    } else {
+        usize::from(read(1)?[0])
+    };
+    if size > 4096 {
+        return None;
+    }
+    parse_ready(&read(size)?)
+}
+
+/// The `Socket-Type` of a READY command's body (`None` if it is no READY or lacks it).
+fn parse_ready(body: &[u8]) -> Option<String> {
+    let name_len = usize::from(*body.first()?);
+    if body.get(1..1 + name_len)? != b"READY" {
+        return None;
+    }
+    let mut at = 1 + name_len;
+    while at < body.len() {
+        let n = usize::from(body[at]);
+        let name = body.get(at + 1..at + 1 + n)?;
+        at += 1 + n;
+        let len = u32::from_be_bytes(body.get(at..at + 4)?.try_into().ok()?) as usize;
+        at += 4;
+        let value = body.get(at..at + len)?;
+        at += len;
+        if name.eq_ignore_ascii_case(b"Socket-Type") {
+            return String::from_utf8(value.to_vec()).ok();
+        }
+    }
+    None
+}
+
 /// Why a peer's greeting was not taken.
 #[derive(Debug, PartialEq)]
 enum Greeting {
@@ -809,7 +923,7 @@ trait TimedRead {
     fn read_within(&mut self, buf: &mut [u8], wait: Duration) -> std::io::Result<usize>;
 }
 
-impl TimedRead for TcpStream {
+impl TimedRead for &mut TcpStream {
     fn read_within(&mut self, buf: &mut [u8], wait: Duration) -> std::io::Result<usize> {
         use std::io::Read;
         self.set_read_timeout(Some(wait))?;
@@ -928,7 +1042,7 @@ mod tests {
         let addr = l.local_addr().unwrap();
         let t = std::thread::spawn(move || peer(l.accept().unwrap().0));
         let r = check_greeting(
-            TcpStream::connect(addr).unwrap(),
+            &mut TcpStream::connect(addr).unwrap(),
             Duration::from_millis(300),
             None,
         );
@@ -952,6 +1066,28 @@ mod tests {
                 Err(kind) => Err(kind.into()),
             }
         }
+    }
+
+    #[test]
+    fn a_peer_says_its_socket_type_in_its_ready_command() {
+        let context = zmq::Context::new();
+        for (kind, name) in [
+            (zmq::PUB, "PUB"),
+            (zmq::REP, "REP"),
+            (zmq::ROUTER, "ROUTER"),
+        ] {
+            let peer = context.socket(kind).unwrap();
+            peer.bind("tcp://127.0.0.1:0").unwrap();
+            let endpoint = peer.get_last_endpoint().unwrap().unwrap();
+            let addr = endpoint.trim_start_matches("tcp://").to_string();
+            let mut stream = TcpStream::connect(addr).unwrap();
+            let wait = Duration::from_secs(10);
+            check_greeting(&mut stream, wait, None).unwrap();
+            assert_eq!(peer_socket_type(&mut stream, wait).as_deref(), Some(name));
+        }
+        let dealer = b"\x05READY\x0bSocket-Type\x00\x00\x00\x06DEALER";
+        assert_eq!(parse_ready(dealer).as_deref(), Some("DEALER"));
+        assert_eq!(parse_ready(b"\x05ERROR"), None);
     }
 
     #[test]
@@ -1030,10 +1166,11 @@ mod tests {
             greeting_of(move |mut s| s.write_all(&signature).unwrap()),
             Ok(())
         );
-        let silent = greeting_of(|s| {
-            std::thread::sleep(Duration::from_millis(500));
-            drop(s);
-        });
+        // the silent peer's connection stays open until the check is over (handed back
+        // here), however late a loaded machine runs the check's thread
+        let (held, kept) = std::sync::mpsc::channel();
+        let silent = greeting_of(move |s| held.send(s).unwrap());
+        drop(kept);
         assert!(
             silent
                 .unwrap_err()

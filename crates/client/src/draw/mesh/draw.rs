@@ -354,6 +354,12 @@ fn apply_claimed(
         names,
         &mut report,
     )?;
+    // where Start and End stand before they move, for `clear`: unless an earlier maze holds
+    // them already
+    if claim.signals_kept() {
+        let earlier = !plan.doomed.is_empty() || !found.meshes.is_empty();
+        crate::draw::markers_home::record(scene, &h, &survey.objects, earlier)?;
+    }
     let posts = pieces_of(maze, &[MeshKind::Posts]) > 0;
     let looks = looks(scene, &h, posts)?;
     // a kept mesh is checked as a new one is, and replaced when it differs
