@@ -282,7 +282,7 @@ impl Layout {
             end_size: None,
         };
         let report = py.detach(|| grader.grade(&samples, &options));
-        crate::score::report_dict(py, &report)
+        crate::reports::report_dict(py, &report)
     }
 
     /// The copies of `Line` to draw, a NumPy `float64` array of shape `(n, 4)`: one row

@@ -14,6 +14,7 @@ mod errors;
 mod layout;
 mod options;
 mod remedies;
+mod reports;
 mod robot_link;
 mod score;
 mod session;

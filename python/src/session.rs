@@ -280,8 +280,8 @@ impl Session {
             })
         };
         let scored = self.run(py, &stop, work, |scored| scored)?;
-        let report = score::report_dict(py, &scored.report)?;
-        let trajectory = score::samples_array(py, &scored.samples)?;
+        let report = crate::reports::report_dict(py, &scored.report)?;
+        let trajectory = crate::reports::samples_array(py, &scored.samples)?;
         if stop.requested.load(Ordering::SeqCst) {
             return Err(score::stopped_run(
                 py,
@@ -351,7 +351,7 @@ impl Session {
                 "interrupted: the robot was stopped and the simulation with it",
             ));
         }
-        score::report_dict(py, &report)
+        crate::reports::report_dict(py, &report)
     }
 
     /// Closes the connection (the official client's way, so that the simulator is ready for

@@ -165,6 +165,21 @@ def test_check_env_accepts_it(sim):
 
 
 @real
+def test_a_curriculum_condition_picks_each_episodes_maze(sim):
+    env = RobotMazeEnv(port=sim.port, size=(5, 5), where="solution_cells >= 19")
+    try:
+        seen = set()
+        for seed in range(4):
+            _, info = env.reset(seed=seed)
+            metrics = info["metrics"]
+            assert metrics["solution_cells"] >= 19, metrics  # a third of 5x5 mazes
+            seen.add(info["seed"])
+        assert len(seen) > 1, "every episode drew the same maze"
+    finally:
+        env.close()
+
+
+@real
 @pytest.mark.parametrize("style", ["lines", "walls"])
 def test_a_pure_pursuit_policy_reaches_the_goal(sim, style):
     options = dict(port=sim.port, size=(4, 4), max_episode_steps=2000, step_penalty=0.001)

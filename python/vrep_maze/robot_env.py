@@ -193,7 +193,7 @@ class RobotMazeEnv(gym.Env):
         if self.where is None:
             return _vm.generate(seed=seed, **self.maze_options)
         options = {k: v for k, v in self.maze_options.items() if k != "style"}
-        for layout in _vm.batch(range(seed, seed + _WHERE_TRIES), where_=self.where, **options):
+        for layout in _vm.batch(range(seed, seed + _WHERE_TRIES), where=self.where, **options):
             if self.maze_options["style"] == "lines":
                 return layout
             # batch makes line mazes: the wall maze of the same seed has the same passages

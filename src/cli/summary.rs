@@ -31,8 +31,8 @@ pub fn clear_lines(
             "nothing to remove: no maze (copies of lines, walls, posts, or meshes) under {parent} in the scene"
         ));
     }
-    lines.extend(super::clear::copies_line(verb, &report.removed));
-    lines.extend(super::clear::mesh_line(verb, &report.removed_meshes));
+    lines.extend(copies_line(verb, &report.removed));
+    lines.extend(mesh_line(verb, &report.removed_meshes));
     lines
 }
 
@@ -153,6 +153,65 @@ fn kept(report: &ApplyReport) -> String {
         report.unchanged,
         report.placed - report.unread
     )
+}
+
+/// "removed N maze copies: a, b, ... (M more)", naming the first dozen; `None` when none
+/// were removed.
+fn copies_line(verb: &str, removed: &[String]) -> Option<String> {
+    if removed.is_empty() {
+        return None;
+    }
+    let shown: Vec<&str> = removed.iter().take(12).map(String::as_str).collect();
+    let more = if removed.len() > shown.len() {
+        format!(", ... ({} more)", removed.len() - shown.len())
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "{verb} {} maze cop{}: {}{more}",
+        removed.len(),
+        if removed.len() == 1 { "y" } else { "ies" },
+        shown.join(", ")
+    ))
+}
+
+/// The line that says a mesh maze (`apply --draw mesh`) went: its meshes and their holder.
+fn mesh_line(verb: &str, removed: &[String]) -> Option<String> {
+    let meshes: Vec<&str> = removed
+        .iter()
+        .map(String::as_str)
+        .filter(|n| *n != crate::draw::mesh::HOLDER)
+        .collect();
+    if removed.is_empty() {
+        return None;
+    }
+    if meshes.is_empty() {
+        return Some(format!(
+            "{verb} the empty holder `{}` of a mesh maze",
+            crate::draw::mesh::HOLDER
+        ));
+    }
+    let shown = meshes
+        .iter()
+        .take(4)
+        .copied()
+        .collect::<Vec<_>>()
+        .join(", ");
+    let more = if meshes.len() > 4 {
+        format!(", ... ({} more)", meshes.len() - 4)
+    } else {
+        String::new()
+    };
+    // the holder goes only if it is ours (it holds none of the user's objects)
+    let holder = if meshes.len() < removed.len() {
+        format!(" and their holder `{}`", crate::draw::mesh::HOLDER)
+    } else {
+        String::new()
+    };
+    Some(format!(
+        "{verb} a mesh maze: {} mesh(es) ({shown}{more}){holder}",
+        meshes.len(),
+    ))
 }
 
 #[cfg(test)]
