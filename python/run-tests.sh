@@ -15,7 +15,8 @@ if ! python3 -m venv "$venv" 2>/dev/null; then
     rm -rf "$venv"
     python3 -m venv "$venv"
 fi
-"$venv/bin/pip" install --quiet pytest coppeliasim-zmqremoteapi-client
+# PyYAML reads the ROS maps test_export.py writes (hostile file names)
+"$venv/bin/pip" install --quiet pytest coppeliasim-zmqremoteapi-client pyyaml
 # with the `rl` extra (gymnasium-robotics, which brings MuJoCo, and minigrid: about a minute
 # to install) for tests/test_rl.py
 "$venv/bin/pip" install --quiet "$root[rl]"
