@@ -312,13 +312,10 @@ fn inspect(
                 differences: vec![missing.to_string()],
             },
             // a floor smaller than the layout's is a difference of the scene, with its remedy
-            Err(DrawError::Floor { floor, short, .. }) => LayoutMatch {
+            Err(short @ DrawError::Floor { .. }) => LayoutMatch {
                 file: file.clone(),
                 matches: false,
-                differences: vec![format!(
-                    "{} (`vrep-maze apply --resize-floor` grows it over ZeroMQ, and `clear` puts it back)",
-                    short.describe(&floor)
-                )],
+                differences: vec![floor_difference(&short)],
             },
             Err(e) => return Err(anyhow::Error::new(e).context(format!("comparing {file}"))),
         }),
@@ -339,6 +336,17 @@ fn inspect(
 
 /// Compares the scene with a layout as `apply` verifies it: as meshes when the scene holds a
 /// mesh maze (`meshes`), else as copies. Only reads.
+/// A floor smaller than the layout's as a difference of the scene: its sizes, then what
+/// fits this floor on this connection (`--resize-floor` only where it can grow it).
+fn floor_difference(short: &DrawError) -> String {
+    let mut line = super::remedies::message(short);
+    for hint in super::remedies::hints(short) {
+        line.push_str("; ");
+        line.push_str(&hint);
+    }
+    line
+}
+
 fn compare(
     scene: &mut dyn Backend,
     names: &ObjectNames,

@@ -9,7 +9,7 @@ use std::process::{Command, Stdio};
 use assert_cmd::cargo::CommandCargoExt;
 use tempfile::TempDir;
 use vrep_maze::cli::remedies;
-use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing};
+use vrep_maze::draw::{self, ApplyOptions, Backend, ClearOptions, DrawError, Drawing, ObjectNames};
 use vrep_maze::layout::read_layout;
 use vrep_maze::sim::Scene;
 
@@ -143,6 +143,13 @@ fn a_small_floor_is_refused_with_hints_that_work(kind: Kind) {
             sim.scene.get(h).unwrap().size
         })
     };
+    // a comparison with the layout offers what this connection can do, as apply does
+    let v = draw::verify(&mut *b, &nine, &ObjectNames::default()).unwrap_err();
+    assert_eq!(
+        remedies::hints(&v),
+        hints,
+        "{k}: verify's hints are apply's"
+    );
     if kind == Kind::Legacy {
         assert!(hints[0].contains("--api zmq"), "{k}: {hints:?}");
         drop(b);

@@ -83,6 +83,26 @@ fn a_dummy_floor_is_never_resized_and_clear_says_what_it_reads(kind: Kind) {
         assert_eq!(size(), [0.7231; 3], "{k}: left as it is");
         assert_eq!(s.line_count(), 1, "{k}: nothing drawn, the template alone");
     }
+    // a comparison with the layout (`verify`, `inspect --layout`) finds the same and offers
+    // the same: no `--resize-floor` for a dummy
+    let e = draw::verify(&mut *b, &d, &names).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            DrawError::Floor {
+                resize: Resize::NotAShape { kind: 4 },
+                ..
+            }
+        ),
+        "{k} verify: {e:?}"
+    );
+    assert!(
+        remedies::hints(&e)
+            .iter()
+            .all(|h| !h.contains("--resize-floor")),
+        "{k} verify: {:?}",
+        remedies::hints(&e)
+    );
     // what an older version's `apply --resize-floor` left: the record, and the dummy scaled
     let f = 10.0 / 0.7231;
     s.with_sim(|sim| {

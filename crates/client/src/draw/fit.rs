@@ -7,6 +7,7 @@ use super::error::DrawError;
 use super::extent::{FloorShort, Resize, extents, metres};
 use super::names::ObjectNames;
 use super::tolerance::{SIZE_TOLERANCE, same_size};
+use vrep_maze_core::coppelia::OBJECT_SHAPE_TYPE;
 use vrep_maze_core::layout::Geometry;
 use vrep_maze_core::layout::Style;
 use vrep_maze_core::layout::limits::{self, Naming};
@@ -49,28 +50,45 @@ impl SizeCheck {
         if self.refusals.is_empty() {
             return None;
         }
-        self.differences(names)
+        self.differences(names, None, false)
     }
 
     /// What a comparison with the layout (`verify`, `inspect --layout`) reports: every
     /// refusal and a floor smaller than the layout's, `None` when there is neither. A short
-    /// floor alone is [`DrawError::Floor`], whose remedy is the floor's, not the templates'.
-    pub fn differences(&self, names: &ObjectNames) -> Option<DrawError> {
+    /// floor alone is [`DrawError::Floor`], whose remedy is the floor's, not the templates':
+    /// the one [`resize_offer`] finds for a floor of `floor_kind` on this connection.
+    pub fn differences(
+        &self,
+        names: &ObjectNames,
+        floor_kind: Option<i32>,
+        can_resize: bool,
+    ) -> Option<DrawError> {
         if let (true, Some(short)) = (self.refusals.is_empty(), self.floor) {
-            let resize = if short.factors().is_none() {
-                Resize::NoExtent
-            } else {
-                Resize::Offered
-            };
             return Some(DrawError::Floor {
                 floor: names.floor.clone(),
                 short,
-                resize,
+                resize: resize_offer(&short, floor_kind, can_resize),
             });
         }
         let mut lines = self.refusals.clone();
         lines.extend(self.floor.map(|f| f.describe(&names.floor).into()));
         (!lines.is_empty()).then_some(DrawError::Sizes(lines))
+    }
+}
+
+/// What `apply --resize-floor` can do about a floor that is `short`: nothing for a floor
+/// without extent along x or y, or for one of type `floor_kind` that is no shape (a dummy
+/// scales along z too), nor on a connection that cannot resize (`can_resize`: the legacy
+/// remote API); otherwise it is offered.
+pub fn resize_offer(short: &FloorShort, floor_kind: Option<i32>, can_resize: bool) -> Resize {
+    if short.factors().is_none() {
+        Resize::NoExtent
+    } else if let Some(kind) = floor_kind.filter(|k| *k != OBJECT_SHAPE_TYPE) {
+        Resize::NotAShape { kind }
+    } else if !can_resize {
+        Resize::NoApi
+    } else {
+        Resize::Offered
     }
 }
 

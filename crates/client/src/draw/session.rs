@@ -20,7 +20,6 @@ use super::pose::{self, floor_frame};
 use super::report::{ApplyReport, Stage};
 use super::role::Role;
 use super::tolerance::POSITION_TOLERANCE;
-use vrep_maze_core::coppelia::OBJECT_SHAPE_TYPE;
 use vrep_maze_core::layout::Style;
 use vrep_maze_core::layout::sizes::Sizes;
 use vrep_maze_core::layout::sizes::TemplateUse;
@@ -372,15 +371,7 @@ pub(crate) fn begin(
     // the floor's type, as the survey read it: only a shape can be resized
     let floor_kind = survey.traits.kinds.get(&h.floor).copied();
     if let Some(short) = short.filter(|_| !opts.resize_floor) {
-        let resize = if short.factors().is_none() {
-            super::extent::Resize::NoExtent
-        } else if let Some(kind) = floor_kind.filter(|k| *k != OBJECT_SHAPE_TYPE) {
-            super::extent::Resize::NotAShape { kind }
-        } else if scene.authoring().is_none() {
-            super::extent::Resize::NoApi
-        } else {
-            super::extent::Resize::Offered
-        };
+        let resize = super::fit::resize_offer(&short, floor_kind, scene.authoring().is_some());
         return Err(DrawError::Floor {
             floor: names.floor.clone(),
             short,

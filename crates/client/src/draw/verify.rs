@@ -233,7 +233,9 @@ fn verify_raised(
     let asks = drawing.template_use();
     let (survey, h) = surveyed(scene, names, &asks, with_posts)?;
     let sizes = sizes_of(scene, &asks, names, &h)?;
-    if let Some(differences) = sizes.differences(names) {
+    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
+    let can_resize = scene.authoring().is_some();
+    if let Some(differences) = sizes.differences(names, floor_kind, can_resize) {
         return Err(differences);
     }
     // every pose as the scene holds it now, not as a backend remembers setting it; the

@@ -632,7 +632,9 @@ fn verify_raised(
     let asks = maze.template_use();
     let (survey, h) = surveyed(scene, names, &asks, false)?;
     let sizes = sizes_of(scene, &asks, names, &h)?;
-    if let Some(differences) = sizes.differences(names) {
+    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
+    let can_resize = scene.authoring().is_some();
+    if let Some(differences) = sizes.differences(names, floor_kind, can_resize) {
         return Err(differences);
     }
     // the user's objects under the maze dummy are no stray maze objects
