@@ -177,11 +177,11 @@ fn cut_points(turns: usize) -> Vec<usize> {
     points
 }
 
-/// Runs `cases` on a few threads (much of a run waits on sockets).
+/// Runs `cases` on eight threads: a cut run mostly waits out its timeout, not the CPU.
 fn run_parallel<T: Sync>(cases: &[T], run: impl Fn(&T) + Sync) {
     let next = Mutex::new(0);
     std::thread::scope(|scope| {
-        for _ in 0..4 {
+        for _ in 0..8 {
             scope.spawn(|| {
                 loop {
                     let i = {
