@@ -393,7 +393,7 @@ impl Drawer<'_, '_> {
             .chain(foreign)
             .map(|&r| Edit::Remove(r))
             .collect();
-        self.send(&removals, 0)?;
+        self.send(&removals, 0, true)?;
         self.objects_in_scene = self.objects_in_scene.saturating_sub(removals.len());
         // the templates, reused copies and markers, where they differ, go with the first
         // round of copies (or alone, if nothing is pasted)
@@ -447,14 +447,14 @@ impl Drawer<'_, '_> {
                     done: pasted,
                     total: to_paste,
                 });
-                self.send(&std::mem::take(&mut edits), carried + new_pieces)?;
+                self.send(&std::mem::take(&mut edits), carried + new_pieces, false)?;
             }
             if done < part.plan.paste {
                 short.get_or_insert((done, part.plan.paste));
             }
             copies.truncate(part.poses.len().max(usize::from(part.template_drawn)));
         }
-        self.send(&edits, placed_now)?;
+        self.send(&edits, placed_now, false)?;
         if let Some((done, wanted)) = short {
             return Err(BackendError::Remote(format!(
                 "copy-paste produced {done} of {wanted} copies"
@@ -493,8 +493,15 @@ impl Drawer<'_, '_> {
 
     /// Sends `edits`, which place `pieces` pieces, in requests the simulator finishes in
     /// bounded time ([`Backend::pieces_per_request`], about two edits a piece) and the lease
-    /// checks between them.
-    fn send(&mut self, edits: &[Edit], pieces: usize) -> Result<(), DrawError> {
+    /// checks between them. An interrupt stops it between two requests only when
+    /// `interruptible`: the places of copies already pasted are always sent, so an
+    /// interrupted apply leaves no copy unplaced and its count is what the scene holds.
+    fn send(
+        &mut self,
+        edits: &[Edit],
+        pieces: usize,
+        interruptible: bool,
+    ) -> Result<(), DrawError> {
         if edits.is_empty() {
             self.placed += pieces;
             return Ok(());
@@ -508,7 +515,11 @@ impl Drawer<'_, '_> {
             .max(1);
         let mut sent = 0;
         for chunk in edits.chunks(per_request) {
-            self.checkpoint("while placing the lines")?;
+            if interruptible {
+                self.checkpoint("while removing the old maze's surplus")?;
+            } else {
+                self.claim.check(self.scene, "while placing the lines")?;
+            }
             self.scene.edit(chunk)?;
             sent += chunk.len();
             let done = self.placed + pieces * sent / edits.len().max(1);
