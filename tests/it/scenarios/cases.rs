@@ -70,6 +70,7 @@ on_every_target!(
     a_red_look_alike_under_the_maze_never_spreads,
     edits_to_what_was_drawn_are_found_and_repaired,
     clear_puts_start_and_end_back,
+    an_interrupted_apply_counts_what_the_scene_holds,
 );
 
 /// A user's edit of the object it is given: the function called and its arguments.
@@ -791,4 +792,81 @@ fn drive_gives_score_a_robot(target: Target) {
     assert_eq!(report["reached_end"], true, "{target:?}: {report}");
     let spl = report["spl"].as_f64().unwrap();
     assert!(spl > 0.9, "{target:?}: SPL {spl}: {report}");
+}
+
+/// Issue 38 row 7 through the command line: Ctrl-C during a 50 x 50 copies apply (the
+/// observer grows the floor 6-fold first, as the legacy API cannot) says "N of M lines
+/// placed", and the scene then holds N lines: the template and N - 1 copies under `Maze`, no
+/// copy at the scene's root, and `inspect` says "drawn: N lines". An apply that finished
+/// before the Ctrl-C landed holds all M. `clear` then removes them all.
+fn an_interrupted_apply_counts_what_the_scene_holds(target: Target) {
+    use std::io::{BufRead, Read};
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let floor = obs.handle("/Floor");
+    let int = |v: i32| vrep_maze::zmq_api::cbor::int(v.into());
+    let f = ciborium::Value::Float(6.0);
+    obs.call(
+        "sim.scaleObject",
+        vec![
+            int(floor),
+            f.clone(),
+            f,
+            ciborium::Value::Float(1.0),
+            int(0),
+        ],
+    );
+    let before = obs.look();
+    let (big, layout) = generate(dir.path(), "big", &["--seed", "3", "--size", "50x50"]);
+    let total = layout.segments.len() + layout.walls.len();
+    let mut child = crate::support::cli::spawnable()
+        .args(["apply", &big])
+        .args(sim.api_args())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut said = String::new();
+    while !said.contains("connecting to") {
+        if stderr.read_line(&mut said).unwrap() == 0 {
+            break;
+        }
+    }
+    std::thread::sleep(Duration::from_millis(1000));
+    crate::support::cli::interrupt(child.id());
+    stderr.read_to_string(&mut said).unwrap();
+    let code = child.wait().unwrap().code();
+    eprintln!(
+        "{target:?}: {code:?} {}",
+        said.trim_end().lines().last().unwrap_or("")
+    );
+    let placed = match code {
+        Some(0) => total,
+        Some(130) => {
+            let counted = said
+                .split("interrupted: ")
+                .nth(2)
+                .and_then(|rest| rest.split(" of ").next())
+                .and_then(|n| n.parse::<usize>().ok());
+            counted.unwrap_or_else(|| panic!("{target:?}: no count in\n{said}"))
+        }
+        other => panic!("{target:?}: {other:?}\n{said}"),
+    };
+    let (maze, template) = (obs.handle("/Maze"), obs.handle("/Line"));
+    let (under, outside) = obs.copies_of(template, maze);
+    assert_eq!(
+        (under + 1, outside),
+        (placed, 0),
+        "{target:?}: said {placed} of {total} placed\n{said}"
+    );
+    let inspected = ok(&sim, &["inspect"]);
+    assert!(
+        inspected.stdout.contains(&format!("drawn: {placed} lines")),
+        "{target:?}: said {placed} placed; inspect:\n{}",
+        inspected.stdout
+    );
+    ok(&sim, &["clear"]);
+    assert_cleared(&sim, &obs.look(), &before);
 }

@@ -290,6 +290,36 @@ impl Observer {
         colours
     }
 
+    /// Copies of the template `line` (by alias) directly under `maze`, and at the scene's
+    /// root: a count in a few calls, where [`Observer::look`] reads every object.
+    pub fn copies_of(&mut self, line: i32, maze: i32) -> (usize, usize) {
+        let idle_fps = self.idle_fps();
+        self.set_idle_fps(0);
+        let c = &mut self.client;
+        let tree = |c: &mut Client, base: i32, options: i64| {
+            let found = call(
+                c,
+                "sim.getObjectsInTree",
+                vec![int(base.into()), int(HANDLE_ALL.into()), int(options)],
+            );
+            ints(&found[0])
+        };
+        let alias = |c: &mut Client, h: i64| {
+            let a = call(c, "sim.getObjectAlias", vec![int(h)]);
+            cbor::text(&a[0]).unwrap().to_string()
+        };
+        // options 3: the base's first children only; 2: the scene's root objects
+        let under = tree(c, maze, 3);
+        let under = under.into_iter().filter(|&h| alias(c, h) == "Line").count();
+        let roots = tree(c, HANDLE_SCENE, 2);
+        let roots = roots
+            .into_iter()
+            .filter(|&h| h != i64::from(line) && alias(c, h) == "Line")
+            .count();
+        self.set_idle_fps(idle_fps);
+        (under, roots)
+    }
+
     /// Everything in the scene, read at idle rate 0 and the user's rate put back after.
     pub fn look(&mut self) -> Look {
         let idle_fps = self.idle_fps();
