@@ -71,6 +71,7 @@ on_every_target!(
     edits_to_what_was_drawn_are_found_and_repaired,
     clear_puts_start_and_end_back,
     an_interrupted_apply_counts_what_the_scene_holds,
+    the_smaller_rows_as_a_person_meets_them,
 );
 
 /// A user's edit of the object it is given: the function called and its arguments.
@@ -869,4 +870,114 @@ fn an_interrupted_apply_counts_what_the_scene_holds(target: Target) {
     );
     ok(&sim, &["clear"]);
     assert_cleared(&sim, &obs.look(), &before);
+}
+
+/// Issue 38 rows 4, 9, 10 and 11 through the command line, as a person meets them on the
+/// simulator: a floor that is a dummy is refused without a `--resize-floor` offer and left
+/// as it is (row 4); a missing floor in a mesh apply offers `--create-missing` where the API
+/// can create it and no resize (row 10); thirty stray copies at the root are named twelve
+/// at a time (row 11); a raised floor's `Line` goes back where it stood and `clear` says so,
+/// not that it put `Line` below the floor (row 9).
+fn the_smaller_rows_as_a_person_meets_them(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let (m, _) = generate(dir.path(), "m", &["--seed", "42"]);
+    let int = |v: i32| vrep_maze::zmq_api::cbor::int(v.into());
+    let float = ciborium::Value::Float;
+    let said = |ran: &Ran| format!("{}{}", ran.stdout, ran.stderr);
+    // row 4: a 0.7231 m dummy as the floor
+    let fd = obs.call("sim.createDummy", vec![float(0.7231)]);
+    let fd = vrep_maze::zmq_api::cbor::int32(&fd[0]).unwrap();
+    obs.call(
+        "sim.setObjectAlias",
+        vec![int(fd), ciborium::Value::Text("FD".into())],
+    );
+    let before = obs.look();
+    let mut tries: Vec<Vec<&str>> = vec![vec!["apply", &m, "--floor", "FD"]];
+    if !target.legacy() {
+        tries.push(vec!["apply", &m, "--floor", "FD", "--resize-floor"]);
+    }
+    for args in &tries {
+        let refused = run(&sim, args);
+        let text = said(&refused);
+        assert_ne!(refused.code, 0, "{target:?} {args:?}: {text}");
+        assert!(
+            text.contains("`FD` is a dummy, not a shape") && !text.contains("pass --resize-floor"),
+            "{target:?} {args:?}: {text}"
+        );
+    }
+    let inspected = run(&sim, &["inspect", "--layout", &m, "--floor", "FD"]);
+    let text = said(&inspected);
+    assert!(
+        text.contains("`FD` is a dummy") && !text.contains("--resize-floor"),
+        "{target:?}: {text}"
+    );
+    assert_eq!(
+        state(&obs.look()),
+        state(&before),
+        "{target:?}: refusals changed the scene"
+    );
+    obs.call(
+        "sim.removeObjects",
+        vec![ciborium::Value::Array(vec![int(fd)])],
+    );
+    // row 10: a floor that is not there, in a mesh apply
+    let missing = run(&sim, &["apply", &m, "--draw", "mesh", "--floor", "NoFloor"]);
+    let text = said(&missing);
+    assert_ne!(missing.code, 0, "{target:?}: {text}");
+    assert!(
+        text.contains("NoFloor")
+            && !text.contains("resize-floor")
+            && text.contains("--create-missing") != target.legacy(),
+        "{target:?}: {text}"
+    );
+    // row 11: thirty stray copies of Line at the scene's root
+    let line = obs.handle("/Line");
+    let strays: Vec<ciborium::Value> = (0..30)
+        .map(|_| {
+            let v = obs.call(
+                "sim.copyPasteObjects",
+                vec![ciborium::Value::Array(vec![int(line)]), int(0)],
+            );
+            let copy = match &v[0] {
+                ciborium::Value::Array(items) => vrep_maze::zmq_api::cbor::int32(&items[0]),
+                other => vrep_maze::zmq_api::cbor::int32(other),
+            };
+            int(copy.unwrap())
+        })
+        .collect();
+    let inspected = ok(&sim, &["inspect"]);
+    let stray_line = inspected
+        .stdout
+        .lines()
+        .find(|l| l.starts_with("stray copies outside the maze dummy:"))
+        .unwrap_or_else(|| panic!("{target:?}: {}", inspected.stdout));
+    assert!(
+        stray_line.ends_with(", ... (18 more)") && stray_line.matches(", ").count() == 12,
+        "{target:?}: {stray_line}"
+    );
+    obs.call("sim.removeObjects", vec![ciborium::Value::Array(strays)]);
+    // row 9: the floor raised to z 0.5
+    let floor = obs.handle("/Floor");
+    obs.call(
+        "sim.setObjectPosition",
+        vec![
+            int(floor),
+            int(-1),
+            vrep_maze::zmq_api::cbor::float_array(&[0.0, 0.0, 0.5]),
+        ],
+    );
+    let raised = obs.look();
+    ok(&sim, &["apply", &m]);
+    let cleared = ok(&sim, &["clear"]);
+    assert!(
+        cleared
+            .stdout
+            .contains("put `Line` back where it stood before the first apply")
+            && !cleared.stdout.contains("below the floor"),
+        "{target:?}: {}",
+        cleared.stdout
+    );
+    assert_cleared(&sim, &obs.look(), &raised);
 }
