@@ -354,23 +354,7 @@ fn placed(layout: &Layout, geometry: &crate::layout::Geometry) -> Placed {
             floor,
         };
     };
-    let declared = layout.metrics.clone();
-    let route_of = move |maze: &Maze| {
-        let mut found = Problems::default();
-        head::check_structure(&declared, maze, &mut found);
-        let measured = match (start, end) {
-            (Some(start), Some(end)) => head::check_route(&declared, maze, start, end, &mut found),
-            _ => None,
-        };
-        (found, measured)
-    };
-    let route = if grid.cell_count() >= PARALLEL_CELLS {
-        let own = maze.clone();
-        Route::Running(thread::spawn(move || route_of(&own)))
-    } else {
-        let (found, measured) = route_of(&maze);
-        Route::Done(found, measured)
-    };
+    let route = start_route(layout, &maze, start, end);
     let mut shape = Problems::default();
     walls::check_walls(layout, &maze, geometry, &mut shape);
     goal::check_goal(layout, &maze, &mut shape);
@@ -385,6 +369,29 @@ fn placed(layout: &Layout, geometry: &crate::layout::Geometry) -> Placed {
         strays: Problems::default(),
         walls: shape,
         floor,
+    }
+}
+
+/// Starts the structure and route checks of `maze` against the layout's declared metrics,
+/// from cell `start` to `end` (when both are sound): on their own thread on a big grid,
+/// done at once on a small one.
+fn start_route(layout: &Layout, maze: &Maze, start: Option<usize>, end: Option<usize>) -> Route {
+    let declared = layout.metrics.clone();
+    let route_of = move |maze: &Maze| {
+        let mut found = Problems::default();
+        head::check_structure(&declared, maze, &mut found);
+        let measured = match (start, end) {
+            (Some(start), Some(end)) => head::check_route(&declared, maze, start, end, &mut found),
+            _ => None,
+        };
+        (found, measured)
+    };
+    if maze.grid().cell_count() >= PARALLEL_CELLS {
+        let own = maze.clone();
+        Route::Running(thread::spawn(move || route_of(&own)))
+    } else {
+        let (found, measured) = route_of(maze);
+        Route::Done(found, measured)
     }
 }
 

@@ -36,36 +36,8 @@ pub(super) fn check_walls(
     geometry: &Geometry,
     problems: &mut Problems,
 ) {
-    let spec = match (layout.style, &layout.wall) {
-        (Style::Lines, None) => {
-            if !layout.walls.is_empty() {
-                problems.add("walls", "only a layout with style \"walls\" has walls");
-            }
-            if layout.post.is_some() {
-                problems.add(
-                    "post",
-                    "only a layout with style \"walls\" has a post template",
-                );
-            } else if !layout.posts.is_empty() {
-                problems.add("posts", "only a layout with style \"walls\" has posts");
-            }
-            return;
-        }
-        (Style::Lines, Some(_)) => {
-            problems.add(
-                "wall",
-                "only a layout with style \"walls\" has a wall template",
-            );
-            return;
-        }
-        (Style::Walls, None) => {
-            problems.add(
-                "wall",
-                "missing: a layout with style \"walls\" needs its wall template",
-            );
-            return;
-        }
-        (Style::Walls, Some(spec)) => spec,
+    let Some(spec) = wall_template(layout, problems) else {
+        return;
     };
     if layout.post.is_none() && !layout.posts.is_empty() {
         problems.add(
@@ -88,6 +60,67 @@ pub(super) fn check_walls(
         problems.violation(&v);
     }
     let grid = maze.grid();
+    check_openings(spec, grid, problems);
+    if bad_template {
+        return;
+    }
+    let lines = place_walls(layout, spec, maze, geometry, problems);
+    // with posts, the walls fill each closed side between the faces of its two posts
+    let inset = post.map_or(0.0, |p| p.size / 2.0);
+    check_lines(
+        layout,
+        spec,
+        maze,
+        geometry.cell_size,
+        inset,
+        &lines,
+        problems,
+    );
+    check_walls_on_floor(layout, spec, geometry, grid, problems);
+    if let Some(post) = post {
+        check_posts(layout, spec, post, grid, geometry, problems);
+    }
+}
+
+/// The wall template of a wall layout, or `None` (with the problem added) when the style
+/// and the wall fields disagree; a line layout must carry no wall, post or walls field.
+fn wall_template<'a>(layout: &'a Layout, problems: &mut Problems) -> Option<&'a WallSpec> {
+    match (layout.style, &layout.wall) {
+        (Style::Lines, None) => {
+            if !layout.walls.is_empty() {
+                problems.add("walls", "only a layout with style \"walls\" has walls");
+            }
+            if layout.post.is_some() {
+                problems.add(
+                    "post",
+                    "only a layout with style \"walls\" has a post template",
+                );
+            } else if !layout.posts.is_empty() {
+                problems.add("posts", "only a layout with style \"walls\" has posts");
+            }
+            None
+        }
+        (Style::Lines, Some(_)) => {
+            problems.add(
+                "wall",
+                "only a layout with style \"walls\" has a wall template",
+            );
+            None
+        }
+        (Style::Walls, None) => {
+            problems.add(
+                "wall",
+                "missing: a layout with style \"walls\" needs its wall template",
+            );
+            None
+        }
+        (Style::Walls, Some(spec)) => Some(spec),
+    }
+}
+
+/// Checks that every opening of `spec` is on the outer boundary of `grid` and none is
+/// listed twice.
+fn check_openings(spec: &WallSpec, grid: Grid, problems: &mut Problems) {
     for (index, opening) in spec.openings.iter().enumerate() {
         if opening_side(grid, opening).is_none() {
             problems.add(
@@ -107,33 +140,50 @@ pub(super) fn check_walls(
             );
         }
     }
-    if bad_template {
-        return;
-    }
-    let lines = place_walls(layout, spec, maze, geometry, problems);
-    let c = geometry.cell_size;
-    // with posts, the walls fill each closed side between the faces of its two posts
-    let inset = post.map_or(0.0, |p| p.size / 2.0);
+}
+
+/// Runs [`check_line`] on every lattice line of both axes, the walls placed on them in
+/// `lines`; `cell` is the cell size and `inset` half a post's side (0 without posts).
+fn check_lines(
+    layout: &Layout,
+    spec: &WallSpec,
+    maze: &Maze,
+    cell: f64,
+    inset: f64,
+    lines: &BTreeMap<(WallAxis, u32), Vec<Span>>,
+    problems: &mut Problems,
+) {
+    let grid = maze.grid();
     for axis in [WallAxis::AlongX, WallAxis::AlongY] {
         let (count, sides) = lattice(grid, axis);
         for line in 0..count {
             let closed: Vec<(u32, (f64, f64))> = (0..sides)
                 .filter(|&k| is_closed(maze, &spec.openings, axis, line, k))
                 .map(|k| {
-                    let from = (f64::from(k) - 0.5) * c;
-                    (k, (from + inset, from + c - inset))
+                    let from = (f64::from(k) - 0.5) * cell;
+                    (k, (from + inset, from + cell - inset))
                 })
                 .collect();
             let spans = lines.get(&(axis, line)).map(Vec::as_slice).unwrap_or(&[]);
             let on_line = Line {
                 axis,
                 index: line,
-                cell: c,
+                cell,
                 inset,
             };
             check_line(layout, maze, on_line, &closed, spans, problems);
         }
     }
+}
+
+/// Checks that no wall reaches off the floor.
+fn check_walls_on_floor(
+    layout: &Layout,
+    spec: &WallSpec,
+    geometry: &Geometry,
+    grid: Grid,
+    problems: &mut Problems,
+) {
     let tolerance = limits::floor_tolerance(geometry, grid);
     for (index, pose) in layout.walls.iter().enumerate() {
         if !on_floor(pose, spec, layout.floor.size, tolerance) {
@@ -148,9 +198,6 @@ pub(super) fn check_walls(
                 ),
             );
         }
-    }
-    if let Some(post) = post {
-        check_posts(layout, spec, post, grid, geometry, problems);
     }
 }
 
@@ -197,73 +244,19 @@ fn check_posts(
     geometry: &Geometry,
     problems: &mut Problems,
 ) {
-    let to_maze = geometry.maze_to_floor().inverse();
-    let c = geometry.cell_size;
-    let tolerance = limits::floor_tolerance(geometry, grid);
     let columns = grid.width() as usize + 1;
     // the post found at each lattice corner, corner (i, j) at j * columns + i (`NONE`: no
     // post yet); four bytes a corner, as a big grid has millions
     const NONE: u32 = u32::MAX;
     let mut at_corner: Vec<u32> = vec![NONE; columns * (grid.height() as usize + 1)];
-    for (index, pose) in layout.posts.iter().enumerate() {
-        let location = format!("posts[{index}]");
-        if !stands_on_floor(
-            &location,
-            pose,
-            spec.height,
-            "every post stands on the floor, as high as the walls",
-            problems,
-        ) {
+    for index in 0..layout.posts.len() {
+        let Some((i, j)) = post_corner(layout, spec, post, grid, geometry, index, problems) else {
             continue;
-        }
-        // a square turned a quarter is the same square
-        if (2.0 * (pose.yaw - geometry.rotation)).sin().abs() > 2.0 * YAW_TOLERANCE {
-            problems.add(
-                location.clone(),
-                format!(
-                    "at ({}, {}) has yaw {} rad: it is not square to the maze axes",
-                    pose.x, pose.y, pose.yaw
-                ),
-            );
-        }
-        if !post_on_floor(pose, post, layout.floor.size, tolerance) {
-            problems.add(
-                location.clone(),
-                format!(
-                    "at ({}, {}) reaches off the {} m x {} m floor",
-                    pose.x,
-                    pose.y,
-                    show(layout.floor.size[0]),
-                    show(layout.floor.size[1])
-                ),
-            );
-        }
-        let local = to_maze * Point2::new(pose.x, pose.y);
-        let (i, j) = ((local.x / c + 0.5).round(), (local.y / c + 0.5).round());
-        if (local.x - (i - 0.5) * c).abs() > TOLERANCE
-            || (local.y - (j - 0.5) * c).abs() > TOLERANCE
-        {
-            problems.add(
-                location,
-                format!(
-                    "at ({}, {}) does not stand on a lattice corner, where the sides of the cells meet",
-                    pose.x, pose.y
-                ),
-            );
-            continue;
-        }
-        if i < 0.0 || j < 0.0 || i > f64::from(grid.width()) || j > f64::from(grid.height()) {
-            problems.add(
-                location,
-                format!("at ({}, {}) lies off the grid", pose.x, pose.y),
-            );
-            continue;
-        }
-        let (i, j) = (i as usize, j as usize);
+        };
         match &mut at_corner[j * columns + i] {
             empty if *empty == NONE => *empty = u32::try_from(index).unwrap_or(NONE - 1),
             first => problems.add(
-                location,
+                format!("posts[{index}]"),
                 format!("duplicates posts[{first}]: two posts stand at lattice corner ({i},{j})"),
             ),
         }
@@ -280,6 +273,76 @@ fn check_posts(
             );
         }
     }
+}
+
+/// Checks post `index` of the layout: on the floor, square to the maze, on a lattice
+/// corner of `grid`. The corner `(i, j)` it stands at, or `None` when it stands at none
+/// (or a coordinate is not a number).
+fn post_corner(
+    layout: &Layout,
+    spec: &WallSpec,
+    post: &PostSpec,
+    grid: Grid,
+    geometry: &Geometry,
+    index: usize,
+    problems: &mut Problems,
+) -> Option<(usize, usize)> {
+    let location = format!("posts[{index}]");
+    let location = location.as_str();
+    let pose = &layout.posts[index];
+    if !stands_on_floor(
+        location,
+        pose,
+        spec.height,
+        "every post stands on the floor, as high as the walls",
+        problems,
+    ) {
+        return None;
+    }
+    // a square turned a quarter is the same square
+    if (2.0 * (pose.yaw - geometry.rotation)).sin().abs() > 2.0 * YAW_TOLERANCE {
+        problems.add(
+            location,
+            format!(
+                "at ({}, {}) has yaw {} rad: it is not square to the maze axes",
+                pose.x, pose.y, pose.yaw
+            ),
+        );
+    }
+    let tolerance = limits::floor_tolerance(geometry, grid);
+    if !post_on_floor(pose, post, layout.floor.size, tolerance) {
+        problems.add(
+            location,
+            format!(
+                "at ({}, {}) reaches off the {} m x {} m floor",
+                pose.x,
+                pose.y,
+                show(layout.floor.size[0]),
+                show(layout.floor.size[1])
+            ),
+        );
+    }
+    let c = geometry.cell_size;
+    let local = geometry.maze_to_floor().inverse() * Point2::new(pose.x, pose.y);
+    let (i, j) = ((local.x / c + 0.5).round(), (local.y / c + 0.5).round());
+    if (local.x - (i - 0.5) * c).abs() > TOLERANCE || (local.y - (j - 0.5) * c).abs() > TOLERANCE {
+        problems.add(
+            location,
+            format!(
+                "at ({}, {}) does not stand on a lattice corner, where the sides of the cells meet",
+                pose.x, pose.y
+            ),
+        );
+        return None;
+    }
+    if i < 0.0 || j < 0.0 || i > f64::from(grid.width()) || j > f64::from(grid.height()) {
+        problems.add(
+            location,
+            format!("at ({}, {}) lies off the grid", pose.x, pose.y),
+        );
+        return None;
+    }
+    Some((i as usize, j as usize))
 }
 
 /// A lattice line, as [`check_line`] needs it.
@@ -384,11 +447,39 @@ fn check_line(
     spans: &[Span],
     problems: &mut Problems,
 ) {
-    let (axis, line, c) = (on.axis, on.index, on.cell);
     let grid = maze.grid();
     let allowed = merge(closed.iter().map(|&(_, iv)| iv));
     let mut sorted = spans.to_vec();
     sorted.sort_by(|a, b| a.lo.total_cmp(&b.lo).then(a.wall.cmp(&b.wall)));
+    check_duplicates(&sorted, problems);
+    for span in &sorted {
+        let inside = allowed
+            .iter()
+            .any(|&(lo, hi)| span.lo >= lo - TOLERANCE && span.hi <= hi + TOLERANCE);
+        if inside {
+            continue;
+        }
+        let pose = &layout.walls[span.wall];
+        let stray = first_uncovered(span.lo, span.hi, &allowed);
+        problems.add(
+            format!("walls[{}]", span.wall),
+            stray_message(grid, on, pose, stray),
+        );
+    }
+    let drawn = merge(sorted.iter().map(|s| (s.lo, s.hi)));
+    for &(k, (lo, hi)) in closed {
+        let covered = drawn
+            .iter()
+            .any(|&(a, b)| a <= lo + TOLERANCE && b >= hi - TOLERANCE);
+        if !covered {
+            add_gap(grid, on, k, lo, first_uncovered(lo, hi, &drawn), problems);
+        }
+    }
+}
+
+/// Reports every wall of `sorted` (spans sorted by start) that stands where an earlier one
+/// does.
+fn check_duplicates(sorted: &[Span], problems: &mut Problems) {
     for pair in sorted.windows(2) {
         if (pair[0].lo - pair[1].lo).abs() < TOLERANCE
             && (pair[0].hi - pair[1].hi).abs() < TOLERANCE
@@ -402,85 +493,77 @@ fn check_line(
             );
         }
     }
+}
+
+/// What is wrong with the wall at `pose` on line `on` whose point `stray` (along the line)
+/// no closed side holds: it reaches into a post, past the grid, or into a passage or an
+/// opening.
+fn stray_message(grid: Grid, on: Line, pose: &Pose, stray: f64) -> String {
+    let (axis, line, c) = (on.axis, on.index, on.cell);
     let (_, sides) = lattice(grid, axis);
-    for span in &sorted {
-        let inside = allowed
-            .iter()
-            .any(|&(lo, hi)| span.lo >= lo - TOLERANCE && span.hi <= hi + TOLERANCE);
-        if inside {
-            continue;
-        }
-        let pose = &layout.walls[span.wall];
-        let stray = first_uncovered(span.lo, span.hi, &allowed);
-        let k = (stray / c + 0.5).floor();
-        // with posts: the lattice corner nearest the stray point, along the line
-        let corner = (stray / c + 0.5).round();
-        let message = if on.inset > 0.0
-            && (stray - (corner - 0.5) * c).abs() <= on.inset + TOLERANCE
-            && corner >= 0.0
-            && corner <= f64::from(sides)
-        {
-            let (i, j) = match axis {
-                WallAxis::AlongX => (corner as u32, line),
-                WallAxis::AlongY => (line, corner as u32),
-            };
-            format!(
-                "at ({}, {}) reaches into the post at lattice corner ({i},{j})",
+    let k = (stray / c + 0.5).floor();
+    // with posts: the lattice corner nearest the stray point, along the line
+    let corner = (stray / c + 0.5).round();
+    if on.inset > 0.0
+        && (stray - (corner - 0.5) * c).abs() <= on.inset + TOLERANCE
+        && corner >= 0.0
+        && corner <= f64::from(sides)
+    {
+        let (i, j) = match axis {
+            WallAxis::AlongX => (corner as u32, line),
+            WallAxis::AlongY => (line, corner as u32),
+        };
+        format!(
+            "at ({}, {}) reaches into the post at lattice corner ({i},{j})",
+            pose.x, pose.y
+        )
+    } else if k < 0.0 || k >= f64::from(sides) {
+        format!(
+            "at ({}, {}) sticks out past the edge of the grid",
+            pose.x, pose.y
+        )
+    } else {
+        match cells_beside(grid, axis, line, k as u32) {
+            (Some(a), Some(b)) => format!(
+                "at ({}, {}) stands in the open passage between cells {a} and {b}",
                 pose.x, pose.y
-            )
-        } else if k < 0.0 || k >= f64::from(sides) {
-            format!(
-                "at ({}, {}) sticks out past the edge of the grid",
-                pose.x, pose.y
-            )
-        } else {
-            match cells_beside(grid, axis, line, k as u32) {
-                (Some(a), Some(b)) => format!(
-                    "at ({}, {}) stands in the open passage between cells {a} and {b}",
-                    pose.x, pose.y
-                ),
-                (Some(cell), None) | (None, Some(cell)) => format!(
-                    "at ({}, {}) stands in the opening of the outer boundary beside cell {cell}",
-                    pose.x, pose.y
-                ),
-                (None, None) => unreachable!("a lattice side has a cell on one side at least"),
-            }
-        };
-        problems.add(format!("walls[{}]", span.wall), message);
-    }
-    let drawn = merge(sorted.iter().map(|s| (s.lo, s.hi)));
-    for &(k, (lo, hi)) in closed {
-        let covered = drawn
-            .iter()
-            .any(|&(a, b)| a <= lo + TOLERANCE && b >= hi - TOLERANCE);
-        if covered {
-            continue;
-        }
-        let gap = first_uncovered(lo, hi, &drawn);
-        // the posts cover the first `inset` of the side
-        let end = lo - on.inset;
-        let what = match cells_beside(grid, axis, line, k) {
-            (Some(a), Some(b)) => format!("the side between cells {a} and {b}"),
-            (Some(cell), None) | (None, Some(cell)) => format!("the outer side of cell {cell}"),
-            (None, None) => unreachable!("a lattice side has a cell on one side at least"),
-        };
-        let between = if on.inset > 0.0 {
-            " between its posts"
-        } else {
-            ""
-        };
-        problems.add(
-            format!("walls ({what})"),
-            format!(
-                "is closed but not covered gap-free by walls{between}: nothing stands {:.3} m from its {} end",
-                gap - end,
-                match axis {
-                    WallAxis::AlongX => "west",
-                    WallAxis::AlongY => "south",
-                }
             ),
-        );
+            (Some(cell), None) | (None, Some(cell)) => format!(
+                "at ({}, {}) stands in the opening of the outer boundary beside cell {cell}",
+                pose.x, pose.y
+            ),
+            (None, None) => unreachable!("a lattice side has a cell on one side at least"),
+        }
     }
+}
+
+/// Reports closed side `k` of line `on`, its walls' interval starting at `lo`, as not
+/// covered gap-free: nothing stands at `gap`.
+fn add_gap(grid: Grid, on: Line, k: u32, lo: f64, gap: f64, problems: &mut Problems) {
+    let axis = on.axis;
+    // the posts cover the first `inset` of the side
+    let end = lo - on.inset;
+    let what = match cells_beside(grid, axis, on.index, k) {
+        (Some(a), Some(b)) => format!("the side between cells {a} and {b}"),
+        (Some(cell), None) | (None, Some(cell)) => format!("the outer side of cell {cell}"),
+        (None, None) => unreachable!("a lattice side has a cell on one side at least"),
+    };
+    let between = if on.inset > 0.0 {
+        " between its posts"
+    } else {
+        ""
+    };
+    problems.add(
+        format!("walls ({what})"),
+        format!(
+            "is closed but not covered gap-free by walls{between}: nothing stands {:.3} m from its {} end",
+            gap - end,
+            match axis {
+                WallAxis::AlongX => "west",
+                WallAxis::AlongY => "south",
+            }
+        ),
+    );
 }
 
 /// Sorted, merged union of intervals (touching or overlapping within tolerance).
