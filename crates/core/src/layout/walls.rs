@@ -149,20 +149,7 @@ pub fn check_template(
     post: Option<f64>,
     naming: Naming,
 ) -> Vec<Violation> {
-    let (l, t, h, p) = match naming {
-        Naming::Options => (
-            Name::Opt(Opt::WallLength),
-            Name::Opt(Opt::WallThickness),
-            Name::Opt(Opt::WallHeight),
-            Name::Opt(Opt::PostSize),
-        ),
-        Naming::Layout => (
-            "wall.length".into(),
-            "wall.thickness".into(),
-            "wall.height".into(),
-            "post.size".into(),
-        ),
-    };
+    let (l, t, h, p) = template_names(naming);
     let mut out: Vec<Violation> = [
         limits::check_range(l.clone(), length, limits::LENGTH),
         limits::check_range(t.clone(), thickness, limits::LENGTH),
@@ -175,88 +162,135 @@ pub fn check_template(
     if !out.is_empty() || !limits::LENGTH.contains(cell_size) {
         return out;
     }
-    // every message starts with the value: `0.2 m is longer than ...`
-    let mut add = |name: &Name, value: f64, message: String| {
-        out.push(Violation {
-            name: name.clone(),
-            value: Some(show(value)),
-            message: message.into(),
-        })
-    };
     if thickness >= cell_size {
-        add(
+        out.push(starting_with_value(
             &t,
             thickness,
             format!(
                 "m is not less than the cell size {} m: the walls would close the passages",
                 show(cell_size)
             ),
-        );
+        ));
     }
-    // the stretch of a side the walls fill, and what bounds it in messages
-    let (span, bound) = match post {
-        None => (cell_size, format!("the cell size {} m", show(cell_size))),
-        Some(size) => {
-            let mut fits = true;
-            if size < thickness - limits::ROUNDING * 2.0 {
-                add(
-                    &p,
-                    size,
-                    format!(
-                        "m is thinner than the walls ({} m): their ends would show beside the posts",
-                        show(thickness)
-                    ),
-                );
-                fits = false;
-            }
-            if cell_size - size < limits::MIN_LENGTH - limits::ROUNDING * 2.0 {
-                add(
-                    &p,
-                    size,
-                    format!(
-                        "m leaves less than {} m between two posts of a {} m cell: no room for a wall",
-                        limits::MIN_LENGTH,
-                        show(cell_size)
-                    ),
-                );
-                fits = false;
-            }
-            if !fits {
-                return out;
-            }
-            let span = round_um(cell_size - size);
-            (
-                span,
-                format!(
-                    "the {} m between two posts (cell {} m - post {} m)",
-                    show(span),
-                    show(cell_size),
-                    show(size)
-                ),
-            )
-        }
+    let Some((span, bound)) = wall_span(cell_size, thickness, post, &p, &mut out) else {
+        return out;
     };
+    check_length(length, span, &bound, post.is_some(), &l, &mut out);
+    out
+}
+
+/// The names of the wall length, thickness, height and post size in `naming`.
+fn template_names(naming: Naming) -> (Name, Name, Name, Name) {
+    match naming {
+        Naming::Options => (
+            Name::Opt(Opt::WallLength),
+            Name::Opt(Opt::WallThickness),
+            Name::Opt(Opt::WallHeight),
+            Name::Opt(Opt::PostSize),
+        ),
+        Naming::Layout => (
+            "wall.length".into(),
+            "wall.thickness".into(),
+            "wall.height".into(),
+            "post.size".into(),
+        ),
+    }
+}
+
+/// A violation of `name`, whose message starts with the value: `0.2 m is longer than ...`.
+fn starting_with_value(name: &Name, value: f64, message: String) -> Violation {
+    Violation {
+        name: name.clone(),
+        value: Some(show(value)),
+        message: message.into(),
+    }
+}
+
+/// The stretch of a side the walls fill, and what bounds it in messages: the cell, or
+/// with a post of side `post` (named `p`) the cell less the post. `None` (with the
+/// violations added to `out`) when the post is thinner than the walls or leaves no room
+/// for one.
+fn wall_span(
+    cell_size: f64,
+    thickness: f64,
+    post: Option<f64>,
+    p: &Name,
+    out: &mut Vec<Violation>,
+) -> Option<(f64, String)> {
+    let Some(size) = post else {
+        return Some((cell_size, format!("the cell size {} m", show(cell_size))));
+    };
+    let mut fits = true;
+    if size < thickness - limits::ROUNDING * 2.0 {
+        out.push(starting_with_value(
+            p,
+            size,
+            format!(
+                "m is thinner than the walls ({} m): their ends would show beside the posts",
+                show(thickness)
+            ),
+        ));
+        fits = false;
+    }
+    if cell_size - size < limits::MIN_LENGTH - limits::ROUNDING * 2.0 {
+        out.push(starting_with_value(
+            p,
+            size,
+            format!(
+                "m leaves less than {} m between two posts of a {} m cell: no room for a wall",
+                limits::MIN_LENGTH,
+                show(cell_size)
+            ),
+        ));
+        fits = false;
+    }
+    if !fits {
+        return None;
+    }
+    let span = round_um(cell_size - size);
+    Some((
+        span,
+        format!(
+            "the {} m between two posts (cell {} m - post {} m)",
+            show(span),
+            show(cell_size),
+            show(size)
+        ),
+    ))
+}
+
+/// Checks the wall `length` (named `l`) against the `span` a side leaves for walls
+/// (`bound` in messages): at most the span, at least the span /
+/// [`limits::MAX_SEGMENTS_PER_PASSAGE`].
+fn check_length(
+    length: f64,
+    span: f64,
+    bound: &str,
+    posts: bool,
+    l: &Name,
+    out: &mut Vec<Violation>,
+) {
     if length > span + limits::ROUNDING * 2.0 {
-        let into = if post.is_some() {
+        let into = if posts {
             "a post"
         } else {
             "the next side, which may be open"
         };
-        add(
-            &l,
+        out.push(starting_with_value(
+            l,
             length,
             format!("m is longer than {bound}: a wall would reach into {into}",),
-        );
+        ));
     }
     let shortest = span / limits::MAX_SEGMENTS_PER_PASSAGE as f64;
     if length < shortest - limits::ROUNDING * 2.0 {
-        let over = if post.is_some() {
+        let over = if posts {
             format!("(cell - post) {}", show(span))
         } else {
             "cell".to_string()
         };
-        add(
-            &l,
+        out.push(starting_with_value(
+            l,
             length,
             format!(
                 "m is shorter than {over} / {} = {} m: a side may take at most {} copies",
@@ -264,9 +298,8 @@ pub fn check_template(
                 show(shortest),
                 limits::MAX_SEGMENTS_PER_PASSAGE
             ),
-        );
+        ));
     }
-    out
 }
 
 /// Copies of `Wall` per stretch `cell_size` long: `ceil(cell / length)`, at least 1.
@@ -562,10 +595,38 @@ pub fn into_walls_with(
     });
     let post_size = post.as_ref().map(|p| p.size);
     let span = geometry.cell_size - post_size.unwrap_or(0.0);
+    check_wall_count(grid, span, options)?;
+    let spec = WallSpec {
+        length: round_um(options.length),
+        thickness: round_um(options.thickness),
+        height: round_um(options.height),
+        openings,
+    };
+    let reach = spec.thickness.max(post_size.unwrap_or(0.0));
+    fit_floor(layout, grid, &geometry, reach, auto_floor)?;
+    layout.walls = wall_poses(maze, &geometry, &spec, post_size);
+    layout.posts = match post_size {
+        Some(_) => post_poses(grid, &geometry, spec.height),
+        None => Vec::new(),
+    };
+    layout.style = Style::Walls;
+    layout.wall = Some(spec);
+    layout.post = post;
+    layout.segments.clear();
+    Ok(())
+}
+
+/// Refuses walls of `options` that, `span` of each side theirs to fill, could need more
+/// copies (walls and posts) than a layout may hold.
+fn check_wall_count(grid: Grid, span: f64, options: &WallOptions) -> Result<(), Message> {
     let per_side = copies_per_side(span, round_um(options.length)) as u64;
     let sides = u64::from(grid.width()) * (u64::from(grid.height()) + 1)
         + u64::from(grid.height()) * (u64::from(grid.width()) + 1);
-    let posts = if post.is_some() { post_count(grid) } else { 0 };
+    let posts = if options.posts.is_some() {
+        post_count(grid)
+    } else {
+        0
+    };
     if sides * per_side + posts > limits::MAX_SEGMENTS {
         return Err(Message::text(format!(
             "a {grid} maze with {per_side} wall copies a side could need {} walls{}, more than the {} copies a layout may hold: use a smaller ",
@@ -581,15 +642,21 @@ pub fn into_walls_with(
         .and(" or a longer ")
         .and_opt(Opt::WallLength));
     }
-    let spec = WallSpec {
-        length: round_um(options.length),
-        thickness: round_um(options.thickness),
-        height: round_um(options.height),
-        openings,
-    };
-    let reach = spec.thickness.max(post_size.unwrap_or(0.0));
-    let need = extent_needed(&wall_extent_corners(grid, &geometry, reach));
-    let tolerance = limits::floor_tolerance(&geometry, grid);
+    Ok(())
+}
+
+/// Makes the layout's floor hold walls reaching `reach` past the lattice lines: refused
+/// when it is too small and `auto_floor` is off, else grown in whole panels (at most to
+/// the largest floor).
+fn fit_floor(
+    layout: &mut Layout,
+    grid: Grid,
+    geometry: &Geometry,
+    reach: f64,
+    auto_floor: bool,
+) -> Result<(), Message> {
+    let need = extent_needed(&wall_extent_corners(grid, geometry, reach));
+    let tolerance = limits::floor_tolerance(geometry, grid);
     if !fits_within(need, layout.floor.size, tolerance) {
         if !auto_floor {
             return Err(Message::text(format!(
@@ -619,15 +686,6 @@ pub fn into_walls_with(
         }
         layout.floor.size = size;
     }
-    layout.walls = wall_poses(maze, &geometry, &spec, post_size);
-    layout.posts = match post_size {
-        Some(_) => post_poses(grid, &geometry, spec.height),
-        None => Vec::new(),
-    };
-    layout.style = Style::Walls;
-    layout.wall = Some(spec);
-    layout.post = post;
-    layout.segments.clear();
     Ok(())
 }
 

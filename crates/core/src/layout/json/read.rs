@@ -83,27 +83,7 @@ pub fn read_from<S: SegmentSink>(
     } else {
         Segments::Kept(Vec::new(), sink_for)
     };
-    let mut index = 0;
-    let breaks = source
-        .elements(|element, at| {
-            if index as u64 >= most {
-                return Err(ScanError::Syntax(
-                    at,
-                    format!("more than {most} segments: no layout of this grid holds more"),
-                ));
-            }
-            let pose = match element {
-                Element::Segment(pose) => pose,
-                Element::Other(bytes) => parse_segment(bytes, at)?,
-            };
-            match &mut segments {
-                Segments::Streaming(sink, _) => sink.segment(index, pose),
-                Segments::Kept(kept, _) => kept.push(pose),
-            }
-            index += 1;
-            Ok(())
-        })
-        .map_err(scan_error)?;
+    let breaks = segments.read_list(&mut source, most).map_err(scan_error)?;
     let mut tail = Vec::new();
     source
         .rest(&mut tail, MAX_FIELDS_BYTES.saturating_sub(head.len()))
@@ -123,22 +103,7 @@ pub fn read_from<S: SegmentSink>(
     head.push(b']');
     head.extend_from_slice(&tail);
     let fields = parse_fields(&head, name)?;
-    match segments {
-        Segments::Streaming(sink, layout) => {
-            // The head was complete, so a known field after the list is a duplicate, which
-            // serde refused above, or one of a wall layout's, which cannot come with
-            // segments (the sink saw a line layout); an unknown one is refused here.
-            let whole = fields.into_layout(name)?;
-            if wall_fields(&whole) != wall_fields(&layout) {
-                return Err(format_error(
-                    name,
-                    "a wall layout's fields (`style`, `wall`, `walls`, `post`, `posts`) follow line segments: a layout draws lines or walls, not both".to_string(),
-                ));
-            }
-            Ok((*layout, sink))
-        }
-        Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
-    }
+    segments.finish_with(fields, name)
 }
 
 /// The most segments a layout of `grid` may hold: every passage drawn with the most
@@ -176,6 +141,57 @@ enum Segments<S, F> {
     Streaming(S, Box<Layout>),
     /// Kept, for a sink made once the fields after the list are read.
     Kept(Vec<Pose>, F),
+}
+
+impl<S: SegmentSink, F: FnOnce(&Layout) -> S> Segments<S, F> {
+    /// Reads the segment list of `source` into these, refusing more than `most`; how many
+    /// line breaks the list held.
+    fn read_list<R: Read>(
+        &mut self,
+        source: &mut Source<R>,
+        most: u64,
+    ) -> Result<usize, ScanError> {
+        let mut index = 0;
+        source.elements(|element, at| {
+            if index as u64 >= most {
+                return Err(ScanError::Syntax(
+                    at,
+                    format!("more than {most} segments: no layout of this grid holds more"),
+                ));
+            }
+            let pose = match element {
+                Element::Segment(pose) => pose,
+                Element::Other(bytes) => parse_segment(bytes, at)?,
+            };
+            match self {
+                Segments::Streaming(sink, _) => sink.segment(index, pose),
+                Segments::Kept(kept, _) => kept.push(pose),
+            }
+            index += 1;
+            Ok(())
+        })
+    }
+
+    /// The layout and its sink once `fields` (the whole document but the list) are read:
+    /// a streamed layout must not gain a wall layout's fields after its segments.
+    fn finish_with(self, fields: Fields, name: &str) -> Result<(Layout, S), ReadError> {
+        match self {
+            Segments::Streaming(sink, layout) => {
+                // The head was complete, so a known field after the list is a duplicate,
+                // which serde refused above, or one of a wall layout's, which cannot come
+                // with segments (the sink saw a line layout); an unknown one is refused here.
+                let whole = fields.into_layout(name)?;
+                if wall_fields(&whole) != wall_fields(&layout) {
+                    return Err(format_error(
+                        name,
+                        "a wall layout's fields (`style`, `wall`, `walls`, `post`, `posts`) follow line segments: a layout draws lines or walls, not both".to_string(),
+                    ));
+                }
+                Ok((*layout, sink))
+            }
+            Segments::Kept(kept, sink_for) => finish(fields, kept, name, sink_for),
+        }
+    }
 }
 
 /// The layout from its `fields`, and a sink fed `kept` then any segments serde read.
