@@ -18,49 +18,66 @@ const RELEASE: &str = "R2023b";
 /// The `.wbt` document.
 pub(super) fn document(s: &Solids) -> String {
     let mut out = String::new();
-    line(&mut out, format_args!("#VRML_SIM {RELEASE} utf8"));
-    line(&mut out, format_args!(""));
+    world(&mut out, s);
+    floor_solid(&mut out, s);
+    maze_solid(&mut out, s);
+    out
+}
+
+/// The header, the world info, the viewpoint above the floor and the background.
+fn world(out: &mut String, s: &Solids) {
+    line(out, format_args!("#VRML_SIM {RELEASE} utf8"));
+    line(out, format_args!(""));
     for proto in ["TexturedBackground", "TexturedBackgroundLight"] {
         line(
-            &mut out,
+            out,
             format_args!(
                 "EXTERNPROTO \"https://raw.githubusercontent.com/cyberbotics/webots/{RELEASE}/projects/objects/backgrounds/protos/{proto}.proto\""
             ),
         );
     }
-    line(&mut out, format_args!(""));
-    line(&mut out, format_args!("WorldInfo {{"));
-    line(&mut out, format_args!("  info [ {} ]", quoted(&s.title)));
-    line(&mut out, format_args!("}}"));
+    line(out, format_args!(""));
+    line(out, format_args!("WorldInfo {{"));
+    line(out, format_args!("  info [ {} ]", quoted(&s.title)));
+    line(out, format_args!("}}"));
     let height = s.floor[0].max(s.floor[1]);
-    line(&mut out, format_args!("Viewpoint {{"));
-    line(&mut out, format_args!("  orientation 0 1 0 1.5708"));
-    line(&mut out, format_args!("  position 0 0 {}", num(height)));
-    line(&mut out, format_args!("}}"));
-    line(&mut out, format_args!("TexturedBackground {{"));
-    line(&mut out, format_args!("}}"));
-    line(&mut out, format_args!("TexturedBackgroundLight {{"));
-    line(&mut out, format_args!("}}"));
-    line(&mut out, format_args!("Solid {{"));
-    line(&mut out, format_args!("  name \"floor\""));
-    line(&mut out, format_args!("  children ["));
+    line(out, format_args!("Viewpoint {{"));
+    line(out, format_args!("  orientation 0 1 0 1.5708"));
+    line(out, format_args!("  position 0 0 {}", num(height)));
+    line(out, format_args!("}}"));
+    line(out, format_args!("TexturedBackground {{"));
+    line(out, format_args!("}}"));
+    line(out, format_args!("TexturedBackgroundLight {{"));
+    line(out, format_args!("}}"));
+}
+
+/// The floor: a plane that collides.
+fn floor_solid(out: &mut String, s: &Solids) {
+    line(out, format_args!("Solid {{"));
+    line(out, format_args!("  name \"floor\""));
+    line(out, format_args!("  children ["));
     let plane = format!("Plane {{ size {} }}", nums(&s.floor));
     line(
-        &mut out,
+        out,
         format_args!(
             "    Shape {{ appearance {} geometry {plane} }}",
             look(&s.floor_rgb)
         ),
     );
-    line(&mut out, format_args!("  ]"));
-    line(&mut out, format_args!("  boundingObject {plane}"));
-    line(&mut out, format_args!("}}"));
-    line(&mut out, format_args!("Solid {{"));
-    line(&mut out, format_args!("  name \"maze\""));
-    line(&mut out, format_args!("  children ["));
+    line(out, format_args!("  ]"));
+    line(out, format_args!("  boundingObject {plane}"));
+    line(out, format_args!("}}"));
+}
+
+/// The maze's walls or lines and the two markers, one solid whose bounding object is the
+/// parts that collide.
+fn maze_solid(out: &mut String, s: &Solids) {
+    line(out, format_args!("Solid {{"));
+    line(out, format_args!("  name \"maze\""));
+    line(out, format_args!("  children ["));
     for b in &s.maze {
         line(
-            &mut out,
+            out,
             format_args!(
                 "    DEF {} Pose {{ {} children [ Shape {{ appearance {} geometry Box {{ size {} }} }} ] }}",
                 b.name,
@@ -72,7 +89,7 @@ pub(super) fn document(s: &Solids) -> String {
     }
     for m in [&s.start, &s.end] {
         line(
-            &mut out,
+            out,
             format_args!(
                 "    Solid {{ name \"{}\" {} children [ Shape {{ appearance {} geometry Box {{ size {} }} }} ] }}",
                 m.name,
@@ -82,14 +99,14 @@ pub(super) fn document(s: &Solids) -> String {
             ),
         );
     }
-    line(&mut out, format_args!("  ]"));
+    line(out, format_args!("  ]"));
     let solid: Vec<_> = s.maze.iter().filter(|b| b.part.collides()).collect();
     if !solid.is_empty() {
-        line(&mut out, format_args!("  boundingObject Group {{"));
-        line(&mut out, format_args!("    children ["));
+        line(out, format_args!("  boundingObject Group {{"));
+        line(out, format_args!("    children ["));
         for b in solid {
             line(
-                &mut out,
+                out,
                 format_args!(
                     "      Pose {{ {} children [ Box {{ size {} }} ] }}",
                     placement(b),
@@ -97,11 +114,10 @@ pub(super) fn document(s: &Solids) -> String {
                 ),
             );
         }
-        line(&mut out, format_args!("    ]"));
-        line(&mut out, format_args!("  }}"));
+        line(out, format_args!("    ]"));
+        line(out, format_args!("  }}"));
     }
-    line(&mut out, format_args!("}}"));
-    out
+    line(out, format_args!("}}"));
 }
 
 /// `translation x y z rotation 0 0 1 yaw`.

@@ -251,31 +251,103 @@ struct Picture {
     scale_bar: Vec<(Shape, Colour)>,
 }
 
+/// Pixels per metre for a window `wx` by `wy` metres: as `options` ask, or
+/// [`PX_PER_METRE`] at most so the longest side is at most [`MAX_SIDE`] pixels; refused
+/// when the asked scale makes a side longer.
+fn picture_scale(options: &RenderOptions, wx: f64, wy: f64) -> Result<f64> {
+    let scale = options
+        .scale
+        .px_per_metre(wx, PX_PER_METRE.min(MAX_SIDE / wx.max(wy)));
+    let too_big = wx.max(wy) * scale - 1e-6;
+    let fits = too_big <= MAX_SIDE; // a NaN size is refused too
+    if !fits {
+        return Err(Message::text(format!(
+            "the picture would be {} px on its longest side; a PNG is at most {MAX_SIDE} px (use a smaller ",
+            too_big.ceil()
+        ))
+        .and_opt(Opt::PxPerM)
+        .and(" or ")
+        .and_opt(Opt::Width)
+        .and(")")
+        .into());
+    }
+    Ok(scale)
+}
+
+/// The metre grid over a floor of `[fx, fy]` metres, as bars in pixels (`floor` maps the
+/// Floor frame to them), each at least `pixel` metres wide.
+fn grid_shapes(floor: &Affine, [fx, fy]: [f64; 2], pixel: f64) -> Vec<Shape> {
+    let visible = |metres: f64| metres.max(pixel);
+    let grid_lines = MetreGrid::for_floor([fx, fy]);
+    let mut grid = Vec::new();
+    for (at, w) in grid_lines.lines(fx) {
+        grid.push(floor.bar([at, -fy / 2.0, at, fy / 2.0], visible(w)));
+    }
+    for (at, w) in grid_lines.lines(fy) {
+        grid.push(floor.bar([-fx / 2.0, at, fx / 2.0, at], visible(w)));
+    }
+    grid
+}
+
+/// A robot's run in pixels (`floor` maps the Floor frame to them, `scale` pixels a
+/// metre): bars `run_width` metres wide with round joins, coloured by time.
+fn run_shapes(
+    floor: &Affine,
+    trajectory: &[Sample],
+    run_width: f64,
+    scale: f64,
+) -> Vec<(Shape, Colour)> {
+    let mut run = Vec::new();
+    for (points, colour) in trajectory::bands(trajectory) {
+        for pair in points.windows(2) {
+            let [[ax, ay], [bx, by]] = [pair[0], pair[1]];
+            run.push((floor.bar([ax, ay, bx, by], run_width), colour));
+        }
+        for &[x, y] in &points {
+            let disc = Shape::Disc(floor.apply(x, y), run_width / 2.0 * scale);
+            run.push((disc, colour));
+        }
+    }
+    run
+}
+
+/// The scale bar of `window` in pixels (`floor` maps the Floor frame to them, `scale`
+/// pixels a metre): its outlined box and its label's strokes, in painting order.
+fn scale_bar_shapes(floor: &Affine, window: [f64; 4], scale: f64) -> Vec<(Shape, Colour)> {
+    let visible = |metres: f64| metres.max(1.0 / scale);
+    let bar = ScaleBar::for_window(window);
+    let outline = visible(bar.outline_width()) / 2.0;
+    let (x1, y1) = (bar.x + bar.length, bar.y + bar.unit);
+    let mut scale_bar = vec![
+        (
+            floor.rect([bar.x - outline, bar.y - outline, x1 + outline, y1 + outline]),
+            INK,
+        ),
+        (
+            floor.rect([bar.x + outline, bar.y + outline, x1 - outline, y1 - outline]),
+            PAPER,
+        ),
+    ];
+    let ink = visible(bar.label_width());
+    for stroke in bar.label_strokes() {
+        scale_bar.push((floor.bar(stroke, ink), INK));
+        for end in [[stroke[0], stroke[1]], [stroke[2], stroke[3]]] {
+            let centre = floor.apply(end[0], end[1]);
+            scale_bar.push((Shape::Disc(centre, ink / 2.0 * scale), INK));
+        }
+    }
+    scale_bar
+}
+
 impl Picture {
     /// The picture of `layout`: [`PX_PER_METRE`], or less so the longest side is at most
     /// [`MAX_SIDE`] pixels.
     fn of(layout: &Layout, options: &RenderOptions, trajectory: &[Sample]) -> Result<Self> {
         let view = MazeView::of(layout, options)?;
-        let [fx, fy] = layout.floor.size;
         let window = super::window(layout, options);
         let [wx0, wy0, wx1, wy1] = window;
         let (wx, wy) = (wx1 - wx0, wy1 - wy0);
-        let scale = options
-            .scale
-            .px_per_metre(wx, PX_PER_METRE.min(MAX_SIDE / wx.max(wy)));
-        let too_big = wx.max(wy) * scale - 1e-6;
-        let fits = too_big <= MAX_SIDE; // a NaN size is refused too
-        if !fits {
-            return Err(Message::text(format!(
-                "the picture would be {} px on its longest side; a PNG is at most {MAX_SIDE} px (use a smaller ",
-                too_big.ceil()
-            ))
-            .and_opt(Opt::PxPerM)
-            .and(" or ")
-            .and_opt(Opt::Width)
-            .and(")")
-            .into());
-        }
+        let scale = picture_scale(options, wx, wy)?;
         // The epsilon keeps an exact fit (16384.000000001) from adding a pixel.
         let side = |metres: f64| ((metres * scale - 1e-6).ceil().clamp(1.0, MAX_SIDE)) as u32;
         let (width, height) = (side(wx), side(wy));
@@ -299,14 +371,7 @@ impl Picture {
         };
         let pixel = 1.0 / scale;
         let visible = |metres: f64| metres.max(pixel);
-        let grid_lines = MetreGrid::for_floor(layout.floor.size);
-        let mut grid = Vec::new();
-        for (at, w) in grid_lines.lines(fx) {
-            grid.push(floor.bar([at, -fy / 2.0, at, fy / 2.0], visible(w)));
-        }
-        for (at, w) in grid_lines.lines(fy) {
-            grid.push(floor.bar([-fx / 2.0, at, fx / 2.0, at], visible(w)));
-        }
+        let grid = grid_shapes(&floor, layout.floor.size, pixel);
         let c = layout.grid.cell_size;
         let marker = |cell: Cell| {
             let half = visible(c) / 2.0;
@@ -331,39 +396,13 @@ impl Picture {
                 Shape::Disc(p, r) => Shape::Disc(maze_frame.apply(p.x, p.y), r * scale),
             })
             .collect();
-        let run_width = visible(layout.line.width * trajectory::WIDTH_SHARE);
-        let mut run = Vec::new();
-        for (points, colour) in trajectory::bands(trajectory) {
-            for pair in points.windows(2) {
-                let [[ax, ay], [bx, by]] = [pair[0], pair[1]];
-                run.push((floor.bar([ax, ay, bx, by], run_width), colour));
-            }
-            for &[x, y] in &points {
-                let disc = Shape::Disc(floor.apply(x, y), run_width / 2.0 * scale);
-                run.push((disc, colour));
-            }
-        }
-        let bar = ScaleBar::for_window(window);
-        let outline = visible(bar.outline_width()) / 2.0;
-        let (x1, y1) = (bar.x + bar.length, bar.y + bar.unit);
-        let mut scale_bar = vec![
-            (
-                floor.rect([bar.x - outline, bar.y - outline, x1 + outline, y1 + outline]),
-                INK,
-            ),
-            (
-                floor.rect([bar.x + outline, bar.y + outline, x1 - outline, y1 - outline]),
-                PAPER,
-            ),
-        ];
-        let ink = visible(bar.label_width());
-        for stroke in bar.label_strokes() {
-            scale_bar.push((floor.bar(stroke, ink), INK));
-            for end in [[stroke[0], stroke[1]], [stroke[2], stroke[3]]] {
-                let centre = floor.apply(end[0], end[1]);
-                scale_bar.push((Shape::Disc(centre, ink / 2.0 * scale), INK));
-            }
-        }
+        let run = run_shapes(
+            &floor,
+            trajectory,
+            visible(layout.line.width * trajectory::WIDTH_SHARE),
+            scale,
+        );
+        let scale_bar = scale_bar_shapes(&floor, window, scale);
         Ok(Self {
             width,
             height,

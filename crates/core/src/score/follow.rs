@@ -142,15 +142,55 @@ pub fn follow(
 ) -> Result<Followed, FollowError> {
     let deadline = Instant::now() + options.timeout;
     follower.find(&options.robot, &options.floor)?;
-    let interrupted = || {
-        options
-            .interrupt
-            .as_ref()
-            .is_some_and(|i| i.load(Ordering::SeqCst))
-    };
+    let Started {
+        joined,
+        started_here,
+    } = start_simulation(follower, options, deadline)?;
+    let mut run = Run::default();
+    let incomplete = sample_run(follower, grader, options, deadline, joined, &mut run);
+    if joined {
+        // a failure here changes nothing of the run seen; the driver's stop ends stepping
+        let _ = follower.leave();
+    }
+    if started_here {
+        // the run is over either way; a failure to stop is reported as one more reason
+        if let Err(e) = follower.set_running(false) {
+            let why = format!("the simulation could not be stopped: {e}");
+            return Ok(run.finish(Some(
+                incomplete.map_or(why.clone(), |i| format!("{i}; {why}")),
+            )));
+        }
+    }
+    Ok(run.finish(incomplete))
+}
+
+/// How [`start_simulation`] left the simulation.
+struct Started {
+    /// In step with a driver: every step is seen, and the driver stops the simulation.
+    joined: bool,
+    /// Started by this follower (without a driver): it stops the simulation at the end.
+    started_here: bool,
+}
+
+/// Whether the interrupt of `options` was raised.
+fn interrupted(options: &FollowOptions) -> bool {
+    options
+        .interrupt
+        .as_ref()
+        .is_some_and(|i| i.load(Ordering::SeqCst))
+}
+
+/// Gets the simulation running before `deadline`: waits a while for a driver to start it
+/// if asked to start it, joins a driver's stepping, starts it if asked, then waits for it
+/// to run (an error if it does not: nothing was changed).
+fn start_simulation(
+    follower: &mut dyn Follower,
+    options: &FollowOptions,
+    deadline: Instant,
+) -> Result<Started, FollowError> {
     if options.start_simulation && !follower.is_running()? {
         let wait = (Instant::now() + DRIVER_WAIT).min(deadline);
-        while follower.awaits_driver()? && Instant::now() < wait && !interrupted() {
+        while follower.awaits_driver()? && Instant::now() < wait && !interrupted(options) {
             if follower.is_running()? {
                 break;
             }
@@ -166,7 +206,7 @@ pub fn follow(
         started_here = !joined;
     }
     while !follower.is_running()? {
-        if Instant::now() >= deadline || interrupted() {
+        if Instant::now() >= deadline || interrupted(options) {
             return Err(FollowError::Connection(format!(
                 "the simulation did not start within {} s; nothing was changed",
                 options.timeout.as_secs_f64()
@@ -174,9 +214,25 @@ pub fn follow(
         }
         std::thread::sleep(POLL * 5);
     }
-    let mut run = Run::default();
-    let incomplete = loop {
-        if interrupted() {
+    Ok(Started {
+        joined,
+        started_here,
+    })
+}
+
+/// Samples every step seen into `run` (stepping the simulation when `joined` to a
+/// driver) until the run is over: `None` if it ended as `options.until` asks, else why it
+/// ended early.
+fn sample_run(
+    follower: &mut dyn Follower,
+    grader: &Grader,
+    options: &FollowOptions,
+    deadline: Instant,
+    joined: bool,
+    run: &mut Run,
+) -> Option<String> {
+    loop {
+        if interrupted(options) {
             break Some("interrupted".to_string());
         }
         if Instant::now() >= deadline {
@@ -213,21 +269,7 @@ pub fn follow(
         } else {
             std::thread::sleep(POLL);
         }
-    };
-    if joined {
-        // a failure here changes nothing of the run seen; the driver's stop ends stepping
-        let _ = follower.leave();
     }
-    if started_here {
-        // the run is over either way; a failure to stop is reported as one more reason
-        if let Err(e) = follower.set_running(false) {
-            let why = format!("the simulation could not be stopped: {e}");
-            return Ok(run.finish(Some(
-                incomplete.map_or(why.clone(), |i| format!("{i}; {why}")),
-            )));
-        }
-    }
-    Ok(run.finish(incomplete))
 }
 
 /// The samples gathered so far and the wall-clock times that matter.

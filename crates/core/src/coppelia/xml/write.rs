@@ -219,6 +219,26 @@ fn common(w: &mut Writer, o: &XmlObject, layer: i32) {
     w.close("assembling");
     w.leaf("hierarchyColorIndex", "-1");
     w.leaf("collectionSelfCollisionIndicator", "0");
+    object_properties(w, o);
+    w.leaf("layer", &layer.to_string());
+    w.leaf("childOrder", "-1");
+    w.open("switches");
+    w.flag("modelBase", o.model_base);
+    w.close("switches");
+    manipulation(w);
+    w.floats("sizeFactor", &[1.0]);
+    w.leaf("scriptExecPriority", "1");
+    w.floats("sizeValues", &[1.0, 1.0, 1.0]);
+    w.floats("transparentObjectDistanceOffset", &[0.0]);
+    w.leaf("authorizedViewableObjects", "-1");
+    w.leaf("extensionString", "");
+    w.leaf("modelAcknowledgement", "");
+    w.close("common");
+}
+
+/// The object, special and model property blocks of `<common>`: selectable, and
+/// collidable, measurable, detectable and renderable as `o.special` says.
+fn object_properties(w: &mut Writer, o: &XmlObject) {
     w.open("localObjectProperty");
     w.flag("hierarchyCollapsed", false);
     w.flag("selectable", true);
@@ -260,11 +280,10 @@ fn common(w: &mut Writer, o: &XmlObject, layer: i32) {
         w.flag(tag, false);
     }
     w.close("localModelProperty");
-    w.leaf("layer", &layer.to_string());
-    w.leaf("childOrder", "-1");
-    w.open("switches");
-    w.flag("modelBase", o.model_base);
-    w.close("switches");
+}
+
+/// The `<manipulation>` block of `<common>`: CoppeliaSim's defaults.
+fn manipulation(w: &mut Writer) {
     w.open("manipulation");
     w.leaf("permissions", "35");
     for (tag, relative_to) in [("translation", "0"), ("rotation", "2")] {
@@ -277,14 +296,6 @@ fn common(w: &mut Writer, o: &XmlObject, layer: i32) {
         w.close(tag);
     }
     w.close("manipulation");
-    w.floats("sizeFactor", &[1.0]);
-    w.leaf("scriptExecPriority", "1");
-    w.floats("sizeValues", &[1.0, 1.0, 1.0]);
-    w.floats("transparentObjectDistanceOffset", &[0.0]);
-    w.leaf("authorizedViewableObjects", "-1");
-    w.leaf("extensionString", "");
-    w.leaf("modelAcknowledgement", "");
-    w.close("common");
 }
 
 /// A `<color>` block with this ambient-diffuse colour and CoppeliaSim's defaults otherwise.
