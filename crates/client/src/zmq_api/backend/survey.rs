@@ -7,17 +7,104 @@ use std::collections::{HashMap, HashSet};
 
 use ciborium::Value;
 
-use super::{LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
+use super::{Known, LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
 use crate::draw::backend::{Backend, ObjectInfo};
 use crate::draw::error::BackendError;
 use crate::draw::mesh::parse_mesh_name;
 use crate::draw::ownership;
+use crate::draw::record::CopyRecord;
 use crate::draw::survey::Traits;
 use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
 use vrep_maze_core::coppelia::{
     HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE, OBJINTPARAM_VISIBILITY_LAYER,
 };
+
+/// The templates whose copies a survey looks for, with the copy record: how the copies
+/// found are named and told from the user's objects.
+struct Copies<'a> {
+    /// The templates' aliases: the style's template first, then those of other styles.
+    templates: Vec<&'a str>,
+    /// The templates' handles by alias.
+    handles: HashMap<&'a str, i32>,
+    /// The templates' type codes by alias: a recorded copy must still be of its
+    /// template's type.
+    kinds: HashMap<&'a str, i32>,
+    /// The copy record as read, brought up to date by [`ZmqBackend::collect`].
+    record: CopyRecord,
+    /// The copies of a template found in the maze (handle, alias): what the record holds
+    /// once surveyed.
+    present: Vec<(i32, String)>,
+    /// How many copies of each template were named so far.
+    numbered: Vec<u32>,
+}
+
+impl<'a> Copies<'a> {
+    /// The templates of `known` (their types from `found`), and the copy `record`.
+    fn new(known: &'a Known, found: &Traits, record: CopyRecord) -> Self {
+        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
+            .chain(known.foreign_aliases.iter().map(String::as_str))
+            .collect();
+        let handles: HashMap<&str, i32> = known
+            .named
+            .iter()
+            .filter(|(name, _)| templates.contains(&alias_of(name)))
+            .map(|(name, h)| (alias_of(name), *h))
+            .collect();
+        let kinds: HashMap<&str, i32> = handles
+            .iter()
+            .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
+            .collect();
+        let numbered = vec![0; templates.len()];
+        Self {
+            templates,
+            handles,
+            kinds,
+            record,
+            present: Vec::new(),
+            numbered,
+        }
+    }
+
+    /// The name of an object of alias `alias`: the next copy's of its template
+    /// (`/Line[k]`), or the alias of any other.
+    fn copy_name(&mut self, alias: &str) -> String {
+        match self.templates.iter().position(|t| *t == alias) {
+            Some(t) => {
+                self.numbered[t] += 1;
+                format!("/{alias}[{}]", self.numbered[t])
+            }
+            None => alias.to_string(),
+        }
+    }
+
+    /// Whether object `h` (in `tree`, if a child) is a copy of a template by alias and
+    /// type, unless the record does not hold it and what [`ZmqBackend::doubt`] reads of
+    /// an object named and typed like a copy says otherwise.
+    fn judge(
+        &self,
+        backend: &mut ZmqBackend,
+        (h, tree): (i32, Option<(i32, &[i32])>),
+        name: &str,
+        alias: &str,
+        kind: i32,
+        found: &mut Traits,
+    ) -> Result<bool, BackendError> {
+        let family = self
+            .templates
+            .iter()
+            .find(|t| ownership::is_copy_name(name, t) && self.kinds.get(*t) == Some(&kind));
+        let template = family.and_then(|t| self.handles.get(t).copied());
+        if let Some(template) = template.filter(|_| self.record.get(h) != Some(alias)) {
+            backend.doubt(h, template, tree, found)?;
+        }
+        let of_type = self.kinds.get(alias) == Some(&kind);
+        if of_type && self.record.get(h) == Some(alias) {
+            found.recorded.insert(h);
+        }
+        Ok(of_type && !ownership::contradicts_copy(found, h, template))
+    }
+}
 
 impl ZmqBackend {
     /// Objects (handle, name, parent) with their poses: from [`ZmqBackend::poses`] if known,
@@ -232,22 +319,8 @@ impl ZmqBackend {
         let distrust =
             parent_now.is_some_and(|now| !finite(now) || parent_before.is_some_and(|b| b != now));
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
-        let templates: Vec<&str> = std::iter::once(known.line_alias.as_str())
-            .chain(known.foreign_aliases.iter().map(String::as_str))
-            .collect();
-        // the templates' handles and types by alias: a recorded copy must still be of its
-        // template's type
-        let template_handles: HashMap<&str, i32> = known
-            .named
-            .iter()
-            .filter(|(name, _)| templates.contains(&alias_of(name)))
-            .map(|(name, h)| (alias_of(name), *h))
-            .collect();
-        let template_kinds: HashMap<&str, i32> = template_handles
-            .iter()
-            .filter_map(|(alias, h)| found.kinds.get(h).map(|k| (*alias, *k)))
-            .collect();
-        let mut record = self.copy_record()?;
+        let record = self.copy_record()?;
+        let mut copies = Copies::new(&known, &found, record);
         // the record first: a named object it holds is one of our copies (refused as a
         // template or marker), a listed one of its template's type is ours
         found.recorded.extend(
@@ -255,148 +328,19 @@ impl ZmqBackend {
                 .named
                 .iter()
                 .map(|(_, h)| *h)
-                .filter(|h| record.get(*h).is_some()),
+                .filter(|h| copies.record.get(*h).is_some()),
         );
-        let mut present = Vec::new();
-        let mut numbered = vec![0; templates.len()];
-        let mut copy_name = |alias: &str| match templates.iter().position(|t| *t == alias) {
-            Some(t) => {
-                numbered[t] += 1;
-                format!("/{alias}[{}]", numbered[t])
-            }
-            None => alias.to_string(),
-        };
-        // a copy of a template by alias and type, unless the record does not hold it and
-        // what `doubt` reads of an object named and typed like a copy says otherwise
-        let judge = |backend: &mut Self,
-                     (h, tree): (i32, Option<(i32, &[i32])>),
-                     name: &str,
-                     alias: &str,
-                     kind: i32,
-                     found: &mut Traits|
-         -> Result<bool, BackendError> {
-            let family = templates.iter().find(|t| {
-                ownership::is_copy_name(name, t) && template_kinds.get(*t) == Some(&kind)
-            });
-            let template = family.and_then(|t| template_handles.get(t).copied());
-            if let Some(template) = template.filter(|_| record.get(h) != Some(alias)) {
-                backend.doubt(h, template, tree, found)?;
-            }
-            let of_type = template_kinds.get(alias) == Some(&kind);
-            if of_type && record.get(h) == Some(alias) {
-                found.recorded.insert(h);
-            }
-            Ok(of_type && !ownership::contradicts_copy(found, h, template))
-        };
         if let Some(parent) = known.parent {
-            // options 3: first-level children only, without the dummy itself; the shapes
-            // among them in one call, so only the other children's types are asked
-            let shapes: HashSet<i32> = self
-                .client
-                .call1(
-                    "sim.getObjectsInTree",
-                    vec![int(parent.into()), int(OBJECT_SHAPE_TYPE.into()), int(3)],
-                )
-                .ok()
-                .as_ref()
-                .and_then(cbor::handles)
-                .unwrap_or_default()
-                .into_iter()
-                .collect();
-            let kids = self.handles_in(parent, 3)?;
-            let shape = |h: i32| shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
-            let new_kids: Vec<i32> = kids.iter().copied().filter(|h| !seen.contains(h)).collect();
-            for &h in &new_kids {
-                // a recorded copy that is (still) of its template's type is known without
-                // reading its alias
-                if let (Some(alias), Some(kind)) = (record.get(h), shape(h))
-                    && template_kinds.get(alias) == Some(&kind)
-                    && !self.traits.contains_key(&h)
-                {
-                    self.traits.insert(h, (alias.to_string(), kind));
-                }
-            }
-            // the others' aliases (and the non-shapes' types) together, not one by one
-            let unknown: Vec<(i32, Option<i32>)> =
-                new_kids.iter().map(|&h| (h, shape(h))).collect();
-            self.read_traits(&unknown, true)?;
-            // the recorded copies are checked as new ones would be: size, colour, children
-            let recorded: Vec<(i32, i32)> = new_kids
-                .iter()
-                .filter_map(|&h| {
-                    let (alias, kind) = self.traits.get(&h)?;
-                    let template = *template_handles.get(alias.as_str())?;
-                    (record.get(h) == Some(alias.as_str())
-                        && template_kinds.get(alias.as_str()) == Some(kind))
-                    .then_some((h, template))
-                })
-                .collect();
-            self.check_recorded(parent, &kids, &recorded, &mut found)?;
-            let mut lines = Vec::new();
-            for &h in &kids {
-                if seen.insert(h) {
-                    let (alias, kind) = self.traits(h, shape(h))?;
-                    found.kinds.insert(h, kind);
-                    let name = copy_name(&alias);
-                    let tree = Some((parent, &kids[..]));
-                    if judge(self, (h, tree), &name, &alias, kind, &mut found)? {
-                        present.push((h, alias.clone()));
-                    }
-                    if distrust {
-                        self.poses.remove(&h);
-                    }
-                    lines.push((h, name, Some(parent)));
-                }
-            }
+            let lines = self.children(parent, &mut copies, distrust, &mut seen, &mut found)?;
             out.extend(self.line_infos(lines, poses)?);
         }
-        // root objects carrying a template's alias: copies left parentless by an interrupted
-        // run (of this style's template, or of another found in the scene, which a drawing
-        // removes or, for posts, reuses). They are named `/Line[k]` whatever their path.
-        let roots: Vec<i32> = self
-            .handles_in(HANDLE_SCENE, 2)?
-            .into_iter()
-            .filter(|h| !seen.contains(h))
-            .collect();
-        let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
-        self.read_traits(&unknown, false)?;
-        let mut lines = Vec::new();
-        self.root_meshes.clear();
-        self.recorded_roots_with_children(&roots, &record, &templates, &mut found)?;
-        for h in roots {
-            if seen.contains(&h) {
-                continue;
-            }
-            // the type only of those carrying a template's alias
-            let alias = self.alias(h)?;
-            if parse_mesh_name(&alias).is_some() {
-                self.root_meshes.push(alias);
-                continue;
-            }
-            if !templates.contains(&alias.as_str()) {
-                continue;
-            }
-            let (alias, kind) = self.traits(h, None)?;
-            let parent = self
-                .client
-                .call_int("sim.getObjectParent", vec![int(h.into())])?;
-            if parent >= 0 {
-                continue; // not a root object after all
-            }
-            seen.insert(h);
-            found.kinds.insert(h, kind);
-            let name = copy_name(&alias);
-            // a copy at the root stays in the record if it is there (pasted by an
-            // interrupted run), but none is added by its alias: the root also holds the
-            // user's template when a name found one of our copies instead
-            if judge(self, (h, None), &name, &alias, kind, &mut found)?
-                && record.get(h) == Some(alias.as_str())
-            {
-                present.push((h, alias.clone()));
-            }
-            lines.push((h, name, None));
-        }
+        let lines = self.roots(&mut copies, &mut seen, &mut found)?;
         out.extend(self.line_infos(lines, poses)?);
+        let Copies {
+            mut record,
+            present,
+            ..
+        } = copies;
         // the record now holds exactly the templates' copies in the maze: those read by
         // alias are added (a maze drawn without a record pays its reads once), handles no
         // longer there are dropped
@@ -414,6 +358,134 @@ impl ZmqBackend {
         Ok((out, found))
     }
 
+    /// The maze dummy `parent`'s first-level children not `seen` yet, named as
+    /// [`ZmqBackend::collect`] says and judged by `copies` (their poses forgotten when
+    /// `distrust`): (handle, name, parent) for [`ZmqBackend::line_infos`].
+    fn children(
+        &mut self,
+        parent: i32,
+        copies: &mut Copies,
+        distrust: bool,
+        seen: &mut HashSet<i32>,
+        found: &mut Traits,
+    ) -> Result<Vec<(i32, String, Option<i32>)>, BackendError> {
+        // options 3: first-level children only, without the dummy itself; the shapes
+        // among them in one call, so only the other children's types are asked
+        let shapes: HashSet<i32> = self
+            .client
+            .call1(
+                "sim.getObjectsInTree",
+                vec![int(parent.into()), int(OBJECT_SHAPE_TYPE.into()), int(3)],
+            )
+            .ok()
+            .as_ref()
+            .and_then(cbor::handles)
+            .unwrap_or_default()
+            .into_iter()
+            .collect();
+        let kids = self.handles_in(parent, 3)?;
+        let shape = |h: i32| shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
+        let new_kids: Vec<i32> = kids.iter().copied().filter(|h| !seen.contains(h)).collect();
+        for &h in &new_kids {
+            // a recorded copy that is (still) of its template's type is known without
+            // reading its alias
+            if let (Some(alias), Some(kind)) = (copies.record.get(h), shape(h))
+                && copies.kinds.get(alias) == Some(&kind)
+                && !self.traits.contains_key(&h)
+            {
+                self.traits.insert(h, (alias.to_string(), kind));
+            }
+        }
+        // the others' aliases (and the non-shapes' types) together, not one by one
+        let unknown: Vec<(i32, Option<i32>)> = new_kids.iter().map(|&h| (h, shape(h))).collect();
+        self.read_traits(&unknown, true)?;
+        // the recorded copies are checked as new ones would be: size, colour, children
+        let recorded: Vec<(i32, i32)> = new_kids
+            .iter()
+            .filter_map(|&h| {
+                let (alias, kind) = self.traits.get(&h)?;
+                let template = *copies.handles.get(alias.as_str())?;
+                (copies.record.get(h) == Some(alias.as_str())
+                    && copies.kinds.get(alias.as_str()) == Some(kind))
+                .then_some((h, template))
+            })
+            .collect();
+        self.check_recorded(parent, &kids, &recorded, found)?;
+        let mut lines = Vec::new();
+        for &h in &kids {
+            if seen.insert(h) {
+                let (alias, kind) = self.traits(h, shape(h))?;
+                found.kinds.insert(h, kind);
+                let name = copies.copy_name(&alias);
+                let tree = Some((parent, &kids[..]));
+                if copies.judge(self, (h, tree), &name, &alias, kind, found)? {
+                    copies.present.push((h, alias.clone()));
+                }
+                if distrust {
+                    self.poses.remove(&h);
+                }
+                lines.push((h, name, Some(parent)));
+            }
+        }
+        Ok(lines)
+    }
+
+    /// Root objects not `seen` yet carrying a template's alias: copies left parentless by
+    /// an interrupted run (of this style's template, or of another found in the scene,
+    /// which a drawing removes or, for posts, reuses), judged by `copies`. They are named
+    /// `/Line[k]` whatever their path. The root meshes are remembered on the way.
+    fn roots(
+        &mut self,
+        copies: &mut Copies,
+        seen: &mut HashSet<i32>,
+        found: &mut Traits,
+    ) -> Result<Vec<(i32, String, Option<i32>)>, BackendError> {
+        let roots: Vec<i32> = self
+            .handles_in(HANDLE_SCENE, 2)?
+            .into_iter()
+            .filter(|h| !seen.contains(h))
+            .collect();
+        let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
+        self.read_traits(&unknown, false)?;
+        let mut lines = Vec::new();
+        self.root_meshes.clear();
+        self.recorded_roots_with_children(&roots, &copies.record, &copies.templates, found)?;
+        for h in roots {
+            if seen.contains(&h) {
+                continue;
+            }
+            // the type only of those carrying a template's alias
+            let alias = self.alias(h)?;
+            if parse_mesh_name(&alias).is_some() {
+                self.root_meshes.push(alias);
+                continue;
+            }
+            if !copies.templates.contains(&alias.as_str()) {
+                continue;
+            }
+            let (alias, kind) = self.traits(h, None)?;
+            let parent = self
+                .client
+                .call_int("sim.getObjectParent", vec![int(h.into())])?;
+            if parent >= 0 {
+                continue; // not a root object after all
+            }
+            seen.insert(h);
+            found.kinds.insert(h, kind);
+            let name = copies.copy_name(&alias);
+            // a copy at the root stays in the record if it is there (pasted by an
+            // interrupted run), but none is added by its alias: the root also holds the
+            // user's template when a name found one of our copies instead
+            if copies.judge(self, (h, None), &name, &alias, kind, found)?
+                && copies.record.get(h) == Some(alias.as_str())
+            {
+                copies.present.push((h, alias.clone()));
+            }
+            lines.push((h, name, None));
+        }
+        Ok(lines)
+    }
+
     /// Marks the root objects among `roots` that the copy record holds (as a copy of one of
     /// `templates`) and that have children as such in `found` (the user's, then:
     /// [`ownership::contradicts_copy`]): their trees read by one request, and only when
@@ -421,7 +493,7 @@ impl ZmqBackend {
     fn recorded_roots_with_children(
         &mut self,
         roots: &[i32],
-        record: &crate::draw::record::CopyRecord,
+        record: &CopyRecord,
         templates: &[&str],
         found: &mut Traits,
     ) -> Result<(), BackendError> {
