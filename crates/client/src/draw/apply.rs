@@ -5,12 +5,12 @@
 
 use std::collections::HashMap;
 
-use super::backend::{Backend, Edit, ObjectInfo};
+use super::backend::{Backend, Edit, ObjectInfo, Survey};
 use super::drawing::Drawing;
 use super::error::{BackendError, DrawError};
 use super::home;
 use super::lease::Claim;
-use super::names::Handles;
+use super::names::{Handles, ObjectNames};
 use super::options::ApplyOptions;
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::paste::{self, paste_round};
@@ -19,6 +19,7 @@ use super::report::{ApplyReport, Stage};
 use super::session::{Begun, EarlierLines, begin, has_line_copies, keep_home, raised_and_claimed};
 use super::survey::Traits;
 use super::verify;
+use vrep_maze_core::coppelia::frame::Frame;
 use vrep_maze_core::layout::{Pose, Style};
 
 /// Draws `drawing` into `scene` and verifies it. The idle rate is raised (idle fps 0) before
@@ -46,114 +47,39 @@ fn apply_claimed(
     progress: &mut dyn FnMut(Stage),
     claim: &Claim,
 ) -> Result<ApplyReport, DrawError> {
-    let style = drawing.style;
     let names = &opts.names;
-    let posts = !drawing.posts.is_empty();
-    let counts = ApplyReport {
-        style,
-        pieces: drawing.pieces.len(),
-        posts: drawing.posts.len(),
-        ..Default::default()
-    };
     let Begun {
         survey,
         h,
         mut report,
         objects,
-    } = begin(
-        scene,
-        opts,
-        &drawing.template_use(),
-        posts,
-        counts,
-        progress,
-    )?;
+    } = begin_drawing(scene, drawing, opts, progress)?;
     let objects = &objects;
-    let others = names.others(style);
-    // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
-    let leftovers = super::mesh::leftovers(scene, names, &h, &survey.objects)?;
-    report
-        .left_alone
-        .extend(leftovers.left_alone.iter().cloned());
-    let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
-    // the holder, ours or the user's, is never a line
-    let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
-    let mut existing = maze_pieces(objects, &h, names.template(style), &others);
-    existing.retain(|x| !mesh_maze(x));
-    // a copy of ours the user scaled or recoloured is pasted anew, never reused as it is
-    let spoiled = spoiled_copies(objects, &survey.traits, &mut report);
-    existing.retain(|x| !spoiled.contains(x));
-    let earlier = EarlierLines::of(
-        match style {
-            Style::Lines => !existing.is_empty(),
-            Style::Walls => has_line_copies(objects, &h, &names.line),
-        },
-        leftovers.ours.iter().map(|(_, name)| name.as_str()),
+    let Planned {
+        parts,
+        foreign,
+        earlier,
+        holder,
+    } = plan(scene, drawing, names, &survey, &h, objects, &mut report)?;
+    count_plan(
+        &parts,
+        &foreign,
+        drawing,
+        &survey,
+        opts,
+        &mut report,
+        progress,
     );
-    let copies_needed = drawing
-        .pieces
-        .len()
-        .saturating_sub(usize::from(drawing.template_drawn()));
-    let mut parts = vec![Part {
-        template: h.template,
-        template_drawn: drawing.template_drawn(),
-        poses: &drawing.pieces,
-        plan: paste::plan(&existing, copies_needed),
-    }];
-    if let Some(template) = h.post.filter(|_| posts) {
-        let mut existing = foreign_copies(objects, &h, &[&names.post]);
-        existing.retain(|x| !spoiled.contains(x));
-        parts.push(Part {
-            template,
-            template_drawn: false,
-            poses: &drawing.posts,
-            plan: paste::plan(&existing, drawing.posts.len()),
-        });
-    }
-    // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
-    // its posts unless this maze has posts too
-    let mut foreign = foreign_copies(objects, &h, &names.foreign(style, posts));
-    foreign.retain(|x| !mesh_maze(x));
-    report.removed_meshes = meshes.len();
-    foreign.extend(meshes);
-    foreign.extend(&spoiled);
-    if !drawing.template_drawn() {
-        let floor = floor_frame(objects, h.floor).unwrap_or_default();
-        let mut templates = vec![(names.template(style), h.template)];
-        templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
-        report.warnings.extend(pose::templates_on_the_maze(
-            drawing, objects, &floor, &templates,
-        ));
-    }
-    for part in &parts {
-        report.reused += part.plan.reuse.len();
-        report.removed += part.plan.remove.len();
-        report.pasted += part.plan.paste;
-    }
-    report.removed += foreign.len() - report.removed_meshes;
-    let kept: usize = parts.iter().map(|part| part.plan.reuse.len()).sum();
-    progress(Stage::Planned(super::estimate::CopiesWork {
-        objects: survey.objects.len(),
-        removed: report.removed + report.removed_meshes,
-        placed: kept + usize::from(drawing.template_drawn()) + 2,
-        pasted: report.pasted,
-        kept_children: kept,
-        blocks_per_round: opts.paste_blocks_per_round,
-    }));
     if opts.dry_run {
-        // what a real run would place: compared as it compares, with every pose read (a
-        // backend may not have read the copies' poses in the survey), nothing written
-        let unread = objects
-            .iter()
-            .any(|o| o.position.iter().any(|x| x.is_nan()));
-        let read;
-        let objects = if unread {
-            read = ownership::sort_out(&scene.objects()?, &h, &names.templates(), &survey.traits);
-            &read.objects
-        } else {
-            objects
-        };
-        placements(&parts, drawing, &h, objects, &mut report);
+        // what a real run would place: compared as it compares, nothing written
+        let read = all_poses_read(scene, &h, objects, names, &survey.traits)?;
+        placements(
+            &parts,
+            drawing,
+            &h,
+            read.as_deref().unwrap_or(objects),
+            &mut report,
+        );
         return Ok(report);
     }
     let line_template = survey.handles.other_template;
@@ -186,10 +112,190 @@ fn apply_claimed(
         objects_in_scene: survey.objects.len(),
         placed: 0,
         traits: &survey.traits,
-        holder: leftovers.holder,
+        holder,
     };
     run.draw(objects, &parts, &foreign)?;
     Ok(report)
+}
+
+/// [`begin`] for `drawing`: surveys the scene, checks the templates and markers against
+/// what the drawing asks of them and sets the user's objects apart.
+fn begin_drawing(
+    scene: &mut dyn Backend,
+    drawing: &Drawing,
+    opts: &ApplyOptions,
+    progress: &mut dyn FnMut(Stage),
+) -> Result<Begun, DrawError> {
+    let style = drawing.style;
+    let posts = !drawing.posts.is_empty();
+    let counts = ApplyReport {
+        style,
+        pieces: drawing.pieces.len(),
+        posts: drawing.posts.len(),
+        ..Default::default()
+    };
+    begin(
+        scene,
+        opts,
+        &drawing.template_use(),
+        posts,
+        counts,
+        progress,
+    )
+}
+
+/// What [`plan`] decided.
+struct Planned<'a> {
+    /// Each template's copies: reused, removed and pasted.
+    parts: Vec<Part<'a>>,
+    /// What else goes: an earlier maze of another style, a mesh maze, spoiled copies.
+    foreign: Vec<i32>,
+    /// What an earlier maze held, for [`keep_home`].
+    earlier: EarlierLines,
+    /// The holder of a mesh maze the user keeps (their objects under it): no line.
+    holder: Option<i32>,
+}
+
+/// Plans the copies of `drawing` from the scene's `objects`: which earlier copies are
+/// reused and which go (a mesh maze, copies the user spoiled, an earlier maze of the
+/// other style), how many are pasted; the objects left alone and the meshes removed are
+/// counted into `report`, and the warnings of spoiled copies and of templates on the maze
+/// added to it.
+fn plan<'a>(
+    scene: &mut dyn Backend,
+    drawing: &'a Drawing,
+    names: &ObjectNames,
+    survey: &Survey,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    report: &mut ApplyReport,
+) -> Result<Planned<'a>, DrawError> {
+    let style = drawing.style;
+    let posts = !drawing.posts.is_empty();
+    let others = names.others(style);
+    // an earlier mesh maze (`--draw mesh`) goes whole, and none of it is reused as a copy
+    let leftovers = super::mesh::leftovers(scene, names, h, &survey.objects)?;
+    report
+        .left_alone
+        .extend(leftovers.left_alone.iter().cloned());
+    let meshes: Vec<i32> = leftovers.ours.iter().map(|(x, _)| *x).collect();
+    // the holder, ours or the user's, is never a line
+    let mesh_maze = |x: &i32| meshes.contains(x) || Some(*x) == leftovers.holder;
+    let mut existing = maze_pieces(objects, h, names.template(style), &others);
+    existing.retain(|x| !mesh_maze(x));
+    // a copy of ours the user scaled or recoloured is pasted anew, never reused as it is
+    let spoiled = spoiled_copies(objects, &survey.traits, report);
+    existing.retain(|x| !spoiled.contains(x));
+    let earlier = EarlierLines::of(
+        match style {
+            Style::Lines => !existing.is_empty(),
+            Style::Walls => has_line_copies(objects, h, &names.line),
+        },
+        leftovers.ours.iter().map(|(_, name)| name.as_str()),
+    );
+    let copies_needed = drawing
+        .pieces
+        .len()
+        .saturating_sub(usize::from(drawing.template_drawn()));
+    let mut parts = vec![Part {
+        template: h.template,
+        template_drawn: drawing.template_drawn(),
+        poses: &drawing.pieces,
+        plan: paste::plan(&existing, copies_needed),
+    }];
+    if let Some(template) = h.post.filter(|_| posts) {
+        let mut existing = foreign_copies(objects, h, &[&names.post]);
+        existing.retain(|x| !spoiled.contains(x));
+        parts.push(Part {
+            template,
+            template_drawn: false,
+            poses: &drawing.posts,
+            plan: paste::plan(&existing, drawing.posts.len()),
+        });
+    }
+    // an earlier maze of the other style goes (a wall is no line, nor a line a wall), and
+    // its posts unless this maze has posts too
+    let mut foreign = foreign_copies(objects, h, &names.foreign(style, posts));
+    foreign.retain(|x| !mesh_maze(x));
+    report.removed_meshes = meshes.len();
+    foreign.extend(meshes);
+    foreign.extend(&spoiled);
+    if !drawing.template_drawn() {
+        warn_templates_on_the_maze(drawing, objects, h, names, report);
+    }
+    Ok(Planned {
+        parts,
+        foreign,
+        earlier,
+        holder: leftovers.holder,
+    })
+}
+
+/// Warns in `report` of templates standing on the maze `drawing` draws (they are not
+/// part of it: every copy is pasted).
+fn warn_templates_on_the_maze(
+    drawing: &Drawing,
+    objects: &[ObjectInfo],
+    h: &Handles,
+    names: &ObjectNames,
+    report: &mut ApplyReport,
+) {
+    let style = drawing.style;
+    let posts = !drawing.posts.is_empty();
+    let floor = floor_frame(objects, h.floor).unwrap_or_default();
+    let mut templates = vec![(names.template(style), h.template)];
+    templates.extend(h.post.filter(|_| posts).map(|p| (names.post.as_str(), p)));
+    report.warnings.extend(pose::templates_on_the_maze(
+        drawing, objects, &floor, &templates,
+    ));
+}
+
+/// Counts the plan of `parts` and `foreign` into `report` and tells `progress` the work
+/// ahead.
+fn count_plan(
+    parts: &[Part<'_>],
+    foreign: &[i32],
+    drawing: &Drawing,
+    survey: &Survey,
+    opts: &ApplyOptions,
+    report: &mut ApplyReport,
+    progress: &mut dyn FnMut(Stage),
+) {
+    for part in parts {
+        report.reused += part.plan.reuse.len();
+        report.removed += part.plan.remove.len();
+        report.pasted += part.plan.paste;
+    }
+    report.removed += foreign.len() - report.removed_meshes;
+    let kept: usize = parts.iter().map(|part| part.plan.reuse.len()).sum();
+    progress(Stage::Planned(super::estimate::CopiesWork {
+        objects: survey.objects.len(),
+        removed: report.removed + report.removed_meshes,
+        placed: kept + usize::from(drawing.template_drawn()) + 2,
+        pasted: report.pasted,
+        kept_children: kept,
+        blocks_per_round: opts.paste_blocks_per_round,
+    }));
+}
+
+/// The scene's objects read again with every pose, the user's set apart, when a pose of
+/// `objects` is unread (a backend may not have read the copies' poses in the survey);
+/// `None` when `objects` hold every pose.
+fn all_poses_read(
+    scene: &mut dyn Backend,
+    h: &Handles,
+    objects: &[ObjectInfo],
+    names: &ObjectNames,
+    traits: &Traits,
+) -> Result<Option<Vec<ObjectInfo>>, DrawError> {
+    let unread = objects
+        .iter()
+        .any(|o| o.position.iter().any(|x| x.is_nan()));
+    if !unread {
+        return Ok(None);
+    }
+    let read = ownership::sort_out(&scene.objects()?, h, &names.templates(), traits);
+    Ok(Some(read.objects))
 }
 
 /// The copies of ours among `objects` that the user scaled or recoloured
@@ -354,6 +460,18 @@ struct Part<'a> {
     plan: paste::Plan,
 }
 
+/// The edits and counts carried from one round of pasting to the next.
+struct Pasting {
+    /// Edits not sent yet.
+    edits: Vec<Edit>,
+    /// Pieces those edits place that no round has counted yet.
+    placed_now: usize,
+    /// Copies pasted so far, all parts.
+    pasted: usize,
+    /// Copies to paste, all parts.
+    to_paste: usize,
+}
+
 /// One apply's drawing state: what is sent, in requests of bounded server time.
 struct Drawer<'a, 'p> {
     scene: &'a mut dyn Backend,
@@ -385,8 +503,41 @@ impl Drawer<'_, '_> {
         foreign: &[i32],
     ) -> Result<(), DrawError> {
         let floor = floor_frame(objects, self.h.floor).unwrap_or_default();
-        let (h, drawing) = (self.h, self.drawing);
-        // the surplus goes first: fewer objects make every later copy cheaper
+        self.remove_surplus(parts, foreign)?;
+        // the templates, reused copies and markers, where they differ, go with the first
+        // round of copies (or alone, if nothing is pasted)
+        let Placements {
+            edits,
+            mut drawn,
+            kept,
+        } = placements(parts, self.drawing, self.h, objects, self.report);
+        let mut pasting = Pasting {
+            edits,
+            placed_now: kept,
+            pasted: 0,
+            to_paste: parts.iter().map(|part| part.plan.paste).sum(),
+        };
+        let mut short = None;
+        for (part, copies) in parts.iter().zip(&mut drawn) {
+            let done = self.paste_part(part, copies, &floor, &mut pasting)?;
+            if done < part.plan.paste {
+                short.get_or_insert((done, part.plan.paste));
+            }
+            copies.truncate(part.poses.len().max(usize::from(part.template_drawn)));
+        }
+        self.send(&pasting.edits, pasting.placed_now, false)?;
+        if let Some((done, wanted)) = short {
+            return Err(BackendError::Remote(format!(
+                "copy-paste produced {done} of {wanted} copies"
+            ))
+            .into());
+        }
+        self.verify(parts, &drawn)
+    }
+
+    /// Removes each part's surplus copies and the `foreign` ones, first: fewer objects
+    /// make every later copy cheaper.
+    fn remove_surplus(&mut self, parts: &[Part<'_>], foreign: &[i32]) -> Result<(), DrawError> {
         let removals: Vec<Edit> = parts
             .iter()
             .flat_map(|part| &part.plan.remove)
@@ -395,72 +546,74 @@ impl Drawer<'_, '_> {
             .collect();
         self.send(&removals, 0, true)?;
         self.objects_in_scene = self.objects_in_scene.saturating_sub(removals.len());
-        // the templates, reused copies and markers, where they differ, go with the first
-        // round of copies (or alone, if nothing is pasted)
-        let Placements {
-            mut edits,
-            mut drawn,
-            kept: mut placed_now,
-        } = placements(parts, drawing, h, objects, self.report);
-        let to_paste: usize = parts.iter().map(|part| part.plan.paste).sum();
-        let mut pasted = 0;
-        let mut short = None;
-        for (part, copies) in parts.iter().zip(&mut drawn) {
-            let mut done = 0;
-            // what is pasted from: only the template and the copies this run pasted from
-            // it, never an earlier copy (a user's recoloured look-alike would spread)
-            let mut sources = vec![part.template];
-            while done < part.plan.paste {
-                self.checkpoint("while pasting the lines")?;
-                let budget = self.scene.pieces_per_request(self.objects_in_scene).max(1);
-                let groups = paste_round(
-                    &sources,
-                    (part.plan.paste - done).min(budget),
-                    self.opts.paste_blocks_per_round,
-                );
-                if groups.is_empty() {
-                    break;
-                }
-                let carried = std::mem::take(&mut placed_now);
-                let mut new_pieces = 0;
-                for new in self.scene.copy_paste(&groups)? {
-                    sources.extend(&new);
-                    for handle in new {
-                        if let Some(want) = part.poses.get(copies.len()) {
-                            edits.extend(place(
-                                None,
-                                &floor,
-                                h.floor,
-                                handle,
-                                want,
-                                Some(h.parent),
-                            ));
-                            new_pieces += 1;
-                        }
-                        copies.push(handle);
-                        done += 1;
-                        pasted += 1;
+        Ok(())
+    }
+
+    /// Pastes `part`'s missing copies round by round onto `copies`, sending each round's
+    /// places (with the edits `pasting` holds) before pasting the next; how many were
+    /// pasted (fewer than planned if a round pasted none).
+    fn paste_part(
+        &mut self,
+        part: &Part<'_>,
+        copies: &mut Vec<i32>,
+        floor: &Frame,
+        pasting: &mut Pasting,
+    ) -> Result<usize, DrawError> {
+        let h = self.h;
+        let mut done = 0;
+        // what is pasted from: only the template and the copies this run pasted from
+        // it, never an earlier copy (a user's recoloured look-alike would spread)
+        let mut sources = vec![part.template];
+        while done < part.plan.paste {
+            self.checkpoint("while pasting the lines")?;
+            let budget = self.scene.pieces_per_request(self.objects_in_scene).max(1);
+            let groups = paste_round(
+                &sources,
+                (part.plan.paste - done).min(budget),
+                self.opts.paste_blocks_per_round,
+            );
+            if groups.is_empty() {
+                break;
+            }
+            let carried = std::mem::take(&mut pasting.placed_now);
+            let mut new_pieces = 0;
+            for new in self.scene.copy_paste(&groups)? {
+                sources.extend(&new);
+                for handle in new {
+                    if let Some(want) = part.poses.get(copies.len()) {
+                        pasting.edits.extend(place(
+                            None,
+                            floor,
+                            h.floor,
+                            handle,
+                            want,
+                            Some(h.parent),
+                        ));
+                        new_pieces += 1;
                     }
+                    copies.push(handle);
+                    done += 1;
+                    pasting.pasted += 1;
                 }
-                self.objects_in_scene += new_pieces;
-                (self.progress)(Stage::Pasting {
-                    done: pasted,
-                    total: to_paste,
-                });
-                self.send(&std::mem::take(&mut edits), carried + new_pieces, false)?;
             }
-            if done < part.plan.paste {
-                short.get_or_insert((done, part.plan.paste));
-            }
-            copies.truncate(part.poses.len().max(usize::from(part.template_drawn)));
+            self.objects_in_scene += new_pieces;
+            (self.progress)(Stage::Pasting {
+                done: pasting.pasted,
+                total: pasting.to_paste,
+            });
+            self.send(
+                &std::mem::take(&mut pasting.edits),
+                carried + new_pieces,
+                false,
+            )?;
         }
-        self.send(&edits, placed_now, false)?;
-        if let Some((done, wanted)) = short {
-            return Err(BackendError::Remote(format!(
-                "copy-paste produced {done} of {wanted} copies"
-            ))
-            .into());
-        }
+        Ok(done)
+    }
+
+    /// Reads the scene back (lease checked before and after) and checks that it holds
+    /// the drawing: `drawn[p]` the objects drawn for `parts[p]`.
+    fn verify(&mut self, parts: &[Part<'_>], drawn: &[Vec<i32>]) -> Result<(), DrawError> {
+        let h = self.h;
         (self.progress)(Stage::Verifying);
         self.claim.check(self.scene, "before verifying")?;
         let after = if self.claim.contended() {
@@ -482,7 +635,7 @@ impl Drawer<'_, '_> {
             &self.opts.names,
             drawn_of(0),
             drawn_of(1),
-            drawing,
+            self.drawing,
         );
         if problems.is_empty() {
             Ok(())
