@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use vrep_maze_core::wording::Message;
 
-use super::backend::{Backend, Edit, ObjectInfo};
+use super::backend::{Backend, Edit, ObjectInfo, Survey};
 use super::error::DrawError;
 use super::home;
 use super::lease::{Claim, claimed};
@@ -151,6 +151,76 @@ pub fn clear(scene: &mut dyn Backend, opts: &ClearOptions) -> Result<ClearReport
     Ok(report)
 }
 
+/// The survey for a maze of either style, and the style: the line template is looked for
+/// first, the wall template serves when the scene has no line template.
+fn survey_either_style(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+) -> Result<(Style, Survey), DrawError> {
+    let mut style = Style::Lines;
+    let mut survey = scene.survey(&names.survey(style))?;
+    if survey.handles.template.is_none() && survey.handles.other_template.is_some() {
+        style = Style::Walls;
+        survey = scene.survey(&names.survey(style))?;
+    }
+    Ok((style, survey))
+}
+
+/// The names of `doomed` as `objects` give them (`object 12` for one they do not hold).
+fn names_of(doomed: &[i32], objects: &[ObjectInfo]) -> Vec<String> {
+    let names_by_handle: HashMap<i32, &str> = objects
+        .iter()
+        .map(|o| (o.handle, o.name.as_str()))
+        .collect();
+    doomed
+        .iter()
+        .map(|d| {
+            names_by_handle
+                .get(d)
+                .map_or_else(|| format!("object {d}"), |n| n.to_string())
+        })
+        .collect()
+}
+
+/// Removes `doomed` in requests the simulator finishes in bounded time (removal costs per
+/// object, `objects_in_scene` of them), the interrupt and the lease checked before each.
+fn remove(
+    scene: &mut dyn Backend,
+    opts: &ClearOptions,
+    claim: &Claim,
+    doomed: &[i32],
+    objects_in_scene: usize,
+) -> Result<(), DrawError> {
+    let per_request = scene.pieces_per_request(objects_in_scene).max(1);
+    for (i, chunk) in doomed.chunks(per_request).enumerate() {
+        if opts
+            .interrupt
+            .as_ref()
+            .is_some_and(|flag| flag.load(Ordering::SeqCst))
+        {
+            // `placed` counts the objects removed so far, `total` those to remove
+            return Err(DrawError::Interrupted {
+                placed: i * per_request,
+                total: doomed.len(),
+            });
+        }
+        claim.check(scene, "while removing the lines")?;
+        scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
+    }
+    Ok(())
+}
+
+/// Whether the maze removed was a line maze, on whose first line only the template lay:
+/// `removed` holds copies of the line template, or `meshes` line meshes.
+fn was_line_maze(removed: &[String], meshes: &[(i32, String)], names: &ObjectNames) -> bool {
+    removed
+        .iter()
+        .any(|n: &String| ownership::is_copy_name(n, &names.line))
+        || meshes.iter().any(|(_, n)| {
+            super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
+        })
+}
+
 /// [`clear`] under `claim`, with the idle rate raised.
 fn clear_claimed(
     scene: &mut dyn Backend,
@@ -158,14 +228,7 @@ fn clear_claimed(
     claim: &Claim,
 ) -> Result<ClearReport, DrawError> {
     let (names, dry_run) = (&opts.names, opts.dry_run);
-    // a maze of either style: the line template is looked for first, the wall template
-    // serves when the scene has no line template
-    let mut style = Style::Lines;
-    let mut survey = scene.survey(&names.survey(style))?;
-    if survey.handles.template.is_none() && survey.handles.other_template.is_some() {
-        style = Style::Walls;
-        survey = scene.survey(&names.survey(style))?;
-    }
+    let (style, survey) = survey_either_style(scene, names)?;
     let h = resolve_handles(names, style, &survey, false, None)?;
     let stopped_simulation = stop_running_simulation(
         scene,
@@ -183,47 +246,13 @@ fn clear_claimed(
     let meshes = &leftovers.ours;
     // the holder, ours or the user's, is never a copy
     doomed.retain(|d| !meshes.iter().any(|(m, _)| m == d) && Some(*d) != leftovers.holder);
-    let names_by_handle: HashMap<i32, &str> = sorted
-        .objects
-        .iter()
-        .map(|o| (o.handle, o.name.as_str()))
-        .collect();
-    let removed: Vec<String> = doomed
-        .iter()
-        .map(|d| {
-            names_by_handle
-                .get(d)
-                .map_or_else(|| format!("object {d}"), |n| n.to_string())
-        })
-        .collect();
+    let removed = names_of(&doomed, &sorted.objects);
     let removed_meshes: Vec<String> = meshes.iter().map(|(_, name)| name.clone()).collect();
     doomed.extend(meshes.iter().map(|(m, _)| *m));
     if !dry_run {
-        // in requests the simulator finishes in bounded time (removal costs per object)
-        let per_request = scene.pieces_per_request(survey.objects.len()).max(1);
-        for (i, chunk) in doomed.chunks(per_request).enumerate() {
-            if opts
-                .interrupt
-                .as_ref()
-                .is_some_and(|flag| flag.load(Ordering::SeqCst))
-            {
-                // `placed` counts the objects removed so far, `total` those to remove
-                return Err(DrawError::Interrupted {
-                    placed: i * per_request,
-                    total: doomed.len(),
-                });
-            }
-            claim.check(scene, "while removing the lines")?;
-            scene.edit(&chunk.iter().map(|&d| Edit::Remove(d)).collect::<Vec<_>>())?;
-        }
+        remove(scene, opts, claim, &doomed, survey.objects.len())?;
     }
-    // the template lay on the first line only of a line maze: copies of it, or line meshes
-    let line_maze = removed
-        .iter()
-        .any(|n: &String| ownership::is_copy_name(n, &names.line))
-        || meshes.iter().any(|(_, n)| {
-            super::mesh::parse_mesh_name(n).is_some_and(|(k, _)| k == super::mesh::MeshKind::Lines)
-        });
+    let line_maze = was_line_maze(&removed, meshes, names);
     let template = if style == Style::Lines {
         send_home(
             scene,

@@ -253,102 +253,153 @@ fn remedy(options: Result<Vec<Setting>, Message>, resize: String) -> Message {
 /// floor smaller than the layout's along x or y is [`SizeCheck::floor`].
 pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured) -> SizeCheck {
     let mut check = SizeCheck::default();
-    let sizes = drawing.sizes;
-    let differs = |scene: &[f64], layout: &[f64]| {
-        scene
-            .iter()
-            .zip(layout)
-            // NaN is never the same size
-            .any(|(s, l)| !same_size(*s, *l))
-    };
-    let unread = |name: &str, check: &mut SizeCheck| {
-        check.warnings.push(format!(
-            "the simulator did not give the size of `{name}`: not compared with the layout"
-        ));
-    };
-    let template_name = names.template(drawing.style);
     // a line maze's template is its first line, a wall maze's is copied for every wall
     if drawing.template {
-        match (m.template, drawing.style, sizes.wall) {
-            (None, ..) => unread(template_name, &mut check),
-            (Some(have), Style::Lines, _) => {
-                if differs(&have[..2], &sizes.line) {
-                    check.refusals.push(
-                        Message::text(format!(
-                            "the scene's `{template_name}` is {} m but the layout was generated with ",
-                            extents(&have[..2]),
-                        ))
-                        .and_settings(vec![
-                            setting(Opt::LineLength, sizes.line[0]),
-                            setting(Opt::LineWidth, sizes.line[1]),
-                        ])
-                        .and(": ")
-                        .and_message(remedy(
-                            line_options(drawing, have),
-                            format!("resize `{template_name}` to {} m", extents(&sizes.line)),
-                        )),
-                    );
-                }
-                check
-                    .refusals
-                    .extend(too_high(template_name, "a line", have, sizes.line_z));
-            }
-            (Some(have), Style::Walls, Some(wall)) => {
-                // between posts a wall may reach into them, up to their centres (a whole
-                // cell side): its ends are hidden inside the posts
-                let longest = if !drawing.posts {
-                    wall[0]
-                } else {
-                    sizes.cell.max(wall[0])
-                };
-                let length_ok =
-                    have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
-                if !length_ok || differs(&have[1..], &wall[1..]) {
-                    let post = sizes.post.filter(|_| drawing.posts).map(|p| p[0]);
-                    check.refusals.push(
-                        Message::text(format!(
-                            "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): ",
-                            extents(&have),
-                            extents(&wall),
-                        ))
-                        .and_message(remedy(
-                            wall_options(drawing, have, post),
-                            format!("resize `{template_name}` to {} m", extents(&wall)),
-                        )),
-                    );
-                }
-            }
-            (Some(_), Style::Walls, None) => {}
-        }
+        check_template(drawing, names, m.template, &mut check);
     }
-    if let (Some(want), true) = (sizes.post, drawing.posts) {
-        match m.post {
-            None => unread(&names.post, &mut check),
-            Some(have) => {
-                if differs(&have, &want) {
-                    let options = post_options(drawing, m.template, have);
-                    check.refusals.push(
-                        Message::text(format!(
-                            "the scene's `{}` is {} m but the layout's posts are {} m: ",
-                            names.post,
-                            extents(&have),
-                            extents(&want),
-                        ))
-                        .and_message(remedy(
-                            options,
-                            format!("resize `{}` to {} m", names.post, extents(&want)),
-                        )),
-                    );
-                }
+    if let (Some(want), true) = (drawing.sizes.post, drawing.posts) {
+        check_post(drawing, names, m, want, &mut check);
+    }
+    check_markers(drawing, names, m, &mut check);
+    match m.floor {
+        None => unread(&names.floor, &mut check),
+        Some(have) => {
+            let have = [have[0], have[1]];
+            // NaN is never large enough
+            let short = (0..2)
+                .any(|k| have[k].is_nan() || have[k] < drawing.sizes.floor[k] - SIZE_TOLERANCE);
+            if short {
+                check.floor = Some(FloorShort {
+                    have,
+                    need: drawing.sizes.floor,
+                });
             }
         }
     }
+    check
+}
+
+/// Whether the sizes the scene gave differ from the layout's (NaN is never the same size).
+fn differs(scene: &[f64], layout: &[f64]) -> bool {
+    scene.iter().zip(layout).any(|(s, l)| !same_size(*s, *l))
+}
+
+/// Warns in `check` that the simulator did not give the size of `name`.
+fn unread(name: &str, check: &mut SizeCheck) {
+    check.warnings.push(format!(
+        "the simulator did not give the size of `{name}`: not compared with the layout"
+    ));
+}
+
+/// Compares the template drawn from (its size `template`, if given) with the layout's
+/// lines or walls, refusing in `check` one that differs or (a line) does not lie flat.
+fn check_template(
+    drawing: &TemplateUse<'_>,
+    names: &ObjectNames,
+    template: Option<[f64; 3]>,
+    check: &mut SizeCheck,
+) {
+    let sizes = drawing.sizes;
+    let template_name = names.template(drawing.style);
+    match (template, drawing.style, sizes.wall) {
+        (None, ..) => unread(template_name, check),
+        (Some(have), Style::Lines, _) => {
+            if differs(&have[..2], &sizes.line) {
+                check.refusals.push(
+                    Message::text(format!(
+                        "the scene's `{template_name}` is {} m but the layout was generated with ",
+                        extents(&have[..2]),
+                    ))
+                    .and_settings(vec![
+                        setting(Opt::LineLength, sizes.line[0]),
+                        setting(Opt::LineWidth, sizes.line[1]),
+                    ])
+                    .and(": ")
+                    .and_message(remedy(
+                        line_options(drawing, have),
+                        format!("resize `{template_name}` to {} m", extents(&sizes.line)),
+                    )),
+                );
+            }
+            check
+                .refusals
+                .extend(too_high(template_name, "a line", have, sizes.line_z));
+        }
+        (Some(have), Style::Walls, Some(wall)) => {
+            // between posts a wall may reach into them, up to their centres (a whole
+            // cell side): its ends are hidden inside the posts
+            let longest = if !drawing.posts {
+                wall[0]
+            } else {
+                sizes.cell.max(wall[0])
+            };
+            let length_ok =
+                have[0] >= wall[0] - SIZE_TOLERANCE && have[0] <= longest + SIZE_TOLERANCE;
+            if !length_ok || differs(&have[1..], &wall[1..]) {
+                let post = sizes.post.filter(|_| drawing.posts).map(|p| p[0]);
+                check.refusals.push(
+                    Message::text(format!(
+                        "the scene's `{template_name}` is {} m but the layout's walls are {} m (length x thickness x height): ",
+                        extents(&have),
+                        extents(&wall),
+                    ))
+                    .and_message(remedy(
+                        wall_options(drawing, have, post),
+                        format!("resize `{template_name}` to {} m", extents(&wall)),
+                    )),
+                );
+            }
+        }
+        (Some(_), Style::Walls, None) => {}
+    }
+}
+
+/// Compares the post template (`want` the layout's posts) with the layout's posts,
+/// refusing in `check` one that differs.
+fn check_post(
+    drawing: &TemplateUse<'_>,
+    names: &ObjectNames,
+    m: &Measured,
+    want: [f64; 3],
+    check: &mut SizeCheck,
+) {
+    match m.post {
+        None => unread(&names.post, check),
+        Some(have) => {
+            if differs(&have, &want) {
+                let options = post_options(drawing, m.template, have);
+                check.refusals.push(
+                    Message::text(format!(
+                        "the scene's `{}` is {} m but the layout's posts are {} m: ",
+                        names.post,
+                        extents(&have),
+                        extents(&want),
+                    ))
+                    .and_message(remedy(
+                        options,
+                        format!("resize `{}` to {} m", names.post, extents(&want)),
+                    )),
+                );
+            }
+        }
+    }
+}
+
+/// Checks that Start and End lie flat (refused in `check`) and are no wider than a cell
+/// (a warning).
+fn check_markers(
+    drawing: &TemplateUse<'_>,
+    names: &ObjectNames,
+    m: &Measured,
+    check: &mut SizeCheck,
+) {
+    let sizes = drawing.sizes;
     for ((name, b), z) in [(&names.start, m.start), (&names.end, m.end)]
         .into_iter()
         .zip(sizes.marker_z)
     {
         match b {
-            None => unread(name, &mut check),
+            None => unread(name, check),
             Some(have) => {
                 check.refusals.extend(too_high(name, "a marker", have, z));
                 if have[0].max(have[1]) > sizes.cell + SIZE_TOLERANCE {
@@ -363,22 +414,6 @@ pub fn check_sizes(drawing: &TemplateUse<'_>, names: &ObjectNames, m: &Measured)
             }
         }
     }
-    match m.floor {
-        None => unread(&names.floor, &mut check),
-        Some(have) => {
-            let have = [have[0], have[1]];
-            // NaN is never large enough
-            let short =
-                (0..2).any(|k| have[k].is_nan() || have[k] < sizes.floor[k] - SIZE_TOLERANCE);
-            if short {
-                check.floor = Some(FloorShort {
-                    have,
-                    need: sizes.floor,
-                });
-            }
-        }
-    }
-    check
 }
 
 #[cfg(test)]

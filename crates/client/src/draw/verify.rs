@@ -10,6 +10,8 @@ use super::names::{Handles, ObjectNames};
 use super::ownership::{self, foreign_copies, maze_pieces};
 use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
+use super::survey::Traits;
+use vrep_maze_core::coppelia::frame::Frame;
 use vrep_maze_core::layout::{Pose, Style};
 use vrep_maze_core::wording::{Message, Opt};
 
@@ -40,36 +42,8 @@ pub fn check(
         ),
         ("post", posts, &drawing.posts, 0),
     ];
-    for (noun, drawn, wanted, first_copy) in parts {
-        if drawn.len() != wanted.len() {
-            problems.push(
-                format!(
-                    "{} {noun} objects for {} {noun}s",
-                    drawn.len(),
-                    wanted.len()
-                )
-                .into(),
-            );
-        }
-        for (i, (&handle, want)) in drawn.iter().zip(wanted).enumerate() {
-            match get(handle) {
-                None => problems.push(format!("{noun} {i} (handle {handle}) is missing").into()),
-                Some(o) => {
-                    if let Some(d) = pose_differences(&floor, o, want) {
-                        problems.push(format!("{noun} {i} `{}` {d}", o.name).into());
-                    }
-                    if i >= first_copy && o.parent != Some(h.parent) {
-                        problems.push(
-                            format!(
-                                "{noun} {i} `{}` has parent {:?}, expected {}",
-                                o.name, o.parent, h.parent
-                            )
-                            .into(),
-                        );
-                    }
-                }
-            }
-        }
+    for part in parts {
+        part_problems(&floor, &by_handle, h.parent, part, &mut problems);
     }
     for (what, handle, want) in [
         ("start", h.start, &drawing.start),
@@ -112,6 +86,47 @@ pub fn check(
         problems.push(stray_problem(&stray).into());
     }
     problems
+}
+
+/// Adds to `problems` how one part's `drawn` objects (a noun's: lines, walls or posts)
+/// differ from the poses `wanted`: how many, which are missing, off their pose or, from
+/// `first_copy` on, not under `parent`.
+fn part_problems(
+    floor: &Frame,
+    by_handle: &HashMap<i32, &ObjectInfo>,
+    parent: i32,
+    (noun, drawn, wanted, first_copy): (&str, &[i32], &Vec<Pose>, usize),
+    problems: &mut Vec<Message>,
+) {
+    if drawn.len() != wanted.len() {
+        problems.push(
+            format!(
+                "{} {noun} objects for {} {noun}s",
+                drawn.len(),
+                wanted.len()
+            )
+            .into(),
+        );
+    }
+    for (i, (&handle, want)) in drawn.iter().zip(wanted).enumerate() {
+        match by_handle.get(&handle).copied() {
+            None => problems.push(format!("{noun} {i} (handle {handle}) is missing").into()),
+            Some(o) => {
+                if let Some(d) = pose_differences(floor, o, want) {
+                    problems.push(format!("{noun} {i} `{}` {d}", o.name).into());
+                }
+                if i >= first_copy && o.parent != Some(parent) {
+                    problems.push(
+                        format!(
+                            "{noun} {i} `{}` has parent {:?}, expected {}",
+                            o.name, o.parent, parent
+                        )
+                        .into(),
+                    );
+                }
+            }
+        }
+    }
 }
 
 /// What a problem of [`broken_frames`] says, which [`DrawError::remedies`] recognises.
@@ -263,15 +278,7 @@ fn verify_raised(
     );
     let mut problems = Vec::new();
     problems.extend(broken_frames(objects, &h, names));
-    // a copy of ours the user scaled or recoloured is no line of the layout's
-    let mut spoiled: Vec<(i32, &String)> =
-        survey.traits.spoiled.iter().map(|(h, w)| (*h, w)).collect();
-    spoiled.sort_unstable();
-    for (handle, why) in spoiled {
-        if let Some(o) = by_handle.get(&handle) {
-            problems.push(format!("{} copy `{}` {why}", noun(style), o.name).into());
-        }
-    }
+    spoiled_problems(&survey.traits, &by_handle, style, &mut problems);
     let mut stray = Vec::new();
     let parts = [
         (noun(style), pool, &drawing.pieces),
@@ -305,17 +312,7 @@ fn verify_raised(
     if !stray.is_empty() {
         problems.push(stray_problem(&stray).into());
     }
-    for (what, handle, want) in [
-        ("start", h.start, &drawing.start),
-        ("end", h.end, &drawing.end),
-    ] {
-        if let Some(d) = by_handle
-            .get(&handle)
-            .and_then(|o| pose_differences(&floor, o, want))
-        {
-            problems.push(format!("{what} {d}").into());
-        }
-    }
+    marker_problems(&floor, &by_handle, &h, drawing, &mut problems);
     if problems.is_empty() {
         Ok(())
     } else {
@@ -323,9 +320,48 @@ fn verify_raised(
     }
 }
 
+/// Adds to `problems` each copy of ours the user scaled or recoloured (`traits.spoiled`),
+/// in handle order: it is no line of the layout's.
+fn spoiled_problems(
+    traits: &Traits,
+    by_handle: &HashMap<i32, &ObjectInfo>,
+    style: Style,
+    problems: &mut Vec<Message>,
+) {
+    let mut spoiled: Vec<(i32, &String)> = traits.spoiled.iter().map(|(h, w)| (*h, w)).collect();
+    spoiled.sort_unstable();
+    for (handle, why) in spoiled {
+        if let Some(o) = by_handle.get(&handle) {
+            problems.push(format!("{} copy `{}` {why}", noun(style), o.name).into());
+        }
+    }
+}
+
+/// Adds to `problems` how Start and End stand apart from where `drawing` wants them
+/// (relative to `floor`).
+fn marker_problems(
+    floor: &Frame,
+    by_handle: &HashMap<i32, &ObjectInfo>,
+    h: &Handles,
+    drawing: &Drawing,
+    problems: &mut Vec<Message>,
+) {
+    for (what, handle, want) in [
+        ("start", h.start, &drawing.start),
+        ("end", h.end, &drawing.end),
+    ] {
+        if let Some(d) = by_handle
+            .get(&handle)
+            .and_then(|o| pose_differences(floor, o, want))
+        {
+            problems.push(format!("{what} {d}").into());
+        }
+    }
+}
+
 /// What [`verify`] matches one template's copies with.
 struct Matching<'a> {
-    floor: &'a vrep_maze_core::coppelia::frame::Frame,
+    floor: &'a Frame,
     by_handle: &'a HashMap<i32, &'a ObjectInfo>,
     h: &'a Handles,
     /// The maze dummy's name, for messages.

@@ -24,37 +24,8 @@ pub fn mesh_differences(wanted: &MazeMesh, vertices: &[f32], indices: &[i32]) ->
             indices.len()
         ));
     }
-    let cell = |x: f32| (f64::from(x) / VERTEX_TOLERANCE).floor() as i64;
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-    for (k, v) in vertices.chunks_exact(3).enumerate() {
-        grid.entry([cell(v[0]), cell(v[1]), cell(v[2])])
-            .or_default()
-            .push(k);
-    }
-    let find = |v: &[f32]| -> Option<usize> {
-        let c = [cell(v[0]), cell(v[1]), cell(v[2])];
-        let mut best: Option<(f64, usize)> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for &k in grid
-                        .get(&[c[0] + dx, c[1] + dy, c[2] + dz])
-                        .into_iter()
-                        .flatten()
-                    {
-                        let r = &vertices[k * 3..k * 3 + 3];
-                        let d = (0..3)
-                            .map(|i| (f64::from(r[i]) - f64::from(v[i])).abs())
-                            .fold(0.0, f64::max);
-                        if d <= VERTEX_TOLERANCE && best.is_none_or(|(b, _)| d < b) {
-                            best = Some((d, k));
-                        }
-                    }
-                }
-            }
-        }
-        best.map(|(_, k)| k)
-    };
+    let grid = VertexGrid::of(vertices);
+    let find = |v: &[f32]| grid.find(v);
     let mut map = Vec::with_capacity(wanted.vertices.len() / 3);
     for v in wanted.vertices.chunks_exact(3) {
         match find(v) {
@@ -67,10 +38,6 @@ pub fn mesh_differences(wanted: &MazeMesh, vertices: &[f32], indices: &[i32]) ->
             }
         }
     }
-    let canonical = |t: [usize; 3]| -> [usize; 3] {
-        let s = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
-        [t[s], t[(s + 1) % 3], t[(s + 2) % 3]]
-    };
     let drawn: HashSet<[usize; 3]> = wanted
         .indices
         .chunks_exact(3)
@@ -94,6 +61,66 @@ pub fn mesh_differences(wanted: &MazeMesh, vertices: &[f32], indices: &[i32]) ->
             drawn.len()
         )
     })
+}
+
+/// Triangle `t` turned to start at its smallest index: the same triangle, whichever
+/// vertex it was listed from, compares equal.
+fn canonical(t: [usize; 3]) -> [usize; 3] {
+    let s = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+    [t[s], t[(s + 1) % 3], t[(s + 2) % 3]]
+}
+
+/// A mesh's vertices in cells [`VERTEX_TOLERANCE`] wide, to find the one nearest a point.
+struct VertexGrid<'a> {
+    /// The vertices, x, y, z each.
+    vertices: &'a [f32],
+    /// The vertices' indices in each cell.
+    cells: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl<'a> VertexGrid<'a> {
+    /// The grid of `vertices` (x, y, z each).
+    fn of(vertices: &'a [f32]) -> Self {
+        let mut cells: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        for (k, v) in vertices.chunks_exact(3).enumerate() {
+            cells.entry(Self::cell(v)).or_default().push(k);
+        }
+        Self { vertices, cells }
+    }
+
+    /// The cell of point `v`.
+    fn cell(v: &[f32]) -> [i64; 3] {
+        let c = |x: f32| (f64::from(x) / VERTEX_TOLERANCE).floor() as i64;
+        [c(v[0]), c(v[1]), c(v[2])]
+    }
+
+    /// The index of the vertex nearest `v` within [`VERTEX_TOLERANCE`] on every axis (of
+    /// equally near ones, the first found), if any.
+    fn find(&self, v: &[f32]) -> Option<usize> {
+        let c = Self::cell(v);
+        let mut best: Option<(f64, usize)> = None;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for &k in self
+                        .cells
+                        .get(&[c[0] + dx, c[1] + dy, c[2] + dz])
+                        .into_iter()
+                        .flatten()
+                    {
+                        let r = &self.vertices[k * 3..k * 3 + 3];
+                        let d = (0..3)
+                            .map(|i| (f64::from(r[i]) - f64::from(v[i])).abs())
+                            .fold(0.0, f64::max);
+                        if d <= VERTEX_TOLERANCE && best.is_none_or(|(b, _)| d < b) {
+                            best = Some((d, k));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(_, k)| k)
+    }
 }
 
 /// The smallest and largest x, y, z of a mesh's vertices.

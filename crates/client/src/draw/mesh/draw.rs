@@ -298,6 +298,27 @@ fn check_kept(
     Ok(())
 }
 
+/// What an earlier maze in `objects` held, for [`keep_home`]: line copies (not the mesh
+/// holder's or the post template), and the meshes `found`.
+fn earlier_lines(
+    style: Style,
+    objects: &[ObjectInfo],
+    h: &Handles,
+    names: &ObjectNames,
+    found: &FoundMeshes,
+) -> EarlierLines {
+    let others = names.others(style);
+    EarlierLines::of(
+        match style {
+            Style::Lines => maze_pieces(objects, h, &names.line, &others)
+                .iter()
+                .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
+            Style::Walls => has_line_copies(objects, h, &names.line),
+        },
+        found.meshes.iter().map(|m| m.name.as_str()),
+    )
+}
+
 fn apply_claimed(
     scene: &mut dyn Backend,
     maze: &MeshMaze,
@@ -334,22 +355,13 @@ fn apply_claimed(
         return Ok(report);
     }
     // where the line template stood before it goes onto the first line, for `clear`
-    let others = names.others(style);
     keep_home(
         scene,
         claim.signals_kept(),
         style == Style::Lines,
         &h,
         &survey.objects,
-        EarlierLines::of(
-            match style {
-                Style::Lines => maze_pieces(&objects, &h, &names.line, &others)
-                    .iter()
-                    .any(|x| Some(*x) != found.holder && Some(*x) != h.post),
-                Style::Walls => has_line_copies(&objects, &h, &names.line),
-            },
-            found.meshes.iter().map(|m| m.name.as_str()),
-        ),
+        earlier_lines(style, &objects, &h, names, &found),
         survey.handles.other_template,
         names,
         &mut report,
