@@ -264,6 +264,31 @@ impl LegacyBackend {
     fn call(&mut self, commands: &[Command]) -> Result<Vec<Reply>, BackendError> {
         Ok(self.client()?.call(commands)?)
     }
+    /// The commands that store the copy record if it changed (or `edits` remove copies it
+    /// holds, which it then drops), and delete an older version's record once.
+    fn record_commands(&mut self, edits: &[Edit]) -> Vec<Command> {
+        let mut cmds = Vec::new();
+        let removed: HashSet<i32> = edits
+            .iter()
+            .filter_map(|e| match e {
+                Edit::Remove(h) => Some(*h),
+                _ => None,
+            })
+            .collect();
+        let pruned = self.record.retain(|h| !removed.contains(&h));
+        if std::mem::take(&mut self.record_changed) || pruned {
+            // a String: valid UTF-8 ([`crate::draw::record`])
+            let text: String = self.record.format();
+            cmds.push(Command::SetStringSignal(
+                COPIES.name.into(),
+                text.into_bytes(),
+            ));
+            if std::mem::take(&mut self.old_record) {
+                cmds.push(Command::SetStringSignal(COPIES.old.into(), vec![]));
+            }
+        }
+        cmds
+    }
 }
 
 impl Drop for LegacyBackend {
@@ -359,6 +384,53 @@ fn parse_objects(replies: &[Reply]) -> Result<Vec<ObjectInfo>, BackendError> {
             }
         })
         .collect())
+}
+
+/// Appends the commands of `edits` to `cmds` (the floats as `f32`); what each does, in
+/// order, for an error message.
+fn edit_commands(edits: &[Edit], cmds: &mut Vec<Command>) -> Vec<String> {
+    let mut what = Vec::with_capacity(edits.len() * 2);
+    let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
+    for e in edits {
+        match *e {
+            Edit::SetParent {
+                handle,
+                parent,
+                keep_in_place,
+            } => {
+                cmds.push(Command::SetObjectParent {
+                    handle,
+                    parent: parent.unwrap_or(HANDLE_WORLD),
+                    keep_in_place,
+                });
+                what.push(format!("set the parent of object {handle}"));
+            }
+            Edit::SetPose {
+                handle,
+                relative_to,
+                position,
+                orientation,
+            } => {
+                cmds.push(Command::SetPosition {
+                    handle,
+                    relative_to,
+                    xyz: f(position),
+                });
+                cmds.push(Command::SetOrientation {
+                    handle,
+                    relative_to,
+                    euler: f(orientation),
+                });
+                what.push(format!("set the position of object {handle}"));
+                what.push(format!("set the orientation of object {handle}"));
+            }
+            Edit::Remove(handle) => {
+                cmds.push(Command::RemoveObject(handle));
+                what.push(format!("remove object {handle}"));
+            }
+        }
+    }
+    what
 }
 
 impl Backend for LegacyBackend {
@@ -539,72 +611,11 @@ impl Backend for LegacyBackend {
     }
 
     fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
-        let mut cmds = Vec::with_capacity(edits.len() * 2);
-        let mut what = Vec::with_capacity(edits.len() * 2);
-        let f = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32];
         // the changed copy record rides with the edits, without the copies they remove: no
         // request of its own
-        let removed: HashSet<i32> = edits
-            .iter()
-            .filter_map(|e| match e {
-                Edit::Remove(h) => Some(*h),
-                _ => None,
-            })
-            .collect();
-        let pruned = self.record.retain(|h| !removed.contains(&h));
-        let mut record = 0;
-        if std::mem::take(&mut self.record_changed) || pruned {
-            // a String: valid UTF-8 ([`crate::draw::record`])
-            let text: String = self.record.format();
-            cmds.push(Command::SetStringSignal(
-                COPIES.name.into(),
-                text.into_bytes(),
-            ));
-            record += 1;
-            if std::mem::take(&mut self.old_record) {
-                cmds.push(Command::SetStringSignal(COPIES.old.into(), vec![]));
-                record += 1;
-            }
-        }
-        for e in edits {
-            match *e {
-                Edit::SetParent {
-                    handle,
-                    parent,
-                    keep_in_place,
-                } => {
-                    cmds.push(Command::SetObjectParent {
-                        handle,
-                        parent: parent.unwrap_or(HANDLE_WORLD),
-                        keep_in_place,
-                    });
-                    what.push(format!("set the parent of object {handle}"));
-                }
-                Edit::SetPose {
-                    handle,
-                    relative_to,
-                    position,
-                    orientation,
-                } => {
-                    cmds.push(Command::SetPosition {
-                        handle,
-                        relative_to,
-                        xyz: f(position),
-                    });
-                    cmds.push(Command::SetOrientation {
-                        handle,
-                        relative_to,
-                        euler: f(orientation),
-                    });
-                    what.push(format!("set the position of object {handle}"));
-                    what.push(format!("set the orientation of object {handle}"));
-                }
-                Edit::Remove(handle) => {
-                    cmds.push(Command::RemoveObject(handle));
-                    what.push(format!("remove object {handle}"));
-                }
-            }
-        }
+        let mut cmds = self.record_commands(edits);
+        let record = cmds.len();
+        let what = edit_commands(edits, &mut cmds);
         let r = self.call(&cmds)?;
         // a simulator without string signals only loses the record
         let failed: Vec<&str> = r[record..]

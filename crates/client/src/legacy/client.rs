@@ -135,6 +135,14 @@ pub struct Retrying<'a> {
     pub why: &'a str,
 }
 
+/// What a connection accepted by the server turned out to be, when not an error.
+enum Accepted {
+    /// Open: the server answered.
+    Open(Client),
+    /// Dropped at once (why, to retry): the server was re-creating its socket.
+    Dropped(String),
+}
+
 /// The result of one command.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reply {
@@ -203,71 +211,9 @@ impl Client {
                 let attempt = Instant::now();
                 match TcpStream::connect_timeout(a, left) {
                     Ok(stream) => {
-                        stream.set_nodelay(true).ok();
-                        // A ZeroMQ peer greets at once; a legacy server never speaks first.
-                        // Look before sending: legacy bytes that reach a ZeroMQ socket can
-                        // keep it from answering its next clients for seconds.
-                        if greets_in_zmtp(&stream, greeting_wait(attempt.elapsed())) {
-                            return Err(ClientError::ZeroMqPeer { addr: name.clone() });
-                        }
-                        let mut client = Client {
-                            stream,
-                            open: false,
-                            opts: opts.clone(),
-                            next_id: 0,
-                            clock: Instant::now(),
-                            header: None,
-                            inbox: HashMap::new(),
-                            round_trips: 0,
-                            messages: 0,
-                        };
-                        // A connection can land in the backlog of a listening socket the server
-                        // is about to close (it re-creates it after each client): check that
-                        // the server answers a header-only message before using it.
-                        let wait = opts
-                            .reply_timeout
-                            .min(opts.connect_timeout.saturating_sub(started.elapsed()))
-                            .max(Duration::from_millis(200));
-                        client.stream.set_read_timeout(Some(wait)).ok();
-                        match client.exchange(vec![]) {
-                            Ok(_) => {
-                                client.open = true;
-                                return Ok(client);
-                            }
-                            Err(ClientError::Timeout(_)) => {
-                                // a web server waits for a request's end before it answers
-                                if answers_in_http(a, wait) {
-                                    return Err(not_legacy_http(&name));
-                                }
-                                return Err(ClientError::Busy {
-                                    addr: name.clone(),
-                                    waited: wait.as_secs_f64(),
-                                });
-                            }
-                            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
-                                if marker == u16::from_le_bytes(*b"HT") =>
-                            {
-                                return Err(not_legacy_http(&name));
-                            }
-                            Err(
-                                e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_))),
-                            ) => {
-                                last = format!(
-                                    "connection dropped at once ({e}): the server was re-creating its socket"
-                                )
-                            }
-                            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
-                                if client.greeted_in_zmtp(marker) =>
-                            {
-                                return Err(ClientError::ZeroMqPeer { addr: name.clone() });
-                            }
-                            Err(ClientError::Wire(e)) => {
-                                return Err(ClientError::NotLegacy {
-                                    addr: name.clone(),
-                                    what: e.to_string(),
-                                });
-                            }
-                            Err(e) => return Err(e),
+                        match Client::try_accepted(stream, a, &name, &opts, started, attempt)? {
+                            Accepted::Open(client) => return Ok(client),
+                            Accepted::Dropped(why) => last = why,
                         }
                     }
                     Err(e) => last = e.to_string(),
@@ -289,6 +235,86 @@ impl Client {
                 });
             }
             std::thread::sleep(opts.retry_interval);
+        }
+    }
+
+    /// Checks the connection `stream` accepted at `a` (`name`), `attempt` being when it
+    /// was tried and `started` when connecting began: open once the server answers a
+    /// header-only message, dropped at once (to retry), or an error that ends connecting
+    /// (a ZeroMQ peer, a web server, another protocol, a busy server).
+    fn try_accepted(
+        stream: TcpStream,
+        a: &SocketAddr,
+        name: &str,
+        opts: &ClientOptions,
+        started: Instant,
+        attempt: Instant,
+    ) -> Result<Accepted, ClientError> {
+        stream.set_nodelay(true).ok();
+        // A ZeroMQ peer greets at once; a legacy server never speaks first.
+        // Look before sending: legacy bytes that reach a ZeroMQ socket can
+        // keep it from answering its next clients for seconds.
+        if greets_in_zmtp(&stream, greeting_wait(attempt.elapsed())) {
+            return Err(ClientError::ZeroMqPeer {
+                addr: name.to_string(),
+            });
+        }
+        let mut client = Client {
+            stream,
+            open: false,
+            opts: opts.clone(),
+            next_id: 0,
+            clock: Instant::now(),
+            header: None,
+            inbox: HashMap::new(),
+            round_trips: 0,
+            messages: 0,
+        };
+        // A connection can land in the backlog of a listening socket the server
+        // is about to close (it re-creates it after each client): check that
+        // the server answers a header-only message before using it.
+        let wait = opts
+            .reply_timeout
+            .min(opts.connect_timeout.saturating_sub(started.elapsed()))
+            .max(Duration::from_millis(200));
+        client.stream.set_read_timeout(Some(wait)).ok();
+        match client.exchange(vec![]) {
+            Ok(_) => {
+                client.open = true;
+                Ok(Accepted::Open(client))
+            }
+            Err(ClientError::Timeout(_)) => {
+                // a web server waits for a request's end before it answers
+                if answers_in_http(a, wait) {
+                    return Err(not_legacy_http(name));
+                }
+                Err(ClientError::Busy {
+                    addr: name.to_string(),
+                    waited: wait.as_secs_f64(),
+                })
+            }
+            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
+                if marker == u16::from_le_bytes(*b"HT") =>
+            {
+                Err(not_legacy_http(name))
+            }
+            Err(e @ (ClientError::Closed | ClientError::Wire(WireError::Io(_)))) => {
+                Ok(Accepted::Dropped(format!(
+                    "connection dropped at once ({e}): the server was re-creating its socket"
+                )))
+            }
+            Err(ClientError::Wire(WireError::BadPacket { marker, .. }))
+                if client.greeted_in_zmtp(marker) =>
+            {
+                Err(ClientError::ZeroMqPeer {
+                    addr: name.to_string(),
+                })
+            }
+            Err(ClientError::Wire(e)) => Err(ClientError::NotLegacy {
+                addr: name.to_string(),
+                what: e.to_string(),
+            }),
+            Err(e) => Err(e),
         }
     }
 

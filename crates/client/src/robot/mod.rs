@@ -184,6 +184,36 @@ fn interrupted(options: &DriveOptions) -> bool {
         .is_some_and(|i| i.load(Ordering::SeqCst))
 }
 
+/// Adds the pose of `reading` to `samples` unless its time is not past the last one's.
+fn add_sample(samples: &mut Vec<Sample>, reading: &Reading) {
+    if samples.last().is_none_or(|s| reading.time > s.t) {
+        samples.push(Sample {
+            t: reading.time,
+            x: reading.pose.x,
+            y: reading.pose.y,
+            yaw: reading.pose.yaw,
+        });
+    }
+}
+
+/// Which limit of `options` passed, if one did, at simulation `time` of a run that
+/// began at `began`: the simulation limit, then the wall-clock timeout.
+fn limit_passed(time: f64, began: Instant, options: &DriveOptions) -> Option<String> {
+    if time >= options.sim_limit {
+        return Some(format!(
+            "the simulation limit of {} s passed first",
+            options.sim_limit
+        ));
+    }
+    if began.elapsed() >= options.wall_limit {
+        return Some(format!(
+            "the timeout of {} s passed first",
+            options.wall_limit.as_secs_f64()
+        ));
+    }
+    None
+}
+
 /// The stepping loop of [`drive`], on a started simulation.
 fn stepping(
     port: &mut dyn RobotPort,
@@ -209,14 +239,7 @@ fn stepping(
         if steps > 0 && samples.last().is_some_and(|s| reading.time < s.t) {
             break Some("the simulation was stopped by someone else".to_string());
         }
-        if samples.last().is_none_or(|s| reading.time > s.t) {
-            samples.push(Sample {
-                t: reading.time,
-                x: reading.pose.x,
-                y: reading.pose.y,
-                yaw: reading.pose.yaw,
-            });
-        }
+        add_sample(&mut samples, &reading);
         let observation = Observation {
             time: reading.time,
             joints: reading.joints,
@@ -245,17 +268,8 @@ fn stepping(
         if steer.arrived() {
             break None;
         }
-        if reading.time >= options.sim_limit {
-            break Some(format!(
-                "the simulation limit of {} s passed first",
-                options.sim_limit
-            ));
-        }
-        if began.elapsed() >= options.wall_limit {
-            break Some(format!(
-                "the timeout of {} s passed first",
-                options.wall_limit.as_secs_f64()
-            ));
+        if let Some(why) = limit_passed(reading.time, began, options) {
+            break Some(why);
         }
         let actuating = Instant::now();
         if let Err(e) = port.actuate(wheels) {

@@ -7,7 +7,7 @@
 //! the first reply tells the generation: a protocol-1 server (CoppeliaSim 4.3 to 4.5) answers
 //! with `success`, after which requests shrink to `{func, args}`.
 
-use std::net::{TcpStream, ToSocketAddrs};
+use std::net::{SocketAddr, TcpStream, ToSocketAddrs};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
@@ -355,40 +355,10 @@ impl Client {
         } else {
             format!("tcp://{host}:{}", options.port)
         };
-        let connect_err = |why: String| ZmqError::Connect {
-            endpoint: endpoint.clone(),
-            why,
-        };
-        let addrs: Vec<_> = (host, options.port)
-            .to_socket_addrs()
-            .map_err(|e| ZmqError::Resolve {
-                endpoint: endpoint.clone(),
-                why: e.to_string(),
-            })?
-            .collect();
         let wait = options
             .connect_timeout
             .unwrap_or(options.timeout.min(Duration::from_secs(3)));
-        let mut last = String::from("no address");
-        let mut connected_in = Duration::ZERO;
-        let mut address = None;
-        let stream = addrs
-            .iter()
-            .find_map(|a| {
-                let attempt = Instant::now();
-                match TcpStream::connect_timeout(a, wait) {
-                    Ok(s) => {
-                        connected_in = attempt.elapsed();
-                        address = Some(*a);
-                        Some(s)
-                    }
-                    Err(e) => {
-                        last = e.to_string();
-                        None
-                    }
-                }
-            })
-            .ok_or_else(|| connect_err(last))?;
+        let (stream, connected_in, address) = first_stream(host, options.port, wait, &endpoint)?;
         // the greeting comes about one round trip (the connection's time) after it, from
         // libzmq's I/O thread, which a loaded machine may not run for a few hundred
         // milliseconds: a second's room before the peer is judged
@@ -471,14 +441,9 @@ impl Client {
         requests: &[(&str, &Request)],
         stop: Option<&AtomicBool>,
     ) -> Result<Vec<Value>, ZmqError> {
-        let gone = |c: &Client, func: &str| ZmqError::Gone {
-            func: func.to_string(),
-            endpoint: c.endpoint.clone(),
-            secs: c.timeout.as_secs_f64(),
-        };
         let first = requests.first().map_or("", |(f, _)| f);
         if self.gone {
-            return Err(gone(self, first));
+            return Err(self.gone_error(first));
         }
         self.stats.round_trips += requests.len() as u64;
         let wait = if self.timed_out {
@@ -505,33 +470,9 @@ impl Client {
                     self.timed_out = false;
                     b
                 }
-                Err(Waited::Stopped) => {
-                    self.reset()?;
-                    return Err(ZmqError::Stopped {
-                        endpoint: self.endpoint.clone(),
-                    });
-                }
-                Err(Waited::Failed(zmq::Error::EAGAIN | zmq::Error::EINTR)) => {
-                    self.timed_out = true;
-                    self.reset()?;
-                    if !self.still_listens() {
-                        self.gone = true;
-                        return Err(gone(self, func));
-                    }
-                    return Err(ZmqError::Timeout {
-                        func: func.to_string(),
-                        endpoint: self.endpoint.clone(),
-                        secs: wait.as_secs_f64(),
-                    });
-                }
-                Err(Waited::Failed(e)) => {
-                    if replies.len() + 1 < requests.len() {
-                        self.reset()?;
-                    }
-                    return Err(ZmqError::Transport {
-                        endpoint: self.endpoint.clone(),
-                        error: e,
-                    });
+                Err(why) => {
+                    let outstanding = replies.len() + 1 < requests.len();
+                    return Err(self.no_reply(why, func, wait, outstanding));
                 }
             };
             if std::env::var_os("VREP_MAZE_TRACE").is_some() {
@@ -555,6 +496,57 @@ impl Client {
             }
         }
         Ok(replies)
+    }
+
+    /// The error of a call to `func` on a server that is gone.
+    fn gone_error(&self, func: &str) -> ZmqError {
+        ZmqError::Gone {
+            func: func.to_string(),
+            endpoint: self.endpoint.clone(),
+            secs: self.timeout.as_secs_f64(),
+        }
+    }
+
+    /// The error of a reply to `func` that did not come (`why`) within `wait`, the socket
+    /// replaced where a late reply could still arrive: after a stop or a timeout, or a
+    /// failure with replies still `outstanding`. A server that no longer listens after a
+    /// timeout is gone, for every later call too. An error replacing the socket is
+    /// returned instead.
+    fn no_reply(&mut self, why: Waited, func: &str, wait: Duration, outstanding: bool) -> ZmqError {
+        match why {
+            Waited::Stopped => {
+                if let Err(e) = self.reset() {
+                    return e;
+                }
+                ZmqError::Stopped {
+                    endpoint: self.endpoint.clone(),
+                }
+            }
+            Waited::Failed(zmq::Error::EAGAIN | zmq::Error::EINTR) => {
+                self.timed_out = true;
+                if let Err(e) = self.reset() {
+                    return e;
+                }
+                if !self.still_listens() {
+                    self.gone = true;
+                    return self.gone_error(func);
+                }
+                ZmqError::Timeout {
+                    func: func.to_string(),
+                    endpoint: self.endpoint.clone(),
+                    secs: wait.as_secs_f64(),
+                }
+            }
+            Waited::Failed(error) => {
+                if outstanding && let Err(e) = self.reset() {
+                    return e;
+                }
+                ZmqError::Transport {
+                    endpoint: self.endpoint.clone(),
+                    error,
+                }
+            }
+        }
     }
 
     /// Sends one request as a REQ socket would (an empty delimiter frame, then the request),
@@ -929,6 +921,48 @@ impl TimedRead for &mut TcpStream {
         self.set_read_timeout(Some(wait))?;
         self.read(buf)
     }
+}
+
+/// A TCP connection to the first of the addresses of `host:port` (`endpoint`) that accepts
+/// one within `wait`, how long it took, and the address.
+fn first_stream(
+    host: &str,
+    port: u16,
+    wait: Duration,
+    endpoint: &str,
+) -> Result<(TcpStream, Duration, Option<SocketAddr>), ZmqError> {
+    let connect_err = |why: String| ZmqError::Connect {
+        endpoint: endpoint.to_string(),
+        why,
+    };
+    let addrs: Vec<_> = (host, port)
+        .to_socket_addrs()
+        .map_err(|e| ZmqError::Resolve {
+            endpoint: endpoint.to_string(),
+            why: e.to_string(),
+        })?
+        .collect();
+    let mut last = String::from("no address");
+    let mut connected_in = Duration::ZERO;
+    let mut address = None;
+    let stream = addrs
+        .iter()
+        .find_map(|a| {
+            let attempt = Instant::now();
+            match TcpStream::connect_timeout(a, wait) {
+                Ok(s) => {
+                    connected_in = attempt.elapsed();
+                    address = Some(*a);
+                    Some(s)
+                }
+                Err(e) => {
+                    last = e.to_string();
+                    None
+                }
+            }
+        })
+        .ok_or_else(|| connect_err(last))?;
+    Ok((stream, connected_in, address))
 }
 
 /// Reads the first 10 bytes the peer sends on `stream` within `wait`: a ZMTP greeting starts
