@@ -466,19 +466,7 @@ fn legacy<T: Opened>(
             countdown.retrying(r);
         } else if !said_nothing_listens && r.waited >= NOTHING_LISTENS_AFTER {
             said_nothing_listens = true;
-            eprintln!(
-                "nothing listens on {} ({}){}; trying until {} s",
-                super::escape::escaped(&addr),
-                r.why,
-                if let Some(z) = zmq_probe.filter(|z| z.port != port)
-                    && !accepts_tcp(host, z.port)
-                {
-                    format!(", nor on the ZeroMQ port {}", z.port)
-                } else {
-                    String::new()
-                },
-                seconds(connect_timeout)
-            );
+            nothing_listens_note(host, port, r.why, zmq_probe, connect_timeout);
         }
         true
     });
@@ -504,34 +492,56 @@ fn legacy<T: Opened>(
                 // the minute is over: the refusal is not the cause any more
                 marker.closed();
             }
-            let mut hints = vec![format!(
-                "is CoppeliaSim running with the legacy remote API on port {port}? (CoppeliaSim up to 4.10 starts it on {LEGACY_PORT})"
-            )];
-            if connect_timeout < LEGACY_REFUSAL_WAIT {
-                hints.push(format!(
-                    "after a session it closed first (a client that waits for the server to close after its last message, or one silent for 10 s) CoppeliaSim refuses every connection on its legacy port for about a minute; if another program left so, pass --connect-timeout {} to wait it out",
-                    LEGACY_REFUSAL_WAIT.as_secs()
-                ));
-            }
-            if let Some(z) = zmq_probe.filter(|z| z.port != port)
-                && zmq_answers(host, z.port)
-            {
-                hints.push(format!(
-                    "the ZeroMQ remote API answers on {}: try {}",
-                    socket_addr(host, z.port),
-                    z.option()
-                ));
-            }
-            anyhow::Error::new(ConnectError {
-                message: format!(
-                    "cannot connect to {addr}: nothing accepted a connection within {} s ({why})",
-                    seconds(connect_timeout)
-                ),
-                hints,
-                nothing_listens: true,
-                zmq_peer: false,
-            })
+            nothing_accepted(&why, host, port, connect_timeout, zmq_probe)
         }
+        other => answered_wrongly(other, &addr, port),
+    })
+}
+
+/// The error of a legacy connection to `host:port` that nothing accepted within
+/// `connect_timeout` (`why`: the last attempt's failure), with hints: the port, the
+/// minute of refusal, and the ZeroMQ remote API if `zmq_probe` finds it answering.
+fn nothing_accepted(
+    why: &str,
+    host: &str,
+    port: u16,
+    connect_timeout: Duration,
+    zmq_probe: Option<ZmqProbe>,
+) -> anyhow::Error {
+    let addr = socket_addr(host, port);
+    let mut hints = vec![format!(
+        "is CoppeliaSim running with the legacy remote API on port {port}? (CoppeliaSim up to 4.10 starts it on {LEGACY_PORT})"
+    )];
+    if connect_timeout < LEGACY_REFUSAL_WAIT {
+        hints.push(format!(
+            "after a session it closed first (a client that waits for the server to close after its last message, or one silent for 10 s) CoppeliaSim refuses every connection on its legacy port for about a minute; if another program left so, pass --connect-timeout {} to wait it out",
+            LEGACY_REFUSAL_WAIT.as_secs()
+        ));
+    }
+    if let Some(z) = zmq_probe.filter(|z| z.port != port)
+        && zmq_answers(host, z.port)
+    {
+        hints.push(format!(
+            "the ZeroMQ remote API answers on {}: try {}",
+            socket_addr(host, z.port),
+            z.option()
+        ));
+    }
+    anyhow::Error::new(ConnectError {
+        message: format!(
+            "cannot connect to {addr}: nothing accepted a connection within {} s ({why})",
+            seconds(connect_timeout)
+        ),
+        hints,
+        nothing_listens: true,
+        zmq_peer: false,
+    })
+}
+
+/// The error of a legacy connection to `addr` (port `port`) that something answered
+/// other than a free legacy remote API: the ZeroMQ one, another protocol, a busy server.
+fn answered_wrongly(error: ClientError, addr: &str, port: u16) -> anyhow::Error {
+    match error {
         ClientError::ZeroMqPeer { .. } => anyhow::Error::new(ConnectError {
             message: format!(
                 "port {port} speaks the ZeroMQ remote API, not the legacy one: use --api zmq"
@@ -554,7 +564,32 @@ fn legacy<T: Opened>(
             ],
         ),
         other => anyhow::Error::new(other).context(format!("legacy remote API at {addr}")),
-    })
+    }
+}
+
+/// Says that nothing listens on `host:port` (`why`: the last attempt's failure), nor on
+/// the ZeroMQ port if `zmq_probe` finds none there, and how long the tries go on.
+fn nothing_listens_note(
+    host: &str,
+    port: u16,
+    why: &str,
+    zmq_probe: Option<ZmqProbe>,
+    connect_timeout: Duration,
+) {
+    let addr = socket_addr(host, port);
+    eprintln!(
+        "nothing listens on {} ({}){}; trying until {} s",
+        super::escape::escaped(&addr),
+        why,
+        if let Some(z) = zmq_probe.filter(|z| z.port != port)
+            && !accepts_tcp(host, z.port)
+        {
+            format!(", nor on the ZeroMQ port {}", z.port)
+        } else {
+            String::new()
+        },
+        seconds(connect_timeout)
+    );
 }
 
 /// Whether anything accepts a TCP connection on `host:port` within [`PROBE_TIMEOUT`].

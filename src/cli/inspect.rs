@@ -145,34 +145,75 @@ fn inspect(
     wanted: Option<&Wanted>,
     stop: &AtomicBool,
 ) -> Result<InspectReport> {
-    let go_on = || -> Result<()> {
-        if stop.load(Ordering::SeqCst) {
-            return Err(Interrupted(
-                "while reading the scene: nothing was changed, the idle rate is restored".into(),
-            )
-            .into());
-        }
-        Ok(())
-    };
     let (survey, surveyed) = survey(scene, names)?;
-    go_on()?;
-    let objects = &survey.objects;
-    let handle = |name: &str| {
-        // `survey`'s handles are by the roles of `ObjectNames::survey(Style::Lines)`
-        let h = survey.handles;
-        [
-            (&names.floor, h.floor),
-            (&names.parent, h.parent),
-            (&names.line, h.template),
-            (&names.start, h.start),
-            (&names.end, h.end),
-            (&names.wall, h.other_template),
-            (&names.post, h.post),
-        ]
-        .into_iter()
-        .find(|(n, _)| *n == name)
-        .and_then(|(_, h)| h)
+    go_on(stop)?;
+    let (templates, colours_read) = named_objects(scene, &survey, names, stop)?;
+    let parent = role_handle(survey.handles, names, &names.parent);
+    // a mesh maze (`apply --draw mesh`): the holder under the maze dummy and its meshes
+    let meshes = match parent {
+        Some(parent) => crate::draw::mesh::found(scene, names, parent, &survey.objects)?,
+        None => Default::default(),
     };
+    go_on(stop)?;
+    let maze = drawn_maze(&survey, surveyed, names, &meshes, parent);
+    go_on(stop)?;
+    let layout = match wanted {
+        None => None,
+        Some(wanted) => Some(layout_match(scene, names, wanted, &meshes)?),
+    };
+    Ok(InspectReport {
+        format: "vrep-maze/inspect".into(),
+        version: REPORT_VERSION,
+        connection,
+        simulation_running: survey.simulation_running,
+        idle_fps: 0,
+        saved_idle_fps: None,
+        objects: templates,
+        colours_read,
+        maze,
+        layout,
+    })
+}
+
+/// Stops the reading once `stop` is set ([`Interrupted`]).
+fn go_on(stop: &AtomicBool) -> Result<()> {
+    if stop.load(Ordering::SeqCst) {
+        return Err(Interrupted(
+            "while reading the scene: nothing was changed, the idle rate is restored".into(),
+        )
+        .into());
+    }
+    Ok(())
+}
+
+/// The handle the survey found for `name`, one of `names` (`h` holds the handles by the
+/// roles of `ObjectNames::survey(Style::Lines)`).
+fn role_handle(h: SurveyHandles, names: &ObjectNames, name: &str) -> Option<i32> {
+    [
+        (&names.floor, h.floor),
+        (&names.parent, h.parent),
+        (&names.line, h.template),
+        (&names.start, h.start),
+        (&names.end, h.end),
+        (&names.wall, h.other_template),
+        (&names.post, h.post),
+    ]
+    .into_iter()
+    .find(|(n, _)| *n == name)
+    .and_then(|(_, h)| h)
+}
+
+/// The named objects as the report lists them, one a role, with their sizes and (shapes
+/// only) colours read, and whether the backend reads colours at all; stopping between
+/// requests once `stop` is set.
+fn named_objects(
+    scene: &mut dyn Backend,
+    survey: &Survey,
+    names: &ObjectNames,
+    stop: &AtomicBool,
+) -> Result<(Vec<SceneObject>, bool)> {
+    let objects = &survey.objects;
+    let handle = |name: &str| role_handle(survey.handles, names, name);
     let by_handle = |h: i32| objects.iter().find(|o| o.handle == h);
     let floor = survey.handles.floor.and_then(|f| floor_frame(objects, f));
     let roles = [
@@ -185,7 +226,7 @@ fn inspect(
         ("end marker", &names.end),
     ];
     let present: Vec<i32> = roles.iter().filter_map(|(_, name)| handle(name)).collect();
-    go_on()?;
+    go_on(stop)?;
     let sizes: HashMap<i32, BoundingBox> = present
         .iter()
         .zip(scene.bounding_boxes(&present)?)
@@ -197,7 +238,7 @@ fn inspect(
         .copied()
         .filter(|h| survey.traits.kinds.get(h) == Some(&OBJECT_SHAPE_TYPE))
         .collect();
-    go_on()?;
+    go_on(stop)?;
     let colours_read = scene.shape_colours(&shapes)?;
     let colours: HashMap<i32, [f64; 3]> = match &colours_read {
         Some(colours) => shapes
@@ -222,7 +263,21 @@ fn inspect(
             shown
         })
         .collect();
-    let parent = handle(&names.parent);
+    Ok((templates, colours_read.is_some()))
+}
+
+/// What the scene holds of a drawn maze: the copies under the maze dummy `parent` counted
+/// by template, the meshes of a mesh maze, the copies left at the root, the user's objects
+/// among them, and the style they make up.
+fn drawn_maze(
+    survey: &Survey,
+    surveyed: Style,
+    names: &ObjectNames,
+    meshes: &FoundMeshes,
+    parent: Option<i32>,
+) -> DrawnMaze {
+    let objects = &survey.objects;
+    let handle = |name: &str| role_handle(survey.handles, names, name);
     let ours: Vec<Option<i32>> = [
         &names.floor,
         &names.line,
@@ -235,12 +290,6 @@ fn inspect(
     .map(|n| handle(n))
     .collect();
     let mut maze = DrawnMaze::default();
-    // a mesh maze (`apply --draw mesh`): the holder under the maze dummy and its meshes
-    let meshes = match parent {
-        Some(parent) => crate::draw::mesh::found(scene, names, parent, objects)?,
-        None => Default::default(),
-    };
-    go_on()?;
     let mesh_kinds: Vec<MeshKind> = meshes
         .meshes
         .iter()
@@ -288,49 +337,45 @@ fn inspect(
         (0, _) => Some(Style::Walls),
         _ => None,
     };
-    go_on()?;
-    let layout = match wanted {
-        None => None,
-        Some(Wanted {
-            file,
-            drawing,
-            layout,
-        }) => Some(match compare(scene, names, drawing, layout, &meshes) {
-            Ok(()) => LayoutMatch {
-                file: file.clone(),
-                matches: true,
-                differences: Vec::new(),
-            },
-            Err(DrawError::Verify(differences)) => LayoutMatch {
-                file: file.clone(),
-                matches: false,
-                differences: differences.iter().map(super::wording::worded).collect(),
-            },
-            Err(missing @ DrawError::Missing { .. }) => LayoutMatch {
-                file: file.clone(),
-                matches: false,
-                differences: vec![missing.to_string()],
-            },
-            // a floor smaller than the layout's is a difference of the scene, with its remedy
-            Err(short @ DrawError::Floor { .. }) => LayoutMatch {
-                file: file.clone(),
-                matches: false,
-                differences: vec![floor_difference(&short)],
-            },
-            Err(e) => return Err(anyhow::Error::new(e).context(format!("comparing {file}"))),
-        }),
-    };
-    Ok(InspectReport {
-        format: "vrep-maze/inspect".into(),
-        version: REPORT_VERSION,
-        connection,
-        simulation_running: survey.simulation_running,
-        idle_fps: 0,
-        saved_idle_fps: None,
-        objects: templates,
-        colours_read: colours_read.is_some(),
-        maze,
+    maze
+}
+
+/// How the scene compares with `wanted`: its differences, worded, if any; an error other
+/// than a difference is refused.
+fn layout_match(
+    scene: &mut dyn Backend,
+    names: &ObjectNames,
+    wanted: &Wanted,
+    meshes: &FoundMeshes,
+) -> Result<LayoutMatch> {
+    let Wanted {
+        file,
+        drawing,
         layout,
+    } = wanted;
+    Ok(match compare(scene, names, drawing, layout, meshes) {
+        Ok(()) => LayoutMatch {
+            file: file.clone(),
+            matches: true,
+            differences: Vec::new(),
+        },
+        Err(DrawError::Verify(differences)) => LayoutMatch {
+            file: file.clone(),
+            matches: false,
+            differences: differences.iter().map(super::wording::worded).collect(),
+        },
+        Err(missing @ DrawError::Missing { .. }) => LayoutMatch {
+            file: file.clone(),
+            matches: false,
+            differences: vec![missing.to_string()],
+        },
+        // a floor smaller than the layout's is a difference of the scene, with its remedy
+        Err(short @ DrawError::Floor { .. }) => LayoutMatch {
+            file: file.clone(),
+            matches: false,
+            differences: vec![floor_difference(&short)],
+        },
+        Err(e) => return Err(anyhow::Error::new(e).context(format!("comparing {file}"))),
     })
 }
 
@@ -436,41 +481,68 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
         r.idle_fps
     ))?;
     for o in &r.objects {
-        let mut looks = String::new();
-        if let Some(s) = o.size {
-            looks += &format!("; {} x {} x {} m", s[0], s[1], s[2]);
-        }
-        if let Some(c) = o.colour {
-            looks += &format!("; colour {}", hex(c));
-        }
-        match (o.position, o.orientation) {
-            (Some(p), Some(e)) => say(format!(
-                "  {:<14} {:<8} at {}, {}, {} m, yaw {} rad{}{looks}",
-                o.role,
-                o.name,
-                p[0],
-                p[1],
-                p[2],
-                e[2],
-                if o.role == "floor" {
-                    " (world)"
-                } else {
-                    " (floor frame)"
-                }
-            ))?,
-            _ if o.present => say(format!("  {:<14} {:<8} present", o.role, o.name))?,
-            _ => say(format!(
-                "  {:<14} {:<8} {}",
-                o.role,
-                o.name,
-                absent(&o.role, r.maze.style)
-            ))?,
-        }
+        show_object(o, r.maze.style)?;
     }
     if !r.colours_read {
         say("  (colours not shown: the legacy remote API cannot read them; --api zmq can)")?;
     }
-    let m = &r.maze;
+    show_maze(&r.maze)?;
+    if let Some(l) = &r.layout {
+        if l.matches {
+            say(format!("{}: the scene matches it", l.file))?;
+        } else {
+            say(format!(
+                "{}: the scene differs in {} way(s):",
+                l.file,
+                l.differences.len()
+            ))?;
+            for d in &l.differences {
+                say(format!("  {d}"))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One named object's line of the report for a person: where it stands, its size and
+/// colour, or that it is absent (`drawn`: the style of the maze drawn, if one is).
+fn show_object(o: &SceneObject, drawn: Option<Style>) -> anyhow::Result<()> {
+    let mut looks = String::new();
+    if let Some(s) = o.size {
+        looks += &format!("; {} x {} x {} m", s[0], s[1], s[2]);
+    }
+    if let Some(c) = o.colour {
+        looks += &format!("; colour {}", hex(c));
+    }
+    match (o.position, o.orientation) {
+        (Some(p), Some(e)) => say(format!(
+            "  {:<14} {:<8} at {}, {}, {} m, yaw {} rad{}{looks}",
+            o.role,
+            o.name,
+            p[0],
+            p[1],
+            p[2],
+            e[2],
+            if o.role == "floor" {
+                " (world)"
+            } else {
+                " (floor frame)"
+            }
+        ))?,
+        _ if o.present => say(format!("  {:<14} {:<8} present", o.role, o.name))?,
+        _ => say(format!(
+            "  {:<14} {:<8} {}",
+            o.role,
+            o.name,
+            absent(&o.role, drawn)
+        ))?,
+    }
+    Ok(())
+}
+
+/// The drawn maze's lines of the report for a person: its copies, meshes, stray copies
+/// and the user's objects under the maze dummy.
+fn show_maze(m: &DrawnMaze) -> anyhow::Result<()> {
     let kind = match m.style {
         Some(Style::Lines) => " (a line maze)",
         Some(Style::Walls) => " (a wall maze)",
@@ -514,20 +586,6 @@ fn show(r: &InspectReport, clear: &str) -> anyhow::Result<()> {
             "under the maze dummy but not ours: {}",
             first_names(&m.not_ours)
         ))?;
-    }
-    if let Some(l) = &r.layout {
-        if l.matches {
-            say(format!("{}: the scene matches it", l.file))?;
-        } else {
-            say(format!(
-                "{}: the scene differs in {} way(s):",
-                l.file,
-                l.differences.len()
-            ))?;
-            for d in &l.differences {
-                say(format!("  {d}"))?;
-            }
-        }
     }
     Ok(())
 }

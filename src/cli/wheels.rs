@@ -32,10 +32,9 @@ use crate::score::{GradeOptions, Grader, Report};
 use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
-/// Runs `drive --wheels`.
-pub fn run(args: DriveArgs) -> Result<ExitCode> {
-    let layout = &checked(&args)?;
-    let args = &args;
+/// Refuses wheel speeds and timeouts out of range, and camera steering in a wall maze
+/// (`layout`).
+fn check_wheel_options(args: &DriveArgs, layout: &Layout) -> Result<()> {
     let parts = &args.parts;
     ensure_usage!(
         parts.wheel_max.is_finite() && parts.wheel_max > 0.0 && parts.wheel_max <= 1000.0,
@@ -56,6 +55,15 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
         args.steer == SteerBy::Pose || layout.style == Style::Lines,
         "--steer camera follows drawn lines: this is a wall maze; steer it with --steer pose"
     );
+    Ok(())
+}
+
+/// Runs `drive --wheels`.
+pub fn run(args: DriveArgs) -> Result<ExitCode> {
+    let layout = &checked(&args)?;
+    let args = &args;
+    let parts = &args.parts;
+    check_wheel_options(args, layout)?;
     let interrupt = Interrupt::install()?;
     let client = args.scene.client_until(Some(&interrupt.shared()))?;
     if !parts.start_simulation {
