@@ -3,7 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::backend::{Backend, ObjectInfo};
+use super::backend::{Backend, ObjectInfo, Survey};
 use super::drawing::Drawing;
 use super::error::DrawError;
 use super::names::{Handles, ObjectNames};
@@ -12,6 +12,7 @@ use super::pose::{floor_frame, pose_differences, relative_pose};
 use super::session::{raised, sizes_of, surveyed};
 use super::survey::Traits;
 use vrep_maze_core::coppelia::frame::Frame;
+use vrep_maze_core::layout::sizes::TemplateUse;
 use vrep_maze_core::layout::{Pose, Style};
 use vrep_maze_core::wording::{Message, Opt};
 
@@ -247,12 +248,7 @@ fn verify_raised(
     let with_posts = !drawing.posts.is_empty();
     let asks = drawing.template_use();
     let (survey, h) = surveyed(scene, names, &asks, with_posts)?;
-    let sizes = sizes_of(scene, &asks, names, &h)?;
-    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
-    let can_resize = scene.authoring().is_some();
-    if let Some(differences) = sizes.differences(names, floor_kind, can_resize) {
-        return Err(differences);
-    }
+    refuse_size_differences(scene, &asks, names, &survey, &h)?;
     // every pose as the scene holds it now, not as a backend remembers setting it; the
     // user's objects are no maze lines
     let objects = &ownership::sort_out(
@@ -317,6 +313,24 @@ fn verify_raised(
         Ok(())
     } else {
         Err(DrawError::Verify(problems))
+    }
+}
+
+/// Refuses templates or markers whose sizes differ from what `asks` wants of them, and a
+/// floor smaller than the layout's (with what would fit it on this connection).
+fn refuse_size_differences(
+    scene: &mut dyn Backend,
+    asks: &TemplateUse<'_>,
+    names: &ObjectNames,
+    survey: &Survey,
+    h: &Handles,
+) -> Result<(), DrawError> {
+    let sizes = sizes_of(scene, asks, names, h)?;
+    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
+    let can_resize = scene.authoring().is_some();
+    match sizes.differences(names, floor_kind, can_resize) {
+        Some(differences) => Err(differences),
+        None => Ok(()),
     }
 }
 
