@@ -379,8 +379,6 @@ fn layout_match(
     })
 }
 
-/// Compares the scene with a layout as `apply` verifies it: as meshes when the scene holds a
-/// mesh maze (`meshes`), else as copies. Only reads.
 /// A floor smaller than the layout's as a difference of the scene: its sizes, then what
 /// fits this floor on this connection (`--resize-floor` only where it can grow it).
 fn floor_difference(short: &DrawError) -> String {
@@ -392,6 +390,8 @@ fn floor_difference(short: &DrawError) -> String {
     line
 }
 
+/// Compares the scene with a layout as `apply` verifies it: as meshes when the scene holds a
+/// mesh maze (`meshes`), else as copies. Only reads.
 fn compare(
     scene: &mut dyn Backend,
     names: &ObjectNames,

@@ -318,7 +318,7 @@ fn verify_raised(
 
 /// Refuses templates or markers whose sizes differ from what `asks` wants of them, and a
 /// floor smaller than the layout's (with what would fit it on this connection).
-fn refuse_size_differences(
+pub(crate) fn refuse_size_differences(
     scene: &mut dyn Backend,
     asks: &TemplateUse<'_>,
     names: &ObjectNames,

@@ -18,8 +18,7 @@ use crate::draw::ownership::{self, foreign_copies, maze_pieces};
 use crate::draw::pose::{floor_frame, pose_differences};
 use crate::draw::report::{ApplyReport, DrawMode, Stage};
 use crate::draw::session::{
-    Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, sizes_of,
-    surveyed,
+    Begun, EarlierLines, begin, has_line_copies, keep_home, raised, raised_and_claimed, surveyed,
 };
 use vrep_maze_core::coppelia::{SHAPE_LAYER, SPECIAL_DETECTABLE, SPECIAL_RENDERABLE};
 use vrep_maze_core::layout::{Pose, Style};
@@ -643,12 +642,7 @@ fn verify_raised(
     let style = maze.style;
     let asks = maze.template_use();
     let (survey, h) = surveyed(scene, names, &asks, false)?;
-    let sizes = sizes_of(scene, &asks, names, &h)?;
-    let floor_kind = survey.traits.kinds.get(&h.floor).copied();
-    let can_resize = scene.authoring().is_some();
-    if let Some(differences) = sizes.differences(names, floor_kind, can_resize) {
-        return Err(differences);
-    }
+    crate::draw::verify::refuse_size_differences(scene, &asks, names, &survey, &h)?;
     // the user's objects under the maze dummy are no stray maze objects
     let objects = ownership::sort_out(
         &scene.objects_from_scene()?,
