@@ -554,27 +554,7 @@ fn interrupted_applies_are_repaired(target: Target) {
     let (b, lb) = generate(dir.path(), "b", &["--seed", "2", "--algo", "dfs"]);
     ok(&sim, &["apply", &a]);
     for delay_ms in [150, 300, 500, 800] {
-        use std::io::{BufRead, Read};
-        let mut child = crate::support::cli::spawnable()
-            .args(["apply", &b])
-            .args(sim.api_args())
-            .stdout(std::process::Stdio::null())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        // counted from the line apply prints as it starts to connect (its Ctrl-C handler
-        // installed by then), not from its start, which a loaded machine delays
-        let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
-        let mut said = String::new();
-        while !said.contains("connecting to") {
-            if stderr.read_line(&mut said).unwrap() == 0 {
-                break;
-            }
-        }
-        std::thread::sleep(Duration::from_millis(delay_ms));
-        crate::support::cli::interrupt(child.id());
-        stderr.read_to_string(&mut said).unwrap();
-        let code = child.wait().unwrap().code();
+        let (code, said) = interrupted_apply(&sim, &b, Duration::from_millis(delay_ms));
         assert!(
             matches!(code, Some(0) | Some(130)),
             "{target:?}: Ctrl-C after {delay_ms} ms: {code:?}\n{said}"
@@ -589,6 +569,31 @@ fn interrupted_applies_are_repaired(target: Target) {
     assert_shows(&sim, &obs.look(), &lb, before.idle_fps);
     ok(&sim, &["clear"]);
     assert_cleared(&sim, &obs.look(), &before);
+}
+
+/// `apply layout` on the target, sent Ctrl-C `after` it says it is connecting (its Ctrl-C
+/// handler installed by then; counted from that line, not from its start, which a loaded
+/// machine delays): its exit code and everything it wrote to stderr.
+fn interrupted_apply(sim: &Sim, layout: &str, after: Duration) -> (Option<i32>, String) {
+    use std::io::{BufRead, Read};
+    let mut child = crate::support::cli::spawnable()
+        .args(["apply", layout])
+        .args(sim.api_args())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
+    let mut said = String::new();
+    while !said.contains("connecting to") {
+        if stderr.read_line(&mut said).unwrap() == 0 {
+            break;
+        }
+    }
+    std::thread::sleep(after);
+    crate::support::cli::interrupt(child.id());
+    stderr.read_to_string(&mut said).unwrap();
+    (child.wait().unwrap().code(), said)
 }
 
 /// Object aliases and positions rounded to 0.1 mm: what a dry run must leave as it was.
@@ -801,7 +806,6 @@ fn drive_gives_score_a_robot(target: Target) {
 /// copy at the scene's root, and `inspect` says "drawn: N lines". An apply that finished
 /// before the Ctrl-C landed holds all M. `clear` then removes them all.
 fn an_interrupted_apply_counts_what_the_scene_holds(target: Target) {
-    use std::io::{BufRead, Read};
     let sim = target.start();
     let dir = tempfile::tempdir().unwrap();
     let mut obs = Observer::connect(sim.zmq);
@@ -821,24 +825,7 @@ fn an_interrupted_apply_counts_what_the_scene_holds(target: Target) {
     let before = obs.look();
     let (big, layout) = generate(dir.path(), "big", &["--seed", "3", "--size", "50x50"]);
     let total = layout.segments.len() + layout.walls.len();
-    let mut child = crate::support::cli::spawnable()
-        .args(["apply", &big])
-        .args(sim.api_args())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stderr = std::io::BufReader::new(child.stderr.take().unwrap());
-    let mut said = String::new();
-    while !said.contains("connecting to") {
-        if stderr.read_line(&mut said).unwrap() == 0 {
-            break;
-        }
-    }
-    std::thread::sleep(Duration::from_millis(1000));
-    crate::support::cli::interrupt(child.id());
-    stderr.read_to_string(&mut said).unwrap();
-    let code = child.wait().unwrap().code();
+    let (code, said) = interrupted_apply(&sim, &big, Duration::from_secs(1));
     eprintln!(
         "{target:?}: {code:?} {}",
         said.trim_end().lines().last().unwrap_or("")

@@ -98,6 +98,19 @@ pub enum Edit {
     Remove(i32),
 }
 
+impl Edit {
+    /// The objects that `edits` remove.
+    pub fn removed(edits: &[Edit]) -> std::collections::HashSet<i32> {
+        edits
+            .iter()
+            .filter_map(|e| match e {
+                Edit::Remove(h) => Some(*h),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 /// A connection to a simulator that can draw: the operations [`apply()`](super::apply()), [`clear()`](super::clear()) and
 /// [`verify()`](super::verify()) need.
 ///

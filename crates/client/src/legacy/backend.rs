@@ -268,13 +268,7 @@ impl LegacyBackend {
     /// holds, which it then drops), and delete an older version's record once.
     fn record_commands(&mut self, edits: &[Edit]) -> Vec<Command> {
         let mut cmds = Vec::new();
-        let removed: HashSet<i32> = edits
-            .iter()
-            .filter_map(|e| match e {
-                Edit::Remove(h) => Some(*h),
-                _ => None,
-            })
-            .collect();
+        let removed = Edit::removed(edits);
         let pruned = self.record.retain(|h| !removed.contains(&h));
         if std::mem::take(&mut self.record_changed) || pruned {
             // a String: valid UTF-8 ([`crate::draw::record`])

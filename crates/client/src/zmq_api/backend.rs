@@ -9,7 +9,7 @@
 //! made by one request ([`Client::read_all`]), writes sent together ([`Client::call_all`])
 //! and served by one main-loop pass.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
 use ciborium::Value;
@@ -616,13 +616,7 @@ impl Backend for ZmqBackend {
         // removal round: the scene's record keeps their handles, which name no object any
         // more (ignored, and dropped by the next run's survey)
         if let Some(record) = self.record.as_mut() {
-            let removed: HashSet<i32> = edits
-                .iter()
-                .filter_map(|e| match e {
-                    Edit::Remove(h) => Some(*h),
-                    _ => None,
-                })
-                .collect();
+            let removed = Edit::removed(edits);
             record.retain(|h| !removed.contains(&h));
         }
         self.write_record()?;

@@ -189,13 +189,7 @@ fn check_walls_on_floor(
         if !on_floor(pose, spec, layout.floor.size, tolerance) {
             problems.add(
                 format!("walls[{index}]"),
-                format!(
-                    "at ({}, {}) reaches off the {} m x {} m floor",
-                    pose.x,
-                    pose.y,
-                    show(layout.floor.size[0]),
-                    show(layout.floor.size[1])
-                ),
+                off_floor(pose, layout.floor.size),
             );
         }
     }
@@ -311,16 +305,7 @@ fn post_corner(
     }
     let tolerance = limits::floor_tolerance(geometry, grid);
     if !post_on_floor(pose, post, layout.floor.size, tolerance) {
-        problems.add(
-            location,
-            format!(
-                "at ({}, {}) reaches off the {} m x {} m floor",
-                pose.x,
-                pose.y,
-                show(layout.floor.size[0]),
-                show(layout.floor.size[1])
-            ),
-        );
+        problems.add(location, off_floor(pose, layout.floor.size));
     }
     let c = geometry.cell_size;
     let local = geometry.maze_to_floor().inverse() * Point2::new(pose.x, pose.y);
@@ -592,6 +577,17 @@ fn first_uncovered(lo: f64, hi: f64, cover: &[(f64, f64)]) -> f64 {
         }
     }
     point.min(hi)
+}
+
+/// The problem of a wall or post at `pose` that reaches off a floor of `size` metres.
+fn off_floor(pose: &Pose, size: [f64; 2]) -> String {
+    format!(
+        "at ({}, {}) reaches off the {} m x {} m floor",
+        pose.x,
+        pose.y,
+        show(size[0]),
+        show(size[1])
+    )
 }
 
 #[cfg(test)]
