@@ -226,9 +226,12 @@ fn on_real_4_10_0_camera_without_a_display_says_so() {
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(3), "{text}");
+    let errors = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{text}{errors}");
     assert!(text.contains("all black"), "{text}");
     assert!(text.contains("reached End: no"), "{text}");
+    // told from one frame on the stopped simulation: no step was taken
+    assert!(text.contains(": 0 steps,"), "{text}");
 }
 
 /// The course's own way: 4.5.1 over the legacy remote API (`simxSynchronous` and a trigger

@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use vrep_maze_core::robot::camera::{CameraModel, Image};
-use vrep_maze_core::robot::steer::{Observation, Steer};
+use vrep_maze_core::robot::steer::{NOTHING_RENDERS, Observation, Steer};
 use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
 use vrep_maze_core::robot::{Pose, wrap};
 use vrep_maze_core::score::Sample;
@@ -79,6 +79,11 @@ pub trait RobotPort {
     /// rendering unless `camera` (it is read), and the driver announced by the signal
     /// [`DRIVER_SIGNAL`] so that a `score` joins the stepping and starts the simulation.
     fn prepare(&mut self, camera: bool) -> Result<(), RobotError>;
+    /// One camera frame rendered now, on the stopped simulation, or `None` where this port
+    /// cannot take one before the run (its frames come with the steps).
+    fn still_frame(&mut self) -> Result<Option<Image>, RobotError> {
+        Ok(None)
+    }
     /// Starts the simulation.
     fn start_simulation(&mut self) -> Result<(), RobotError>;
     /// Whether the simulation runs (or is paused).
@@ -146,12 +151,35 @@ pub fn drive(
     let needs = steer.needs();
     let run = port
         .prepare(needs.image)
-        .and_then(|()| started(port, options))
-        .and_then(|()| stepping(port, steer, options));
+        .and_then(|()| dark_camera(port, needs.image))
+        .and_then(|dark| match dark {
+            Some(ended) => Ok(ended),
+            None => started(port, options).and_then(|()| stepping(port, steer, options)),
+        });
     let finished = port.finish();
     let driven = run?;
     finished?;
     Ok(driven)
+}
+
+/// The run, ended before it starts, when the camera is read and a frame taken on the
+/// stopped simulation is all black: without a display a real 4.10 spends 4-5 s on each
+/// frame, so the black frames the steer would wait out took 30-60 s and could pass the
+/// client's reply timeout (`docs/measurements.md`, "A camera without a display").
+fn dark_camera(port: &mut dyn RobotPort, camera: bool) -> Result<Option<Driven>, RobotError> {
+    if !camera || !port.still_frame()?.is_some_and(|frame| frame.is_black()) {
+        return Ok(None);
+    }
+    let mut samples = Vec::new();
+    add_sample(&mut samples, &port.observe(false)?);
+    Ok(Some(Driven {
+        samples,
+        arrived: false,
+        stopped: Some(NOTHING_RENDERS.into()),
+        steps: 0,
+        wall_time_s: 0.0,
+        belief: None,
+    }))
 }
 
 /// Starts the simulation, or waits for it to start.
@@ -327,6 +355,10 @@ mod tests {
         time: f64,
         running: bool,
         finished: bool,
+        /// Whether the camera renders (else its images are black: no display).
+        renders: bool,
+        /// Whether the simulation was ever started.
+        started: bool,
     }
 
     impl World {
@@ -348,10 +380,15 @@ mod tests {
                 time: 0.0,
                 running: false,
                 finished: false,
+                renders: true,
+                started: false,
             }
         }
 
         fn render(&self) -> Image {
+            if !self.renders {
+                return Image::new(64, 64, vec![0; 64 * 64 * 3]).unwrap();
+            }
             let mut rgb = Vec::with_capacity(64 * 64 * 3);
             for j in 0..64 {
                 for i in 0..64 {
@@ -382,8 +419,12 @@ mod tests {
         fn prepare(&mut self, _: bool) -> Result<(), RobotError> {
             Ok(())
         }
+        fn still_frame(&mut self) -> Result<Option<Image>, RobotError> {
+            Ok(Some(self.render()))
+        }
         fn start_simulation(&mut self) -> Result<(), RobotError> {
             self.running = true;
+            self.started = true;
             Ok(())
         }
         fn is_running(&mut self) -> Result<bool, RobotError> {
@@ -526,5 +567,23 @@ mod tests {
         assert_eq!(driven.stopped.as_deref(), Some("interrupted"));
         assert!(!driven.arrived);
         assert!(world.finished && !world.running);
+    }
+
+    #[test]
+    fn a_camera_that_renders_nothing_ends_the_run_before_the_simulation_starts() {
+        let layout = maze_3x3();
+        let (legs, start) = route(&layout);
+        let mut world = World::new(&layout);
+        world.renders = false;
+        let eye = Eye {
+            camera: world.camera.clone(),
+            colour: LineColour::new([0.0, 1.0, 0.0], [1.0, 1.0, 1.0]).unwrap(),
+            map: LineMap::of(&layout).unwrap(),
+        };
+        let mut steer = CameraSteer::new(legs, COURSE, Gains::default(), eye, start);
+        let driven = drive(&mut world, &mut steer, start, &options()).unwrap();
+        assert_eq!(driven.stopped.as_deref(), Some(NOTHING_RENDERS));
+        assert_eq!((driven.steps, driven.samples.len()), (0, 1));
+        assert!(!driven.arrived && !world.started && world.finished);
     }
 }

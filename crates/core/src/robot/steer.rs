@@ -125,6 +125,10 @@ const RANGE: f64 = 0.7;
 /// Black frames in a row after which the camera is taken to render nothing.
 const BLACK_LIMIT: usize = 5;
 
+/// Why a run steered by camera ends when the camera renders nothing (a headless CoppeliaSim
+/// without a display gives all-black images).
+pub const NOTHING_RENDERS: &str = "the camera image is all black: nothing renders (start CoppeliaSim with a display; `sim.sh start ... --display` for the headless builds)";
+
 /// Frames in a row without a line pixel after which the robot stops: it lost the maze.
 const BLIND_LIMIT: usize = 100;
 
@@ -179,7 +183,7 @@ impl Steer for CameraSteer {
             // the frame before the first render is black too (the simulation just started)
             self.black += 1;
             if self.black >= BLACK_LIMIT {
-                return Err("the camera image is all black: nothing renders (start CoppeliaSim with a display; `sim.sh start ... --display` for the headless builds)".into());
+                return Err(NOTHING_RENDERS.into());
             }
             return Ok(Wheels::default());
         }
