@@ -20,6 +20,7 @@ use pyo3::types::{PyDict, PyTuple};
 use vrep_maze::cli::Command;
 use vrep_maze::cli::RawClient;
 use vrep_maze::robot::camera::Image;
+use vrep_maze::robot::steer::NOTHING_RENDERS;
 use vrep_maze::robot::wheels::Wheels;
 use vrep_maze::robot::{Pose, Reading, RobotError, RobotPort, RobotSurvey};
 use vrep_maze::zmq_api::ClientOptions;
@@ -175,6 +176,12 @@ impl RobotLink {
             l.port.place(Pose { x, y, yaw })?;
             l.port.prepare(camera)?;
             l.running = true;
+            // a camera that renders nothing (no display) is said so at once: its every
+            // frame takes seconds on a real 4.10 without a display, and is all black
+            if camera && l.port.still_frame()?.is_some_and(|f| f.is_black()) {
+                halt(l)?;
+                return Err(RobotError::Scene(NOTHING_RENDERS.into()));
+            }
             l.port.start_simulation()?;
             if camera {
                 // the camera renders during a step: before the first, its image is black

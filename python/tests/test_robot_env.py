@@ -44,15 +44,17 @@ def free_port_pair() -> int:
 
 
 class RealSim:
-    """`sim.sh start 4.10.0 --robot --display` on free ports, stopped by `stop()`."""
+    """`sim.sh start 4.10.0 --robot --display` on free ports (without `--display` when not
+    `display`: cameras render nothing), stopped by `stop()`."""
 
-    def __init__(self, version: str = "4.10.0"):
+    def __init__(self, version: str = "4.10.0", display: bool = True):
         self.script = str((ROOT / SIMS / "sim.sh") if not os.path.isabs(SIMS) else Path(SIMS) / "sim.sh")
         self.version = version
         self.dir = tempfile.TemporaryDirectory(prefix="vrep-maze-env-")
         self.port = free_port_pair()
         done = subprocess.run(
-            ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot", "--display"],
+            ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot"]
+            + (["--display"] if display else []),
             env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
             capture_output=True,
             text=True,
@@ -217,6 +219,27 @@ def test_the_camera_observation_shows_the_maze(sim):
     official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
     camera = official.getObject("/camera")
     assert [official.getObjectInt32Param(camera, p) for p in (1002, 1003)] == [256, 256]
+
+
+@real
+def test_a_camera_that_renders_nothing_is_named_at_reset():
+    # without a display every frame is black (and takes seconds on the real 4.10): reset
+    # says so at once and leaves the simulation stopped
+    dark = RealSim(display=False)
+    try:
+        env = RobotMazeEnv(port=dark.port, size=(5, 5), obs="camera", camera_size=(64, 48))
+        try:
+            with pytest.raises(Exception, match="all black: nothing renders"):
+                env.reset(seed=2)
+        finally:
+            env.close()
+        from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+        official = RemoteAPIClient("127.0.0.1", dark.port).require("sim")
+        assert official.getSimulationState() == official.simulation_stopped
+        assert official.getExplicitHandling(official.getObject("/camera")) == 0
+    finally:
+        dark.stop()
 
 
 @real
