@@ -197,21 +197,34 @@ impl ZmqBackend {
     /// `noError`, or an error from a simulator that does not know the `noError` option),
     /// the calls made by one request ([`Client::read_all`]).
     fn handles_of(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
-        let calls: Vec<(&str, Vec<Value>)> = names
+        Ok(self.handles_with(names, vec![])?.0)
+    }
+
+    /// [`ZmqBackend::handles_of`], with the calls `more` made in the same request; their
+    /// outcomes come second.
+    fn handles_with(
+        &mut self,
+        names: &[&str],
+        more: Vec<(&'static str, Vec<Value>)>,
+    ) -> Result<(Vec<Option<i32>>, Vec<Outcome>), BackendError> {
+        let mut calls: Vec<(&str, Vec<Value>)> = names
             .iter()
             .map(|n| {
                 let opts = cbor::map([("noError", Value::Bool(true))]);
                 ("sim.getObject", vec![Value::Text(object_path(n)), opts])
             })
             .collect();
+        calls.extend(more);
+        let mut outcomes = self.client.read_all(&calls)?;
+        let more = outcomes.split_off(names.len());
         let mut out = Vec::with_capacity(names.len());
-        for outcome in self.client.read_all(&calls)? {
+        for outcome in outcomes {
             out.push(match outcome {
                 Ok(values) => values.first().and_then(cbor::int32).filter(|&h| h >= 0),
                 Err(_) => None,
             });
         }
-        Ok(out)
+        Ok((out, more))
     }
 
     fn handles_in(&mut self, base: i32, options: i32) -> Result<Vec<i32>, BackendError> {
@@ -393,8 +406,14 @@ const ZMQ_PASTE_ROUND: usize = 1000;
 impl Backend for ZmqBackend {
     fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
         let asked = names.into_array();
-        let found: [Option<i32>; 7] = self
-            .handles_of(&asked)?
+        // the simulation's state rides in the request that finds the objects
+        let state = vec![("sim.getSimulationState", vec![])];
+        let (found, state) = self.handles_with(&asked, state)?;
+        let state = int_result(
+            "sim.getSimulationState",
+            state.into_iter().next().unwrap_or(Ok(vec![])),
+        )?;
+        let found: [Option<i32>; 7] = found
             .try_into()
             .map_err(|_| BackendError::Transport("a handle missing from the survey".into()))?;
         let handles = SurveyHandles::from_array(found);
@@ -415,7 +434,6 @@ impl Backend for ZmqBackend {
             parent: handles.parent,
             line_alias: alias_of(names.template).to_string(),
         };
-        let state = self.client.call_int("sim.getSimulationState", vec![])?;
         self.extents.clear();
         self.children.clear();
         self.deep = None;

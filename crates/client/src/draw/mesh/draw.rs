@@ -54,12 +54,12 @@ fn found_unsorted(
     parent: i32,
     objects: &[ObjectInfo],
 ) -> Result<FoundMeshes, DrawError> {
-    if let Some(port) = scene.meshes() {
-        return Ok(port.find(names, parent)?);
-    }
     let holder = objects
         .iter()
         .find(|o| o.parent == Some(parent) && o.name.rsplit('/').next() == Some(HOLDER));
+    if let Some(port) = scene.meshes() {
+        return Ok(port.find(names, parent, holder.map(|o| o.handle))?);
+    }
     Ok(FoundMeshes {
         holder: holder.map(|o| o.handle),
         meshes: holder

@@ -179,8 +179,14 @@ pub trait MeshDrawing {
     /// How the template `handle` looks: its colour and special properties.
     fn look(&mut self, template: i32) -> Result<Look, BackendError>;
     /// The holder under the maze dummy `parent` (named [`HOLDER`]) and what it holds; empty
-    /// when the scene has none. `names` are the scene's object names.
-    fn find(&mut self, names: &ObjectNames, parent: i32) -> Result<FoundMeshes, BackendError>;
+    /// when the scene has none. `names` are the scene's object names; `surveyed` is the
+    /// holder a survey just found among `parent`'s children, if it did.
+    fn find(
+        &mut self,
+        names: &ObjectNames,
+        parent: i32,
+        surveyed: Option<i32>,
+    ) -> Result<FoundMeshes, BackendError>;
     /// Creates `meshes` (each static, with its look and respondability, named, its frame on
     /// the Floor's) under the holder of `place`, creating the holder first if there is none.
     /// Returns the holder and the new meshes' handles, in order.

@@ -191,7 +191,12 @@ impl MeshDrawing for LegacyBackend {
         Ok(if flat { LINE_LOOK } else { BOX_LOOK })
     }
 
-    fn find(&mut self, _names: &ObjectNames, parent: i32) -> Result<FoundMeshes, BackendError> {
+    fn find(
+        &mut self,
+        _names: &ObjectNames,
+        parent: i32,
+        _surveyed: Option<i32>,
+    ) -> Result<FoundMeshes, BackendError> {
         let objects = self.parents_and_aliases()?;
         let elsewhere: Vec<String> = objects
             .iter()

@@ -8,15 +8,15 @@ use std::borrow::Cow;
 
 use ciborium::Value;
 
-use super::ZmqBackend;
+use super::{ZmqBackend, int_result};
 use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
 };
 use crate::draw::names::ObjectNames;
-use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, float_array, int};
 use crate::zmq_api::client::object_path;
+use crate::zmq_api::{Outcome, ZmqError};
 use vrep_maze_core::coppelia::lua::{self, CreateMeshes, LuaMesh, create::SHADING_ANGLE};
 use vrep_maze_core::coppelia::{COLORCOMPONENT_AMBIENT_DIFFUSE, OBJINTPARAM_VISIBILITY_LAYER};
 
@@ -202,22 +202,38 @@ pub(super) fn colour_of(values: &[Value]) -> Option<[f64; 3]> {
 }
 
 impl MeshDrawing for ZmqBackend {
+    /// The colour and the special properties, read by one request.
     fn look(&mut self, template: i32) -> Result<Look, BackendError> {
-        let colours = crate::draw::Backend::shape_colours(self, &[template])?;
-        let colour = colours.into_iter().flatten().next().flatten();
-        let colour = colour.ok_or_else(|| {
+        let calls = [
+            shape_colour_call(template),
+            ("sim.getObjectSpecialProperty", vec![int(template.into())]),
+        ];
+        let [colour, special]: [Outcome; 2] = self
+            .client
+            .read_all(&calls)?
+            .try_into()
+            .map_err(|_| BackendError::Transport("a reply missing from a look".into()))?;
+        let colour = colour.ok().and_then(|v| colour_of(&v)).ok_or_else(|| {
             BackendError::Transport(format!("sim.getShapeColor of {template}: no colour"))
         })?;
-        let special = self
-            .client
-            .call_int("sim.getObjectSpecialProperty", vec![int(template.into())])?;
+        let special = int_result("sim.getObjectSpecialProperty", special)?;
         Ok(Look { colour, special })
     }
 
-    fn find(&mut self, names: &ObjectNames, _parent: i32) -> Result<FoundMeshes, BackendError> {
+    /// The holder's children and their aliases; the holder by its path unless `surveyed`.
+    fn find(
+        &mut self,
+        names: &ObjectNames,
+        _parent: i32,
+        surveyed: Option<i32>,
+    ) -> Result<FoundMeshes, BackendError> {
         let path = format!("{}/{HOLDER}", object_path(&names.parent));
         let elsewhere = self.root_meshes.clone();
-        let Some(holder) = self.handle_of(&path)? else {
+        let holder = match surveyed {
+            Some(h) => Some(h),
+            None => self.handle_of(&path)?,
+        };
+        let Some(holder) = holder else {
             return Ok(FoundMeshes {
                 elsewhere,
                 ..Default::default()

@@ -14,11 +14,14 @@ use crate::draw::mesh::parse_mesh_name;
 use crate::draw::ownership;
 use crate::draw::record::CopyRecord;
 use crate::draw::survey::Traits;
-use crate::zmq_api::ZmqError;
 use crate::zmq_api::cbor::{self, int};
+use crate::zmq_api::{Outcome, ZmqError};
 use vrep_maze_core::coppelia::{
     HANDLE_ALL, HANDLE_SCENE, HANDLE_WORLD, OBJECT_SHAPE_TYPE, OBJINTPARAM_VISIBILITY_LAYER,
 };
+
+/// A named object as a survey read it, with its type code.
+type NamedInfo = (ObjectInfo, i32);
 
 /// The templates whose copies a survey looks for, with the copy record: how the copies
 /// found are named and told from the user's objects.
@@ -212,11 +215,12 @@ impl ZmqBackend {
 
     /// The named objects with their parents and world poses, and their type codes (a named
     /// object's alias is its name's last part: only its type is read, once), the calls sent
-    /// in one request ([`Client::read_all`]).
+    /// in one request ([`Client::read_all`]) with `more`, whose outcomes come second.
     fn named_infos(
         &mut self,
         named: &[(String, i32)],
-    ) -> Result<Vec<(ObjectInfo, i32)>, BackendError> {
+        more: Vec<(&'static str, Vec<Value>)>,
+    ) -> Result<(Vec<NamedInfo>, Vec<Outcome>), BackendError> {
         let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
         // one type read an object (two names may resolve to one object)
         let mut typed: HashSet<i32> = self.traits.keys().copied().collect();
@@ -233,7 +237,11 @@ impl ZmqBackend {
                 calls.push(("sim.getObjectType", vec![handle]));
             }
         }
-        let mut outcomes = self.client.read_all(&calls)?.into_iter();
+        let asked = calls.len();
+        calls.extend(more);
+        let mut outcomes = self.client.read_all(&calls)?;
+        let more = outcomes.split_off(asked);
+        let mut outcomes = outcomes.into_iter();
         let mut next = || outcomes.next().unwrap_or(Ok(vec![]));
         let mut out = Vec::with_capacity(named.len());
         for ((name, h), read_type) in named.iter().zip(read_type) {
@@ -253,7 +261,7 @@ impl ZmqBackend {
             };
             out.push((info, self.traits[h].1));
         }
-        Ok(out)
+        Ok((out, more))
     }
 
     /// The alias and type code of `handle`: remembered (read before, or a copy this
@@ -310,7 +318,17 @@ impl ZmqBackend {
         let mut out = Vec::new();
         let mut found = Traits::default();
         let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
-        for (info, kind) in self.named_infos(&known.named)? {
+        // the lists the survey walks ride in the request that reads the named objects: the
+        // maze dummy's shapes and children, and the scene's roots
+        let mut lists = Vec::new();
+        if let Some(parent) = known.parent {
+            lists.push(tree_call(parent, OBJECT_SHAPE_TYPE, 3));
+            lists.push(tree_call(parent, HANDLE_ALL, 3));
+        }
+        lists.push(tree_call(HANDLE_SCENE, HANDLE_ALL, 2));
+        let (named, lists) = self.named_infos(&known.named, lists)?;
+        let mut lists = lists.into_iter();
+        for (info, kind) in named {
             found.kinds.insert(info.handle, kind);
             out.push(info);
         }
@@ -331,10 +349,17 @@ impl ZmqBackend {
                 .filter(|h| copies.record.get(*h).is_some()),
         );
         if let Some(parent) = known.parent {
-            let lines = self.children(parent, &mut copies, distrust, &mut seen, &mut found)?;
+            // options 3: first-level children only, without the dummy itself; the shapes
+            // among them listed too, so only the other children's types are asked
+            let shapes = lists.next().and_then(|o| handle_list(o).ok());
+            let kids = handle_list(lists.next().unwrap_or(Ok(vec![])))?;
+            let listed = (shapes.unwrap_or_default(), kids);
+            let lines =
+                self.children(parent, listed, &mut copies, distrust, &mut seen, &mut found)?;
             out.extend(self.line_infos(lines, poses)?);
         }
-        let lines = self.roots(&mut copies, &mut seen, &mut found)?;
+        let roots = handle_list(lists.next().unwrap_or(Ok(vec![])))?;
+        let lines = self.roots(roots, &mut copies, &mut seen, &mut found)?;
         out.extend(self.line_infos(lines, poses)?);
         let Copies {
             mut record,
@@ -358,32 +383,20 @@ impl ZmqBackend {
         Ok((out, found))
     }
 
-    /// The maze dummy `parent`'s first-level children not `seen` yet, named as
+    /// The maze dummy `parent`'s first-level children not `seen` yet (`listed`: the shapes
+    /// among them and all of them, as [`ZmqBackend::collect`] read them), named as
     /// [`ZmqBackend::collect`] says and judged by `copies` (their poses forgotten when
     /// `distrust`): (handle, name, parent) for [`ZmqBackend::line_infos`].
     fn children(
         &mut self,
         parent: i32,
+        (shapes, kids): (Vec<i32>, Vec<i32>),
         copies: &mut Copies,
         distrust: bool,
         seen: &mut HashSet<i32>,
         found: &mut Traits,
     ) -> Result<Vec<(i32, String, Option<i32>)>, BackendError> {
-        // options 3: first-level children only, without the dummy itself; the shapes
-        // among them in one call, so only the other children's types are asked
-        let shapes: HashSet<i32> = self
-            .client
-            .call1(
-                "sim.getObjectsInTree",
-                vec![int(parent.into()), int(OBJECT_SHAPE_TYPE.into()), int(3)],
-            )
-            .ok()
-            .as_ref()
-            .and_then(cbor::handles)
-            .unwrap_or_default()
-            .into_iter()
-            .collect();
-        let kids = self.handles_in(parent, 3)?;
+        let shapes: HashSet<i32> = shapes.into_iter().collect();
         let shape = |h: i32| shapes.contains(&h).then_some(OBJECT_SHAPE_TYPE);
         let new_kids: Vec<i32> = kids.iter().copied().filter(|h| !seen.contains(h)).collect();
         for &h in &new_kids {
@@ -430,21 +443,18 @@ impl ZmqBackend {
         Ok(lines)
     }
 
-    /// Root objects not `seen` yet carrying a template's alias: copies left parentless by
+    /// Of the scene's `roots`, those not `seen` yet carrying a template's alias: copies left parentless by
     /// an interrupted run (of this style's template, or of another found in the scene,
     /// which a drawing removes or, for posts, reuses), judged by `copies`. They are named
     /// `/Line[k]` whatever their path. The root meshes are remembered on the way.
     fn roots(
         &mut self,
+        roots: Vec<i32>,
         copies: &mut Copies,
         seen: &mut HashSet<i32>,
         found: &mut Traits,
     ) -> Result<Vec<(i32, String, Option<i32>)>, BackendError> {
-        let roots: Vec<i32> = self
-            .handles_in(HANDLE_SCENE, 2)?
-            .into_iter()
-            .filter(|h| !seen.contains(h))
-            .collect();
+        let roots: Vec<i32> = roots.into_iter().filter(|h| !seen.contains(h)).collect();
         let unknown: Vec<(i32, Option<i32>)> = roots.iter().map(|&h| (h, None)).collect();
         self.read_traits(&unknown, false)?;
         let mut lines = Vec::new();
@@ -669,4 +679,22 @@ impl ZmqBackend {
         }
         Ok(())
     }
+}
+
+/// `sim.getObjectsInTree(base, kind, options)`.
+fn tree_call(base: i32, kind: i32, options: i32) -> (&'static str, Vec<Value>) {
+    let args = vec![int(base.into()), int(kind.into()), int(options.into())];
+    ("sim.getObjectsInTree", args)
+}
+
+/// The handles a `sim.getObjectsInTree` answered with.
+fn handle_list(outcome: Outcome) -> Result<Vec<i32>, BackendError> {
+    let values = outcome?;
+    let first = values.first().unwrap_or(&Value::Null);
+    cbor::handles(first).ok_or_else(|| {
+        BackendError::Transport(format!(
+            "sim.getObjectsInTree: not a handle list: {}",
+            cbor::describe(first)
+        ))
+    })
 }
