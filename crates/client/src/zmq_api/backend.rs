@@ -274,12 +274,20 @@ impl ZmqBackend {
             self.record = Some(CopyRecord::default());
             return Ok(CopyRecord::default());
         }
-        let call = |name: &str| ("sim.getStringSignal", vec![Value::Text(name.into())]);
+        let outcomes = self.client.read_all(&record_calls())?;
+        self.record_from(outcomes)
+    }
+
+    /// The copy record from the outcomes of [`record_calls`] (read, or as [`copy_record`]
+    /// reads it when they are missing), remembered for the connection.
+    ///
+    /// [`copy_record`]: ZmqBackend::copy_record
+    fn record_from(&mut self, outcomes: Vec<Outcome>) -> Result<CopyRecord, BackendError> {
+        if outcomes.len() != 2 {
+            return self.copy_record();
+        }
         let mut texts = Vec::with_capacity(2);
-        for outcome in self
-            .client
-            .read_all(&[call(COPIES.name), call(COPIES.old)])?
-        {
+        for outcome in outcomes {
             texts.push(match outcome {
                 Ok(values) => match values.first() {
                     Some(Value::Text(t)) => Some(t.clone()),
@@ -394,6 +402,12 @@ impl ZmqBackend {
             Err(e) => Err(e.into()),
         }
     }
+}
+
+/// The calls that read the copy record: its signal, then an older version's.
+fn record_calls() -> [(&'static str, Vec<Value>); 2] {
+    let call = |name: &str| ("sim.getStringSignal", vec![Value::Text(name.into())]);
+    [call(COPIES.name), call(COPIES.old)]
 }
 
 /// How long the idle rates read when connecting stand for the scene's: a command draws at

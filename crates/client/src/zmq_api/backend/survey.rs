@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet};
 
 use ciborium::Value;
 
-use super::{Known, LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of};
+use super::{Known, LinePoses, WorldPose, ZmqBackend, alias_of, int_result, pose_of, record_calls};
 use crate::draw::backend::{Backend, ObjectInfo};
 use crate::draw::error::BackendError;
 use crate::draw::mesh::parse_mesh_name;
@@ -326,7 +326,17 @@ impl ZmqBackend {
             lists.push(tree_call(parent, HANDLE_ALL, 3));
         }
         lists.push(tree_call(HANDLE_SCENE, HANDLE_ALL, 2));
-        let (named, lists) = self.named_infos(&known.named, lists)?;
+        // and the copy record, when this connection has not read it yet
+        let read_record = self.record.is_none() && self.signals_kept;
+        if read_record {
+            lists.extend(record_calls());
+        }
+        let (named, mut lists) = self.named_infos(&known.named, lists)?;
+        let record_read = if read_record {
+            lists.split_off(lists.len().saturating_sub(2))
+        } else {
+            Vec::new()
+        };
         let mut lists = lists.into_iter();
         for (info, kind) in named {
             found.kinds.insert(info.handle, kind);
@@ -337,7 +347,11 @@ impl ZmqBackend {
         let distrust =
             parent_now.is_some_and(|now| !finite(now) || parent_before.is_some_and(|b| b != now));
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
-        let record = self.copy_record()?;
+        let record = if read_record {
+            self.record_from(record_read)?
+        } else {
+            self.copy_record()?
+        };
         let mut copies = Copies::new(&known, &found, record);
         // the record first: a named object it holds is one of our copies (refused as a
         // template or marker), a listed one of its template's type is ours
