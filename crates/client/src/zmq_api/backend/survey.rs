@@ -23,6 +23,19 @@ use vrep_maze_core::coppelia::{
 /// A named object as a survey read it, with its type code.
 type NamedInfo = (ObjectInfo, i32);
 
+/// What a survey reads first ([`ZmqBackend::first_reads`]).
+struct FirstReads {
+    /// The named objects with their type codes.
+    named: Vec<NamedInfo>,
+    /// The maze dummy's first-level children that are shapes, and all of them (when the
+    /// scene has the dummy).
+    listed: Option<(Vec<i32>, Vec<i32>)>,
+    /// The scene's root objects.
+    roots: Vec<i32>,
+    /// The copy record.
+    record: CopyRecord,
+}
+
 /// The templates whose copies a survey looks for, with the copy record: how the copies
 /// found are named and told from the user's objects.
 struct Copies<'a> {
@@ -318,26 +331,12 @@ impl ZmqBackend {
         let mut out = Vec::new();
         let mut found = Traits::default();
         let parent_before = known.parent.and_then(|p| self.poses.get(&p).copied());
-        // the lists the survey walks ride in the request that reads the named objects: the
-        // maze dummy's shapes and children, and the scene's roots
-        let mut lists = Vec::new();
-        if let Some(parent) = known.parent {
-            lists.push(tree_call(parent, OBJECT_SHAPE_TYPE, 3));
-            lists.push(tree_call(parent, HANDLE_ALL, 3));
-        }
-        lists.push(tree_call(HANDLE_SCENE, HANDLE_ALL, 2));
-        // and the copy record, when this connection has not read it yet
-        let read_record = self.record.is_none() && self.signals_kept;
-        if read_record {
-            lists.extend(record_calls());
-        }
-        let (named, mut lists) = self.named_infos(&known.named, lists)?;
-        let record_read = if read_record {
-            lists.split_off(lists.len().saturating_sub(2))
-        } else {
-            Vec::new()
-        };
-        let mut lists = lists.into_iter();
+        let FirstReads {
+            named,
+            listed,
+            roots,
+            record,
+        } = self.first_reads(&known)?;
         for (info, kind) in named {
             found.kinds.insert(info.handle, kind);
             out.push(info);
@@ -347,11 +346,6 @@ impl ZmqBackend {
         let distrust =
             parent_now.is_some_and(|now| !finite(now) || parent_before.is_some_and(|b| b != now));
         let mut seen: HashSet<i32> = known.named.iter().map(|(_, h)| *h).collect();
-        let record = if read_record {
-            self.record_from(record_read)?
-        } else {
-            self.copy_record()?
-        };
         let mut copies = Copies::new(&known, &found, record);
         // the record first: a named object it holds is one of our copies (refused as a
         // template or marker), a listed one of its template's type is ours
@@ -362,17 +356,11 @@ impl ZmqBackend {
                 .map(|(_, h)| *h)
                 .filter(|h| copies.record.get(*h).is_some()),
         );
-        if let Some(parent) = known.parent {
-            // options 3: first-level children only, without the dummy itself; the shapes
-            // among them listed too, so only the other children's types are asked
-            let shapes = lists.next().and_then(|o| handle_list(o).ok());
-            let kids = handle_list(lists.next().unwrap_or(Ok(vec![])))?;
-            let listed = (shapes.unwrap_or_default(), kids);
+        if let (Some(parent), Some(listed)) = (known.parent, listed) {
             let lines =
                 self.children(parent, listed, &mut copies, distrust, &mut seen, &mut found)?;
             out.extend(self.line_infos(lines, poses)?);
         }
-        let roots = handle_list(lists.next().unwrap_or(Ok(vec![])))?;
         let lines = self.roots(roots, &mut copies, &mut seen, &mut found)?;
         out.extend(self.line_infos(lines, poses)?);
         let Copies {
@@ -395,6 +383,46 @@ impl ZmqBackend {
         }
         self.record = Some(record);
         Ok((out, found))
+    }
+
+    /// What [`ZmqBackend::collect`] reads first, in one request: the named objects, and riding
+    /// with them the lists the survey walks (the maze dummy's shapes and children, the scene's
+    /// roots) and the copy record when this connection has not read it yet.
+    fn first_reads(&mut self, known: &Known) -> Result<FirstReads, BackendError> {
+        let mut lists = Vec::new();
+        if let Some(parent) = known.parent {
+            // options 3: first-level children only, without the dummy itself; the shapes
+            // among them listed too, so only the other children's types are asked
+            lists.push(tree_call(parent, OBJECT_SHAPE_TYPE, 3));
+            lists.push(tree_call(parent, HANDLE_ALL, 3));
+        }
+        lists.push(tree_call(HANDLE_SCENE, HANDLE_ALL, 2));
+        let read_record = self.record.is_none() && self.signals_kept;
+        if read_record {
+            lists.extend(record_calls());
+        }
+        let (named, mut lists) = self.named_infos(&known.named, lists)?;
+        let record = if read_record {
+            let read = lists.split_off(lists.len().saturating_sub(2));
+            self.record_from(read)?
+        } else {
+            self.copy_record()?
+        };
+        let mut lists = lists.into_iter();
+        let mut next = || lists.next().unwrap_or(Ok(vec![]));
+        let listed = match known.parent {
+            Some(_) => {
+                let shapes = handle_list(next()).unwrap_or_default();
+                Some((shapes, handle_list(next())?))
+            }
+            None => None,
+        };
+        Ok(FirstReads {
+            named,
+            listed,
+            roots: handle_list(next())?,
+            record,
+        })
     }
 
     /// The maze dummy `parent`'s first-level children not `seen` yet (`listed`: the shapes
