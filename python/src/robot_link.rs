@@ -22,7 +22,7 @@ use vrep_maze::cli::RawClient;
 use vrep_maze::robot::camera::Image;
 use vrep_maze::robot::steer::NOTHING_RENDERS;
 use vrep_maze::robot::wheels::Wheels;
-use vrep_maze::robot::{Pose, Reading, RobotError, RobotPort, RobotSurvey};
+use vrep_maze::robot::{Pose, Reading, RobotError, RobotPort, RobotSurvey, renders_nothing};
 use vrep_maze::zmq_api::ClientOptions;
 use vrep_maze::zmq_api::robot::ZmqRobot;
 
@@ -178,7 +178,7 @@ impl RobotLink {
             l.running = true;
             // a camera that renders nothing (no display) is said so at once: its every
             // frame takes seconds on a real 4.10 without a display, and is all black
-            if camera && l.port.still_frame()?.is_some_and(|f| f.is_black()) {
+            if camera && renders_nothing(&mut l.port)? {
                 halt(l)?;
                 return Err(RobotError::Scene(NOTHING_RENDERS.into()));
             }

@@ -167,7 +167,7 @@ pub fn drive(
 /// frame, so the black frames the steer would wait out took 30-60 s and could pass the
 /// client's reply timeout (`docs/measurements.md`, "A camera without a display").
 fn dark_camera(port: &mut dyn RobotPort, camera: bool) -> Result<Option<Driven>, RobotError> {
-    if !camera || !port.still_frame()?.is_some_and(|frame| frame.is_black()) {
+    if !camera || !renders_nothing(port)? {
         return Ok(None);
     }
     let mut samples = Vec::new();
@@ -180,6 +180,12 @@ fn dark_camera(port: &mut dyn RobotPort, camera: bool) -> Result<Option<Driven>,
         wall_time_s: 0.0,
         belief: None,
     }))
+}
+
+/// Whether a frame `port` takes on the stopped simulation ([`RobotPort::still_frame`]) is
+/// all black: the camera renders nothing (`false` where the port cannot take one).
+pub fn renders_nothing(port: &mut dyn RobotPort) -> Result<bool, RobotError> {
+    Ok(port.still_frame()?.is_some_and(|frame| frame.is_black()))
 }
 
 /// Starts the simulation, or waits for it to start.

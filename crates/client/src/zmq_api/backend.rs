@@ -278,14 +278,8 @@ impl ZmqBackend {
         self.record_from(outcomes)
     }
 
-    /// The copy record from the outcomes of [`record_calls`] (read, or as [`copy_record`]
-    /// reads it when they are missing), remembered for the connection.
-    ///
-    /// [`copy_record`]: ZmqBackend::copy_record
+    /// The copy record from the outcomes of [`record_calls`], remembered for the connection.
     fn record_from(&mut self, outcomes: Vec<Outcome>) -> Result<CopyRecord, BackendError> {
-        if outcomes.len() != 2 {
-            return self.copy_record();
-        }
         let mut texts = Vec::with_capacity(2);
         for outcome in outcomes {
             texts.push(match outcome {

@@ -478,12 +478,12 @@ impl RobotPort for ZmqRobot<'_> {
         let Some(cam) = self.parts()?.camera else {
             return Ok(None);
         };
-        let flag = self.camera_flag.unwrap_or(0);
+        // a camera run has the camera untagged (`prepare` refuses one tagged by the user)
         let calls = [
             ("sim.setExplicitHandling", vec![int(cam), int(1)]),
             ("sim.handleVisionSensor", vec![int(cam)]),
             ("sim.getVisionSensorImg", vec![int(cam)]),
-            ("sim.setExplicitHandling", vec![int(cam), int(flag)]),
+            ("sim.setExplicitHandling", vec![int(cam), int(0)]),
         ];
         // the calls run in order under one program where the simulator runs it, so the
         // camera is untagged even when this client dies waiting
