@@ -223,6 +223,11 @@ pub struct ApplyArgs {
     /// Stop a running simulation first (changes made while it runs would be lost).
     #[arg(long)]
     pub stop_simulation: bool,
+    /// Draw into a running simulation, leaving it running: the maze lasts until the
+    /// simulation stops, when CoppeliaSim removes what was made while it ran (apply again
+    /// then to have it back). For a new maze between a robot's runs without a restart.
+    #[arg(long, conflicts_with = "stop_simulation")]
+    pub while_running: bool,
     /// Only show what would change.
     #[arg(long)]
     pub dry_run: bool,
@@ -330,6 +335,7 @@ impl ApplyArgs {
             options: ApplyOptions {
                 names: self.scene.names(),
                 stop_simulation: self.stop_simulation,
+                while_running: self.while_running,
                 dry_run: self.dry_run,
                 resize_floor: self.resize_floor,
                 interrupt,
@@ -503,6 +509,8 @@ fn say_done(
     let report = &done.drawn;
     if report.stopped_simulation {
         say("stopped the simulation first")?;
+    } else if report.simulation_running && !report.dry_run {
+        say("drawn into the running simulation: CoppeliaSim removes it when the simulation stops")?;
     }
     if let Some(line) = &report.floor {
         say(line)?;

@@ -18,6 +18,7 @@ backend_tests!(
     apply_draws_verifies_and_reapplies_without_changes,
     apply_replaces_a_bigger_maze_and_clear_removes_it,
     apply_refuses_a_running_simulation_and_missing_objects,
+    apply_draws_into_a_running_simulation_when_asked_and_its_stop_removes_it,
     dry_run_changes_nothing,
     one_cell_maze_hides_the_template_under_start,
     idle_rate_is_restored_after_a_failed_edit_and_the_next_apply_repairs,
@@ -137,6 +138,38 @@ fn apply_replaces_a_bigger_maze_and_clear_removes_it(kind: Kind) {
     assert_eq!(c.removed.len(), small.pieces.len() - 1);
     assert_eq!(s.line_count(), 1, "only the template is left");
     assert!(clear(&mut b).removed.is_empty(), "idempotent");
+    s.shutdown();
+}
+
+/// `while_running`: drawn into the running simulation, which runs on; its stop removes what
+/// was made while it ran, as the real builds do (docs/measurements.md, "What a stop undoes"),
+/// and an apply on the stopped simulation draws the maze again, verified.
+fn apply_draws_into_a_running_simulation_when_asked_and_its_stop_removes_it(kind: Kind) {
+    let s = kind.serve(Scene::course(), 0);
+    s.with_sim(|sim| sim.start());
+    let mut b = s.connect();
+    let d = drawing(3, 3);
+    let opts = ApplyOptions {
+        while_running: true,
+        ..Default::default()
+    };
+    let r = draw::apply(&mut *b, &d, &opts, &mut no_progress).unwrap();
+    assert!(r.simulation_running && !r.stopped_simulation, "{r:?}");
+    assert!(s.with_sim(|sim| sim.state != vrep_maze::sim::SimState::Stopped));
+    assert_eq!(s.line_count(), d.pieces.len());
+    verify(&mut b, &d).unwrap();
+    s.with_sim(|sim| sim.stop());
+    assert_eq!(
+        s.line_count(),
+        1,
+        "the copies made while it ran are gone: the template is left"
+    );
+    assert!(matches!(verify(&mut b, &d), Err(DrawError::Verify(_))));
+    let again = apply(&mut b, &d).unwrap();
+    assert!(again.pasted > 0 && !again.simulation_running, "{again:?}");
+    assert_eq!(s.line_count(), d.pieces.len());
+    verify(&mut b, &d).unwrap();
+    drop(b);
     s.shutdown();
 }
 

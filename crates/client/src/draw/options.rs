@@ -1,5 +1,5 @@
 //! What a draw of either mode is asked ([`ApplyOptions`]): the object names, dry run,
-//! stopping a running simulation, growing the floor, the Ctrl-C flag.
+//! stopping (or drawing into) a running simulation, growing the floor, the Ctrl-C flag.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -14,6 +14,11 @@ pub struct ApplyOptions {
     pub names: ObjectNames,
     /// Stop a running simulation instead of refusing.
     pub stop_simulation: bool,
+    /// Draw into a running simulation instead of refusing. What is made then lasts until
+    /// the simulation stops: CoppeliaSim removes objects made while it runs when it stops
+    /// (and what was removed stays removed), so a later apply on the stopped simulation
+    /// draws the maze again. For episodes drawn between simulation steps (RobotMaze-v0).
+    pub while_running: bool,
     /// Only survey and plan; change nothing.
     pub dry_run: bool,
     /// Copy-paste commands per round trip (each copies the whole current set of lines).
@@ -33,6 +38,7 @@ impl Default for ApplyOptions {
         ApplyOptions {
             names: ObjectNames::default(),
             stop_simulation: false,
+            while_running: false,
             dry_run: false,
             paste_blocks_per_round: 16,
             interrupt: None,

@@ -385,12 +385,10 @@ pub(crate) fn begin(
         simulation_running: survey.simulation_running,
         ..counts
     };
-    report.stopped_simulation = stop_running_simulation(
-        scene,
-        survey.simulation_running,
-        opts.stop_simulation,
-        opts.dry_run,
-    )?;
+    // drawn into a running simulation only when asked: its stop removes what is made now
+    let running = survey.simulation_running && !opts.while_running;
+    report.stopped_simulation =
+        stop_running_simulation(scene, running, opts.stop_simulation, opts.dry_run)?;
     if let Some(short) = short {
         report.floor = Some(super::floor::resize(
             scene,

@@ -1,7 +1,7 @@
 //! The in-memory scene model behind every emulated CoppeliaSim server (protocol-neutral).
 //!
 //! [`Scene`] holds the objects; [`Simulator`] adds what a running CoppeliaSim has around the
-//! scene: the simulation state (changes made while running are undone on stop), the idle
+//! scene: the simulation state (what a run made is removed on stop, poses go back), the idle
 //! main-loop rate (`sim_intparam_idle_fps`) and integer parameters.
 
 pub mod clock;
@@ -34,7 +34,7 @@ pub const PROGRAM_VERSION: i32 = 40501;
 pub enum SimState {
     /// Stopped: edits persist.
     Stopped,
-    /// Running: edits are undone on stop.
+    /// Running: what is made now is removed on stop, and poses go back ([`Scene::end_run`]).
     Running,
     /// Paused (counts as "not stopped").
     Paused,
@@ -49,7 +49,7 @@ pub struct Simulator {
     pub idle_fps: i32,
     /// Simulation state.
     pub state: SimState,
-    /// Scene as it was when the simulation started (restored on stop).
+    /// Scene as it was when the simulation started (what its stop goes back to).
     saved: Option<Scene>,
     /// Integer signals (`simxSetIntegerSignal`): named values kept by the simulator.
     pub int_signals: std::collections::BTreeMap<String, i32>,
@@ -176,14 +176,15 @@ impl Simulator {
         }
     }
 
-    /// Stops the simulation, undoing every change made since it started.
-    /// Returns false if it was already stopped.
+    /// Stops the simulation: what was made since it started is removed and what it started
+    /// with goes back to its pose ([`Scene::end_run`]). Returns false if it was already
+    /// stopped.
     pub fn stop(&mut self) -> bool {
         if self.state == SimState::Stopped {
             return false;
         }
-        if let Some(saved) = self.saved.take() {
-            self.scene = saved;
+        if let Some(started) = self.saved.take() {
+            self.scene.end_run(&started);
         }
         self.state = SimState::Stopped;
         self.steps_before = 0;
@@ -236,6 +237,42 @@ mod tests {
         assert!(sim.set_int_param(INTPARAM_IDLE_FPS, 0));
         assert_eq!(sim.int_param(INTPARAM_IDLE_FPS), Some(0));
         assert!(!sim.set_int_param(INTPARAM_PROGRAM_VERSION, 3));
+    }
+
+    #[test]
+    fn a_stop_removes_what_the_run_made_and_keeps_what_it_removed_or_recoloured() {
+        // as measured on the real 4.5.1 and 4.10 (docs/measurements.md, "What a stop undoes")
+        let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
+        let line = sim.scene.resolve("Line").unwrap();
+        let start = sim.scene.resolve("Start").unwrap();
+        let end = sim.scene.resolve("End").unwrap();
+        let at_start = sim.scene.pose(line, -1).unwrap();
+        assert!(sim.start());
+        let made = sim.scene.copy_paste(&[line]).unwrap()[0];
+        sim.scene.set_parent(end, Some(made), true).unwrap();
+        sim.scene.set_position(line, -1, [1.0, 2.0, 3.0]).unwrap();
+        sim.scene.set_colour(line, [255, 0, 0]).unwrap();
+        sim.scene.remove(start).unwrap();
+        assert!(sim.stop());
+        assert!(sim.scene.get(made).is_err(), "made while running: removed");
+        assert!(
+            sim.scene.get(start).is_err(),
+            "removed while running: stays removed"
+        );
+        assert!(
+            sim.scene.get(end).is_ok(),
+            "under a made object: moved up, kept"
+        );
+        assert_eq!(
+            sim.scene.pose(line, -1).unwrap(),
+            at_start,
+            "the pose goes back"
+        );
+        assert_eq!(
+            sim.scene.get(line).unwrap().colour,
+            [255, 0, 0],
+            "a colour stays"
+        );
     }
 
     #[test]
