@@ -60,17 +60,24 @@ def main() -> None:
     parser.add_argument("--resets", type=int, default=50)
     parser.add_argument("--steps", type=int, default=500)
     parser.add_argument("--size", default="5x5")
+    parser.add_argument(
+        "--fast-reset", action="store_true", help="the AsyncVectorEnv rows with fast_reset=True"
+    )
     args = parser.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
     print("| environment | reset median ms | reset p99 ms | step median ms | step p99 ms | steps/s |")
     print("|---|---|---|---|---|---|")
     for obs in ("pose", "camera"):
-        env = gym.make(ENV_ID, port=args.port[0], size=size, obs=obs, max_episode_steps=400)
-        try:
-            resets, steps = time_env(env, args.resets, args.steps)
-        finally:
-            env.close()
-        print(row(f"RobotMaze-v0 {args.size} obs={obs} (real CoppeliaSim)", resets, steps))
+        for fast in (False, True):
+            env = gym.make(
+                ENV_ID, port=args.port[0], size=size, obs=obs, max_episode_steps=400, fast_reset=fast
+            )
+            try:
+                resets, steps = time_env(env, args.resets, args.steps)
+            finally:
+                env.close()
+            kind = ", fast_reset" if fast else ""
+            print(row(f"RobotMaze-v0 {args.size} obs={obs}{kind} (real CoppeliaSim)", resets, steps))
     try:
         import gymnasium_robotics
 
@@ -83,7 +90,7 @@ def main() -> None:
     except ImportError as missing:
         print(f"| PointMaze | not installed ({missing}) | | | | |")
     for n in range(2, len(args.port) + 1):
-        envs = vector_env(args.port[:n], size=size, max_episode_steps=400)
+        envs = vector_env(args.port[:n], size=size, max_episode_steps=400, fast_reset=args.fast_reset)
         try:
             envs.reset(seed=0)
             step_times = []
@@ -94,7 +101,8 @@ def main() -> None:
         finally:
             envs.close()
         s50, s99 = percentiles(step_times)
-        print(f"| AsyncVectorEnv x{n} obs=pose | | | {s50:.2f} | {s99:.2f} | {n * 1e3 / s50:.0f} (all envs) |")
+        kind = ", fast_reset" if args.fast_reset else ""
+        print(f"| AsyncVectorEnv x{n} obs=pose{kind} | | | {s50:.2f} | {s99:.2f} | {n * 1e3 / s50:.0f} (all envs) |")
 
 
 if __name__ == "__main__":

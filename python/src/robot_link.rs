@@ -3,12 +3,14 @@
 //!
 //! A link is its own ZeroMQ connection (a drawing `Session` beside it keeps its own): the
 //! simulation runs in stepping mode while an episode lasts, so it advances only when
-//! `step` says so, whatever the machine's pace. `begin` stops a running simulation (which
-//! puts every dynamic object back, the physics reset), places the robot, turns stepping on
-//! and starts it (with the camera, it also makes the first step, so that the first image is
-//! a rendered frame); `end` stops it and turns stepping off. The link sets the idle rate to 0
-//! while open, so a stop and a start take milliseconds; `close` puts it and the camera's
-//! resolution back. Calls run without the GIL.
+//! `step` says so, whatever the machine's pace. The first `begin` stops a running
+//! simulation (which puts every dynamic object back, the physics reset), places the robot,
+//! turns stepping on and starts it; a `begin` while the link's episode runs puts the robot
+//! back with its physics reset and leaves the simulation running (with the camera, either
+//! makes one step, so that the first image is a rendered frame); `end` stops it and turns
+//! stepping off. The link sets the idle rate to 0 while open, so a stop and a start take
+//! milliseconds; `close` puts it and the camera's resolution back. Calls run without the
+//! GIL.
 
 use std::sync::Mutex;
 
@@ -37,6 +39,8 @@ struct Linked {
     idle_fps: i32,
     /// Whether an episode runs (the simulation started by this link).
     running: bool,
+    /// Whether the running episode reads the camera.
+    camera: bool,
 }
 
 /// The course robot stepped by the caller: `link = vrep_maze.RobotLink(port=23000)`, then
@@ -117,6 +121,7 @@ impl RobotLink {
                 survey,
                 idle_fps,
                 running: false,
+                camera: false,
             })),
             description: format!("the robot `{}` over ZeroMQ at {endpoint}", names.robot),
         })
@@ -151,10 +156,13 @@ impl RobotLink {
         })
     }
 
-    /// Starts an episode: the simulation stopped if it runs (the physics reset), the robot
-    /// at `(x, y)` facing `yaw` (floor frame), stepping on, the simulation started. The
-    /// camera renders only when `camera` (else it is spared); then the simulation makes one
-    /// step, so that the first image is a rendered frame. Returns the first reading:
+    /// Starts an episode: the robot at `(x, y)` facing `yaw` (floor frame), at rest. When
+    /// an episode of this link runs (with the same `camera`), the robot is put back while
+    /// the simulation runs, its physics reset (`sim.resetDynamicObject`), without a stop
+    /// and a start; else the simulation is stopped if it runs, the robot placed, stepping
+    /// turned on and the simulation started. The camera renders only when `camera` (else
+    /// it is spared); then the simulation makes one step, so that the first image is a
+    /// rendered frame of what is drawn now. Returns the first reading:
     /// `(time, pose, joints, image)`, `pose` an array `(x, y, yaw)`, `joints` the wheels'
     /// angles, `image` an `(height, width, 3)` `uint8` array (top row first) or `None`.
     #[pyo3(signature = (x, y, yaw, camera=false))]
@@ -171,11 +179,21 @@ impl RobotLink {
                 "the start pose must be finite, got ({x}, {y}, {yaw})"
             )));
         }
+        let pose = Pose { x, y, yaw };
         let reading = self.with(py, |l| {
+            if l.running && l.camera == camera {
+                l.port.put_back(pose)?;
+                if camera {
+                    l.port.step()?;
+                }
+                return l.port.observe(camera);
+            }
             halt(l)?;
-            l.port.place(Pose { x, y, yaw })?;
+            l.port.place(pose)?;
+            l.port.remember_rest()?;
             l.port.prepare(camera)?;
             l.running = true;
+            l.camera = camera;
             // a camera that renders nothing (no display) is said so at once: its every
             // frame takes seconds on a real 4.10 without a display, and is all black
             if camera && renders_nothing(&mut l.port)? {

@@ -200,6 +200,30 @@ def test_a_pure_pursuit_policy_reaches_the_goal(sim, style):
 
 
 @real
+def test_fast_resets_keep_the_simulation_running_and_close_leaves_the_last_maze(sim):
+    from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+    official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
+    env = RobotMazeEnv(port=sim.port, size=(4, 4), max_episode_steps=2000, fast_reset=True)
+    try:
+        for seed in (3, 4):
+            reached, _, info = run_episode(env, seed=seed)
+            assert reached, info["score"]
+            assert info["time"] < 200, "the episode's own time"
+            # the next reset draws into the running simulation: no stop between episodes
+            assert official.getSimulationState() != official.simulation_stopped
+        _, info = env.reset(seed=5)
+        assert np.allclose(info["pose"][:2], info["waypoints"][0], atol=0.02), "back at Start"
+        last = env.layout
+    finally:
+        env.close()
+    assert official.getSimulationState() == official.simulation_stopped
+    # the stop removed what was drawn while it ran; close drew the last maze again
+    with vrep_maze.connect(port=sim.port) as session:
+        assert session.inspect(last)["layout"]["matches"]
+
+
+@real
 def test_the_camera_observation_shows_the_maze(sim):
     env = RobotMazeEnv(port=sim.port, size=(5, 5), obs="camera", camera_size=(64, 48))
     try:

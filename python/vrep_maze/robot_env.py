@@ -17,8 +17,12 @@ and Gymnasium (``pip install vrep-maze[rl]``)::
 An episode: ``reset`` draws the episode's maze (``draw="mesh"`` by default) over one open
 :class:`vrep_maze.Session`, stops the simulation if it runs (which resets the physics),
 places the robot at Start facing the first passage and starts the simulation in stepping
-mode; each ``step`` sets the two wheel velocities (rad/s) and advances the simulation one
-step (50 ms in the course scene). The episode ends (``terminated``) when the robot's centre
+mode. With ``fast_reset=True`` the resets after the first leave the simulation running
+instead: the maze is drawn into it and the robot put back at rest with its physics reset
+(``sim.resetDynamicObject``), which saves a stop and a start (about half a reset), but the
+physics engine carries some state from one episode to the next, so the same seed and actions
+give trajectories that differ by up to millimetres. Each ``step`` sets the two wheel
+velocities (rad/s) and advances the simulation one step (50 ms in the course scene). The episode ends (``terminated``) when the robot's centre
 enters ``End``'s footprint, as ``vrep-maze score`` decides it, and is ``truncated`` after
 ``max_episode_steps``. Reward: ``goal_reward`` on reaching End, minus ``step_penalty`` every
 step.
@@ -95,11 +99,14 @@ class RobotMazeEnv(gym.Env):
       ``wheel_max`` (rad/s, the action's bound), the scene's names (``robot``,
       ``left_motor``, ``right_motor``, ``camera``, ``floor``, ``line``);
     - the task: ``max_episode_steps`` (1000), ``goal_reward`` (1.0), ``step_penalty`` (0.0);
+    - ``fast_reset`` (``False``): resets after the first leave the simulation running (see
+      the module's text: faster, but episodes are reproducible only to millimetres);
     - ``render_mode``: ``"rgb_array"`` returns the camera's latest image.
 
     ``info`` holds ``"pose"`` (``x, y, yaw`` in the floor's frame), ``"waypoints"`` (the
     solution's cell centres from start to end, floor frame, a tuple of ``(x, y)``), ``"seed"`` and
-    ``"metrics"`` of the episode's maze, ``"time"`` (simulated seconds) and, once the
+    ``"metrics"`` of the episode's maze, ``"time"`` (simulated seconds since the episode
+    began) and, once the
     episode ends, ``"score"``: the run graded as ``vrep-maze score`` grades one (SPL, cells
     visited, ...).
     """
@@ -125,6 +132,7 @@ class RobotMazeEnv(gym.Env):
         wheel_max: float = 10.0,
         goal_reward: float = 1.0,
         step_penalty: float = 0.0,
+        fast_reset: bool = False,
         connect_timeout: Optional[float] = None,
         timeout: Optional[float] = None,
         render_mode: Optional[str] = None,
@@ -152,6 +160,7 @@ class RobotMazeEnv(gym.Env):
         self.goal_reward = float(goal_reward)
         self.step_penalty = float(step_penalty)
         self.where = where
+        self.fast_reset = bool(fast_reset)
         self.maze_options = {"algo": algo, "size": tuple(size), "style": style}
         if braid is not None:
             self.maze_options["braid"] = braid
@@ -180,6 +189,10 @@ class RobotMazeEnv(gym.Env):
         else:
             self.observation_space = spaces.Box(0, 255, shape=(height, width, 3), dtype=np.uint8)
         self.layout: Optional[_vm.Layout] = None
+        self._episodes = 0
+        self._drawn_running = False
+        self._ended = False
+        self._start_time = 0.0
         self._reading = None
         self._steps = 0
         self._trajectory: list[tuple[float, float, float, float]] = []
@@ -206,16 +219,24 @@ class RobotMazeEnv(gym.Env):
 
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
         super().reset(seed=seed)
-        self.link.end()
         layout = self._next_maze()
+        # the first episode starts the simulation; with fast_reset the later ones draw into it
+        # as it runs (what is drawn then lasts until it stops: close draws the last maze again)
+        running = self.fast_reset and self._episodes > 0
+        if not running:
+            self.link.end()
         self.session.apply(
             layout,
             draw=self.draw,
-            stop_simulation=True,
+            stop_simulation=not running,
+            while_running=running,
             create_missing=self.create_missing,
             **self._draw_names,
         )
         self.layout = layout
+        self._episodes += 1
+        self._drawn_running |= running
+        self._ended = False
         points = layout.waypoints()
         # a turn's cell has two rows (arrival, departure): the cell centres once each
         centres = [points[0, :2]]
@@ -226,6 +247,8 @@ class RobotMazeEnv(gym.Env):
         self._goal = self._waypoints[-1]
         x, y, yaw = points[0, :3]
         self._reading = self.link.begin(float(x), float(y), float(yaw), camera=self._camera)
+        # times are the episode's own: the simulation's clock runs on across episodes
+        self._start_time = float(self._reading[0])
         self._steps = 0
         self._trajectory = [self._sample()]
         return self._observation(), self._info()
@@ -233,6 +256,8 @@ class RobotMazeEnv(gym.Env):
     def step(self, action):
         if self.layout is None:
             raise RuntimeError("call reset() before step()")
+        if self._ended:
+            raise RuntimeError("the episode has ended: call reset()")
         left, right = np.clip(
             np.asarray(action, dtype=np.float64).reshape(2), self.action_space.low, self.action_space.high
         )
@@ -246,7 +271,9 @@ class RobotMazeEnv(gym.Env):
         info = self._info()
         if terminated or truncated:
             info["score"] = self.layout.grade(self._trajectory)
-            self.link.end()
+            self._ended = True
+            if not self.fast_reset:
+                self.link.end()
         return self._observation(), reward, terminated, truncated, info
 
     def render(self):
@@ -257,20 +284,34 @@ class RobotMazeEnv(gym.Env):
     def close(self):
         link, session = getattr(self, "link", None), getattr(self, "session", None)
         self.link = self.session = None
-        # the session first: it puts back the idle rate it found, the 0 the link set; the
-        # link then puts back the user's
+        # the stop removes the mazes drawn while the simulation ran (fast_reset): the last
+        # one is drawn again on the stopped simulation, so the scene shows what the last
+        # episode saw;
+        # then the session, which puts back the idle rate it found (the 0 the link set),
+        # and the link, which puts back the user's
         try:
-            if session is not None:
-                session.close()
-        finally:
             if link is not None:
-                link.close()
+                link.end()
+            if session is not None and link is not None and getattr(self, "_drawn_running", False):
+                session.apply(
+                    self.layout,
+                    draw=self.draw,
+                    create_missing=self.create_missing,
+                    **self._draw_names,
+                )
+        finally:
+            try:
+                if session is not None:
+                    session.close()
+            finally:
+                if link is not None:
+                    link.close()
 
     # -- what an observation and the info hold
 
     def _sample(self) -> tuple[float, float, float, float]:
         time, pose, _, _ = self._reading
-        return (float(time), float(pose[0]), float(pose[1]), float(pose[2]))
+        return (float(time) - self._start_time, float(pose[0]), float(pose[1]), float(pose[2]))
 
     def _observation(self):
         _, pose, _, image = self._reading
@@ -285,7 +326,7 @@ class RobotMazeEnv(gym.Env):
         return {
             "pose": np.array(pose, dtype=np.float64),
             "joints": np.array(joints, dtype=np.float64),
-            "time": float(time),
+            "time": float(time) - self._start_time,
             # a tuple, not an array: a vector env stacks arrays, and mazes differ in length
             "waypoints": tuple(map(tuple, self._waypoints.tolist())),
             "seed": self.layout.seed,

@@ -26,6 +26,8 @@ use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
 const BBOX_PARAMS: [i64; 6] = [15, 16, 17, 18, 19, 20];
 /// `sim.visionintparam_resolution_x` and `_y`.
 const RESOLUTION_PARAMS: [i64; 2] = [1002, 1003];
+/// `sim.handle_parent`: a pose in the frame of the object's parent.
+const HANDLE_PARENT: i64 = -11;
 /// `sim.visionfloatparam_perspective_angle`.
 const VIEW_ANGLE_PARAM: i64 = 1004;
 /// The integer signal holding the camera's explicit-handling flag as the user had it, while a
@@ -58,6 +60,20 @@ pub struct ZmqRobot<'a> {
     /// The camera's resolution before [`ZmqRobot::set_camera_resolution`] changed it, put
     /// back by [`ZmqRobot::close`].
     resolution: Option<[i64; 2]>,
+    /// The robot's parts as they rest on the stopped simulation ([`ZmqRobot::remember_rest`]).
+    rest: Vec<RestingPart>,
+    /// Whether [`ZmqRobot::remember_rest`] has read them.
+    rest_read: bool,
+}
+
+/// A part of the robot as it rests on the stopped simulation.
+#[derive(Debug, Clone, Copy)]
+struct RestingPart {
+    handle: i64,
+    /// Its pose in its parent's frame: x, y, z, then the quaternion x, y, z, w.
+    pose: [f64; 7],
+    /// Its position, if it is a joint.
+    joint: Option<f64>,
 }
 
 fn lost(e: ZmqError) -> RobotError {
@@ -96,7 +112,111 @@ impl<'a> ZmqRobot<'a> {
             camera_flag: None,
             height: 0.0,
             resolution: None,
+            rest: Vec::new(),
+            rest_read: false,
         }
+    }
+
+    /// Reads how the robot rests on the stopped simulation, for [`ZmqRobot::put_back`]: each
+    /// part's pose in its parent's frame and each joint's position (two requests, once: a
+    /// later call does nothing). Call it after [`RobotPort::place`], before the simulation
+    /// starts.
+    pub fn remember_rest(&mut self) -> Result<(), RobotError> {
+        if self.rest_read {
+            return Ok(());
+        }
+        let p = self.parts()?;
+        // sim.handle_all (-2): every type, the robot first
+        let args = vec![int(p.robot), int(-2), int(0)];
+        let got = self
+            .client()?
+            .call("sim.getObjectsInTree", args)
+            .map_err(lost)?;
+        let tree = got
+            .first()
+            .and_then(cbor::handles)
+            .ok_or_else(|| malformed("sim.getObjectsInTree"))?;
+        let parts: Vec<i64> = tree.into_iter().skip(1).map(i64::from).collect();
+        let mut calls = Vec::with_capacity(2 * parts.len());
+        for &h in &parts {
+            calls.push(("sim.getObjectPose", vec![int(h), int(HANDLE_PARENT)]));
+            calls.push(("sim.getJointPosition", vec![int(h)]));
+        }
+        let got = self.client()?.read_all(&calls).map_err(lost)?;
+        self.rest = parts
+            .iter()
+            .zip(got.chunks(2))
+            .map(|(&h, pair)| {
+                let pose = Self::numbers::<7>(&pair[0], "sim.getObjectPose")?;
+                // a part that is no joint refuses sim.getJointPosition
+                let joint = Self::number(&pair[1], "sim.getJointPosition").ok();
+                Ok(RestingPart {
+                    handle: h,
+                    pose,
+                    joint,
+                })
+            })
+            .collect::<Result<_, RobotError>>()?;
+        self.rest_read = true;
+        Ok(())
+    }
+
+    /// Puts the robot at `pose` (floor frame) while the simulation runs in stepping mode, so
+    /// that a new episode needs no stop and start (15-20 ms and a first pass of 26 ms on the
+    /// real 4.10, `docs/measurements.md`): the wheels stopped, every part and joint as
+    /// [`ZmqRobot::remember_rest`] read them, the pose set, and every part's dynamics reset
+    /// (`sim.resetDynamicObject`: the physics engine takes each part afresh, at rest), in one
+    /// request; an episode then runs as it did after a start. On a stopped simulation
+    /// [`RobotPort::place`] does it.
+    pub fn put_back(&mut self, pose: Pose) -> Result<(), RobotError> {
+        let p = self.parts()?;
+        if !self.rest_read {
+            return Err(RobotError::Scene(
+                "the robot's resting pose was never read: place it on the stopped simulation first"
+                    .into(),
+            ));
+        }
+        let mut calls = vec![
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.left), Value::Float(0.0)],
+            ),
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(p.right), Value::Float(0.0)],
+            ),
+        ];
+        for part in &self.rest {
+            let local = vec![
+                int(part.handle),
+                int(HANDLE_PARENT),
+                float_array(&part.pose),
+            ];
+            calls.push(("sim.setObjectPose", local));
+            if let Some(q) = part.joint {
+                calls.push((
+                    "sim.setJointPosition",
+                    vec![int(part.handle), Value::Float(q)],
+                ));
+            }
+        }
+        let at = float_array(&[pose.x, pose.y, self.height]);
+        calls.push((
+            "sim.setObjectPosition",
+            vec![int(p.robot), int(p.floor), at],
+        ));
+        let turned = float_array(&[0.0, 0.0, pose.yaw]);
+        calls.push((
+            "sim.setObjectOrientation",
+            vec![int(p.robot), int(p.floor), turned],
+        ));
+        let reset = std::iter::once(p.robot).chain(self.rest.iter().map(|r| r.handle));
+        calls.extend(reset.map(|h| ("sim.resetDynamicObject", vec![int(h)])));
+        // one program where the simulator runs it; made again, every call does the same
+        for outcome in self.client()?.read_all(&calls).map_err(lost)? {
+            outcome.map_err(|e| RobotError::Scene(e.to_string()))?;
+        }
+        Ok(())
     }
 
     /// Sets the simulator's idle rate (`sim.intparam_idle_fps`: main-loop passes a second
