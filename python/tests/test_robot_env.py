@@ -267,10 +267,11 @@ def test_a_camera_that_renders_nothing_is_named_at_reset():
 
 
 @real
-def test_objects_and_memory_stay_flat_over_many_resets(sim):
+@pytest.mark.parametrize("fast", [False, True])
+def test_objects_and_memory_stay_flat_over_many_resets(sim, fast):
     from coppeliasim_zmqremoteapi_client import RemoteAPIClient
 
-    env = RobotMazeEnv(port=sim.port, size=(5, 5))
+    env = RobotMazeEnv(port=sim.port, size=(5, 5), fast_reset=fast)
     official = RemoteAPIClient("127.0.0.1", sim.port).require("sim")
     count = lambda: len(official.getObjectsInTree(official.handle_scene))
     try:
