@@ -72,6 +72,7 @@ on_every_target!(
     clear_puts_start_and_end_back,
     an_interrupted_apply_counts_what_the_scene_holds,
     the_smaller_rows_as_a_person_meets_them,
+    a_maze_drawn_while_running_lasts_until_the_stop,
 );
 
 /// A user's edit of the object it is given: the function called and its arguments.
@@ -416,6 +417,50 @@ fn clear_puts_start_and_end_back(target: Target) {
         "{target:?}: {}",
         again.stdout
     );
+}
+
+/// `apply --while-running` on a running simulation: the maze is drawn and the simulation
+/// runs on; its stop removes what was made while it ran (docs/measurements.md, "What a stop
+/// undoes"), `inspect --layout` then says the scene differs, and an apply on the stopped
+/// simulation draws the maze again; `clear` leaves the scene as it was.
+fn a_maze_drawn_while_running_lasts_until_the_stop(target: Target) {
+    let sim = target.start();
+    let dir = tempfile::tempdir().unwrap();
+    let mut obs = Observer::connect(sim.zmq);
+    let before = obs.look();
+    let (m, layout) = generate(dir.path(), "m", &["--seed", "5", "--size", "4x4"]);
+    obs.call("sim.startSimulation", vec![]);
+    let refused = run(&sim, &["apply", &m]);
+    assert!(
+        refused.code != 0 && refused.stderr.contains("simulation is running"),
+        "{target:?}: {}{}",
+        refused.stdout,
+        refused.stderr
+    );
+    let drawn = ok(&sim, &["apply", &m, "--while-running"]);
+    assert!(
+        drawn.stdout.contains("drawn into the running simulation"),
+        "{target:?}: {}",
+        drawn.stdout
+    );
+    assert_ne!(
+        obs.simulation_state(),
+        0,
+        "{target:?}: the simulation was stopped"
+    );
+    assert_shows(&sim, &obs.look(), &layout, before.idle_fps);
+    obs.call("sim.stopSimulation", vec![]);
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while obs.simulation_state() != 0 && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let differs = run(&sim, &["inspect", "--layout", &m]);
+    assert_ne!(differs.code, 0, "{target:?}: {}", differs.stdout);
+    ok(&sim, &["apply", &m]);
+    assert_shows(&sim, &obs.look(), &layout, before.idle_fps);
+    ok(&sim, &["inspect", "--layout", &m]);
+    ok(&sim, &["clear"]);
+    assert_cleared(&sim, &obs.look(), &before);
 }
 
 fn lines_apply_reapply_clear(target: Target) {
