@@ -92,8 +92,8 @@ class RobotMazeEnv(gym.Env):
       ``wall_height``; ``where``: a condition on its metrics as ``vrep-maze batch --where``
       takes it (a curriculum: ``"solution_cells >= 12"``); ``draw``: ``"mesh"`` (default) or
       ``"copies"``; ``create_missing`` (default ``True``): the templates a maze needs and the
-      scene lacks (``Wall`` and ``Post`` of a wall maze in the course scene) are made as
-      ``vrep-maze apply --create-missing`` makes them, static and respondable;
+      scene lacks (``Wall`` and ``Post`` of a wall maze in the course scene) are made by the
+      first reset as ``vrep-maze apply --create-missing`` makes them, static and respondable;
     - the robot: ``obs`` (``"pose"``: ``[x, y, yaw, goal_x, goal_y]``; ``"camera"``: the
       camera's image, ``uint8``, ``camera_size`` ``(width, height)``, default ``(64, 64)``),
       ``wheel_max`` (rad/s, the action's bound), the scene's names (``robot``,
@@ -230,7 +230,8 @@ class RobotMazeEnv(gym.Env):
             draw=self.draw,
             stop_simulation=not running,
             while_running=running,
-            create_missing=self.create_missing,
+            # the first reset makes what is missing; a later one would only look again
+            create_missing=self.create_missing and self._episodes == 0,
             **self._draw_names,
         )
         self.layout = layout
