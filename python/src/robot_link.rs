@@ -25,7 +25,6 @@ use vrep_maze::robot::camera::Image;
 use vrep_maze::robot::steer::NOTHING_RENDERS;
 use vrep_maze::robot::wheels::Wheels;
 use vrep_maze::robot::{Pose, Reading, RobotError, RobotPort, RobotSurvey, renders_nothing};
-use vrep_maze::zmq_api::ClientOptions;
 use vrep_maze::zmq_api::robot::ZmqRobot;
 
 use crate::errors;
@@ -99,16 +98,7 @@ impl RobotLink {
                 anyhow::bail!("a robot link steps the simulation over ZeroMQ: give api=\"zmq\"");
             };
             let endpoint = client.endpoint().to_string();
-            let options = ClientOptions {
-                host: args.scene.host.clone(),
-                port: endpoint
-                    .rsplit(':')
-                    .next()
-                    .and_then(|p| p.parse().ok())
-                    .unwrap_or(0),
-                timeout: args.scene.timeout,
-                ..ClientOptions::default()
-            };
+            let options = args.scene.options_for(&client);
             Ok((ZmqRobot::new(client, options), endpoint))
         });
         let (mut port, endpoint) = opened.map_err(|e| errors::from_anyhow(py, &e))?;

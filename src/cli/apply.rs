@@ -128,6 +128,22 @@ impl ConnectArgs {
         Ok(connected)
     }
 
+    /// The options of a fresh connection to where `client` is connected (its host and port,
+    /// `--timeout`): a robot run stops the simulation over one when its own is lost.
+    pub fn options_for(&self, client: &crate::zmq_api::Client) -> crate::zmq_api::ClientOptions {
+        let port = client
+            .endpoint()
+            .rsplit(':')
+            .next()
+            .and_then(|p| p.parse().ok());
+        crate::zmq_api::ClientOptions {
+            host: self.host.clone(),
+            port: port.unwrap_or(0),
+            timeout: self.timeout,
+            ..Default::default()
+        }
+    }
+
     /// Connects as [`ConnectArgs::connect_until`] does (the same waits, messages and hints)
     /// for a command that does not draw: the raw client of the API that answered.
     pub fn client_until(

@@ -29,7 +29,6 @@ use crate::robot::steer::{CameraSteer, Eye, PoseSteer, Steer};
 use crate::robot::wheels::DiffDrive;
 use crate::robot::{DriveOptions, Driven, RobotNames, RobotPort, RobotSurvey, drive, facing};
 use crate::score::{GradeOptions, Grader, Report};
-use crate::zmq_api::ClientOptions;
 use crate::zmq_api::robot::ZmqRobot;
 
 /// Refuses wheel speeds and timeouts out of range, and camera steering in a wall maze
@@ -75,12 +74,7 @@ pub fn run(args: DriveArgs) -> Result<ExitCode> {
     }
     let outcome = match client {
         RawClient::Zmq(client) => {
-            let options = ClientOptions {
-                host: args.scene.host.clone(),
-                port: port_of(client.endpoint()).unwrap_or(0),
-                timeout: args.scene.timeout,
-                ..ClientOptions::default()
-            };
+            let options = args.scene.options_for(&client);
             let mut port = ZmqRobot::new(client, options);
             let outcome = args.wheels_over(&mut port, layout, interrupt.shared());
             port.close();
@@ -218,9 +212,4 @@ fn eye(survey: &RobotSurvey, layout: &Layout, names: &RobotNames) -> Result<Eye>
         colour,
         map,
     })
-}
-
-/// The port of a `tcp://host:port` endpoint.
-fn port_of(endpoint: &str) -> Option<u16> {
-    endpoint.rsplit(':').next()?.parse().ok()
 }
