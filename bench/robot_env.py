@@ -1,5 +1,5 @@
 """Reset and step times of `vrep_maze/RobotMaze-v0` on running CoppeliaSims, beside
-Gymnasium-Robotics' PointMaze (MuJoCo) timed in the same run on the same machine.
+Gymnasium-Robotics' PointMaze (MuJoCo) and `sim.step` alone (the baseline) timed in the same run.
 
     python bench/robot_env.py --port 23100                    # one simulator
     python bench/robot_env.py --port 23100 --port 23102       # and AsyncVectorEnv over both
@@ -48,10 +48,39 @@ def time_env(env, resets: int, steps: int) -> tuple[list[float], list[float]]:
     return reset_times, step_times
 
 
+def bare_steps(port: int, steps: int) -> list[float]:
+    """`sim.step` alone over the official client (stepping on, the camera spared): the
+    simulator's own step, the floor under the environment's."""
+    from coppeliasim_zmqremoteapi_client import RemoteAPIClient
+
+    sim = RemoteAPIClient("127.0.0.1", port).require("sim")
+    idle = sim.getInt32Param(sim.intparam_idle_fps)
+    camera = sim.getObject("/camera")
+    flag = sim.getExplicitHandling(camera)
+    sim.setInt32Param(sim.intparam_idle_fps, 0)
+    sim.setExplicitHandling(camera, 1)
+    sim.setStepping(True)
+    sim.startSimulation()
+    times = []
+    try:
+        for _ in range(steps):
+            began = time.perf_counter()
+            sim.step()
+            times.append(time.perf_counter() - began)
+    finally:
+        sim.setStepping(False)
+        sim.stopSimulation()
+        while sim.getSimulationState() != sim.simulation_stopped:
+            time.sleep(0.005)
+        sim.setExplicitHandling(camera, flag)
+        sim.setInt32Param(sim.intparam_idle_fps, idle)
+    return times
+
+
 def row(name: str, resets: list[float], steps: list[float]) -> str:
-    r50, r99 = percentiles(resets) if resets else (float("nan"),) * 2
+    reset = "| {:.1f} | {:.1f}".format(*percentiles(resets)) if resets else "| |"
     s50, s99 = percentiles(steps)
-    return f"| {name} | {r50:.1f} | {r99:.1f} | {s50:.2f} | {s99:.2f} | {1e3 / s50:.0f} |"
+    return f"| {name} {reset} | {s50:.2f} | {s99:.2f} | {1e3 / s50:.0f} |"
 
 
 def main() -> None:
@@ -67,6 +96,8 @@ def main() -> None:
     size = tuple(int(v) for v in args.size.split("x"))
     print("| environment | reset median ms | reset p99 ms | step median ms | step p99 ms | steps/s |")
     print("|---|---|---|---|---|---|")
+    bare = bare_steps(args.port[0], args.steps)
+    print(row("sim.step alone (official client, the baseline)", [], bare))
     for obs in ("pose", "camera"):
         for fast in (False, True):
             env = gym.make(
@@ -77,7 +108,8 @@ def main() -> None:
             finally:
                 env.close()
             kind = ", fast_reset" if fast else ""
-            print(row(f"RobotMaze-v0 {args.size} obs={obs}{kind} (real CoppeliaSim)", resets, steps))
+            ratio = statistics.median(steps) / statistics.median(bare)
+            print(row(f"RobotMaze-v0 {args.size} obs={obs}{kind} (step {ratio:.2f}x the baseline)", resets, steps))
     try:
         import gymnasium_robotics
 
