@@ -329,7 +329,8 @@ pub(crate) fn cleared(
 /// Every option of `apply` is a keyword: `api="auto"` (the default: port 19997 with the
 /// legacy API, else 23000 with ZeroMQ), `"legacy"` or `"zmq"`; `host="127.0.0.1"`; `port`; the scene's object names
 /// `floor="Floor"`, `parent="Maze"`, `line="Line"`, `start="Start"`, `end="End"`;
-/// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `dry_run`,
+/// `connect_timeout` and `timeout` (seconds); `stop_simulation`, `while_running` (draw
+/// into a running simulation: the maze lasts until it stops), `dry_run`,
 /// `create_missing` (ZeroMQ only) as `True`/`False`; `save_scene="/path/maze.ttt"`
 /// (ZeroMQ only); `draw="copies"` (the default: one copy of the template per line) or
 /// `"mesh"` (a few mesh shapes, one rectangle or box per straight run; ZeroMQ creates them,

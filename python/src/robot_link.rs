@@ -3,12 +3,12 @@
 //!
 //! A link is its own ZeroMQ connection (a drawing `Session` beside it keeps its own): the
 //! simulation runs in stepping mode while an episode lasts, so it advances only when
-//! `step` says so, whatever the machine's pace. The first `begin` stops a running
-//! simulation (which puts every dynamic object back, the physics reset), places the robot,
-//! turns stepping on and starts it; a `begin` while the link's episode runs puts the robot
-//! back with its physics reset and leaves the simulation running (with the camera, either
-//! makes one step, so that the first image is a rendered frame); `end` stops it and turns
-//! stepping off. The link sets the idle rate to 0 while open, so a stop and a start take
+//! `step` says so, whatever the machine's pace. `begin` stops a running simulation (which
+//! puts every dynamic object back, the physics reset), places the robot, turns stepping on
+//! and starts it; with `keep_running`, a `begin` while the link's episode runs puts the
+//! robot back with its physics reset and leaves the simulation running (with the camera,
+//! either makes one step, so that the first image is a rendered frame); `end` stops it and
+//! turns stepping off. The link sets the idle rate to 0 while open, so a stop and a start take
 //! milliseconds; `close` puts it and the camera's resolution back. Calls run without the
 //! GIL.
 
@@ -146,16 +146,17 @@ impl RobotLink {
         })
     }
 
-    /// Starts an episode: the robot at `(x, y)` facing `yaw` (floor frame), at rest. When
-    /// an episode of this link runs (with the same `camera`), the robot is put back while
-    /// the simulation runs, its physics reset (`sim.resetDynamicObject`), without a stop
-    /// and a start; else the simulation is stopped if it runs, the robot placed, stepping
-    /// turned on and the simulation started. The camera renders only when `camera` (else
+    /// Starts an episode: the robot at `(x, y)` facing `yaw` (floor frame), at rest: the
+    /// simulation stopped if it runs (the physics reset), the robot placed, stepping turned
+    /// on and the simulation started. With `keep_running`, when an episode of this link runs
+    /// (with the same `camera`), the robot is put back while the simulation runs, its
+    /// physics reset (`sim.resetDynamicObject`), without a stop and a start: faster, but the
+    /// physics engine keeps some state, so the same actions repeat only to millimetres. The camera renders only when `camera` (else
     /// it is spared); then the simulation makes one step, so that the first image is a
     /// rendered frame of what is drawn now. Returns the first reading:
     /// `(time, pose, joints, image)`, `pose` an array `(x, y, yaw)`, `joints` the wheels'
     /// angles, `image` an `(height, width, 3)` `uint8` array (top row first) or `None`.
-    #[pyo3(signature = (x, y, yaw, camera=false))]
+    #[pyo3(signature = (x, y, yaw, camera=false, keep_running=false))]
     fn begin<'py>(
         &self,
         py: Python<'py>,
@@ -163,6 +164,7 @@ impl RobotLink {
         y: f64,
         yaw: f64,
         camera: bool,
+        keep_running: bool,
     ) -> PyResult<Bound<'py, PyTuple>> {
         if ![x, y, yaw].iter().all(|v| v.is_finite()) {
             return Err(PyValueError::new_err(format!(
@@ -171,7 +173,7 @@ impl RobotLink {
         }
         let pose = Pose { x, y, yaw };
         let reading = self.with(py, |l| {
-            if l.running && l.camera == camera {
+            if keep_running && l.running && l.camera == camera {
                 l.port.put_back(pose)?;
                 if camera {
                     l.port.step()?;

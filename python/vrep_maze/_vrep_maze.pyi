@@ -184,6 +184,7 @@ def apply(
     connect_timeout: Optional[float] = None,
     timeout: Optional[float] = None,
     stop_simulation: bool = False,
+    while_running: bool = False,
     dry_run: bool = False,
     create_missing: bool = False,
     save_scene: Optional[str] = None,
@@ -218,6 +219,7 @@ class Session:
         start: Optional[str] = None,
         end: Optional[str] = None,
         stop_simulation: bool = False,
+        while_running: bool = False,
         dry_run: bool = False,
         create_missing: bool = False,
         save_scene: Optional[str] = None,
@@ -306,7 +308,9 @@ class RobotLink:
     @property
     def geometry(self) -> Tuple[float, float]: ...
     def set_camera_size(self, width: int, height: int) -> None: ...
-    def begin(self, x: float, y: float, yaw: float, camera: bool = False) -> Reading: ...
+    def begin(
+        self, x: float, y: float, yaw: float, camera: bool = False, keep_running: bool = False
+    ) -> Reading: ...
     def step(self, left: float, right: float, camera: bool = False) -> Reading: ...
     def end(self) -> None: ...
     def close(self) -> None: ...

@@ -247,7 +247,9 @@ class RobotMazeEnv(gym.Env):
         self._waypoints = np.array(centres)
         self._goal = self._waypoints[-1]
         x, y, yaw = points[0, :3]
-        self._reading = self.link.begin(float(x), float(y), float(yaw), camera=self._camera)
+        self._reading = self.link.begin(
+            float(x), float(y), float(yaw), camera=self._camera, keep_running=running
+        )
         # times are the episode's own: the simulation's clock runs on across episodes
         self._start_time = float(self._reading[0])
         self._steps = 0
