@@ -1,5 +1,6 @@
 """`vrep_maze/RobotMaze-v0` (vrep_maze.robot_env) on the real CoppeliaSim 4.10 with the course
-robot (`sim.sh start 4.10.0 --robot --display`), and `RobotLink`'s refusals on `serve`.
+robot (`sim.sh start 4.10.0 --robot --display`; one test on 4.5.1, ZeroMQ protocol 1), and
+`RobotLink`'s refusals on `serve`.
 
 The real-simulator tests run when VREP_MAZE_REAL_SIMS names the folder of `sim.sh` (CI sets
 it); each starts its own simulator on free ports."""
@@ -44,16 +45,19 @@ def free_port_pair() -> int:
 
 
 class RealSim:
-    """`sim.sh start 4.10.0 --robot --display` on free ports (without `--display` when not
-    `display`: cameras render nothing), stopped by `stop()`."""
+    """`sim.sh start VERSION --robot --display` on free ports (without `--display` when not
+    `display`: cameras render nothing; 4.5.1's legacy API on a free port too), stopped by
+    `stop()`."""
 
     def __init__(self, version: str = "4.10.0", display: bool = True):
         self.script = str((ROOT / SIMS / "sim.sh") if not os.path.isabs(SIMS) else Path(SIMS) / "sim.sh")
         self.version = version
         self.dir = tempfile.TemporaryDirectory(prefix="vrep-maze-env-")
         self.port = free_port_pair()
+        legacy = ["--legacy-port", str(free_port_pair())] if version == "4.5.1" else []
         done = subprocess.run(
             ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot"]
+            + legacy
             + (["--display"] if display else []),
             env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
             capture_output=True,
@@ -221,6 +225,23 @@ def test_fast_resets_keep_the_simulation_running_and_close_leaves_the_last_maze(
     # the stop removed what was drawn while it ran; close drew the last maze again
     with vrep_maze.connect(port=sim.port) as session:
         assert session.inspect(last)["layout"]["matches"]
+
+
+@real
+def test_on_4_5_1_episodes_reach_the_goal_with_and_without_fast_resets():
+    # protocol 1: stepping by the add-on's own globals, the robot put back the same way
+    old = RealSim("4.5.1", display=False)
+    try:
+        for fast in (False, True):
+            env = RobotMazeEnv(port=old.port, size=(3, 3), max_episode_steps=2000, fast_reset=fast)
+            try:
+                for seed in (3, 4):
+                    reached, _, info = run_episode(env, seed=seed)
+                    assert reached, (fast, info["score"])
+            finally:
+                env.close()
+    finally:
+        old.stop()
 
 
 @real
