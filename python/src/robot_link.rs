@@ -173,8 +173,8 @@ impl RobotLink {
         }
         let pose = Pose { x, y, yaw };
         let reading = self.with(py, |l| {
-            if keep_running && l.running && l.camera == camera {
-                l.port.put_back(pose)?;
+            // a simulation the user stopped since is started again below
+            if keep_running && l.running && l.camera == camera && l.port.put_back(pose)? {
                 if camera {
                     l.port.step()?;
                 }

@@ -11,6 +11,7 @@ import re
 import socket
 import subprocess
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -216,8 +217,15 @@ def test_fast_resets_keep_the_simulation_running_and_close_leaves_the_last_maze(
             assert info["time"] < 200, "the episode's own time"
             # the next reset draws into the running simulation: no stop between episodes
             assert official.getSimulationState() != official.simulation_stopped
+        # a user who stops the simulation between episodes: the next reset starts it again
+        official.stopSimulation()
+        while official.getSimulationState() != official.simulation_stopped:
+            time.sleep(0.01)
         _, info = env.reset(seed=5)
         assert np.allclose(info["pose"][:2], info["waypoints"][0], atol=0.02), "back at Start"
+        assert official.getSimulationState() != official.simulation_stopped
+        _, _, _, _, info = env.step(np.array([2.0, 2.0], dtype=np.float32))
+        assert info["time"] > 0, "the simulation steps"
         last = env.layout
     finally:
         env.close()

@@ -166,9 +166,10 @@ impl<'a> ZmqRobot<'a> {
     /// real 4.10, `docs/measurements.md`): the wheels stopped, every part and joint as
     /// [`ZmqRobot::remember_rest`] read them, the pose set, and every part's dynamics reset
     /// (`sim.resetDynamicObject`: the physics engine takes each part afresh, at rest), in one
-    /// request; an episode then runs as it did after a start. On a stopped simulation
-    /// [`RobotPort::place`] does it.
-    pub fn put_back(&mut self, pose: Pose) -> Result<(), RobotError> {
+    /// request; an episode then runs as it did after a start. Returns `false` when the
+    /// simulation was found stopped (by the user, say): then [`RobotPort::place`] and a start
+    /// are the way.
+    pub fn put_back(&mut self, pose: Pose) -> Result<bool, RobotError> {
         let p = self.parts()?;
         if !self.rest_read {
             return Err(RobotError::Scene(
@@ -177,6 +178,7 @@ impl<'a> ZmqRobot<'a> {
             ));
         }
         let mut calls = vec![
+            ("sim.getSimulationState", vec![]),
             (
                 "sim.setJointTargetVelocity",
                 vec![int(p.left), Value::Float(0.0)],
@@ -213,10 +215,12 @@ impl<'a> ZmqRobot<'a> {
         let reset = std::iter::once(p.robot).chain(self.rest.iter().map(|r| r.handle));
         calls.extend(reset.map(|h| ("sim.resetDynamicObject", vec![int(h)])));
         // one program where the simulator runs it; made again, every call does the same
-        for outcome in self.client()?.read_all(&calls).map_err(lost)? {
+        let got = self.client()?.read_all(&calls).map_err(lost)?;
+        let state = Self::number(&got[0], "sim.getSimulationState")?;
+        for outcome in got.into_iter().skip(1) {
             outcome.map_err(|e| RobotError::Scene(e.to_string()))?;
         }
-        Ok(())
+        Ok(state as i64 != i64::from(SIMULATION_STOPPED))
     }
 
     /// Sets the simulator's idle rate (`sim.intparam_idle_fps`: main-loop passes a second
