@@ -289,9 +289,8 @@ class RobotMazeEnv(gym.Env):
         self.link = self.session = None
         # the stop removes the mazes drawn while the simulation ran (fast_reset): the last
         # one is drawn again on the stopped simulation, so the scene shows what the last
-        # episode saw;
-        # then the session, which puts back the idle rate it found (the 0 the link set),
-        # and the link, which puts back the user's
+        # episode saw. Then the session closes, putting back the idle rate it found (the 0
+        # the link set), and the link, putting back the user's.
         try:
             if link is not None:
                 link.end()

@@ -225,7 +225,7 @@ mod tests {
     use vrep_maze_core::coppelia::DEFAULT_IDLE_FPS;
 
     #[test]
-    fn changes_while_running_are_undone() {
+    fn what_a_run_made_is_removed_on_stop() {
         let mut sim = Simulator::new(Scene::course(), DEFAULT_IDLE_FPS);
         let line = sim.scene.resolve("Line").unwrap();
         assert!(sim.start());

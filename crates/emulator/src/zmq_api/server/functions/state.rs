@@ -37,7 +37,8 @@ pub(super) fn get_simulation_time(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Out
     ret(vec![Value::Float(ctx.sim.time(std::time::Instant::now()))])
 }
 
-/// `sim.startSimulation()`: scene edits from now on are undone on stop.
+/// `sim.startSimulation()`: what is made from now on is removed on stop, and poses go back
+/// (`Scene::end_run`).
 pub(super) fn start_simulation(ctx: &mut Ctx<'_>, _: &Args<'_>) -> Result<Outcome, String> {
     ctx.sim.start();
     nothing()
