@@ -17,7 +17,7 @@ use super::client::{Client, ClientOptions, ZmqError};
 use super::{Outcome, Protocol};
 use crate::held::Held;
 use crate::robot::{DRIVER_SIGNAL, Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
-use vrep_maze_core::coppelia::{INTPARAM_IDLE_FPS, SIMULATION_STOPPED};
+use vrep_maze_core::coppelia::{HANDLE_ALL, HANDLE_PARENT, INTPARAM_IDLE_FPS, SIMULATION_STOPPED};
 use vrep_maze_core::robot::Pose;
 use vrep_maze_core::robot::camera::{CameraModel, Image};
 use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
@@ -26,8 +26,6 @@ use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
 const BBOX_PARAMS: [i64; 6] = [15, 16, 17, 18, 19, 20];
 /// `sim.visionintparam_resolution_x` and `_y`.
 const RESOLUTION_PARAMS: [i64; 2] = [1002, 1003];
-/// `sim.handle_parent`: a pose in the frame of the object's parent.
-const HANDLE_PARENT: i64 = -11;
 /// `sim.visionfloatparam_perspective_angle`.
 const VIEW_ANGLE_PARAM: i64 = 1004;
 /// The integer signal holding the camera's explicit-handling flag as the user had it, while a
@@ -60,10 +58,9 @@ pub struct ZmqRobot<'a> {
     /// The camera's resolution before [`ZmqRobot::set_camera_resolution`] changed it, put
     /// back by [`ZmqRobot::close`].
     resolution: Option<[i64; 2]>,
-    /// The robot's parts as they rest on the stopped simulation ([`ZmqRobot::remember_rest`]).
-    rest: Vec<RestingPart>,
-    /// Whether [`ZmqRobot::remember_rest`] has read them.
-    rest_read: bool,
+    /// The robot's parts as they rest on the stopped simulation, once
+    /// [`ZmqRobot::remember_rest`] has read them.
+    rest: Option<Vec<RestingPart>>,
 }
 
 /// A part of the robot as it rests on the stopped simulation.
@@ -112,8 +109,7 @@ impl<'a> ZmqRobot<'a> {
             camera_flag: None,
             height: 0.0,
             resolution: None,
-            rest: Vec::new(),
-            rest_read: false,
+            rest: None,
         }
     }
 
@@ -122,12 +118,12 @@ impl<'a> ZmqRobot<'a> {
     /// later call does nothing). Call it after [`RobotPort::place`], before the simulation
     /// starts.
     pub fn remember_rest(&mut self) -> Result<(), RobotError> {
-        if self.rest_read {
+        if self.rest.is_some() {
             return Ok(());
         }
         let p = self.parts()?;
-        // sim.handle_all (-2): every type, the robot first
-        let args = vec![int(p.robot), int(-2), int(0)];
+        // every type, the robot first
+        let args = vec![int(p.robot), int(HANDLE_ALL.into()), int(0)];
         let got = self
             .client()?
             .call("sim.getObjectsInTree", args)
@@ -139,11 +135,11 @@ impl<'a> ZmqRobot<'a> {
         let parts: Vec<i64> = tree.into_iter().skip(1).map(i64::from).collect();
         let mut calls = Vec::with_capacity(2 * parts.len());
         for &h in &parts {
-            calls.push(("sim.getObjectPose", vec![int(h), int(HANDLE_PARENT)]));
+            calls.push(("sim.getObjectPose", vec![int(h), int(HANDLE_PARENT.into())]));
             calls.push(("sim.getJointPosition", vec![int(h)]));
         }
         let got = self.client()?.read_all(&calls).map_err(lost)?;
-        self.rest = parts
+        let rest = parts
             .iter()
             .zip(got.chunks(2))
             .map(|(&h, pair)| {
@@ -157,7 +153,7 @@ impl<'a> ZmqRobot<'a> {
                 })
             })
             .collect::<Result<_, RobotError>>()?;
-        self.rest_read = true;
+        self.rest = Some(rest);
         Ok(())
     }
 
@@ -171,12 +167,12 @@ impl<'a> ZmqRobot<'a> {
     /// are the way.
     pub fn put_back(&mut self, pose: Pose) -> Result<bool, RobotError> {
         let p = self.parts()?;
-        if !self.rest_read {
+        let Some(rest) = &self.rest else {
             return Err(RobotError::Scene(
                 "the robot's resting pose was never read: place it on the stopped simulation first"
                     .into(),
             ));
-        }
+        };
         let mut calls = vec![
             ("sim.getSimulationState", vec![]),
             (
@@ -188,10 +184,10 @@ impl<'a> ZmqRobot<'a> {
                 vec![int(p.right), Value::Float(0.0)],
             ),
         ];
-        for part in &self.rest {
+        for part in rest {
             let local = vec![
                 int(part.handle),
-                int(HANDLE_PARENT),
+                int(HANDLE_PARENT.into()),
                 float_array(&part.pose),
             ];
             calls.push(("sim.setObjectPose", local));
@@ -212,7 +208,7 @@ impl<'a> ZmqRobot<'a> {
             "sim.setObjectOrientation",
             vec![int(p.robot), int(p.floor), turned],
         ));
-        let reset = std::iter::once(p.robot).chain(self.rest.iter().map(|r| r.handle));
+        let reset = std::iter::once(p.robot).chain(rest.iter().map(|r| r.handle));
         calls.extend(reset.map(|h| ("sim.resetDynamicObject", vec![int(h)])));
         // one program where the simulator runs it; made again, every call does the same
         let got = self.client()?.read_all(&calls).map_err(lost)?;
