@@ -48,9 +48,10 @@ def time_env(env, resets: int, steps: int) -> tuple[list[float], list[float]]:
     return reset_times, step_times
 
 
-def bare_steps(port: int, steps: int) -> list[float]:
+def bare_steps(port: int, steps: int, dynamics: bool = True) -> list[float]:
     """`sim.step` alone over the official client (stepping on, the camera spared): the
-    simulator's own step, the floor under the environment's."""
+    simulator's own step, the floor under the environment's; without `dynamics`, the
+    step without the physics engine (`sim.boolparam_dynamics_handling_enabled` off)."""
     from coppeliasim_zmqremoteapi_client import RemoteAPIClient
 
     sim = RemoteAPIClient("127.0.0.1", port).require("sim")
@@ -59,6 +60,7 @@ def bare_steps(port: int, steps: int) -> list[float]:
     flag = sim.getExplicitHandling(camera)
     sim.setInt32Param(sim.intparam_idle_fps, 0)
     sim.setExplicitHandling(camera, 1)
+    sim.setBoolParam(sim.boolparam_dynamics_handling_enabled, dynamics)
     sim.setStepping(True)
     sim.startSimulation()
     times = []
@@ -68,6 +70,7 @@ def bare_steps(port: int, steps: int) -> list[float]:
             sim.step()
             times.append(time.perf_counter() - began)
     finally:
+        sim.setBoolParam(sim.boolparam_dynamics_handling_enabled, True)
         sim.setStepping(False)
         sim.stopSimulation()
         while sim.getSimulationState() != sim.simulation_stopped:
@@ -98,6 +101,7 @@ def main() -> None:
     print("|---|---|---|---|---|---|")
     bare = bare_steps(args.port[0], args.steps)
     print(row("sim.step alone (official client, the baseline)", [], bare))
+    print(row("sim.step alone, physics off", [], bare_steps(args.port[0], args.steps, dynamics=False)))
     for obs in ("pose", "camera"):
         for fast in (False, True):
             env = gym.make(
