@@ -12,6 +12,7 @@ import socket
 import subprocess
 import tempfile
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -48,25 +49,44 @@ def free_port_pair() -> int:
 class RealSim:
     """`sim.sh start VERSION --robot --display` on free ports (without `--display` when not
     `display`: cameras render nothing; 4.5.1's legacy API on a free port too), stopped by
-    `stop()`."""
+    `stop()`.
+
+    A start that fails is tried again (three times in all), each time in a fresh folder on
+    fresh ports: the private Xvfb that `--display` starts sometimes refuses the simulator's
+    connection ("could not connect to display": CI, 2026-12-02), and a free port can be
+    taken between choosing it and binding it. A retried start is reported as a warning;
+    every attempt's output is in the failure."""
+
+    ATTEMPTS = 3
 
     def __init__(self, version: str = "4.10.0", display: bool = True):
         self.script = str((ROOT / SIMS / "sim.sh") if not os.path.isabs(SIMS) else Path(SIMS) / "sim.sh")
         self.version = version
-        self.dir = tempfile.TemporaryDirectory(prefix="vrep-maze-env-")
-        self.port = free_port_pair()
-        legacy = ["--legacy-port", str(free_port_pair())] if version == "4.5.1" else []
-        done = subprocess.run(
-            ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot"]
-            + legacy
-            + (["--display"] if display else []),
-            env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
-            capture_output=True,
-            text=True,
-            timeout=300,
-        )
-        assert done.returncode == 0, done.stdout + done.stderr
-        self.pid = int(re.search(r"pid (\d+)", done.stdout).group(1))
+        failures = []
+        for _ in range(self.ATTEMPTS):
+            self.dir = tempfile.TemporaryDirectory(prefix="vrep-maze-env-")
+            self.port = free_port_pair()
+            legacy = ["--legacy-port", str(free_port_pair())] if version == "4.5.1" else []
+            done = subprocess.run(
+                ["bash", self.script, "start", version, "--zmq-port", str(self.port), "--robot"]
+                + legacy
+                + (["--display"] if display else []),
+                env={**os.environ, "COPPELIASIM_DIR": self.dir.name},
+                capture_output=True,
+                text=True,
+                timeout=300,
+            )
+            if done.returncode == 0:
+                self.pid = int(re.search(r"pid (\d+)", done.stdout).group(1))
+                if failures:
+                    warnings.warn(f"sim.sh start {version} worked at attempt {len(failures) + 1}: " + failures[0])
+                return
+            xvfb = Path(self.dir.name) / f"{version}.xvfb.log"
+            failures.append(
+                done.stdout + done.stderr + (f"Xvfb's log:\n{xvfb.read_text()}" if xvfb.exists() else "")
+            )
+            self.stop()
+        pytest.fail(f"sim.sh start {version} failed {self.ATTEMPTS} times:\n" + "\n---\n".join(failures))
 
     def rss_kib(self) -> int:
         """The simulator's resident memory."""

@@ -40,6 +40,9 @@ pub fn free_port_pair() -> u16 {
     panic!("no two consecutive free ports");
 }
 
+/// How many times [`RealSim::start_with`] tries `sim.sh start`.
+const START_ATTEMPTS: usize = 3;
+
 /// Held while `sim.sh start` runs: a first start installs libraries with apt-get, once.
 static STARTING: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
@@ -63,7 +66,33 @@ impl RealSim {
 
     /// Starts `version` from the `sim.sh` in `sims` with more of its options: `--robot`
     /// (the course scene with the wheeled robot), `--display` (cameras render).
+    ///
+    /// A start that fails is tried again ([`START_ATTEMPTS`] in all), each time in a fresh
+    /// folder on fresh ports: the private Xvfb of `--display` sometimes refuses the
+    /// simulator's connection ("could not connect to display": CI, 2026-12-02), and a free
+    /// port can be taken between choosing it and binding it. A retried start is reported on
+    /// stderr; every attempt's output is in the failure.
     pub fn start_with(sims: &Path, version: &'static str, options: &[&str]) -> RealSim {
+        let mut failures = Vec::new();
+        for attempt in 1..=START_ATTEMPTS {
+            match Self::try_start(sims, version, options) {
+                Ok(real) => {
+                    if let Some(first) = failures.first() {
+                        eprintln!("sim.sh start {version} worked at attempt {attempt}: {first}");
+                    }
+                    return real;
+                }
+                Err(failure) => failures.push(failure),
+            }
+        }
+        panic!(
+            "sim.sh start {version} failed {START_ATTEMPTS} times:\n{}",
+            failures.join("\n---\n")
+        );
+    }
+
+    /// One `sim.sh start`: the simulator, or what its start printed and its logs.
+    fn try_start(sims: &Path, version: &'static str, options: &[&str]) -> Result<RealSim, String> {
         let script = sims.join("sim.sh");
         let dir = tempfile::Builder::new()
             .prefix("vrep-maze-real-")
@@ -93,14 +122,18 @@ impl RealSim {
             legacy,
             zmq,
         };
-        assert!(
-            out.status.success(),
-            "sim.sh start {version}: {}{}\n{}",
+        if out.status.success() {
+            return Ok(real);
+        }
+        let xvfb = std::fs::read_to_string(real.dir.path().join(format!("{version}.xvfb.log")))
+            .map(|log| format!("\nXvfb's log:\n{log}"))
+            .unwrap_or_default();
+        Err(format!(
+            "{}{}\n{}{xvfb}",
             String::from_utf8_lossy(&out.stdout),
             String::from_utf8_lossy(&out.stderr),
             real.log_tail()
-        );
-        real
+        ))
     }
 
     /// Its process id (`sim.sh` writes it beside the log), if readable.
