@@ -34,6 +34,10 @@ pub fn record(
     objects: &[ObjectInfo],
     earlier: bool,
 ) -> Result<(), BackendError> {
+    if earlier {
+        // nothing is written then, so the records need not be read (one request a reset)
+        return Ok(());
+    }
     let recorded = read(scene)?;
     let floor = floor_frame(objects, h.floor).unwrap_or_default();
     let mut writes = Vec::new();
@@ -41,7 +45,7 @@ pub fn record(
         .into_iter()
         .zip(recorded)
     {
-        if have.is_some_and(|r| r.handle == handle) || earlier {
+        if have.is_some_and(|r| r.handle == handle) {
             continue;
         }
         let Some(marker) = objects.iter().find(|o| o.handle == handle) else {
