@@ -283,3 +283,100 @@ fn a_simulator_that_keeps_no_signal_is_said_so_and_drawn_without_them() {
     drop(b);
     s.shutdown();
 }
+
+/// A connection after whose every read of the scene's objects another run claims the
+/// scene (`take` writes its token): the claim taken just after this run's last read.
+struct TakenOver<'a> {
+    inner: Box<dyn Backend>,
+    take: Box<dyn FnMut() + 'a>,
+}
+
+impl Backend for TakenOver<'_> {
+    fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
+        self.inner.idle_rates()
+    }
+    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
+        self.inner.survey(names)
+    }
+    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        let read = self.inner.objects();
+        (self.take)();
+        read
+    }
+    fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
+        let read = self.inner.objects_from_scene();
+        (self.take)();
+        read
+    }
+    fn bounding_boxes(
+        &mut self,
+        handles: &[i32],
+    ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
+        self.inner.bounding_boxes(handles)
+    }
+    fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
+        self.inner.sizes(handles)
+    }
+    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
+        self.inner.int_signals(names)
+    }
+    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
+        self.inner.set_int_signals(signals)
+    }
+    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
+        self.inner.copy_paste(groups)
+    }
+    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
+        self.inner.edit(edits)
+    }
+    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
+        self.inner.set_idle_fps(fps, saved)
+    }
+    fn stop_simulation(&mut self) -> Result<(), BackendError> {
+        self.inner.stop_simulation()
+    }
+    fn round_trips(&self) -> usize {
+        self.inner.round_trips()
+    }
+    fn describe(&self) -> String {
+        format!("{}, taken over after each read", self.inner.describe())
+    }
+    fn lease(&mut self) -> Option<&mut dyn Lease> {
+        self.inner.lease()
+    }
+}
+
+/// The last check of a run is made by its release's read of the lease (one request fewer):
+/// a run whose scene another run claims after its last read still fails with "another run
+/// ... while verifying", and leaves the other run's claim in place, over both ZeroMQ
+/// protocols (the legacy API, one client at a time, has no lease).
+#[test]
+fn a_claim_taken_after_the_last_read_fails_the_run_and_stays() {
+    const OTHER: i32 = 0x5eed;
+    for kind in [Kind::Zmq1, Kind::Zmq2] {
+        let k = kind.name();
+        let s = kind.serve(Scene::course(), 0);
+        let mut b = TakenOver {
+            inner: s.connect(),
+            take: Box::new(|| {
+                s.with_sim(|sim| sim.int_signals.insert(LEASE.name.into(), OTHER));
+            }),
+        };
+        let outcome = draw::apply(
+            &mut b,
+            &drawing(5, 7),
+            &ApplyOptions::default(),
+            &mut |_| {},
+        );
+        match outcome {
+            Err(draw::DrawError::Concurrent { phase }) => {
+                assert_eq!(phase, "while verifying", "{k}")
+            }
+            other => panic!("{k}: {other:?}"),
+        }
+        let kept = s.with_sim(|sim| sim.int_signals.get(LEASE.name).copied());
+        assert_eq!(kept, Some(OTHER), "{k}: the other run's claim was cleared");
+        drop(b);
+        s.shutdown();
+    }
+}

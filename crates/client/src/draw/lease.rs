@@ -11,6 +11,7 @@
 //! in one warning, and the run goes on without the scene's signals (`Claim::signals_kept`):
 //! never a false [`DrawError::Concurrent`].
 
+use std::cell::Cell;
 use std::hash::{BuildHasher, RandomState};
 
 use super::backend::{Backend, Lease};
@@ -37,6 +38,8 @@ pub(crate) struct Claim {
     contended: bool,
     /// The warning that the simulator keeps no signals ([`Claim::signals_kept`]).
     unkept: Option<String>,
+    /// The run's last check, left to [`Claim::release`] ([`Claim::check_at_release`]).
+    last_check: Cell<Option<&'static str>>,
 }
 
 impl Claim {
@@ -46,6 +49,7 @@ impl Claim {
             token: None,
             contended: false,
             unkept: None,
+            last_check: Cell::new(None),
         }
     }
 
@@ -90,6 +94,7 @@ impl Claim {
             token: Some(token),
             contended,
             unkept: None,
+            last_check: Cell::new(None),
         })
     }
 
@@ -103,6 +108,7 @@ impl Claim {
                 "the simulator did not keep the integer signal `{}` ({why}; {simulator}): drawing without a lease (a concurrent run is not detected), without a copy record, and `clear` cannot put the line template back",
                 LEASE.name
             )),
+            last_check: Cell::new(None),
         }
     }
 
@@ -128,15 +134,28 @@ impl Claim {
         }
     }
 
-    /// Removes the record if it is still this run's (never another run's).
+    /// [`Claim::check`] for a run's last check, after its last read of the scene: made by
+    /// the read [`Claim::release`] makes anyway (to clear only its own token), one request
+    /// fewer. Its failure is the run's [`DrawError::Concurrent`] for `phase`, whatever else
+    /// the run ended with.
+    pub fn check_at_release(&self, phase: &'static str) {
+        self.last_check.set(Some(phase));
+    }
+
+    /// Removes the record if it is still this run's (never another run's); fails with
+    /// [`DrawError::Concurrent`] when it is not and the run left its last check here.
     pub(crate) fn release(self, backend: &mut dyn Backend) -> Result<(), DrawError> {
         let (Some(token), Some(lease)) = (self.token, backend.lease()) else {
             return Ok(());
         };
         if lease.holder()? == Some(token) {
             lease.release()?;
+            return Ok(());
         }
-        Ok(())
+        match self.last_check.get() {
+            Some(phase) => Err(DrawError::Concurrent { phase }),
+            None => Ok(()),
+        }
     }
 }
 
@@ -153,10 +172,15 @@ pub(crate) fn claimed<T>(
         Claim::take(scene)?
     };
     let result = work(scene, &claim);
-    let released = claim.release(scene);
-    let value = result?;
-    released?;
-    Ok(value)
+    match claim.release(scene) {
+        // the run's last check, made by the release, failed: another run drew over it
+        Err(lost @ DrawError::Concurrent { .. }) => Err(lost),
+        released => {
+            let value = result?;
+            released?;
+            Ok(value)
+        }
+    }
 }
 
 /// A random non-zero token (the standard library's per-process random hasher keys).
