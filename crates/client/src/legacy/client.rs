@@ -124,6 +124,35 @@ impl Default for ClientOptions {
     }
 }
 
+/// The kinds of `commands` in order, each with how many times it comes in a row
+/// (`GetIntegerSignal x7, SetPosition`): what `VREP_MAZE_TRACE` names a message by.
+fn command_kinds(commands: &[Command]) -> String {
+    let mut kinds: Vec<(String, usize)> = Vec::new();
+    for c in commands {
+        let debug = format!("{c:?}");
+        let kind = debug
+            .split(['(', ' ', '{'])
+            .next()
+            .unwrap_or_default()
+            .to_string();
+        match kinds.last_mut() {
+            Some((last, n)) if *last == kind => *n += 1,
+            _ => kinds.push((kind, 1)),
+        }
+    }
+    kinds
+        .iter()
+        .map(|(k, n)| {
+            if *n > 1 {
+                format!("{k} x{n}")
+            } else {
+                k.clone()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// A failed connection attempt that [`Client::connect_with`] is about to retry.
 #[derive(Debug, Clone, Copy)]
 pub struct Retrying<'a> {
@@ -432,11 +461,12 @@ impl Client {
             if missing == 0 {
                 if std::env::var_os("VREP_MAZE_TRACE").is_some() {
                     eprintln!(
-                        "legacy: call of {} command(s) answered in {:.1} ms (message {my_id}, {} messages so far)",
+                        "legacy: call of {} command(s) answered in {:.1} ms (message {my_id}, {} messages so far): {}",
                         got.len(),
                         (Instant::now() + self.opts.reply_timeout - deadline).as_secs_f64()
                             * 1000.0,
-                        self.messages
+                        self.messages,
+                        command_kinds(commands)
                     );
                 }
                 return Ok(got.into_iter().flatten().collect());
