@@ -522,29 +522,10 @@ impl Backend for LegacyBackend {
     ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
         let cmds: Vec<Command> = handles
             .iter()
-            .flat_map(|&handle| {
-                (0..6).map(move |k| Command::GetObjectFloatParam {
-                    handle,
-                    param: OBJFLOATPARAM_BBOX + k,
-                })
-            })
+            .flat_map(|&h| bounding_box_commands(h))
             .collect();
         let r = self.call(&cmds)?;
-        Ok(r.chunks(6)
-            .map(|six| {
-                let v: Option<Vec<f64>> = six
-                    .iter()
-                    .map(|r| {
-                        let b = r.data.get(..4).filter(|_| !r.remote_error)?;
-                        Some(f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64)
-                    })
-                    .collect();
-                v.map(|v| BoundingBox {
-                    min: [v[0], v[1], v[2]],
-                    max: [v[3], v[4], v[5]],
-                })
-            })
-            .collect())
+        Ok(r.chunks(6).map(bounding_box_of).collect())
     }
 
     fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
@@ -698,4 +679,28 @@ impl Backend for LegacyBackend {
     fn close(&mut self) -> Result<(), BackendError> {
         Ok(self.close_client()?)
     }
+}
+
+/// The six float parameters (15-20) that make `handle`'s bounding box.
+pub(super) fn bounding_box_commands(handle: i32) -> impl Iterator<Item = Command> {
+    (0..6).map(move |k| Command::GetObjectFloatParam {
+        handle,
+        param: OBJFLOATPARAM_BBOX + k,
+    })
+}
+
+/// The bounding box the six replies to [`bounding_box_commands`] give; `None` if any failed.
+pub(super) fn bounding_box_of(six: &[Reply]) -> Option<BoundingBox> {
+    let v: Option<Vec<f64>> = six
+        .iter()
+        .map(|r| {
+            let b = r.data.get(..4).filter(|_| !r.remote_error)?;
+            Some(f32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f64)
+        })
+        .collect();
+    let v = v.filter(|v| v.len() == 6)?;
+    Some(BoundingBox {
+        min: [v[0], v[1], v[2]],
+        max: [v[3], v[4], v[5]],
+    })
 }

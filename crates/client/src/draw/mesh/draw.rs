@@ -386,6 +386,11 @@ fn apply_claimed(
             parent: h.parent,
             holder: found.holder,
             floor: h.floor,
+            floor_pose: survey
+                .objects
+                .iter()
+                .find(|o| o.handle == h.floor)
+                .map(|o| (o.position, o.orientation)),
         },
         looks,
     };

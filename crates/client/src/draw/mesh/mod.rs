@@ -47,7 +47,7 @@ pub struct NewMesh<'a> {
 
 /// Where new meshes go: the holder (created under `parent` when `None`) and the Floor, whose
 /// frame every mesh (and the holder) takes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MeshPlace {
     /// The maze dummy.
     pub parent: i32,
@@ -55,6 +55,9 @@ pub struct MeshPlace {
     pub holder: Option<i32>,
     /// The floor.
     pub floor: i32,
+    /// The floor's world pose (position, Euler angles) as this run's survey read it, if it
+    /// did: a backend that needs it (the legacy API's model) is spared reading it again.
+    pub floor_pose: Option<([f64; 3], [f64; 3])>,
 }
 
 /// A mesh of ours found in the scene.

@@ -15,13 +15,14 @@
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use super::LegacyBackend;
+use super::{LegacyBackend, bounding_box_commands, bounding_box_of};
 use crate::draw::error::BackendError;
 use crate::draw::mesh::{
     FoundMesh, FoundMeshes, HOLDER, Look, MeshDrawing, MeshPlace, MeshReadback, NewMesh,
     parse_mesh_name,
 };
 use crate::draw::names::ObjectNames;
+use crate::legacy::client::Reply;
 use crate::legacy::command::{ALL_OBJECTS, Command, GroupData, TEMP_FILE_PREFIX, group, read_i32};
 use vrep_maze_core::coppelia::xml::{self, Document, FileKind, XmlObject};
 use vrep_maze_core::coppelia::{
@@ -123,23 +124,8 @@ impl LegacyBackend {
 
     /// World position and Euler angles of `handle`.
     fn world_pose_of(&mut self, handle: i32) -> Result<([f64; 3], [f64; 3]), BackendError> {
-        let r = self.call(&[
-            Command::GetPosition {
-                handle,
-                relative_to: HANDLE_WORLD,
-            },
-            Command::GetOrientation {
-                handle,
-                relative_to: HANDLE_WORLD,
-            },
-        ])?;
-        let three = |k: usize| {
-            crate::legacy::command::read_f32x3(&r[k].data, 0)
-                .filter(|_| !r[k].remote_error)
-                .map(|v| v.map(f64::from))
-                .ok_or_else(|| BackendError::Remote(format!("reading the pose of {handle}")))
-        };
-        Ok((three(0)?, three(1)?))
+        let r = self.call(&pose_commands(handle))?;
+        pose_of(&r).ok_or_else(|| BackendError::Remote(format!("reading the pose of {handle}")))
     }
 
     /// Loads the model text: from a temporary file on this machine, or sent to the server.
@@ -244,7 +230,10 @@ impl MeshDrawing for LegacyBackend {
         place: &MeshPlace,
         meshes: &[NewMesh<'_>],
     ) -> Result<(i32, Vec<i32>), BackendError> {
-        let floor = self.world_pose_of(place.floor)?;
+        let floor = match place.floor_pose {
+            Some(pose) => pose,
+            None => self.world_pose_of(place.floor)?,
+        };
         let text = xml::write(&model(meshes, floor)?);
         let base = self.load_model_text(&text)?;
         let objects = self.parents_and_aliases()?;
@@ -299,20 +288,65 @@ impl MeshDrawing for LegacyBackend {
     }
 
     fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
-        let bounding_box = crate::draw::Backend::bounding_boxes(self, &[handle])?
-            .first()
-            .copied()
-            .flatten()
-            .map(|b| (b.min, b.max));
-        let pose = self.world_pose_of(handle)?;
-        Ok(MeshReadback {
-            vertices: None,
-            indices: None,
-            bounding_box,
-            colour: None,
-            pose,
-            layer: None,
-        })
+        let mut one = self.read_all(&[handle])?;
+        Ok(one.remove(0))
+    }
+
+    /// Every mesh's bounding box and world pose, all in one message.
+    fn read_all(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        let cmds: Vec<Command> = handles
+            .iter()
+            .flat_map(|&h| bounding_box_commands(h).chain(pose_commands(h)))
+            .collect();
+        let r = self.call(&cmds)?;
+        handles
+            .iter()
+            .zip(r.chunks(8))
+            .map(|(&handle, eight)| {
+                let (bbox, pose) = eight.split_at(6.min(eight.len()));
+                Ok(MeshReadback {
+                    vertices: None,
+                    indices: None,
+                    bounding_box: bounding_box_of(bbox).map(|b| (b.min, b.max)),
+                    colour: None,
+                    pose: pose_of(pose).ok_or_else(|| {
+                        BackendError::Remote(format!("reading the pose of {handle}"))
+                    })?,
+                    layer: None,
+                })
+            })
+            .collect()
+    }
+
+    fn read_shapes(&mut self, handles: &[i32]) -> Result<Vec<MeshReadback>, BackendError> {
+        self.read_all(handles)
+    }
+}
+
+/// `handle`'s world position and Euler angles.
+fn pose_commands(handle: i32) -> [Command; 2] {
+    [
+        Command::GetPosition {
+            handle,
+            relative_to: HANDLE_WORLD,
+        },
+        Command::GetOrientation {
+            handle,
+            relative_to: HANDLE_WORLD,
+        },
+    ]
+}
+
+/// The pose the two replies to [`pose_commands`] give; `None` if either failed.
+fn pose_of(two: &[Reply]) -> Option<([f64; 3], [f64; 3])> {
+    let three = |r: &Reply| {
+        crate::legacy::command::read_f32x3(&r.data, 0)
+            .filter(|_| !r.remote_error)
+            .map(|v| v.map(f64::from))
+    };
+    match two {
+        [position, euler] => Some((three(position)?, three(euler)?)),
+        _ => None,
     }
 }
 
