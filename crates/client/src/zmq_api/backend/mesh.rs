@@ -161,15 +161,6 @@ impl ZmqBackend {
             .is_some_and(|(p, e)| p.iter().chain(e).all(|x| x.abs() <= IDENTITY))
     }
 
-    fn text_call(&mut self, func: &str, h: i32, param: i32) -> Result<String, BackendError> {
-        let v = self
-            .client
-            .call1(func, vec![int(h.into()), int(param.into())])?;
-        cbor::text(&v).map(str::to_string).ok_or_else(|| {
-            BackendError::Transport(format!("{func} of {h}: not a text: {}", cbor::describe(&v)))
-        })
-    }
-
     /// Puts a new object's frame on the floor's (unless it is there, the world's) and under
     /// `parent`, keeping it in place.
     fn settle(&mut self, h: i32, floor: i32, parent: i32) -> Result<(), BackendError> {
@@ -239,14 +230,27 @@ impl MeshDrawing for ZmqBackend {
                 ..Default::default()
             });
         };
-        let mut meshes = Vec::new();
         // options 3: the holder's children, without the holder itself (removing the holder
-        // removes them; anything deeper moves up to its parent, as CoppeliaSim does)
-        for h in self.handles_in(holder, 3)? {
-            let name = self.text_call("sim.getObjectAlias", h, -1)?;
+        // removes them; anything deeper moves up to its parent, as CoppeliaSim does); their
+        // aliases in one request
+        let children = self.handles_in(holder, 3)?;
+        let calls: Vec<(&str, Vec<Value>)> = children
+            .iter()
+            .map(|&h| ("sim.getObjectAlias", vec![int(h.into()), int(-1)]))
+            .collect();
+        let aliases = self.client.read_all(&calls)?;
+        let mut meshes = Vec::with_capacity(children.len());
+        for (h, alias) in children.into_iter().zip(aliases) {
+            let v = alias?;
+            let name = v.first().and_then(cbor::text).ok_or_else(|| {
+                BackendError::Transport(format!(
+                    "sim.getObjectAlias of {h}: not a text: {}",
+                    v.first().map_or("nothing".into(), cbor::describe)
+                ))
+            })?;
             meshes.push(FoundMesh {
                 handle: h,
-                name,
+                name: name.to_string(),
                 parent: Some(holder),
             });
         }
