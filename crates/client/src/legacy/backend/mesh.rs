@@ -288,8 +288,10 @@ impl MeshDrawing for LegacyBackend {
     }
 
     fn read(&mut self, handle: i32) -> Result<MeshReadback, BackendError> {
-        let mut one = self.read_all(&[handle])?;
-        Ok(one.remove(0))
+        self.read_all(&[handle])?
+            .into_iter()
+            .next()
+            .ok_or_else(|| BackendError::Transport(format!("no reply reading mesh {handle}")))
     }
 
     /// Every mesh's bounding box and world pose, all in one message.
