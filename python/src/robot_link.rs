@@ -4,9 +4,10 @@
 //! A link is its own ZeroMQ connection (a drawing `Session` beside it keeps its own): the
 //! simulation runs in stepping mode while an episode lasts, so it advances only when
 //! `step` says so, whatever the machine's pace. `begin` stops a running simulation (which
-//! puts every dynamic object back, the physics reset), places the robot, turns stepping on
-//! and starts it; with `keep_running`, a `begin` while the link's episode runs puts the
-//! robot back with its physics reset and leaves the simulation running (with the camera,
+//! puts every dynamic object back), places the robot, turns stepping on, starts it and makes
+//! the physics engine's world afresh; with `keep_running`, a `begin` while the link's
+//! episode runs puts the robot back and makes the world afresh the same way, leaving the
+//! simulation running, so that every episode runs alike to the last bit (with the camera,
 //! either makes one step, so that the first image is a rendered frame); `end` stops it and
 //! turns stepping off. The link sets the idle rate to 0 while open, so a stop and a start take
 //! milliseconds; `close` puts it and the camera's resolution back. Calls run without the
@@ -147,11 +148,12 @@ impl RobotLink {
     }
 
     /// Starts an episode: the robot at `(x, y)` facing `yaw` (floor frame), at rest: the
-    /// simulation stopped if it runs (the physics reset), the robot placed, stepping turned
-    /// on and the simulation started. With `keep_running`, when an episode of this link runs
-    /// (with the same `camera`), the robot is put back while the simulation runs, its
-    /// physics reset (`sim.resetDynamicObject`), without a stop and a start: faster, but the
-    /// physics engine keeps some state, so the same actions repeat only to millimetres. The camera renders only when `camera` (else
+    /// simulation stopped if it runs, the robot placed, stepping turned on, the simulation
+    /// started and the physics engine's world made afresh (`ZmqRobot::put_back`). With
+    /// `keep_running`, when an episode of this link runs (with the same `camera`), the robot
+    /// is put back and the world made afresh while the simulation runs, without a stop and a
+    /// start (faster; other objects a run moved stay where they are). Either way the same
+    /// actions give the same episode, to the last bit. The camera renders only when `camera` (else
     /// it is spared); then the simulation makes one step, so that the first image is a
     /// rendered frame of what is drawn now. Returns the first reading:
     /// `(time, pose, joints, image)`, `pose` an array `(x, y, yaw)`, `joints` the wheels'
@@ -193,6 +195,9 @@ impl RobotLink {
                 return Err(RobotError::Scene(NOTHING_RENDERS.into()));
             }
             l.port.start_simulation()?;
+            // the physics engine's world made afresh, as a `keep_running` begin makes it: every
+            // episode then runs alike to the last bit, whichever way it began
+            l.port.put_back(pose)?;
             if camera {
                 // the camera renders during a step: before the first, its image is black
                 l.port.step()?;

@@ -17,7 +17,10 @@ use super::client::{Client, ClientOptions, ZmqError};
 use super::{Outcome, Protocol};
 use crate::held::Held;
 use crate::robot::{DRIVER_SIGNAL, Reading, RobotError, RobotNames, RobotPort, RobotSurvey};
-use vrep_maze_core::coppelia::{HANDLE_ALL, HANDLE_PARENT, INTPARAM_IDLE_FPS, SIMULATION_STOPPED};
+use vrep_maze_core::coppelia::{
+    BOOLPARAM_DYNAMICS_HANDLING_ENABLED, HANDLE_ALL, HANDLE_PARENT, INTPARAM_IDLE_FPS,
+    SIMULATION_STOPPED,
+};
 use vrep_maze_core::robot::Pose;
 use vrep_maze_core::robot::camera::{CameraModel, Image};
 use vrep_maze_core::robot::wheels::{DiffDrive, Wheels};
@@ -60,7 +63,16 @@ pub struct ZmqRobot<'a> {
     resolution: Option<[i64; 2]>,
     /// The robot's parts as they rest on the stopped simulation, once
     /// [`ZmqRobot::remember_rest`] has read them.
-    rest: Option<Vec<RestingPart>>,
+    rest: Option<Rest>,
+}
+
+/// How the robot rests on the stopped simulation ([`ZmqRobot::remember_rest`]).
+#[derive(Debug, Clone)]
+struct Rest {
+    /// Every part below the robot, in tree order.
+    parts: Vec<RestingPart>,
+    /// Whether the scene's physics engine runs (`sim.boolparam_dynamics_handling_enabled`).
+    dynamics: bool,
 }
 
 /// A part of the robot as it rests on the stopped simulation.
@@ -69,8 +81,11 @@ struct RestingPart {
     handle: i64,
     /// Its pose in its parent's frame: x, y, z, then the quaternion x, y, z, w.
     pose: [f64; 7],
-    /// Its position, if it is a joint.
+    /// Its position, if it is a joint that has one (not a spherical joint).
     joint: Option<f64>,
+    /// The pose its joint gives its child (`sim.getObjectChildPose`), if it is a joint: a
+    /// spherical joint (the caster ball's) has no position, only this.
+    child: Option<[f64; 7]>,
 }
 
 fn lost(e: ZmqError) -> RobotError {
@@ -114,9 +129,9 @@ impl<'a> ZmqRobot<'a> {
     }
 
     /// Reads how the robot rests on the stopped simulation, for [`ZmqRobot::put_back`]: each
-    /// part's pose in its parent's frame and each joint's position (two requests, once: a
-    /// later call does nothing). Call it after [`RobotPort::place`], before the simulation
-    /// starts.
+    /// part's pose in its parent's frame, each joint's position and the pose it gives its
+    /// child, and whether the physics engine runs (two requests, once: a later call does
+    /// nothing). Call it after [`RobotPort::place`], before the simulation starts.
     pub fn remember_rest(&mut self) -> Result<(), RobotError> {
         if self.rest.is_some() {
             return Ok(());
@@ -133,36 +148,51 @@ impl<'a> ZmqRobot<'a> {
             .and_then(cbor::handles)
             .ok_or_else(|| malformed("sim.getObjectsInTree"))?;
         let parts: Vec<i64> = tree.into_iter().skip(1).map(i64::from).collect();
-        let mut calls = Vec::with_capacity(2 * parts.len());
+        let mut calls = vec![(
+            "sim.getBoolParam",
+            vec![int(BOOLPARAM_DYNAMICS_HANDLING_ENABLED.into())],
+        )];
         for &h in &parts {
             calls.push(("sim.getObjectPose", vec![int(h), int(HANDLE_PARENT.into())]));
             calls.push(("sim.getJointPosition", vec![int(h)]));
+            calls.push(("sim.getObjectChildPose", vec![int(h)]));
         }
         let got = self.client()?.read_all(&calls).map_err(lost)?;
-        let rest = parts
+        let dynamics = got[0]
+            .as_ref()
+            .map_err(|e| RobotError::Scene(e.to_string()))?
+            .first()
+            .and_then(Value::as_bool)
+            .ok_or_else(|| malformed("sim.getBoolParam"))?;
+        let parts = parts
             .iter()
-            .zip(got.chunks(2))
-            .map(|(&h, pair)| {
-                let pose = Self::numbers::<7>(&pair[0], "sim.getObjectPose")?;
-                // a part that is no joint refuses sim.getJointPosition
-                let joint = Self::number(&pair[1], "sim.getJointPosition").ok();
+            .zip(got[1..].chunks(3))
+            .map(|(&h, three)| {
+                let pose = Self::numbers::<7>(&three[0], "sim.getObjectPose")?;
+                // a part that is no joint refuses both joint reads; a spherical joint the first
+                let joint = Self::number(&three[1], "sim.getJointPosition").ok();
+                let child = Self::numbers::<7>(&three[2], "sim.getObjectChildPose").ok();
                 Ok(RestingPart {
                     handle: h,
                     pose,
                     joint,
+                    child,
                 })
             })
             .collect::<Result<_, RobotError>>()?;
-        self.rest = Some(rest);
+        self.rest = Some(Rest { parts, dynamics });
         Ok(())
     }
 
     /// Puts the robot at `pose` (floor frame) while the simulation runs in stepping mode, so
     /// that a new episode needs no stop and start (15-20 ms and a first pass of 26 ms on the
-    /// real 4.10, `docs/measurements.md`): the wheels stopped, every part and joint as
-    /// [`ZmqRobot::remember_rest`] read them, the pose set, and every part's dynamics reset
-    /// (`sim.resetDynamicObject`: the physics engine takes each part afresh, at rest), in one
-    /// request; an episode then runs as it did after a start. Returns `false` when the
+    /// real 4.10, `docs/measurements.md`), in one request: the wheels stopped; the physics
+    /// engine's world ended (dynamics handling off); the robot at `pose`, then every part
+    /// and joint as [`ZmqRobot::remember_rest`] read them, every part's dynamics reset; and a
+    /// fresh world made (dynamics handling on again, where the scene had it on). Episodes
+    /// that begin so run alike to the last bit (`sim.resetDynamicObject` alone leaves the
+    /// engine's state: episodes then differed by up to 7 mm); one that begins after a start
+    /// differs from them unless this follows the start too. Returns `false` when the
     /// simulation was found stopped (by the user, say): then [`RobotPort::place`] and a start
     /// are the way.
     pub fn put_back(&mut self, pose: Pose) -> Result<bool, RobotError> {
@@ -184,7 +214,31 @@ impl<'a> ZmqRobot<'a> {
                 vec![int(p.right), Value::Float(0.0)],
             ),
         ];
-        for part in rest {
+        let dynamics = |on: bool| {
+            (
+                "sim.setBoolParam",
+                vec![
+                    int(BOOLPARAM_DYNAMICS_HANDLING_ENABLED.into()),
+                    Value::Bool(on),
+                ],
+            )
+        };
+        if rest.dynamics {
+            calls.push(dynamics(false));
+        }
+        // the robot first, then its parts in its frame: set after them, the robot's pose left
+        // episodes that differed by 0.6-1.3 mm from one reset to the next (real 4.10)
+        let at = float_array(&[pose.x, pose.y, self.height]);
+        calls.push((
+            "sim.setObjectPosition",
+            vec![int(p.robot), int(p.floor), at],
+        ));
+        let turned = float_array(&[0.0, 0.0, pose.yaw]);
+        calls.push((
+            "sim.setObjectOrientation",
+            vec![int(p.robot), int(p.floor), turned],
+        ));
+        for part in &rest.parts {
             let local = vec![
                 int(part.handle),
                 int(HANDLE_PARENT.into()),
@@ -197,19 +251,18 @@ impl<'a> ZmqRobot<'a> {
                     vec![int(part.handle), Value::Float(q)],
                 ));
             }
+            if let Some(child) = part.child {
+                calls.push((
+                    "sim.setObjectChildPose",
+                    vec![int(part.handle), float_array(&child)],
+                ));
+            }
         }
-        let at = float_array(&[pose.x, pose.y, self.height]);
-        calls.push((
-            "sim.setObjectPosition",
-            vec![int(p.robot), int(p.floor), at],
-        ));
-        let turned = float_array(&[0.0, 0.0, pose.yaw]);
-        calls.push((
-            "sim.setObjectOrientation",
-            vec![int(p.robot), int(p.floor), turned],
-        ));
-        let reset = std::iter::once(p.robot).chain(rest.iter().map(|r| r.handle));
+        let reset = std::iter::once(p.robot).chain(rest.parts.iter().map(|r| r.handle));
         calls.extend(reset.map(|h| ("sim.resetDynamicObject", vec![int(h)])));
+        if rest.dynamics {
+            calls.push(dynamics(true));
+        }
         // one program where the simulator runs it; made again, every call does the same
         let got = self.client()?.read_all(&calls).map_err(lost)?;
         let state = Self::number(&got[0], "sim.getSimulationState")?;

@@ -29,6 +29,10 @@ pub const HANDLE_SCENE: i32 = -12;
 pub const INTPARAM_PROGRAM_VERSION: i32 = 1;
 /// `sim_intparam_idle_fps`: main-loop passes per second while the simulation is stopped.
 pub const INTPARAM_IDLE_FPS: i32 = 26;
+/// `sim.boolparam_dynamics_handling_enabled` (6 in 4.5.1 and 4.10): whether the physics
+/// engine runs. Turned off while the simulation runs, it ends the engine's world (all its
+/// state); turned on again, a fresh world is made from the scene as it stands, as at a start.
+pub const BOOLPARAM_DYNAMICS_HANDLING_ENABLED: i32 = 6;
 /// CoppeliaSim's default idle rate (`sim_intparam_idle_fps` of a fresh instance).
 pub const DEFAULT_IDLE_FPS: i32 = 8;
 
