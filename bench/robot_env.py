@@ -93,7 +93,9 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=500)
     parser.add_argument("--size", default="5x5")
     parser.add_argument(
-        "--fast-reset", action="store_true", help="the AsyncVectorEnv rows with fast_reset=True"
+        "--stop-start",
+        action="store_true",
+        help="the AsyncVectorEnv rows with fast_reset=False (a stop and a start every episode)",
     )
     args = parser.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
@@ -111,7 +113,7 @@ def main() -> None:
                 resets, steps = time_env(env, args.resets, args.steps)
             finally:
                 env.close()
-            kind = ", fast_reset" if fast else ""
+            kind = "" if fast else ", fast_reset=False"
             ratio = statistics.median(steps) / statistics.median(bare)
             print(row(f"RobotMaze-v0 {args.size} obs={obs}{kind} (step {ratio:.2f}x the baseline)", resets, steps))
     try:
@@ -126,7 +128,7 @@ def main() -> None:
     except ImportError as missing:
         print(f"| PointMaze | not installed ({missing}) | | | | |")
     for n in range(2, len(args.port) + 1):
-        envs = vector_env(args.port[:n], size=size, max_episode_steps=400, fast_reset=args.fast_reset)
+        envs = vector_env(args.port[:n], size=size, max_episode_steps=400, fast_reset=not args.stop_start)
         try:
             envs.reset(seed=0)
             step_times = []
@@ -137,7 +139,7 @@ def main() -> None:
         finally:
             envs.close()
         s50, s99 = percentiles(step_times)
-        kind = ", fast_reset" if args.fast_reset else ""
+        kind = ", fast_reset=False" if args.stop_start else ""
         print(f"| AsyncVectorEnv x{n} obs=pose{kind} | | | {s50:.2f} | {s99:.2f} | {n * 1e3 / s50:.0f} (all envs) |")
 
 

@@ -15,13 +15,15 @@ and Gymnasium (``pip install vrep-maze[rl]``)::
     env.close()                             # simulation stopped, what was changed put back
 
 An episode: ``reset`` draws the episode's maze (``draw="mesh"`` by default) over one open
-:class:`vrep_maze.Session`, stops the simulation if it runs (which resets the physics),
-places the robot at Start facing the first passage and starts the simulation in stepping
-mode. With ``fast_reset=True`` the resets after the first leave the simulation running
-instead: the maze is drawn into it and the robot put back at rest with its physics reset
-(``sim.resetDynamicObject``), which saves a stop and a start (about half a reset), but the
-physics engine carries some state from one episode to the next, so the same seed and actions
-give trajectories that differ by up to millimetres. Each ``step`` sets the two wheel
+:class:`vrep_maze.Session` and puts the robot at Start facing the first passage, at rest, in a
+physics world made afresh. The first reset starts the simulation in stepping mode; the later
+ones leave it running (``fast_reset``, the default): the maze is drawn into the running
+simulation and the robot put back in one request, the physics engine's world ended and made
+again from the scene (dynamics handling turned off and on), which saves a stop and a start
+(about half a reset). Either way an episode runs as every other with the same seed and
+actions, to the last bit. ``fast_reset=False`` stops and starts the simulation every episode
+instead, which also puts back any other object a run moved (a fast reset puts back the robot
+only). Each ``step`` sets the two wheel
 velocities (rad/s) and advances the simulation one step (50 ms in the course scene). The episode ends (``terminated``) when the robot's centre
 enters ``End``'s footprint, as ``vrep-maze score`` decides it, and is ``truncated`` after
 ``max_episode_steps``. Reward: ``goal_reward`` on reaching End, minus ``step_penalty`` every
@@ -99,8 +101,8 @@ class RobotMazeEnv(gym.Env):
       ``wheel_max`` (rad/s, the action's bound), the scene's names (``robot``,
       ``left_motor``, ``right_motor``, ``camera``, ``floor``, ``line``);
     - the task: ``max_episode_steps`` (1000), ``goal_reward`` (1.0), ``step_penalty`` (0.0);
-    - ``fast_reset`` (``False``): resets after the first leave the simulation running (see
-      the module's text: faster, but episodes are reproducible only to millimetres);
+    - ``fast_reset`` (``True``): resets after the first leave the simulation running (see
+      the module's text); ``False`` stops and starts it every episode;
     - ``render_mode``: ``"rgb_array"`` returns the camera's latest image.
 
     ``info`` holds ``"pose"`` (``x, y, yaw`` in the floor's frame), ``"waypoints"`` (the
@@ -132,7 +134,7 @@ class RobotMazeEnv(gym.Env):
         wheel_max: float = 10.0,
         goal_reward: float = 1.0,
         step_penalty: float = 0.0,
-        fast_reset: bool = False,
+        fast_reset: bool = True,
         connect_timeout: Optional[float] = None,
         timeout: Optional[float] = None,
         render_mode: Optional[str] = None,
@@ -311,9 +313,15 @@ class RobotMazeEnv(gym.Env):
 
     # -- what an observation and the info hold
 
+    def _episode_time(self, time: float) -> float:
+        """Simulated seconds since the episode began, to the microsecond: the simulation's
+        clock runs on across episodes, and a difference of its times carries rounding that
+        would make the same episode's times differ in the last bits."""
+        return round(float(time) - self._start_time, 6)
+
     def _sample(self) -> tuple[float, float, float, float]:
         time, pose, _, _ = self._reading
-        return (float(time) - self._start_time, float(pose[0]), float(pose[1]), float(pose[2]))
+        return (self._episode_time(time), float(pose[0]), float(pose[1]), float(pose[2]))
 
     def _observation(self):
         _, pose, _, image = self._reading
@@ -328,7 +336,7 @@ class RobotMazeEnv(gym.Env):
         return {
             "pose": np.array(pose, dtype=np.float64),
             "joints": np.array(joints, dtype=np.float64),
-            "time": float(time) - self._start_time,
+            "time": self._episode_time(time),
             # a tuple, not an array: a vector env stacks arrays, and mazes differ in length
             "waypoints": tuple(map(tuple, self._waypoints.tolist())),
             "seed": self.layout.seed,
