@@ -3,17 +3,20 @@
 //! under `vrep-maze.*` still recognised where 4.5.1 kept them, and removed once rewritten;
 //! a simulator that keeps no signal said so in one warning, and drawn without them.
 
+use vrep_maze::draw::mesh::{self, MeshMaze};
 use vrep_maze::draw::signals::{COPIES, HOME, LEASE, SAVED_IDLE_FPS, Signal};
 use vrep_maze::draw::{
     self, ApplyOptions, ApplyReport, Backend, BackendError, BoundingBox, Claimed, ClearOptions,
-    ClearReport, Drawing, Edit, IdleRates, Lease, ObjectInfo, ObjectNames, Survey, SurveyNames,
+    ClearReport, Drawing, Edit, IdleRates, Lease, ObjectInfo, ObjectNames, Stage, Survey,
+    SurveyNames,
 };
+use vrep_maze::generate::Algorithm;
 use vrep_maze::sim::Scene;
 use vrep_maze::sim::property::is_property_name;
 
 use crate::support::backend::{Kind, Server};
 use crate::support::backend_tests;
-use crate::support::layouts::drawing;
+use crate::support::layouts::{course_layout, drawing};
 
 backend_tests!(apply_reapply_and_clear_keep_their_signals_under_property_names);
 
@@ -284,91 +287,25 @@ fn a_simulator_that_keeps_no_signal_is_said_so_and_drawn_without_them() {
     s.shutdown();
 }
 
-/// A connection after whose every read of the scene's objects another run claims the
-/// scene (`take` writes its token): the claim taken just after this run's last read.
-struct TakenOver<'a> {
-    inner: Box<dyn Backend>,
-    take: Box<dyn FnMut() + 'a>,
-}
-
-impl Backend for TakenOver<'_> {
-    fn idle_rates(&mut self) -> Result<IdleRates, BackendError> {
-        self.inner.idle_rates()
-    }
-    fn survey(&mut self, names: &SurveyNames<'_>) -> Result<Survey, BackendError> {
-        self.inner.survey(names)
-    }
-    fn objects(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
-        let read = self.inner.objects();
-        (self.take)();
-        read
-    }
-    fn objects_from_scene(&mut self) -> Result<Vec<ObjectInfo>, BackendError> {
-        let read = self.inner.objects_from_scene();
-        (self.take)();
-        read
-    }
-    fn bounding_boxes(
-        &mut self,
-        handles: &[i32],
-    ) -> Result<Vec<Option<BoundingBox>>, BackendError> {
-        self.inner.bounding_boxes(handles)
-    }
-    fn sizes(&mut self, handles: &[i32]) -> Result<Vec<Option<[f64; 3]>>, BackendError> {
-        self.inner.sizes(handles)
-    }
-    fn int_signals(&mut self, names: &[&str]) -> Result<Vec<Option<i32>>, BackendError> {
-        self.inner.int_signals(names)
-    }
-    fn set_int_signals(&mut self, signals: &[(&str, Option<i32>)]) -> Result<(), BackendError> {
-        self.inner.set_int_signals(signals)
-    }
-    fn copy_paste(&mut self, groups: &[Vec<i32>]) -> Result<Vec<Vec<i32>>, BackendError> {
-        self.inner.copy_paste(groups)
-    }
-    fn edit(&mut self, edits: &[Edit]) -> Result<(), BackendError> {
-        self.inner.edit(edits)
-    }
-    fn set_idle_fps(&mut self, fps: i32, saved: Option<i32>) -> Result<(), BackendError> {
-        self.inner.set_idle_fps(fps, saved)
-    }
-    fn stop_simulation(&mut self) -> Result<(), BackendError> {
-        self.inner.stop_simulation()
-    }
-    fn round_trips(&self) -> usize {
-        self.inner.round_trips()
-    }
-    fn describe(&self) -> String {
-        format!("{}, taken over after each read", self.inner.describe())
-    }
-    fn lease(&mut self) -> Option<&mut dyn Lease> {
-        self.inner.lease()
-    }
-}
-
 /// The last check of a run is made by its release's read of the lease (one request fewer):
-/// a run whose scene another run claims after its last read still fails with "another run
-/// ... while verifying", and leaves the other run's claim in place, over both ZeroMQ
-/// protocols (the legacy API, one client at a time, has no lease).
+/// a run whose scene another run claims after its last check but before that read (in a
+/// mesh apply, between "verifying" and the release only the meshes are read back) still
+/// fails with "another run ... while verifying", and leaves the other run's claim in place,
+/// over both ZeroMQ protocols (the legacy API, one client at a time, has no lease).
 #[test]
 fn a_claim_taken_after_the_last_read_fails_the_run_and_stays() {
     const OTHER: i32 = 0x5eed;
     for kind in [Kind::Zmq1, Kind::Zmq2] {
         let k = kind.name();
         let s = kind.serve(Scene::course(), 0);
-        let mut b = TakenOver {
-            inner: s.connect(),
-            take: Box::new(|| {
+        let mut b = s.connect();
+        let maze = MeshMaze::try_from(&course_layout(Algorithm::Dfs, 5, 5, 7)).unwrap();
+        let mut take_over = |stage: Stage| {
+            if matches!(stage, Stage::Verifying) {
                 s.with_sim(|sim| sim.int_signals.insert(LEASE.name.into(), OTHER));
-            }),
+            }
         };
-        let outcome = draw::apply(
-            &mut b,
-            &drawing(5, 7),
-            &ApplyOptions::default(),
-            &mut |_| {},
-        );
-        match outcome {
+        match mesh::apply(&mut *b, &maze, &ApplyOptions::default(), &mut take_over) {
             Err(draw::DrawError::Concurrent { phase }) => {
                 assert_eq!(phase, "while verifying", "{k}")
             }
