@@ -47,6 +47,43 @@ struct Parts {
     floor: i64,
 }
 
+/// A call as [`Client::call_all`] and [`Client::read_all`] take it.
+type Call = (&'static str, Vec<Value>);
+
+impl Parts {
+    /// Both wheels' target velocities set to 0.
+    fn wheels_stopped(&self) -> [Call; 2] {
+        [self.left, self.right].map(|joint| {
+            (
+                "sim.setJointTargetVelocity",
+                vec![int(joint), Value::Float(0.0)],
+            )
+        })
+    }
+
+    /// The robot at `pose` in the floor's frame, `height` above it, level.
+    fn robot_at(&self, pose: Pose, height: f64) -> [Call; 2] {
+        [
+            (
+                "sim.setObjectPosition",
+                vec![
+                    int(self.robot),
+                    int(self.floor),
+                    float_array(&[pose.x, pose.y, height]),
+                ],
+            ),
+            (
+                "sim.setObjectOrientation",
+                vec![
+                    int(self.robot),
+                    int(self.floor),
+                    float_array(&[0.0, 0.0, pose.yaw]),
+                ],
+            ),
+        ]
+    }
+}
+
 /// A wheeled robot driven over a ZeroMQ connection.
 pub struct ZmqRobot<'a> {
     client: Option<Held<'a, Client>>,
@@ -203,17 +240,8 @@ impl<'a> ZmqRobot<'a> {
                     .into(),
             ));
         };
-        let mut calls = vec![
-            ("sim.getSimulationState", vec![]),
-            (
-                "sim.setJointTargetVelocity",
-                vec![int(p.left), Value::Float(0.0)],
-            ),
-            (
-                "sim.setJointTargetVelocity",
-                vec![int(p.right), Value::Float(0.0)],
-            ),
-        ];
+        let mut calls: Vec<Call> = vec![("sim.getSimulationState", vec![])];
+        calls.extend(p.wheels_stopped());
         let dynamics = |on: bool| {
             (
                 "sim.setBoolParam",
@@ -228,16 +256,7 @@ impl<'a> ZmqRobot<'a> {
         }
         // the robot first, then its parts in its frame: set after them, the robot's pose left
         // episodes that differed by 0.6-1.3 mm from one reset to the next (real 4.10)
-        let at = float_array(&[pose.x, pose.y, self.height]);
-        calls.push((
-            "sim.setObjectPosition",
-            vec![int(p.robot), int(p.floor), at],
-        ));
-        let turned = float_array(&[0.0, 0.0, pose.yaw]);
-        calls.push((
-            "sim.setObjectOrientation",
-            vec![int(p.robot), int(p.floor), turned],
-        ));
+        calls.extend(p.robot_at(pose, self.height));
         for part in &rest.parts {
             let local = vec![
                 int(part.handle),
@@ -555,32 +574,8 @@ impl RobotPort for ZmqRobot<'_> {
                 "the simulation is running: stop it first (the robot is placed on a stopped simulation)".into(),
             ));
         }
-        let calls = vec![
-            (
-                "sim.setObjectPosition",
-                vec![
-                    int(p.robot),
-                    int(p.floor),
-                    float_array(&[pose.x, pose.y, height]),
-                ],
-            ),
-            (
-                "sim.setObjectOrientation",
-                vec![
-                    int(p.robot),
-                    int(p.floor),
-                    float_array(&[0.0, 0.0, pose.yaw]),
-                ],
-            ),
-            (
-                "sim.setJointTargetVelocity",
-                vec![int(p.left), Value::Float(0.0)],
-            ),
-            (
-                "sim.setJointTargetVelocity",
-                vec![int(p.right), Value::Float(0.0)],
-            ),
-        ];
+        let mut calls = p.robot_at(pose, height).to_vec();
+        calls.extend(p.wheels_stopped());
         for outcome in client.call_all(&calls).map_err(lost)? {
             outcome.map_err(|e| RobotError::Scene(e.to_string()))?;
         }
@@ -802,12 +797,9 @@ impl ZmqRobot<'_> {
         parts: Option<Parts>,
         restore: Option<i64>,
     ) -> Result<(), ZmqError> {
-        let mut calls: Vec<(&str, Vec<Value>)> = Vec::new();
+        let mut calls: Vec<Call> = Vec::new();
         if let Some(p) = parts {
-            for joint in [p.left, p.right] {
-                let args = vec![int(joint), Value::Float(0.0)];
-                calls.push(("sim.setJointTargetVelocity", args));
-            }
+            calls.extend(p.wheels_stopped());
         }
         let signal = vec![Value::Text(DRIVER_SIGNAL.into())];
         calls.push(("sim.clearInt32Signal", signal));
